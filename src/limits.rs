@@ -1,0 +1,86 @@
+//! Configurable resource limits, checked before the work starts where they can be predicted.
+
+use crate::error::{Error, Result};
+use crate::face::Face;
+
+/// Limits on the size of the work. Every one has a command-line flag.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Limits {
+    /// Maximum boundary length of any face type (`--max-boundary`).
+    pub max_boundary: usize,
+    /// Maximum number of face types in a closure (`--max-types`).
+    pub max_types: usize,
+    /// Maximum level for counts (`--max-level`).
+    pub max_level: u64,
+    /// Maximum sub-edge count n of an edge type (`--max-subedges`).
+    pub max_subedges: u32,
+    /// Maximum delay of an edge or a face (`--max-delay`).
+    pub max_delay: u32,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits {
+            max_boundary: 256,
+            max_types: 20_000,
+            max_level: 10_000,
+            max_subedges: 64,
+            max_delay: 64,
+        }
+    }
+}
+
+impl Limits {
+    /// Checks a start face against the limits.
+    pub fn check_face(&self, f: &Face) -> Result<()> {
+        if f.boundary.len() > self.max_boundary {
+            return Err(Error::Limit {
+                what: "the boundary length",
+                value: f.boundary.len().to_string(),
+                limit: self.max_boundary.to_string(),
+                flag: "--max-boundary",
+            });
+        }
+        if f.delay > self.max_delay {
+            return Err(Error::Limit {
+                what: "the face delay",
+                value: f.delay.to_string(),
+                limit: self.max_delay.to_string(),
+                flag: "--max-delay",
+            });
+        }
+        let p = f.params;
+        for e in f.boundary.iter().chain([&p.ea, &p.el, &p.ec]) {
+            if e.n > self.max_subedges {
+                return Err(Error::Limit {
+                    what: "an edge's sub-edge count",
+                    value: e.to_string(),
+                    limit: self.max_subedges.to_string(),
+                    flag: "--max-subedges",
+                });
+            }
+            if e.delay > self.max_delay {
+                return Err(Error::Limit {
+                    what: "an edge delay",
+                    value: e.to_string(),
+                    limit: self.max_delay.to_string(),
+                    flag: "--max-delay",
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks a requested level.
+    pub fn check_level(&self, level: u64) -> Result<()> {
+        if level > self.max_level {
+            return Err(Error::Limit {
+                what: "the level",
+                value: level.to_string(),
+                limit: self.max_level.to_string(),
+                flag: "--max-level",
+            });
+        }
+        Ok(())
+    }
+}
