@@ -1,1 +1,336 @@
-//! todo
+//! Assemblies: several faces with shared edges, in lacuna's plain-text format.
+//!
+//! ```text
+//! # comment
+//! rule R = {joint gap corner(C,B)}
+//! face 0: C2 B2 C2 B2 | C2 B2 B2 | A1
+//! face 1: C2 B2 C2 B2 | C2 B2 B2 | R
+//! face 0 edge 2 ~ face 1 edge 0
+//! ```
+//! A shared edge must have the same type and delay on both sides; the two faces traverse it in
+//! opposite directions (both boundaries are counter-clockwise). Edge indices refer to the
+//! boundary as written.
+
+use crate::error::{Error, Result, Source, Span};
+use crate::face::Face;
+use crate::rule::Algorithm;
+use serde::Serialize;
+
+/// Two face edges glued together.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct SharedEdge {
+    /// (face index, edge index) of one side.
+    pub a: (usize, usize),
+    /// (face index, edge index) of the other side.
+    pub b: (usize, usize),
+}
+
+/// A structure of faces with shared edges.
+#[derive(Clone, Debug)]
+pub struct Assembly {
+    /// The faces with their names (`0`, `1`, … in files), in order of appearance.
+    pub faces: Vec<(String, Face)>,
+    /// The shared edges.
+    pub shared: Vec<SharedEdge>,
+}
+
+/// A reference `face NAME edge I` as written: (name, edge, column).
+type EdgeRef = (String, usize, usize);
+
+fn at(code: &'static str, msg: String, line: usize, col: usize, len: usize, src: &Source) -> Error {
+    Error::syntax(
+        code,
+        msg,
+        Span {
+            line,
+            col,
+            len: len.max(1),
+        },
+        Some(src),
+    )
+}
+
+impl Assembly {
+    /// Parses lacuna's assembly format.
+    pub fn parse(src: &Source) -> Result<Assembly> {
+        let mut rules: Vec<(String, Algorithm)> = Vec::new();
+        let mut faces: Vec<(String, Face)> = Vec::new();
+        let mut links: Vec<(usize, [EdgeRef; 2])> = Vec::new();
+        for (ln0, raw) in src.text.lines().enumerate() {
+            let ln = ln0 + 1;
+            let line = raw.split('#').next().unwrap_or("");
+            let trimmed = line.trim();
+            if trimmed.is_empty() {
+                continue;
+            }
+            let lead = line.len() - line.trim_start().len();
+            let col0 = line[..lead].chars().count() + 1;
+            if let Some(rest) = trimmed.strip_prefix("rule ") {
+                let Some((name, def)) = rest.split_once('=') else {
+                    return Err(at(
+                        "E0201",
+                        "expected `rule NAME = {…}`".into(),
+                        ln,
+                        col0,
+                        trimmed.len(),
+                        src,
+                    ));
+                };
+                let name = name.trim().to_string();
+                let valid = !name.is_empty()
+                    && name
+                        .chars()
+                        .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+                if !valid || ["A1", "A2", "A3"].contains(&name.as_str()) {
+                    return Err(at(
+                        "E0201",
+                        format!("invalid rule name `{name}`"),
+                        ln,
+                        col0 + 5,
+                        name.len(),
+                        src,
+                    ));
+                }
+                let def_off = trimmed.len() - def.trim_start().len();
+                let alg = Algorithm::parse(def.trim(), col0 + def_off, &rules)
+                    .map_err(|e| e.within(src, ln, 0))?;
+                rules.push((name, alg));
+            } else if trimmed.starts_with("face ") && trimmed.contains(':') {
+                let (head, notation) = trimmed.split_once(':').expect("checked");
+                let name = head["face ".len()..].trim().to_string();
+                if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+                    return Err(at(
+                        "E0201",
+                        format!("invalid face name `{name}`"),
+                        ln,
+                        col0 + 5,
+                        name.len(),
+                        src,
+                    ));
+                }
+                if faces.iter().any(|(n, _)| *n == name) {
+                    return Err(at(
+                        "E0202",
+                        format!("face `{name}` is defined twice"),
+                        ln,
+                        col0 + 5,
+                        name.len(),
+                        src,
+                    ));
+                }
+                let off = head.chars().count() + 1;
+                let face = Face::parse_with(notation, &rules)
+                    .map_err(|e| e.within(src, ln, col0 - 1 + off))?;
+                faces.push((name, face));
+            } else if trimmed.contains('~') {
+                let (l, r) = trimmed.split_once('~').expect("checked");
+                let rcol = col0 + l.chars().count() + 1;
+                let a = parse_ref(l, ln, col0, src)?;
+                let b = parse_ref(r, ln, rcol, src)?;
+                links.push((ln, [a, b]));
+            } else {
+                return Err(at(
+                    "E0201",
+                    format!("expected `face NAME: …`, `rule NAME = …` or `face A edge I ~ face B edge J`, found `{trimmed}`"),
+                    ln,
+                    col0,
+                    trimmed.chars().count(),
+                    src,
+                ));
+            }
+        }
+        let mut shared = Vec::new();
+        for (ln, [a, b]) in links {
+            let resolve = |(name, edge, col): &EdgeRef| -> Result<(usize, usize)> {
+                let Some(f) = faces.iter().position(|(n, _)| n == name) else {
+                    return Err(at(
+                        "E0203",
+                        format!("no face named `{name}`"),
+                        ln,
+                        *col,
+                        name.len() + 5,
+                        src,
+                    ));
+                };
+                Ok((f, *edge))
+            };
+            let ra = resolve(&a)?;
+            let rb = resolve(&b)?;
+            shared.push((ln, a.2, SharedEdge { a: ra, b: rb }));
+        }
+        if faces.is_empty() {
+            return Err(at(
+                "E0207",
+                "no face defined (expected `face 0: EDGES | Ea El Ec | A`)".into(),
+                1,
+                1,
+                1,
+                src,
+            ));
+        }
+        let asm = Assembly {
+            faces,
+            shared: shared.iter().map(|s| s.2).collect(),
+        };
+        let lines: Vec<(usize, usize)> = shared.iter().map(|s| (s.0, s.1)).collect();
+        asm.check(src, &lines)?;
+        Ok(asm)
+    }
+
+    /// Checks the shared edges: indices in range, each face edge glued at most once, never to
+    /// itself, and the same edge type and delay on both sides. `lines` gives the (line, column)
+    /// of each shared edge in `src`, for errors.
+    pub fn check(&self, src: &Source, lines: &[(usize, usize)]) -> Result<()> {
+        let mut used: std::collections::HashMap<(usize, usize), usize> = Default::default();
+        for (k, s) in self.shared.iter().enumerate() {
+            let (ln, col) = lines.get(k).copied().unwrap_or((1, 1));
+            if s.a == s.b {
+                return Err(at(
+                    "E0208",
+                    "an edge cannot be shared with itself".into(),
+                    ln,
+                    col,
+                    1,
+                    src,
+                ));
+            }
+            for &(f, e) in [&s.a, &s.b] {
+                let (name, face) = &self.faces[f];
+                if e >= face.boundary.len() {
+                    return Err(at(
+                        "E0204",
+                        format!(
+                            "face `{name}` has {} edges; edge {e} does not exist",
+                            face.boundary.len()
+                        ),
+                        ln,
+                        col,
+                        1,
+                        src,
+                    ));
+                }
+                if let Some(prev) = used.insert((f, e), ln) {
+                    return Err(at(
+                        "E0206",
+                        format!("edge {e} of face `{name}` is already shared (line {prev})"),
+                        ln,
+                        col,
+                        1,
+                        src,
+                    ));
+                }
+            }
+            let ta = self.faces[s.a.0].1.boundary[s.a.1];
+            let tb = self.faces[s.b.0].1.boundary[s.b.1];
+            if ta != tb {
+                return Err(at(
+                    "E0205",
+                    format!(
+                        "shared edge has type {ta} on face `{}` but {tb} on face `{}`: both sides must have the same type and delay",
+                        self.faces[s.a.0].0, self.faces[s.b.0].0
+                    ),
+                    ln,
+                    col,
+                    1,
+                    src,
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The faces alone, in order.
+    pub fn face_list(&self) -> Vec<Face> {
+        self.faces.iter().map(|(_, f)| f.clone()).collect()
+    }
+}
+
+/// Parses `face NAME edge I`; returns (name, edge, column).
+fn parse_ref(text: &str, ln: usize, col: usize, src: &Source) -> Result<EdgeRef> {
+    let lead = text.len() - text.trim_start().len();
+    let c = col + text[..lead].chars().count();
+    let words: Vec<&str> = text.split_whitespace().collect();
+    match words.as_slice() {
+        ["face", name, "edge", idx] => match idx.parse::<usize>() {
+            Ok(i) => Ok((name.to_string(), i, c)),
+            Err(_) => Err(at(
+                "E0201",
+                format!("`{idx}` is not an edge index"),
+                ln,
+                c,
+                text.trim().len(),
+                src,
+            )),
+        },
+        _ => Err(at(
+            "E0201",
+            format!("expected `face NAME edge INDEX`, found `{}`", text.trim()),
+            ln,
+            c,
+            text.trim().chars().count(),
+            src,
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn src(t: &str) -> Source {
+        Source {
+            name: "test.txt".into(),
+            text: t.into(),
+        }
+    }
+
+    #[test]
+    fn parses_rules_faces_and_links() {
+        let a = Assembly::parse(&src(
+            "# two quads\nrule R = {joint gap corner(C,B)}\nface 0: C2 B2 C2 B2 | C2 B2 B2 | A1\nface 1: C2 B2 C2 B2 | C2 B2 B2 | R\nface 0 edge 1 ~ face 1 edge 3\n",
+        ))
+        .unwrap();
+        assert_eq!(a.faces.len(), 2);
+        assert_eq!(
+            a.faces[1].1.algorithm.to_string(),
+            "{joint gap corner(C,B)}"
+        );
+        assert_eq!(
+            a.shared,
+            vec![SharedEdge {
+                a: (0, 1),
+                b: (1, 3)
+            }]
+        );
+    }
+
+    #[test]
+    fn bad_assemblies_have_codes_and_lines() {
+        let cases = [
+            ("face 0: C2 B2 | C2 B2 B2 | A1\nface 0: B2 B2 | C2 B2 B2 | A1", "E0202", 2),
+            ("face 0: C2 B2 | C2 B2 B2 | A1\nface 0 edge 0 ~ face 9 edge 0", "E0203", 2),
+            ("face 0: C2 B2 | C2 B2 B2 | A1\nface 1: C2 B2 | C2 B2 B2 | A1\nface 0 edge 5 ~ face 1 edge 0", "E0204", 3),
+            ("face 0: C2 B2 | C2 B2 B2 | A1\nface 1: C2 B2 | C2 B2 B2 | A1\nface 0 edge 0 ~ face 1 edge 1", "E0205", 3),
+            (
+                "face 0: C2 B2 | C2 B2 B2 | A1\nface 1: C2 B2 | C2 B2 B2 | A1\nface 0 edge 0 ~ face 1 edge 0\nface 0 edge 0 ~ face 1 edge 0",
+                "E0206",
+                4,
+            ),
+            ("face 0: C2 B2 | C2 B2 B2 | A1\nface 0 edge 0 ~ face 0 edge 0", "E0208", 2),
+            ("# nothing\n", "E0207", 1),
+            ("face 0: C2 Q2 | C2 B2 B2 | A1", "E0103", 1),
+            ("hello", "E0201", 1),
+        ];
+        for (text, code, line) in cases {
+            let e = Assembly::parse(&src(text)).unwrap_err();
+            assert_eq!(
+                (e.code(), e.span().map(|s| s.line)),
+                (code, Some(line)),
+                "{text}"
+            );
+        }
+        // The column of an error inside a face line is the column in the file.
+        let e = Assembly::parse(&src("face 0: C2 Q2 | C2 B2 B2 | A1")).unwrap_err();
+        assert_eq!(e.span().unwrap().col, 12);
+    }
+}

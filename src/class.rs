@@ -86,7 +86,12 @@ impl ClassStructure {
 }
 
 /// The period of class `c`, or `None` when it has no arc inside (a transient type).
-fn period(succ: &[Vec<usize>], class_of: &[Option<usize>], c: usize, members: &[usize]) -> Option<u64> {
+fn period(
+    succ: &[Vec<usize>],
+    class_of: &[Option<usize>],
+    c: usize,
+    members: &[usize],
+) -> Option<u64> {
     let root = members[0];
     let mut level: std::collections::HashMap<usize, u64> = std::collections::HashMap::new();
     level.insert(root, 0);

@@ -196,7 +196,10 @@ impl Bound {
         let mut groups: BTreeSet<String> = BTreeSet::new();
         let mut max_run = 0usize;
         for f in start {
-            groups.insert(format!("{} {} {} {}", f.params.ea, f.params.el, f.params.ec, f.algorithm));
+            groups.insert(format!(
+                "{} {} {} {}",
+                f.params.ea, f.params.el, f.params.ec, f.algorithm
+            ));
             let p = f.params;
             for e in f.boundary.iter().chain([&p.ea, &p.el, &p.ec]) {
                 for k in 1..=e.delay {
@@ -212,7 +215,9 @@ impl Bound {
                 for e in &cur {
                     for k in 0..e.piece_count() {
                         next.push(e.piece());
-                        if k + 1 < e.piece_count() && e.inner_junction() == Some(crate::edge::JunctionKind::Gap) {
+                        if k + 1 < e.piece_count()
+                            && e.inner_junction() == Some(crate::edge::JunctionKind::Gap)
+                        {
                             next.extend([p.ec, p.ec]);
                         }
                     }
@@ -279,7 +284,11 @@ impl TypeSet {
     /// sub-face (weighted by the sub-face's index).
     pub fn graph(&self) -> DiGraph<String, usize> {
         let mut g = DiGraph::new();
-        let nodes: Vec<_> = self.types.iter().map(|t| g.add_node(t.face.to_string())).collect();
+        let nodes: Vec<_> = self
+            .types
+            .iter()
+            .map(|t| g.add_node(t.face.to_string()))
+            .collect();
         for (t, ty) in self.types.iter().enumerate() {
             for (k, &c) in ty.children.iter().enumerate() {
                 g.add_edge(nodes[t], nodes[c], k);
@@ -311,9 +320,13 @@ impl TypeSet {
     /// right type, and the stated bound (when there is one).
     pub fn verify(&self) -> std::result::Result<(), String> {
         for (t, ty) in self.types.iter().enumerate() {
-            ty.subdivision.verify(&ty.face).map_err(|e| format!("type T{t}: {e}"))?;
+            ty.subdivision
+                .verify(&ty.face)
+                .map_err(|e| format!("type T{t}: {e}"))?;
             if ty.children.len() != ty.subdivision.subfaces.len() {
-                return Err(format!("type T{t}: children and sub-faces differ in number"));
+                return Err(format!(
+                    "type T{t}: children and sub-faces differ in number"
+                ));
             }
             for (s, &c) in ty.subdivision.subfaces.iter().zip(&ty.children) {
                 match self.types.get(c) {
@@ -323,12 +336,24 @@ impl TypeSet {
             }
         }
         if let Some(b) = &self.bound {
-            let longest = self.types.iter().map(|t| t.face.boundary.len()).max().unwrap_or(0);
+            let longest = self
+                .types
+                .iter()
+                .map(|t| t.face.boundary.len())
+                .max()
+                .unwrap_or(0);
             if longest > b.max_length {
-                return Err(format!("a boundary of {longest} edges breaks the stated bound {}", b.max_length));
+                return Err(format!(
+                    "a boundary of {longest} edges breaks the stated bound {}",
+                    b.max_length
+                ));
             }
             if BigUint::from(self.types.len()) > b.max_types {
-                return Err(format!("{} types break the stated bound {}", self.types.len(), b.max_types));
+                return Err(format!(
+                    "{} types break the stated bound {}",
+                    self.types.len(),
+                    b.max_types
+                ));
             }
         }
         Ok(())
@@ -415,8 +440,15 @@ mod tests {
             Closure::Runaway(r) => {
                 assert!(r.witness.len() >= 2);
                 assert!(r.reason.contains("--max-boundary"));
-                let lens: Vec<usize> = r.witness.iter().map(|w| w.split('|').next().unwrap().split_whitespace().count()).collect();
-                assert!(lens.windows(2).all(|w| w[0] < w[1]), "chain grows: {lens:?}");
+                let lens: Vec<usize> = r
+                    .witness
+                    .iter()
+                    .map(|w| w.split('|').next().unwrap().split_whitespace().count())
+                    .collect();
+                assert!(
+                    lens.windows(2).all(|w| w[0] < w[1]),
+                    "chain grows: {lens:?}"
+                );
             }
             Closure::Closed(ts) => panic!("expected runaway, got {} types", ts.types.len()),
         }
@@ -426,7 +458,10 @@ mod tests {
     fn delayed_chain_stays_within_the_stated_bound() {
         let ts = closed("B3 C2 B2^3 C3 B2 | C2 B2 C2 | A3");
         let b = ts.bound.clone().unwrap();
-        assert!(ts.types.iter().all(|t| t.face.boundary.len() <= b.max_length));
+        assert!(ts
+            .types
+            .iter()
+            .all(|t| t.face.boundary.len() <= b.max_length));
         let ts = closed("B2 C2^3 | C2 B2 B2 | A1 | 3");
         assert_eq!(ts.types[0].face.delay, 3);
         assert_eq!(ts.types[1].face.delay, 2);

@@ -26,7 +26,10 @@ pub struct LevelCount {
 }
 
 /// Serialises any `Display` value as a JSON string (exact numbers stay exact).
-pub fn ser_display<T: std::fmt::Display, S: serde::Serializer>(v: &T, s: S) -> Result<S::Ok, S::Error> {
+pub fn ser_display<T: std::fmt::Display, S: serde::Serializer>(
+    v: &T,
+    s: S,
+) -> Result<S::Ok, S::Error> {
     s.collect_str(v)
 }
 
@@ -45,7 +48,11 @@ pub fn counts_from(ts: &TypeSet, start: &[(usize, u64)], levels: u64) -> Vec<Lev
         let faces: BigUint = v.iter().sum();
         let lacunas = BigRational::new(lacuna_halves.clone().into(), 2.into());
         let denom = &lacunas + BigRational::from_integer(faces.clone().into());
-        let ratio = if denom.is_zero() { BigRational::zero() } else { &lacunas / denom };
+        let ratio = if denom.is_zero() {
+            BigRational::zero()
+        } else {
+            &lacunas / denom
+        };
         out.push(LevelCount {
             level,
             faces,
@@ -106,7 +113,10 @@ mod tests {
         // Square of B2 → 4 pentagons (contribution 1 each step: central lacuna only),
         // pentagon → 5 pentagons. N^C: 1, 4, 20, 100; N^L: 0, 1, 1+4, 5+20 = 25.
         let c = counts(&ts("B2 B2 B2 B2 | B2 B2 B2 | A1"), 3);
-        let got: Vec<(String, String)> = c.iter().map(|l| (l.faces.to_string(), l.lacunas.to_string())).collect();
+        let got: Vec<(String, String)> = c
+            .iter()
+            .map(|l| (l.faces.to_string(), l.lacunas.to_string()))
+            .collect();
         let want = [("1", "0"), ("4", "1"), ("20", "5"), ("100", "25")];
         assert_eq!(got, want.map(|(a, b)| (a.to_string(), b.to_string())));
     }

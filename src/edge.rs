@@ -243,7 +243,10 @@ mod tests {
         assert_eq!(EdgeType::parse("B2^0", 1).unwrap_err().code(), "E0105");
         assert_eq!(EdgeType::parse("X2", 1).unwrap_err().code(), "E0103");
         assert_eq!(EdgeType::parse("B", 1).unwrap_err().code(), "E0103");
-        assert_eq!(EdgeType::parse("B99999999999", 1).unwrap_err().code(), "E0106");
+        assert_eq!(
+            EdgeType::parse("B99999999999", 1).unwrap_err().code(),
+            "E0106"
+        );
         assert_eq!(EdgeType::parse("B2^", 1).unwrap_err().code(), "E0103");
     }
 }

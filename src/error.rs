@@ -90,7 +90,12 @@ pub enum Error {
 
 impl Error {
     /// A syntax error at a span of a source.
-    pub fn syntax(code: &'static str, message: impl Into<String>, span: Span, source: Option<&Source>) -> Self {
+    pub fn syntax(
+        code: &'static str,
+        message: impl Into<String>,
+        span: Span,
+        source: Option<&Source>,
+    ) -> Self {
         Error::Syntax(Box::new(Diagnostic {
             code,
             message: message.into(),
@@ -185,7 +190,16 @@ mod tests {
     #[test]
     fn render_points_at_the_column() {
         let src = Source::command_line("C2 X2 | B2 B2 B2 | A1");
-        let e = Error::syntax("E0103", "unknown edge type `X2`", Span { line: 1, col: 4, len: 2 }, Some(&src));
+        let e = Error::syntax(
+            "E0103",
+            "unknown edge type `X2`",
+            Span {
+                line: 1,
+                col: 4,
+                len: 2,
+            },
+            Some(&src),
+        );
         let text = e.render();
         assert!(text.starts_with("error[E0103]: unknown edge type `X2`\n"));
         assert!(text.contains(" --> <command line>:1:4\n"));

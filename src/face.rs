@@ -64,7 +64,13 @@ impl Face {
         let r = least_rotation(&self.boundary);
         let mut boundary = self.boundary.clone();
         boundary.rotate_left(r);
-        (Face { boundary, ..self.clone() }, r)
+        (
+            Face {
+                boundary,
+                ..self.clone()
+            },
+            r,
+        )
     }
 
     /// True when the face is its own canonical form.
@@ -161,7 +167,10 @@ impl Face {
         if e_tokens.len() != 3 {
             return Err(Error::syntax(
                 "E0107",
-                format!("E needs exactly 3 edges (Ea El Ec), found {}", e_tokens.len()),
+                format!(
+                    "E needs exactly 3 edges (Ea El Ec), found {}",
+                    e_tokens.len()
+                ),
                 trimmed_span(fields[1]),
                 None,
             ));
@@ -181,7 +190,12 @@ impl Face {
         let atext = afield.trim();
         let acol = col_of(aoff + lead);
         if atext.is_empty() {
-            return Err(Error::syntax("E0108", "missing algorithm (A1, A2, A3 or a spoke set)", span(acol, 1), None));
+            return Err(Error::syntax(
+                "E0108",
+                "missing algorithm (A1, A2, A3 or a spoke set)",
+                span(acol, 1),
+                None,
+            ));
         }
         let (alg_text, mut delay) = match atext.rsplit_once('^') {
             Some((a, d)) if !a.ends_with(')') && !d.contains('}') => {
@@ -231,7 +245,11 @@ fn parse_delay(text: &str, col: usize) -> Result<u32> {
         return Err(Error::syntax(
             "E0110",
             "a face delay is at least 1",
-            Span { line: 1, col, len: 1 },
+            Span {
+                line: 1,
+                col,
+                len: 1,
+            },
             None,
         ));
     }
@@ -307,6 +325,9 @@ mod tests {
         let e = Face::parse("  | C2 B2 B2 | A1").unwrap_err();
         assert_eq!(e.code(), "E0111");
         assert_eq!(Face::parse("").unwrap_err().code(), "E0101");
-        assert_eq!(Face::parse("C2 | C2 B2 B2 | A1 | x").unwrap_err().code(), "E0110");
+        assert_eq!(
+            Face::parse("C2 | C2 B2 B2 | A1 | x").unwrap_err().code(),
+            "E0110"
+        );
     }
 }

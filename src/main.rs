@@ -1,1 +1,255 @@
-fn main(){}
+//! The `lacuna` command line: a thin wrapper over the library.
+#![forbid(unsafe_code)]
+
+use clap::{Args, Parser, Subcommand};
+use lacuna::{load_input, verify_report, Closure, Error, Limits};
+use std::process::ExitCode;
+
+/// Exit code: verification failed (the input was fine, the verdict is negative).
+const EXIT_FAILED: u8 = 1;
+/// Exit code: bad input or an exceeded limit.
+const EXIT_BAD_INPUT: u8 = 2;
+
+#[derive(Parser)]
+#[command(
+    name = "lacuna",
+    version,
+    about = "Exact verifier for fractal topology (BC-IFS)"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+    #[command(flatten)]
+    limits: LimitArgs,
+}
+
+#[derive(Args)]
+struct LimitArgs {
+    /// Maximum boundary length of a face type.
+    #[arg(long, global = true, default_value_t = Limits::default().max_boundary)]
+    max_boundary: usize,
+    /// Maximum number of face types in a closure.
+    #[arg(long, global = true, default_value_t = Limits::default().max_types)]
+    max_types: usize,
+    /// Maximum level for counts.
+    #[arg(long, global = true, default_value_t = Limits::default().max_level)]
+    max_level: u64,
+    /// Maximum sub-edge count n of an edge type.
+    #[arg(long, global = true, default_value_t = Limits::default().max_subedges)]
+    max_subedges: u32,
+    /// Maximum delay of an edge or a face.
+    #[arg(long, global = true, default_value_t = Limits::default().max_delay)]
+    max_delay: u32,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Verify a face, an assembly file or a library entry (default: the built-in F0).
+    Verify {
+        /// Face notation in quotes, a file, or a library name.
+        input: Option<String>,
+        /// Levels of the counts table.
+        #[arg(long, default_value_t = 5)]
+        levels: u64,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// The closure: every face type with its sub-faces and contribution.
+    Closure {
+        /// Face notation in quotes, a file, or a library name.
+        input: String,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Exact counts of faces and lacunas per level.
+    Counts {
+        /// Face notation in quotes, a file, or a library name.
+        input: String,
+        /// The last level.
+        #[arg(long)]
+        levels: u64,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Close and count every face of a family, in parallel; print the distribution of type counts.
+    Census {
+        #[command(flatten)]
+        spec: CensusArgs,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// List the named structures of the library.
+    Library {
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+#[derive(Args)]
+struct CensusArgs {
+    /// Largest boundary length.
+    #[arg(long, default_value_t = 6)]
+    max_length: usize,
+    /// Edge types of the boundaries (comma-separated).
+    #[arg(long, default_value = "B2,C2,B3,C3")]
+    edges: String,
+    /// Edge types for each of Ea, El, Ec (comma-separated).
+    #[arg(long, default_value = "B2,C2")]
+    params: String,
+    /// Algorithms (comma-separated).
+    #[arg(long, default_value = "A1,A2")]
+    algorithms: String,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    threads: Option<usize>,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let json = matches!(
+        &cli.command,
+        Command::Verify { json: true, .. }
+            | Command::Closure { json: true, .. }
+            | Command::Counts { json: true, .. }
+            | Command::Census { json: true, .. }
+            | Command::Library { json: true }
+    );
+    match run(cli) {
+        Ok(code) => code,
+        Err(e) => {
+            if json {
+                println!(
+                    "{}",
+                    serde_json::to_string_pretty(&e.to_json()).unwrap_or_default()
+                );
+            }
+            eprint!("{}", e.render());
+            ExitCode::from(EXIT_BAD_INPUT)
+        }
+    }
+}
+
+fn print_json(v: &impl serde::Serialize) {
+    println!(
+        "{}",
+        serde_json::to_string_pretty(v).expect("reports serialise")
+    );
+}
+
+fn run(cli: Cli) -> Result<ExitCode, Error> {
+    let l = cli.limits;
+    let limits = Limits {
+        max_boundary: l.max_boundary,
+        max_types: l.max_types,
+        max_level: l.max_level,
+        max_subedges: l.max_subedges,
+        max_delay: l.max_delay,
+    };
+    match cli.command {
+        Command::Verify {
+            input,
+            levels,
+            json,
+        } => {
+            limits.check_level(levels)?;
+            let input = load_input(input.as_deref().unwrap_or("F0"))?;
+            let closure = Closure::of(&input.faces(), &limits)?;
+            let report = verify_report(&input, &closure, levels);
+            if json {
+                print_json(&report);
+            } else {
+                print!("{}", report.to_text());
+            }
+            Ok(if report.verified {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(EXIT_FAILED)
+            })
+        }
+        Command::Closure { input, json } => {
+            let input = load_input(&input)?;
+            let closure = Closure::of(&input.faces(), &limits)?;
+            if json {
+                print_json(&lacuna::closure_json(&closure));
+            } else {
+                let report = verify_report(&input, &closure, 0);
+                print!("{}", report.to_text());
+            }
+            Ok(match closure {
+                Closure::Closed(_) => ExitCode::SUCCESS,
+                Closure::Runaway(_) => ExitCode::from(EXIT_FAILED),
+            })
+        }
+        Command::Counts {
+            input,
+            levels,
+            json,
+        } => {
+            limits.check_level(levels)?;
+            let input = load_input(&input)?;
+            let ts = lacuna::close_or_error(&input.faces(), &limits)?;
+            if json {
+                print_json(&lacuna::counts_json(&ts, &input, levels));
+            } else {
+                println!(
+                    "{} ({} face type{})",
+                    input.name,
+                    ts.types.len(),
+                    if ts.types.len() == 1 { "" } else { "s" }
+                );
+                print!("{}", lacuna::counts_table(&lacuna::counts(&ts, levels)));
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Census { spec, json } => {
+            let spec = lacuna::CensusSpec::parse(
+                &spec.edges,
+                &spec.params,
+                &spec.algorithms,
+                spec.max_length,
+                spec.threads,
+            )?;
+            let report = lacuna::census(&spec, &limits);
+            if json {
+                print_json(&report);
+            } else {
+                print!("{}", report.to_text());
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Library { json } => {
+            let names: Vec<(&str, String)> = lacuna::library()
+                .iter()
+                .map(|(n, t)| {
+                    (
+                        *n,
+                        t.lines()
+                            .next()
+                            .unwrap_or("")
+                            .trim_start_matches('#')
+                            .trim()
+                            .to_string(),
+                    )
+                })
+                .collect();
+            if json {
+                print_json(
+                    &names
+                        .iter()
+                        .map(|(n, d)| serde_json::json!({"name": n, "about": d}))
+                        .collect::<Vec<_>>(),
+                );
+            } else {
+                for (n, d) in names {
+                    println!("{n:<20} {d}");
+                }
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+    }
+}

@@ -63,8 +63,12 @@ impl SpokeItem {
         match (self, j.kind) {
             (SpokeItem::Joint, JunctionKind::Joint) | (SpokeItem::Gap, JunctionKind::Gap) => true,
             (SpokeItem::Corner, JunctionKind::Corner) => true,
-            (SpokeItem::DelayedCorner, JunctionKind::Corner) => j.before.is_delayed() || j.after.is_delayed(),
-            (SpokeItem::CornerBetween(p, q), JunctionKind::Corner) => p.matches(&j.before) && q.matches(&j.after),
+            (SpokeItem::DelayedCorner, JunctionKind::Corner) => {
+                j.before.is_delayed() || j.after.is_delayed()
+            }
+            (SpokeItem::CornerBetween(p, q), JunctionKind::Corner) => {
+                p.matches(&j.before) && q.matches(&j.after)
+            }
             _ => false,
         }
     }
@@ -119,7 +123,10 @@ impl Algorithm {
     /// The spoke flags for the junctions of a non-delayed face.
     pub fn spokes(&self, junctions: &[Junction]) -> Vec<bool> {
         match self {
-            Algorithm::Spokes(items) => junctions.iter().map(|j| items.iter().any(|i| i.holds(j))).collect(),
+            Algorithm::Spokes(items) => junctions
+                .iter()
+                .map(|j| items.iter().any(|i| i.holds(j)))
+                .collect(),
             Algorithm::Custom(c) => c.spokes(junctions),
         }
     }
@@ -157,7 +164,12 @@ impl Algorithm {
             );
         };
         let Some(inner) = inner.strip_suffix('}') else {
-            return err("E0109", "spoke set is not closed by `}`".into(), col, text.chars().count());
+            return err(
+                "E0109",
+                "spoke set is not closed by `}`".into(),
+                col,
+                text.chars().count(),
+            );
         };
         let mut items = BTreeSet::new();
         // Items are separated by spaces or commas outside parentheses.
@@ -187,7 +199,12 @@ impl Algorithm {
             items.insert(parse_item(item, icol)?);
         }
         if items.is_empty() {
-            return err("E0109", "empty spoke set: no junction could get a spoke".into(), col, text.chars().count());
+            return err(
+                "E0109",
+                "empty spoke set: no junction could get a spoke".into(),
+                col,
+                text.chars().count(),
+            );
         }
         Ok(Algorithm::Spokes(items))
     }
@@ -212,7 +229,10 @@ fn parse_item(item: &str, col: usize) -> Result<SpokeItem> {
         "corner" => Ok(SpokeItem::Corner),
         "delayed-corner" => Ok(SpokeItem::DelayedCorner),
         _ => {
-            let Some(args) = item.strip_prefix("corner(").and_then(|r| r.strip_suffix(')')) else {
+            let Some(args) = item
+                .strip_prefix("corner(")
+                .and_then(|r| r.strip_suffix(')'))
+            else {
                 return bad(format!(
                     "unknown spoke item `{item}` (expected joint, gap, corner, delayed-corner or corner(P,Q))"
                 ));
@@ -310,7 +330,10 @@ mod tests {
             assert_eq!(Algorithm::parse(n, 1, &[]).unwrap().to_string(), n);
         }
         // A spoke set equal to a built-in is that built-in.
-        assert_eq!(Algorithm::parse("{gap,joint}", 1, &[]).unwrap().to_string(), "A1");
+        assert_eq!(
+            Algorithm::parse("{gap,joint}", 1, &[]).unwrap().to_string(),
+            "A1"
+        );
         let a = Algorithm::parse("{joint corner(C,B2)  gap}", 1, &[]).unwrap();
         assert_eq!(a.to_string(), "{joint gap corner(C,B2)}");
     }
@@ -331,15 +354,24 @@ mod tests {
         assert_eq!(a2.spokes(&[plain, delayed]), vec![true, true]);
         assert_eq!(a3.spokes(&[plain, delayed]), vec![false, true]);
         let custom = Algorithm::parse("{corner(C,B)}", 1, &[]).unwrap();
-        assert_eq!(custom.spokes(&[plain, corner("B2", "C2")]), vec![true, false]);
+        assert_eq!(
+            custom.spokes(&[plain, corner("B2", "C2")]),
+            vec![true, false]
+        );
     }
 
     #[test]
     fn bad_rules_have_codes() {
         assert_eq!(Algorithm::parse("A4", 1, &[]).unwrap_err().code(), "E0108");
-        assert_eq!(Algorithm::parse("{joint", 1, &[]).unwrap_err().code(), "E0109");
+        assert_eq!(
+            Algorithm::parse("{joint", 1, &[]).unwrap_err().code(),
+            "E0109"
+        );
         assert_eq!(Algorithm::parse("{}", 1, &[]).unwrap_err().code(), "E0109");
-        assert_eq!(Algorithm::parse("{elbow}", 1, &[]).unwrap_err().code(), "E0109");
+        assert_eq!(
+            Algorithm::parse("{elbow}", 1, &[]).unwrap_err().code(),
+            "E0109"
+        );
         let e = Algorithm::parse("{joint corner(X,B)}", 10, &[]).unwrap_err();
         assert_eq!(e.code(), "E0103");
         assert_eq!(e.span().unwrap().col, 10 + 1 + 6 + 7);

@@ -101,7 +101,9 @@ pub fn subdivide(face: &Face) -> Result<Subdivision> {
             });
             junctions.push(if k + 1 < count {
                 Junction {
-                    kind: e.inner_junction().expect("a subdivided edge has inner junctions"),
+                    kind: e
+                        .inner_junction()
+                        .expect("a subdivided edge has inner junctions"),
                     before: *e,
                     after: *e,
                 }
@@ -149,9 +151,9 @@ pub fn subdivide(face: &Face) -> Result<Subdivision> {
     let n = pieces.len();
     if face.delay >= 2 {
         let mut raw = Vec::new();
-        for m in 0..n {
+        for (m, j) in junctions.iter().enumerate() {
             raw.push(piece_edge(m));
-            if junctions[m].kind == JunctionKind::Gap {
+            if j.kind == JunctionKind::Gap {
                 raw.extend(gap_sides(m));
             }
         }
@@ -164,7 +166,9 @@ pub fn subdivide(face: &Face) -> Result<Subdivision> {
         });
     }
     let flags = face.algorithm.spokes(&junctions);
-    let spokes: Vec<usize> = (0..n).filter(|&m| flags.get(m).copied().unwrap_or(false)).collect();
+    let spokes: Vec<usize> = (0..n)
+        .filter(|&m| flags.get(m).copied().unwrap_or(false))
+        .collect();
     if spokes.is_empty() {
         return Err(Error::NoSpoke {
             face: face.to_string(),
@@ -197,13 +201,24 @@ pub fn subdivide(face: &Face) -> Result<Subdivision> {
             },
         ));
         raw.push((p.el, Origin::Lacuna { side: k }));
-        raw.push((p.ea, Origin::Spoke { spoke: k, inward: false }));
+        raw.push((
+            p.ea,
+            Origin::Spoke {
+                spoke: k,
+                inward: false,
+            },
+        ));
         if junctions[start].kind == JunctionKind::Gap {
             raw.push(gap_sides(start)[1]);
         }
         subfaces.push(make_subface(face, 1, raw));
     }
-    let position = |sub: &SubFace, o: Origin| sub.origins.iter().position(|x| *x == o).expect("spoke edge present");
+    let position = |sub: &SubFace, o: Origin| {
+        sub.origins
+            .iter()
+            .position(|x| *x == o)
+            .expect("spoke edge present")
+    };
     let adjacencies = (0..s)
         .map(|k| {
             let next = (k + 1) % s;
@@ -259,22 +274,38 @@ impl Subdivision {
         let mut seen: HashMap<Origin, usize> = HashMap::new();
         for (k, sub) in self.subfaces.iter().enumerate() {
             if sub.face.boundary.len() != sub.origins.len() {
-                return Err(format!("sub-face {k}: boundary and origins differ in length"));
+                return Err(format!(
+                    "sub-face {k}: boundary and origins differ in length"
+                ));
             }
             if !sub.face.is_canonical() {
                 return Err(format!("sub-face {k} is not in canonical form"));
             }
-            let want_delay = if parent.delay >= 2 { parent.delay - 1 } else { 1 };
-            if sub.face.delay != want_delay || sub.face.params != parent.params || sub.face.algorithm != parent.algorithm {
-                return Err(format!("sub-face {k} does not keep E, A and the right delay"));
+            let want_delay = if parent.delay >= 2 {
+                parent.delay - 1
+            } else {
+                1
+            };
+            if sub.face.delay != want_delay
+                || sub.face.params != parent.params
+                || sub.face.algorithm != parent.algorithm
+            {
+                return Err(format!(
+                    "sub-face {k} does not keep E, A and the right delay"
+                ));
             }
             for (pos, (o, ty)) in sub.origins.iter().zip(&sub.face.boundary).enumerate() {
                 *seen.entry(*o).or_default() += 1;
                 let want = match *o {
                     Origin::Piece { edge, piece } => {
-                        let e = parent.boundary.get(edge).ok_or(format!("sub-face {k}: edge {edge} out of range"))?;
+                        let e = parent
+                            .boundary
+                            .get(edge)
+                            .ok_or(format!("sub-face {k}: edge {edge} out of range"))?;
                         if piece >= e.piece_count() as usize {
-                            return Err(format!("sub-face {k}: piece {piece} of edge {edge} out of range"));
+                            return Err(format!(
+                                "sub-face {k}: piece {piece} of edge {edge} out of range"
+                            ));
                         }
                         e.piece()
                     }
@@ -283,7 +314,9 @@ impl Subdivision {
                     Origin::GapSide { .. } => parent.params.ec,
                 };
                 if want != *ty {
-                    return Err(format!("sub-face {k} position {pos}: edge {ty} but its origin demands {want}"));
+                    return Err(format!(
+                        "sub-face {k} position {pos}: edge {ty} but its origin demands {want}"
+                    ));
                 }
             }
         }
@@ -294,12 +327,22 @@ impl Subdivision {
         };
         for (i, e) in parent.boundary.iter().enumerate() {
             for piece in 0..e.piece_count() as usize {
-                once(Origin::Piece { edge: i, piece }, format!("piece {piece} of edge {i}"))?;
+                once(
+                    Origin::Piece { edge: i, piece },
+                    format!("piece {piece} of edge {i}"),
+                )?;
             }
             if e.inner_junction() == Some(JunctionKind::Gap) {
                 for gap in 0..(e.n - 1) as usize {
                     for after in [false, true] {
-                        once(Origin::GapSide { edge: i, gap, after }, format!("side {after} of gap {gap} of edge {i}"))?;
+                        once(
+                            Origin::GapSide {
+                                edge: i,
+                                gap,
+                                after,
+                            },
+                            format!("side {after} of gap {gap} of edge {i}"),
+                        )?;
                     }
                 }
             }
@@ -310,21 +353,48 @@ impl Subdivision {
                 return Err(format!("{} sub-faces for {s} spokes", self.subfaces.len()));
             }
             for j in 0..s {
-                once(Origin::Spoke { spoke: j, inward: true }, format!("spoke {j} inward"))?;
-                once(Origin::Spoke { spoke: j, inward: false }, format!("spoke {j} outward"))?;
+                once(
+                    Origin::Spoke {
+                        spoke: j,
+                        inward: true,
+                    },
+                    format!("spoke {j} inward"),
+                )?;
+                once(
+                    Origin::Spoke {
+                        spoke: j,
+                        inward: false,
+                    },
+                    format!("spoke {j} outward"),
+                )?;
                 once(Origin::Lacuna { side: j }, format!("lacuna side {j}"))?;
             }
             if self.adjacencies.len() != s {
-                return Err(format!("{} adjacencies for {s} spokes", self.adjacencies.len()));
+                return Err(format!(
+                    "{} adjacencies for {s} spokes",
+                    self.adjacencies.len()
+                ));
             }
             for a in &self.adjacencies {
-                let get = |(f, p): (usize, usize)| self.subfaces.get(f).and_then(|x| x.origins.get(p)).copied();
+                let get = |(f, p): (usize, usize)| {
+                    self.subfaces.get(f).and_then(|x| x.origins.get(p)).copied()
+                };
                 match (get(a.first), get(a.second)) {
                     (
-                        Some(Origin::Spoke { spoke: x, inward: true }),
-                        Some(Origin::Spoke { spoke: y, inward: false }),
+                        Some(Origin::Spoke {
+                            spoke: x,
+                            inward: true,
+                        }),
+                        Some(Origin::Spoke {
+                            spoke: y,
+                            inward: false,
+                        }),
                     ) if x == y => {}
-                    _ => return Err(format!("adjacency {a:?} does not pair the two sides of one spoke")),
+                    _ => {
+                        return Err(format!(
+                            "adjacency {a:?} does not pair the two sides of one spoke"
+                        ))
+                    }
                 }
             }
         } else if self.subfaces.len() != 1 || s != 0 || !self.adjacencies.is_empty() {
@@ -401,7 +471,10 @@ mod tests {
         sub.sanity_check(&f);
         assert_eq!(sub.subfaces.len(), 1);
         // C3 -> C3 [B3 B3] C3 [B3 B3] C3, B2^2 -> B2.
-        assert_eq!(sub.subfaces[0].face, face("C3 B3 B3 C3 B3 B3 C3 B2 | B2 B2 B3 | A1 | 2"));
+        assert_eq!(
+            sub.subfaces[0].face,
+            face("C3 B3 B3 C3 B3 B3 C3 B2 | B2 B2 B3 | A1 | 2")
+        );
     }
 
     #[test]
