@@ -184,13 +184,18 @@ impl Assembly {
         let mut used: std::collections::HashMap<(usize, usize), usize> = Default::default();
         for (k, s) in self.shared.iter().enumerate() {
             let (ln, col) = lines.get(k).copied().unwrap_or((1, 1));
+            let len = src
+                .text
+                .lines()
+                .nth(ln - 1)
+                .map_or(1, |l| l.trim_end().chars().count() + 1 - col);
             if s.a == s.b {
                 return Err(at(
                     "E0208",
                     "an edge cannot be shared with itself".into(),
                     ln,
                     col,
-                    1,
+                    len,
                     src,
                 ));
             }
@@ -205,7 +210,7 @@ impl Assembly {
                         ),
                         ln,
                         col,
-                        1,
+                        len,
                         src,
                     ));
                 }
@@ -215,7 +220,7 @@ impl Assembly {
                         format!("edge {e} of face `{name}` is already shared (line {prev})"),
                         ln,
                         col,
-                        1,
+                        len,
                         src,
                     ));
                 }
@@ -231,7 +236,7 @@ impl Assembly {
                     ),
                     ln,
                     col,
-                    1,
+                    len,
                     src,
                 ));
             }

@@ -1,0 +1,163 @@
+//! The `lacuna` binary on fixtures: exit codes, JSON fields scripts rely on, and snapshots of
+//! what users see (checked by eye against the hand derivations in tests/fixtures.rs).
+
+use std::process::Command;
+
+fn lacuna(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_lacuna"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the binary runs");
+    (
+        out.status.code().expect("exited, not killed"),
+        String::from_utf8(out.stdout).expect("utf-8 stdout"),
+        String::from_utf8(out.stderr).expect("utf-8 stderr"),
+    )
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let (code, out, err) = lacuna(args);
+    assert_eq!(code, 0, "{args:?}: {err}");
+    serde_json::from_str(&out).unwrap_or_else(|e| panic!("{args:?}: not JSON ({e}): {out}"))
+}
+
+#[test]
+fn verify_without_argument_reports_f0() {
+    let (code, out, _) = lacuna(&["verify"]);
+    assert_eq!(code, 0);
+    insta::assert_snapshot!("verify_f0", out);
+}
+
+#[test]
+fn closure_json_has_the_documented_fields() {
+    let v = json(&["closure", "C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1", "--json"]);
+    let types = v["types"].as_array().unwrap();
+    assert_eq!(types.len(), 1);
+    assert_eq!(types[0]["contribution"], "5/2");
+    assert_eq!(types[0]["subfaces"].as_array().unwrap().len(), 6);
+    assert_eq!(types[0]["face"], types[0]["subfaces"][0]);
+}
+
+#[test]
+fn counts_json_matches_the_spec_table() {
+    let v = json(&[
+        "counts",
+        "C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1",
+        "--levels",
+        "5",
+        "--json",
+    ]);
+    assert_eq!(v["types"], 1);
+    let levels = v["levels"].as_array().unwrap();
+    let lac: Vec<&str> = levels
+        .iter()
+        .map(|l| l["lacunas"].as_str().unwrap())
+        .collect();
+    assert_eq!(lac, ["0", "5/2", "35/2", "215/2", "1295/2", "7775/2"]);
+    assert_eq!(levels[5]["faces"], "7776");
+    assert_eq!(levels[0]["level"], 0);
+}
+
+#[test]
+fn counts_of_an_assembly_report_each_face() {
+    let v = json(&[
+        "counts",
+        "fixtures/two-quads.txt",
+        "--levels",
+        "1",
+        "--json",
+    ]);
+    assert_eq!(v["levels"][1]["faces"], "8");
+    assert_eq!(v["per_face"].as_array().unwrap().len(), 2);
+    assert_eq!(v["per_face"][0]["levels"][1]["lacunas"], "2");
+}
+
+#[test]
+fn level_200_counts() {
+    let v = json(&["counts", "F0", "--levels", "200", "--json"]);
+    let f = v["levels"][200]["faces"].as_str().unwrap();
+    // 6^200 has 156 digits (200·log10 6 = 155.6).
+    assert_eq!(f.len(), 156);
+}
+
+#[test]
+fn runaway_exits_one_with_a_witness() {
+    let (code, out, _) = lacuna(&[
+        "verify",
+        "B2 C3 | B2 B2 C3 | {joint}",
+        "--max-boundary",
+        "30",
+    ]);
+    assert_eq!(code, 1);
+    assert!(out.contains("RUNAWAY"), "{out}");
+    assert!(out.contains("witness chain"), "{out}");
+}
+
+#[test]
+fn parse_error_snapshot() {
+    let (code, out, err) = lacuna(&["verify", "C2 B2 X2 B2 | C2 B2 B2 | A1"]);
+    assert_eq!(code, 2);
+    assert!(out.is_empty());
+    insta::assert_snapshot!("error_unknown_edge", err);
+}
+
+#[test]
+fn assembly_error_snapshot() {
+    let dir = std::env::temp_dir().join(format!("lacuna-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("mismatch.txt");
+    std::fs::write(&path, "face 0: C2 B2 C2 B2 | C2 B2 B2 | A1\nface 1: C2 B2 C2 B2 | C2 B2 B2 | A1\nface 0 edge 0 ~ face 1 edge 1\n").unwrap();
+    let (code, _, err) = lacuna(&["verify", path.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    let err = err.replace(path.to_str().unwrap(), "mismatch.txt");
+    insta::assert_snapshot!("error_shared_edge_mismatch", err);
+}
+
+#[test]
+fn errors_in_json_mode_are_json_too() {
+    let (code, out, _) = lacuna(&["counts", "C2 B2 | C2 B2 B2 | A9", "--levels", "1", "--json"]);
+    assert_eq!(code, 2);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["error"]["code"], "E0108");
+    assert_eq!(v["error"]["span"]["col"], 20);
+}
+
+#[test]
+fn limits_are_enforced_with_their_flag_named() {
+    let (code, _, err) = lacuna(&["counts", "F0", "--levels", "20", "--max-level", "10"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("E0501") && err.contains("--max-level"),
+        "{err}"
+    );
+    let (code, _, err) = lacuna(&["verify", "C99 B2 | C2 B2 B2 | A1"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--max-subedges"), "{err}");
+}
+
+#[test]
+fn no_spoke_is_bad_input() {
+    let (code, _, err) = lacuna(&["verify", "B2^2 C2^3 | C2 B2 B2 | A1"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("E0401"), "{err}");
+}
+
+#[test]
+fn census_runs_a_small_family() {
+    let v = json(&[
+        "census",
+        "--max-length",
+        "2",
+        "--edges",
+        "B2,C2",
+        "--params",
+        "B2",
+        "--algorithms",
+        "A1",
+        "--json",
+    ]);
+    // Necklaces of length ≤ 2 over two letters: B2, C2, B2B2, B2C2, C2C2.
+    assert_eq!(v["faces"], 5);
+    assert_eq!(v["runaway"], 0);
+}
