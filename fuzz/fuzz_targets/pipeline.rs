@@ -1,0 +1,14 @@
+//! Invariant: the whole topology pipeline on a fuzzed face, under small limits, ends in a closed
+//! closure whose identities hold, a runaway, or a coded error — never a panic or a hang.
+#![no_main]
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    let Ok(text) = std::str::from_utf8(data) else { return };
+    let Ok(face) = lacuna::Face::parse(text) else { return };
+    let limits = lacuna::Limits { max_boundary: 48, max_types: 200, max_level: 20, max_subedges: 6, max_delay: 4 };
+    if let Ok(lacuna::Closure::Closed(ts)) = lacuna::close(&face, &limits) {
+        ts.verify().expect("closure identities");
+        let _ = lacuna::counts(&ts, 8);
+    }
+});
