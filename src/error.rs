@@ -78,6 +78,14 @@ pub enum Error {
         /// The command-line flag that sets it.
         flag: &'static str,
     },
+    /// An input file is not UTF-8 text.
+    #[error("`{path}` is not UTF-8 text (invalid byte at offset {offset})")]
+    NotText {
+        /// The path.
+        path: String,
+        /// Byte offset of the first invalid byte.
+        offset: usize,
+    },
     /// An input file could not be read.
     #[error("cannot read `{path}`: {reason}")]
     Io {
@@ -111,6 +119,7 @@ impl Error {
             Error::NoSpoke { .. } => "E0401",
             Error::Limit { .. } => "E0501",
             Error::Io { .. } => "E0601",
+            Error::NotText { .. } => "E0602",
         }
     }
 
@@ -118,7 +127,10 @@ impl Error {
     pub fn span(&self) -> Option<&Span> {
         match self {
             Error::Syntax(d) => d.span.as_ref(),
-            Error::NoSpoke { .. } | Error::Limit { .. } | Error::Io { .. } => None,
+            Error::NoSpoke { .. }
+            | Error::Limit { .. }
+            | Error::Io { .. }
+            | Error::NotText { .. } => None,
         }
     }
 

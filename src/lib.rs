@@ -7,6 +7,8 @@
 
 mod assembly;
 mod autofrac;
+mod automaton;
+mod automaton_format;
 mod census;
 mod class;
 mod closure;
@@ -14,12 +16,21 @@ mod count;
 mod edge;
 mod error;
 mod face;
+mod generate;
 mod library;
 mod limits;
+mod linsys;
+mod matrix;
+mod presolve;
 mod report;
 mod rule;
 mod subdivision;
 
+pub use automaton::{
+    solve_automaton, Automaton, Constraint, ConstraintKind, Factor, Linearized, OpKind, Operator,
+    RowOrigin, SolveReport, State,
+};
+pub use automaton_format::{parse_automaton, parse_rational};
 pub use census::{census, CensusReport, CensusSpec};
 pub use class::{Class, ClassStructure};
 pub use closure::{close, close_or_error, Bound, Closure, FaceType, Runaway, TypeSet};
@@ -27,10 +38,16 @@ pub use count::{counts, counts_from, LevelCount};
 pub use edge::{EdgeKind, EdgeType, JunctionKind};
 pub use error::{Diagnostic, Error, Result, Source, Span};
 pub use face::{least_rotation, Face, Params};
+pub use generate::{automaton_of, degeneracies, solve_closure, GenOptions, Generated};
 
 pub use assembly::{Assembly, SharedEdge};
-pub use library::{library, load_input, parse_text, Input};
+pub use library::{library, load_any, load_input, parse_text, Input, Loaded};
 pub use limits::Limits;
+pub use linsys::{
+    forced_equal, solve, write_text, Conflict, Equation, LinearSystem, Solution, SolutionSpace,
+    TextLayout,
+};
+pub use matrix::{bezier_restriction, Matrix};
 pub use report::{closure_json, counts_json, counts_table, verify_report, VerifyReport};
 
 pub use rule::{Algorithm, EdgePattern, Junction, SpokeChooser, SpokeItem};

@@ -3,6 +3,8 @@
 
 use crate::assembly::Assembly;
 use crate::autofrac::{is_autofrac, parse_autofrac};
+use crate::automaton::Automaton;
+use crate::automaton_format::{is_automaton, parse_automaton};
 use crate::error::{Error, Result, Source};
 use crate::face::Face;
 
@@ -21,6 +23,20 @@ pub fn library() -> &'static [(&'static str, &'static str)] {
             "autofrac-two-quads",
             include_str!("../fixtures/autofrac-two-quads.txt"),
         ),
+        ("spec-edge", include_str!("../fixtures/spec-edge.aut")),
+        (
+            "spec-edge-incidence",
+            include_str!("../fixtures/spec-edge-incidence.aut"),
+        ),
+        (
+            "half-tangent-edge",
+            include_str!("../fixtures/half-tangent-edge.aut"),
+        ),
+        (
+            "bspline-quadratic",
+            include_str!("../fixtures/bspline-quadratic.aut"),
+        ),
+        ("quad-patch", include_str!("../fixtures/quad-patch.aut")),
     ]
 }
 
@@ -49,50 +65,85 @@ pub fn parse_text(src: &Source) -> Result<Assembly> {
     }
 }
 
+/// What a command-line argument names: faces (a face, an assembly) or a hand-written automaton.
+#[derive(Clone, Debug)]
+#[allow(clippy::large_enum_variant)]
+pub enum Loaded {
+    /// Faces with their shared edges.
+    Faces(Input),
+    /// A hand-written automaton.
+    Automaton {
+        /// The file path or library name.
+        name: String,
+        /// The automaton.
+        automaton: Automaton,
+    },
+}
+
 /// Resolves a command-line argument: face notation when it contains `|`, otherwise a file path,
-/// otherwise a library name.
-pub fn load_input(arg: &str) -> Result<Input> {
+/// otherwise a library name. Files and library entries are automata when their first line
+/// declares a state.
+pub fn load_any(arg: &str) -> Result<Loaded> {
     if arg.contains('|') {
         let face = Face::parse(arg)?;
-        return Ok(Input {
+        return Ok(Loaded::Faces(Input {
             name: arg.trim().to_string(),
             assembly: Assembly {
                 faces: vec![("0".into(), face)],
                 shared: Vec::new(),
             },
-        });
+        }));
     }
+    let (name, src) = read_source(arg)?;
+    if is_automaton(&src.text) {
+        let automaton = parse_automaton(&src)?;
+        return Ok(Loaded::Automaton { name, automaton });
+    }
+    Ok(Loaded::Faces(Input {
+        name,
+        assembly: parse_text(&src)?,
+    }))
+}
+
+/// Like [`load_any`], for commands that work on faces only.
+pub fn load_input(arg: &str) -> Result<Input> {
+    match load_any(arg)? {
+        Loaded::Faces(input) => Ok(input),
+        Loaded::Automaton { name, .. } => Err(Error::Io {
+            path: name,
+            reason: "this is an automaton, not faces: only `lacuna solve` reads automata".into(),
+        }),
+    }
+}
+
+/// Reads a file (or a library entry) as text.
+fn read_source(arg: &str) -> Result<(String, Source)> {
     let path = std::path::Path::new(arg);
     if path.is_file() {
         let bytes = std::fs::read(path).map_err(|e| Error::Io {
             path: arg.into(),
             reason: e.to_string(),
         })?;
-        let text = String::from_utf8(bytes).map_err(|e| Error::Io {
+        let text = String::from_utf8(bytes).map_err(|e| Error::NotText {
             path: arg.into(),
-            reason: format!(
-                "not UTF-8 text (invalid byte at offset {})",
-                e.utf8_error().valid_up_to()
-            ),
+            offset: e.utf8_error().valid_up_to(),
         })?;
-        let src = Source {
-            name: arg.into(),
-            text,
-        };
-        return Ok(Input {
-            name: arg.into(),
-            assembly: parse_text(&src)?,
-        });
+        return Ok((
+            arg.into(),
+            Source {
+                name: arg.into(),
+                text,
+            },
+        ));
     }
     if let Some((name, text)) = library().iter().find(|(n, _)| *n == arg) {
-        let src = Source {
-            name: format!("library:{name}"),
-            text: text.to_string(),
-        };
-        return Ok(Input {
-            name: name.to_string(),
-            assembly: parse_text(&src)?,
-        });
+        return Ok((
+            name.to_string(),
+            Source {
+                name: format!("library:{name}"),
+                text: text.to_string(),
+            },
+        ));
     }
     let names: Vec<&str> = library().iter().map(|(n, _)| *n).collect();
     Err(Error::Io {
@@ -111,8 +162,10 @@ mod tests {
     #[test]
     fn every_library_entry_loads() {
         for (name, _) in library() {
-            let input = load_input(name).unwrap_or_else(|e| panic!("{name}: {}", e.render()));
-            assert!(!input.faces().is_empty());
+            match load_any(name).unwrap_or_else(|e| panic!("{name}: {}", e.render())) {
+                Loaded::Faces(input) => assert!(!input.faces().is_empty()),
+                Loaded::Automaton { automaton, .. } => assert!(!automaton.states.is_empty()),
+            }
         }
         assert_eq!(load_input("no-such-thing").unwrap_err().code(), "E0601");
     }

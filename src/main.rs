@@ -74,6 +74,20 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Solve the BC-IFS constraint system of an automaton file, a face or an assembly exactly.
+    Solve {
+        /// An automaton file, face notation in quotes, an assembly file, or a library name.
+        input: String,
+        /// Print the free parameters with their directions.
+        #[arg(long)]
+        params: bool,
+        /// Bézier degree of `Bn` edges in generated automata.
+        #[arg(long, default_value_t = 2)]
+        degree: usize,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
     /// Close and count every face of a family, in parallel; print the distribution of type counts.
     Census {
         #[command(flatten)]
@@ -116,6 +130,7 @@ fn main() -> ExitCode {
         Command::Verify { json: true, .. }
             | Command::Closure { json: true, .. }
             | Command::Counts { json: true, .. }
+            | Command::Solve { json: true, .. }
             | Command::Census { json: true, .. }
             | Command::Library { json: true }
     );
@@ -123,10 +138,7 @@ fn main() -> ExitCode {
         Ok(code) => code,
         Err(e) => {
             if json {
-                println!(
-                    "{}",
-                    serde_json::to_string_pretty(&e.to_json()).unwrap_or_default()
-                );
+                print_json(&e.to_json());
             }
             eprint!("{}", e.render());
             ExitCode::from(EXIT_BAD_INPUT)
@@ -134,11 +146,17 @@ fn main() -> ExitCode {
     }
 }
 
+/// Writes to standard output; a closed pipe (`lacuna … | head`) is not an error.
+fn out(text: &str) {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    let _ = stdout
+        .write_all(text.as_bytes())
+        .and_then(|_| stdout.flush());
+}
+
 fn print_json(v: &impl serde::Serialize) {
-    println!(
-        "{}",
-        serde_json::to_string_pretty(v).expect("reports serialise")
-    );
+    out(&(serde_json::to_string_pretty(v).expect("reports serialise") + "\n"));
 }
 
 fn run(cli: Cli) -> Result<ExitCode, Error> {
@@ -163,7 +181,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             if json {
                 print_json(&report);
             } else {
-                print!("{}", report.to_text());
+                out(&report.to_text());
             }
             Ok(if report.verified {
                 ExitCode::SUCCESS
@@ -178,7 +196,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 print_json(&lacuna::closure_json(&closure));
             } else {
                 let report = verify_report(&input, &closure, 0);
-                print!("{}", report.to_text());
+                out(&report.to_text());
             }
             Ok(match closure {
                 Closure::Closed(_) => ExitCode::SUCCESS,
@@ -196,15 +214,49 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             if json {
                 print_json(&lacuna::counts_json(&ts, &input, levels));
             } else {
-                println!(
-                    "{} ({} face type{})",
+                out(&format!(
+                    "{} ({} face type{})\n",
                     input.name,
                     ts.types.len(),
                     if ts.types.len() == 1 { "" } else { "s" }
-                );
-                print!("{}", lacuna::counts_table(&lacuna::counts(&ts, levels)));
+                ));
+                out(&lacuna::counts_table(&lacuna::counts(&ts, levels)));
             }
             Ok(ExitCode::SUCCESS)
+        }
+        Command::Solve {
+            input,
+            params,
+            degree,
+            json,
+        } => {
+            if !(1..=8).contains(&degree) {
+                return Err(Error::Limit {
+                    what: "the Bézier degree",
+                    value: degree.to_string(),
+                    limit: "8".into(),
+                    flag: "--degree",
+                });
+            }
+            let report = match lacuna::load_any(&input)? {
+                lacuna::Loaded::Automaton { automaton, .. } => {
+                    lacuna::solve_automaton(&automaton)?.0
+                }
+                lacuna::Loaded::Faces(input) => {
+                    let ts = lacuna::close_or_error(&input.faces(), &limits)?;
+                    lacuna::solve_closure(&ts, lacuna::GenOptions { degree })?
+                }
+            };
+            if json {
+                print_json(&report);
+            } else {
+                out(&report.to_text(params));
+            }
+            Ok(if report.ok() {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(EXIT_FAILED)
+            })
         }
         Command::Census { spec, json } => {
             let spec = lacuna::CensusSpec::parse(
@@ -218,7 +270,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             if json {
                 print_json(&report);
             } else {
-                print!("{}", report.to_text());
+                out(&report.to_text());
             }
             Ok(ExitCode::SUCCESS)
         }
@@ -246,7 +298,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 );
             } else {
                 for (n, d) in names {
-                    println!("{n:<20} {d}");
+                    out(&format!("{n:<20} {d}\n"));
                 }
             }
             Ok(ExitCode::SUCCESS)
