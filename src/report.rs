@@ -59,6 +59,8 @@ pub struct VerifyReport {
     pub per_face: Vec<FaceCounts>,
     /// The number of shared edges of the assembly.
     pub shared_edges: usize,
+    /// The constraint solver's verdict on the generated automaton (SPEC §6).
+    pub solver: Option<crate::automaton::SolveReport>,
 }
 
 /// The rows of the type table.
@@ -95,6 +97,7 @@ pub fn verify_report(input: &Input, closure: &Closure, levels: u64) -> VerifyRep
         counts: Vec::new(),
         per_face: Vec::new(),
         shared_edges: input.assembly.shared.len(),
+        solver: None,
     };
     match closure {
         Closure::Runaway(r) => {
@@ -119,7 +122,19 @@ pub fn verify_report(input: &Input, closure: &Closure, levels: u64) -> VerifyRep
                     })
                     .collect();
             }
-            report.verified = report.structure_error.is_none();
+            let solver = crate::generate::solve_closure(ts, crate::generate::GenOptions::default());
+            let solver_ok = match solver {
+                Ok(r) => {
+                    let ok = r.ok();
+                    report.solver = Some(r);
+                    ok
+                }
+                Err(e) => {
+                    report.structure_error = Some(format!("constraint generation failed: {e}"));
+                    false
+                }
+            };
+            report.verified = report.structure_error.is_none() && solver_ok;
         }
     }
     report
@@ -214,11 +229,39 @@ impl VerifyReport {
             let _ = writeln!(o, "\ncounts of face {}:", f.face);
             o += &counts_table(&f.levels);
         }
+        if let Some(sv) = &self.solver {
+            let _ = writeln!(
+                o,
+                "\nconstraints (Bézier degree 2; `lacuna solve` for the solution):"
+            );
+            let _ = writeln!(
+                o,
+                "  {} unknowns, {} equations, rank {}",
+                sv.unknowns,
+                sv.equations,
+                sv.rank.map_or("-".into(), |r| r.to_string())
+            );
+            if sv.consistent {
+                let _ = writeln!(o, "  consistent: {} degrees of freedom", sv.dof);
+                if sv.degenerate.is_empty() {
+                    let _ = writeln!(o, "  no forced collapse of distinct corner points");
+                } else {
+                    for d in &sv.degenerate {
+                        let _ = writeln!(o, "  FORCED COLLAPSE: {d}");
+                    }
+                }
+            } else {
+                let _ = writeln!(
+                    o,
+                    "  INCONSISTENT (run `lacuna solve` for the conflicting constraints)"
+                );
+            }
+        }
         let _ = writeln!(
             o,
             "\nverdict: {}",
             if self.verified {
-                "topology VERIFIED (closure closed, bound respected, structural identities hold)"
+                "VERIFIED (closure closed, bound respected, structural identities hold, constraints consistent, no forced collapse)"
             } else {
                 "NOT VERIFIED"
             }

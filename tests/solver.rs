@@ -194,7 +194,11 @@ fn generated_f0_system_is_consistent_and_not_degenerate() {
     // F0 has 6 edges: 3 C2 (m=2) and 3 B2 (m=3): m = 3·1 + 3·2 = 9 control points; six 9×9
     // sub-operators: 486 unknowns.
     assert_eq!(r.unknowns, 486);
-    assert!(r.dof > 0);
+    // Free points of the level-1 complex (each a barycentric 9-vector: 8 dof): the six inner
+    // lacuna vertices (each shared by two sub-faces), the three spoke points inside the gaps
+    // (joint spokes are fixed on the boundary), the middles of the six El edges and of the six
+    // Ec edges: 21 points, 168 degrees of freedom.
+    assert_eq!(r.dof, 168);
 }
 
 #[test]
@@ -275,4 +279,48 @@ mod properties {
             c.check(&lin2.system).map_err(TestCaseError::fail)?;
         }
     }
+}
+
+#[test]
+fn the_degeneracy_check_reports_a_forced_collapse() {
+    // Add to F0's system a constraint that glues the lacuna vertex at the start of sub-face 0's
+    // El edge to the one at the start of sub-face 2's: two combinatorially distinct corners are
+    // then forced to coincide, and the check must say so (and say nothing without it).
+    use lacuna::{automaton_of, degeneracies, Constraint, ConstraintKind, Factor, Origin};
+    let input = lacuna::load_input("F0").unwrap();
+    let ts = lacuna::close_or_error(&input.faces(), &lacuna::Limits::default()).unwrap();
+    let mut g = automaton_of(&ts, GenOptions::default());
+    let (_, lin, sol) = solve_automaton(&g.automaton).unwrap();
+    let Solution::Consistent(space) = sol else {
+        panic!()
+    };
+    assert!(degeneracies(&ts, &g, &lin.offsets, &space).is_empty());
+    let corner = |k: usize| {
+        let sub = &ts.types[0].subdivision.subfaces[k];
+        let p = sub
+            .origins
+            .iter()
+            .position(|o| matches!(o, Origin::Lacuna { .. }))
+            .unwrap();
+        let col = g.edge_offsets[ts.types[0].children[k]][p];
+        Matrix::selection(9, &[col])
+    };
+    g.automaton.constraints.push(Constraint {
+        label: "glue".into(),
+        span: None,
+        kind: ConstraintKind::Word,
+        lhs: vec![Factor::Op(g.sub_ops[0][0]), Factor::Literal(corner(0))],
+        rhs: vec![Factor::Op(g.sub_ops[0][2]), Factor::Literal(corner(2))],
+    });
+    let (r, lin, sol) = solve_automaton(&g.automaton).unwrap();
+    assert!(r.consistent);
+    let Solution::Consistent(space) = sol else {
+        panic!()
+    };
+    let found = degeneracies(&ts, &g, &lin.offsets, &space);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert!(
+        found[0].contains("sub-face 0") && found[0].contains("sub-face 2"),
+        "{found:?}"
+    );
 }
