@@ -78,6 +78,9 @@ pub enum Error {
         /// The command-line flag that sets it.
         flag: &'static str,
     },
+    /// An exact analysis could not be completed (for instance a factoring budget ran out).
+    #[error("analysis failed: {0}")]
+    Analysis(String),
     /// An input file is not UTF-8 text.
     #[error("`{path}` is not UTF-8 text (invalid byte at offset {offset})")]
     NotText {
@@ -120,6 +123,7 @@ impl Error {
             Error::Limit { .. } => "E0501",
             Error::Io { .. } => "E0601",
             Error::NotText { .. } => "E0602",
+            Error::Analysis(_) => "E0801",
         }
     }
 
@@ -130,7 +134,8 @@ impl Error {
             Error::NoSpoke { .. }
             | Error::Limit { .. }
             | Error::Io { .. }
-            | Error::NotText { .. } => None,
+            | Error::NotText { .. }
+            | Error::Analysis(_) => None,
         }
     }
 

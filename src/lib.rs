@@ -5,6 +5,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+mod algebraic;
 mod assembly;
 mod autofrac;
 mod automaton;
@@ -16,12 +17,15 @@ mod count;
 mod edge;
 mod error;
 mod face;
+mod factor;
 mod generate;
 mod library;
 mod limits;
 mod linsys;
 mod matrix;
+mod poly;
 mod presolve;
+mod ratio;
 mod report;
 mod rule;
 mod subdivision;
@@ -44,11 +48,14 @@ pub use assembly::{Assembly, SharedEdge};
 pub use library::{library, load_any, load_input, parse_text, Input, Loaded};
 pub use limits::Limits;
 pub use linsys::{
-    forced_equal, solve, write_text, Conflict, Equation, LinearSystem, Solution, SolutionSpace,
-    TextLayout,
+    forced_equal, solve, write_text, Conflict, Equation, LinearSystem, Parametrization, Solution,
+    SolutionSpace, TextLayout, MINIMIZE_LIMIT,
 };
 pub use matrix::{bezier_restriction, Matrix};
-pub use report::{closure_json, counts_json, counts_table, verify_report, VerifyReport};
+pub use ratio::{analyse, ClassReport, LimitPoint, RatioError, RatioReport};
+pub use report::{
+    closure_json, counts_json, counts_table, ratio_of, ratio_text, verify_report, VerifyReport,
+};
 
 pub use rule::{Algorithm, EdgePattern, Junction, SpokeChooser, SpokeItem};
 pub use subdivision::{subdivide, Adjacency, Origin, SubFace, Subdivision};

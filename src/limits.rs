@@ -16,6 +16,8 @@ pub struct Limits {
     pub max_subedges: u32,
     /// Maximum delay of an edge or a face (`--max-delay`).
     pub max_delay: u32,
+    /// Maximum number of certified decimal digits (`--max-digits`).
+    pub max_digits: usize,
 }
 
 impl Default for Limits {
@@ -26,6 +28,7 @@ impl Default for Limits {
             max_level: 10_000,
             max_subedges: 64,
             max_delay: 64,
+            max_digits: 10_000,
         }
     }
 }
@@ -67,6 +70,19 @@ impl Limits {
                     flag: "--max-delay",
                 });
             }
+        }
+        Ok(())
+    }
+
+    /// Checks a requested number of digits.
+    pub fn check_digits(&self, digits: usize) -> Result<()> {
+        if digits > self.max_digits {
+            return Err(Error::Limit {
+                what: "the number of digits",
+                value: digits.to_string(),
+                limit: self.max_digits.to_string(),
+                flag: "--max-digits",
+            });
         }
         Ok(())
     }

@@ -3,7 +3,7 @@
 //! set of equations with the rational combination that proves `0 = c ≠ 0`.
 //!
 //! # Method
-//! 1. **Presolve** ([`crate::presolve`]): rows that after substitution read `0 = c`, `a·x = c` or
+//! 1. **Presolve** (`crate::presolve`): rows that after substitution read `0 = c`, `a·x = c` or
 //!    `a·x + b·y = c` become facts (fixed values, affine union-find links), repeated to a fixed
 //!    point. The BC-IFS systems (column sums, `x = c` incidences, `x = y` adjacencies) are mostly
 //!    solved here in near-linear time.
@@ -11,12 +11,16 @@
 //!    eliminated fraction-free (`row ← (a/g)·row − (b/g)·pivot row`, then divided by the row's
 //!    content), choosing pivots Markowitz-style (shortest active row, then the column with the
 //!    fewest active rows, preferring unit coefficients), then back-substituted to reduced form.
-//! 3. **Conflict**: the rows that a contradiction depends on are traced through the fact forest
-//!    (for a core contradiction: every core row of its connected component). On those rows `R` the
-//!    transposed system `yᵀ[A_R | b_R] = (0,…,0,1)` is solved; its particular solution (free
-//!    parameters 0) is a basic solution, so its support is a minimal inconsistent subsystem: the
-//!    rows are independent in `[A|b]` and have exactly one dependency in `A` (hence at most
-//!    `rank + 1` rows, and dropping any one leaves a consistent system).
+//! 3. **Conflict**: the derivation of `0 = c ≠ 0` is replayed backwards into a combination of
+//!    original rows: through the fact forest (`crate::presolve`), and for a contradiction found
+//!    in the core by re-running the (deterministic) elimination while tracking each row's
+//!    combination of core rows. Its support is the conflicting row plus pivot rows, so at most
+//!    `rank + 1` rows. When it has at most [`MINIMIZE_LIMIT`] rows it is then made minimal: on
+//!    those rows `R` the transposed system `yᵀ[A_R | b_R] = (0,…,0,1)` is solved; its particular
+//!    solution (free parameters 0) is basic, so its support is a minimal inconsistent subsystem
+//!    (independent in `[A|b]`, exactly one dependency in `A`: dropping any row leaves a
+//!    consistent system). Above the limit the transposed solve can fill in quadratically (long
+//!    chains of `x = y` make every certificate long), so the derivation is returned as is.
 //!
 //! Rank witness: each fact and each core pivot is a pair (row, unknown). The pivot rows, taken in
 //! the order their facts were made, only use facts from earlier pivot rows, so with the free roots
@@ -97,12 +101,18 @@ pub struct Conflict {
 }
 
 /// Solves the system exactly (see the module documentation for the method).
+///
+/// # Panics
+/// If a term names an unknown `≥ sys.unknowns`, or `sys.unknowns ≥ 2^32 − 1`.
 pub fn solve(sys: &LinearSystem) -> Solution {
     let rows = sys.rows.iter().map(|e| {
         let mut t: Vec<(u32, Q)> = e
             .terms
             .iter()
-            .map(|(v, c)| (*v as u32, Q::from_big(c)))
+            .map(|(v, c)| {
+                assert!(*v < sys.unknowns, "unknown {v} out of range");
+                (*v as u32, Q::from_big(c))
+            })
             .collect();
         (merge_terms(&mut t), Q::from_big(&e.rhs))
     });
@@ -112,7 +122,10 @@ pub fn solve(sys: &LinearSystem) -> Solution {
     );
     match run(sys.unknowns, rows, true) {
         Ok(space) => Solution::Consistent(space),
-        Err((ps, traced)) => Solution::Inconsistent(certificate(&ps, traced)),
+        Err(failure) => {
+            let (ps, seeds) = *failure;
+            Solution::Inconsistent(certificate(&ps, seeds))
+        }
     }
 }
 
@@ -143,6 +156,11 @@ impl CRow {
     }
     /// `(a/g)·self − (b/g)·o` with `g = gcd(a, b)`, then divided by its content.
     fn combine(&self, a: &Z, o: &CRow, b: &Z) -> CRow {
+        self.combine_with_factors(a, o, b).0
+    }
+
+    /// [`CRow::combine`], also returning `(a/g, b/g, content)`.
+    fn combine_with_factors(&self, a: &Z, o: &CRow, b: &Z) -> (CRow, Z, Z, Z) {
         let g = a.gcd(b);
         let (a, b) = (a.div_exact(&g), b.div_exact(&g));
         let mut out = CRow {
@@ -184,14 +202,27 @@ impl CRow {
         if !g.is_zero() && !g.is_unit() {
             out.vals.iter_mut().for_each(|v| *v = v.div_exact(&g));
             out.rhs = out.rhs.div_exact(&g);
+        } else {
+            g = Z::one();
         }
-        out
+        (out, a, b, g)
     }
 }
 
+/// A combination of core rows, sorted by row.
+type Combo = Vec<(u32, Q)>;
+/// `(row, pivot column, reduced row)` per pivot, in elimination order.
+type Reduced = Vec<(usize, u32, CRow)>;
+
 /// Fraction-free sparse elimination with Markowitz-style pivots, then back substitution.
-/// `Ok` holds `(row, column, reduced row)` per pivot; `Err` the row that became `0 = c ≠ 0`.
-fn eliminate(mut rows: Vec<CRow>, ncols: usize) -> Result<Vec<(usize, u32, CRow)>, usize> {
+/// `Err` holds the row that became `0 = c ≠ 0` and, when `track`, its combination of input rows.
+fn eliminate(mut rows: Vec<CRow>, ncols: usize, track: bool) -> Result<Reduced, (usize, Combo)> {
+    let mut combos: Vec<Combo> = match track {
+        true => (0..rows.len() as u32)
+            .map(|i| vec![(i, Q::int(Z::one()))])
+            .collect(),
+        false => vec![],
+    };
     // Column lists are lazy (entries may be stale or repeated; validated when used); the counts of
     // active rows per column are exact and drive the pivot choice.
     let mut col_rows: Vec<Vec<u32>> = vec![vec![]; ncols];
@@ -237,7 +268,10 @@ fn eliminate(mut rows: Vec<CRow>, ncols: usize) -> Result<Vec<(usize, u32, CRow)
         others.retain(|&j| active[j as usize] && rows[j as usize].coef(p).is_some());
         for j in others.into_iter().map(|j| j as usize) {
             let b = rows[j].coef(p).expect("validated").clone();
-            let new = rows[j].combine(&a, &rows[i], &b);
+            let (new, fa, fb, content) = rows[j].combine_with_factors(&a, &rows[i], &b);
+            if track {
+                combos[j] = lin_combo(&fa, &combos[j], &fb, &combos[i], &content);
+            }
             let old = std::mem::replace(&mut rows[j], new);
             // Exact counts: merge the old and new column sets; new columns join the lists.
             let (oc, nc) = (&old.cols, &rows[j].cols);
@@ -262,7 +296,7 @@ fn eliminate(mut rows: Vec<CRow>, ncols: usize) -> Result<Vec<(usize, u32, CRow)
             let len = rows[j].cols.len();
             if len == 0 {
                 if !rows[j].rhs.is_zero() {
-                    return Err(j);
+                    return Err((j, combos.get(j).cloned().unwrap_or_default()));
                 }
                 active[j] = false;
             } else {
@@ -305,95 +339,95 @@ fn eliminate(mut rows: Vec<CRow>, ncols: usize) -> Result<Vec<(usize, u32, CRow)
         .collect())
 }
 
-type Failure = (Presolve, Vec<usize>);
+/// `(fa·x − fb·y) / content` on sparse combinations sorted by row.
+fn lin_combo(fa: &Z, x: &Combo, fb: &Z, y: &Combo, content: &Z) -> Combo {
+    let (fa, fb, c) = (
+        Q::int(fa.clone()),
+        Q::int(fb.clone()),
+        Q::int(content.clone()),
+    );
+    let mut out = Vec::with_capacity(x.len() + y.len());
+    let (mut i, mut j) = (0, 0);
+    while i < x.len() || j < y.len() {
+        let (ri, rj) = (
+            x.get(i).map_or(u32::MAX, |t| t.0),
+            y.get(j).map_or(u32::MAX, |t| t.0),
+        );
+        let r = ri.min(rj);
+        let mut v = Q::zero();
+        if ri == r {
+            v = v.add(&fa.mul(&x[i].1));
+            i += 1;
+        }
+        if rj == r {
+            v = v.sub(&fb.mul(&y[j].1));
+            j += 1;
+        }
+        if !v.is_zero() {
+            out.push((r, v.div(&c)));
+        }
+    }
+    out
+}
 
-/// Presolve + core. On inconsistency returns the presolve state and the traced rows.
+/// The presolve state and the substituted rows (with weights) whose sum reads `0 = c ≠ 0`.
+type Failure = Box<(Presolve, Vec<(usize, Q)>)>;
+
+/// Presolve + core. On inconsistency returns the presolve state and the conflicting combination.
 fn run(
     n: usize,
     rows: impl Iterator<Item = (Vec<(u32, Q)>, Q)>,
     want_basis: bool,
 ) -> Result<SolutionSpace, Failure> {
-    let t0 = std::time::Instant::now();
     let mut ps = Presolve::new(n, rows);
-    eprintln!("TIMING new {:?}", t0.elapsed());
     if let Some(bad) = ps.run() {
-        let mut seen = vec![false; ps.rows()];
-        let traced = ps.trace(&[(bad, u32::MAX)], &mut seen);
-        return Err((ps, traced));
+        return Err(Box::new((ps, vec![(bad, Q::int(Z::one()))])));
     }
-    eprintln!("TIMING presolve {:?}", t0.elapsed());
     // Core: pending rows over the remaining roots.
     let pending: Vec<usize> = (0..ps.rows())
         .filter(|&i| ps.fate[i] == RowFate::Pending)
         .collect();
-    let mut local: Vec<u32> = vec![u32::MAX; n];
-    let mut roots: Vec<u32> = vec![];
-    let mut crows = Vec::with_capacity(pending.len());
-    for &i in &pending {
-        let (terms, rhs) = ps.substitute(i);
-        let (row, r) = integer_row(&terms, &rhs);
-        let mut cr = CRow {
-            cols: vec![],
-            vals: vec![],
-            rhs: r,
-        };
-        for (root, z) in row {
-            if local[root as usize] == u32::MAX {
-                local[root as usize] = roots.len() as u32;
-                roots.push(root);
-            }
-            cr.cols.push(local[root as usize]);
-            cr.vals.push(z);
-        }
-        // Local ids follow first appearance, so re-sort.
-        let mut idx: Vec<usize> = (0..cr.cols.len()).collect();
-        idx.sort_by_key(|&k| cr.cols[k]);
-        cr = CRow {
-            cols: idx.iter().map(|&k| cr.cols[k]).collect(),
-            vals: idx.iter().map(|&k| cr.vals[k].clone()).collect(),
-            rhs: cr.rhs,
-        };
-        crows.push(cr);
-    }
-    eprintln!("TIMING core build {:?} rows {}", t0.elapsed(), crows.len());
-    let core = match eliminate(crows, roots.len()) {
+    let (crows, roots, _) = build_core(&mut ps, &pending);
+    let core = match eliminate(crows, roots.len(), false) {
         Ok(core) => core,
-        Err(j) => {
-            let traced = core_component(&mut ps, &pending, j);
-            return Err((ps, traced));
+        Err(_) => {
+            // Replay the deterministic elimination, now tracking combinations.
+            let (crows, roots, scales) = build_core(&mut ps, &pending);
+            let (_, combo) = eliminate(crows, roots.len(), true).expect_err("same elimination");
+            let seeds = combo
+                .into_iter()
+                .map(|(k, w)| (pending[k as usize], w.mul(&scales[k as usize])));
+            let seeds = seeds.collect();
+            return Err(Box::new((ps, seeds)));
         }
     };
-    eprintln!("TIMING eliminate {:?}", t0.elapsed());
-    let r = assemble(&mut ps, &pending, &roots, core, want_basis);
-    eprintln!("TIMING assemble {:?}", t0.elapsed());
-    Ok(r)
+    Ok(assemble(&mut ps, &pending, &roots, core, want_basis))
 }
 
-/// Rows traced from every core row sharing a connected component with core row `j`.
-fn core_component(ps: &mut Presolve, pending: &[usize], j: usize) -> Vec<usize> {
-    let mut uf: Vec<usize> = (0..pending.len()).collect();
-    fn top(uf: &mut [usize], mut x: usize) -> usize {
-        while uf[x] != x {
-            uf[x] = uf[uf[x]];
-            x = uf[x];
-        }
-        x
+/// The pending rows substituted and cleared to integers over local column ids; the roots of the
+/// local columns; the integer scale of each row.
+fn build_core(ps: &mut Presolve, pending: &[usize]) -> (Vec<CRow>, Vec<u32>, Vec<Q>) {
+    let mut local: Vec<u32> = vec![u32::MAX; ps.n];
+    let (mut roots, mut crows, mut scales) = (vec![], Vec::with_capacity(pending.len()), vec![]);
+    for &i in pending {
+        let (terms, rhs) = ps.substitute(i);
+        let (row, r, scale) = integer_row(&terms, &rhs);
+        let mut t: Vec<(u32, Z)> = row
+            .into_iter()
+            .map(|(root, z)| {
+                if local[root as usize] == u32::MAX {
+                    local[root as usize] = roots.len() as u32;
+                    roots.push(root);
+                }
+                (local[root as usize], z)
+            })
+            .collect();
+        t.sort_unstable_by_key(|x| x.0);
+        let (cols, vals) = t.into_iter().unzip();
+        crows.push(CRow { cols, vals, rhs: r });
+        scales.push(scale);
     }
-    let mut owner: BTreeMap<u32, usize> = BTreeMap::new();
-    for (k, &i) in pending.iter().enumerate() {
-        for (r, _) in ps.substitute(i).0 {
-            let o = *owner.entry(r).or_insert(k);
-            let (a, b) = (top(&mut uf, o), top(&mut uf, k));
-            uf[a] = b;
-        }
-    }
-    let cj = top(&mut uf, j);
-    let seeds: Vec<(usize, u32)> = (0..pending.len())
-        .filter(|&k| top(&mut uf, k) == cj)
-        .map(|k| (pending[k], u32::MAX))
-        .collect();
-    let mut seen = vec![false; ps.rows()];
-    ps.trace(&seeds, &mut seen)
+    (crows, roots, scales)
 }
 
 /// Builds the public solution space from the facts and the reduced core.
@@ -420,68 +454,75 @@ fn assemble(
         core_of[roots[*p as usize] as usize] = k as u32;
         pivots.push((pending[*i], roots[*p as usize] as usize));
     }
-    let rel: Vec<(u32, Q, Q)> = (0..n as u32).map(|x| ps.find(x)).collect();
+    ps.compress_all();
+    let ps = &*ps;
     let root_val = |r: u32| -> Q {
         if let Some(v) = ps.root_value(r) {
             return v.clone();
         }
         match core.get(core_of[r as usize] as usize) {
             Some((_, p, row)) => {
-                let d = row.coef(*p).expect("pivot present");
-                Q {
-                    n: row.rhs.clone(),
-                    d: Z::one(),
-                }
-                .div(&Q::int(d.clone()))
+                Q::int(row.rhs.clone()).div(&Q::int(row.coef(*p).expect("pivot").clone()))
             }
             None => Q::zero(),
         }
     };
-    let mut cache: Vec<Option<Q>> = vec![None; n];
     let mut particular = Vec::with_capacity(n);
-    for (x, (r, f, g)) in rel.iter().enumerate() {
-        let v = cache[*r as usize]
-            .get_or_insert_with(|| root_val(*r))
-            .clone();
-        particular.push(f.mul(&v).add(g).big());
-        let _ = x;
+    let mut free = vec![];
+    for x in 0..n as u32 {
+        let (r, f, g) = ps.relation(x);
+        if r == x {
+            let v = root_val(x);
+            if ps.root_value(x).is_none() && core_of[x as usize] == u32::MAX {
+                free.push(x as usize);
+            }
+            particular.push(v.big());
+        } else if let Some(v) = ps.root_value(r).filter(|_| r < x) {
+            // Common case (fixed class): no need to revisit the root.
+            particular.push(f.mul(v).add(g).big());
+        } else {
+            particular.push(f.mul(&root_val(r)).add(g).big());
+        }
     }
-    let free: Vec<usize> = (0..n)
-        .filter(|&x| {
-            rel[x].0 as usize == x && ps.root_value(x as u32).is_none() && core_of[x] == u32::MAX
-        })
-        .collect();
     let mut basis = vec![];
     if want_basis {
-        // dirs[f]: (root, coefficient of parameter f in that root)
-        let mut dirs: Vec<Vec<(u32, Q)>> = vec![vec![]; n];
+        // dirs[local core column of a free root]: (pivot root, coefficient of that parameter)
+        let mut dirs: Vec<Vec<(u32, Q)>> = vec![vec![]; roots.len()];
         for (_, p, row) in &core {
             let d = Q::int(row.coef(*p).expect("pivot").clone());
             for (c, v) in row.cols.iter().zip(&row.vals) {
                 if c != p {
-                    dirs[roots[*c as usize] as usize]
-                        .push((roots[*p as usize], Q::int(v.neg()).div(&d)));
+                    dirs[*c as usize].push((roots[*p as usize], Q::int(v.neg()).div(&d)));
                 }
             }
         }
+        let mut local: Vec<u32> = vec![u32::MAX; n];
+        roots
+            .iter()
+            .enumerate()
+            .for_each(|(k, r)| local[*r as usize] = k as u32);
         // members of each class (CSR by root)
-        let mut start = vec![0usize; n + 1];
-        rel.iter().for_each(|(r, _, _)| start[*r as usize + 1] += 1);
+        let mut start = vec![0u32; n + 1];
+        (0..n as u32).for_each(|x| start[ps.relation(x).0 as usize + 1] += 1);
         (0..n).for_each(|i| start[i + 1] += start[i]);
         let mut fill = start.clone();
         let mut members = vec![0u32; n];
-        for (x, (r, _, _)) in rel.iter().enumerate() {
-            members[fill[*r as usize]] = x as u32;
-            fill[*r as usize] += 1;
+        for x in 0..n as u32 {
+            let r = ps.relation(x).0 as usize;
+            members[fill[r] as usize] = x;
+            fill[r] += 1;
         }
+        drop(fill);
+        let one = Q::int(Z::one());
+        let none: Vec<(u32, Q)> = vec![];
         for &f in &free {
             let mut v: Vec<(usize, BigRational)> = vec![];
-            let one = Q::int(Z::one());
-            for (root, c) in
-                std::iter::once((f as u32, &one)).chain(dirs[f].iter().map(|(r, c)| (*r, c)))
+            let d = dirs.get(local[f] as usize).unwrap_or(&none);
+            for (root, c) in std::iter::once((f as u32, &one)).chain(d.iter().map(|(r, c)| (*r, c)))
             {
-                for &x in &members[start[root as usize]..start[root as usize + 1]] {
-                    v.push((x as usize, rel[x as usize].1.mul(c).big()));
+                for &x in &members[start[root as usize] as usize..start[root as usize + 1] as usize]
+                {
+                    v.push((x as usize, ps.relation(x).1.mul(c).big()));
                 }
             }
             v.sort_unstable_by_key(|t| t.0);
@@ -498,62 +539,74 @@ fn assemble(
     }
 }
 
-/// Solves the transposed system on the traced rows; its basic solution is the certificate.
-fn certificate(ps: &Presolve, traced: Vec<usize>) -> Conflict {
-    let attempt = |rows: &[usize]| -> Option<Conflict> {
-        // Column j of A_R becomes the equation Σ_k A[r_k][j]·y_k = 0; the last one Σ b·y = 1.
-        let mut by_col: BTreeMap<u32, Vec<(u32, Q)>> = BTreeMap::new();
-        for (k, &i) in rows.iter().enumerate() {
-            for t in ps.start[i]..ps.start[i + 1] {
-                by_col
-                    .entry(ps.cols[t])
-                    .or_default()
-                    .push((k as u32, ps.coefs[t].clone()));
-            }
-        }
-        let rhs_row: Vec<(u32, Q)> = rows
-            .iter()
-            .enumerate()
-            .filter(|(_, &i)| !ps.rhs[i].is_zero())
-            .map(|(k, &i)| (k as u32, ps.rhs[i].clone()))
-            .collect();
-        let eqs = by_col
-            .into_values()
-            .map(|t| (t, Q::zero()))
-            .chain(std::iter::once((rhs_row, Q::int(Z::one()))));
-        let space = run(rows.len(), eqs, false).ok()?;
-        let support: Vec<(usize, Q)> = space
-            .particular
-            .iter()
-            .enumerate()
-            .filter(|(_, y)| !y.is_zero())
-            .map(|(k, y)| (rows[k], Q::from_big(y)))
-            .collect();
+/// Largest derivation certificate that is shrunk to a minimal one (see the module docs).
+pub const MINIMIZE_LIMIT: usize = 2000;
+
+/// The certificate: the replayed derivation, minimised when small.
+fn certificate(ps: &Presolve, seeds: Vec<(usize, Q)>) -> Conflict {
+    let derived = ps.combination(&seeds);
+    let support: Vec<usize> = derived.keys().copied().collect();
+    let conflict = |m: Vec<(usize, Q)>| {
         // Scale to coprime integers.
-        let terms: Vec<(u32, Q)> = support
+        let terms: Vec<(u32, Q)> = m
             .iter()
             .enumerate()
             .map(|(k, (_, q))| (k as u32, q.clone()))
             .collect();
-        let (ints, _) = integer_row(&terms, &Q::zero());
-        let mut multipliers: Vec<(usize, BigRational)> = ints
+        let (ints, _, _) = integer_row(&terms, &Q::zero());
+        let multipliers: Vec<(usize, BigRational)> = ints
             .into_iter()
-            .map(|(k, z)| (support[k as usize].0, BigRational::from_integer(z.big())))
+            .map(|(k, z)| (m[k as usize].0, BigRational::from_integer(z.big())))
             .collect();
-        multipliers.sort_by_key(|m| m.0);
         let constant = multipliers
             .iter()
             .fold(BigRational::zero(), |s, (i, m)| s + m * ps.rhs[*i].big());
-        Some(Conflict {
+        Conflict {
             multipliers,
             constant,
-        })
+        }
     };
-    let mut traced = traced;
-    traced.sort_unstable();
-    attempt(&traced)
-        .or_else(|| attempt(&(0..ps.rows()).collect::<Vec<_>>()))
-        .expect("internal error: an inconsistent system has a Farkas certificate")
+    if support.len() <= MINIMIZE_LIMIT {
+        if let Some(m) = minimal(ps, &support) {
+            return conflict(m);
+        }
+    }
+    conflict(derived.into_iter().collect())
+}
+
+/// The basic solution of `yᵀ[A_R | b_R] = (0,…,0,1)` on the inconsistent rows `R`.
+fn minimal(ps: &Presolve, rows: &[usize]) -> Option<Vec<(usize, Q)>> {
+    // Column j of A_R becomes the equation Σ_k A[r_k][j]·y_k = 0; the last one Σ b·y = 1.
+    let mut by_col: BTreeMap<u32, Vec<(u32, Q)>> = BTreeMap::new();
+    for (k, &i) in rows.iter().enumerate() {
+        for t in ps.start[i]..ps.start[i + 1] {
+            by_col
+                .entry(ps.cols[t])
+                .or_default()
+                .push((k as u32, ps.coefs[t].clone()));
+        }
+    }
+    let rhs_row: Vec<(u32, Q)> = rows
+        .iter()
+        .enumerate()
+        .filter(|(_, &i)| !ps.rhs[i].is_zero())
+        .map(|(k, &i)| (k as u32, ps.rhs[i].clone()))
+        .collect();
+    let eqs = by_col.into_values().map(|t| (t, Q::zero()));
+    let space = run(
+        rows.len(),
+        eqs.chain(std::iter::once((rhs_row, Q::int(Z::one())))),
+        false,
+    )
+    .ok()?;
+    let m: Vec<(usize, Q)> = space
+        .particular
+        .iter()
+        .enumerate()
+        .filter(|(_, y)| !y.is_zero())
+        .map(|(k, y)| (rows[k], Q::from_big(y)))
+        .collect();
+    Some(m)
 }
 
 mod rat {
@@ -1137,18 +1190,18 @@ mod tests {
         let (pr, pc) = (g.perm(m), g.perm(n));
         let mut l = vec![vec![0i64; rank]; m];
         let mut u = vec![vec![0i64; n]; rank];
-        for i in 0..m {
-            for k in 0..rank {
-                l[pr[i]][k] = if i < rank {
+        for (i, &row) in pr.iter().enumerate() {
+            for (k, e) in l[row].iter_mut().enumerate() {
+                *e = if i < rank {
                     (i == k) as i64
                 } else {
                     g.int(-3, 3)
                 };
             }
         }
-        for k in 0..rank {
-            for j in 0..n {
-                u[k][pc[j]] = if j < rank {
+        for (k, uk) in u.iter_mut().enumerate() {
+            for (j, &col) in pc.iter().enumerate() {
+                uk[col] = if j < rank {
                     (j == k) as i64
                 } else {
                     g.int(-3, 3)
@@ -1159,7 +1212,7 @@ mod tests {
         let rows = (0..m)
             .map(|i| {
                 let s = r(
-                    g.int(1, 4) * if g.next() % 2 == 0 { 1 } else { -1 },
+                    g.int(1, 4) * if g.next().is_multiple_of(2) { 1 } else { -1 },
                     g.int(1, 3),
                 );
                 let terms: Vec<(usize, BigRational)> = (0..n)
@@ -1309,11 +1362,50 @@ mod tests {
         }
     }
 
+    #[test]
+    fn long_presolve_conflict_is_the_chain() {
+        // x_0 = 0, x_i − x_{i+1} = 0 (i < N), x_N = 1, rows shuffled: the only dependency uses
+        // every row, x_0 − Σ(x_i − x_{i+1}) − x_N = 0 with right-hand side −1, so the certificate
+        // is all N + 2 rows with multipliers ±1 and constant ±1 (N + 2 > MINIMIZE_LIMIT: this is
+        // the replayed derivation, not the transposed solve).
+        let n = MINIMIZE_LIMIT + 100;
+        let mut rows = vec![eq(&[(0, r(1, 1))], r(0, 1)), eq(&[(n, r(1, 1))], r(1, 1))];
+        rows.extend((0..n).map(|i| eq(&[(i, r(1, 1)), (i + 1, r(-1, 1))], r(0, 1))));
+        let order = Rng(7).perm(rows.len());
+        let sys = LinearSystem {
+            unknowns: n + 1,
+            rows: order.iter().map(|&k| rows[k].clone()).collect(),
+        };
+        let c = conflict(&sys);
+        assert_eq!(c.multipliers.len(), n + 2);
+        assert!(c.multipliers.iter().all(|(_, m)| m.abs().is_one()));
+        assert!(c.constant.abs().is_one());
+    }
+
+    #[test]
+    fn long_core_conflict_replays_the_elimination() {
+        // The tied T_0 column 1 sums of all cells are identical core rows; the last one is set
+        // to 2. The certificate comes from the tracked core elimination and the fact forest.
+        let (cells, m) = (700, 3);
+        let (mut sys, _, _, _) = structured(cells, m, 1);
+        let last = (0..sys.rows.len())
+            .rev()
+            .find(|&i| {
+                sys.rows[i].terms.len() >= m && sys.rows[i].terms[0].0 == (cells - 1) * m * m + 1
+            })
+            .expect("column sum of the last cell's column 1");
+        sys.rows[last].rhs = r(2, 1);
+        let c = conflict(&sys);
+        let s = space(&structured(cells, m, 1).0);
+        assert!(c.multipliers.len() <= s.rank + 1);
+        assert!(c.multipliers.iter().any(|t| t.0 == last));
+    }
+
     /// Timing (release): `cargo test --release -- --ignored --nocapture scaling`.
     #[test]
     #[ignore]
     fn scaling_structured() {
-        for cells in [20_000] {
+        for cells in [100, 2_000, 20_000] {
             let (sys, dof, _, _) = structured(cells, 5, 2);
             let t = std::time::Instant::now();
             let s = match solve(&sys) {

@@ -40,6 +40,9 @@ struct LimitArgs {
     /// Maximum delay of an edge or a face.
     #[arg(long, global = true, default_value_t = Limits::default().max_delay)]
     max_delay: u32,
+    /// Maximum number of certified digits.
+    #[arg(long, global = true, default_value_t = Limits::default().max_digits)]
+    max_digits: usize,
 }
 
 #[derive(Subcommand)]
@@ -70,6 +73,17 @@ enum Command {
         /// The last level.
         #[arg(long)]
         levels: u64,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// The exact limit ratio R of lacunas against sub-faces, by eigen analysis.
+    Ratio {
+        /// Face notation in quotes, a file, or a library name.
+        input: String,
+        /// Certified decimal digits.
+        #[arg(long, default_value_t = 30)]
+        digits: usize,
         /// Print JSON.
         #[arg(long)]
         json: bool,
@@ -131,6 +145,7 @@ fn main() -> ExitCode {
             | Command::Closure { json: true, .. }
             | Command::Counts { json: true, .. }
             | Command::Solve { json: true, .. }
+            | Command::Ratio { json: true, .. }
             | Command::Census { json: true, .. }
             | Command::Library { json: true }
     );
@@ -167,6 +182,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
         max_level: l.max_level,
         max_subedges: l.max_subedges,
         max_delay: l.max_delay,
+        max_digits: l.max_digits,
     };
     match cli.command {
         Command::Verify {
@@ -221,6 +237,23 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                     if ts.types.len() == 1 { "" } else { "s" }
                 ));
                 out(&lacuna::counts_table(&lacuna::counts(&ts, levels)));
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Ratio {
+            input,
+            digits,
+            json,
+        } => {
+            limits.check_digits(digits)?;
+            let input = load_input(&input)?;
+            let ts = lacuna::close_or_error(&input.faces(), &limits)?;
+            let r = lacuna::ratio_of(&ts, digits)?;
+            if json {
+                print_json(&r);
+            } else {
+                out(&format!("{} ({} face types)\n", input.name, ts.types.len()));
+                out(&lacuna::ratio_text(&r));
             }
             Ok(ExitCode::SUCCESS)
         }

@@ -8,15 +8,17 @@
 //! # Facts and their provenance
 //! Every unknown starts as a root. A row that, after substituting the current facts, has one
 //! unknown fixes that root; with two unknowns it links the root of the smaller class below the
-//! other (`child = f·parent + g`). Each fact stores the row that created it and an event time.
-//! Links are never rewritten in `orig_parent`; path compression only touches `parent/f/g`. So the
-//! rows justifying a derived row are found by walking `orig_parent` through links older than the
-//! row's own time ([`Presolve::trace`]), which is how conflicts are localised.
+//! other (`child = f·parent + g`). Each fact stores the row that created it, an event time, the
+//! coefficient of its unknown in the substituted row and (links) the original `f`. Links are never
+//! rewritten in `orig_parent`; path compression only touches `parent/f/g`. So the derivation of
+//! any substituted row can be replayed backwards, latest fact first, as a combination of original
+//! rows ([`Presolve::combination`]): this is how conflict certificates are obtained.
 
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::ToPrimitive;
+use std::collections::BTreeMap;
 
 /// An integer: `S` while it fits an `i64`, else boxed big (never `B` for a value that fits).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -190,7 +192,8 @@ impl Q {
 
 /// Integer form of a rational row: multiply by the lcm of the denominators, divide by the content.
 /// Returns the scaled `(coefficients, rhs)`.
-pub(crate) fn integer_row(terms: &[(u32, Q)], rhs: &Q) -> (Vec<(u32, Z)>, Z) {
+/// The third component is the scale: integer row = scale · rational row.
+pub(crate) fn integer_row(terms: &[(u32, Q)], rhs: &Q) -> (Vec<(u32, Z)>, Z, Q) {
     let mut l = rhs.d.clone();
     for (_, q) in terms {
         let g = l.gcd(&q.d);
@@ -209,7 +212,12 @@ pub(crate) fn integer_row(terms: &[(u32, Q)], rhs: &Q) -> (Vec<(u32, Z)>, Z) {
         }
         r = r.div_exact(&g);
     }
-    (row, r)
+    let scale = if g.is_zero() {
+        Q::int(l)
+    } else {
+        Q::int(l).div(&Q::int(g))
+    };
+    (row, r, scale)
 }
 
 const NONE: u32 = u32::MAX;
@@ -240,6 +248,10 @@ pub(crate) struct Presolve {
     orig_parent: Vec<u32>,
     link_row: Vec<u32>,
     link_time: Vec<u32>,
+    /// Original `f` of a link (before path compression).
+    link_f: Vec<Q>,
+    /// Coefficient of the fact's unknown (child or fixed root) in its substituted row.
+    fact_a: Vec<Q>,
     /// Fixed value of a root, with the row and time that fixed it.
     value: Vec<Option<Q>>,
     fix_row: Vec<u32>,
@@ -286,6 +298,8 @@ impl Presolve {
             orig_parent: (0..n as u32).collect(),
             link_row: vec![NONE; n],
             link_time: vec![0; n],
+            link_f: vec![Q::zero(); n],
+            fact_a: vec![Q::zero(); n],
             value: vec![None; n],
             fix_row: vec![NONE; n],
             fix_time: vec![0; n],
@@ -334,6 +348,22 @@ impl Presolve {
             (cf, cg) = (nf, ng);
         }
         (r, cf, cg)
+    }
+
+    /// Compresses every path, after which [`Presolve::relation`] is valid.
+    pub(crate) fn compress_all(&mut self) {
+        for x in 0..self.n as u32 {
+            self.find(x);
+        }
+    }
+
+    /// `(root, F, G)` with `x = F·root + G`; only valid right after [`Presolve::compress_all`].
+    pub(crate) fn relation(&self, x: u32) -> (u32, &Q, &Q) {
+        (
+            self.parent[x as usize],
+            &self.f[x as usize],
+            &self.g[x as usize],
+        )
     }
 
     /// When the fact about `c` (a fixed root or a linked child) was made.
@@ -452,6 +482,7 @@ impl Presolve {
                 let (r, a) = &terms[0];
                 self.time += 1;
                 self.value[*r as usize] = Some(rhs.div(a));
+                self.fact_a[*r as usize] = a.clone();
                 self.fix_row[*r as usize] = i as u32;
                 self.fix_time[*r as usize] = self.time;
                 self.fate[i] = RowFate::Pivot(*r);
@@ -469,6 +500,8 @@ impl Presolve {
                 self.parent[c] = p;
                 self.orig_parent[c] = p;
                 self.f[c] = y.1.div(&x.1).neg();
+                self.link_f[c] = self.f[c].clone();
+                self.fact_a[c] = x.1.clone();
                 self.g[c] = rhs.div(&x.1);
                 self.size[p as usize] += self.size[c];
                 self.link_row[c] = i as u32;
@@ -491,43 +524,62 @@ impl Presolve {
         }
     }
 
-    /// The rows whose facts (older than `t`) row `i` depends on, together with `i` itself: a
-    /// superset of the rows any derivation of row `i`'s substituted form uses.
-    pub(crate) fn trace(&self, seeds: &[(usize, u32)], seen: &mut Vec<bool>) -> Vec<usize> {
-        let mut out = vec![];
-        let mut stack: Vec<(usize, u32)> = vec![];
-        for &(i, t) in seeds {
-            if !seen[i] {
-                seen[i] = true;
-                stack.push((i, t));
+    /// Replays derivations backwards. `seeds` are `(row, weight)` for rows substituted with all
+    /// facts; returns `m` with `Σ m_r·row_r = Σ weight·(substituted row)`, as original rows.
+    ///
+    /// Substituting `α·x` for a child `x` subtracts `α·D_x`, with `D_x: x − f·p = g` the link
+    /// normalised to coefficient 1 (for a fixed root, `D_y: y = v`); `D_x` itself is the
+    /// substituted fact row divided by `fact_a[x]`, a combination of strictly older facts. So the
+    /// weights on the facts are resolved latest first, each exactly once.
+    pub(crate) fn combination(&self, seeds: &[(usize, Q)]) -> BTreeMap<usize, Q> {
+        let mut m: BTreeMap<usize, Q> = BTreeMap::new();
+        let mut w: BTreeMap<u32, (u32, Q)> = BTreeMap::new();
+        for (r, q) in seeds {
+            self.expand(*r, u32::MAX, q, &mut m, &mut w);
+        }
+        while let Some((t, (x, q))) = w.pop_last() {
+            if q.is_zero() {
+                continue;
+            }
+            let x = x as usize;
+            let row = if self.value[x].is_some() {
+                self.fix_row[x]
+            } else {
+                self.link_row[x]
+            };
+            self.expand(row as usize, t, &q.div(&self.fact_a[x]), &mut m, &mut w);
+        }
+        m.retain(|_, q| !q.is_zero());
+        m
+    }
+
+    /// Adds `weight·row_i` and the (negated) weights of the facts older than `t` it substitutes.
+    fn expand(
+        &self,
+        i: usize,
+        t: u32,
+        weight: &Q,
+        m: &mut BTreeMap<usize, Q>,
+        w: &mut BTreeMap<u32, (u32, Q)>,
+    ) {
+        let e = m.entry(i).or_insert_with(Q::zero);
+        *e = e.add(weight);
+        let mut sub = |time: u32, x: usize, alpha: &Q| {
+            let e = w.entry(time).or_insert_with(|| (x as u32, Q::zero()));
+            e.1 = e.1.sub(alpha);
+        };
+        for k in self.start[i]..self.start[i + 1] {
+            let mut alpha = weight.mul(&self.coefs[k]);
+            let mut x = self.cols[k] as usize;
+            while self.orig_parent[x] as usize != x && self.link_time[x] < t {
+                sub(self.link_time[x], x, &alpha);
+                alpha = alpha.mul(&self.link_f[x]);
+                x = self.orig_parent[x] as usize;
+            }
+            if self.value[x].is_some() && self.fix_time[x] < t {
+                sub(self.fix_time[x], x, &alpha);
             }
         }
-        while let Some((i, t)) = stack.pop() {
-            out.push(i);
-            for k in self.start[i]..self.start[i + 1] {
-                let mut x = self.cols[k] as usize;
-                loop {
-                    let p = self.orig_parent[x] as usize;
-                    if p == x || self.link_time[x] >= t {
-                        break;
-                    }
-                    let r = self.link_row[x] as usize;
-                    if !seen[r] {
-                        seen[r] = true;
-                        stack.push((r, self.link_time[x]));
-                    }
-                    x = p;
-                }
-                if self.value[x].is_some() && self.fix_time[x] < t {
-                    let r = self.fix_row[x] as usize;
-                    if !seen[r] {
-                        seen[r] = true;
-                        stack.push((r, self.fix_time[x]));
-                    }
-                }
-            }
-        }
-        out
     }
 }
 
@@ -563,13 +615,13 @@ mod tests {
     #[test]
     fn integer_row_clears_denominators_and_content() {
         // (1/2)x + (1/3)y = 5/6  ⇒  3x + 2y = 5
-        let (row, r) = integer_row(&[(0, q(1, 2)), (1, q(1, 3))], &q(5, 6));
+        let (row, r, s) = integer_row(&[(0, q(1, 2)), (1, q(1, 3))], &q(5, 6));
         assert_eq!(row, vec![(0, Z::S(3)), (1, Z::S(2))]);
-        assert_eq!(r, Z::S(5));
+        assert_eq!((r, s), (Z::S(5), q(6, 1)));
         // 4x + 6y = 2  ⇒  2x + 3y = 1
-        let (row, r) = integer_row(&[(0, q(4, 1)), (1, q(6, 1))], &q(2, 1));
+        let (row, r, s) = integer_row(&[(0, q(4, 1)), (1, q(6, 1))], &q(2, 1));
         assert_eq!(row, vec![(0, Z::S(2)), (1, Z::S(3))]);
-        assert_eq!(r, Z::S(1));
+        assert_eq!((r, s), (Z::S(1), q(1, 2)));
     }
 
     #[test]

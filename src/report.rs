@@ -61,6 +61,79 @@ pub struct VerifyReport {
     pub shared_edges: usize,
     /// The constraint solver's verdict on the generated automaton (SPEC §6).
     pub solver: Option<crate::automaton::SolveReport>,
+    /// The exact limit ratio (SPEC §5).
+    pub ratio: Option<crate::ratio::RatioReport>,
+}
+
+/// The exact limit ratio of the start faces of a closed type set (SPEC §5), with `digits`
+/// certified decimals.
+pub fn ratio_of(ts: &TypeSet, digits: usize) -> crate::error::Result<crate::ratio::RatioReport> {
+    let c: Vec<BigRational> = ts
+        .types
+        .iter()
+        .map(|t| BigRational::new(t.contribution_halves().into(), 2.into()))
+        .collect();
+    let mut start: Vec<(usize, u64)> = Vec::new();
+    for &t in &ts.start {
+        match start.iter_mut().find(|(s, _)| *s == t) {
+            Some(e) => e.1 += 1,
+            None => start.push((t, 1)),
+        }
+    }
+    crate::ratio::analyse(&ts.matrix(), &c, &start)
+        .map(|r| r.with_digits(digits))
+        .map_err(|e| crate::error::Error::Analysis(e.to_string()))
+}
+
+/// The human-readable limit-ratio section.
+pub fn ratio_text(r: &crate::ratio::RatioReport) -> String {
+    let mut o = String::new();
+    match (&r.exact, &r.decimal) {
+        (Some(exact), Some(dec)) if r.exists => {
+            let _ = writeln!(o, "limit ratio R = {exact}");
+            let _ = writeln!(o, "              ≈ {dec}");
+        }
+        _ => {
+            let _ = writeln!(
+                o,
+                "limit ratio: R_i has NO LIMIT; it oscillates with period {} between:",
+                r.period
+            );
+            for p in &r.limit_points {
+                let _ = writeln!(
+                    o,
+                    "  i ≡ {} (mod {}): {} ≈ {}",
+                    p.residue, r.period, p.exact, p.decimal
+                );
+            }
+        }
+    }
+    let _ = writeln!(
+        o,
+        "Perron root ρ = {} ≈ {}",
+        r.perron_root, r.perron_decimal
+    );
+    let _ = writeln!(o, "  minimal polynomial {}", r.perron_min_poly);
+    let _ = writeln!(o, "classes (spectral radius, period):");
+    for c in &r.classes {
+        let members: Vec<String> = c.members.iter().map(|m| format!("T{m}")).collect();
+        let period = c
+            .period
+            .map_or("transient".to_string(), |p| format!("period {p}"));
+        let _ = writeln!(
+            o,
+            "  {{{}}}  ρ = {}  {}{}",
+            members.join(", "),
+            c.spectral_radius,
+            period,
+            if c.dominant { "  (dominant)" } else { "" }
+        );
+    }
+    let _ = writeln!(o, "how it was decided:");
+    for reason in &r.reasons {
+        let _ = writeln!(o, "  - {reason}");
+    }
+    o
 }
 
 /// The rows of the type table.
@@ -98,6 +171,7 @@ pub fn verify_report(input: &Input, closure: &Closure, levels: u64) -> VerifyRep
         per_face: Vec::new(),
         shared_edges: input.assembly.shared.len(),
         solver: None,
+        ratio: None,
     };
     match closure {
         Closure::Runaway(r) => {
@@ -121,6 +195,10 @@ pub fn verify_report(input: &Input, closure: &Closure, levels: u64) -> VerifyRep
                         levels: counts_from(ts, &[(t, 1)], levels),
                     })
                     .collect();
+            }
+            match ratio_of(ts, 30) {
+                Ok(r) => report.ratio = Some(r),
+                Err(e) => report.structure_error = Some(e.to_string()),
             }
             let solver = crate::generate::solve_closure(ts, crate::generate::GenOptions::default());
             let solver_ok = match solver {
@@ -228,6 +306,10 @@ impl VerifyReport {
         for f in &self.per_face {
             let _ = writeln!(o, "\ncounts of face {}:", f.face);
             o += &counts_table(&f.levels);
+        }
+        if let Some(r) = &self.ratio {
+            o.push('\n');
+            o += &ratio_text(r);
         }
         if let Some(sv) = &self.solver {
             let _ = writeln!(

@@ -1,0 +1,830 @@
+//! The exact limit ratio `R = lim N^L_i / (N^L_i + N^C_i)` (SPEC §5), by eigen analysis with
+//! algebraic numbers.
+//!
+//! # The argument
+//! Augment the substitution matrix `M` with one type `L` collecting lacunas:
+//! `M' = [[M, c], [0, 1]]`. With `e` the start vector, `N^C_i = (e,0)·M'^i·(1,…,1,0)` and
+//! `N^L_i = (e,0)·M'^i·(0,…,0,1)`. `M'` is block triangular over its strongly connected classes;
+//! by Perron–Frobenius its eigenvalues of modulus `ρ` (the largest class radius) are `ρ·ω` with
+//! `ω^p = 1` for the period `p` of a class of radius `ρ`. With `P` the lcm of those periods and
+//! `A = M'^P`, each subsequence `x_n = X_{Pn+r}` has generating function `N(w)/D(w)` with
+//! `D(w) = det(I − wA)` (a product over the class blocks) and `deg N < dim`; its only dominant
+//! pole is `w₀ = ρ^(−P)`. The coefficient of `w^n` grows like `n^(k−1) ρ^(Pn)` times a constant
+//! proportional to `Ñ(w₀)`, `k` the pole order, `Ñ = N / (w − w₀)^ord`, the proportionality being
+//! the same for lacunas and sub-faces. So `R_r = 1` or `0` when the pole orders differ, else
+//! `Ñ_L(w₀) / (Ñ_L(w₀) + Ñ_C(w₀))`; the limit exists iff every residue `r` gives the same `R_r`.
+//!
+//! Computation stays over Q: the substitution `w = y^(−P)` (with `y^(P·K)` cleared) maps the root
+//! `w₀` to `y = ρ`, preserving multiplicities, so the order is the multiplicity of the minimal
+//! polynomial `f` of `ρ` in a rational polynomial, and `Ñ(w₀)` is, up to factors common to
+//! lacunas and sub-faces, the residue of the cofactor modulo `f`, an element of Q(ρ).
+
+use crate::algebraic::{FieldElement, NumberField, RealAlgebraic, DEFAULT_DIGITS};
+use crate::class::ClassStructure;
+use crate::factor::{charpoly, factor, FactorError};
+use crate::poly::Poly;
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_rational::BigRational;
+use num_traits::{One, Signed, Zero};
+use serde::Serialize;
+use std::cmp::Ordering;
+
+/// What made the analysis impossible.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum RatioError {
+    /// A type index beyond the matrix.
+    #[error("face type {face_type} is out of range (there are {types} types)")]
+    TypeOutOfRange {
+        /// The offending index.
+        face_type: usize,
+        /// The number of types.
+        types: usize,
+    },
+    /// The contribution vector does not have one entry per type.
+    #[error("{contributions} contributions for {types} face types")]
+    LengthMismatch {
+        /// Its length.
+        contributions: usize,
+        /// The number of types.
+        types: usize,
+    },
+    /// A reached face type has no sub-face.
+    #[error("face type {face_type} has no sub-face")]
+    NoSubFace {
+        /// The type.
+        face_type: usize,
+    },
+    /// A negative contribution.
+    #[error("face type {face_type} has a negative contribution")]
+    NegativeContribution {
+        /// The type.
+        face_type: usize,
+    },
+    /// The start vector is empty.
+    #[error("the start vector has no face")]
+    EmptyStart,
+    /// A characteristic polynomial could not be factored within budget.
+    #[error(transparent)]
+    Factor(#[from] FactorError),
+}
+
+/// One strongly connected class with its spectral radius.
+#[derive(Clone, Debug, Serialize)]
+pub struct ClassReport {
+    /// Type indices, ascending.
+    pub members: Vec<usize>,
+    /// The gcd of the cycle lengths; `None` for a transient type.
+    pub period: Option<u64>,
+    /// The spectral radius, exact (same string forms as [`RatioReport::perron_root`]).
+    pub spectral_radius: String,
+    /// Its certified decimals.
+    pub spectral_radius_decimal: String,
+    /// Whether the radius equals `ρ`.
+    pub dominant: bool,
+    /// The spectral radius as a number.
+    #[serde(skip)]
+    pub radius: RealAlgebraic,
+}
+
+/// The limit of `R_{Pn+r}` for one residue `r`.
+#[derive(Clone, Debug, Serialize)]
+pub struct LimitPoint {
+    /// The residue `r` modulo [`RatioReport::period`].
+    pub residue: u64,
+    /// Exact value (same string forms as [`RatioReport::exact`]).
+    pub exact: String,
+    /// Certified decimals.
+    pub decimal: String,
+    /// The value in Q(ρ).
+    #[serde(skip)]
+    pub value: FieldElement,
+}
+
+/// The outcome of the eigen analysis.
+#[derive(Clone, Debug, Serialize)]
+pub struct RatioReport {
+    /// Whether `R_i` converges.
+    pub exists: bool,
+    /// The limit, exact, when it exists: `1/3` when rational; `(a + b*sqrt(d))/c` when `ρ` is
+    /// quadratic; otherwise `<polynomial in rho> where rho = root of <min poly> in [lo, hi]`.
+    /// `None` (JSON `null`) when the limit does not exist: see `limit_points`.
+    pub exact: Option<String>,
+    /// Certified decimals of the limit (truncated), when it exists.
+    pub decimal: Option<String>,
+    /// The limit on the power basis `1, ρ, …, ρ^(deg−1)` of Q(ρ), when it exists.
+    pub coordinates: Option<Vec<String>>,
+    /// `ρ`, the largest spectral radius: `6`, `(1 + sqrt(5))/2`, or `root of <min poly> in
+    /// [lo, hi]`.
+    pub perron_root: String,
+    /// Certified decimals of `ρ`.
+    pub perron_decimal: String,
+    /// The minimal polynomial of `ρ` over Q (irreducible), in `x`.
+    pub perron_min_poly: String,
+    /// `P`: the lcm of the periods of the dominant classes.
+    pub period: u64,
+    /// The classes reached from the start, sources first.
+    pub classes: Vec<ClassReport>,
+    /// Indices into `classes` of the classes of radius `ρ`.
+    pub dominant: Vec<usize>,
+    /// `lim R_{Pn+r}` for `r = 0..P` (one entry when `P = 1`).
+    pub limit_points: Vec<LimitPoint>,
+    /// How the decision was reached, for people.
+    pub reasons: Vec<String>,
+    /// Q(ρ).
+    #[serde(skip)]
+    pub field: NumberField,
+    /// The limit in Q(ρ), when it exists.
+    #[serde(skip)]
+    pub ratio: Option<FieldElement>,
+}
+
+impl RatioReport {
+    /// At least `digits` certified digits of the limit after the point, when it exists.
+    pub fn decimal(&self, digits: usize) -> Option<String> {
+        self.ratio.as_ref().map(|r| self.field.decimal(r, digits))
+    }
+
+    /// Recomputes every decimal string with `digits` digits.
+    pub fn with_digits(mut self, digits: usize) -> Self {
+        self.decimal = self.decimal(digits);
+        self.perron_decimal = self.field.generator().decimal(digits);
+        for p in &mut self.limit_points {
+            p.decimal = self.field.decimal(&p.value, digits);
+        }
+        for c in &mut self.classes {
+            c.spectral_radius_decimal = c.radius.decimal(digits);
+        }
+        self
+    }
+}
+
+/// The spectral radius of a class block with characteristic polynomial `chi`: its largest real
+/// root. Every eigenvalue has modulus at most the largest row sum `row_max` (Perron–Frobenius),
+/// so integer roots are split off by testing `−row_max..=row_max`; the rest is factored and the
+/// largest real root of each irreducible factor compared exactly.
+fn spectral_radius(chi: &Poly, row_max: u64) -> Result<RealAlgebraic, FactorError> {
+    let mut rest = chi.clone();
+    while !rest.is_zero() && rest.coeff(0).is_zero() {
+        rest = rest.exact_div(&Poly::x()).expect("x divides");
+    }
+    let mut best: Option<RealAlgebraic> = None;
+    let bound = i64::try_from(row_max).unwrap_or(i64::MAX);
+    for k in (-bound..=bound).rev().filter(|&k| k != 0) {
+        let lin = Poly::from_ints(&[-k, 1]);
+        let mut found = false;
+        while rest.deg() > 0 {
+            match rest.exact_div(&lin) {
+                Some(q) => {
+                    rest = q;
+                    found = true;
+                }
+                None => break,
+            }
+        }
+        if found && best.is_none() {
+            best = Some(RealAlgebraic::rational(BigRational::from_integer(k.into())));
+        }
+    }
+    if best.is_none() {
+        best = Some(RealAlgebraic::rational(BigRational::zero()));
+    }
+    let mut best = best.expect("set above");
+    if rest.deg() > 0 {
+        for (g, _) in factor(&rest)? {
+            if let Some(r) = RealAlgebraic::largest_root(&g) {
+                if r.cmp_exact(&best) == Ordering::Greater {
+                    best = r;
+                }
+            }
+        }
+    }
+    Ok(best)
+}
+
+/// `det(I − w·B^P)` from `χ_B = det(x·I − B)`, through power sums (Newton's identities): the
+/// power sums of the eigenvalues of `B^P` are those of `B` at multiples of `P`.
+fn reversed_power_charpoly(chi: &Poly, period: u64) -> Vec<BigInt> {
+    let n = chi.deg();
+    // c_k: coefficient of x^(n−k); integers as chi is monic integral.
+    let c: Vec<BigInt> = (0..=n).map(|k| chi.coeff(n - k).to_integer()).collect();
+    let big_p = usize::try_from(period).expect("period fits usize");
+    let top = big_p * n;
+    let mut ps = vec![BigInt::zero(); top + 1];
+    for m in 1..=top {
+        let mut s = if m <= n {
+            &c[m] * BigInt::from(m)
+        } else {
+            BigInt::zero()
+        };
+        for i in 1..=n.min(m - 1) {
+            s += &c[i] * &ps[m - i];
+        }
+        ps[m] = -s;
+    }
+    let q: Vec<&BigInt> = (0..=n).map(|k| &ps[k * big_p]).collect();
+    let mut d = vec![BigInt::one()];
+    for k in 1..=n {
+        let mut s = q[k].clone();
+        for i in 1..k {
+            s += &d[i] * q[k - i];
+        }
+        d.push(-s / BigInt::from(k));
+    }
+    d
+}
+
+/// The multiplicity of the monic integral `f` in the integral `p` (nonzero) and the cofactor.
+/// Division by a monic integer polynomial stays in Z, so this runs on integers.
+fn split_off(p: &[BigInt], f: &Poly) -> (usize, Poly) {
+    let f: Vec<BigInt> = f.coeffs().iter().map(BigRational::to_integer).collect();
+    let df = f.len() - 1;
+    let mut h: Vec<BigInt> = p.to_vec();
+    while h.last().is_some_and(Zero::is_zero) {
+        h.pop();
+    }
+    let mut e = 0;
+    while h.len() > df {
+        let mut r = h.clone();
+        let mut q = vec![BigInt::zero(); r.len() - df];
+        for i in (0..q.len()).rev() {
+            let t = std::mem::take(&mut r[i + df]);
+            if t.is_zero() {
+                continue;
+            }
+            for (j, fj) in f.iter().enumerate().take(df) {
+                if !fj.is_zero() {
+                    r[i + j] -= &t * fj;
+                }
+            }
+            q[i] = t;
+        }
+        if !r.iter().all(Zero::is_zero) {
+            break;
+        }
+        e += 1;
+        h = q;
+    }
+    (e, Poly::from_bigints(&h))
+}
+
+/// `y^(P·K) · N(y^(−P))` for the coefficients `n` of `N(w)`, `deg N ≤ K`.
+fn reflect(n: &[BigInt], period: usize, k: usize) -> Vec<BigInt> {
+    let mut c = vec![BigInt::zero(); period * k + 1];
+    for (j, a) in n.iter().enumerate() {
+        c[period * (k - j)] = a.clone();
+    }
+    c
+}
+
+/// Analyses the limit ratio of the substitution `m` (`m[t]` lists `(s, k)`: a face of type `t`
+/// has `k` sub-faces of type `s`), contributions `c` (lacunas added by subdividing one face of
+/// each type) and start faces `start` (`(type, multiplicity)`). Decimals have
+/// [`DEFAULT_DIGITS`] digits; see [`RatioReport::with_digits`].
+pub fn analyse(
+    m: &[Vec<(usize, u64)>],
+    c: &[BigRational],
+    start: &[(usize, u64)],
+) -> Result<RatioReport, RatioError> {
+    let n = m.len();
+    if c.len() != n {
+        return Err(RatioError::LengthMismatch {
+            contributions: c.len(),
+            types: n,
+        });
+    }
+    for &(t, _) in start.iter().chain(m.iter().flatten()) {
+        if t >= n {
+            return Err(RatioError::TypeOutOfRange {
+                face_type: t,
+                types: n,
+            });
+        }
+    }
+    let start: Vec<(usize, u64)> = start.iter().copied().filter(|&(_, k)| k > 0).collect();
+    if start.is_empty() {
+        return Err(RatioError::EmptyStart);
+    }
+    let succ: Vec<Vec<usize>> = m
+        .iter()
+        .map(|row| {
+            row.iter()
+                .filter(|&&(_, k)| k > 0)
+                .map(|&(s, _)| s)
+                .collect()
+        })
+        .collect();
+    let start_types: Vec<usize> = start.iter().map(|&(t, _)| t).collect();
+    let structure = ClassStructure::new(&succ, &start_types);
+    let reached: Vec<usize> = (0..n)
+        .filter(|&t| structure.class_of[t].is_some())
+        .collect();
+    for &t in &reached {
+        if succ[t].is_empty() {
+            return Err(RatioError::NoSubFace { face_type: t });
+        }
+        if c[t].is_negative() {
+            return Err(RatioError::NegativeContribution { face_type: t });
+        }
+    }
+
+    // Per class: characteristic polynomial of its block and spectral radius.
+    let mut chis: Vec<Option<Poly>> = Vec::new();
+    let mut classes: Vec<ClassReport> = Vec::new();
+    for class in &structure.classes {
+        let idx = |t: usize| class.members.binary_search(&t).ok();
+        let block: Vec<Vec<BigInt>> = class
+            .members
+            .iter()
+            .map(|&t| {
+                let mut row = vec![BigInt::zero(); class.members.len()];
+                for &(s, k) in &m[t] {
+                    if let Some(j) = idx(s) {
+                        row[j] += k;
+                    }
+                }
+                row
+            })
+            .collect();
+        let row_sums: Vec<BigInt> = block.iter().map(|r| r.iter().sum()).collect();
+        let (chi, radius) = if class.period.is_none() {
+            (None, RealAlgebraic::rational(BigRational::zero()))
+        } else if row_sums.iter().all(|s| *s == row_sums[0]) {
+            // Equal row sums k: the all-ones vector is a positive eigenvector, so ρ = k.
+            let k = BigRational::from_integer(row_sums[0].clone());
+            (Some(charpoly(&block)), RealAlgebraic::rational(k))
+        } else {
+            let chi = charpoly(&block);
+            let row_max = row_sums.iter().max().expect("nonempty").clone();
+            let row_max = u64::try_from(row_max).unwrap_or(u64::MAX);
+            let r = spectral_radius(&chi, row_max)?;
+            (Some(chi), r)
+        };
+        chis.push(chi);
+        classes.push(ClassReport {
+            members: class.members.clone(),
+            period: class.period,
+            spectral_radius: radius.to_string(),
+            spectral_radius_decimal: radius.decimal(DEFAULT_DIGITS),
+            dominant: false,
+            radius,
+        });
+    }
+    let mut rho = RealAlgebraic::rational(BigRational::zero());
+    for cl in &classes {
+        if cl.radius.cmp_exact(&rho) == Ordering::Greater {
+            rho = cl.radius.clone();
+        }
+    }
+    let mut dominant = Vec::new();
+    let mut big_p = 1u64;
+    for (i, cl) in classes.iter_mut().enumerate() {
+        if cl.radius.cmp_exact(&rho) == Ordering::Equal {
+            cl.dominant = true;
+            dominant.push(i);
+            big_p = big_p.lcm(&cl.period.expect("a dominant class has a cycle (ρ ≥ 1)"));
+        }
+    }
+    let field = NumberField::new(rho.clone());
+    let f = rho.min_poly().clone();
+    let period = usize::try_from(big_p).expect("period fits usize");
+
+    // D(w) = (1 − w) · Π det(I − w B^P) over the non-transient blocks.
+    let mut d = vec![BigInt::one(), -BigInt::one()];
+    for chi in chis.iter().flatten() {
+        let factor = reversed_power_charpoly(chi, big_p);
+        let mut prod = vec![BigInt::zero(); d.len() + factor.len() - 1];
+        for (i, a) in d.iter().enumerate() {
+            for (j, b) in factor.iter().enumerate() {
+                prod[i + j] += a * b;
+            }
+        }
+        d = prod;
+    }
+    let dim = reached.len() + 1;
+
+    // The counts X_i for i < P·dim, lacunas scaled by `den` to stay integral.
+    let den = reached
+        .iter()
+        .fold(BigInt::one(), |acc, &t| acc.lcm(c[t].denom()));
+    let cint: Vec<BigInt> = c
+        .iter()
+        .map(|x| (x * BigRational::from_integer(den.clone())).to_integer())
+        .collect();
+    let mut v = vec![BigInt::zero(); n];
+    for &(t, k) in &start {
+        v[t] += k;
+    }
+    let mut lac = BigInt::zero();
+    let (mut seq_c, mut seq_l) = (Vec::new(), Vec::new());
+    for _ in 0..period * dim {
+        seq_c.push(reached.iter().map(|&t| &v[t]).sum::<BigInt>());
+        seq_l.push(lac.clone());
+        let mut next = vec![BigInt::zero(); n];
+        for &t in &reached {
+            if v[t].is_zero() {
+                continue;
+            }
+            for &(s, k) in &m[t] {
+                next[s] += &v[t] * k;
+            }
+            lac += &v[t] * &cint[t];
+        }
+        v = next;
+    }
+
+    let (ord_d, _) = split_off(&reflect(&d, period, dim), &f);
+    let numerator = |seq: &[BigInt], r: usize| -> Vec<BigInt> {
+        (0..dim)
+            .map(|j| {
+                (0..=j.min(d.len() - 1))
+                    .map(|i| &d[i] * &seq[period * (j - i) + r])
+                    .sum()
+            })
+            .collect()
+    };
+    let mut reasons = vec![format!(
+        "{} face types reached in {} classes; rho = {} from dominant class(es) {}",
+        reached.len(),
+        classes.len(),
+        rho,
+        dominant
+            .iter()
+            .map(|&i| format!(
+                "{:?} (period {})",
+                classes[i].members,
+                classes[i].period.unwrap_or(0)
+            ))
+            .collect::<Vec<_>>()
+            .join(", ")
+    )];
+    reasons.push(format!(
+        "P = lcm of the dominant periods = {big_p}; the pole w0 = rho^-{big_p} of det(I - w M'^{big_p}) has order {ord_d}"
+    ));
+    let inv_den = field.rational(BigRational::new(BigInt::one(), den.clone()));
+    let mut limit_points = Vec::new();
+    for r in 0..period {
+        let n_c = numerator(&seq_c, r);
+        let n_l = numerator(&seq_l, r);
+        let (e_c, h_c) = split_off(&reflect(&n_c, period, dim - 1), &f);
+        let pole_c = ord_d - e_c;
+        debug_assert!(pole_c >= 1, "the face counts grow like rho^i");
+        let (value, why) = if n_l.iter().all(Zero::is_zero) {
+            (
+                field.rational(BigRational::zero()),
+                "no lacuna ever: R = 0".to_string(),
+            )
+        } else {
+            let (e_l, h_l) = split_off(&reflect(&n_l, period, dim - 1), &f);
+            let pole_l = ord_d - e_l;
+            let orders = format!("pole orders: lacunas {pole_l}, sub-faces {pole_c}");
+            match pole_l.cmp(&pole_c) {
+                Ordering::Greater => (
+                    field.rational(BigRational::one()),
+                    format!("{orders}: lacunas dominate, R = 1"),
+                ),
+                Ordering::Less => (
+                    field.rational(BigRational::zero()),
+                    format!("{orders}: sub-faces dominate, R = 0"),
+                ),
+                Ordering::Equal => {
+                    let a_l = field.mul(&field.element(&h_l), &inv_den);
+                    let a_c = field.element(&h_c);
+                    let value = field
+                        .div(&a_l, &field.add(&a_l, &a_c))
+                        .expect("leading terms of the same sign are nonzero");
+                    (
+                        value,
+                        format!("{orders}: R = ratio of the leading coefficients at w0"),
+                    )
+                }
+            }
+        };
+        let residue = if period > 1 {
+            format!("i = {r} mod {big_p}: ")
+        } else {
+            String::new()
+        };
+        reasons.push(format!("{residue}{why} = {}", field.render(&value)));
+        limit_points.push(LimitPoint {
+            residue: r as u64,
+            exact: field.render(&value),
+            decimal: field.decimal(&value, DEFAULT_DIGITS),
+            value,
+        });
+    }
+    let exists = limit_points
+        .iter()
+        .all(|p| p.value == limit_points[0].value);
+    let ratio = exists.then(|| limit_points[0].value.clone());
+    reasons.push(if exists {
+        if period > 1 {
+            "the limit exists: every residue class has the same limit".to_string()
+        } else {
+            "the limit exists".to_string()
+        }
+    } else {
+        format!(
+            "the limit does not exist: R_i oscillates between {} limit points",
+            period
+        )
+    });
+    Ok(RatioReport {
+        exists,
+        exact: ratio.as_ref().map(|x| field.render(x)),
+        decimal: ratio.as_ref().map(|x| field.decimal(x, DEFAULT_DIGITS)),
+        coordinates: ratio.as_ref().map(|x| {
+            (0..field.degree())
+                .map(|i| x.poly().coeff(i).to_string())
+                .collect()
+        }),
+        perron_root: rho.to_string(),
+        perron_decimal: rho.decimal(DEFAULT_DIGITS),
+        perron_min_poly: rho.min_poly().to_string(),
+        period: big_p,
+        classes,
+        dominant,
+        limit_points,
+        reasons,
+        field,
+        ratio,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn q(a: i64, b: i64) -> BigRational {
+        BigRational::new(a.into(), b.into())
+    }
+
+    /// `R_i` for `i` in `levels`, exactly, by iterating the counts with rationals.
+    fn ratios(
+        m: &[Vec<(usize, u64)>],
+        c: &[BigRational],
+        start: &[(usize, u64)],
+        top: usize,
+    ) -> Vec<BigRational> {
+        let mut v = vec![BigRational::zero(); m.len()];
+        for &(t, k) in start {
+            v[t] += BigRational::from_integer(k.into());
+        }
+        let mut lac = BigRational::zero();
+        let mut out = Vec::new();
+        for _ in 0..=top {
+            let faces: BigRational = v.iter().sum();
+            out.push(&lac / (&lac + &faces));
+            let mut next = vec![BigRational::zero(); m.len()];
+            for (t, row) in m.iter().enumerate() {
+                for &(s, k) in row {
+                    next[s] += &v[t] * BigRational::from_integer(k.into());
+                }
+                lac += &v[t] * &c[t];
+            }
+            v = next;
+        }
+        out
+    }
+
+    /// An interval of width 2^-100 around a field element.
+    fn approx(rep: &RatioReport, x: &FieldElement) -> (BigRational, BigRational) {
+        rep.field.enclosure(x, &q(1, 1 << 50).pow(2))
+    }
+
+    fn dist(rep: &RatioReport, x: &FieldElement, y: &BigRational) -> BigRational {
+        let (lo, hi) = approx(rep, x);
+        (lo - y).abs().max((hi - y).abs())
+    }
+
+    #[test]
+    fn f0_single_type() {
+        // One type, 6 copies of itself, contribution 5/2: R = l/(l + k − 1) = (5/2)/(5/2 + 5) = 1/3.
+        let rep = analyse(&[vec![(0, 6)]], &[q(5, 2)], &[(0, 1)]).unwrap();
+        assert!(rep.exists);
+        assert_eq!(rep.exact.as_deref(), Some("1/3"));
+        assert_eq!(
+            rep.decimal.as_deref(),
+            Some("0.333333333333333333333333333333")
+        );
+        assert_eq!(rep.perron_root, "6");
+        assert_eq!(rep.classes[0].spectral_radius, "6");
+        assert_eq!(rep.classes[0].period, Some(1));
+        // SPEC: R_1 = 5/17.
+        assert_eq!(
+            ratios(&[vec![(0, 6)]], &[q(5, 2)], &[(0, 1)], 1)[1],
+            q(5, 17)
+        );
+        let json = serde_json::to_value(&rep).unwrap();
+        assert_eq!(json["exists"], true);
+        assert_eq!(json["exact"], "1/3");
+        assert_eq!(json["classes"][0]["members"], serde_json::json!([0]));
+    }
+
+    #[test]
+    fn fibonacci_pair_is_quadratic() {
+        // a → {a, b}, b → {a}: M = [[1,1],[1,0]], ρ = φ = (1+√5)/2, left eigenvector ℓ = (φ, 1)
+        // (ℓM = (φ+1, φ) = φℓ). For one dominant primitive class e·M^j ≈ κ φ^j ℓ, so
+        // N^C_i ≈ κ φ^i ℓ·1 and N^L_i ≈ κ (ℓ·c) φ^i / (φ − 1): R = ℓc / (ℓc + (φ − 1) ℓ1).
+        // ℓ1 = φ + 1 = φ². With c = (1/2, 1/2): ℓc = φ²/2, R = 1/(1 + 2(φ − 1)) = 1/(2φ − 1) = 1/√5.
+        let m = vec![vec![(0, 1), (1, 1)], vec![(0, 1)]];
+        let rep = analyse(&m, &[q(1, 2), q(1, 2)], &[(0, 1)]).unwrap();
+        assert!(rep.exists);
+        assert_eq!(rep.perron_root, "(1 + sqrt(5))/2");
+        assert_eq!(rep.perron_min_poly, "x^2 - x - 1");
+        assert_eq!(rep.exact.as_deref(), Some("sqrt(5)/5"));
+        // 1/√5 = 0.447213595499957939281834733746255247088123671922305144854179…
+        assert_eq!(
+            rep.decimal.as_deref(),
+            Some("0.447213595499957939281834733746")
+        );
+        // With c = (0, 1): ℓc = 1, R = 1/(1 + (φ − 1)φ²) = 1/(1 + φ) = 1/φ² = 2 − φ = (3 − √5)/2.
+        let rep = analyse(&m, &[q(0, 1), q(1, 1)], &[(0, 1)]).unwrap();
+        assert_eq!(rep.exact.as_deref(), Some("(3 - sqrt(5))/2"));
+        assert_eq!(
+            rep.coordinates,
+            Some(vec!["2".to_string(), "-1".to_string()])
+        );
+        // (3 − √5)/2 = 0.381966011250105151795413165634361882279690820194237137864551…
+        assert_eq!(
+            rep.decimal.as_deref(),
+            Some("0.381966011250105151795413165634")
+        );
+        // certify the 30 digits independently: x ≤ R < x + 10^-30 ⇔ (3−2x−2ε)² < 5 ≤ (3−2x)².
+        let x: BigRational = "381966011250105151795413165634/1000000000000000000000000000000"
+            .parse()
+            .unwrap();
+        let eps = BigRational::new(1.into(), BigInt::from(10).pow(30));
+        let three = q(3, 1);
+        let two = q(2, 1);
+        let hi = &three - &two * &x;
+        let lo = &hi - &two * &eps;
+        assert!(&lo * &lo < q(5, 1) && q(5, 1) <= &hi * &hi);
+        // With c = (1, 0): ℓc = φ, R = φ/(φ + (φ−1)φ²) = 1/(1 + φ² − φ) = 1/2: rational in Q(φ).
+        let rep = analyse(&m, &[q(1, 1), q(0, 1)], &[(0, 1)]).unwrap();
+        assert_eq!(rep.exact.as_deref(), Some("1/2"));
+    }
+
+    #[test]
+    fn periodic_class_oscillates() {
+        // a → 2 b, b → 8 a: ρ = 4, period 2. Level 2j: 16^j a; level 2j+1: 2·16^j b.
+        // N^L_2j = (16^j − 1)/15 · S with S = c_a + 2 c_b; N^L_{2j+1} = N^L_2j + 16^j c_a.
+        // R_2j → S/(S + 15); R_{2j+1} → (S/15 + c_a)/(S/15 + c_a + 2) = T/(T + 30), T = 16c_a + 2c_b.
+        let m = vec![vec![(1, 2)], vec![(0, 8)]];
+        // c = (1, 0): S = 1, T = 16: limit points 1/16 and 16/46 = 8/23.
+        let rep = analyse(&m, &[q(1, 1), q(0, 1)], &[(0, 1)]).unwrap();
+        assert!(!rep.exists);
+        assert_eq!(rep.exact, None);
+        assert_eq!(rep.period, 2);
+        assert_eq!(rep.perron_root, "4");
+        let pts: Vec<&str> = rep.limit_points.iter().map(|p| p.exact.as_str()).collect();
+        assert_eq!(pts, vec!["1/16", "8/23"]);
+        // Coincidence: T = 2S ⇔ c_b = 7 c_a; c = (1/2, 7/2): S = 15/2, R = (15/2)/(45/2) = 1/3.
+        let rep = analyse(&m, &[q(1, 2), q(7, 2)], &[(0, 1)]).unwrap();
+        assert!(rep.exists);
+        assert_eq!(rep.exact.as_deref(), Some("1/3"));
+        assert_eq!(rep.limit_points.len(), 2);
+    }
+
+    #[test]
+    fn chain_with_equal_radii() {
+        // a → {a, a, b}, b → {b, b}: M = [[2,1],[0,2]], both classes of radius 2. From one a:
+        // a_i = 2^i, b_i = i·2^(i−1), N^C_i = 2^(i−1)(i + 2);
+        // N^L_i = c_a(2^i − 1) + c_b((i − 2)2^(i−1) + 1). If c_b > 0, R = c_b/(c_b + 1); else R = 0.
+        let m = vec![vec![(0, 2), (1, 1)], vec![(1, 2)]];
+        let rep = analyse(&m, &[q(1, 2), q(1, 1)], &[(0, 1)]).unwrap();
+        assert_eq!(rep.exact.as_deref(), Some("1/2"));
+        assert_eq!(rep.dominant, vec![0, 1]);
+        assert!(rep
+            .reasons
+            .iter()
+            .any(|r| r.contains("pole orders: lacunas 2, sub-faces 2")));
+        let rep = analyse(&m, &[q(3, 1), q(0, 1)], &[(0, 1)]).unwrap();
+        assert_eq!(rep.exact.as_deref(), Some("0"));
+        assert!(rep.reasons.iter().any(|r| r.contains("sub-faces dominate")));
+        // check the closed forms for N^L, N^C against the iteration at i = 7 (c = (1/2, 1)).
+        let i = 7i64;
+        let nc = (1 << (i - 1)) * (i + 2);
+        let nl2 = (1 << i) - 1 + 2 * ((i - 2) * (1 << (i - 1)) + 1); // 2·N^L
+        assert_eq!(
+            ratios(&m, &[q(1, 2), q(1, 1)], &[(0, 1)], 7)[7],
+            q(nl2, nl2 + 2 * nc)
+        );
+    }
+
+    #[test]
+    fn radius_one_gives_one() {
+        // a → {a}, contribution 1: N^C = 1, N^L_i = i, R → 1.
+        let rep = analyse(&[vec![(0, 1)]], &[q(1, 1)], &[(0, 1)]).unwrap();
+        assert_eq!(rep.exact.as_deref(), Some("1"));
+        assert_eq!(rep.perron_root, "1");
+        // No lacuna at all: R = 0.
+        let rep = analyse(&[vec![(0, 1)]], &[q(0, 1)], &[(0, 1)]).unwrap();
+        assert_eq!(rep.exact.as_deref(), Some("0"));
+        // a → {a, b}, b → 2 b: a (radius 1) feeds b (radius 2); only b matters: 1-type formula
+        // with k = 2, l = 1/2: R = (1/2)/(1/2 + 1) = 1/3 (a's linear lacunas are negligible).
+        let rep = analyse(
+            &[vec![(0, 1), (1, 1)], vec![(1, 2)]],
+            &[q(7, 1), q(1, 2)],
+            &[(0, 1)],
+        )
+        .unwrap();
+        assert_eq!(rep.exact.as_deref(), Some("1/3"));
+        assert_eq!(rep.classes[0].spectral_radius, "1");
+    }
+
+    #[test]
+    fn cubic_perron_root() {
+        // a → b, b → c, c → {a, b}: characteristic polynomial x^3 − x − 1 (plastic number).
+        let m = vec![vec![(1, 1)], vec![(2, 1)], vec![(0, 1), (1, 1)]];
+        let rep = analyse(&m, &[q(1, 1), q(0, 1), q(0, 1)], &[(0, 1)]).unwrap();
+        assert_eq!(rep.perron_min_poly, "x^3 - x - 1");
+        assert!(rep.perron_root.starts_with("root of x^3 - x - 1 in ["));
+        assert!(rep
+            .exact
+            .as_deref()
+            .unwrap()
+            .contains("where rho = root of x^3 - x - 1"));
+        assert_eq!(rep.perron_decimal, "1.324717957244746025960908854478");
+        let r = ratios(&m, &[q(1, 1), q(0, 1), q(0, 1)], &[(0, 1)], 300);
+        assert!(dist(&rep, rep.ratio.as_ref().unwrap(), &r[300]) < q(1, 1_000_000_000));
+    }
+
+    #[test]
+    fn errors_are_reported() {
+        assert_eq!(
+            analyse(&[vec![(1, 1)]], &[q(0, 1)], &[(0, 1)]).unwrap_err(),
+            RatioError::TypeOutOfRange {
+                face_type: 1,
+                types: 1
+            }
+        );
+        assert_eq!(
+            analyse(&[vec![], vec![(1, 2)]], &[q(0, 1), q(0, 1)], &[(0, 1)]).unwrap_err(),
+            RatioError::NoSubFace { face_type: 0 }
+        );
+        assert_eq!(
+            analyse(&[vec![(0, 2)]], &[q(0, 1)], &[]).unwrap_err(),
+            RatioError::EmptyStart
+        );
+    }
+
+    fn arb_system() -> impl Strategy<Value = (Vec<Vec<(usize, u64)>>, Vec<BigRational>)> {
+        (2usize..=5).prop_flat_map(|n| {
+            (
+                prop::collection::vec(prop::collection::vec(0u64..=3, n), n),
+                prop::collection::vec(0i64..=6, n),
+            )
+                .prop_map(move |(rows, cs)| {
+                    let m = rows
+                        .into_iter()
+                        .enumerate()
+                        .map(|(t, row)| {
+                            let mut r: Vec<(usize, u64)> = row
+                                .into_iter()
+                                .enumerate()
+                                .filter(|&(_, k)| k > 0)
+                                .collect();
+                            if r.is_empty() {
+                                r.push(((t + 1) % n, 1));
+                            }
+                            r
+                        })
+                        .collect();
+                    (m, cs.into_iter().map(|x| q(x, 2)).collect())
+                })
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(32))]
+
+        #[test]
+        fn single_type_formula(k in 1u64..20, l2 in 0i64..40) {
+            let l = q(l2, 2);
+            let rep = analyse(&[vec![(0, k)]], std::slice::from_ref(&l), &[(0, 3)]).unwrap();
+            let want = if l2 == 0 { q(0, 1) } else { &l / (&l + BigRational::from_integer((k - 1).into())) };
+            prop_assert_eq!(rep.ratio.unwrap().as_rational(), Some(want));
+        }
+
+        #[test]
+        fn agrees_with_iteration((m, c) in arb_system()) {
+            let rep = analyse(&m, &c, &[(0, 1)]).unwrap();
+            let period = rep.period as usize;
+            let top = 150 - 150 % period;
+            let r = ratios(&m, &c, &[(0, 1)], top + period);
+            for (res, p) in rep.limit_points.iter().enumerate() {
+                let (lo, hi) = approx(&rep, &p.value);
+                prop_assert!(lo >= q(-1, 1 << 40) && hi <= q(1, 1) + q(1, 1 << 40));
+                let early = dist(&rep, &p.value, &r[60 - 60 % period + res]);
+                let late = dist(&rep, &p.value, &r[top + res]);
+                prop_assert!(late < q(1, 20), "{:?} residue {}: |R - R_i| = {}", rep.reasons, res, late);
+                prop_assert!(late <= &early + q(1, 1 << 40), "not shrinking: {} then {}", early, late);
+            }
+            if !rep.exists {
+                prop_assert!(rep.limit_points.iter().any(|p| p.value != rep.limit_points[0].value));
+            }
+        }
+    }
+}
