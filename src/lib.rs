@@ -5,6 +5,9 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+// Lets modules name the public API as `lacuna::…` (the certificate producer is written that way).
+extern crate self as lacuna;
+
 mod algebraic;
 mod assembly;
 mod autofrac;
@@ -44,7 +47,9 @@ pub use error::{Diagnostic, Error, Result, Source, Span};
 pub use face::{least_rotation, Face, Params};
 pub use generate::{automaton_of, degeneracies, solve_closure, GenOptions, Generated};
 
+pub use algebraic::{FieldElement, NumberField, RealAlgebraic};
 pub use assembly::{Assembly, SharedEdge};
+pub use poly::Poly;
 pub use library::{library, load_any, load_input, parse_text, Input, Loaded};
 pub use limits::Limits;
 pub use linsys::{
