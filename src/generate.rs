@@ -14,12 +14,12 @@
 use crate::automaton::{Automaton, Constraint, ConstraintKind, Factor, OpKind};
 use crate::closure::TypeSet;
 use crate::edge::{EdgeKind, EdgeType};
-use crate::linsys::{forced_equal, SolutionSpace};
+use crate::linsys::SolutionSpace;
 use crate::matrix::{bezier_restriction, Matrix};
 use crate::subdivision::Origin;
 use num_rational::BigRational;
 use num_traits::One;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 
 /// Options of the generated automaton.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -280,6 +280,7 @@ pub fn degeneracies(
     space: &SolutionSpace,
 ) -> Vec<String> {
     let a = &g.automaton;
+    let param = space.parametrize();
     let mut out = Vec::new();
     for (t, ty) in ts.types.iter().enumerate() {
         let subs = &ty.subdivision.subfaces;
@@ -349,23 +350,20 @@ pub fn degeneracies(
             let col = g.edge_offsets[w][p] % m_w;
             Some((0..m_t).map(|r| base + r * m_w + col).collect())
         };
-        for i in 0..reps.len() {
-            for j in i + 1..reps.len() {
-                let (Some(x), Some(y)) = (coords(reps[i]), coords(reps[j])) else {
-                    continue;
-                };
-                let all = x.iter().zip(&y).all(|(&u, &w)| {
-                    forced_equal(
-                        space,
-                        &[(u, BigRational::one())],
-                        &[(w, BigRational::one())],
-                    )
-                });
-                if all {
-                    out.push(format!(
-                        "T{t}: corner {} of sub-face {} and corner {} of sub-face {} are forced to coincide",
-                        reps[i].1, reps[i].0, reps[j].1, reps[j].0
-                    ));
+        // Two points coincide on every solution exactly when each coordinate has the same affine
+        // expression in the free parameters: group the representatives by that expression.
+        let mut seen: HashMap<Vec<(&BigRational, &[(usize, BigRational)])>, (usize, usize)> =
+            HashMap::new();
+        for &rep in &reps {
+            let Some(xs) = coords(rep) else { continue };
+            let key: Vec<_> = xs.iter().map(|&x| param.expression(x)).collect();
+            match seen.get(&key) {
+                Some(&first) => out.push(format!(
+                    "T{t}: corner {} of sub-face {} and corner {} of sub-face {} are forced to coincide",
+                    first.1, first.0, rep.1, rep.0
+                )),
+                None => {
+                    seen.insert(key, rep);
                 }
             }
         }

@@ -49,7 +49,6 @@ pub use generate::{automaton_of, degeneracies, solve_closure, GenOptions, Genera
 
 pub use algebraic::{FieldElement, NumberField, RealAlgebraic};
 pub use assembly::{Assembly, SharedEdge};
-pub use poly::Poly;
 pub use library::{library, load_any, load_input, parse_text, Input, Loaded};
 pub use limits::Limits;
 pub use linsys::{
@@ -57,6 +56,7 @@ pub use linsys::{
     SolutionSpace, TextLayout, MINIMIZE_LIMIT,
 };
 pub use matrix::{bezier_restriction, Matrix};
+pub use poly::Poly;
 pub use ratio::{analyse, ClassReport, LimitPoint, RatioError, RatioReport};
 pub use report::{
     closure_json, counts_json, counts_table, ratio_of, ratio_text, verify_report, VerifyReport,

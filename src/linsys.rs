@@ -924,6 +924,13 @@ impl SolutionSpace {
 }
 
 impl Parametrization {
+    /// Unknown `x` as an affine function of the free parameters: its constant and its
+    /// `(parameter index, coefficient)` terms (sorted by parameter, no zeros). Two unknowns are
+    /// equal on every solution exactly when these coincide.
+    pub fn expression(&self, x: usize) -> (&BigRational, &[(usize, BigRational)]) {
+        (&self.constant[x], &self.params[x])
+    }
+
     /// Same answer as [`forced_equal`], in time proportional to the unknowns involved.
     pub fn forced_equal(&self, a: &[(usize, BigRational)], b: &[(usize, BigRational)]) -> bool {
         let mut sum: BTreeMap<usize, BigRational> = BTreeMap::new();
