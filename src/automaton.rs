@@ -557,9 +557,13 @@ impl SolveReport {
         for (s, d) in &self.dof_by_state {
             o += &format!("  state {s}: {d}\n");
         }
-        o += "particular solution:\n";
-        for (name, m) in &self.particular {
-            o += &format!("  {name} = {m}\n");
+        if self.unknowns <= 120 {
+            o += "particular solution:\n";
+            for (name, m) in &self.particular {
+                o += &format!("  {name} = {m}\n");
+            }
+        } else {
+            o += "particular solution: in the JSON output (--json)\n";
         }
         if params {
             o += "free parameters and their directions:\n";

@@ -255,6 +255,9 @@ pub fn automaton_of(ts: &TypeSet, opts: GenOptions) -> Generated {
     }
 }
 
+/// An unknown as an affine function of the free parameters (see `Parametrization::expression`).
+type Expression<'a> = (&'a BigRational, &'a [(usize, BigRational)]);
+
 /// Union-find over small integer ids.
 fn find(parent: &mut [usize], x: usize) -> usize {
     let mut r = x;
@@ -352,8 +355,7 @@ pub fn degeneracies(
         };
         // Two points coincide on every solution exactly when each coordinate has the same affine
         // expression in the free parameters: group the representatives by that expression.
-        let mut seen: HashMap<Vec<(&BigRational, &[(usize, BigRational)])>, (usize, usize)> =
-            HashMap::new();
+        let mut seen: HashMap<Vec<Expression>, (usize, usize)> = HashMap::new();
         for &rep in &reps {
             let Some(xs) = coords(rep) else { continue };
             let key: Vec<_> = xs.iter().map(|&x| param.expression(x)).collect();

@@ -59,7 +59,8 @@ pub use matrix::{bezier_restriction, Matrix};
 pub use poly::Poly;
 pub use ratio::{analyse, ClassReport, LimitPoint, RatioError, RatioReport};
 pub use report::{
-    closure_json, counts_json, counts_table, ratio_of, ratio_text, verify_report, VerifyReport,
+    closure_json, closure_report, counts_json, counts_table, ratio_of, ratio_text, verify_report,
+    VerifyReport,
 };
 
 pub use rule::{Algorithm, EdgePattern, Junction, SpokeChooser, SpokeItem};

@@ -23,6 +23,7 @@ pub fn library() -> &'static [(&'static str, &'static str)] {
             "autofrac-two-quads",
             include_str!("../fixtures/autofrac-two-quads.txt"),
         ),
+        ("cycle-sqrt17", include_str!("../fixtures/cycle-sqrt17.txt")),
         ("spec-edge", include_str!("../fixtures/spec-edge.aut")),
         (
             "spec-edge-incidence",

@@ -211,8 +211,8 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             if json {
                 print_json(&lacuna::closure_json(&closure));
             } else {
-                let report = verify_report(&input, &closure, 0);
-                out(&report.to_text());
+                let report = lacuna::closure_report(&input, &closure);
+                out(&report.closure_text());
             }
             Ok(match closure {
                 Closure::Closed(_) => ExitCode::SUCCESS,

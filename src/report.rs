@@ -158,6 +158,46 @@ pub fn type_rows(ts: &TypeSet) -> Vec<TypeRow> {
 
 /// Runs the topology checks and builds the report.
 pub fn verify_report(input: &Input, closure: &Closure, levels: u64) -> VerifyReport {
+    let mut report = closure_report(input, closure);
+    let Closure::Closed(ts) = closure else {
+        return report;
+    };
+    report.counts = crate::count::counts(ts, levels);
+    if ts.start.len() > 1 {
+        report.per_face = input
+            .assembly
+            .faces
+            .iter()
+            .zip(&ts.start)
+            .map(|((name, _), &t)| FaceCounts {
+                face: name.clone(),
+                levels: counts_from(ts, &[(t, 1)], levels),
+            })
+            .collect();
+    }
+    match ratio_of(ts, 30) {
+        Ok(r) => report.ratio = Some(r),
+        Err(e) => report.structure_error = Some(e.to_string()),
+    }
+    let solver_ok = match crate::generate::solve_closure(ts, crate::generate::GenOptions::default())
+    {
+        Ok(r) => {
+            let ok = r.ok();
+            report.solver = Some(r);
+            ok
+        }
+        Err(e) => {
+            report.structure_error = Some(format!("constraint generation failed: {e}"));
+            false
+        }
+    };
+    report.verified = report.structure_error.is_none() && solver_ok;
+    report
+}
+
+/// The closure part of the checks only: closed or runaway, the stated bound, the structural
+/// identities and the classes.
+pub fn closure_report(input: &Input, closure: &Closure) -> VerifyReport {
     let mut report = VerifyReport {
         input: input.name.clone(),
         verified: false,
@@ -183,36 +223,7 @@ pub fn verify_report(input: &Input, closure: &Closure, levels: u64) -> VerifyRep
             report.structure_error = ts.verify().err();
             report.types = type_rows(ts);
             report.classes = Some(ts.classes());
-            report.counts = crate::count::counts(ts, levels);
-            if ts.start.len() > 1 {
-                report.per_face = input
-                    .assembly
-                    .faces
-                    .iter()
-                    .zip(&ts.start)
-                    .map(|((name, _), &t)| FaceCounts {
-                        face: name.clone(),
-                        levels: counts_from(ts, &[(t, 1)], levels),
-                    })
-                    .collect();
-            }
-            match ratio_of(ts, 30) {
-                Ok(r) => report.ratio = Some(r),
-                Err(e) => report.structure_error = Some(e.to_string()),
-            }
-            let solver = crate::generate::solve_closure(ts, crate::generate::GenOptions::default());
-            let solver_ok = match solver {
-                Ok(r) => {
-                    let ok = r.ok();
-                    report.solver = Some(r);
-                    ok
-                }
-                Err(e) => {
-                    report.structure_error = Some(format!("constraint generation failed: {e}"));
-                    false
-                }
-            };
-            report.verified = report.structure_error.is_none() && solver_ok;
+            report.verified = report.structure_error.is_none();
         }
     }
     report
@@ -221,8 +232,22 @@ pub fn verify_report(input: &Input, closure: &Closure, levels: u64) -> VerifyRep
 impl VerifyReport {
     /// The human-readable report.
     pub fn to_text(&self) -> String {
+        self.text("verify")
+    }
+
+    /// The closure part of the report only (`lacuna closure`).
+    pub fn closure_text(&self) -> String {
+        let mut only = self.clone();
+        only.counts.clear();
+        only.per_face.clear();
+        only.ratio = None;
+        only.solver = None;
+        only.text("closure")
+    }
+
+    fn text(&self, command: &str) -> String {
         let mut o = String::new();
-        let _ = writeln!(o, "lacuna verify: {}", self.input);
+        let _ = writeln!(o, "lacuna {command}: {}", self.input);
         if self.shared_edges > 0 || !self.per_face.is_empty() {
             let _ = writeln!(
                 o,
@@ -300,6 +325,19 @@ impl VerifyReport {
                 };
                 let _ = writeln!(o, "  {{{}}}  {}", members.join(", "), period);
             }
+        }
+        if command == "closure" {
+            let closed = self.structure_error.is_none();
+            let _ = writeln!(
+                o,
+                "\nverdict: {}",
+                if closed {
+                    "closure CLOSED and checked"
+                } else {
+                    "NOT VERIFIED"
+                }
+            );
+            return o;
         }
         let _ = writeln!(o, "\ncounts:");
         o += &counts_table(&self.counts);

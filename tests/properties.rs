@@ -164,3 +164,46 @@ proptest! {
         }
     }
 }
+
+/// A decimal string as an exact rational.
+fn decimal(s: &str) -> BigRational {
+    let (i, f) = s.split_once('.').unwrap_or((s, ""));
+    let scale = num_bigint::BigInt::from(10).pow(f.len() as u32);
+    BigRational::new(format!("{i}{f}").parse().unwrap(), scale)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+    /// For random closures of the built-in algorithms, the exact R lies in [0, 1] and agrees with
+    /// R_i computed exactly at large levels: |R − R_i| does not grow from level 40 to level 120
+    /// and is small at level 120. Where the limit does not exist, each residue class of R_i
+    /// approaches its own limit point.
+    #[test]
+    fn exact_ratio_agrees_with_deep_counts(
+        boundary in proptest::collection::vec(edge(2), 2..=6),
+        ea in edge(1), el in edge(1), ec in edge(1),
+        alg in prop_oneof![Just(Algorithm::a1()), Just(Algorithm::a2()), Just(Algorithm::a3())],
+    ) {
+        let f = Face { boundary, params: Params { ea, el, ec }, algorithm: alg, delay: 1 };
+        let Ok(Closure::Closed(ts)) = close(&f, &Limits::default()) else { return Ok(()) };
+        let r = lacuna::ratio_of(&ts, 30).unwrap();
+        let c = counts(&ts, 120);
+        let tol = BigRational::new(1.into(), num_bigint::BigInt::from(10).pow(25));
+        let zero = BigRational::from_integer(0.into());
+        let one = BigRational::from_integer(1.into());
+        for p in &r.limit_points {
+            let v = decimal(&p.decimal);
+            prop_assert!(v >= zero && v <= &one + &tol, "limit point {} outside [0, 1]", p.decimal);
+            let period = r.period as usize;
+            let at = |base: usize| {
+                let i = base - base % period + p.residue as usize;
+                let d = &c[i].ratio - &v;
+                if d < zero { -d } else { d }
+            };
+            prop_assert!(at(119) <= at(40) + &tol, "|R − R_i| grew: {} then {}", at(40), at(119));
+            prop_assert!(at(119) < BigRational::new(1.into(), 50.into()), "R_i far from R at level ~119 for {}", f);
+        }
+        prop_assert_eq!(r.exists, r.limit_points.len() == 1 || r.limit_points.windows(2).all(|w| w[0].exact == w[1].exact));
+    }
+}

@@ -1,0 +1,68 @@
+//! Benchmark (issue #4): the exact solver on the constraint systems of a series of growing
+//! closures. For each face: unknowns, equations, the time to solve (best of 3, release), and
+//! whether the system is consistent. With `--export DIR` it also writes each system as a sparse
+//! text matrix (`lacuna::write_text`) for the FLINT comparison in `benches/compare_flint.sh`.
+//!
+//! Run: `cargo bench --bench solver [-- --export DIR]`.
+
+use lacuna::{
+    automaton_of, close_or_error, solve, write_text, Face, GenOptions, Limits, Solution, TextLayout,
+};
+use std::time::Instant;
+
+/// Faces whose closures grow from a few hundred to over a million unknowns.
+const SERIES: &[&str] = &[
+    "C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1",
+    "C2 C2 C2 | B2 B2 B2 | A1",
+    "B2 C2^2 | C2 B2 B2 | A3",
+    "C2 B3 C3 C3 B3 B3 | B2 C2 C2 | A1",
+    "B3 C2 B2^3 C3 B2 | C2 B2 C2 | A3",
+    "B4 C4 B3^3 C4 B4 C3 B2^2 | C3 B2 C3 | A3",
+    "B3 C2 B2^3 C3 B2 | C2 B2 C2 | A3 | 2",
+    "B4 C4 B3^3 C4 B4 C3 B2^2 | C3 B2 C3 | A3 | 2",
+    "B3 C2 B2^3 C3 B2 | C2 B2 C2 | A3 | 3",
+    "B4 C4 B3^3 C4 B4 C3 B2^2 | C3 B2 C3 | A3 | 3",
+];
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let export = args
+        .iter()
+        .position(|a| a == "--export")
+        .and_then(|i| args.get(i + 1))
+        .cloned();
+    if let Some(dir) = &export {
+        std::fs::create_dir_all(dir).expect("export directory");
+    }
+    println!(
+        "{:>3}  {:>6}  {:>9}  {:>9}  {:>10}  {:>10}  face",
+        "#", "types", "unknowns", "equations", "solve (s)", "consistent"
+    );
+    for (k, text) in SERIES.iter().enumerate() {
+        let face = Face::parse(text).expect("valid face");
+        let ts = close_or_error(&[face], &Limits::default()).expect("closes");
+        let g = automaton_of(&ts, GenOptions::default());
+        let lin = g.automaton.linearize().expect("linear");
+        let mut best = f64::INFINITY;
+        let mut consistent = false;
+        for _ in 0..3 {
+            let t = Instant::now();
+            let sol = solve(&lin.system);
+            best = best.min(t.elapsed().as_secs_f64());
+            consistent = matches!(sol, Solution::Consistent(_));
+        }
+        println!(
+            "{k:>3}  {:>6}  {:>9}  {:>9}  {best:>10.4}  {consistent:>10}  {text}",
+            ts.types.len(),
+            lin.system.unknowns,
+            lin.system.rows.len()
+        );
+        if let Some(dir) = &export {
+            if lin.system.unknowns <= 20_000 {
+                let path = format!("{dir}/system_{k}.txt");
+                let file = std::io::BufWriter::new(std::fs::File::create(&path).expect("create"));
+                write_text(&lin.system, TextLayout::Sparse, file).expect("write");
+            }
+        }
+    }
+}

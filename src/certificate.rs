@@ -1,0 +1,368 @@
+//! Certificates: plain data that the independent checker ([`crate::checker`]) re-verifies.
+//!
+//! A [`Certificate`] is a versioned list of [`Step`]s. Every number is exact: integers as JSON
+//! numbers when they are small counts or indices, rationals and big integers as strings
+//! (`"3"`, `"-1/2"`). Only `Vec` and ordered structures are used, so the same certificate always
+//! serialises to the same bytes. The format, with the justification of every step, is documented
+//! in `docs/CERTIFICATES.md`.
+//!
+//! This module depends on nothing else of lacuna (the checker must not trust lacuna's code), only
+//! on serde.
+
+use serde::{Deserialize, Serialize};
+
+/// The value of [`Certificate::format`].
+pub const FORMAT: &str = "lacuna-certificate";
+
+/// The format version this code writes and checks.
+pub const VERSION: u32 = 1;
+
+/// A certificate: what was given and the steps that prove the verdicts.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Certificate {
+    /// Always [`FORMAT`].
+    pub format: String,
+    /// Always [`VERSION`] for this code.
+    pub version: u32,
+    /// The input the certificate is about (library name, file or face notation).
+    pub input: String,
+    /// The steps, checked in order; a later step may refer to an earlier one (the limit ratio
+    /// is tied to the closure when both are present).
+    pub steps: Vec<Step>,
+}
+
+/// One step of a certificate. Each variant says what the checker re-derives and why that proves
+/// the claim; consumers match it exhaustively.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(tag = "step", rename_all = "kebab-case")]
+pub enum Step {
+    /// **The closure.** Justification: the checker re-derives the subdivision of every listed face
+    /// type with its own implementation of SPEC §3 (sub-edges, junctions, the spoke predicate,
+    /// runs between spokes, `Ec Ec` inside runs, `[Ec] Ea El Ea [Ec]`, delayed faces, canonical
+    /// rotation) and compares sub-faces, origins and adjacencies with the certificate; every
+    /// referenced type must be listed, so the listed set is closed under subdivision. It checks
+    /// the incidence identities on the certificate's own data (each sub-edge once, each gap side
+    /// once, each spoke once inward and once outward and paired by an adjacency, one lacuna side
+    /// per sub-face) and the contribution of SPEC §5.
+    Closure(ClosureStep),
+    /// **A consistent linear system and its solution space.** Justification: the particular
+    /// solution satisfies every row; every basis vector satisfies the homogeneous rows and is 1 at
+    /// its own free unknown and 0 at the others (so the basis is independent: nullity ≥ dof); the
+    /// pivot minor is nonsingular (elimination modulo a prime; a nonzero determinant mod p is
+    /// nonzero over Q: rank ≥ |pivots|); and |pivots| + dof = unknowns. Hence rank = |pivots| and
+    /// the basis spans the kernel: the solution set is exactly `particular + span(basis)`.
+    SolutionSpace(SolutionStep),
+    /// **An inconsistent linear system.** Justification: `Σ m_i·row_i` has every coefficient 0
+    /// and right-hand side `c ≠ 0`; any solution would satisfy `0 = c`.
+    Inconsistent(ConflictStep),
+    /// **The limit ratio R.** Justification (covered case): the checker recomputes the classes
+    /// reached from the start and their periods, isolates ρ (Sturm), verifies a left Perron
+    /// eigenvector `y ≥ 0` with `y·M = ρ·y`, positive on the dominant class, and Collatz–Wielandt
+    /// vectors showing every other class has a smaller spectral radius; by Perron–Frobenius ρ is
+    /// then a simple dominant eigenvalue and `R = y·c / (y·c + (ρ−1)·y·1)`, which it recomputes
+    /// in Q(ρ). Other cases are stated as not covered by v1.
+    LimitRatio(RatioStep),
+}
+
+/// `B` (connected) or `C` (Cantor-like).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+pub enum Kind {
+    /// Bézier-like, `Bn`.
+    B,
+    /// Cantor-like, `Cn`.
+    C,
+}
+
+/// An edge type `Kn^delay`. The derived order (kind, n, delay) is the canonical order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+pub struct Edge {
+    /// `B` or `C`.
+    pub kind: Kind,
+    /// Number of sub-edges (≥ 2).
+    pub n: u32,
+    /// Delay (≥ 1).
+    pub delay: u32,
+}
+
+/// `E = (Ea, El, Ec)`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Params {
+    /// Adjacency edge.
+    pub ea: Edge,
+    /// Lacuna edge.
+    pub el: Edge,
+    /// Gap-closing edge.
+    pub ec: Edge,
+}
+
+/// A pattern on an edge in a `corner(P,Q)` item.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Pattern {
+    /// `*`.
+    Any,
+    /// Every edge of this kind.
+    Kind(Kind),
+    /// Exactly this edge type.
+    Exact(Edge),
+}
+
+/// One item of a spoke set (the algorithm).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SpokeItem {
+    /// Every joint.
+    Joint,
+    /// Every gap.
+    Gap,
+    /// Every corner.
+    Corner,
+    /// Every corner next to a delayed edge.
+    DelayedCorner,
+    /// Corners from an edge matching the first pattern to one matching the second.
+    CornerBetween(Pattern, Pattern),
+}
+
+/// A face `F^d(∂, E, A)` with the algorithm as its spoke items.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Face {
+    /// Boundary, counter-clockwise.
+    pub boundary: Vec<Edge>,
+    /// E.
+    pub params: Params,
+    /// A: a junction is a spoke when one item holds.
+    pub algorithm: Vec<SpokeItem>,
+    /// d ≥ 1.
+    pub delay: u32,
+}
+
+/// Where an edge of a sub-face comes from (lacuna's `Origin`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Origin {
+    /// Piece `piece` of the parent's boundary edge `edge`.
+    Piece {
+        /// Parent edge.
+        edge: usize,
+        /// Piece within it.
+        piece: usize,
+    },
+    /// The Ea edge on spoke `spoke`, inward = from the boundary to the lacuna.
+    Spoke {
+        /// Spoke index (in the order of the spoke junctions).
+        spoke: usize,
+        /// Direction.
+        inward: bool,
+    },
+    /// Side `side` of the central lacuna (El).
+    Lacuna {
+        /// Equal to the sub-face index.
+        side: usize,
+    },
+    /// One side (Ec) of gap `gap` of the parent's edge `edge`; `after` for the later piece.
+    GapSide {
+        /// Parent edge.
+        edge: usize,
+        /// Gap within it.
+        gap: usize,
+        /// Which side.
+        after: bool,
+    },
+}
+
+/// A sub-face: its type and, aligned with that type's boundary, the origin of each edge.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SubFace {
+    /// Index into [`ClosureStep::types`].
+    pub type_index: usize,
+    /// `origins[k]` is the origin of edge `k` of the type's (canonical) boundary.
+    pub origins: Vec<Origin>,
+}
+
+/// Two sub-faces sharing an Ea edge: `(sub-face, boundary position)` of each side.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Adjacency {
+    /// The side traversed inward.
+    pub first: (usize, usize),
+    /// The side traversed outward.
+    pub second: (usize, usize),
+}
+
+/// One face type with its subdivision rule.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct TypeRule {
+    /// The face, in canonical form.
+    pub face: Face,
+    /// Sub-face `k` runs from spoke `k` to spoke `k + 1` (one sub-face for a delayed face).
+    pub subfaces: Vec<SubFace>,
+    /// Adjacency `k` pairs the two sides of spoke `k + 1` (none for a delayed face).
+    pub adjacencies: Vec<Adjacency>,
+    /// Lacunas added by one subdivision step, in halves (SPEC §5).
+    pub contribution_halves: u64,
+}
+
+/// The closure: every face type with its rule, and the start types.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ClosureStep {
+    /// The face types.
+    pub types: Vec<TypeRule>,
+    /// The type of each start face (repeated for an assembly of equal faces).
+    pub start: Vec<usize>,
+}
+
+/// A sparse linear equation `Σ coef·x[var] = rhs`, rationals as strings.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Row {
+    /// `(unknown, coefficient)`; an unknown may repeat (coefficients add up).
+    pub terms: Vec<(usize, String)>,
+    /// Right-hand side.
+    pub rhs: String,
+}
+
+/// An explicit linear system over Q.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct System {
+    /// Where the system comes from, for people (not checked).
+    pub source: String,
+    /// Number of unknowns.
+    pub unknowns: usize,
+    /// The equations.
+    pub rows: Vec<Row>,
+}
+
+/// The solution space of a consistent system.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SolutionStep {
+    /// The system.
+    pub system: System,
+    /// A solution, sparse: unknowns not listed are 0.
+    pub particular: Vec<(usize, String)>,
+    /// The free unknowns, one per basis vector.
+    pub free: Vec<usize>,
+    /// Sparse basis vectors of the kernel; `basis[k]` is 1 at `free[k]`, 0 at the other free
+    /// unknowns.
+    pub basis: Vec<Vec<(usize, String)>>,
+    /// Rank witness: `(row, unknown)` pairs, in elimination order.
+    pub pivots: Vec<(usize, usize)>,
+    /// The claimed rank.
+    pub rank: usize,
+    /// The claimed degrees of freedom (dimension of the solution space).
+    pub dof: usize,
+}
+
+/// The proof that a system has no solution.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ConflictStep {
+    /// The system.
+    pub system: System,
+    /// `(row, multiplier)`.
+    pub multipliers: Vec<(usize, String)>,
+    /// `Σ m_i·rhs_i`, claimed nonzero.
+    pub constant: String,
+}
+
+/// A strongly connected class of the types reached from the start.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ClassClaim {
+    /// Members, ascending.
+    pub members: Vec<usize>,
+    /// Gcd of the cycle lengths; `None` for a transient type (no cycle).
+    pub period: Option<u64>,
+}
+
+/// A real algebraic number: the only root of `poly` in `[lo, hi]`.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Algebraic {
+    /// Integer coefficients, constant term first.
+    pub poly: Vec<String>,
+    /// Lower end (rational).
+    pub lo: String,
+    /// Upper end (rational); equal to `lo` for a rational number.
+    pub hi: String,
+}
+
+/// An element of Q(ρ): coordinates on the power basis `1, ρ, ρ², …`.
+pub type FieldCoords = Vec<String>;
+
+/// The proof of the limit in the covered case.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct LimitProof {
+    /// ρ, the Perron root.
+    pub rho: Algebraic,
+    /// Index into [`RatioStep::classes`] of the dominant class.
+    pub dominant: usize,
+    /// Left eigenvector of the reached matrix, sparse `(type, coordinates in Q(ρ))`; types not
+    /// listed are 0.
+    pub left_vector: Vec<(usize, FieldCoords)>,
+    /// For every other class (index into [`RatioStep::classes`]), a positive rational vector `x`
+    /// aligned with its members with `B_c·x < lo·x` componentwise.
+    pub bounds: Vec<(usize, Vec<String>)>,
+    /// The claimed limit R in Q(ρ).
+    pub ratio: FieldCoords,
+}
+
+/// What the certificate claims about the limit ratio.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RatioClaim {
+    /// The limit exists and equals the given value (covered case of v1).
+    Limit(LimitProof),
+    /// The case is outside certificate v1 (several dominant classes, a periodic dominant class,
+    /// ρ ≤ 1); lacuna's own verdict is quoted but nothing about it is certified.
+    NotCovered {
+        /// Why.
+        reason: String,
+        /// lacuna's verdict, for people.
+        verdict: String,
+    },
+}
+
+/// The limit ratio of a substitution.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct RatioStep {
+    /// `matrix[t]` lists `(s, k)`: a face of type `t` has `k` sub-faces of type `s`.
+    pub matrix: Vec<Vec<(usize, u64)>>,
+    /// Lacunas contributed by one step of each type, in halves.
+    pub contribution_halves: Vec<u64>,
+    /// Start faces `(type, multiplicity)`.
+    pub start: Vec<(usize, u64)>,
+    /// The classes reached from the start, ordered by smallest member.
+    pub classes: Vec<ClassClaim>,
+    /// The claim.
+    pub claim: RatioClaim,
+}
+
+impl Certificate {
+    /// An empty certificate of the current format and version.
+    pub fn new(input: impl Into<String>) -> Self {
+        Certificate {
+            format: FORMAT.to_string(),
+            version: VERSION,
+            input: input.into(),
+            steps: Vec::new(),
+        }
+    }
+
+    /// The canonical JSON text (compact, one trailing newline): the same certificate always
+    /// gives the same bytes.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).expect("a certificate serialises") + "\n"
+    }
+
+    /// Parses a certificate from JSON.
+    pub fn from_json(text: &str) -> Result<Self, serde_json::Error> {
+        serde_json::from_str(text)
+    }
+}
+
+impl Step {
+    /// The step's name as used in messages and in the JSON `step` tag.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Step::Closure(_) => "closure",
+            Step::SolutionSpace(_) => "solution-space",
+            Step::Inconsistent(_) => "inconsistent",
+            Step::LimitRatio(_) => "limit-ratio",
+        }
+    }
+}
