@@ -125,24 +125,27 @@ impl Face {
                 None,
             ));
         }
+        // Columns are counted incrementally (one pass per field), so long boundaries parse in
+        // linear time.
         let tokens = |(off, field): (usize, &str)| -> Vec<(usize, String)> {
+            let base = col_of(off);
             let mut out = Vec::new();
             let mut cur = String::new();
-            let mut cur_start = 0;
-            for (i, ch) in field.char_indices() {
+            let mut cur_col = 0;
+            for (k, ch) in field.chars().enumerate() {
                 if ch.is_whitespace() {
                     if !cur.is_empty() {
-                        out.push((col_of(off + cur_start), std::mem::take(&mut cur)));
+                        out.push((cur_col, std::mem::take(&mut cur)));
                     }
                 } else {
                     if cur.is_empty() {
-                        cur_start = i;
+                        cur_col = base + k;
                     }
                     cur.push(ch);
                 }
             }
             if !cur.is_empty() {
-                out.push((col_of(off + cur_start), cur));
+                out.push((cur_col, cur));
             }
             out
         };

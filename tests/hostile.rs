@@ -1,0 +1,106 @@
+//! Hostile inputs to every command: a coded error and exit code 2, never a panic, a hang or a
+//! silent answer (issue #8's list, as far as the formats exist today).
+
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+fn run(args: &[&str]) -> (i32, String) {
+    let start = Instant::now();
+    let out = Command::new(env!("CARGO_BIN_EXE_lacuna"))
+        .args(args)
+        .stdin(Stdio::null())
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("runs");
+    assert!(
+        start.elapsed() < Duration::from_secs(30),
+        "{args:?} took {:?}",
+        start.elapsed()
+    );
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
+    (out.status.code().expect("not killed by a signal"), err)
+}
+
+fn temp(name: &str, bytes: &[u8]) -> String {
+    let dir = std::env::temp_dir().join(format!("lacuna-hostile-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(name);
+    std::fs::write(&p, bytes).unwrap();
+    p.to_string_lossy().into_owned()
+}
+
+#[test]
+fn hostile_inputs_get_coded_errors_from_every_command() {
+    let mut huge = String::from("face 0:");
+    for _ in 0..1_000_000 {
+        huge.push_str(" B2");
+    }
+    huge.push_str(" | C2 B2 B2 | A1\n");
+    let files = [
+        temp("huge.txt", huge.as_bytes()),
+        temp("binary.txt", &[0xff, 0xfe, 0x00, 0x41]),
+        temp(
+            "nan.txt",
+            b"f\nC_2_0 - B_2_0 / C_2_0 - B_2_0 - B_2_0 / 0 / 1\np\nNaN 0\n",
+        ),
+        temp(
+            "bigcoord.txt",
+            b"f\nC_2_0 - B_2_0 / C_2_0 - B_2_0 - B_2_0 / 0 / 1\np\n1e400 0\n",
+        ),
+        temp("empty.txt", b""),
+        temp(
+            "selfloop.txt",
+            b"face 0: B2 B2 | C2 B2 B2 | A1\nface 0 edge 0 ~ face 0 edge 0\n",
+        ),
+        temp(
+            "nonlinear.aut",
+            b"state e 2\nsub a : e <- e\nsub b : e <- e\na * b = a\n",
+        ),
+    ];
+    let mut inputs: Vec<String> = [
+        "",
+        " | | ",
+        "B0 B2 | C2 B2 B2 | A1",
+        "C1 B2 | C2 B2 B2 | A1",
+        "B2^0 B2 | C2 B2 B2 | A1",
+        "B2 B2 | C2 B2 B2 | A1 | 1 | 2",
+        "B2 B2 || C2 B2 B2 | A1",
+        "B99999999999999999999 | C2 B2 B2 | A1",
+        "B2 B2 | C2 B2 B2 | A1 | 99999999999",
+        "B2 B2 | C2 B2 B2 | {joint",
+        "B2^2 B2^2 | C2 B2 B2 | A1",
+        "no-such-file-or-library-entry",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    inputs.extend(files);
+    for input in &inputs {
+        for cmd in [
+            vec!["verify", input.as_str()],
+            vec!["closure", input.as_str()],
+            vec!["counts", input.as_str(), "--levels", "2"],
+            vec!["ratio", input.as_str()],
+            vec!["solve", input.as_str()],
+        ] {
+            let (code, err) = run(&cmd);
+            assert_eq!(code, 2, "{cmd:?} should be refused: {err}");
+            assert!(err.contains("error[E"), "{cmd:?}: no coded error: {err}");
+        }
+    }
+}
+
+#[test]
+fn absurd_levels_and_digits_are_refused_before_the_work() {
+    for args in [
+        vec!["counts", "F0", "--levels", "18446744073709551615"],
+        vec!["verify", "F0", "--levels", "1000000000"],
+        vec!["ratio", "F0", "--digits", "1000000000"],
+        vec!["solve", "F0", "--degree", "99"],
+    ] {
+        let (code, err) = run(&args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains("E0501"), "{args:?}: {err}");
+    }
+}
