@@ -2,13 +2,14 @@
 
 For each exported closure: the characteristic polynomial of the substitution matrix, factored
 over Q; the Perron root rho = the largest real root; the left eigenvector y (y M = rho y, which
-must be one-dimensional: a simple dominant eigenvalue); then
+must be one-dimensional: a simple dominant eigenvalue), exactly over Q(rho); then
 R = y.c / (y.c + (rho - 1) y.1), evaluated to 50 digits. Prints the time and both values."""
 import json
 import sys
 import time
 
 import sympy as sp
+from sympy.polys.matrices import DomainMatrix
 
 
 def main(path):
@@ -26,14 +27,18 @@ def main(path):
     for f, _ in sp.factor_list(p)[1]:
         roots += sp.Poly(f, x).real_roots()
     rho = max(roots, key=lambda r: r.evalf(60))
-    ker = (m.T - rho * sp.eye(n)).nullspace()
-    if len(ker) != 1:
-        print(f"{path}: dominant eigenvalue not simple ({len(ker)}), skipped")
+    # Exact linear algebra over Q(rho) (DomainMatrix); SymPy's Matrix.nullspace on radical
+    # expressions mis-detects pivots and gave wrong answers here.
+    k = sp.QQ.algebraic_field(rho)
+    a = DomainMatrix([[k.from_sympy(v) for v in row] for row in m.T.tolist()], (n, n), k)
+    ker = (a - DomainMatrix.eye(n, k) * k.from_sympy(rho)).nullspace()
+    if ker.shape[0] != 1:
+        print(f"{path}: dominant eigenvalue not simple ({ker.shape[0]}), skipped")
         return
-    y = ker[0]
-    yc = (y.T * c)[0]
+    y = [k.to_sympy(v) for v in ker.to_list()[0]]
+    yc = sum(yi * ci for yi, ci in zip(y, c))
     y1 = sum(y)
-    r = sp.nsimplify(yc) / (yc + (rho - 1) * y1)
+    r = yc / (yc + (rho - 1) * y1)
     value = sp.N(r, 60)
     seconds = time.perf_counter() - start
     print(f"{d['face']}: sympy {seconds:.3f} s, lacuna {d['lacuna_seconds']:.4f} s, "
