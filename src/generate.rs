@@ -258,21 +258,6 @@ pub fn automaton_of(ts: &TypeSet, opts: GenOptions) -> Generated {
 /// An unknown as an affine function of the free parameters (see `Parametrization::expression`).
 type Expression<'a> = (&'a BigRational, &'a [(usize, BigRational)]);
 
-/// Union-find over small integer ids.
-fn find(parent: &mut [usize], x: usize) -> usize {
-    let mut r = x;
-    while parent[r] != r {
-        r = parent[r];
-    }
-    let mut y = x;
-    while parent[y] != r {
-        let next = parent[y];
-        parent[y] = r;
-        y = next;
-    }
-    r
-}
-
 /// The degeneracy check (SPEC §6): for every face type, the corner points of its level-1
 /// complex that are combinatorially distinct must not be forced to coincide by the constraints.
 /// Returns one message per forced collapse.
@@ -287,60 +272,12 @@ pub fn degeneracies(
     let mut out = Vec::new();
     for (t, ty) in ts.types.iter().enumerate() {
         let subs = &ty.subdivision.subfaces;
-        // Corner ids: (sub-face k, corner p) → k * stride + p.
-        let stride = subs.iter().map(|s| s.origins.len()).max().unwrap_or(0);
-        let n = subs.len() * stride;
-        let mut parent: Vec<usize> = (0..n).collect();
-        let union = |parent: &mut Vec<usize>, x: usize, y: usize| {
-            let (rx, ry) = (find(parent, x), find(parent, y));
-            if rx != ry {
-                parent[rx] = ry;
-            }
-        };
-        let id = |k: usize, p: usize| k * stride + p % subs[k].origins.len();
-        for adj in &ty.subdivision.adjacencies {
-            let ((sa, la), (sb, lb)) = (adj.first, adj.second);
-            union(&mut parent, id(sa, la), id(sb, lb + 1));
-            union(&mut parent, id(sa, la + 1), id(sb, lb));
-        }
-        // Points on the parent's boundary: the start and end of every piece, identified at joints
-        // and corners (gaps separate them).
-        let mut at_point: BTreeMap<(usize, usize, bool), usize> = BTreeMap::new();
-        for (k, s) in subs.iter().enumerate() {
-            for (l, o) in s.origins.iter().enumerate() {
-                if let Origin::Piece { edge, piece } = *o {
-                    for (end, corner) in [(false, l), (true, l + 1)] {
-                        // Normalise "end of piece j" to "start of piece j+1" (or of the next edge)
-                        // when they are one point.
-                        let e = ty.face.boundary[edge];
-                        let key = if !end {
-                            (edge, piece, false)
-                        } else if piece + 1 < e.piece_count() as usize {
-                            if e.kind == EdgeKind::B || e.is_delayed() {
-                                (edge, piece + 1, false)
-                            } else {
-                                (edge, piece, true)
-                            }
-                        } else {
-                            ((edge + 1) % ty.face.boundary.len(), 0, false)
-                        };
-                        let c = id(k, corner);
-                        match at_point.get(&key) {
-                            Some(&other) => union(&mut parent, c, other),
-                            None => {
-                                at_point.insert(key, c);
-                            }
-                        }
-                    }
-                }
-            }
-        }
+        let class = ty.subdivision.corner_classes(&ty.face);
         // One representative per class, with its coordinates as variables.
         let mut reps: BTreeMap<usize, (usize, usize)> = BTreeMap::new();
         for (k, s) in subs.iter().enumerate() {
             for p in 0..s.origins.len() {
-                let root = find(&mut parent, id(k, p));
-                reps.entry(root).or_insert((k, p));
+                reps.entry(class[k][p]).or_insert((k, p));
             }
         }
         let reps: Vec<(usize, usize)> = reps.into_values().collect();

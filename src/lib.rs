@@ -64,4 +64,4 @@ pub use report::{
 };
 
 pub use rule::{Algorithm, EdgePattern, Junction, SpokeChooser, SpokeItem};
-pub use subdivision::{subdivide, Adjacency, Origin, SubFace, Subdivision};
+pub use subdivision::{subdivide, Adjacency, Complex, Origin, SubFace, Subdivision};

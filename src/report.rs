@@ -23,6 +23,8 @@ pub struct TypeRow {
     pub children: Vec<String>,
     /// Lacunas contributed per step, exact.
     pub contribution: String,
+    /// The level-1 complex: vertices, edges, sub-faces, holes and valences (SPEC §9).
+    pub complex: crate::subdivision::Complex,
 }
 
 /// The counts of one start face of an assembly.
@@ -152,6 +154,7 @@ pub fn type_rows(ts: &TypeSet) -> Vec<TypeRow> {
                 .collect(),
             children: t.children.iter().map(|c| format!("T{c}")).collect(),
             contribution: BigRational::new(t.contribution_halves().into(), 2.into()).to_string(),
+            complex: t.subdivision.level1_complex(&t.face),
         })
         .collect()
 }
@@ -303,12 +306,26 @@ impl VerifyReport {
                 summarise(&t.children),
                 t.contribution
             );
+            let c = &t.complex;
+            let valences: Vec<String> =
+                c.valences.iter().map(|(v, n)| format!("{n}×{v}")).collect();
+            let _ = writeln!(
+                o,
+                "       level-1 complex: V {} − E {} + F {} = {} ({} hole{}), valences {}",
+                c.vertices,
+                c.edges,
+                c.faces,
+                c.euler(),
+                c.holes,
+                if c.holes == 1 { "" } else { "s" },
+                valences.join(" ")
+            );
         }
         match &self.structure_error {
             None => {
                 let _ = writeln!(
                     o,
-                    "structure: every sub-edge used once, every gap closed on both sides, every Ea shared by two sub-faces in opposite directions, every lacuna cycle closed"
+                    "structure: every sub-edge used once, every gap closed on both sides, every Ea shared by two sub-faces in opposite directions, every lacuna cycle closed, every level-1 complex a disk with its holes (Euler)"
                 );
             }
             Some(e) => {

@@ -77,6 +77,55 @@ pub struct Subdivision {
     pub adjacencies: Vec<Adjacency>,
 }
 
+/// The level-1 complex of one subdivision step (SPEC §9).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct Complex {
+    /// Distinct points (corners of sub-faces after identification).
+    pub vertices: usize,
+    /// Distinct edges (a shared Ea counts once).
+    pub edges: usize,
+    /// Sub-faces.
+    pub faces: usize,
+    /// Holes it must have: 1 (the central lacuna) for a non-delayed face, else 0.
+    pub holes: usize,
+    /// Number of vertices per valence (edges meeting at the vertex).
+    pub valences: std::collections::BTreeMap<usize, usize>,
+}
+
+impl Complex {
+    /// V − E + F.
+    pub fn euler(&self) -> i64 {
+        self.vertices as i64 - self.edges as i64 + self.faces as i64
+    }
+
+    /// Whether V − E + F = 1 − holes (a disk with `holes` holes).
+    pub fn euler_matches(&self) -> bool {
+        self.euler() == 1 - self.holes as i64
+    }
+}
+
+/// Union-find: the root of `x`, with path compression.
+fn find(uf: &mut [usize], x: usize) -> usize {
+    let mut r = x;
+    while uf[r] != r {
+        r = uf[r];
+    }
+    let mut y = x;
+    while uf[y] != r {
+        let next = uf[y];
+        uf[y] = r;
+        y = next;
+    }
+    r
+}
+
+fn union(uf: &mut [usize], x: usize, y: usize) {
+    let (rx, ry) = (find(uf, x), find(uf, y));
+    if rx != ry {
+        uf[rx] = ry;
+    }
+}
+
 /// One sub-edge of the subdivided boundary.
 #[derive(Clone, Copy, Debug)]
 struct Piece {
@@ -406,6 +455,101 @@ impl Subdivision {
         Ok(())
     }
 
+    /// The vertices of the level-1 complex: for each sub-face and each of its corners (corner p
+    /// is where edge p starts), the index of the point it is, after the identifications the
+    /// topology makes — the two ends of each shared Ea edge (opposite directions), and the points
+    /// of the parent's boundary (the end of a piece is the start of the next piece at a joint, or
+    /// of the next edge's first piece at a corner; a gap keeps them apart). Indices are 0..V.
+    pub fn corner_classes(&self, parent: &Face) -> Vec<Vec<usize>> {
+        let subs = &self.subfaces;
+        let stride = subs.iter().map(|s| s.origins.len()).max().unwrap_or(0);
+        let mut uf: Vec<usize> = (0..subs.len() * stride).collect();
+        let id = |k: usize, p: usize| k * stride + p % subs[k].origins.len();
+        for adj in &self.adjacencies {
+            let ((sa, la), (sb, lb)) = (adj.first, adj.second);
+            union(&mut uf, id(sa, la), id(sb, lb + 1));
+            union(&mut uf, id(sa, la + 1), id(sb, lb));
+        }
+        let mut at_point: std::collections::BTreeMap<(usize, usize, bool), usize> =
+            Default::default();
+        for (k, s) in subs.iter().enumerate() {
+            for (l, o) in s.origins.iter().enumerate() {
+                let Origin::Piece { edge, piece } = *o else {
+                    continue;
+                };
+                let e = parent.boundary[edge];
+                for (end, corner) in [(false, l), (true, l + 1)] {
+                    let key = if !end {
+                        (edge, piece, false)
+                    } else if piece + 1 < e.piece_count() as usize {
+                        match e.inner_junction() {
+                            Some(JunctionKind::Gap) => (edge, piece, true),
+                            _ => (edge, piece + 1, false),
+                        }
+                    } else {
+                        ((edge + 1) % parent.boundary.len(), 0, false)
+                    };
+                    let c = id(k, corner);
+                    match at_point.get(&key) {
+                        Some(&other) => union(&mut uf, c, other),
+                        None => {
+                            at_point.insert(key, c);
+                        }
+                    }
+                }
+            }
+        }
+        let mut number: std::collections::HashMap<usize, usize> = Default::default();
+        subs.iter()
+            .enumerate()
+            .map(|(k, s)| {
+                (0..s.origins.len())
+                    .map(|p| {
+                        let r = find(&mut uf, id(k, p));
+                        let next = number.len();
+                        *number.entry(r).or_insert(next)
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// The level-1 complex of the step: its vertex, edge and face counts, the valence of each
+    /// vertex, and the number of holes it must have (the central lacuna of a non-delayed face;
+    /// gaps of the boundary are notches, not holes). Its Euler characteristic V − E + F must be
+    /// 1 − holes (a disk with holes).
+    pub fn level1_complex(&self, parent: &Face) -> Complex {
+        let class = self.corner_classes(parent);
+        let vertices = class.iter().flatten().copied().max().map_or(0, |m| m + 1);
+        let slots: usize = self.subfaces.iter().map(|s| s.origins.len()).sum();
+        // Each shared Ea is one edge seen from two sub-faces.
+        let edges = slots - self.adjacencies.len();
+        let mut valence = vec![0usize; vertices];
+        let shared: std::collections::HashSet<(usize, usize)> =
+            self.adjacencies.iter().map(|a| a.second).collect();
+        for (k, s) in self.subfaces.iter().enumerate() {
+            let n = s.origins.len();
+            for p in 0..n {
+                if shared.contains(&(k, p)) {
+                    continue;
+                }
+                valence[class[k][p]] += 1;
+                valence[class[k][(p + 1) % n]] += 1;
+            }
+        }
+        let mut histogram = std::collections::BTreeMap::new();
+        for v in valence {
+            *histogram.entry(v).or_insert(0usize) += 1;
+        }
+        Complex {
+            vertices,
+            edges,
+            faces: self.subfaces.len(),
+            holes: usize::from(parent.delay == 1),
+            valences: histogram,
+        }
+    }
+
     /// Asserts [`Subdivision::verify`] (tests and fuzzing).
     #[cfg(any(test, fuzzing))]
     pub fn sanity_check(&self, parent: &Face) {
@@ -439,6 +583,14 @@ mod tests {
         for s in &sub.subfaces {
             assert_eq!(s.face, f0);
         }
+        // The level-1 complex by hand: points = 3 joints (valence 3: two pieces and a spoke),
+        // 6 corners (2), 6 gap ends (2: a piece and an Ec), 3 spoke points inside the gaps (3: two
+        // Ec and an Ea), 6 lacuna vertices (3: an Ea and two El) = 24; edges = 6 × 6 − 6 shared
+        // Ea = 30; 6 faces: V − E + F = 0 = 1 − 1 hole.
+        let cx = sub.level1_complex(&f0);
+        assert_eq!((cx.vertices, cx.edges, cx.faces, cx.holes), (24, 30, 6, 1));
+        assert_eq!(cx.valences, [(2, 12), (3, 12)].into());
+        assert!(cx.euler_matches());
     }
 
     #[test]
