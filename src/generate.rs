@@ -271,13 +271,12 @@ pub fn degeneracies(
     let param = space.parametrize();
     let mut out = Vec::new();
     for (t, ty) in ts.types.iter().enumerate() {
-        let subs = &ty.subdivision.subfaces;
         let class = ty.subdivision.corner_classes(&ty.face);
-        // One representative per class, with its coordinates as variables.
+        // One representative per point of the level-1 complex, with its coordinates as variables.
         let mut reps: BTreeMap<usize, (usize, usize)> = BTreeMap::new();
-        for (k, s) in subs.iter().enumerate() {
-            for p in 0..s.origins.len() {
-                reps.entry(class[k][p]).or_insert((k, p));
+        for (k, points) in class.iter().enumerate() {
+            for (p, &point) in points.iter().enumerate() {
+                reps.entry(point).or_insert((k, p));
             }
         }
         let reps: Vec<(usize, usize)> = reps.into_values().collect();
