@@ -8,8 +8,8 @@
 
 use crate::certificate::{
     Adjacency, Algebraic, Certificate, ClassClaim, ClosureStep, ConflictStep, Edge, Face, Kind,
-    LimitProof, Origin, Params, Pattern, RatioClaim, RatioStep, Row, SolutionStep, SpokeItem,
-    Step, SubFace, System, TypeRule,
+    LimitProof, Origin, Params, Pattern, RatioClaim, RatioStep, Row, SolutionStep, SpokeItem, Step,
+    SubFace, System, TypeRule,
 };
 use num_rational::BigRational;
 use num_traits::{One, Zero};
@@ -52,7 +52,8 @@ pub fn certificate_for(
         "the constraints of the automaton generated from the closure (SPEC §6, Bézier degree {})",
         opts.degree
     );
-    cert.steps.push(solution_step(&source, &lin.system, &solution));
+    cert.steps
+        .push(solution_step(&source, &lin.system, &solution));
     let matrix = ts.matrix();
     let c: Vec<u64> = ts.types.iter().map(|t| t.contribution_halves()).collect();
     let mut start: Vec<(usize, u64)> = Vec::new();
@@ -63,7 +64,8 @@ pub fn certificate_for(
         }
     }
     start.sort_unstable();
-    cert.steps.push(Step::LimitRatio(ratio_step(&matrix, &c, &start)?));
+    cert.steps
+        .push(Step::LimitRatio(ratio_step(&matrix, &c, &start)?));
     Ok(cert)
 }
 
@@ -74,7 +76,12 @@ pub fn certificate_for_automaton(
 ) -> Result<Certificate, CertifyError> {
     let (_, lin, solution) = lacuna::solve_automaton(automaton)?;
     let source = format!("the constraints of the automaton `{name}`");
-    Ok(certificate_for_system(name, &source, &lin.system, &solution))
+    Ok(certificate_for_system(
+        name,
+        &source,
+        &lin.system,
+        &solution,
+    ))
 }
 
 /// The certificate of an explicit linear system and lacuna's solution of it.
@@ -211,7 +218,11 @@ fn system(source: &str, sys: &lacuna::LinearSystem) -> System {
 }
 
 /// The step certifying lacuna's solution of `sys`: its solution space, or its conflict.
-pub fn solution_step(source: &str, sys: &lacuna::LinearSystem, solution: &lacuna::Solution) -> Step {
+pub fn solution_step(
+    source: &str,
+    sys: &lacuna::LinearSystem,
+    solution: &lacuna::Solution,
+) -> Step {
     match solution {
         lacuna::Solution::Consistent(s) => Step::SolutionSpace(SolutionStep {
             system: system(source, sys),
@@ -330,7 +341,9 @@ fn limit_proof(
     while !(lo_above(&rho, &one) && others.iter().all(|x| lo_above(&rho, x))) {
         rounds += 1;
         if rounds > 10_000 {
-            return Err(CertifyError::Witness("ρ does not separate from a class".into()));
+            return Err(CertifyError::Witness(
+                "ρ does not separate from a class".into(),
+            ));
         }
         rho.refine();
     }
@@ -347,7 +360,10 @@ fn limit_proof(
     for (j, &t) in reached.iter().enumerate() {
         for &(s, k) in &matrix[t] {
             if let Some(i) = at(s) {
-                let e = field.add(&rows[i][j], &field.rational(BigRational::from_integer(k.into())));
+                let e = field.add(
+                    &rows[i][j],
+                    &field.rational(BigRational::from_integer(k.into())),
+                );
                 rows[i][j] = e;
             }
         }
@@ -384,11 +400,18 @@ fn limit_proof(
         }
         let (red, pivots) = rref(&q, rows, size);
         if pivots.len() != size {
-            return Err(CertifyError::Witness(format!("class {k}: lo·I − B is singular")));
+            return Err(CertifyError::Witness(format!(
+                "class {k}: lo·I − B is singular"
+            )));
         }
         let x: Vec<String> = red
             .iter()
-            .map(|row| row[size].as_rational().unwrap_or_default().to_string())
+            .map(|row| {
+                row[size]
+                    .as_rational()
+                    .expect("a rational field")
+                    .to_string()
+            })
             .collect();
         bounds.push((k, x));
     }

@@ -1,6 +1,6 @@
 //! The independent checker: re-verifies a [`Certificate`] without trusting lacuna's code.
 //!
-//! It may use only [`crate::certificate`] (plain data), std, the num crates and serde_json; a test
+//! It may use only the `certificate` module (plain data), std, the num crates and serde_json; a test
 //! (`tests/certificates.rs`) reads this file and fails on any other path into lacuna. Everything
 //! it needs is re-implemented here, small: the subdivision of a face (SPEC §3), exact linear
 //! checks, elimination modulo primes, strongly connected classes and periods, Sturm sequences,
@@ -96,6 +96,8 @@ impl CheckReport {
 
 type Q = BigRational;
 type Checked = Result<String, String>;
+/// A parsed row: `(unknown, coefficient)` terms and the right-hand side.
+type Equation = (Vec<(usize, Q)>, Q);
 
 /// Checks a certificate given as JSON text (a parse error is a failed `header`).
 pub fn check_json(text: &str) -> CheckReport {
@@ -179,27 +181,31 @@ enum JKind {
     Corner,
 }
 
-/// A junction after sub-edge `m`: its kind, the parent edges around it, and (edge, piece) of m.
-struct Junction {
-    kind: JKind,
-    before: Edge,
-    after: Edge,
-    edge: usize,
-    piece: usize,
-}
+/// A sub-edge: its type, (edge, piece), and the junction after it (kind, edges around it).
+type SubEdge = (Edge, (usize, usize), (JKind, Edge, Edge));
 
 /// A derived sub-face: canonical boundary, aligned origins, delay.
-struct Derived {
-    boundary: Vec<Edge>,
-    origins: Vec<Origin>,
-    delay: u32,
+type Derived = (Vec<Edge>, Vec<Origin>, u32);
+
+fn spoke(spoke: usize, inward: bool) -> Origin {
+    Origin::Spoke { spoke, inward }
 }
 
+fn gap_side((edge, gap): (usize, usize), after: bool) -> Origin {
+    Origin::GapSide { edge, gap, after }
+}
+
+/// Pieces of a subdivided edge and their type: one `X^(d−1)` when delayed, else n copies.
 fn piece_type(e: &Edge) -> (usize, Edge) {
-    if e.delay >= 2 {
-        (1, Edge { delay: e.delay - 1, ..*e })
-    } else {
-        (e.n as usize, *e)
+    match e.delay >= 2 {
+        true => (
+            1,
+            Edge {
+                delay: e.delay - 1,
+                ..*e
+            },
+        ),
+        false => (e.n as usize, *e),
     }
 }
 
@@ -211,13 +217,14 @@ fn matches(p: &Pattern, e: &Edge) -> bool {
     }
 }
 
-fn is_spoke(items: &[SpokeItem], j: &Junction) -> bool {
-    items.iter().any(|item| match (item, j.kind) {
+/// The spoke predicate on a junction `(kind, edge before, edge after)`.
+fn is_spoke(items: &[SpokeItem], (kind, before, after): (JKind, Edge, Edge)) -> bool {
+    items.iter().any(|item| match (item, kind) {
         (SpokeItem::Joint, JKind::Joint) | (SpokeItem::Gap, JKind::Gap) => true,
         (SpokeItem::Corner, JKind::Corner) => true,
-        (SpokeItem::DelayedCorner, JKind::Corner) => j.before.delay >= 2 || j.after.delay >= 2,
+        (SpokeItem::DelayedCorner, JKind::Corner) => before.delay >= 2 || after.delay >= 2,
         (SpokeItem::CornerBetween(p, q), JKind::Corner) => {
-            matches(p, &j.before) && matches(q, &j.after)
+            matches(p, &before) && matches(q, &after)
         }
         (SpokeItem::Joint | SpokeItem::Gap, _) => false,
         (SpokeItem::Corner | SpokeItem::DelayedCorner | SpokeItem::CornerBetween(..), _) => false,
@@ -231,54 +238,50 @@ fn least_rotation(b: &[Edge]) -> usize {
     (1..b.len()).fold(0, |best, r| if rot(r).lt(rot(best)) { r } else { best })
 }
 
-fn canonical(mut boundary: Vec<Edge>, mut origins: Vec<Origin>, delay: u32) -> Derived {
+fn canonical(raw: Vec<(Edge, Origin)>, delay: u32) -> Derived {
+    let (mut boundary, mut origins): (Vec<Edge>, Vec<Origin>) = raw.into_iter().unzip();
     let r = least_rotation(&boundary);
     boundary.rotate_left(r);
     origins.rotate_left(r);
-    Derived { boundary, origins, delay }
+    (boundary, origins, delay)
 }
 
 /// One subdivision step of `face` (SPEC §3), with lacuna's origin conventions.
 fn subdivide(face: &Face) -> Result<(Vec<Derived>, Vec<Adjacency>), String> {
     let len = face.boundary.len();
-    let mut pieces: Vec<(Edge, Origin)> = Vec::new();
-    let mut junctions: Vec<Junction> = Vec::new();
+    // Sub-edge m: its type, (edge, piece), and the junction after it.
+    let mut pieces: Vec<SubEdge> = Vec::new();
     for (i, e) in face.boundary.iter().enumerate() {
         let (count, ty) = piece_type(e);
         for k in 0..count {
-            pieces.push((ty, Origin::Piece { edge: i, piece: k }));
-            let inner = k + 1 < count;
-            junctions.push(Junction {
-                kind: match (inner, e.kind) {
-                    (false, _) => JKind::Corner,
-                    (true, Kind::B) => JKind::Joint,
-                    (true, Kind::C) => JKind::Gap,
-                },
-                before: *e,
-                after: if inner { *e } else { face.boundary[(i + 1) % len] },
-                edge: i,
-                piece: k,
-            });
+            let junction = match (k + 1 < count, e.kind) {
+                (false, _) => (JKind::Corner, *e, face.boundary[(i + 1) % len]),
+                (true, Kind::B) => (JKind::Joint, *e, *e),
+                (true, Kind::C) => (JKind::Gap, *e, *e),
+            };
+            pieces.push((ty, (i, k), junction));
         }
     }
-    let ec = face.params.ec;
-    let side = |m: usize, after: bool| {
-        let j = &junctions[m];
-        (ec, Origin::GapSide { edge: j.edge, gap: j.piece, after })
-    };
     let n = pieces.len();
+    let is_gap = |m: usize| pieces[m].2 .0 == JKind::Gap;
+    let piece = |m: usize| {
+        let (ty, (edge, piece), _) = pieces[m];
+        (ty, Origin::Piece { edge, piece })
+    };
+    let ec = |m: usize, after: bool| (face.params.ec, gap_side(pieces[m].1, after));
     if face.delay >= 2 {
         let mut raw = Vec::new();
         for m in 0..n {
-            raw.push(pieces[m]);
-            if junctions[m].kind == JKind::Gap {
-                raw.extend([side(m, false), side(m, true)]);
+            raw.push(piece(m));
+            if is_gap(m) {
+                raw.extend([ec(m, false), ec(m, true)]);
             }
         }
-        let (b, o) = raw.into_iter().unzip();
-        return Ok((vec![canonical(b, o, face.delay - 1)], Vec::new()));
+        return Ok((vec![canonical(raw, face.delay - 1)], Vec::new()));
     }
-    let spokes: Vec<usize> = (0..n).filter(|&m| is_spoke(&face.algorithm, &junctions[m])).collect();
+    let spokes: Vec<usize> = (0..n)
+        .filter(|&m| is_spoke(&face.algorithm, pieces[m].2))
+        .collect();
     let s = spokes.len();
     if s == 0 {
         return Err("the algorithm puts no spoke on this face".into());
@@ -291,54 +294,42 @@ fn subdivide(face: &Face) -> Result<(Vec<Derived>, Vec<Adjacency>), String> {
         let mut raw = Vec::new();
         for step in 1..=run {
             let m = (start + step) % n;
-            raw.push(pieces[m]);
-            if step < run && junctions[m].kind == JKind::Gap {
-                raw.extend([side(m, false), side(m, true)]);
+            raw.push(piece(m));
+            if step < run && is_gap(m) {
+                raw.extend([ec(m, false), ec(m, true)]);
             }
         }
-        if junctions[end].kind == JKind::Gap {
-            raw.push(side(end, false));
-        }
-        raw.push((p.ea, Origin::Spoke { spoke: (k + 1) % s, inward: true }));
+        raw.extend(is_gap(end).then(|| ec(end, false)));
+        raw.push((p.ea, spoke((k + 1) % s, true)));
         raw.push((p.el, Origin::Lacuna { side: k }));
-        raw.push((p.ea, Origin::Spoke { spoke: k, inward: false }));
-        if junctions[start].kind == JKind::Gap {
-            raw.push(side(start, true));
-        }
-        let (b, o) = raw.into_iter().unzip();
-        subs.push(canonical(b, o, 1));
+        raw.push((p.ea, spoke(k, false)));
+        raw.extend(is_gap(start).then(|| ec(start, true)));
+        subs.push(canonical(raw, 1));
     }
-    let pos = |d: &Derived, o: Origin| d.origins.iter().position(|x| *x == o).unwrap_or(0);
-    let adj = (0..s)
-        .map(|k| {
-            let next = (k + 1) % s;
-            Adjacency {
-                first: (k, pos(&subs[k], Origin::Spoke { spoke: next, inward: true })),
-                second: (next, pos(&subs[next], Origin::Spoke { spoke: next, inward: false })),
-            }
+    let pos = |d: &Derived, o: Origin| d.1.iter().position(|x| *x == o).unwrap_or(0);
+    let adj: Vec<Adjacency> = (0..s)
+        .map(|k| (k, (k + 1) % s))
+        .map(|(k, next)| Adjacency {
+            first: (k, pos(&subs[k], spoke(next, true))),
+            second: (next, pos(&subs[next], spoke(next, false))),
         })
         .collect();
     Ok((subs, adj))
 }
 
-fn edge_ok(e: &Edge) -> bool {
-    e.n >= 2 && e.delay >= 1
-}
-
 fn same_face(a: &Face, b: &Face) -> bool {
-    let set = |f: &Face| -> Vec<String> {
-        let mut v: Vec<String> = f.algorithm.iter().map(|i| format!("{i:?}")).collect();
-        v.sort();
-        v.dedup();
-        v
-    };
+    let set =
+        |f: &Face| -> BTreeSet<String> { f.algorithm.iter().map(|i| format!("{i:?}")).collect() };
     a.boundary == b.boundary && a.params == b.params && a.delay == b.delay && set(a) == set(b)
 }
 
+/// Lacunas of one step in halves (SPEC §5): 2 for the centre (d = 1), n−1 per non-delayed `Cn`.
 fn contribution(f: &Face) -> u64 {
-    let centre = if f.delay == 1 { 2 } else { 0 };
-    let gaps = f.boundary.iter().filter(|e| e.kind == Kind::C && e.delay == 1);
-    centre + gaps.map(|e| u64::from(e.n) - 1).sum::<u64>()
+    let gaps = f
+        .boundary
+        .iter()
+        .filter(|e| e.kind == Kind::C && e.delay == 1);
+    2 * u64::from(f.delay == 1) + gaps.map(|e| u64::from(e.n) - 1).sum::<u64>()
 }
 
 fn check_closure(c: &ClosureStep) -> Result<(String, Substitution), String> {
@@ -347,16 +338,21 @@ fn check_closure(c: &ClosureStep) -> Result<(String, Substitution), String> {
         return Err("the start types are missing or out of range".into());
     }
     for (t, rule) in c.types.iter().enumerate() {
-        let f = &rule.face;
-        let p = f.params;
-        if f.boundary.is_empty() || f.delay < 1 || f.algorithm.is_empty() {
-            return Err(format!("type {t}: empty boundary, empty algorithm or delay 0"));
-        }
-        if !f.boundary.iter().chain([&p.ea, &p.el, &p.ec]).all(edge_ok) {
-            return Err(format!("type {t}: an edge with n < 2 or delay 0"));
+        let (f, p) = (&rule.face, rule.face.params);
+        let edges_ok = f
+            .boundary
+            .iter()
+            .chain([&p.ea, &p.el, &p.ec])
+            .all(|e| e.n >= 2 && e.delay >= 1);
+        if f.boundary.is_empty() || f.delay < 1 || f.algorithm.is_empty() || !edges_ok {
+            return Err(format!(
+                "type {t}: empty boundary or algorithm, n < 2 or a delay 0"
+            ));
         }
         if least_rotation(&f.boundary) != 0 {
-            return Err(format!("type {t}: the boundary is not in canonical rotation"));
+            return Err(format!(
+                "type {t}: the boundary is not in canonical rotation"
+            ));
         }
         if let Some(u) = (0..t).find(|&u| same_face(&c.types[u].face, f)) {
             return Err(format!("types {u} and {t} are the same face type"));
@@ -367,57 +363,88 @@ fn check_closure(c: &ClosureStep) -> Result<(String, Substitution), String> {
         let (subs, adj) = subdivide(&rule.face).map_err(|e| format!("type {t}: {e}"))?;
         if subs.len() != rule.subfaces.len() {
             return Err(format!(
-                "type {t}: {} sub-faces listed, the subdivision has {}",
+                "type {t}: {} sub-faces listed, {} derived",
                 rule.subfaces.len(),
                 subs.len()
             ));
         }
         let mut row = BTreeMap::new();
-        for (k, (d, sf)) in subs.iter().zip(&rule.subfaces).enumerate() {
-            let Some(target) = c.types.get(sf.type_index) else {
-                return Err(format!("type {t} sub-face {k}: type {} is not listed", sf.type_index));
+        for (k, ((boundary, origins, delay), sf)) in
+            subs.into_iter().zip(&rule.subfaces).enumerate()
+        {
+            let want = Face {
+                boundary,
+                delay,
+                ..rule.face.clone()
             };
-            let want = Face { boundary: d.boundary.clone(), delay: d.delay, ..rule.face.clone() };
-            if !same_face(&target.face, &want) {
-                return Err(format!(
-                    "type {t} sub-face {k}: listed as type {} but the subdivision gives another face",
-                    sf.type_index
-                ));
+            match c.types.get(sf.type_index) {
+                Some(target) if same_face(&target.face, &want) => {}
+                _ => {
+                    return Err(format!(
+                        "type {t} sub-face {k}: type {} is not the derived face",
+                        sf.type_index
+                    ))
+                }
             }
-            if sf.origins != d.origins {
-                return Err(format!("type {t} sub-face {k}: origins differ from the subdivision"));
+            if sf.origins != origins {
+                return Err(format!(
+                    "type {t} sub-face {k}: origins differ from the derived ones"
+                ));
             }
             *row.entry(sf.type_index).or_insert(0) += 1;
         }
         if adj != rule.adjacencies {
-            return Err(format!("type {t}: adjacencies differ from the subdivision"));
+            return Err(format!(
+                "type {t}: adjacencies differ from the derived ones"
+            ));
         }
         if contribution(&rule.face) != rule.contribution_halves {
-            return Err(format!(
-                "type {t}: contribution {} halves, SPEC §5 gives {}",
-                rule.contribution_halves,
-                contribution(&rule.face)
-            ));
+            return Err(format!("type {t}: contribution is not the one of SPEC §5"));
         }
         identities(c, t).map_err(|e| format!("type {t}: {e}"))?;
         matrix.push(row);
     }
     let mut start = BTreeMap::new();
-    c.start.iter().for_each(|&s| *start.entry(s).or_insert(0) += 1);
+    c.start
+        .iter()
+        .for_each(|&s| *start.entry(s).or_insert(0) += 1);
     let subs: usize = c.types.iter().map(|r| r.subfaces.len()).sum();
     let msg = format!(
-        "{nt} face types closed under subdivision: {subs} sub-faces re-derived (SPEC §3), \
+        "{nt} face type(s) closed under subdivision: {subs} sub-faces re-derived (SPEC §3), \
          every incidence identity and contribution holds"
     );
     let contributions = c.types.iter().map(|r| r.contribution_halves).collect();
-    Ok((msg, Substitution { matrix, contributions, start }))
+    Ok((
+        msg,
+        Substitution {
+            matrix,
+            contributions,
+            start,
+        },
+    ))
 }
 
-/// The incidence identities of type `t`, on the certificate's own data.
+/// The incidence identities of type `t`, on the certificate's own data: every edge has the type
+/// its origin demands; the origins are each sub-edge, each gap side, each spoke side (inward and
+/// outward) and each lacuna side exactly once; adjacencies pair the two sides of every spoke.
 fn identities(c: &ClosureStep, t: usize) -> Result<(), String> {
-    let rule = &c.types[t];
-    let f = &rule.face;
-    let mut seen: BTreeMap<Origin, usize> = BTreeMap::new();
+    let (rule, f) = (&c.types[t], &c.types[t].face);
+    let s = if f.delay == 1 { rule.subfaces.len() } else { 0 };
+    if f.delay >= 2 && (rule.subfaces.len() != 1 || !rule.adjacencies.is_empty()) {
+        return Err("a delayed face has exactly one sub-face and no adjacency".into());
+    }
+    let mut expected: Vec<Origin> = Vec::new();
+    for (edge, e) in f.boundary.iter().enumerate() {
+        let (count, _) = piece_type(e);
+        expected.extend((0..count).map(|piece| Origin::Piece { edge, piece }));
+        for gap in (0..count - 1).filter(|_| e.kind == Kind::C && e.delay == 1) {
+            expected.extend([gap_side((edge, gap), false), gap_side((edge, gap), true)]);
+        }
+    }
+    for j in 0..s {
+        expected.extend([spoke(j, true), spoke(j, false), Origin::Lacuna { side: j }]);
+    }
+    let mut seen: Vec<Origin> = Vec::new();
     for (k, sf) in rule.subfaces.iter().enumerate() {
         let sub = &c.types[sf.type_index].face;
         let delay = if f.delay >= 2 { f.delay - 1 } else { 1 };
@@ -425,7 +452,6 @@ fn identities(c: &ClosureStep, t: usize) -> Result<(), String> {
             return Err(format!("sub-face {k} has the wrong delay, E or length"));
         }
         for (pos, (o, ty)) in sf.origins.iter().zip(&sub.boundary).enumerate() {
-            *seen.entry(*o).or_insert(0) += 1;
             let want = match *o {
                 Origin::Piece { edge, piece } => match f.boundary.get(edge).map(piece_type) {
                     Some((count, ty)) if piece < count => ty,
@@ -436,54 +462,45 @@ fn identities(c: &ClosureStep, t: usize) -> Result<(), String> {
                 Origin::GapSide { .. } => f.params.ec,
             };
             if want != *ty {
-                return Err(format!("sub-face {k} position {pos}: edge type differs from its origin"));
+                return Err(format!(
+                    "sub-face {k} position {pos}: edge type differs from its origin"
+                ));
             }
         }
+        seen.extend(&sf.origins);
     }
-    let mut expected: BTreeSet<Origin> = BTreeSet::new();
-    for (edge, e) in f.boundary.iter().enumerate() {
-        let (count, _) = piece_type(e);
-        expected.extend((0..count).map(|piece| Origin::Piece { edge, piece }));
-        if e.kind == Kind::C && e.delay == 1 {
-            for gap in 0..count - 1 {
-                expected.insert(Origin::GapSide { edge, gap, after: false });
-                expected.insert(Origin::GapSide { edge, gap, after: true });
-            }
-        }
-    }
-    let s = if f.delay == 1 { rule.subfaces.len() } else { 0 };
-    for j in 0..s {
-        expected.insert(Origin::Spoke { spoke: j, inward: true });
-        expected.insert(Origin::Spoke { spoke: j, inward: false });
-        expected.insert(Origin::Lacuna { side: j });
-    }
-    if f.delay >= 2 && (rule.subfaces.len() != 1 || !rule.adjacencies.is_empty()) {
-        return Err("a delayed face has exactly one sub-face and no adjacency".into());
-    }
-    if let Some((o, n)) = seen.iter().find(|(_, &n)| n != 1) {
-        return Err(format!("{o:?} used {n} times"));
-    }
-    if let Some(o) = expected.iter().find(|o| !seen.contains_key(o)) {
-        return Err(format!("{o:?} is missing"));
-    }
-    if let Some(o) = seen.keys().find(|o| !expected.contains(o)) {
-        return Err(format!("{o:?} does not exist in the parent"));
+    expected.sort();
+    seen.sort();
+    if seen != expected {
+        return Err(
+            "the origins are not each sub-edge, gap side, spoke side and lacuna side once".into(),
+        );
     }
     let origin = |(f, p): (usize, usize)| rule.subfaces.get(f).and_then(|x| x.origins.get(p));
     let mut paired = BTreeSet::new();
     for a in &rule.adjacencies {
         match (origin(a.first), origin(a.second)) {
             (
-                Some(Origin::Spoke { spoke: x, inward: true }),
-                Some(Origin::Spoke { spoke: y, inward: false }),
-            ) if x == y && paired.insert(*x) => {}
-            _ => return Err(format!("adjacency {a:?} does not pair the two sides of a spoke")),
+                Some(&Origin::Spoke {
+                    spoke: j,
+                    inward: true,
+                }),
+                Some(&y),
+            ) if y == spoke(j, false) && paired.insert(j) => {}
+            _ => {
+                return Err(format!(
+                    "adjacency {a:?} does not pair the two sides of a spoke"
+                ))
+            }
         }
     }
-    if paired.len() != s {
-        return Err(format!("{} spokes paired by adjacencies, {s} spokes", paired.len()));
+    match paired.len() == s {
+        true => Ok(()),
+        false => Err(format!(
+            "{} of {s} spokes paired by adjacencies",
+            paired.len()
+        )),
     }
-    Ok(())
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -491,10 +508,11 @@ fn identities(c: &ClosureStep, t: usize) -> Result<(), String> {
 // ---------------------------------------------------------------------------------------------
 
 fn rat(s: &str) -> Result<Q, String> {
-    s.parse::<Q>().map_err(|_| format!("`{s}` is not a rational"))
+    s.parse::<Q>()
+        .map_err(|_| format!("`{s}` is not a rational"))
 }
 
-fn parse_rows(rows: &[Row], unknowns: usize) -> Result<Vec<(Vec<(usize, Q)>, Q)>, String> {
+fn parse_rows(rows: &[Row], unknowns: usize) -> Result<Vec<Equation>, String> {
     rows.iter()
         .enumerate()
         .map(|(i, r)| {
@@ -520,7 +538,10 @@ fn sparse(v: &[(usize, String)], n: usize, what: &str) -> Result<BTreeMap<usize,
 }
 
 fn dot(terms: &[(usize, Q)], x: &BTreeMap<usize, Q>) -> Q {
-    terms.iter().filter_map(|(v, c)| x.get(v).map(|y| c * y)).sum()
+    terms
+        .iter()
+        .filter_map(|(v, c)| x.get(v).map(|y| c * y))
+        .sum()
 }
 
 fn check_solution(s: &SolutionStep) -> Checked {
@@ -534,7 +555,11 @@ fn check_solution(s: &SolutionStep) -> Checked {
         return Err("free unknowns not increasing or out of range".into());
     }
     if s.basis.len() != s.free.len() {
-        return Err(format!("{} basis vectors for {} free unknowns", s.basis.len(), s.free.len()));
+        return Err(format!(
+            "{} basis vectors for {} free unknowns",
+            s.basis.len(),
+            s.free.len()
+        ));
     }
     let mut rows_of: Vec<Vec<usize>> = vec![Vec::new(); n];
     for (i, (t, _)) in rows.iter().enumerate() {
@@ -545,11 +570,16 @@ fn check_solution(s: &SolutionStep) -> Checked {
         for (j, f) in s.free.iter().enumerate() {
             let want = if j == k { Q::one() } else { Q::zero() };
             if b.get(f).cloned().unwrap_or_else(Q::zero) != want {
-                return Err(format!("basis vector {k} is not {want} at free unknown {f}"));
+                return Err(format!(
+                    "basis vector {k} is not {want} at free unknown {f}"
+                ));
             }
         }
         let touched: BTreeSet<usize> = b.keys().flat_map(|v| rows_of[*v].iter().copied()).collect();
-        if let Some(i) = touched.into_iter().find(|&i| !dot(&rows[i].0, &b).is_zero()) {
+        if let Some(i) = touched
+            .into_iter()
+            .find(|&i| !dot(&rows[i].0, &b).is_zero())
+        {
             return Err(format!("basis vector {k} fails homogeneous row {i}"));
         }
     }
@@ -574,7 +604,7 @@ fn check_solution(s: &SolutionStep) -> Checked {
 /// Shows the pivot minor nonsingular: eliminating its rows in the listed order modulo a prime
 /// gives an upper-triangular matrix with nonzero diagonal. Returns the prime that worked.
 fn nonsingular_minor(
-    rows: &[(Vec<(usize, Q)>, Q)],
+    rows: &[Equation],
     pivots: &[(usize, usize)],
     n: usize,
 ) -> Result<u64, String> {
@@ -658,7 +688,10 @@ fn check_conflict(c: &ConflictStep) -> Checked {
         return Err(format!("the combination leaves {a}·x{v}"));
     }
     if rhs != rat(&c.constant)? || rhs.is_zero() {
-        return Err(format!("the combination gives 0 = {rhs}, the certificate claims {}", c.constant));
+        return Err(format!(
+            "the combination gives 0 = {rhs}, the certificate claims {}",
+            c.constant
+        ));
     }
     Ok(format!(
         "{} of {} rows combine to 0 = {rhs}: no solution",
@@ -688,15 +721,24 @@ fn classes(m: &[BTreeMap<usize, u64>], start: &[usize]) -> Vec<ClassClaim> {
         seen
     };
     let mut reached = vec![false; n];
-    start.iter().for_each(|&s| reach(s).iter().enumerate().for_each(|(t, &r)| reached[t] |= r));
-    let from: Vec<Vec<bool>> = (0..n).map(|t| if reached[t] { reach(t) } else { vec![] }).collect();
+    start.iter().for_each(|&s| {
+        reach(s)
+            .iter()
+            .enumerate()
+            .for_each(|(t, &r)| reached[t] |= r)
+    });
+    let from: Vec<Vec<bool>> = (0..n)
+        .map(|t| if reached[t] { reach(t) } else { vec![] })
+        .collect();
     let mut out: Vec<ClassClaim> = Vec::new();
     let mut placed = vec![false; n];
     for t in (0..n).filter(|&t| reached[t]) {
         if placed[t] {
             continue;
         }
-        let members: Vec<usize> = (t..n).filter(|&s| reached[s] && from[t][s] && from[s][t]).collect();
+        let members: Vec<usize> = (t..n)
+            .filter(|&s| reached[s] && from[t][s] && from[s][t])
+            .collect();
         members.iter().for_each(|&s| placed[s] = true);
         // Period: gcd of level(u) + 1 − level(v) over arcs inside the class (BFS levels).
         let inside = |s: &usize| members.binary_search(s).is_ok();
@@ -716,7 +758,10 @@ fn classes(m: &[BTreeMap<usize, u64>], start: &[usize]) -> Vec<ClassClaim> {
             }
         }
         let cyclic = members.len() > 1 || m[t].contains_key(&t);
-        out.push(ClassClaim { members, period: cyclic.then_some(g.unsigned_abs()) });
+        out.push(ClassClaim {
+            members,
+            period: cyclic.then_some(g.unsigned_abs()),
+        });
     }
     out
 }
@@ -771,7 +816,12 @@ fn add(a: &[Q], b: &[Q]) -> P {
 }
 
 fn sign_changes(chain: &[P], x: &Q) -> usize {
-    let signs: Vec<bool> = chain.iter().map(|p| eval(p, x)).filter(|v| !v.is_zero()).map(|v| v.is_positive()).collect();
+    let signs: Vec<bool> = chain
+        .iter()
+        .map(|p| eval(p, x))
+        .filter(|v| !v.is_zero())
+        .map(|v| v.is_positive())
+        .collect();
     signs.windows(2).filter(|w| w[0] != w[1]).count()
 }
 
@@ -785,7 +835,12 @@ struct Root {
 impl Root {
     /// Confirms that `[lo, hi]` isolates exactly one root of `p` (Sturm, `p` squarefree).
     fn isolate(poly: &[String], lo: &str, hi: &str) -> Result<Root, String> {
-        let p = trim(poly.iter().map(|c| c.parse::<BigInt>().map(Q::from_integer)).collect::<Result<_, _>>().map_err(|_| "ρ's polynomial has a non-integer coefficient".to_string())?);
+        let p = trim(
+            poly.iter()
+                .map(|c| c.parse::<BigInt>().map(Q::from_integer))
+                .collect::<Result<_, _>>()
+                .map_err(|_| "ρ's polynomial has a non-integer coefficient".to_string())?,
+        );
         let (lo, hi) = (rat(lo)?, rat(hi)?);
         if p.len() < 2 {
             return Err("ρ's polynomial is constant".into());
@@ -794,13 +849,22 @@ impl Root {
             let root = -&p[0] / &p[1];
             return match lo == root && hi == root {
                 true => Ok(Root { p, lo, hi }),
-                false => Err(format!("the interval [{lo}, {hi}] is not the rational root {root}")),
+                false => Err(format!(
+                    "the interval [{lo}, {hi}] is not the rational root {root}"
+                )),
             };
         }
         if lo >= hi || eval(&p, &lo).is_zero() || eval(&p, &hi).is_zero() {
             return Err(format!("[{lo}, {hi}] is empty or ends at a root"));
         }
-        let mut chain = vec![p.clone(), trim((1..p.len()).map(|i| &p[i] * Q::from_integer(i.into())).collect())];
+        let mut chain = vec![
+            p.clone(),
+            trim(
+                (1..p.len())
+                    .map(|i| &p[i] * Q::from_integer(i.into()))
+                    .collect(),
+            ),
+        ];
         while chain.last().is_some_and(|q| q.len() > 1) {
             let r = rem(&chain[chain.len() - 2], &chain[chain.len() - 1]);
             if r.is_empty() {
@@ -810,7 +874,9 @@ impl Root {
         }
         match sign_changes(&chain, &lo) - sign_changes(&chain, &hi) {
             1 => Ok(Root { p, lo, hi }),
-            k => Err(format!("[{lo}, {hi}] holds {k} roots of ρ's polynomial, not 1")),
+            k => Err(format!(
+                "[{lo}, {hi}] holds {k} roots of ρ's polynomial, not 1"
+            )),
         }
     }
 
@@ -826,7 +892,13 @@ impl Root {
         for _ in 0..4000 {
             if lo == hi || eval(&self.p, &lo).is_zero() {
                 let v = eval(&q, &lo);
-                return Some(if v.is_zero() { 0 } else if v.is_positive() { 1 } else { -1 });
+                return Some(if v.is_zero() {
+                    0
+                } else if v.is_positive() {
+                    1
+                } else {
+                    -1
+                });
             }
             // Interval Horner: [a, b] ∋ q(x) for every x in [lo, hi].
             let (mut a, mut b) = (Q::zero(), Q::zero());
@@ -858,7 +930,10 @@ impl Root {
 fn check_ratio(r: &RatioStep, closure: Option<&Substitution>) -> Result<(bool, String), String> {
     let n = r.matrix.len();
     if r.contribution_halves.len() != n {
-        return Err(format!("{} contributions for {n} types", r.contribution_halves.len()));
+        return Err(format!(
+            "{} contributions for {n} types",
+            r.contribution_halves.len()
+        ));
     }
     let mut m: Vec<BTreeMap<usize, u64>> = vec![BTreeMap::new(); n];
     for (t, row) in r.matrix.iter().enumerate() {
@@ -882,29 +957,41 @@ fn check_ratio(r: &RatioStep, closure: Option<&Substitution>) -> Result<(bool, S
         return Err("no start type".into());
     }
     let tied = match closure {
-        Some(c) if c.matrix == m && c.contributions == r.contribution_halves && c.start == start => {
+        Some(c)
+            if c.matrix == m && c.contributions == r.contribution_halves && c.start == start =>
+        {
             "the closure's substitution"
         }
-        Some(_) => return Err("matrix, contributions or start differ from the closure step".into()),
+        Some(_) => {
+            return Err("matrix, contributions or start differ from the closure step".into())
+        }
         None => "the given substitution (no closure step to tie it to)",
     };
     let start_types: Vec<usize> = start.keys().copied().collect();
     let cls = classes(&m, &start_types);
     if cls != r.classes {
-        return Err("the classes or periods differ from the checker's own (BFS, gcd of levels)".into());
+        return Err(
+            "the classes or periods differ from the checker's own (BFS, gcd of levels)".into(),
+        );
     }
     let proof = match &r.claim {
         RatioClaim::NotCovered { reason, verdict } => {
-            return Ok((false, format!(
-                "{} classes and their periods checked for {tied}; the limit is NOT certified \
+            return Ok((
+                false,
+                format!(
+                "{} class(es) and their periods re-derived for {tied}; the limit is NOT certified \
                  (outside certificate v1: {reason}); lacuna's uncertified verdict: {verdict}",
                 cls.len()
-            )))
+            ),
+            ))
         }
         RatioClaim::Limit(p) => p,
     };
     let verdict = check_limit(&m, &r.contribution_halves, &cls, proof)?;
-    Ok((true, format!("{} classes checked for {tied}; {verdict}", cls.len())))
+    Ok((
+        true,
+        format!("{} class(es) re-derived for {tied}; {verdict}", cls.len()),
+    ))
 }
 
 fn check_limit(
@@ -914,7 +1001,9 @@ fn check_limit(
     proof: &LimitProof,
 ) -> Result<String, String> {
     let root = Root::isolate(&proof.rho.poly, &proof.rho.lo, &proof.rho.hi)?;
-    let dom = cls.get(proof.dominant).ok_or("the dominant class index is out of range")?;
+    let dom = cls
+        .get(proof.dominant)
+        .ok_or("the dominant class index is out of range")?;
     if dom.period != Some(1) {
         return Err("the dominant class is not primitive (period ≠ 1)".into());
     }
@@ -941,7 +1030,10 @@ fn check_limit(
     let mut yb: BTreeMap<usize, P> = BTreeMap::new();
     for (t, yt) in &y {
         for (s, k) in &m[*t] {
-            let term: P = yt.iter().map(|a| a * Q::from_integer((*k).into())).collect();
+            let term: P = yt
+                .iter()
+                .map(|a| a * Q::from_integer((*k).into()))
+                .collect();
             let e = ym.entry(*s).or_default();
             *e = add(e, &term);
             if dom.members.contains(t) && dom.members.contains(s) {
@@ -964,7 +1056,12 @@ fn check_limit(
         let want = if dom.members.contains(t) { 1 } else { 0 };
         match root.sign(yt) {
             Some(s) if s >= want => {}
-            _ => return Err(format!("y at type {t} is not shown {}", ["≥ 0", "> 0"][want as usize])),
+            _ => {
+                return Err(format!(
+                    "y at type {t} is not shown {}",
+                    ["≥ 0", "> 0"][want as usize]
+                ))
+            }
         }
     }
     if let Some(t) = dom.members.iter().find(|t| !y.contains_key(t)) {
@@ -973,14 +1070,25 @@ fn check_limit(
     // Collatz–Wielandt: B_c·x < lo·x with x > 0 gives ρ(B_c) < lo ≤ ρ.
     let mut bounded = BTreeSet::new();
     for (k, xs) in &proof.bounds {
-        let class = cls.get(*k).filter(|_| *k != proof.dominant && bounded.insert(*k));
-        let class = class.ok_or(format!("bound for class {k}: repeated, dominant or out of range"))?;
+        let class = cls
+            .get(*k)
+            .filter(|_| *k != proof.dominant && bounded.insert(*k));
+        let class = class.ok_or(format!(
+            "bound for class {k}: repeated, dominant or out of range"
+        ))?;
         let xs: Vec<Q> = xs.iter().map(|s| rat(s)).collect::<Result<_, _>>()?;
         if xs.len() != class.members.len() || xs.iter().any(|v| !v.is_positive()) {
-            return Err(format!("bound for class {k}: not a positive vector on its members"));
+            return Err(format!(
+                "bound for class {k}: not a positive vector on its members"
+            ));
         }
         for (i, t) in class.members.iter().enumerate() {
-            let bx: Q = class.members.iter().zip(&xs).map(|(s, v)| v * Q::from_integer(m[*t].get(s).copied().unwrap_or(0).into())).sum();
+            let bx: Q = class
+                .members
+                .iter()
+                .zip(&xs)
+                .map(|(s, v)| v * Q::from_integer(m[*t].get(s).copied().unwrap_or(0).into()))
+                .sum();
             if bx >= &root.lo * &xs[i] {
                 return Err(format!("bound for class {k}: (B·x)_{t} ≥ lo·x_{t}"));
             }
@@ -992,7 +1100,12 @@ fn check_limit(
     // R·(y·c + (ρ−1)·y·1) = y·c in Q[x]/(p).
     let half = Q::new(BigInt::one(), BigInt::from(2));
     let yc = y.iter().fold(P::new(), |acc, (t, v)| {
-        add(&acc, &v.iter().map(|a| a * &half * Q::from_integer(c[*t].into())).collect::<P>())
+        add(
+            &acc,
+            &v.iter()
+                .map(|a| a * &half * Q::from_integer(c[*t].into()))
+                .collect::<P>(),
+        )
     });
     let y1 = y.values().fold(P::new(), |acc, v| add(&acc, v));
     let den = add(&yc, &rem(&mul(&y1, &[-Q::one(), Q::one()]), &root.p));
@@ -1000,12 +1113,23 @@ fn check_limit(
     if rem(&mul(&ratio, &den), &root.p) != yc {
         return Err("R·(y·c + (ρ−1)·y·1) ≠ y·c: the claimed limit is wrong".into());
     }
-    let shown = |v: &[Q]| v.iter().map(|q| q.to_string()).collect::<Vec<_>>().join(", ");
+    let shown = |v: &[Q]| {
+        v.iter()
+            .map(|q| q.to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let rho = match root.p.len() {
+        2 => format!("ρ = {} (rational root of its polynomial)", root.lo),
+        _ => format!(
+            "ρ isolated in ({}, {}) by Sturm's theorem",
+            root.lo, root.hi
+        ),
+    };
     Ok(format!(
-        "ρ isolated in [{}, {}] (Sturm), simple and strictly dominant (Perron–Frobenius, \
-         Collatz–Wielandt), dominant class primitive: R exists and equals ({}) on the power basis",
-        root.lo,
-        root.hi,
+        "{rho}, a simple, strictly dominant eigenvalue (Perron–Frobenius eigenvector, \
+         Collatz–Wielandt bounds), dominant class primitive: R exists and equals ({}) on the \
+         power basis 1, ρ, …",
         shown(&ratio)
     ))
 }

@@ -33,6 +33,10 @@ mod report;
 mod rule;
 mod subdivision;
 
+pub mod certificate;
+pub mod certify;
+pub mod checker;
+
 pub use automaton::{
     solve_automaton, Automaton, Constraint, ConstraintKind, Factor, Linearized, OpKind, Operator,
     RowOrigin, SolveReport, State,

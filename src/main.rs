@@ -57,6 +57,17 @@ enum Command {
         /// Print JSON.
         #[arg(long)]
         json: bool,
+        /// Write the certificate of every verdict (JSON) to this file.
+        #[arg(long, value_name = "OUT.json")]
+        certificate: Option<std::path::PathBuf>,
+    },
+    /// Run only the independent checker on a certificate; exit 0 when every step is proved.
+    Check {
+        /// The certificate file (JSON).
+        certificate: std::path::PathBuf,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
     },
     /// The closure: every face type with its sub-faces and contribution.
     Closure {
@@ -146,6 +157,7 @@ fn main() -> ExitCode {
             | Command::Counts { json: true, .. }
             | Command::Solve { json: true, .. }
             | Command::Ratio { json: true, .. }
+            | Command::Check { json: true, .. }
             | Command::Census { json: true, .. }
             | Command::Library { json: true }
     );
@@ -189,6 +201,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             input,
             levels,
             json,
+            certificate,
         } => {
             limits.check_level(levels)?;
             let input = load_input(input.as_deref().unwrap_or("F0"))?;
@@ -199,7 +212,47 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             } else {
                 out(&report.to_text());
             }
+            if let Some(path) = &certificate {
+                let io = |e: String| Error::Io {
+                    path: path.display().to_string(),
+                    reason: e,
+                };
+                match &closure {
+                    Closure::Closed(ts) => {
+                        let cert = lacuna::certify::certificate_for(
+                            &input.name,
+                            ts,
+                            lacuna::GenOptions::default(),
+                        )
+                        .map_err(|e| io(e.to_string()))?;
+                        std::fs::write(path, cert.to_json()).map_err(|e| io(e.to_string()))?;
+                        if !json {
+                            out(&format!("certificate written to {}\n", path.display()));
+                        }
+                    }
+                    Closure::Runaway(_) => {
+                        eprintln!("no certificate written: the closure did not close (certificate v1 has no runaway step)")
+                    }
+                }
+            }
             Ok(if report.verified {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(EXIT_FAILED)
+            })
+        }
+        Command::Check { certificate, json } => {
+            let text = std::fs::read_to_string(&certificate).map_err(|e| Error::Io {
+                path: certificate.display().to_string(),
+                reason: e.to_string(),
+            })?;
+            let report = lacuna::checker::check_json(&text);
+            if json {
+                print_json(&report.to_json());
+            } else {
+                out(&report.to_text());
+            }
+            Ok(if report.all_proved() {
                 ExitCode::SUCCESS
             } else {
                 ExitCode::from(EXIT_FAILED)
