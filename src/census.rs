@@ -46,9 +46,11 @@ pub struct CensusReport {
     pub distribution: BTreeMap<usize, usize>,
     /// The face with the largest closure, and its number of types.
     pub largest: Option<(String, usize)>,
-    /// Worker threads used.
+    /// Worker threads used (not in the JSON, which is identical for every thread count).
+    #[serde(skip)]
     pub threads: usize,
-    /// Wall-clock seconds (not part of any verdict).
+    /// Wall-clock seconds (not part of any verdict, not in the JSON).
+    #[serde(skip)]
     pub elapsed_seconds: f64,
 }
 

@@ -1,0 +1,18 @@
+//! Invariant: any text read as an automaton file gives a coded error, or an automaton whose
+//! linear system builds (or fails with a coded error) and solves to a result that re-checks.
+#![no_main]
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    let Ok(text) = std::str::from_utf8(data) else { return };
+    let src = lacuna::Source { name: "fuzz".into(), text: text.into() };
+    let Ok(a) = lacuna::parse_automaton(&src) else { return };
+    let Ok(lin) = a.linearize() else { return };
+    if lin.system.unknowns > 2_000 || lin.system.rows.len() > 4_000 {
+        return;
+    }
+    match lacuna::solve(&lin.system) {
+        lacuna::Solution::Consistent(s) => s.check(&lin.system).expect("solution re-checks"),
+        lacuna::Solution::Inconsistent(c) => c.check(&lin.system).expect("conflict re-checks"),
+    }
+});
