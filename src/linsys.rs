@@ -300,6 +300,10 @@ fn eliminate(mut rows: Vec<CRow>, ncols: usize, track: bool) -> Result<Reduced, 
                 }
                 active[j] = false;
             } else {
+                // Fill-in can make a row longer than every row was at the start.
+                if len >= buckets.len() {
+                    buckets.resize(len + 1, Vec::new());
+                }
                 buckets[len].push(j as u32);
                 low = low.min(len);
             }
