@@ -166,6 +166,15 @@ impl Automaton {
         self.operators.len() - 1
     }
 
+    /// The number of unknown entries (of the unknown operators), known before linearising.
+    pub fn unknown_count(&self) -> usize {
+        self.operators
+            .iter()
+            .filter(|o| o.value.is_none())
+            .map(|o| self.states[o.to].dim * self.states[o.from].dim)
+            .sum()
+    }
+
     /// The shape (rows, cols) of a factor.
     fn shape(&self, f: &Factor) -> (usize, usize) {
         match f {

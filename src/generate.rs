@@ -313,8 +313,10 @@ pub fn degeneracies(
 pub fn solve_closure(
     ts: &TypeSet,
     opts: GenOptions,
+    limits: &crate::limits::Limits,
 ) -> crate::error::Result<crate::automaton::SolveReport> {
     let g = automaton_of(ts, opts);
+    limits.check_unknowns(g.automaton.unknown_count())?;
     let (mut report, lin, solution) = crate::automaton::solve_automaton(&g.automaton)?;
     if let crate::linsys::Solution::Consistent(space) = &solution {
         report.degenerate = degeneracies(ts, &g, &lin.offsets, space);

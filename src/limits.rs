@@ -18,6 +18,8 @@ pub struct Limits {
     pub max_delay: u32,
     /// Maximum number of certified decimal digits (`--max-digits`).
     pub max_digits: usize,
+    /// Maximum number of unknowns of a constraint system (`--max-unknowns`).
+    pub max_unknowns: usize,
 }
 
 impl Default for Limits {
@@ -29,6 +31,7 @@ impl Default for Limits {
             max_subedges: 64,
             max_delay: 64,
             max_digits: 10_000,
+            max_unknowns: 20_000_000,
         }
     }
 }
@@ -82,6 +85,19 @@ impl Limits {
                 value: digits.to_string(),
                 limit: self.max_digits.to_string(),
                 flag: "--max-digits",
+            });
+        }
+        Ok(())
+    }
+
+    /// Checks the size of a constraint system before it is built and solved.
+    pub fn check_unknowns(&self, unknowns: usize) -> Result<()> {
+        if unknowns > self.max_unknowns {
+            return Err(Error::Limit {
+                what: "the number of unknowns",
+                value: unknowns.to_string(),
+                limit: self.max_unknowns.to_string(),
+                flag: "--max-unknowns",
             });
         }
         Ok(())

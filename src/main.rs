@@ -43,6 +43,9 @@ struct LimitArgs {
     /// Maximum number of certified digits.
     #[arg(long, global = true, default_value_t = Limits::default().max_digits)]
     max_digits: usize,
+    /// Maximum number of unknowns of a constraint system.
+    #[arg(long, global = true, default_value_t = Limits::default().max_unknowns)]
+    max_unknowns: usize,
 }
 
 #[derive(Subcommand)]
@@ -195,6 +198,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
         max_subedges: l.max_subedges,
         max_delay: l.max_delay,
         max_digits: l.max_digits,
+        max_unknowns: l.max_unknowns,
     };
     match cli.command {
         Command::Verify {
@@ -206,7 +210,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             limits.check_level(levels)?;
             let input = load_input(input.as_deref().unwrap_or("F0"))?;
             let closure = Closure::of(&input.faces(), &limits)?;
-            let report = verify_report(&input, &closure, levels);
+            let report = verify_report(&input, &closure, levels, &limits)?;
             if json {
                 print_json(&report);
             } else {
@@ -326,11 +330,12 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             }
             let report = match lacuna::load_any(&input)? {
                 lacuna::Loaded::Automaton { automaton, .. } => {
+                    limits.check_unknowns(automaton.unknown_count())?;
                     lacuna::solve_automaton(&automaton)?.0
                 }
                 lacuna::Loaded::Faces(input) => {
                     let ts = lacuna::close_or_error(&input.faces(), &limits)?;
-                    lacuna::solve_closure(&ts, lacuna::GenOptions { degree })?
+                    lacuna::solve_closure(&ts, lacuna::GenOptions { degree }, &limits)?
                 }
             };
             if json {

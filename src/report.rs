@@ -160,10 +160,15 @@ pub fn type_rows(ts: &TypeSet) -> Vec<TypeRow> {
 }
 
 /// Runs the topology checks and builds the report.
-pub fn verify_report(input: &Input, closure: &Closure, levels: u64) -> VerifyReport {
+pub fn verify_report(
+    input: &Input,
+    closure: &Closure,
+    levels: u64,
+    limits: &crate::limits::Limits,
+) -> crate::error::Result<VerifyReport> {
     let mut report = closure_report(input, closure);
     let Closure::Closed(ts) = closure else {
-        return report;
+        return Ok(report);
     };
     report.counts = crate::count::counts(ts, levels);
     if ts.start.len() > 1 {
@@ -182,8 +187,11 @@ pub fn verify_report(input: &Input, closure: &Closure, levels: u64) -> VerifyRep
         Ok(r) => report.ratio = Some(r),
         Err(e) => report.structure_error = Some(e.to_string()),
     }
-    let solver_ok = match crate::generate::solve_closure(ts, crate::generate::GenOptions::default())
-    {
+    let solver = crate::generate::solve_closure(ts, crate::generate::GenOptions::default(), limits);
+    if let Err(e @ crate::error::Error::Limit { .. }) = solver {
+        return Err(e);
+    }
+    let solver_ok = match solver {
         Ok(r) => {
             let ok = r.ok();
             report.solver = Some(r);
@@ -195,7 +203,7 @@ pub fn verify_report(input: &Input, closure: &Closure, levels: u64) -> VerifyRep
         }
     };
     report.verified = report.structure_error.is_none() && solver_ok;
-    report
+    Ok(report)
 }
 
 /// The closure part of the checks only: closed or runaway, the stated bound, the structural

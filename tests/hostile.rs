@@ -98,6 +98,9 @@ fn absurd_levels_and_digits_are_refused_before_the_work() {
         vec!["verify", "F0", "--levels", "1000000000"],
         vec!["ratio", "F0", "--digits", "1000000000"],
         vec!["solve", "F0", "--degree", "99"],
+        vec!["solve", "F0", "--max-unknowns", "100"],
+        vec!["verify", "F0", "--max-unknowns", "100"],
+        vec!["solve", "spec-edge", "--max-unknowns", "10"],
     ] {
         let (code, err) = run(&args);
         assert_eq!(code, 2, "{args:?}: {err}");

@@ -15,7 +15,10 @@ fn solve_file(name: &str) -> (Solution, lacuna::LinearSystem) {
 /// inconsistent systems with huge coefficients; the conflict must verify.
 #[test]
 fn solver_fill_in_longer_than_every_starting_row() {
-    for name in ["solver-fill-in-longer-row-1.aut", "solver-fill-in-longer-row-2.aut"] {
+    for name in [
+        "solver-fill-in-longer-row-1.aut",
+        "solver-fill-in-longer-row-2.aut",
+    ] {
         let (sol, sys) = solve_file(name);
         match sol {
             Solution::Inconsistent(c) => c.check(&sys).unwrap_or_else(|e| panic!("{name}: {e}")),

@@ -187,7 +187,7 @@ fn itertools4() -> impl Iterator<Item = (usize, usize, usize, usize)> {
 fn generated_f0_system_is_consistent_and_not_degenerate() {
     let input = lacuna::load_input("F0").unwrap();
     let ts = lacuna::close_or_error(&input.faces(), &lacuna::Limits::default()).unwrap();
-    let r = solve_closure(&ts, GenOptions::default()).unwrap();
+    let r = solve_closure(&ts, GenOptions::default(), &lacuna::Limits::default()).unwrap();
     assert!(r.consistent, "{}", r.to_text(false));
     assert!(r.degeneracy_checked);
     assert!(r.degenerate.is_empty(), "{:?}", r.degenerate);
