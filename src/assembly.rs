@@ -11,7 +11,7 @@
 //! opposite directions (both boundaries are counter-clockwise). Edge indices refer to the
 //! boundary as written.
 
-use crate::error::{Error, Result, Source, Span};
+use crate::error::{Error, Result, Source};
 use crate::face::Face;
 use crate::rule::Algorithm;
 use serde::Serialize;
@@ -37,19 +37,6 @@ pub struct Assembly {
 /// A reference `face NAME edge I` as written: (name, edge, column).
 type EdgeRef = (String, usize, usize);
 
-fn at(code: &'static str, msg: String, line: usize, col: usize, len: usize, src: &Source) -> Error {
-    Error::syntax(
-        code,
-        msg,
-        Span {
-            line,
-            col,
-            len: len.max(1),
-        },
-        Some(src),
-    )
-}
-
 impl Assembly {
     /// Parses lacuna's assembly format.
     pub fn parse(src: &Source) -> Result<Assembly> {
@@ -67,9 +54,9 @@ impl Assembly {
             let col0 = line[..lead].chars().count() + 1;
             if let Some(rest) = trimmed.strip_prefix("rule ") {
                 let Some((name, def)) = rest.split_once('=') else {
-                    return Err(at(
+                    return Err(Error::at(
                         "E0201",
-                        "expected `rule NAME = {…}`".into(),
+                        "expected `rule NAME = {…}`",
                         ln,
                         col0,
                         trimmed.len(),
@@ -82,7 +69,7 @@ impl Assembly {
                         .chars()
                         .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
                 if !valid || ["A1", "A2", "A3"].contains(&name.as_str()) {
-                    return Err(at(
+                    return Err(Error::at(
                         "E0201",
                         format!("invalid rule name `{name}`"),
                         ln,
@@ -99,7 +86,7 @@ impl Assembly {
                 let (head, notation) = trimmed.split_once(':').expect("checked");
                 let name = head["face ".len()..].trim().to_string();
                 if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
-                    return Err(at(
+                    return Err(Error::at(
                         "E0201",
                         format!("invalid face name `{name}`"),
                         ln,
@@ -109,7 +96,7 @@ impl Assembly {
                     ));
                 }
                 if faces.iter().any(|(n, _)| *n == name) {
-                    return Err(at(
+                    return Err(Error::at(
                         "E0202",
                         format!("face `{name}` is defined twice"),
                         ln,
@@ -129,7 +116,7 @@ impl Assembly {
                 let b = parse_ref(r, ln, rcol, src)?;
                 links.push((ln, [a, b]));
             } else {
-                return Err(at(
+                return Err(Error::at(
                     "E0201",
                     format!("expected `face NAME: …`, `rule NAME = …` or `face A edge I ~ face B edge J`, found `{trimmed}`"),
                     ln,
@@ -143,7 +130,7 @@ impl Assembly {
         for (ln, [a, b]) in links {
             let resolve = |(name, edge, col): &EdgeRef| -> Result<(usize, usize)> {
                 let Some(f) = faces.iter().position(|(n, _)| n == name) else {
-                    return Err(at(
+                    return Err(Error::at(
                         "E0203",
                         format!("no face named `{name}`"),
                         ln,
@@ -159,9 +146,9 @@ impl Assembly {
             shared.push((ln, a.2, SharedEdge { a: ra, b: rb }));
         }
         if faces.is_empty() {
-            return Err(at(
+            return Err(Error::at(
                 "E0207",
-                "no face defined (expected `face 0: EDGES | Ea El Ec | A`)".into(),
+                "no face defined (expected `face 0: EDGES | Ea El Ec | A`)",
                 1,
                 1,
                 1,
@@ -190,9 +177,9 @@ impl Assembly {
                 .nth(ln - 1)
                 .map_or(1, |l| l.trim_end().chars().count() + 1 - col);
             if s.a == s.b {
-                return Err(at(
+                return Err(Error::at(
                     "E0208",
-                    "an edge cannot be shared with itself".into(),
+                    "an edge cannot be shared with itself",
                     ln,
                     col,
                     len,
@@ -202,7 +189,7 @@ impl Assembly {
             for &(f, e) in [&s.a, &s.b] {
                 let (name, face) = &self.faces[f];
                 if e >= face.boundary.len() {
-                    return Err(at(
+                    return Err(Error::at(
                         "E0204",
                         format!(
                             "face `{name}` has {} edges; edge {e} does not exist",
@@ -215,7 +202,7 @@ impl Assembly {
                     ));
                 }
                 if let Some(prev) = used.insert((f, e), ln) {
-                    return Err(at(
+                    return Err(Error::at(
                         "E0206",
                         format!("edge {e} of face `{name}` is already shared (line {prev})"),
                         ln,
@@ -228,7 +215,7 @@ impl Assembly {
             let ta = self.faces[s.a.0].1.boundary[s.a.1];
             let tb = self.faces[s.b.0].1.boundary[s.b.1];
             if ta != tb {
-                return Err(at(
+                return Err(Error::at(
                     "E0205",
                     format!(
                         "shared edge has type {ta} on face `{}` but {tb} on face `{}`: both sides must have the same type and delay",
@@ -258,7 +245,7 @@ fn parse_ref(text: &str, ln: usize, col: usize, src: &Source) -> Result<EdgeRef>
     match words.as_slice() {
         ["face", name, "edge", idx] => match idx.parse::<usize>() {
             Ok(i) => Ok((name.to_string(), i, c)),
-            Err(_) => Err(at(
+            Err(_) => Err(Error::at(
                 "E0201",
                 format!("`{idx}` is not an edge index"),
                 ln,
@@ -267,7 +254,7 @@ fn parse_ref(text: &str, ln: usize, col: usize, src: &Source) -> Result<EdgeRef>
                 src,
             )),
         },
-        _ => Err(at(
+        _ => Err(Error::at(
             "E0201",
             format!("expected `face NAME edge INDEX`, found `{}`", text.trim()),
             ln,

@@ -19,7 +19,7 @@
 
 use crate::assembly::{Assembly, SharedEdge};
 use crate::edge::{EdgeKind, EdgeType};
-use crate::error::{Error, Result, Source, Span};
+use crate::error::{Error, Result, Source};
 use crate::face::{Face, Params};
 use crate::rule::Algorithm;
 
@@ -29,26 +29,6 @@ enum Section {
     Faces,
     Links,
     Points,
-}
-
-fn err(
-    code: &'static str,
-    msg: String,
-    line: usize,
-    col: usize,
-    len: usize,
-    src: &Source,
-) -> Error {
-    Error::syntax(
-        code,
-        msg,
-        Span {
-            line,
-            col,
-            len: len.max(1),
-        },
-        Some(src),
-    )
 }
 
 /// The 1-based column of `part` (a sub-slice of `line`) in `line`.
@@ -85,9 +65,9 @@ pub fn parse_autofrac(src: &Source) -> Result<Assembly> {
             "p" => section = Section::Points,
             _ => match section {
                 Section::None => {
-                    return Err(err(
+                    return Err(Error::at(
                         "E0301",
-                        "expected the `f` section first".into(),
+                        "expected the `f` section first",
                         ln,
                         col_in(line, t),
                         t.len(),
@@ -101,7 +81,7 @@ pub fn parse_autofrac(src: &Source) -> Result<Assembly> {
                 Section::Links => {
                     let parts: Vec<&str> = t.split('/').collect();
                     if parts.len() != 2 {
-                        return Err(err(
+                        return Err(Error::at(
                             "E0301",
                             format!("expected `F1.E1 / F2.E2`, found `{t}`"),
                             ln,
@@ -117,7 +97,7 @@ pub fn parse_autofrac(src: &Source) -> Result<Assembly> {
                             Some((f.parse::<usize>().ok()?, e.parse::<usize>().ok()?))
                         });
                         let Some((f, e)) = parsed else {
-                            return Err(err(
+                            return Err(Error::at(
                                 "E0301",
                                 format!("expected `FACE.EDGE`, found `{p}`"),
                                 ln,
@@ -127,7 +107,7 @@ pub fn parse_autofrac(src: &Source) -> Result<Assembly> {
                             ));
                         };
                         if f >= faces.len() {
-                            return Err(err(
+                            return Err(Error::at(
                                 "E0203",
                                 format!("no face {f} (the file defines {})", faces.len()),
                                 ln,
@@ -151,7 +131,7 @@ pub fn parse_autofrac(src: &Source) -> Result<Assembly> {
                             .iter()
                             .all(|w| w.parse::<f64>().is_ok_and(f64::is_finite) && w.len() < 64);
                     if !ok {
-                        return Err(err(
+                        return Err(Error::at(
                             "E0303",
                             format!("expected a point `x y` with two finite numbers, found `{t}`"),
                             ln,
@@ -165,9 +145,9 @@ pub fn parse_autofrac(src: &Source) -> Result<Assembly> {
         }
     }
     if faces.is_empty() {
-        return Err(err(
+        return Err(Error::at(
             "E0207",
-            "no face defined in the `f` section".into(),
+            "no face defined in the `f` section",
             1,
             1,
             1,
@@ -181,7 +161,7 @@ pub fn parse_autofrac(src: &Source) -> Result<Assembly> {
 
 fn parse_edge(text: &str, line: &str, ln: usize, src: &Source) -> Result<EdgeType> {
     let col = col_in(line, text);
-    let bad = |m: String| err("E0301", m, ln, col, text.chars().count(), src);
+    let bad = |m: String| Error::at("E0301", m, ln, col, text.chars().count(), src);
     let parts: Vec<&str> = text.split('_').collect();
     let [k, n, d] = parts.as_slice() else {
         return Err(bad(format!(
@@ -196,7 +176,7 @@ fn parse_edge(text: &str, line: &str, ln: usize, src: &Source) -> Result<EdgeTyp
     let n: u32 =
         crate::edge::parse_count(n, col + 2, "sub-edge count").map_err(|e| e.within(src, ln, 0))?;
     if n < 2 {
-        return Err(err(
+        return Err(Error::at(
             "E0104",
             format!("`{text}`: an edge needs at least 2 sub-edges"),
             ln,
@@ -219,7 +199,7 @@ fn parse_edge(text: &str, line: &str, ln: usize, src: &Source) -> Result<EdgeTyp
 fn parse_face(line: &str, t: &str, ln: usize, src: &Source) -> Result<Face> {
     let parts: Vec<&str> = t.split('/').collect();
     if parts.len() != 4 {
-        return Err(err(
+        return Err(Error::at(
             "E0301",
             format!(
                 "a face has 4 parts separated by `/` (edges / E / delay / algorithm), found {}",
@@ -240,7 +220,7 @@ fn parse_face(line: &str, t: &str, ln: usize, src: &Source) -> Result<Face> {
     let e = edges(parts[1])?;
     if e.len() != 3 {
         let p = parts[1].trim();
-        return Err(err(
+        return Err(Error::at(
             "E0107",
             format!("E needs exactly 3 edges, found {}", e.len()),
             ln,
@@ -253,9 +233,9 @@ fn parse_face(line: &str, t: &str, ln: usize, src: &Source) -> Result<Face> {
     let delay = crate::edge::parse_count(dtext, col_in(line, dtext), "face delay")
         .map_err(|e| e.within(src, ln, 0))?;
     if delay >= crate::edge::HARD_CAP {
-        return Err(err(
+        return Err(Error::at(
             "E0110",
-            "face delay too large".into(),
+            "face delay too large",
             ln,
             col_in(line, dtext),
             dtext.len(),
@@ -269,9 +249,9 @@ fn parse_face(line: &str, t: &str, ln: usize, src: &Source) -> Result<Face> {
         "2" => Algorithm::a2(),
         "1" if !any_delay => Algorithm::a1(),
         "1" => {
-            return Err(err(
+            return Err(Error::at(
                 "E0302",
-                "AutoFrac2D algorithm 1 (surround delay and Bézier) merges delayed edges with Bézier neighbours, which is not a spoke rule; it is supported only without delays".into(),
+                "AutoFrac2D algorithm 1 (surround delay and Bézier) merges delayed edges with Bézier neighbours, which is not a spoke rule; it is supported only without delays",
                 ln,
                 col_in(line, atext),
                 atext.len(),
@@ -279,7 +259,7 @@ fn parse_face(line: &str, t: &str, ln: usize, src: &Source) -> Result<Face> {
             ))
         }
         _ => {
-            return Err(err("E0302", format!("unknown AutoFrac2D algorithm `{atext}` (0, 1 or 2)"), ln, col_in(line, atext), atext.len(), src));
+            return Err(Error::at("E0302", format!("unknown AutoFrac2D algorithm `{atext}` (0, 1 or 2)"), ln, col_in(line, atext), atext.len(), src));
         }
     };
     Ok(Face {

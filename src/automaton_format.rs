@@ -20,26 +20,6 @@ use crate::matrix::Matrix;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 
-fn err(
-    code: &'static str,
-    msg: impl Into<String>,
-    line: usize,
-    col: usize,
-    len: usize,
-    src: &Source,
-) -> Error {
-    Error::syntax(
-        code,
-        msg,
-        Span {
-            line,
-            col,
-            len: len.max(1),
-        },
-        Some(src),
-    )
-}
-
 /// True when a text looks like an automaton file (its first meaningful line declares a state).
 pub fn is_automaton(text: &str) -> bool {
     text.lines()
@@ -93,7 +73,7 @@ pub fn parse_rational(t: &str) -> Option<BigRational> {
 fn parse_matrix(line: &str, start: usize, ln: usize, src: &Source) -> Result<(Matrix, usize)> {
     let col = |b: usize| line[..b].chars().count() + 1;
     let Some(close) = line[start..].find(']').map(|i| start + i) else {
-        return Err(err(
+        return Err(Error::at(
             "E0701",
             "matrix literal is not closed by `]`",
             ln,
@@ -113,7 +93,7 @@ fn parse_matrix(line: &str, start: usize, ln: usize, src: &Source) -> Result<(Ma
             }
             let tstart = offset + row.find(tok).unwrap_or(0);
             let v = parse_rational(tok).ok_or_else(|| {
-                err(
+                Error::at(
                     "E0706",
                     format!("`{tok}` is not an exact number (use 1/3, -2 or 0.25)"),
                     ln,
@@ -129,7 +109,7 @@ fn parse_matrix(line: &str, start: usize, ln: usize, src: &Source) -> Result<(Ma
     }
     let width = rows.first().map_or(0, Vec::len);
     if width == 0 || rows.iter().any(|r| r.len() != width) {
-        return Err(err(
+        return Err(Error::at(
             "E0703",
             "matrix rows must be non-empty and of equal length",
             ln,
@@ -162,7 +142,7 @@ pub fn parse_automaton(src: &Source) -> Result<Automaton> {
         match words[0] {
             "state" => {
                 let [_, name, dim] = words.as_slice() else {
-                    return Err(err(
+                    return Err(Error::at(
                         "E0701",
                         "expected `state NAME DIM`",
                         ln,
@@ -172,7 +152,7 @@ pub fn parse_automaton(src: &Source) -> Result<Automaton> {
                     ));
                 };
                 if !valid_name(name) || a.states.iter().any(|s| s.name == *name) {
-                    return Err(err(
+                    return Err(Error::at(
                         "E0705",
                         format!("invalid or duplicate state name `{name}`"),
                         ln,
@@ -184,7 +164,7 @@ pub fn parse_automaton(src: &Source) -> Result<Automaton> {
                 let dim: usize = match dim.parse() {
                     Ok(d) if (1..=4096).contains(&d) => d,
                     _ => {
-                        return Err(err(
+                        return Err(Error::at(
                             "E0706",
                             format!("state dimension `{dim}` must be an integer in 1..=4096"),
                             ln,
@@ -210,7 +190,7 @@ pub fn parse_automaton(src: &Source) -> Result<Automaton> {
                 };
                 let hw: Vec<&str> = head.split_whitespace().collect();
                 let [_, name, ":", q, "<-", w] = hw.as_slice() else {
-                    return Err(err(
+                    return Err(Error::at(
                         "E0701",
                         "expected `KIND NAME : TO <- FROM [= MATRIX]`",
                         ln,
@@ -220,7 +200,7 @@ pub fn parse_automaton(src: &Source) -> Result<Automaton> {
                     ));
                 };
                 if !valid_name(name) || a.operators.iter().any(|o| o.name == *name) {
-                    return Err(err(
+                    return Err(Error::at(
                         "E0705",
                         format!("invalid or duplicate operator name `{name}`"),
                         ln,
@@ -231,7 +211,7 @@ pub fn parse_automaton(src: &Source) -> Result<Automaton> {
                 }
                 let find = |s: &&str| a.states.iter().position(|x| x.name == **s);
                 let Some(to) = find(q) else {
-                    return Err(err(
+                    return Err(Error::at(
                         "E0702",
                         format!("unknown state `{q}`"),
                         ln,
@@ -241,7 +221,7 @@ pub fn parse_automaton(src: &Source) -> Result<Automaton> {
                     ));
                 };
                 let Some(from) = find(w) else {
-                    return Err(err(
+                    return Err(Error::at(
                         "E0702",
                         format!("unknown state `{w}`"),
                         ln,
@@ -257,7 +237,7 @@ pub fn parse_automaton(src: &Source) -> Result<Automaton> {
                         let start = line.len()
                             - (line.len() - (vs.as_ptr() as usize - line.as_ptr() as usize));
                         if !vs.starts_with('[') {
-                            return Err(err(
+                            return Err(Error::at(
                                 "E0701",
                                 "expected a matrix literal `[…]` after `=`",
                                 ln,
@@ -268,7 +248,7 @@ pub fn parse_automaton(src: &Source) -> Result<Automaton> {
                         }
                         let (m, end) = parse_matrix(line, start, ln, src)?;
                         if !line[end..].trim().is_empty() {
-                            return Err(err(
+                            return Err(Error::at(
                                 "E0701",
                                 "unexpected text after the matrix",
                                 ln,
@@ -279,7 +259,7 @@ pub fn parse_automaton(src: &Source) -> Result<Automaton> {
                         }
                         let want = (a.states[to].dim, a.states[from].dim);
                         if (m.rows, m.cols) != want {
-                            return Err(err(
+                            return Err(Error::at(
                                 "E0703",
                                 format!("`{name}` maps {w} into {q} so it is {}×{}, but the matrix is {}×{}", want.0, want.1, m.rows, m.cols),
                                 ln,
@@ -299,7 +279,7 @@ pub fn parse_automaton(src: &Source) -> Result<Automaton> {
                 }
                 for w in &words[1..] {
                     let Some(o) = a.operators.iter().position(|x| x.name == *w) else {
-                        return Err(err(
+                        return Err(Error::at(
                             "E0702",
                             format!("unknown operator `{w}`"),
                             ln,
@@ -315,7 +295,7 @@ pub fn parse_automaton(src: &Source) -> Result<Automaton> {
             }
             _ => {
                 let Some((l, r)) = t.split_once('=') else {
-                    return Err(err(
+                    return Err(Error::at(
                         "E0701",
                         format!("expected `state`, an operator declaration, `barycentric`, or a constraint `WORD = WORD`, found `{t}`"),
                         ln,
@@ -341,7 +321,7 @@ pub fn parse_automaton(src: &Source) -> Result<Automaton> {
         }
     }
     if a.states.is_empty() {
-        return Err(err("E0707", "no state declared", 1, 1, 1, src));
+        return Err(Error::at("E0707", "no state declared", 1, 1, 1, src));
     }
     if bary_all {
         for (o, op) in a.operators.iter().enumerate() {
@@ -381,7 +361,7 @@ fn parse_word(
                 i += 1;
                 continue;
             }
-            return Err(err(
+            return Err(Error::at(
                 "E0701",
                 "expected `*` between factors",
                 ln,
@@ -401,7 +381,7 @@ fn parse_word(
             }
             let name = &part[start..i];
             let Some(o) = a.operators.iter().position(|x| x.name == name) else {
-                return Err(err(
+                return Err(Error::at(
                     "E0702",
                     format!("unknown operator `{name}`"),
                     ln,
@@ -415,7 +395,7 @@ fn parse_word(
         expect_factor = false;
     }
     if factors.is_empty() || expect_factor {
-        return Err(err(
+        return Err(Error::at(
             "E0701",
             "a word needs at least one factor (and no trailing `*`)",
             ln,

@@ -115,6 +115,27 @@ impl Error {
         }))
     }
 
+    /// A syntax error at line `line`, column `col` (1-based), `len` characters long, of `src`.
+    pub fn at(
+        code: &'static str,
+        message: impl Into<String>,
+        line: usize,
+        col: usize,
+        len: usize,
+        src: &Source,
+    ) -> Self {
+        Self::syntax(
+            code,
+            message,
+            Span {
+                line,
+                col,
+                len: len.max(1),
+            },
+            Some(src),
+        )
+    }
+
     /// The stable error code.
     pub fn code(&self) -> &'static str {
         match self {

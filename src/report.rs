@@ -171,18 +171,7 @@ pub fn verify_report(
         return Ok(report);
     };
     report.counts = crate::count::counts(ts, levels);
-    if ts.start.len() > 1 {
-        report.per_face = input
-            .assembly
-            .faces
-            .iter()
-            .zip(&ts.start)
-            .map(|((name, _), &t)| FaceCounts {
-                face: name.clone(),
-                levels: counts_from(ts, &[(t, 1)], levels),
-            })
-            .collect();
-    }
+    report.per_face = per_face_counts(ts, input, levels);
     match ratio_of(ts, 30) {
         Ok(r) => report.ratio = Some(r),
         Err(e) => report.structure_error = Some(e.to_string()),
@@ -494,23 +483,31 @@ pub fn closure_json(closure: &Closure) -> Value {
     }
 }
 
+/// The counts of each start face of an assembly of more than one face (empty otherwise).
+fn per_face_counts(ts: &TypeSet, input: &Input, levels: u64) -> Vec<FaceCounts> {
+    if ts.start.len() < 2 {
+        return Vec::new();
+    }
+    input
+        .assembly
+        .faces
+        .iter()
+        .zip(&ts.start)
+        .map(|((name, _), &t)| FaceCounts {
+            face: name.clone(),
+            levels: counts_from(ts, &[(t, 1)], levels),
+        })
+        .collect()
+}
+
 /// JSON of `lacuna counts`.
 pub fn counts_json(ts: &TypeSet, input: &Input, levels: u64) -> Value {
     let mut v = json!({
         "types": ts.types.len(),
         "levels": crate::count::counts(ts, levels),
     });
-    if ts.start.len() > 1 {
-        let per: Vec<FaceCounts> = input
-            .assembly
-            .faces
-            .iter()
-            .zip(&ts.start)
-            .map(|((name, _), &t)| FaceCounts {
-                face: name.clone(),
-                levels: counts_from(ts, &[(t, 1)], levels),
-            })
-            .collect();
+    let per = per_face_counts(ts, input, levels);
+    if !per.is_empty() {
         v["per_face"] = serde_json::to_value(per).unwrap_or(Value::Null);
     }
     v
