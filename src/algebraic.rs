@@ -60,6 +60,44 @@ impl RealAlgebraic {
         })
     }
 
+    /// Every real root of the irreducible polynomial `f`, increasing (empty when it has none).
+    /// Bisection with Descartes' bound inside the Cauchy bound, as for [`Self::largest_root`];
+    /// the caller guarantees irreducibility (from [`crate::factor::factor`]).
+    pub fn real_roots(f: &Poly) -> Vec<Self> {
+        let f = f.monic();
+        if f.deg() == 1 {
+            return vec![RealAlgebraic::rational(-f.coeff(0))];
+        }
+        let ints = f.primitive_int();
+        let lc = ints.last().map(Signed::abs).unwrap_or_else(BigInt::one);
+        let max = ints
+            .iter()
+            .map(Signed::abs)
+            .max()
+            .unwrap_or_else(BigInt::one);
+        let bound = BigRational::from_integer(max.div_ceil(&lc) + 1);
+        let mut out = Vec::new();
+        let mut stack = vec![(-bound.clone(), bound)];
+        while let Some((lo, hi)) = stack.pop() {
+            match descartes_bound(&ints, &lo, &hi) {
+                0 => {}
+                1 => out.push(RealAlgebraic {
+                    min_poly: f.clone(),
+                    lo,
+                    hi,
+                }),
+                _ => {
+                    // Irreducible of degree ≥ 2: no rational root, so `mid` is never a root.
+                    let mid = (&lo + &hi) / two();
+                    stack.push((lo, mid.clone()));
+                    stack.push((mid, hi));
+                }
+            }
+        }
+        out.sort_by(|a, b| a.lo.cmp(&b.lo));
+        out
+    }
+
     /// The monic minimal polynomial over Q.
     pub fn min_poly(&self) -> &Poly {
         &self.min_poly

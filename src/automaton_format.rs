@@ -70,7 +70,12 @@ pub fn parse_rational(t: &str) -> Option<BigRational> {
 
 /// Parses a matrix literal `[a b; c d]` starting at byte `start` of `line`; returns the matrix and
 /// the byte just after the closing bracket.
-fn parse_matrix(line: &str, start: usize, ln: usize, src: &Source) -> Result<(Matrix, usize)> {
+pub(crate) fn parse_matrix(
+    line: &str,
+    start: usize,
+    ln: usize,
+    src: &Source,
+) -> Result<(Matrix, usize)> {
     let col = |b: usize| line[..b].chars().count() + 1;
     let Some(close) = line[start..].find(']').map(|i| start + i) else {
         return Err(Error::at(

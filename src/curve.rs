@@ -8,7 +8,9 @@ use crate::automaton::{Automaton, OpKind, Operator};
 use crate::error::Result;
 use crate::fieldpoly::{apply, null_space, rationals};
 use crate::matrix::Matrix;
-use crate::operator::{analyse_matrix, op_error, render_vec, Behaviour, CurvatureClass, OperatorReport, TangentData};
+use crate::operator::{
+    analyse_matrix, op_error, render_vec, Behaviour, CurvatureClass, OperatorReport, TangentData,
+};
 use num_rational::BigRational;
 use num_traits::{ToPrimitive, Zero};
 use serde::Serialize;
@@ -82,7 +84,9 @@ pub fn analyse_automaton(a: &Automaton) -> Result<AutomatonOperators> {
                 "{}: maps {} to {} (not an iterated map of one state)",
                 op.name, a.states[op.from].name, a.states[op.to].name
             )),
-            (None, true) => skipped.push(format!("{}: unknown (solve the automaton first)", op.name)),
+            (None, true) => {
+                skipped.push(format!("{}: unknown (solve the automaton first)", op.name))
+            }
             (Some(m), true) => {
                 let mut r = analyse_matrix(m)?;
                 r.name = Some(op.name.clone());
@@ -161,7 +165,11 @@ fn parallel(a: &TangentData, m: &Matrix, b: &TangentData, n: &Matrix) -> Option<
     if !same {
         return None;
     }
-    let k = if a.field.degree() == 1 { rationals() } else { a.field.clone() };
+    let k = if a.field.degree() == 1 {
+        rationals()
+    } else {
+        a.field.clone()
+    };
     // Rational fields: re-embed the coordinates as rationals of Q.
     let lift = |d: &TangentData, v: Vec<FieldElement>| -> Vec<FieldElement> {
         if d.field.degree() == 1 {
@@ -174,9 +182,11 @@ fn parallel(a: &TangentData, m: &Matrix, b: &TangentData, n: &Matrix) -> Option<
     };
     let u = lift(a, apply(&a.field, m, &a.v1));
     let w = lift(b, apply(&b.field, n, &b.v1));
-    Some((0..u.len()).all(|i| {
-        (0..u.len()).all(|j| k.sub(&k.mul(&u[i], &w[j]), &k.mul(&u[j], &w[i])).is_zero())
-    }))
+    Some(
+        (0..u.len()).all(|i| {
+            (0..u.len()).all(|j| k.sub(&k.mul(&u[i], &w[j]), &k.mul(&u[j], &w[i])).is_zero())
+        }),
+    )
 }
 
 /// Start, joints and end of the curve `T_0 … T_{n−1}`: the joint of T_k and T_{k+1} is
@@ -202,7 +212,11 @@ fn curve_points(
         label: "start".into(),
         point: strs(&start),
         left: None,
-        right: Some(side(format!("{} at its fixed point", names[0]), first, None)),
+        right: Some(side(
+            format!("{} at its fixed point", names[0]),
+            first,
+            None,
+        )),
         tangent_continuous: None,
     }];
     for k in 0..n - 1 {
@@ -240,7 +254,11 @@ fn curve_points(
     points.push(PointBehaviour {
         label: "end".into(),
         point: strs(&end),
-        left: Some(side(format!("{} at its fixed point", names[n - 1]), last, None)),
+        left: Some(side(
+            format!("{} at its fixed point", names[n - 1]),
+            last,
+            None,
+        )),
         right: None,
         tangent_continuous: None,
     });
@@ -270,7 +288,11 @@ fn f64s(v: &[BigRational]) -> Vec<f64> {
 
 fn mat_f64(m: &Matrix) -> Vec<Vec<f64>> {
     (0..m.rows)
-        .map(|i| (0..m.cols).map(|j| m.get(i, j).to_f64().unwrap_or(f64::NAN)).collect())
+        .map(|i| {
+            (0..m.cols)
+                .map(|j| m.get(i, j).to_f64().unwrap_or(f64::NAN))
+                .collect()
+        })
         .collect()
 }
 
@@ -314,7 +336,10 @@ pub fn estimate_curvature(
     if points.len() != n {
         return Err(op_error(
             "E0905",
-            format!("{} control points given for a {n}-point operator", points.len()),
+            format!(
+                "{} control points given for a {n}-point operator",
+                points.len()
+            ),
         ));
     }
     let count = (ops.len() as u64).checked_pow(level).unwrap_or(u64::MAX);
@@ -328,14 +353,22 @@ pub fn estimate_curvature(
     let (l2, v2) = data.second.as_ref().expect("checked");
     // Left eigenvectors u_i (null space of Tᵀ − λ_i I), scaled so that u_i · v_i = 1.
     let left = |lam: &FieldElement, v: &[FieldElement]| -> Vec<f64> {
-        let tt = Matrix::from_rows((0..n).map(|j| (0..n).map(|i| t.get(i, j).clone()).collect()).collect());
+        let tt = Matrix::from_rows(
+            (0..n)
+                .map(|j| (0..n).map(|i| t.get(i, j).clone()).collect())
+                .collect(),
+        );
         let u = null_space(k, crate::fieldpoly::shifted(k, &tt, lam)).remove(0);
         let dot = u
             .iter()
             .zip(v)
-            .fold(k.rational(BigRational::zero()), |acc, (a, b)| k.add(&acc, &k.mul(a, b)));
+            .fold(k.rational(BigRational::zero()), |acc, (a, b)| {
+                k.add(&acc, &k.mul(a, b))
+            });
         let inv = k.inv(&dot).expect("simple eigenvalue: u·v ≠ 0");
-        u.iter().map(|x| crate::operator::f64_of(k, &k.mul(x, &inv))).collect()
+        u.iter()
+            .map(|x| crate::operator::f64_of(k, &k.mul(x, &inv)))
+            .collect()
     };
     let u1 = left(&k.generator_element(), &data.v1);
     let u2 = left(l2, v2);
@@ -351,10 +384,19 @@ pub fn estimate_curvature(
     let (big_v1, big_v2) = (proj(&data.v1), proj(v2));
     let cross = big_v1[0] * big_v2[1] - big_v1[1] * big_v2[0];
     let norm3 = (big_v1[0] * big_v1[0] + big_v1[1] * big_v1[1]).powf(1.5);
-    let c = f64s(r.fixed.as_ref().expect("contractive tangent case has a fixed point"));
+    let c = f64s(
+        r.fixed
+            .as_ref()
+            .expect("contractive tangent case has a fixed point"),
+    );
     let seeds: Vec<Vec<f64>> = ops
         .iter()
-        .filter_map(|m| analyse_matrix(m).ok().and_then(|r| r.fixed).map(|f| f64s(&f)))
+        .filter_map(|m| {
+            analyse_matrix(m)
+                .ok()
+                .and_then(|r| r.fixed)
+                .map(|f| f64s(&f))
+        })
         .collect();
     let fm: Vec<Vec<Vec<f64>>> = ops.iter().map(mat_f64).collect();
     let mut pts = seeds;
@@ -362,8 +404,11 @@ pub fn estimate_curvature(
         pts = pts
             .iter()
             .flat_map(|p| {
-                fm.iter()
-                    .map(move |m| m.iter().map(|row| row.iter().zip(p).map(|(a, b)| a * b).sum()).collect())
+                fm.iter().map(move |m| {
+                    m.iter()
+                        .map(|row| row.iter().zip(p).map(|(a, b)| a * b).sum())
+                        .collect()
+                })
             })
             .collect();
     }
@@ -399,7 +444,9 @@ impl CurvatureEstimate {
     /// A human-readable rendering.
     pub fn to_text(&self) -> String {
         let side = |s: &Option<[f64; 2]>| {
-            s.map_or("no sample".to_string(), |[a, b]| format!("[{a:.6}, {b:.6}]"))
+            s.map_or("no sample".to_string(), |[a, b]| {
+                format!("[{a:.6}, {b:.6}]")
+            })
         };
         format!(
             "curvature estimate at the fixed point of operator {} (level {}, {} samples)\n  side v1 > 0: {}\n  side v1 < 0: {}\n  {}\n",
@@ -443,7 +490,11 @@ impl AutomatonOperators {
                 if let Some(g) = p.tangent_continuous {
                     out += &format!(
                         "    tangents {}\n",
-                        if g { "parallel (G1)" } else { "not parallel (corner)" }
+                        if g {
+                            "parallel (G1)"
+                        } else {
+                            "not parallel (corner)"
+                        }
                     );
                 }
             }

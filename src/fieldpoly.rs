@@ -112,7 +112,7 @@ pub(crate) fn inside_unit_disk(k: &NumberField, p: &[FieldElement]) -> bool {
 
 /// Where the roots of a real polynomial lie relative to the unit circle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Circle {
+pub(crate) enum Position {
     /// Every root strictly inside.
     Inside,
     /// None outside, at least one on the circle.
@@ -127,18 +127,18 @@ pub(crate) enum Circle {
 /// of `c = gcd(g, g*)` (for real g, |z| = 1 ⇔ 1/z = z̄ is a root); the rest of g is tested by
 /// Schur–Cohn; c itself is split into `x ∓ 1` factors and inverse pairs {z, 1/z}, decided by
 /// the discriminant when one pair is left (real pair: one root outside; complex: on the circle).
-pub(crate) fn circle_position(k: &NumberField, g: &[FieldElement]) -> Circle {
+pub(crate) fn circle_position(k: &NumberField, g: &[FieldElement]) -> Position {
     let g = trim(g.to_vec());
     if g.len() <= 1 {
-        return Circle::Inside;
+        return Position::Inside;
     }
     let rev: KPoly = g.iter().rev().cloned().collect();
     let c = k_gcd(k, &g, &rev);
     if c.len() <= 1 {
         return if inside_unit_disk(k, &g) {
-            Circle::Inside
+            Position::Inside
         } else {
-            Circle::Outside
+            Position::Outside
         };
     }
     let mut rest = g;
@@ -157,7 +157,7 @@ pub(crate) fn circle_position(k: &NumberField, g: &[FieldElement]) -> Circle {
         rest = k_divrem(k, &rest, &common).0;
     }
     if !inside_unit_disk(k, &rest) {
-        return Circle::Outside;
+        return Position::Outside;
     }
     // Strip x − 1 and x + 1 from c (simple roots of the square-free gcd).
     let mut c = c;
@@ -168,18 +168,18 @@ pub(crate) fn circle_position(k: &NumberField, g: &[FieldElement]) -> Circle {
         }
     }
     match c.len() {
-        0 | 1 => Circle::OnCircle,
+        0 | 1 => Position::OnCircle,
         3 => {
             // x² + b·x + 1 (roots z, 1/z): on the circle iff b² − 4 < 0.
             let c = k_monic(k, c);
             let disc = k.sub(&k.mul(&c[1], &c[1]), &k.rational(q(4)));
             if k.sign(&disc) == Ordering::Less {
-                Circle::OnCircle
+                Position::OnCircle
             } else {
-                Circle::Outside
+                Position::Outside
             }
         }
-        _ => Circle::Undecided,
+        _ => Position::Undecided,
     }
 }
 
@@ -221,14 +221,20 @@ pub(crate) fn null_space(k: &NumberField, mut a: Vec<Vec<FieldElement>>) -> Vec<
                 v[pc] = k.sub(&v[pc], &a[i][f]);
             }
             let last = v.iter().rev().find(|x| !x.is_zero()).cloned();
-            let inv = k.inv(&last.expect("non-zero basis vector")).expect("non-zero");
+            let inv = k
+                .inv(&last.expect("non-zero basis vector"))
+                .expect("non-zero");
             v.iter().map(|x| k.mul(x, &inv)).collect()
         })
         .collect()
 }
 
 /// `T − λ·I` over K.
-pub(crate) fn shifted(k: &NumberField, t: &Matrix, lambda: &FieldElement) -> Vec<Vec<FieldElement>> {
+pub(crate) fn shifted(
+    k: &NumberField,
+    t: &Matrix,
+    lambda: &FieldElement,
+) -> Vec<Vec<FieldElement>> {
     (0..t.rows)
         .map(|i| {
             (0..t.cols)
@@ -249,9 +255,11 @@ pub(crate) fn shifted(k: &NumberField, t: &Matrix, lambda: &FieldElement) -> Vec
 pub(crate) fn apply(k: &NumberField, t: &Matrix, v: &[FieldElement]) -> Vec<FieldElement> {
     (0..t.rows)
         .map(|i| {
-            v.iter().enumerate().fold(k.rational(BigRational::zero()), |acc, (j, x)| {
-                k.add(&acc, &k.mul(&k.rational(t.get(i, j).clone()), x))
-            })
+            v.iter()
+                .enumerate()
+                .fold(k.rational(BigRational::zero()), |acc, (j, x)| {
+                    k.add(&acc, &k.mul(&k.rational(t.get(i, j).clone()), x))
+                })
         })
         .collect()
 }
@@ -261,3 +269,54 @@ pub(crate) fn rationals() -> NumberField {
     NumberField::new(RealAlgebraic::rational(BigRational::zero()))
 }
 
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn poly(c: &[i64], den: i64) -> Poly {
+        Poly::new(
+            c.iter()
+                .map(|&x| BigRational::new(x.into(), den.into()))
+                .collect(),
+        )
+    }
+
+    #[test]
+    fn schur_cohn_on_known_roots() {
+        let k = rationals();
+        let inside = |p: &Poly| inside_unit_disk(&k, &to_k(&k, p));
+        assert!(inside(&poly(&[1, 0, 4], 4))); // x² + 1/4: ±i/2
+        assert!(!inside(&poly(&[-1, 1], 1))); // x − 1: on the circle
+        assert!(!inside(&poly(&[2, -9, 4], 4))); // (x − 2)(x − 1/4)
+        assert!(inside(&poly(&[0, 0, 1], 1))); // x²: 0 twice
+    }
+
+    #[test]
+    fn circle_positions() {
+        let k = rationals();
+        let pos = |p: &Poly| circle_position(&k, &to_k(&k, p));
+        assert_eq!(pos(&poly(&[1, 0, 1], 1)), Position::OnCircle); // ±i
+        assert_eq!(pos(&poly(&[3, -10, 3], 3)), Position::Outside); // 3 and 1/3
+        assert_eq!(pos(&poly(&[1, 1], 1)), Position::OnCircle); // −1
+        assert_eq!(pos(&poly(&[1, 4], 8)), Position::Inside); // −1/4
+        assert_eq!(pos(&poly(&[-1, 0, 0, 1], 1)), Position::OnCircle); // cube roots of 1
+    }
+
+    #[test]
+    fn all_real_roots_and_null_space() {
+        // x³ − 3x + 1 has three real roots (2cos(2π/9), …), ≈ −1.879, 0.347, 1.532.
+        let roots = RealAlgebraic::real_roots(&Poly::from_ints(&[1, -3, 0, 1]));
+        let d: Vec<String> = roots.iter().map(|r| r.decimal(3)).collect();
+        assert_eq!(d, ["-1.879", "0.347", "1.532"]);
+        assert!(RealAlgebraic::real_roots(&Poly::from_ints(&[1, 0, 1])).is_empty());
+        let k = rationals();
+        let a = Matrix::from_rows(vec![
+            vec![BigRational::one(), BigRational::one()],
+            vec![BigRational::one(), BigRational::one()],
+        ]);
+        let zero = k.rational(BigRational::zero());
+        let ns = null_space(&k, shifted(&k, &a, &zero));
+        assert_eq!(ns.len(), 1);
+        assert_eq!(ns[0][0].as_rational(), Some(-BigRational::one()));
+    }
+}

@@ -17,15 +17,19 @@ mod census;
 mod class;
 mod closure;
 mod count;
+mod curve;
+mod design;
 mod edge;
 mod error;
 mod face;
 mod factor;
+mod fieldpoly;
 mod generate;
 mod library;
 mod limits;
 mod linsys;
 mod matrix;
+mod operator;
 mod poly;
 mod presolve;
 mod ratio;
@@ -46,10 +50,19 @@ pub use census::{census, CensusReport, CensusSpec};
 pub use class::{Class, ClassStructure};
 pub use closure::{close, close_or_error, Bound, Closure, FaceType, Runaway, TypeSet};
 pub use count::{counts, counts_from, LevelCount};
+pub use curve::{
+    analyse_automaton, estimate_curvature, AutomatonOperators, CurvatureEstimate, CurveReport,
+    PointBehaviour, Side,
+};
+pub use design::{check_design, design_operator, DesignCheck, DesignError};
 pub use edge::{EdgeKind, EdgeType, JunctionKind};
 pub use error::{Diagnostic, Error, Result, Source, Span};
 pub use face::{least_rotation, Face, Params};
 pub use generate::{automaton_of, degeneracies, solve_closure, GenOptions, Generated};
+pub use operator::{
+    analyse_matrix, parse_matrix_arg, parse_rationals_arg, Behaviour, CurvatureClass, Eigenvalue,
+    OperatorReport,
+};
 
 pub use algebraic::{FieldElement, NumberField, RealAlgebraic};
 pub use assembly::{Assembly, SharedEdge};

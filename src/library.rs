@@ -38,6 +38,14 @@ pub fn library() -> &'static [(&'static str, &'static str)] {
             include_str!("../fixtures/bspline-quadratic.aut"),
         ),
         ("quad-patch", include_str!("../fixtures/quad-patch.aut")),
+        (
+            "de-casteljau-edge",
+            include_str!("../fixtures/de-casteljau-edge.aut"),
+        ),
+        (
+            "chaikin-known",
+            include_str!("../fixtures/chaikin-known.aut"),
+        ),
     ]
 }
 

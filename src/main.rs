@@ -102,6 +102,36 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Eigen analysis of subdivision operators (SPEC §8): eigenvalues, fixed point, contraction,
+    /// tangent and pseudo-curvature class, end and joining points of curves.
+    Operators {
+        /// An automaton file or library name (optional when --matrix is given).
+        input: Option<String>,
+        /// A matrix to analyse, `[a b; c d]` (repeatable).
+        #[arg(long)]
+        matrix: Vec<String>,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Inverse design: T = V·D·V⁻¹ from eigenvalues and eigenvectors (one per row), exact.
+    Design {
+        /// Eigenvalues, e.g. '1 1/2 1/4'.
+        #[arg(long)]
+        eigenvalues: String,
+        /// Eigenvectors, one per row in the order of the eigenvalues, e.g. '[1 0 0; -1 1 0; 1 -2 1]'.
+        #[arg(long)]
+        eigenvectors: String,
+        /// An automaton file to check the operator against.
+        #[arg(long, requires = "op")]
+        check: Option<String>,
+        /// The operator of that automaton to replace.
+        #[arg(long, requires = "check")]
+        op: Option<String>,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
     /// Solve the BC-IFS constraint system of an automaton file, a face or an assembly exactly.
     Solve {
         /// An automaton file, face notation in quotes, an assembly file, or a library name.
@@ -161,6 +191,8 @@ fn main() -> ExitCode {
             | Command::Solve { json: true, .. }
             | Command::Ratio { json: true, .. }
             | Command::Check { json: true, .. }
+            | Command::Operators { json: true, .. }
+            | Command::Design { json: true, .. }
             | Command::Census { json: true, .. }
             | Command::Library { json: true }
     );
@@ -313,6 +345,86 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 out(&lacuna::ratio_text(&r));
             }
             Ok(ExitCode::SUCCESS)
+        }
+        Command::Operators {
+            input,
+            matrix,
+            json,
+        } => {
+            let automaton = match &input {
+                None => None,
+                Some(input) => match lacuna::load_any(input)? {
+                    lacuna::Loaded::Automaton { automaton, .. } => {
+                        Some(lacuna::analyse_automaton(&automaton)?)
+                    }
+                    lacuna::Loaded::Faces(_) => {
+                        return Err(Error::Analysis(format!(
+                        "`{input}` is not an automaton: `lacuna operators` needs known operators"
+                    )))
+                    }
+                },
+            };
+            let matrices = matrix
+                .iter()
+                .map(|m| lacuna::analyse_matrix(&lacuna::parse_matrix_arg(m)?))
+                .collect::<Result<Vec<_>, Error>>()?;
+            if json {
+                print_json(&serde_json::json!({ "automaton": automaton, "matrices": matrices }));
+            } else {
+                if let Some(a) = &automaton {
+                    out(&a.to_text());
+                }
+                for r in &matrices {
+                    out(&r.to_text());
+                }
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Design {
+            eigenvalues,
+            eigenvectors,
+            check,
+            op,
+            json,
+        } => {
+            let values = lacuna::parse_rationals_arg(&eigenvalues)?;
+            let vectors = lacuna::parse_matrix_arg(&eigenvectors)?;
+            let rows: Vec<Vec<_>> = vectors
+                .data
+                .chunks(vectors.cols)
+                .map(<[_]>::to_vec)
+                .collect();
+            let t = lacuna::design_operator(&values, &rows)?;
+            let analysis = lacuna::analyse_matrix(&t)?;
+            let checked = match (&check, &op) {
+                (Some(file), Some(name)) => match lacuna::load_any(file)? {
+                    lacuna::Loaded::Automaton { automaton, .. } => {
+                        Some(lacuna::check_design(&automaton, name, &t)?)
+                    }
+                    lacuna::Loaded::Faces(_) => {
+                        return Err(Error::Analysis(format!("`{file}` is not an automaton")))
+                    }
+                },
+                _ => None,
+            };
+            if json {
+                print_json(&serde_json::json!({
+                    "matrix": t.to_string(),
+                    "analysis": analysis,
+                    "check": checked,
+                }));
+            } else {
+                out(&format!("T = {t}\n"));
+                out(&analysis.to_text());
+                if let Some(c) = &checked {
+                    out(&c.to_text());
+                }
+            }
+            Ok(if checked.as_ref().is_some_and(|c| !c.ok()) {
+                ExitCode::from(EXIT_FAILED)
+            } else {
+                ExitCode::SUCCESS
+            })
         }
         Command::Solve {
             input,

@@ -10,19 +10,18 @@
 //! certified by exact evaluation; the numerical value of α) and in [`estimate_curvature`].
 
 use crate::algebraic::{FieldElement, NumberField, RealAlgebraic};
-use crate::automaton::{Automaton, OpKind};
 use crate::error::{Diagnostic, Error, Result, Source, Span};
 use crate::factor::{charpoly, factor};
-use crate::matrix::Matrix;
 use crate::fieldpoly::{
-    circle_position, inside_unit_disk, k_divrem, k_eval, k_scale_var, null_space, rationals, shifted,
-    to_k, Circle,
+    circle_position, inside_unit_disk, k_divrem, k_eval, k_scale_var, null_space, rationals,
+    shifted, to_k, Position,
 };
+use crate::matrix::Matrix;
 use crate::poly::Poly;
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
-use num_traits::{FromPrimitive, One, Signed, ToPrimitive, Zero};
+use num_traits::{FromPrimitive, One, ToPrimitive, Zero};
 use serde::Serialize;
 use std::cmp::Ordering;
 
@@ -181,7 +180,10 @@ pub(crate) fn op_error(code: &'static str, message: impl Into<String>) -> Error 
 
 /// The characteristic polynomial `det(x·I − T)` of a square rational matrix.
 pub(crate) fn char_poly(t: &Matrix) -> Poly {
-    let d = t.data.iter().fold(BigInt::one(), |acc, x| acc.lcm(x.denom()));
+    let d = t
+        .data
+        .iter()
+        .fold(BigInt::one(), |acc, x| acc.lcm(x.denom()));
     let dr = BigRational::from_integer(d.clone());
     let ints: Vec<Vec<BigInt>> = (0..t.rows)
         .map(|i| {
@@ -209,15 +211,17 @@ fn cx_mul(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
 /// Float approximations of every root of `f` (Durand–Kerner): used only for display.
 fn approx_roots(f: &Poly) -> Vec<(f64, f64)> {
     let f = f.monic();
-    let c: Vec<f64> = f.coeffs().iter().map(|x| x.to_f64().unwrap_or(0.0)).collect();
+    let c: Vec<f64> = f
+        .coeffs()
+        .iter()
+        .map(|x| x.to_f64().unwrap_or(0.0))
+        .collect();
     let n = f.deg();
     let eval = |z: (f64, f64)| {
-        c.iter()
-            .rev()
-            .fold((0.0, 0.0), |acc, &a| {
-                let m = cx_mul(acc, z);
-                (m.0 + a, m.1)
-            })
+        c.iter().rev().fold((0.0, 0.0), |acc, &a| {
+            let m = cx_mul(acc, z);
+            (m.0 + a, m.1)
+        })
     };
     let mut z: Vec<(f64, f64)> = (0..n)
         .map(|i| {
@@ -249,10 +253,12 @@ fn approx_roots(f: &Poly) -> Vec<(f64, f64)> {
 fn certified_radius(f: &Poly, z: (f64, f64)) -> Option<BigRational> {
     let (re, im) = (BigRational::from_f64(z.0)?, BigRational::from_f64(z.1)?);
     let eval = |p: &Poly| {
-        p.coeffs().iter().rev().fold(
-            (BigRational::zero(), BigRational::zero()),
-            |(a, b), c| (&a * &re - &b * &im + c, &a * &im + &b * &re),
-        )
+        p.coeffs()
+            .iter()
+            .rev()
+            .fold((BigRational::zero(), BigRational::zero()), |(a, b), c| {
+                (&a * &re - &b * &im + c, &a * &im + &b * &re)
+            })
     };
     let (fa, fb) = eval(f);
     let (da, db) = eval(&f.derivative());
@@ -350,7 +356,10 @@ pub fn analyse_matrix(t: &Matrix) -> Result<OperatorReport> {
     // Fixed point: the eigenvector of 1, scaled to coordinate sum 1.
     let qk = rationals();
     let (fixed, fixed_point_note) = if mult_one == 0 {
-        (None, Some("1 is not an eigenvalue: no fixed point".to_string()))
+        (
+            None,
+            Some("1 is not an eigenvalue: no fixed point".to_string()),
+        )
     } else {
         let ns = null_space(&qk, shifted(&qk, t, &qk.rational(BigRational::one())));
         if ns.len() != 1 {
@@ -370,7 +379,10 @@ pub fn analyse_matrix(t: &Matrix) -> Result<OperatorReport> {
             if s.is_zero() {
                 (
                     None,
-                    Some("the eigenvector of 1 has coordinate sum 0: it is a direction, not a point".into()),
+                    Some(
+                        "the eigenvector of 1 has coordinate sum 0: it is a direction, not a point"
+                            .into(),
+                    ),
                 )
             } else {
                 (Some(v.iter().map(|x| x / &s).collect::<Vec<_>>()), None)
@@ -455,7 +467,8 @@ fn complex_pairs(f: &Poly, n_real: usize, mult: usize) -> Vec<Eigenvalue> {
             real: false,
             exact: exact.clone(),
             approx: format!("{re:.12} ± {:.12} i", im.abs()),
-            radius: certified_radius(f, (re, im)).map(|r| format!("{:.3e}", r.to_f64().unwrap_or(f64::NAN))),
+            radius: certified_radius(f, (re, im))
+                .map(|r| format!("{:.3e}", r.to_f64().unwrap_or(f64::NAN))),
             eigenvectors: Vec::new(),
             modulus: (re * re + im * im).sqrt(),
         })
@@ -502,13 +515,19 @@ fn classify(
         }
         match r.value.cmp_exact(&zero) {
             Ordering::Greater => {
-                if pos.as_ref().is_none_or(|(p, _)| r.value.cmp_exact(p) == Ordering::Greater) {
+                if pos
+                    .as_ref()
+                    .is_none_or(|(p, _)| r.value.cmp_exact(p) == Ordering::Greater)
+                {
                     pos = Some((r.value.clone(), r.mult));
                 }
             }
             Ordering::Less => {
                 let a = negate(&r.value);
-                if neg.as_ref().is_none_or(|(p, _)| a.cmp_exact(p) == Ordering::Greater) {
+                if neg
+                    .as_ref()
+                    .is_none_or(|(p, _)| a.cmp_exact(p) == Ordering::Greater)
+                {
                     neg = Some((a, r.mult));
                 }
             }
@@ -518,7 +537,10 @@ fn classify(
     let (rho, rho_pos, rho_neg) = match (&pos, &neg) {
         (None, None) => {
             return if complex_factors.is_empty() {
-                degenerate("every eigenvalue but 1 is 0: the operator collapses onto its fixed point".into())
+                degenerate(
+                    "every eigenvalue but 1 is 0: the operator collapses onto its fixed point"
+                        .into(),
+                )
             } else {
                 (
                     Behaviour::Spiralling {
@@ -574,17 +596,26 @@ fn classify(
     }
     // Tangent case: λ1 = ρ simple and strictly dominant. v1 over Q(λ1).
     let v1 = null_space(&k, shifted(&k, t, &rho_k)).remove(0);
-    let h = chi.exact_div(&Poly::from_ints(&[-1, 1])).expect("1 is a root");
-    let (h2, r) = k_divrem(&k, &to_k(&k, &h), &[k.sub(&k.rational(BigRational::zero()), &rho_k), k.rational(q(1))]);
+    let h = chi
+        .exact_div(&Poly::from_ints(&[-1, 1]))
+        .expect("1 is a root");
+    let (h2, r) = k_divrem(
+        &k,
+        &to_k(&k, &h),
+        &[
+            k.sub(&k.rational(BigRational::zero()), &rho_k),
+            k.rational(q(1)),
+        ],
+    );
     debug_assert!(r.is_empty());
     let r2 = k.mul(&rho_k, &rho_k);
     let g = k_scale_var(&k, &h2, &r2);
     let position = circle_position(&k, &g);
     let class = match position {
-        Circle::Inside => CurvatureClass::Flat,
-        Circle::OnCircle => CurvatureClass::Finite,
-        Circle::Outside => CurvatureClass::Sharp,
-        Circle::Undecided => CurvatureClass::Undecided,
+        Position::Inside => CurvatureClass::Flat,
+        Position::OnCircle => CurvatureClass::Finite,
+        Position::Outside => CurvatureClass::Sharp,
+        Position::Undecided => CurvatureClass::Undecided,
     };
     // λ2 = ±λ1² real: keep it and its eigenvector for dyadic points and curvature estimates.
     let mut second = None;
@@ -641,18 +672,13 @@ fn negate(r: &RealAlgebraic) -> RealAlgebraic {
     mirrored.swap_remove(roots.len() - 1 - i)
 }
 
-
 // ---------- command-line arguments and text ----------
 
 fn arg_error(text: &str, message: String, col: usize, len: usize) -> Error {
     Error::syntax(
         "E0901",
         message,
-        Span {
-            line: 1,
-            col,
-            len,
-        },
+        Span { line: 1, col, len },
         Some(&Source::command_line(text)),
     )
 }
@@ -660,41 +686,42 @@ fn arg_error(text: &str, message: String, col: usize, len: usize) -> Error {
 /// Parses a matrix given on the command line: `[a b; c d]` (brackets optional), rows separated
 /// by `;`, entries by spaces or commas, exact numbers (`1/3`, `-2`, `0.25`). Error E0901.
 pub fn parse_matrix_arg(text: &str) -> Result<Matrix> {
-    let mut rows: Vec<Vec<BigRational>> = Vec::new();
-    let mut offset = 0;
-    for row in text.split(';') {
-        let mut vals = Vec::new();
-        let mut pos = 0;
-        for tok in row.split(|c: char| c.is_whitespace() || c == ',' || c == '[' || c == ']') {
-            let at = pos + row[pos..].find(tok).unwrap_or(0);
-            pos = at + tok.len();
-            if tok.is_empty() {
-                continue;
-            }
-            let col = text[..offset + at].chars().count() + 1;
-            let v = crate::automaton_format::parse_rational(tok).ok_or_else(|| {
-                arg_error(
-                    text,
-                    format!("`{tok}` is not an exact number (use 1/3, -2 or 0.25)"),
-                    col,
-                    tok.chars().count(),
-                )
-            })?;
-            vals.push(v);
+    // The automaton format's matrix literal, with the brackets optional on the command line;
+    // every failure is reported as E0901 (a bad argument), with its column in `text`.
+    let t = text.trim_start();
+    let lead = text.chars().count() - t.chars().count();
+    let wrapped = !t.starts_with('[');
+    let line = if wrapped {
+        format!("[{t}]")
+    } else {
+        t.to_string()
+    };
+    let src = crate::error::Source::command_line(text);
+    let parsed = crate::automaton_format::parse_matrix(&line, 0, 1, &src).and_then(|(m, end)| {
+        let rest = line[end..].trim();
+        if rest.is_empty() {
+            Ok(m)
+        } else {
+            Err(arg_error(
+                text,
+                format!("unexpected `{rest}` after the matrix"),
+                end + 1,
+                rest.chars().count(),
+            ))
         }
-        offset += row.len() + 1;
-        rows.push(vals);
-    }
-    let width = rows.first().map_or(0, Vec::len);
-    if width == 0 || rows.iter().any(|r| r.len() != width) {
-        return Err(arg_error(
-            text,
-            "matrix rows must be non-empty and of equal length".into(),
-            1,
-            text.chars().count(),
-        ));
-    }
-    Ok(Matrix::from_rows(rows))
+    });
+    parsed.map_err(|e| match e {
+        Error::Syntax(mut d) => {
+            d.code = "E0901";
+            if let Some(span) = d.span.as_mut() {
+                span.col = (span.col + lead)
+                    .saturating_sub(usize::from(wrapped))
+                    .max(1);
+            }
+            Error::Syntax(d)
+        }
+        other => other,
+    })
 }
 
 /// Parses a list of exact numbers separated by spaces or commas (`1 1/2 1/4`). Error E0901.
@@ -739,7 +766,8 @@ impl OperatorReport {
                     out += &format!("      eigenvector ({})\n", v.join(", "));
                 }
             } else {
-                out += &format!(
+                out +=
+                    &format!(
                     "    complex pair {}{}{mult}  [min poly {}; approximation, a root within {}]\n",
                     e.exact.as_ref().map_or(String::new(), |x| format!("{x} ≈ ")),
                     e.approx,

@@ -23,7 +23,9 @@ const FACE_FIXTURES: [&str; 7] = [
     "two-quads",
     "autofrac-two-quads",
 ];
-const AUTOMATON_FIXTURES: [&str; 5] = [
+const AUTOMATON_FIXTURES: [&str; 7] = [
+    "de-casteljau-edge",
+    "chaikin-known",
     "spec-edge",
     "spec-edge-incidence",
     "half-tangent-edge",
