@@ -46,12 +46,12 @@ pub fn certificate_for(
 ) -> Result<Certificate, CertifyError> {
     let mut cert = Certificate::new(input);
     cert.steps.push(Step::Closure(closure_step(ts)?));
+    let source = format!(
+        "the constraints of the automaton generated from the closure (SPEC §6, Bézier degree {}, Cantor gap/piece ratio {})",
+        opts.degree, opts.cantor_gap
+    );
     let generated = lacuna::automaton_of(ts, opts);
     let (_, lin, solution) = lacuna::solve_automaton(&generated.automaton)?;
-    let source = format!(
-        "the constraints of the automaton generated from the closure (SPEC §6, Bézier degree {})",
-        opts.degree
-    );
     cert.steps
         .push(solution_step(&source, &lin.system, &solution));
     let matrix = ts.matrix();

@@ -22,15 +22,22 @@ use num_traits::One;
 use std::collections::{BTreeMap, HashMap};
 
 /// Options of the generated automaton.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct GenOptions {
     /// Bézier degree q of `Bn` edges (m = q + 1).
     pub degree: usize,
+    /// Cantor layout: the length of a gap relative to the length of a piece (> 0). With ratio g,
+    /// the n pieces of `Cn` have length 1/(n + (n−1)·g) each; 1 (the default) makes pieces and
+    /// gaps equal.
+    pub cantor_gap: BigRational,
 }
 
 impl Default for GenOptions {
     fn default() -> Self {
-        GenOptions { degree: 2 }
+        GenOptions {
+            degree: 2,
+            cantor_gap: BigRational::one(),
+        }
     }
 }
 
@@ -134,7 +141,11 @@ pub fn automaton_of(ts: &TypeSet, opts: GenOptions) -> Generated {
                 match e.kind {
                     EdgeKind::B => bezier_restriction(q, &rat(k, n), &rat(k + 1, n)),
                     EdgeKind::C => {
-                        let (lo, hi) = (rat(2 * k, 2 * n - 1), rat(2 * k + 1, 2 * n - 1));
+                        // Piece k covers [k·(p + g·p), k·(p + g·p) + p] with p = 1/(n + (n−1)·g).
+                        let g = &opts.cantor_gap;
+                        let p = BigRational::one() / (rat(n, 1) + rat(n - 1, 1) * g);
+                        let lo = rat(k, 1) * (&p + g * &p);
+                        let hi = &lo + &p;
                         Matrix::from_rows(vec![
                             vec![BigRational::one() - &lo, BigRational::one() - &hi],
                             vec![lo, hi],

@@ -142,6 +142,9 @@ enum Command {
         /// Bézier degree of `Bn` edges in generated automata.
         #[arg(long, default_value_t = 2)]
         degree: usize,
+        /// Cantor layout of generated automata: gap length / piece length (exact, > 0).
+        #[arg(long, default_value = "1")]
+        cantor_gap: String,
         /// Print JSON.
         #[arg(long)]
         json: bool,
@@ -430,8 +433,19 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             input,
             params,
             degree,
+            cantor_gap,
             json,
         } => {
+            let gap = lacuna::parse_rational(cantor_gap.trim())
+                .filter(|g| *g > num_rational::BigRational::from_integer(0.into()))
+                .ok_or_else(|| {
+                    Error::syntax(
+                        "E0113",
+                        format!("--cantor-gap `{cantor_gap}` must be an exact positive number (1, 1/2, 0.25)"),
+                        lacuna::Span { line: 1, col: 1, len: cantor_gap.chars().count().max(1) },
+                        Some(&lacuna::Source::command_line(&cantor_gap)),
+                    )
+                })?;
             if !(1..=8).contains(&degree) {
                 return Err(Error::Limit {
                     what: "the Bézier degree",
@@ -447,7 +461,14 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 }
                 lacuna::Loaded::Faces(input) => {
                     let ts = lacuna::close_or_error(&input.faces(), &limits)?;
-                    lacuna::solve_closure(&ts, lacuna::GenOptions { degree }, &limits)?
+                    lacuna::solve_closure(
+                        &ts,
+                        lacuna::GenOptions {
+                            degree,
+                            cantor_gap: gap,
+                        },
+                        &limits,
+                    )?
                 }
             };
             if json {

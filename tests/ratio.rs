@@ -79,3 +79,61 @@ fn delayed_fixture_is_dominated_by_g6() {
     let r = ratio_of(&closed("delayed-B2-C2"), 10).unwrap();
     assert_eq!(r.exact.as_deref(), Some("1/3"));
 }
+
+mod self_similar {
+    use super::*;
+    use lacuna::{close, CensusSpec, Closure, Face};
+    use proptest::prelude::*;
+
+    /// R of a closure that is a single self-similar type must be l/(l + k − 1) (SPEC §5), with
+    /// k its number of sub-faces and l its contribution.
+    fn check_single_type(ts: &TypeSet) {
+        let k = ts.types[0].children.len() as i64;
+        let l = BigRational::new(ts.types[0].contribution_halves().into(), 2.into());
+        let want = &l / (&l + BigRational::from_integer((k - 1).into()));
+        let r = ratio_of(ts, 30).unwrap();
+        assert!(r.exists);
+        assert_eq!(
+            r.exact.as_deref(),
+            Some(want.to_string().as_str()),
+            "{}",
+            ts.types[0].face
+        );
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 32, ..ProptestConfig::default() })]
+
+        /// `Bn Bn Bn Bn | Bn Bn Bn | A2`: every junction is a spoke, every run is one piece, and
+        /// piece + `Ea El Ea` is the same square: a face with 4n copies of itself and l = 1, so
+        /// R = 1/(4n).
+        #[test]
+        fn squares_of_bezier_edges_are_self_similar(n in 2u32..=8) {
+            let e = format!("B{n}");
+            let face = Face::parse(&format!("{e} {e} {e} {e} | {e} {e} {e} | A2")).unwrap();
+            let Closure::Closed(ts) = close(&face, &Limits::default()).unwrap() else { panic!() };
+            prop_assert_eq!(ts.types.len(), 1);
+            prop_assert_eq!(ts.types[0].children.len(), 4 * n as usize);
+            check_single_type(&ts);
+            let r = ratio_of(&ts, 10).unwrap();
+            prop_assert_eq!(r.exact.unwrap(), format!("1/{}", 4 * n));
+        }
+    }
+
+    /// Every single-type closure of the census family (boundaries of length ≤ 5 over B2, C2,
+    /// B3, C3, E over {B2, C2}³, A1 and A2) obeys l/(l + k − 1).
+    #[test]
+    fn every_single_type_closure_of_the_census_family() {
+        let spec = CensusSpec::parse("B2,C2,B3,C3", "B2,C2", "A1,A2", 5, Some(1)).unwrap();
+        let mut found = 0;
+        for f in spec.faces() {
+            if let Ok(Closure::Closed(ts)) = close(&f, &Limits::default()) {
+                if ts.types.len() == 1 {
+                    check_single_type(&ts);
+                    found += 1;
+                }
+            }
+        }
+        assert!(found >= 2, "only {found} single-type closures");
+    }
+}

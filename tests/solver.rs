@@ -324,3 +324,25 @@ fn the_degeneracy_check_reports_a_forced_collapse() {
         "{found:?}"
     );
 }
+
+#[test]
+fn cantor_layout_is_configurable() {
+    // C2 with gap/piece ratio g: pieces of length p = 1/(2 + g), the second starting at p + g·p.
+    // g = 1/2: p = 2/5, pieces [0, 2/5] and [3/5, 1]: T1 = [1 − 3/5, 0; 3/5, 1] = [2/5 0; 3/5 1].
+    use lacuna::automaton_of;
+    let input = lacuna::load_input("F0").unwrap();
+    let ts = lacuna::close_or_error(&input.faces(), &lacuna::Limits::default()).unwrap();
+    let opts = GenOptions {
+        cantor_gap: parse_rational("1/2").unwrap(),
+        ..GenOptions::default()
+    };
+    let g = automaton_of(&ts, opts);
+    let t1 = g.automaton.operators.iter().find(|o| o.name == "C2.T1").unwrap();
+    assert_eq!(t1.value.as_ref().unwrap().to_string(), "[2/5 0; 3/5 1]");
+    let t0 = g.automaton.operators.iter().find(|o| o.name == "C2.T0").unwrap();
+    assert_eq!(t0.value.as_ref().unwrap().to_string(), "[1 3/5; 0 2/5]");
+    // The default leaves equal pieces and gaps: thirds.
+    let g = automaton_of(&ts, GenOptions::default());
+    let t1 = g.automaton.operators.iter().find(|o| o.name == "C2.T1").unwrap();
+    assert_eq!(t1.value.as_ref().unwrap().to_string(), "[1/3 0; 2/3 1]");
+}
