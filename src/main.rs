@@ -110,6 +110,16 @@ enum Command {
         /// A matrix to analyse, `[a b; c d]` (repeatable).
         #[arg(long)]
         matrix: Vec<String>,
+        /// Estimate the range of pseudo-curvatures at the fixed point of this operator (α = 2
+        /// only; floating point, an estimate): needs --points.
+        #[arg(long, value_name = "OP", requires = "points")]
+        curvature: Option<String>,
+        /// The control points of the operator's state in the plane, `x y; x y; …`.
+        #[arg(long, requires = "curvature")]
+        points: Option<String>,
+        /// Word length of the attractor samples for --curvature (at most 16).
+        #[arg(long, default_value_t = 8)]
+        level: u32,
         /// Print JSON.
         #[arg(long)]
         json: bool,
@@ -222,6 +232,54 @@ fn out(text: &str) {
 
 fn print_json(v: &impl serde::Serialize) {
     out(&(serde_json::to_string_pretty(v).expect("reports serialise") + "\n"));
+}
+
+/// The curvature estimate of `--curvature OP --points …`: the curve is the known `sub`
+/// operators from OP's state to itself, in file order.
+fn curvature_estimate(
+    a: &lacuna::Automaton,
+    name: &str,
+    points: &str,
+    level: u32,
+) -> Result<lacuna::CurvatureEstimate, Error> {
+    use num_traits::ToPrimitive;
+    let Some(op) = a.operators.iter().find(|o| o.name == name) else {
+        return Err(Error::Analysis(format!(
+            "no operator `{name}` in the automaton"
+        )));
+    };
+    let curve: Vec<&lacuna::Operator> = a
+        .operators
+        .iter()
+        .filter(|o| {
+            o.kind == lacuna::OpKind::Sub && o.to == op.to && o.from == op.to && o.value.is_some()
+        })
+        .collect();
+    let Some(index) = curve.iter().position(|o| o.name == name) else {
+        return Err(Error::Analysis(format!(
+            "`{name}` is not a known subdivision operator of its state onto itself"
+        )));
+    };
+    let ops: Vec<lacuna::Matrix> = curve.iter().filter_map(|o| o.value.clone()).collect();
+    let m = lacuna::parse_matrix_arg(points)?;
+    if m.cols != 2 {
+        return Err(Error::Analysis(format!(
+            "--points needs rows `x y`, found {} columns",
+            m.cols
+        )));
+    }
+    let pts: Vec<[f64; 2]> = (0..m.rows)
+        .map(|r| {
+            [
+                m.get(r, 0).to_f64().unwrap_or(f64::NAN),
+                m.get(r, 1).to_f64().unwrap_or(f64::NAN),
+            ]
+        })
+        .collect();
+    if pts.iter().flatten().any(|v| !v.is_finite()) {
+        return Err(Error::Analysis("--points must be finite numbers".into()));
+    }
+    lacuna::estimate_curvature(&ops, index, &pts, level.min(16))
 }
 
 fn run(cli: Cli) -> Result<ExitCode, Error> {
@@ -352,33 +410,62 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
         Command::Operators {
             input,
             matrix,
+            curvature,
+            points,
+            level,
             json,
         } => {
-            let automaton = match &input {
+            let loaded = match &input {
                 None => None,
                 Some(input) => match lacuna::load_any(input)? {
-                    lacuna::Loaded::Automaton { automaton, .. } => {
-                        Some(lacuna::analyse_automaton(&automaton)?)
-                    }
-                    lacuna::Loaded::Faces(_) => {
-                        return Err(Error::Analysis(format!(
+                    lacuna::Loaded::Automaton { automaton, .. } => Some(automaton),
+                    lacuna::Loaded::Faces(_) => return Err(Error::Analysis(format!(
                         "`{input}` is not an automaton: `lacuna operators` needs known operators"
-                    )))
-                    }
+                    ))),
                 },
             };
+            let automaton = loaded.as_ref().map(lacuna::analyse_automaton).transpose()?;
             let matrices = matrix
                 .iter()
                 .map(|m| lacuna::analyse_matrix(&lacuna::parse_matrix_arg(m)?))
                 .collect::<Result<Vec<_>, Error>>()?;
+            let estimate = match (&curvature, &points, &loaded) {
+                (Some(name), Some(pts), Some(a)) => Some(curvature_estimate(a, name, pts, level)?),
+                (Some(_), _, None) => {
+                    return Err(Error::Analysis(
+                        "--curvature needs an automaton file".into(),
+                    ));
+                }
+                _ => None,
+            };
             if json {
-                print_json(&serde_json::json!({ "automaton": automaton, "matrices": matrices }));
+                print_json(&serde_json::json!({
+                    "automaton": automaton,
+                    "matrices": matrices,
+                    "curvature": estimate,
+                }));
             } else {
                 if let Some(a) = &automaton {
                     out(&a.to_text());
                 }
                 for r in &matrices {
                     out(&r.to_text());
+                }
+                if let Some(e) = &estimate {
+                    let side = |s: &Option<[f64; 2]>| {
+                        s.map_or("no sample".to_string(), |[lo, hi]| {
+                            format!("[{lo:.6}, {hi:.6}]")
+                        })
+                    };
+                    out(&format!(
+                        "curvature estimate at the fixed point of {} (level {}, {} samples, floating point):\n  positive side {}, negative side {}\n  {}\n",
+                        curvature.as_deref().unwrap_or(""),
+                        e.level,
+                        e.samples,
+                        side(&e.positive_side),
+                        side(&e.negative_side),
+                        e.note
+                    ));
                 }
             }
             Ok(ExitCode::SUCCESS)
