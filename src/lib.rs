@@ -21,14 +21,18 @@ mod curve;
 mod design;
 mod edge;
 mod error;
+mod export;
 mod face;
 mod factor;
 mod fieldpoly;
 mod generate;
+mod geometry;
+mod instantiate;
 mod library;
 mod limits;
 mod linsys;
 mod matrix;
+mod measure;
 mod operator;
 mod poly;
 mod presolve;
@@ -36,6 +40,7 @@ mod ratio;
 mod report;
 mod rule;
 mod subdivision;
+mod template;
 
 pub mod certificate;
 pub mod certify;
@@ -57,12 +62,25 @@ pub use curve::{
 pub use design::{check_design, design_operator, DesignCheck, DesignError};
 pub use edge::{EdgeKind, EdgeType, JunctionKind};
 pub use error::{Diagnostic, Error, Result, Source, Span};
+pub use export::{render_raster, write_json, write_obj, write_png, write_svg};
 pub use face::{least_rotation, Face, Params};
 pub use generate::{automaton_of, degeneracies, solve_closure, GenOptions, Generated};
+pub use geometry::{
+    bezier_point, box_dimension, distance, fit_line, polyline_length, signed_area, BBox, Fit,
+    Point, Raster, MIN_HOLE_PIXELS,
+};
+pub use instantiate::{
+    instantiate, Cell, EdgeSlot, GeometryError, Instance, InstantiateOptions, StartFace,
+};
+pub use measure::{
+    bounds, check_cells, exact_topology, measure, rasterize, ExactTopology, LevelMeasure,
+    MeasureOptions, MeasureReport,
+};
 pub use operator::{
     analyse_matrix, parse_matrix_arg, parse_rationals_arg, Behaviour, CurvatureClass, Eigenvalue,
     OperatorReport,
 };
+pub use template::{control_points, regular_polygon};
 
 pub use algebraic::{FieldElement, NumberField, RealAlgebraic};
 pub use assembly::{Assembly, SharedEdge};

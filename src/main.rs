@@ -142,6 +142,42 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Instantiate the verified model (default parameters projected exactly onto the solution
+    /// space) and export level N: SVG, JSON polygons, OBJ prisms, PNG raster.
+    Render {
+        #[command(flatten)]
+        geo: GeoArgs,
+        /// Write an SVG picture (cells filled, lacunas open).
+        #[arg(long, value_name = "OUT.svg")]
+        svg: Option<std::path::PathBuf>,
+        /// Write the level-N cells as JSON polygons.
+        #[arg(long, value_name = "OUT.json")]
+        json_out: Option<std::path::PathBuf>,
+        /// Write an OBJ mesh: every cell a closed prism of this thickness (printable).
+        #[arg(long, value_name = "OUT.obj")]
+        obj: Option<std::path::PathBuf>,
+        /// Prism thickness for --obj.
+        #[arg(long, default_value_t = 0.05)]
+        thickness: f64,
+        /// Write a PNG raster (black cells on white).
+        #[arg(long, value_name = "OUT.png")]
+        png: Option<std::path::PathBuf>,
+        /// PNG size in pixels.
+        #[arg(long, default_value_t = 1024)]
+        size: usize,
+    },
+    /// Measure the instantiated structure per level: area, perimeter and their factors, box-counting
+    /// dimension, holes and components compared with the exact counts (a mismatch fails, exit 1).
+    Measure {
+        #[command(flatten)]
+        geo: GeoArgs,
+        /// Raster size for holes, components and box counting (a power of two).
+        #[arg(long, default_value_t = 2048)]
+        raster: usize,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
     /// Solve the BC-IFS constraint system of an automaton file, a face or an assembly exactly.
     Solve {
         /// An automaton file, face notation in quotes, an assembly file, or a library name.
@@ -176,6 +212,24 @@ enum Command {
 }
 
 #[derive(Args)]
+struct GeoArgs {
+    /// Face notation in quotes, a file, or a library name.
+    input: String,
+    /// The level.
+    #[arg(long, default_value_t = 3)]
+    level: u32,
+    /// Set a free parameter exactly, `NAME=VALUE` (names from `lacuna solve INPUT --params`).
+    #[arg(long = "param", value_name = "NAME=VALUE")]
+    params: Vec<String>,
+    /// Segments per Bézier edge when flattening.
+    #[arg(long, default_value_t = 4)]
+    segments: usize,
+    /// Refuse before the work when level N has more cells than this.
+    #[arg(long)]
+    max_cells: Option<u64>,
+}
+
+#[derive(Args)]
 struct CensusArgs {
     /// Largest boundary length.
     #[arg(long, default_value_t = 6)]
@@ -204,6 +258,7 @@ fn main() -> ExitCode {
             | Command::Solve { json: true, .. }
             | Command::Ratio { json: true, .. }
             | Command::Check { json: true, .. }
+            | Command::Measure { json: true, .. }
             | Command::Operators { json: true, .. }
             | Command::Design { json: true, .. }
             | Command::Census { json: true, .. }
@@ -280,6 +335,67 @@ fn curvature_estimate(
         return Err(Error::Analysis("--points must be finite numbers".into()));
     }
     lacuna::estimate_curvature(&ops, index, &pts, level.min(16))
+}
+
+/// A geometry error as a lacuna error (same code and message).
+fn geo_error(e: lacuna::GeometryError) -> Error {
+    match e {
+        lacuna::GeometryError::Lacuna(e) => e,
+        other => Error::Syntax(Box::new(lacuna::Diagnostic {
+            code: other.code(),
+            message: other.to_string(),
+            span: None,
+            source: None,
+        })),
+    }
+}
+
+/// The instance of `geo.input` with the parameters given, after checking the limits on the
+/// level and on the number of output cells.
+fn instance(geo: &GeoArgs, limits: &Limits, default_cells: u64) -> Result<lacuna::Instance, Error> {
+    limits.check_level(u64::from(geo.level))?;
+    if !(1..=64).contains(&geo.segments) {
+        return Err(Error::Limit {
+            what: "the segments per Bézier edge",
+            value: geo.segments.to_string(),
+            limit: "64".into(),
+            flag: "--segments",
+        });
+    }
+    let input = load_input(&geo.input)?;
+    let mut opts = lacuna::InstantiateOptions::default();
+    for p in &geo.params {
+        let parsed = p
+            .split_once('=')
+            .and_then(|(n, v)| Some((n.trim().to_string(), lacuna::parse_rational(v.trim())?)));
+        let Some(pair) = parsed else {
+            return Err(Error::syntax(
+                "E1007",
+                format!("--param `{p}`: expected NAME=VALUE with an exact value (1/7, 0.25)"),
+                lacuna::Span {
+                    line: 1,
+                    col: 1,
+                    len: p.chars().count().max(1),
+                },
+                Some(&lacuna::Source::command_line(p)),
+            ));
+        };
+        opts.values.push(pair);
+    }
+    let inst = lacuna::instantiate(&input, &opts).map_err(geo_error)?;
+    lacuna::check_cells(&inst, geo.level, geo.max_cells.unwrap_or(default_cells))
+        .map_err(geo_error)?;
+    Ok(inst)
+}
+
+/// Creates an output file for writing.
+fn create(path: &std::path::Path) -> Result<std::io::BufWriter<std::fs::File>, Error> {
+    std::fs::File::create(path)
+        .map(std::io::BufWriter::new)
+        .map_err(|e| Error::Io {
+            path: path.display().to_string(),
+            reason: e.to_string(),
+        })
 }
 
 fn run(cli: Cli) -> Result<ExitCode, Error> {
@@ -419,9 +535,11 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 None => None,
                 Some(input) => match lacuna::load_any(input)? {
                     lacuna::Loaded::Automaton { automaton, .. } => Some(automaton),
-                    lacuna::Loaded::Faces(_) => return Err(Error::Analysis(format!(
+                    lacuna::Loaded::Faces(_) => {
+                        return Err(Error::Analysis(format!(
                         "`{input}` is not an automaton: `lacuna operators` needs known operators"
-                    ))),
+                    )))
+                    }
                 },
             };
             let automaton = loaded.as_ref().map(lacuna::analyse_automaton).transpose()?;
@@ -514,6 +632,91 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 ExitCode::from(EXIT_FAILED)
             } else {
                 ExitCode::SUCCESS
+            })
+        }
+        Command::Render {
+            geo,
+            svg,
+            json_out,
+            obj,
+            thickness,
+            png,
+            size,
+        } => {
+            if svg.is_none() && json_out.is_none() && obj.is_none() && png.is_none() {
+                return Err(Error::Analysis(
+                    "nothing to write: give --svg, --json-out, --obj or --png".into(),
+                ));
+            }
+            if !(1..=16_384).contains(&size) {
+                return Err(Error::Limit {
+                    what: "the PNG size",
+                    value: size.to_string(),
+                    limit: "16384".into(),
+                    flag: "--size",
+                });
+            }
+            if !(thickness.is_finite() && thickness > 0.0) {
+                return Err(Error::Analysis(format!(
+                    "--thickness {thickness} must be a positive number"
+                )));
+            }
+            let vector = svg.is_some() || json_out.is_some() || obj.is_some();
+            let inst = instance(&geo, &limits, if vector { 2_000_000 } else { 100_000_000 })?;
+            let io = |path: &std::path::Path, e: std::io::Error| Error::Io {
+                path: path.display().to_string(),
+                reason: e.to_string(),
+            };
+            let (level, segs) = (geo.level, geo.segments);
+            if let Some(p) = &svg {
+                lacuna::write_svg(&inst, level, segs, create(p)?).map_err(|e| io(p, e))?;
+                out(&format!("wrote {}\n", p.display()));
+            }
+            if let Some(p) = &json_out {
+                lacuna::write_json(&inst, level, segs, create(p)?).map_err(|e| io(p, e))?;
+                out(&format!("wrote {}\n", p.display()));
+            }
+            if let Some(p) = &obj {
+                lacuna::write_obj(&inst, level, segs, thickness, create(p)?)
+                    .map_err(|e| io(p, e))?;
+                out(&format!("wrote {}\n", p.display()));
+            }
+            if let Some(p) = &png {
+                let raster = lacuna::render_raster(&inst, level, size, segs);
+                lacuna::write_png(&raster, create(p)?).map_err(|e| io(p, e))?;
+                out(&format!("wrote {}\n", p.display()));
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Measure { geo, raster, json } => {
+            if !(16..=16_384).contains(&raster) || !raster.is_power_of_two() {
+                return Err(Error::Limit {
+                    what: "the raster size (a power of two from 16)",
+                    value: raster.to_string(),
+                    limit: "16384".into(),
+                    flag: "--raster",
+                });
+            }
+            let inst = instance(&geo, &limits, 20_000_000)?;
+            let opts = lacuna::MeasureOptions {
+                level: geo.level,
+                raster,
+                segments: geo.segments,
+                ..Default::default()
+            };
+            let r = lacuna::measure(&inst, &opts).map_err(geo_error)?;
+            if json {
+                print_json(&r);
+            } else {
+                out(&format!(
+                    "{}\n",
+                    serde_json::to_string_pretty(&r).unwrap_or_default()
+                ));
+            }
+            Ok(if r.verified {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(EXIT_FAILED)
             })
         }
         Command::Solve {

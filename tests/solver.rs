@@ -337,12 +337,27 @@ fn cantor_layout_is_configurable() {
         ..GenOptions::default()
     };
     let g = automaton_of(&ts, opts);
-    let t1 = g.automaton.operators.iter().find(|o| o.name == "C2.T1").unwrap();
+    let t1 = g
+        .automaton
+        .operators
+        .iter()
+        .find(|o| o.name == "C2.T1")
+        .unwrap();
     assert_eq!(t1.value.as_ref().unwrap().to_string(), "[2/5 0; 3/5 1]");
-    let t0 = g.automaton.operators.iter().find(|o| o.name == "C2.T0").unwrap();
+    let t0 = g
+        .automaton
+        .operators
+        .iter()
+        .find(|o| o.name == "C2.T0")
+        .unwrap();
     assert_eq!(t0.value.as_ref().unwrap().to_string(), "[1 3/5; 0 2/5]");
     // The default leaves equal pieces and gaps: thirds.
     let g = automaton_of(&ts, GenOptions::default());
-    let t1 = g.automaton.operators.iter().find(|o| o.name == "C2.T1").unwrap();
+    let t1 = g
+        .automaton
+        .operators
+        .iter()
+        .find(|o| o.name == "C2.T1")
+        .unwrap();
     assert_eq!(t1.value.as_ref().unwrap().to_string(), "[1/3 0; 2/3 1]");
 }

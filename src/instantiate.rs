@@ -1,0 +1,652 @@
+//! Instantiation of a verified structure (SPEC §7): values for the free parameters of the exact
+//! solution space, control points in the plane, and the depth-first evaluation of the attractor.
+//!
+//! **Choosing the parameters.** Every face type gets a *template*: its control points on a regular
+//! polygon (corners at the vertices, Bézier inner points evenly on the straight edges) and, for
+//! each sub-face, the target position of each of its control points: pieces of the boundary where
+//! the edge operators put them, the spoke points at the joints and corners, a gap point just
+//! inside each gap, the lacuna vertices on a shrunken concentric polygon, and inner points of
+//! `Ea`, `El`, `Ec` evenly on the straight segment between their ends. The unknowns are the
+//! barycentric columns of the sub-face operators; for each column `c` (target `y`, reference
+//! coordinates `r` = the mean value coordinates of `y` in the template polygon) the objective is
+//! `|P·c − y|² + δ·|c − r|²`. Over the affine solution space `x = particular + B·t` this is a
+//! positive definite quadratic in the free parameters `t`; its minimiser is computed in floating
+//! point, **rounded to rationals** of denominator `2^bits`, and the unknowns are then formed
+//! exactly as `particular + B·t` over Q. So the chosen operators satisfy every equation of the
+//! system exactly whatever the rounding — [`Instance::check_exact`] re-checks every row — and
+//! floating point only decides *which* exact solution is shown. Parameters given by name are fixed
+//! to the given rationals before the fit.
+
+use crate::geometry::{bezier_point, Point};
+use crate::template::{control_points, dim_of, mean_value, regular_polygon, template, Template};
+use lacuna::{
+    automaton_of, close_or_error, solve, EdgeKind, Face, GenOptions, Generated, Input, Limits,
+    Linearized, Origin, Solution, TypeSet,
+};
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{ToPrimitive, Zero};
+use std::f64::consts::PI;
+
+/// Errors of the geometry layer, each with a stable code (`E10xx`).
+#[derive(Debug, thiserror::Error)]
+pub enum GeometryError {
+    /// An error of the layers below (input, closure, limits).
+    #[error(transparent)]
+    Lacuna(#[from] lacuna::Error),
+    /// The constraint system has no solution: there is nothing to instantiate.
+    #[error("the constraint system has no solution (`lacuna solve` shows the conflict): nothing to instantiate")]
+    Inconsistent,
+    /// A parameter value was given for a name that is not a free parameter.
+    #[error("`{name}` is not a free parameter (`lacuna solve INPUT --params` lists them)")]
+    UnknownParameter {
+        /// The name given.
+        name: String,
+    },
+    /// The requested level has more cells than the limit allows.
+    #[error(
+        "level {level} has {cells} cells, above the limit {limit} (raise it with --max-cells)"
+    )]
+    TooManyCells {
+        /// The level asked for.
+        level: u32,
+        /// The exact number of cells N^C_level.
+        cells: String,
+        /// The limit in force.
+        limit: u64,
+    },
+    /// The chosen operators break an equation (an internal error: it cannot happen when the
+    /// solution space is right).
+    #[error("the chosen operators break equation {row} of the constraint system")]
+    NotExact {
+        /// The row of the linear system.
+        row: usize,
+    },
+    /// The exact hole count disagrees with N^L (an internal error).
+    #[error("exact topology: {0}")]
+    Topology(String),
+    /// An output file could not be written.
+    #[error("cannot write `{path}`: {reason}")]
+    Write {
+        /// The path.
+        path: String,
+        /// Why.
+        reason: String,
+    },
+}
+
+impl GeometryError {
+    /// The stable diagnostic code.
+    pub fn code(&self) -> &'static str {
+        match self {
+            GeometryError::Lacuna(e) => e.code(),
+            GeometryError::Inconsistent => "E1001",
+            GeometryError::UnknownParameter { .. } => "E1002",
+            GeometryError::TooManyCells { .. } => "E1003",
+            GeometryError::NotExact { .. } => "E1004",
+            GeometryError::Write { .. } => "E1005",
+            GeometryError::Topology(_) => "E1006",
+        }
+    }
+}
+
+/// How the free parameters and the template are chosen.
+#[derive(Clone, Debug)]
+pub struct InstantiateOptions {
+    /// Bézier degree q of `Bn` edges (as in `lacuna solve --degree`).
+    pub degree: usize,
+    /// Cantor layout: gap length relative to piece length (as in [`GenOptions`]).
+    pub cantor_gap: BigRational,
+    /// Parameter values given by name (`T0.T3[2][5]`), fixed before the fit.
+    pub values: Vec<(String, BigRational)>,
+    /// Weight δ of the reference coordinates against the target positions.
+    pub regularization: f64,
+    /// Lacuna vertices at this fraction of the distance from the centre to their spoke point.
+    pub lacuna_scale: f64,
+    /// Gap points at this fraction of the distance from the centre to the gap's middle.
+    pub gap_depth: f64,
+    /// The fitted parameters are rounded to multiples of `2^-bits`.
+    pub bits: u32,
+}
+
+impl Default for InstantiateOptions {
+    fn default() -> Self {
+        InstantiateOptions {
+            degree: 2,
+            cantor_gap: GenOptions::default().cantor_gap,
+            values: Vec::new(),
+            regularization: 0.05,
+            lacuna_scale: 0.45,
+            gap_depth: 0.85,
+            bits: 20,
+        }
+    }
+}
+
+/// One boundary edge of a face state: its first control point, number of points, Bézier or not.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EdgeSlot {
+    /// Index of its first control point in the face's points.
+    pub offset: usize,
+    /// Number of control points (q + 1 for `Bn`, 2 for `Cn`).
+    pub dim: usize,
+    /// Whether the edge is drawn as a Bézier curve (`Bn`) or as a segment (`Cn`).
+    pub bezier: bool,
+}
+
+/// Where a sub-face edge's flag "on the boundary of the union" comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum FlagSource {
+    Parent(usize),
+    Shared,
+    Free,
+}
+
+/// A start face placed in the plane.
+#[derive(Clone, Debug)]
+pub struct StartFace {
+    /// Its face type.
+    pub ty: usize,
+    /// Its control points, in the order of the type's state.
+    pub points: Vec<Point>,
+    /// For each boundary edge (canonical order): on the boundary of the assembly (not shared).
+    pub free: Vec<bool>,
+}
+
+/// A verified structure with chosen operators and control points, ready to evaluate.
+#[derive(Clone, Debug)]
+pub struct Instance {
+    /// The input's name.
+    pub name: String,
+    /// The closure.
+    pub types: TypeSet,
+    /// The generated automaton.
+    pub generated: Generated,
+    /// Its linear system.
+    pub linearized: Linearized,
+    /// The exact value of every unknown.
+    pub values: Vec<BigRational>,
+    /// The free parameters by name with their chosen values.
+    pub parameters: Vec<(String, BigRational)>,
+    /// Root-mean-square distance between the chosen level-1 control points and the template.
+    pub fit_residual: f64,
+    /// The start faces in the plane.
+    pub start: Vec<StartFace>,
+    /// Per type, per boundary edge.
+    pub slots: Vec<Vec<EdgeSlot>>,
+    /// Per type: number of control points.
+    pub dims: Vec<usize>,
+    /// Per type and sub-face: the operator in floating point, row-major (m_t × m_w).
+    ops: Vec<Vec<Vec<f64>>>,
+    flags: Vec<Vec<Vec<FlagSource>>>,
+}
+
+/// A cell met by [`Instance::walk`].
+#[derive(Clone, Copy, Debug)]
+pub struct Cell<'a> {
+    /// Face type.
+    pub ty: usize,
+    /// Level of the cell.
+    pub depth: u32,
+    /// Control points.
+    pub points: &'a [Point],
+    /// For each boundary edge: whether it lies on the boundary of the union of the cells of its
+    /// level (derived from the topology, not from coordinates).
+    pub free: &'a [bool],
+}
+
+fn slots_of(face: &Face, q: usize) -> Vec<EdgeSlot> {
+    let mut off = 0;
+    face.boundary
+        .iter()
+        .map(|e| {
+            let d = dim_of(e, q);
+            let s = EdgeSlot {
+                offset: off,
+                dim: d,
+                bezier: e.kind == EdgeKind::B,
+            };
+            off += d - 1;
+            s
+        })
+        .collect()
+}
+
+fn to_f64(r: &BigRational) -> f64 {
+    r.to_f64().unwrap_or(f64::NAN)
+}
+
+/// Solves the dense symmetric positive definite system `h·t = g` (Gaussian elimination with
+/// partial pivoting, in place).
+fn solve_dense(mut h: Vec<Vec<f64>>, mut g: Vec<f64>) -> Vec<f64> {
+    let n = g.len();
+    for col in 0..n {
+        let p = (col..n)
+            .max_by(|&a, &b| h[a][col].abs().total_cmp(&h[b][col].abs()))
+            .unwrap_or(col);
+        h.swap(col, p);
+        g.swap(col, p);
+        let d = h[col][col];
+        if d.abs() < 1e-300 {
+            continue;
+        }
+        for r in col + 1..n {
+            let f = h[r][col] / d;
+            if f != 0.0 {
+                let (top, bottom) = h.split_at_mut(r);
+                for (x, y) in bottom[0][col..].iter_mut().zip(&top[col][col..]) {
+                    *x -= f * y;
+                }
+                g[r] -= f * g[col];
+            }
+        }
+    }
+    let mut t = vec![0.0; n];
+    for r in (0..n).rev() {
+        let s: f64 = (r + 1..n).map(|c| h[r][c] * t[c]).sum();
+        t[r] = if h[r][r].abs() < 1e-300 {
+            0.0
+        } else {
+            (g[r] - s) / h[r][r]
+        };
+    }
+    t
+}
+
+/// Instantiates an input: closes it, solves its constraint system exactly, chooses the free
+/// parameters (see the module documentation) and places the start faces.
+pub fn instantiate(input: &Input, opt: &InstantiateOptions) -> Result<Instance, GeometryError> {
+    let q = opt.degree.max(1);
+    let faces = input.faces();
+    let types = close_or_error(&faces, &Limits::default())?;
+    let generated = automaton_of(
+        &types,
+        GenOptions {
+            degree: q,
+            cantor_gap: opt.cantor_gap.clone(),
+        },
+    );
+    let a = &generated.automaton;
+    let lin = a.linearize()?;
+    let Solution::Consistent(space) = solve(&lin.system) else {
+        return Err(GeometryError::Inconsistent);
+    };
+    let param = space.parametrize();
+    let dof = space.free.len();
+    let names: Vec<String> = space
+        .free
+        .iter()
+        .map(|&f| a.entry_name(lin.unknown_entries[f]))
+        .collect();
+    // Fixed parameters (given by name).
+    let mut fixed: Vec<Option<BigRational>> = vec![None; dof];
+    for (name, v) in &opt.values {
+        let k = names
+            .iter()
+            .position(|n| n == name)
+            .ok_or_else(|| GeometryError::UnknownParameter { name: name.clone() })?;
+        fixed[k] = Some(v.clone());
+    }
+    // The normal equations of the template fit in the parameters.
+    let mut h = vec![vec![0.0; dof]; dof];
+    let mut g = vec![0.0; dof];
+    let templates: Vec<Template> = types
+        .types
+        .iter()
+        .map(|ty| template(ty, &types, q, opt))
+        .collect();
+    let delta = opt.regularization;
+    let mut columns = Vec::new();
+    for (t, ty) in types.types.iter().enumerate() {
+        let p = &templates[t].points;
+        let m_t = p.len().max(1);
+        // A = PᵀP + δI.
+        let amat: Vec<Vec<f64>> = (0..m_t)
+            .map(|r| {
+                (0..m_t)
+                    .map(|s| {
+                        let pp = p[r][0] * p[s][0] + p[r][1] * p[s][1];
+                        pp + if r == s { delta } else { 0.0 }
+                    })
+                    .collect()
+            })
+            .collect();
+        for (k, &w) in ty.children.iter().enumerate() {
+            let op = generated.sub_ops[t][k];
+            let base = lin.offsets[op].expect("face sub-operators are unknown");
+            let targets = &templates[t].targets[k];
+            let m_w = a.states[generated.face_state[w]].dim;
+            for (c, &y) in targets.iter().enumerate().take(m_w) {
+                let reference = mean_value(p, y);
+                let unknowns: Vec<usize> = (0..m_t).map(|r| base + r * m_w + c).collect();
+                // x_c = e + E·t, with the fixed parameters folded into e.
+                let mut e = vec![0.0; m_t];
+                let mut rows: Vec<Vec<(usize, f64)>> = vec![Vec::new(); m_t];
+                for (r, &u) in unknowns.iter().enumerate() {
+                    let (cst, terms) = param.expression(u);
+                    e[r] = to_f64(cst);
+                    for (kk, coef) in terms {
+                        match &fixed[*kk] {
+                            Some(v) => e[r] += to_f64(coef) * to_f64(v),
+                            None => rows[r].push((*kk, to_f64(coef))),
+                        }
+                    }
+                }
+                // b = Pᵀy + δ·ref; gradient term Eᵀ(b − A e); Hessian EᵀAE.
+                let b: Vec<f64> = (0..m_t)
+                    .map(|r| p[r][0] * y[0] + p[r][1] * y[1] + delta * reference[r])
+                    .collect();
+                for r in 0..m_t {
+                    let ae: f64 = (0..m_t).map(|s| amat[r][s] * e[s]).sum();
+                    for &(kk, cf) in &rows[r] {
+                        g[kk] += cf * (b[r] - ae);
+                        for s in 0..m_t {
+                            let ars = amat[r][s];
+                            if ars == 0.0 {
+                                continue;
+                            }
+                            for &(kj, cj) in &rows[s] {
+                                h[kk][kj] += cf * ars * cj;
+                            }
+                        }
+                    }
+                }
+                columns.push((unknowns, y, t));
+            }
+        }
+    }
+    // Fixed parameters: identity rows.
+    for (k, f) in fixed.iter().enumerate() {
+        if let Some(v) = f {
+            h[k].iter_mut().for_each(|x| *x = 0.0);
+            h[k][k] = 1.0;
+            g[k] = to_f64(v);
+        }
+    }
+    let tf = solve_dense(h, g);
+    let denom = BigInt::from(1u64) << opt.bits;
+    let tq: Vec<BigRational> = tf
+        .iter()
+        .zip(&fixed)
+        .map(|(x, f)| match f {
+            Some(v) => v.clone(),
+            None => {
+                let scaled = (x * (1u64 << opt.bits) as f64).round();
+                let num = if scaled.is_finite() {
+                    BigInt::from(scaled as i64)
+                } else {
+                    BigInt::zero()
+                };
+                BigRational::new(num, denom.clone())
+            }
+        })
+        .collect();
+    // The exact unknowns.
+    let values: Vec<BigRational> = (0..lin.system.unknowns)
+        .map(|u| {
+            let (cst, terms) = param.expression(u);
+            let mut v = cst.clone();
+            for (kk, coef) in terms {
+                v += coef * &tq[*kk];
+            }
+            v
+        })
+        .collect();
+    // Residual of the fit.
+    let mut sq = 0.0;
+    for (unknowns, y, t) in &columns {
+        let p = &templates[*t].points;
+        let mut pos = [0.0, 0.0];
+        for (r, &u) in unknowns.iter().enumerate() {
+            let v = to_f64(&values[u]);
+            pos[0] += v * p[r][0];
+            pos[1] += v * p[r][1];
+        }
+        sq += (pos[0] - y[0]).powi(2) + (pos[1] - y[1]).powi(2);
+    }
+    let fit_residual = (sq / columns.len().max(1) as f64).sqrt();
+    let parameters = names.into_iter().zip(tq).collect();
+    let slots: Vec<Vec<EdgeSlot>> = types.types.iter().map(|t| slots_of(&t.face, q)).collect();
+    let dims: Vec<usize> = generated
+        .face_state
+        .iter()
+        .map(|&s| a.states[s].dim)
+        .collect();
+    let mut ops = Vec::new();
+    let mut flags = Vec::new();
+    for (t, ty) in types.types.iter().enumerate() {
+        let mut tops = Vec::new();
+        let mut tflags = Vec::new();
+        for (k, &w) in ty.children.iter().enumerate() {
+            let base = lin.offsets[generated.sub_ops[t][k]].expect("unknown");
+            let len = dims[t] * dims[w];
+            tops.push(values[base..base + len].iter().map(to_f64).collect());
+            tflags.push(
+                ty.subdivision.subfaces[k]
+                    .origins
+                    .iter()
+                    .map(|o| match *o {
+                        Origin::Piece { edge, .. } => FlagSource::Parent(edge),
+                        Origin::Spoke { .. } => FlagSource::Shared,
+                        Origin::Lacuna { .. } | Origin::GapSide { .. } => FlagSource::Free,
+                    })
+                    .collect(),
+            );
+        }
+        ops.push(tops);
+        flags.push(tflags);
+    }
+    let start = place(input, &types, q);
+    let inst = Instance {
+        name: input.name.clone(),
+        types,
+        generated,
+        linearized: lin,
+        values,
+        parameters,
+        fit_residual,
+        start,
+        slots,
+        dims,
+        ops,
+        flags,
+    };
+    inst.check_exact()?;
+    Ok(inst)
+}
+
+/// Places the start faces: face 0 on the regular polygon; every other face sharing an edge with a
+/// placed face as a regular polygon on the other side of that edge (for two quads: the reflection
+/// across the shared edge); a face without placed neighbour to the right of the others.
+fn place(input: &Input, types: &TypeSet, q: usize) -> Vec<StartFace> {
+    let asm = &input.assembly;
+    let mut corners: Vec<Option<Vec<Point>>> = vec![None; asm.faces.len()];
+    for f in 0..asm.faces.len() {
+        let n = asm.faces[f].1.boundary.len();
+        let link = asm.shared.iter().find_map(|s| {
+            if s.b.0 == f && s.a.0 != f && corners[s.a.0].is_some() {
+                Some((s.a, s.b.1))
+            } else if s.a.0 == f && s.b.0 != f && corners[s.b.0].is_some() {
+                Some((s.b, s.a.1))
+            } else {
+                None
+            }
+        });
+        let c = match link {
+            Some(((g, eg), ef)) => {
+                let cg = corners[g].as_ref().expect("placed");
+                let (pa, pb) = (cg[eg], cg[(eg + 1) % cg.len()]);
+                // Edge ef runs from pb to pa; continue counter-clockwise with equal sides.
+                let mut w = vec![[0.0; 2]; n];
+                w[ef] = pb;
+                w[(ef + 1) % n] = pa;
+                let turn = 2.0 * PI / n as f64;
+                let (cs, sn) = (turn.cos(), turn.sin());
+                for step in 1..n - 1 {
+                    let i = (ef + step) % n;
+                    let (prev, cur) = (w[(i + n - 1) % n], w[i]);
+                    let d = [cur[0] - prev[0], cur[1] - prev[1]];
+                    w[(i + 1) % n] = [
+                        cur[0] + cs * d[0] - sn * d[1],
+                        cur[1] + sn * d[0] + cs * d[1],
+                    ];
+                }
+                w
+            }
+            None => {
+                let shift = 2.5 * f as f64;
+                regular_polygon(n)
+                    .into_iter()
+                    .map(|p| [p[0] + shift, p[1]])
+                    .collect()
+            }
+        };
+        corners[f] = Some(c);
+    }
+    asm.faces
+        .iter()
+        .enumerate()
+        .map(|(f, (_, face))| {
+            let (canon, r) = face.canonical();
+            let n = face.boundary.len();
+            let cf = corners[f].as_ref().expect("placed");
+            let canon_corners: Vec<Point> = (0..n).map(|i| cf[(i + r) % n]).collect();
+            let free = (0..n)
+                .map(|i| {
+                    let e = (i + r) % n;
+                    !asm.shared.iter().any(|s| s.a == (f, e) || s.b == (f, e))
+                })
+                .collect();
+            StartFace {
+                ty: types.start[f],
+                points: control_points(&canon, &canon_corners, q),
+                free,
+            }
+        })
+        .collect()
+}
+
+impl Instance {
+    /// Re-checks every equation of the constraint system on the chosen values, exactly over Q.
+    pub fn check_exact(&self) -> Result<(), GeometryError> {
+        for (row, eq) in self.linearized.system.rows.iter().enumerate() {
+            let mut s = -eq.rhs.clone();
+            for (x, c) in &eq.terms {
+                s += c * &self.values[*x];
+            }
+            if !s.is_zero() {
+                return Err(GeometryError::NotExact { row });
+            }
+        }
+        Ok(())
+    }
+
+    /// The exact matrix of sub-face operator `k` of type `t` (m_t × m_w, row-major).
+    pub fn operator_exact(&self, t: usize, k: usize) -> &[BigRational] {
+        let w = self.types.types[t].children[k];
+        let base = self.linearized.offsets[self.generated.sub_ops[t][k]].expect("unknown");
+        &self.values[base..base + self.dims[t] * self.dims[w]]
+    }
+
+    /// Visits the cells depth-first down to `level` (every depth when `all_depths`, else only the
+    /// cells of `level`), in a deterministic order. Memory grows with the level and the number of
+    /// sub-faces per type, not with the number of cells.
+    pub fn walk(&self, level: u32, all_depths: bool, mut visit: impl FnMut(&Cell)) {
+        let mut stack: Vec<(usize, u32, Vec<Point>, Vec<bool>)> = Vec::new();
+        let mut spare_pts: Vec<Vec<Point>> = Vec::new();
+        let mut spare_flags: Vec<Vec<bool>> = Vec::new();
+        for s in self.start.iter().rev() {
+            stack.push((s.ty, 0, s.points.clone(), s.free.clone()));
+        }
+        while let Some((t, depth, pts, free)) = stack.pop() {
+            if all_depths || depth == level {
+                visit(&Cell {
+                    ty: t,
+                    depth,
+                    points: &pts,
+                    free: &free,
+                });
+            }
+            if depth < level {
+                let m_t = self.dims[t];
+                let ty = &self.types.types[t];
+                for k in (0..ty.children.len()).rev() {
+                    let w = ty.children[k];
+                    let m_w = self.dims[w];
+                    let op = &self.ops[t][k];
+                    let mut child = spare_pts.pop().unwrap_or_default();
+                    child.clear();
+                    for i in 0..m_w {
+                        let (mut x, mut y) = (0.0, 0.0);
+                        for (j, p) in pts.iter().enumerate().take(m_t) {
+                            let v = op[j * m_w + i];
+                            x += v * p[0];
+                            y += v * p[1];
+                        }
+                        child.push([x, y]);
+                    }
+                    let mut cf = spare_flags.pop().unwrap_or_default();
+                    cf.clear();
+                    cf.extend(self.flags[t][k].iter().map(|f| match *f {
+                        FlagSource::Parent(e) => free[e],
+                        FlagSource::Shared => false,
+                        FlagSource::Free => true,
+                    }));
+                    stack.push((w, depth + 1, child, cf));
+                }
+            }
+            spare_pts.push(pts);
+            spare_flags.push(free);
+        }
+    }
+
+    /// The boundary flags of sub-face `k` of a cell of type `t` whose edges have flags `free`
+    /// (pieces inherit their parent edge's flag, spokes are shared, lacuna and gap sides free).
+    pub fn child_free(&self, t: usize, k: usize, free: &[bool]) -> Vec<bool> {
+        self.flags[t][k]
+            .iter()
+            .map(|f| match *f {
+                FlagSource::Parent(e) => free[e],
+                FlagSource::Shared => false,
+                FlagSource::Free => true,
+            })
+            .collect()
+    }
+
+    /// The control points of boundary edge `e` of a cell of type `t`.
+    pub fn edge_controls(&self, t: usize, e: usize, points: &[Point]) -> Vec<Point> {
+        let s = self.slots[t][e];
+        let m = points.len();
+        (0..s.dim).map(|c| points[(s.offset + c) % m]).collect()
+    }
+
+    /// The polyline of boundary edge `e` of a cell (both ends included): a Bézier edge flattened to
+    /// `segments` segments, a Cantor edge as the segment between its end points.
+    pub fn edge_polyline(
+        &self,
+        t: usize,
+        e: usize,
+        points: &[Point],
+        segments: usize,
+    ) -> Vec<Point> {
+        let ctrl = self.edge_controls(t, e, points);
+        if self.slots[t][e].bezier && segments > 1 {
+            (0..=segments)
+                .map(|i| bezier_point(&ctrl, i as f64 / segments as f64))
+                .collect()
+        } else {
+            vec![ctrl[0], ctrl[ctrl.len() - 1]]
+        }
+    }
+
+    /// The closed polygon of a cell (its edges' polylines, each end point once).
+    pub fn cell_polygon(&self, t: usize, points: &[Point], segments: usize) -> Vec<Point> {
+        let mut poly = Vec::new();
+        for e in 0..self.slots[t].len() {
+            let mut pl = self.edge_polyline(t, e, points, segments);
+            pl.pop();
+            poly.extend(pl);
+        }
+        poly
+    }
+}
