@@ -83,6 +83,15 @@ fn hostile_inputs_get_coded_errors_from_every_command() {
             vec!["counts", input.as_str(), "--levels", "2"],
             vec!["ratio", input.as_str()],
             vec!["solve", input.as_str()],
+            vec!["measure", input.as_str(), "--level", "1", "--raster", "64"],
+            vec![
+                "render",
+                input.as_str(),
+                "--level",
+                "1",
+                "--svg",
+                "target/hostile.svg",
+            ],
         ] {
             let (code, err) = run(&cmd);
             assert_eq!(code, 2, "{cmd:?} should be refused: {err}");
@@ -101,9 +110,32 @@ fn absurd_levels_and_digits_are_refused_before_the_work() {
         vec!["solve", "F0", "--max-unknowns", "100"],
         vec!["verify", "F0", "--max-unknowns", "100"],
         vec!["solve", "spec-edge", "--max-unknowns", "10"],
+        vec![
+            "render",
+            "F0",
+            "--level",
+            "9",
+            "--svg",
+            "target/hostile.svg",
+        ],
+        vec![
+            "render",
+            "F0",
+            "--level",
+            "2",
+            "--png",
+            "target/hostile.png",
+            "--size",
+            "100000",
+        ],
+        vec!["measure", "F0", "--level", "2", "--raster", "1000000"],
     ] {
         let (code, err) = run(&args);
         assert_eq!(code, 2, "{args:?}: {err}");
-        assert!(err.contains("E0501"), "{args:?}: {err}");
+        // A limit error (E0501), or the cell limit of the geometry (E1003), naming its flag.
+        assert!(
+            (err.contains("E0501") || err.contains("E1003")) && err.contains("(raise it with --"),
+            "{args:?}: {err}"
+        );
     }
 }
