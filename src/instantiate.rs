@@ -542,6 +542,27 @@ impl Instance {
     }
 
     /// The exact matrix of sub-face operator `k` of type `t` (m_t × m_w, row-major).
+    /// The automaton with every unknown operator replaced by its chosen exact value (the
+    /// instantiated automaton analysed by `lacuna operators`).
+    pub fn instantiated_automaton(&self) -> lacuna::Automaton {
+        let mut a = self.generated.automaton.clone();
+        for (o, op) in a.operators.iter_mut().enumerate() {
+            if let Some(base) = self.linearized.offsets[o] {
+                let (r, c) = (
+                    self.generated.automaton.states[op.to].dim,
+                    self.generated.automaton.states[op.from].dim,
+                );
+                op.value = Some(lacuna::Matrix {
+                    rows: r,
+                    cols: c,
+                    data: self.values[base..base + r * c].to_vec(),
+                });
+            }
+        }
+        a
+    }
+
+    /// The exact entries of the sub-face operator `T_k` of type `t`, row-major.
     pub fn operator_exact(&self, t: usize, k: usize) -> &[BigRational] {
         let w = self.types.types[t].children[k];
         let base = self.linearized.offsets[self.generated.sub_ops[t][k]].expect("unknown");

@@ -105,7 +105,8 @@ enum Command {
     /// Eigen analysis of subdivision operators (SPEC §8): eigenvalues, fixed point, contraction,
     /// tangent and pseudo-curvature class, end and joining points of curves.
     Operators {
-        /// An automaton file or library name (optional when --matrix is given).
+        /// An automaton file, a face, an assembly or a library name (faces are instantiated with
+        /// the default parameters first); optional when --matrix is given.
         input: Option<String>,
         /// A matrix to analyse, `[a b; c d]` (repeatable).
         #[arg(long)]
@@ -535,10 +536,12 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 None => None,
                 Some(input) => match lacuna::load_any(input)? {
                     lacuna::Loaded::Automaton { automaton, .. } => Some(automaton),
-                    lacuna::Loaded::Faces(_) => {
-                        return Err(Error::Analysis(format!(
-                        "`{input}` is not an automaton: `lacuna operators` needs known operators"
-                    )))
+                    // Faces: instantiate (default parameters, projected exactly onto the solution
+                    // space) and analyse the instantiated operators.
+                    lacuna::Loaded::Faces(faces) => {
+                        let opts = lacuna::InstantiateOptions::default();
+                        let inst = lacuna::instantiate(&faces, &opts).map_err(geo_error)?;
+                        Some(inst.instantiated_automaton())
                     }
                 },
             };
