@@ -377,11 +377,9 @@ pub fn close(face: &Face, limits: &Limits) -> Result<Closure> {
 pub fn close_or_error(start: &[Face], limits: &Limits) -> Result<TypeSet> {
     match Closure::of(start, limits)? {
         Closure::Closed(ts) => Ok(ts),
-        Closure::Runaway(r) => Err(Error::Limit {
-            what: "the closure",
-            value: format!("runaway ({}; chain of {} types)", r.reason, r.witness.len()),
-            limit: "the configured limits".into(),
-            flag: "--max-boundary / --max-types",
+        Closure::Runaway(r) => Err(Error::Runaway {
+            reason: r.reason,
+            chain: r.witness.len(),
         }),
     }
 }

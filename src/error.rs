@@ -78,6 +78,14 @@ pub enum Error {
         /// The command-line flag that sets it.
         flag: &'static str,
     },
+    /// A command that needs a closed closure met a runaway one.
+    #[error("the closure did not close: {reason}; the witness chain has {chain} types (`lacuna closure` shows it)")]
+    Runaway {
+        /// The limit that was hit.
+        reason: String,
+        /// Length of the witness chain.
+        chain: usize,
+    },
     /// An exact analysis could not be completed (for instance a factoring budget ran out).
     #[error("analysis failed: {0}")]
     Analysis(String),
@@ -145,6 +153,7 @@ impl Error {
             Error::Io { .. } => "E0601",
             Error::NotText { .. } => "E0602",
             Error::Analysis(_) => "E0801",
+            Error::Runaway { .. } => "E0502",
         }
     }
 
@@ -156,7 +165,8 @@ impl Error {
             | Error::Limit { .. }
             | Error::Io { .. }
             | Error::NotText { .. }
-            | Error::Analysis(_) => None,
+            | Error::Analysis(_)
+            | Error::Runaway { .. } => None,
         }
     }
 

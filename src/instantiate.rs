@@ -107,6 +107,8 @@ pub struct InstantiateOptions {
     pub gap_depth: f64,
     /// The fitted parameters are rounded to multiples of `2^-bits`.
     pub bits: u32,
+    /// The limits the closure is computed under.
+    pub limits: Limits,
 }
 
 impl Default for InstantiateOptions {
@@ -119,6 +121,7 @@ impl Default for InstantiateOptions {
             lacuna_scale: 0.45,
             gap_depth: 0.85,
             bits: 20,
+            limits: Limits::default(),
         }
     }
 }
@@ -258,7 +261,7 @@ fn solve_dense(mut h: Vec<Vec<f64>>, mut g: Vec<f64>) -> Vec<f64> {
 pub fn instantiate(input: &Input, opt: &InstantiateOptions) -> Result<Instance, GeometryError> {
     let q = opt.degree.max(1);
     let faces = input.faces();
-    let types = close_or_error(&faces, &Limits::default())?;
+    let types = close_or_error(&faces, &opt.limits)?;
     let generated = automaton_of(
         &types,
         GenOptions {

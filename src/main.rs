@@ -364,7 +364,10 @@ fn instance(geo: &GeoArgs, limits: &Limits, default_cells: u64) -> Result<lacuna
         });
     }
     let input = load_input(&geo.input)?;
-    let mut opts = lacuna::InstantiateOptions::default();
+    let mut opts = lacuna::InstantiateOptions {
+        limits: limits.clone(),
+        ..Default::default()
+    };
     for p in &geo.params {
         let parsed = p
             .split_once('=')
@@ -539,7 +542,10 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                     // Faces: instantiate (default parameters, projected exactly onto the solution
                     // space) and analyse the instantiated operators.
                     lacuna::Loaded::Faces(faces) => {
-                        let opts = lacuna::InstantiateOptions::default();
+                        let opts = lacuna::InstantiateOptions {
+                            limits: limits.clone(),
+                            ..Default::default()
+                        };
                         let inst = lacuna::instantiate(&faces, &opts).map_err(geo_error)?;
                         Some(inst.instantiated_automaton())
                     }
