@@ -1,22 +1,30 @@
 #!/usr/bin/env bash
-# Runs every fuzz target for a bounded time on the stable toolchain (no sanitizer), starting
-# from the seeds in fuzz/seeds/<target>, and prints the number of executions of each.
-# Usage: fuzz/run.sh [SECONDS_PER_TARGET]   (needs `cargo install cargo-fuzz`)
+# Runs every fuzz target on the stable toolchain (no sanitizer) from a fresh copy of its seeds
+# (fuzz/seeds/<target>), with a fixed libFuzzer seed so that a run is reproducible, bounded by a
+# number of executions and a time cap, and prints the executions of each target.
+# Usage: fuzz/run.sh [MAX_SECONDS_PER_TARGET] [MAX_RUNS_PER_TARGET] [LIBFUZZER_SEED]
+# (needs `cargo install cargo-fuzz`)
 set -euo pipefail
 cd "$(dirname "$0")"
 secs=${1:-30}
+runs=${2:-1000000000}
+seed=${3:-1}
 total=0
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cargo fuzz build --sanitizer none >/dev/null 2>&1 || cargo fuzz build --sanitizer none
 for t in face_notation input_files automaton_file certificate pipeline; do
-  mkdir -p "corpus/$t"
-  cp -n seeds/"$t"/* "corpus/$t/" 2>/dev/null || true
-  log=$(mktemp)
-  if ! cargo fuzz run --sanitizer none "$t" "corpus/$t" -- -max_total_time="$secs" -max_len=4096 >"$log" 2>&1; then
+  mkdir -p "$work/$t"
+  cp seeds/"$t"/* "$work/$t/"
+  log="$work/$t.log"
+  if ! cargo fuzz run --sanitizer none "$t" "$work/$t" -- -seed="$seed" -runs="$runs" \
+      -max_total_time="$secs" -max_len=4096 >"$log" 2>&1; then
     tail -40 "$log"
     echo "fuzz target $t FAILED (crash input saved under fuzz/artifacts/$t)"
     exit 1
   fi
-  runs=$(grep -o 'Done [0-9]* runs' "$log" | awk '{print $2}' | tail -1)
-  echo "fuzz target $t: ${runs:-0} executions in ${secs}s, no crash"
-  total=$((total + ${runs:-0}))
+  done_runs=$(grep -o 'Done [0-9]* runs' "$log" | awk '{print $2}' | tail -1)
+  echo "fuzz target $t: ${done_runs:-0} executions, no crash"
+  total=$((total + ${done_runs:-0}))
 done
 echo "fuzzing: $total executions in total, no crash"

@@ -355,8 +355,10 @@ fn parse_word(
     let bytes = part.as_bytes();
     let mut expect_factor = true;
     while i < bytes.len() {
+        // Byte-wise scanning stays on character boundaries because only ASCII bytes are tested
+        // (a byte of a multi-byte character is never ASCII).
         let c = bytes[i] as char;
-        if c.is_whitespace() {
+        if bytes[i].is_ascii_whitespace() {
             i += 1;
             continue;
         }
@@ -381,7 +383,7 @@ fn parse_word(
             i = end - base;
         } else {
             let start = i;
-            while i < bytes.len() && !(bytes[i] as char).is_whitespace() && bytes[i] != b'*' {
+            while i < bytes.len() && !bytes[i].is_ascii_whitespace() && bytes[i] != b'*' {
                 i += 1;
             }
             let name = &part[start..i];

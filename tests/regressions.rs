@@ -26,3 +26,14 @@ fn solver_fill_in_longer_than_every_starting_row() {
         }
     }
 }
+
+/// Found by the `automaton_file` fuzz target in CI: a word containing a non-ASCII character whose
+/// UTF-8 bytes include 0xA0 was scanned byte by byte with `char::is_whitespace` (0xA0 as a char is
+/// a no-break space), which cut the text inside a character (a panic). Scanning now tests ASCII
+/// bytes only; the file must give a coded error or an automaton, never a panic.
+#[test]
+fn automaton_word_with_a_multibyte_character() {
+    let path = format!("{}/tests/regressions/automaton-word-multibyte.aut", env!("CARGO_MANIFEST_DIR"));
+    let text = String::from_utf8_lossy(&std::fs::read(&path).unwrap()).into_owned();
+    let _ = parse_automaton(&Source { name: path, text });
+}
