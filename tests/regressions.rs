@@ -33,7 +33,10 @@ fn solver_fill_in_longer_than_every_starting_row() {
 /// bytes only; the file must give a coded error or an automaton, never a panic.
 #[test]
 fn automaton_word_with_a_multibyte_character() {
-    let path = format!("{}/tests/regressions/automaton-word-multibyte.aut", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/tests/regressions/automaton-word-multibyte.aut",
+        env!("CARGO_MANIFEST_DIR")
+    );
     let text = String::from_utf8_lossy(&std::fs::read(&path).unwrap()).into_owned();
     let _ = parse_automaton(&Source { name: path, text });
 }
