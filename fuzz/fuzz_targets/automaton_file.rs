@@ -4,9 +4,16 @@
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
-    let Ok(text) = std::str::from_utf8(data) else { return };
-    let src = lacuna::Source { name: "fuzz".into(), text: text.into() };
-    let Ok(a) = lacuna::parse_automaton(&src) else { return };
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    let src = lacuna::Source {
+        name: "fuzz".into(),
+        text: text.into(),
+    };
+    let Ok(a) = lacuna::parse_automaton(&src) else {
+        return;
+    };
     let Ok(lin) = a.linearize() else { return };
     if lin.system.unknowns > 2_000 || lin.system.rows.len() > 4_000 {
         return;

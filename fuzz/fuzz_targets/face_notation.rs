@@ -4,7 +4,9 @@
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
-    let Ok(text) = std::str::from_utf8(data) else { return };
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
     match lacuna::Face::parse(text) {
         Ok(face) => {
             let again = lacuna::Face::parse(&face.to_string()).expect("printed notation parses");

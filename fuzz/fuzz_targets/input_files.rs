@@ -4,12 +4,20 @@
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
-    let Ok(text) = std::str::from_utf8(data) else { return };
-    let src = lacuna::Source { name: "fuzz".into(), text: text.into() };
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    let src = lacuna::Source {
+        name: "fuzz".into(),
+        text: text.into(),
+    };
     match lacuna::parse_text(&src) {
         Ok(a) => {
             for s in &a.shared {
-                assert_eq!(a.faces[s.a.0].1.boundary[s.a.1], a.faces[s.b.0].1.boundary[s.b.1]);
+                assert_eq!(
+                    a.faces[s.a.0].1.boundary[s.a.1],
+                    a.faces[s.b.0].1.boundary[s.b.1]
+                );
             }
         }
         Err(e) => {

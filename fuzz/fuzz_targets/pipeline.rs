@@ -4,9 +4,21 @@
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
-    let Ok(text) = std::str::from_utf8(data) else { return };
-    let Ok(face) = lacuna::Face::parse(text) else { return };
-    let limits = lacuna::Limits { max_boundary: 48, max_types: 200, max_level: 20, max_subedges: 6, max_delay: 4, max_digits: 100, max_unknowns: 100_000 };
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    let Ok(face) = lacuna::Face::parse(text) else {
+        return;
+    };
+    let limits = lacuna::Limits {
+        max_boundary: 48,
+        max_types: 200,
+        max_level: 20,
+        max_subedges: 6,
+        max_delay: 4,
+        max_digits: 100,
+        max_unknowns: 100_000,
+    };
     if let Ok(lacuna::Closure::Closed(ts)) = lacuna::close(&face, &limits) {
         ts.verify().expect("closure identities");
         let _ = lacuna::counts(&ts, 8);
