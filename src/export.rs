@@ -172,6 +172,131 @@ pub fn write_obj<W: Write>(
     result
 }
 
+/// Triangulates a simple counter-clockwise polygon by ear clipping (O(n²); cells have few
+/// vertices). Returns index triples, counter-clockwise. Written by hand: a dozen lines, where a
+/// triangulation crate would bring far more than a cell needs.
+pub fn triangulate(poly: &[Point]) -> Vec<[usize; 3]> {
+    let cross = |a: Point, b: Point, c: Point| {
+        (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+    };
+    let mut idx: Vec<usize> = (0..poly.len()).collect();
+    let mut out = Vec::with_capacity(poly.len().saturating_sub(2));
+    while idx.len() > 3 {
+        let n = idx.len();
+        let ear = (0..n).find(|&k| {
+            let (a, b, c) = (
+                poly[idx[(k + n - 1) % n]],
+                poly[idx[k]],
+                poly[idx[(k + 1) % n]],
+            );
+            if cross(a, b, c) <= 0.0 {
+                return false; // reflex or degenerate corner
+            }
+            // No other vertex inside the triangle (a, b, c).
+            idx.iter().all(|&j| {
+                let p = poly[j];
+                p == a
+                    || p == b
+                    || p == c
+                    || cross(a, b, p) < 0.0
+                    || cross(b, c, p) < 0.0
+                    || cross(c, a, p) < 0.0
+            })
+        });
+        // A degenerate polygon (collinear rest) has no strict ear: clip any corner.
+        let k = ear.unwrap_or(0);
+        out.push([idx[(k + n - 1) % n], idx[k], idx[(k + 1) % n]]);
+        idx.remove(k);
+    }
+    if idx.len() == 3 {
+        out.push([idx[0], idx[1], idx[2]]);
+    }
+    out
+}
+
+/// Writes the cells of `level` as an ASCII STL mesh for printing: each cell extruded to a closed
+/// prism of height `thickness` (bottom and top triangulated by ear clipping, two triangles per
+/// side wall, outward normals), so every prism is watertight.
+pub fn write_stl<W: Write>(
+    inst: &Instance,
+    level: u32,
+    segments: usize,
+    thickness: f64,
+    mut out: W,
+) -> io::Result<()> {
+    writeln!(out, "solid lacuna")?;
+    let mut result = Ok(());
+    let facet = |s: &mut String, p: [[f64; 3]; 3]| {
+        let u = [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]];
+        let v = [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]];
+        let mut nrm = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        let len = (nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]).sqrt();
+        if len > 0.0 {
+            nrm = nrm.map(|x| x / len);
+        }
+        s.push_str(&format!(
+            "facet normal {} {} {}\n outer loop\n",
+            fmt(nrm[0]),
+            fmt(nrm[1]),
+            fmt(nrm[2])
+        ));
+        for q in p {
+            s.push_str(&format!(
+                "  vertex {} {} {}\n",
+                fmt(q[0]),
+                fmt(q[1]),
+                fmt(q[2])
+            ));
+        }
+        s.push_str(" endloop\nendfacet\n");
+    };
+    inst.walk(level, false, |c| {
+        if result.is_err() {
+            return;
+        }
+        let mut poly: Vec<Point> = inst.cell_polygon(c.ty, c.points, segments);
+        poly.dedup();
+        if poly.len() > 1 && poly[0] == poly[poly.len() - 1] {
+            poly.pop();
+        }
+        if poly.len() < 3 {
+            return;
+        }
+        if signed_area(&poly) < 0.0 {
+            poly.reverse();
+        }
+        let at = |p: Point, z: f64| [p[0], p[1], z];
+        let mut s = String::new();
+        for [a, b, c] in triangulate(&poly) {
+            facet(
+                &mut s,
+                [
+                    at(poly[a], thickness),
+                    at(poly[b], thickness),
+                    at(poly[c], thickness),
+                ],
+            );
+            facet(
+                &mut s,
+                [at(poly[a], 0.0), at(poly[c], 0.0), at(poly[b], 0.0)],
+            );
+        }
+        let n = poly.len();
+        for i in 0..n {
+            let (p, q) = (poly[i], poly[(i + 1) % n]);
+            facet(&mut s, [at(p, 0.0), at(q, 0.0), at(q, thickness)]);
+            facet(&mut s, [at(p, 0.0), at(q, thickness), at(p, thickness)]);
+        }
+        result = out.write_all(s.as_bytes());
+    });
+    result?;
+    writeln!(out, "endsolid lacuna")
+}
+
 /// Renders the cells of `level` to a `size × size` raster (the picture window fits the level-0
 /// faces).
 pub fn render_raster(inst: &Instance, level: u32, size: usize, segments: usize) -> Raster {

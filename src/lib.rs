@@ -62,7 +62,9 @@ pub use curve::{
 pub use design::{check_design, design_operator, DesignCheck, DesignError};
 pub use edge::{EdgeKind, EdgeType, JunctionKind};
 pub use error::{Diagnostic, Error, Result, Source, Span};
-pub use export::{render_raster, write_json, write_obj, write_png, write_svg};
+pub use export::{
+    render_raster, triangulate, write_json, write_obj, write_png, write_stl, write_svg,
+};
 pub use face::{least_rotation, Face, Params};
 pub use generate::{automaton_of, degeneracies, solve_closure, GenOptions, Generated};
 pub use geometry::{

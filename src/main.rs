@@ -157,7 +157,10 @@ enum Command {
         /// Write an OBJ mesh: every cell a closed prism of this thickness (printable).
         #[arg(long, value_name = "OUT.obj")]
         obj: Option<std::path::PathBuf>,
-        /// Prism thickness for --obj.
+        /// Write an ASCII STL mesh: every cell a closed, triangulated prism (printable).
+        #[arg(long, value_name = "OUT.stl")]
+        stl: Option<std::path::PathBuf>,
+        /// Prism thickness for --obj and --stl.
         #[arg(long, default_value_t = 0.05)]
         thickness: f64,
         /// Write a PNG raster (black cells on white).
@@ -648,13 +651,19 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             svg,
             json_out,
             obj,
+            stl,
             thickness,
             png,
             size,
         } => {
-            if svg.is_none() && json_out.is_none() && obj.is_none() && png.is_none() {
+            if svg.is_none()
+                && json_out.is_none()
+                && obj.is_none()
+                && stl.is_none()
+                && png.is_none()
+            {
                 return Err(Error::Analysis(
-                    "nothing to write: give --svg, --json-out, --obj or --png".into(),
+                    "nothing to write: give --svg, --json-out, --obj, --stl or --png".into(),
                 ));
             }
             if !(1..=16_384).contains(&size) {
@@ -670,7 +679,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                     "--thickness {thickness} must be a positive number"
                 )));
             }
-            let vector = svg.is_some() || json_out.is_some() || obj.is_some();
+            let vector = svg.is_some() || json_out.is_some() || obj.is_some() || stl.is_some();
             let inst = instance(&geo, &limits, if vector { 2_000_000 } else { 100_000_000 })?;
             let io = |path: &std::path::Path, e: std::io::Error| Error::Io {
                 path: path.display().to_string(),
@@ -687,6 +696,11 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             }
             if let Some(p) = &obj {
                 lacuna::write_obj(&inst, level, segs, thickness, create(p)?)
+                    .map_err(|e| io(p, e))?;
+                out(&format!("wrote {}\n", p.display()));
+            }
+            if let Some(p) = &stl {
+                lacuna::write_stl(&inst, level, segs, thickness, create(p)?)
                     .map_err(|e| io(p, e))?;
                 out(&format!("wrote {}\n", p.display()));
             }

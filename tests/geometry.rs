@@ -227,3 +227,58 @@ fn pictures_for_the_docs() {
         std::fs::write(dir.join(format!("{name}.svg")), svg).unwrap();
     }
 }
+
+#[test]
+fn triangulation_covers_a_non_convex_polygon() {
+    // An L shape (area 3) has a reflex corner: the ear clipping must not use it as an ear.
+    let l: Vec<lacuna::Point> = vec![
+        [0.0, 0.0],
+        [2.0, 0.0],
+        [2.0, 1.0],
+        [1.0, 1.0],
+        [1.0, 2.0],
+        [0.0, 2.0],
+    ];
+    let tris = lacuna::triangulate(&l);
+    assert_eq!(tris.len(), 4);
+    let area: f64 = tris
+        .iter()
+        .map(|t| lacuna::signed_area(&[l[t[0]], l[t[1]], l[t[2]]]))
+        .sum();
+    assert!((area - 3.0).abs() < 1e-12, "{area}");
+    assert!(tris
+        .iter()
+        .all(|t| lacuna::signed_area(&[l[t[0]], l[t[1]], l[t[2]]]) > 0.0));
+}
+
+#[test]
+fn stl_prisms_are_closed_surfaces() {
+    // A union of closed oriented surfaces: every directed edge a→b is matched by as many b→a.
+    let input = lacuna::load_input("F0").unwrap();
+    let inst = lacuna::instantiate(&input, &lacuna::InstantiateOptions::default()).unwrap();
+    let mut buf = Vec::new();
+    lacuna::write_stl(&inst, 1, 4, 0.1, &mut buf).unwrap();
+    let text = String::from_utf8(buf).unwrap();
+    let mut verts: Vec<String> = Vec::new();
+    let mut edges: std::collections::HashMap<(String, String), i64> = Default::default();
+    let mut facets = 0;
+    for line in text.lines() {
+        if let Some(v) = line.trim().strip_prefix("vertex ") {
+            verts.push(v.to_string());
+            if verts.len() == 3 {
+                facets += 1;
+                for k in 0..3 {
+                    let (a, b) = (verts[k].clone(), verts[(k + 1) % 3].clone());
+                    *edges.entry((a.clone(), b.clone())).or_default() += 1;
+                    *edges.entry((b, a)).or_default() -= 1;
+                }
+                verts.clear();
+            }
+        }
+    }
+    assert!(facets > 0);
+    assert!(
+        edges.values().all(|&c| c == 0),
+        "an edge is not matched by its reverse"
+    );
+}
