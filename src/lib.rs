@@ -27,6 +27,7 @@ mod factor;
 mod fieldpoly;
 mod generate;
 mod geometry;
+mod html;
 mod instantiate;
 mod library;
 mod limits;
@@ -71,6 +72,7 @@ pub use geometry::{
     bezier_point, box_dimension, distance, fit_line, polyline_length, signed_area, BBox, Fit,
     Point, Raster, MIN_HOLE_PIXELS,
 };
+pub use html::report_html;
 pub use instantiate::{
     instantiate, Cell, EdgeSlot, GeometryError, Instance, InstantiateOptions, StartFace,
 };

@@ -182,6 +182,18 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// One self-contained HTML page: pictures of levels 0–N, type graph, counts, R, the solver's
+    /// verdict, measures with the plots of ln A, ln P and the box-counting fit.
+    Report {
+        #[command(flatten)]
+        geo: GeoArgs,
+        /// The HTML file to write.
+        #[arg(long, value_name = "OUT.html")]
+        out: std::path::PathBuf,
+        /// Raster size for the measures (a power of two).
+        #[arg(long, default_value_t = 1024)]
+        raster: usize,
+    },
     /// Solve the BC-IFS constraint system of an automaton file, a face or an assembly exactly.
     Solve {
         /// An automaton file, face notation in quotes, an assembly file, or a library name.
@@ -710,6 +722,43 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 out(&format!("wrote {}\n", p.display()));
             }
             Ok(ExitCode::SUCCESS)
+        }
+        Command::Report {
+            geo,
+            out: path,
+            raster,
+        } => {
+            if !(16..=8192).contains(&raster) || !raster.is_power_of_two() {
+                return Err(Error::Limit {
+                    what: "the raster size (a power of two from 16)",
+                    value: raster.to_string(),
+                    limit: "8192".into(),
+                    flag: "--raster",
+                });
+            }
+            // The pictures embed every cell of every level as SVG: keep them small.
+            let inst = instance(&geo, &limits, 200_000)?;
+            let input = load_input(&geo.input)?;
+            let closure = Closure::of(&input.faces(), &limits)?;
+            let v = verify_report(&input, &closure, u64::from(geo.level).max(5), &limits)?;
+            let opts = lacuna::MeasureOptions {
+                level: geo.level,
+                raster,
+                segments: geo.segments,
+                ..Default::default()
+            };
+            let m = lacuna::measure(&inst, &opts).map_err(geo_error)?;
+            let html = lacuna::report_html(&v, &inst, &m, geo.level, geo.segments);
+            std::fs::write(&path, html).map_err(|e| Error::Io {
+                path: path.display().to_string(),
+                reason: e.to_string(),
+            })?;
+            out(&format!("wrote {}\n", path.display()));
+            Ok(if v.verified && m.verified {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(EXIT_FAILED)
+            })
         }
         Command::Measure { geo, raster, json } => {
             if !(16..=16_384).contains(&raster) || !raster.is_power_of_two() {

@@ -282,3 +282,49 @@ fn stl_prisms_are_closed_surfaces() {
         "an edge is not matched by its reverse"
     );
 }
+
+#[test]
+fn html_report_is_self_contained_and_complete() {
+    let dir = std::env::temp_dir().join(format!("lacuna-report-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("f0.html");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_lacuna"))
+        .args([
+            "report",
+            "F0",
+            "--level",
+            "2",
+            "--raster",
+            "256",
+            "--out",
+            path.to_str().unwrap(),
+        ])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let html = std::fs::read_to_string(&path).unwrap();
+    // Pictures of levels 0, 1, 2, the type graph and three plots, all inline; no external file.
+    assert_eq!(html.matches("<figure").count(), 3);
+    assert_eq!(html.matches("<svg").count(), 3 + 1 + 3);
+    assert!(!html.contains("<?xml") && !html.contains("src=\"") && !html.contains("<script"));
+    for section in [
+        "Type graph",
+        "Counts",
+        "Limit ratio R",
+        "Constraint solver",
+        "Measures",
+    ] {
+        assert!(
+            html.contains(&format!("<h2>{section}")),
+            "missing section {section}"
+        );
+    }
+    // The counts table shows the spec's numbers and R = 1/3.
+    assert!(html.contains("<td>35/2</td>") && html.contains("limit ratio R = 1/3"));
+    assert!(html.contains("Verdict: VERIFIED"));
+}
