@@ -89,14 +89,7 @@ impl CensusSpec {
         let edges = parse_list(edges, "edges", EdgeType::parse)?;
         let params = parse_list(params, "parameters", EdgeType::parse)?;
         let algorithms = parse_list(algorithms, "algorithms", |t, c| Algorithm::parse(t, c, &[]))?;
-        if max_length > 12 {
-            return Err(Error::Limit {
-                what: "the census boundary length",
-                value: max_length.to_string(),
-                limit: "12".into(),
-                flag: "--max-length",
-            });
-        }
+        crate::limits::at_most("the census boundary length", max_length, 12, "--max-length")?;
         let threads = threads
             .unwrap_or_else(|| {
                 std::thread::available_parallelism()

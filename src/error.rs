@@ -144,6 +144,21 @@ impl Error {
         )
     }
 
+    /// A limit error: `what` is `value`, above `limit` (raise it with `flag`).
+    pub fn limit(
+        what: &'static str,
+        value: impl std::fmt::Display,
+        limit: impl std::fmt::Display,
+        flag: &'static str,
+    ) -> Self {
+        Error::Limit {
+            what,
+            value: value.to_string(),
+            limit: limit.to_string(),
+            flag,
+        }
+    }
+
     /// The stable error code.
     pub fn code(&self) -> &'static str {
         match self {

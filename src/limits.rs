@@ -39,39 +39,30 @@ impl Default for Limits {
 impl Limits {
     /// Checks a start face against the limits.
     pub fn check_face(&self, f: &Face) -> Result<()> {
-        if f.boundary.len() > self.max_boundary {
-            return Err(Error::Limit {
-                what: "the boundary length",
-                value: f.boundary.len().to_string(),
-                limit: self.max_boundary.to_string(),
-                flag: "--max-boundary",
-            });
-        }
-        if f.delay > self.max_delay {
-            return Err(Error::Limit {
-                what: "the face delay",
-                value: f.delay.to_string(),
-                limit: self.max_delay.to_string(),
-                flag: "--max-delay",
-            });
-        }
+        at_most(
+            "the boundary length",
+            f.boundary.len(),
+            self.max_boundary,
+            "--max-boundary",
+        )?;
+        at_most("the face delay", f.delay, self.max_delay, "--max-delay")?;
         let p = f.params;
         for e in f.boundary.iter().chain([&p.ea, &p.el, &p.ec]) {
             if e.n > self.max_subedges {
-                return Err(Error::Limit {
-                    what: "an edge's sub-edge count",
-                    value: e.to_string(),
-                    limit: self.max_subedges.to_string(),
-                    flag: "--max-subedges",
-                });
+                return Err(Error::limit(
+                    "an edge's sub-edge count",
+                    e,
+                    self.max_subedges,
+                    "--max-subedges",
+                ));
             }
             if e.delay > self.max_delay {
-                return Err(Error::Limit {
-                    what: "an edge delay",
-                    value: e.to_string(),
-                    limit: self.max_delay.to_string(),
-                    flag: "--max-delay",
-                });
+                return Err(Error::limit(
+                    "an edge delay",
+                    e,
+                    self.max_delay,
+                    "--max-delay",
+                ));
             }
         }
         Ok(())
@@ -79,40 +70,39 @@ impl Limits {
 
     /// Checks a requested number of digits.
     pub fn check_digits(&self, digits: usize) -> Result<()> {
-        if digits > self.max_digits {
-            return Err(Error::Limit {
-                what: "the number of digits",
-                value: digits.to_string(),
-                limit: self.max_digits.to_string(),
-                flag: "--max-digits",
-            });
-        }
-        Ok(())
+        at_most(
+            "the number of digits",
+            digits,
+            self.max_digits,
+            "--max-digits",
+        )
     }
 
     /// Checks the size of a constraint system before it is built and solved.
     pub fn check_unknowns(&self, unknowns: usize) -> Result<()> {
-        if unknowns > self.max_unknowns {
-            return Err(Error::Limit {
-                what: "the number of unknowns",
-                value: unknowns.to_string(),
-                limit: self.max_unknowns.to_string(),
-                flag: "--max-unknowns",
-            });
-        }
-        Ok(())
+        at_most(
+            "the number of unknowns",
+            unknowns,
+            self.max_unknowns,
+            "--max-unknowns",
+        )
     }
 
     /// Checks a requested level.
     pub fn check_level(&self, level: u64) -> Result<()> {
-        if level > self.max_level {
-            return Err(Error::Limit {
-                what: "the level",
-                value: level.to_string(),
-                limit: self.max_level.to_string(),
-                flag: "--max-level",
-            });
-        }
-        Ok(())
+        at_most("the level", level, self.max_level, "--max-level")
     }
+}
+
+/// `Ok` when `value ≤ limit`, else the limit error naming `flag`.
+pub fn at_most<T: PartialOrd + std::fmt::Display>(
+    what: &'static str,
+    value: T,
+    limit: T,
+    flag: &'static str,
+) -> Result<()> {
+    if value > limit {
+        return Err(Error::limit(what, value, limit, flag));
+    }
+    Ok(())
 }

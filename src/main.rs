@@ -371,12 +371,12 @@ fn geo_error(e: lacuna::GeometryError) -> Error {
 fn instance(geo: &GeoArgs, limits: &Limits, default_cells: u64) -> Result<lacuna::Instance, Error> {
     limits.check_level(u64::from(geo.level))?;
     if !(1..=64).contains(&geo.segments) {
-        return Err(Error::Limit {
-            what: "the segments per Bézier edge",
-            value: geo.segments.to_string(),
-            limit: "64".into(),
-            flag: "--segments",
-        });
+        return Err(Error::limit(
+            "the segments per Bézier edge",
+            geo.segments,
+            64,
+            "--segments",
+        ));
     }
     let input = load_input(&geo.input)?;
     let mut opts = lacuna::InstantiateOptions {
@@ -405,6 +405,19 @@ fn instance(geo: &GeoArgs, limits: &Limits, default_cells: u64) -> Result<lacuna
     lacuna::check_cells(&inst, geo.level, geo.max_cells.unwrap_or(default_cells))
         .map_err(geo_error)?;
     Ok(inst)
+}
+
+/// A raster size must be a power of two from 16 up to `max`.
+fn check_raster(raster: usize, max: usize) -> Result<(), Error> {
+    if !(16..=max).contains(&raster) || !raster.is_power_of_two() {
+        return Err(Error::limit(
+            "the raster size (a power of two from 16)",
+            raster,
+            max,
+            "--raster",
+        ));
+    }
+    Ok(())
 }
 
 /// Creates an output file for writing.
@@ -679,12 +692,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 ));
             }
             if !(1..=16_384).contains(&size) {
-                return Err(Error::Limit {
-                    what: "the PNG size",
-                    value: size.to_string(),
-                    limit: "16384".into(),
-                    flag: "--size",
-                });
+                return Err(Error::limit("the PNG size", size, 16_384, "--size"));
             }
             if !(thickness.is_finite() && thickness > 0.0) {
                 return Err(Error::Analysis(format!(
@@ -728,14 +736,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             out: path,
             raster,
         } => {
-            if !(16..=8192).contains(&raster) || !raster.is_power_of_two() {
-                return Err(Error::Limit {
-                    what: "the raster size (a power of two from 16)",
-                    value: raster.to_string(),
-                    limit: "8192".into(),
-                    flag: "--raster",
-                });
-            }
+            check_raster(raster, 8192)?;
             // The pictures embed every cell of every level as SVG: keep them small.
             let inst = instance(&geo, &limits, 200_000)?;
             let input = load_input(&geo.input)?;
@@ -761,14 +762,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             })
         }
         Command::Measure { geo, raster, json } => {
-            if !(16..=16_384).contains(&raster) || !raster.is_power_of_two() {
-                return Err(Error::Limit {
-                    what: "the raster size (a power of two from 16)",
-                    value: raster.to_string(),
-                    limit: "16384".into(),
-                    flag: "--raster",
-                });
-            }
+            check_raster(raster, 16_384)?;
             let inst = instance(&geo, &limits, 20_000_000)?;
             let opts = lacuna::MeasureOptions {
                 level: geo.level,
@@ -809,12 +803,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                     )
                 })?;
             if !(1..=8).contains(&degree) {
-                return Err(Error::Limit {
-                    what: "the Bézier degree",
-                    value: degree.to_string(),
-                    limit: "8".into(),
-                    flag: "--degree",
-                });
+                return Err(Error::limit("the Bézier degree", degree, 8, "--degree"));
             }
             let report = match lacuna::load_any(&input)? {
                 lacuna::Loaded::Automaton { automaton, .. } => {
