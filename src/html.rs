@@ -96,14 +96,22 @@ fn plot(
 /// labelled with its multiplicity.
 fn type_graph(v: &VerifyReport) -> String {
     let n = v.types.len();
-    let (w, h) = (420.0, 420.0);
-    let (cx, cy, r) = (w / 2.0, h / 2.0, 160.0);
+    // The types on a circle whose radius grows with their number (a single type sits alone); the
+    // picture is cropped to the nodes plus a margin for self-loops and labels.
+    let r = if n <= 1 {
+        0.0
+    } else {
+        (24.0 * n as f64 / std::f64::consts::PI).clamp(60.0, 260.0)
+    };
+    let margin = 48.0;
+    let (cx, cy) = (r + margin, r + margin);
+    let (w, h) = (2.0 * (r + margin), 2.0 * (r + margin));
     let pos = |k: usize| {
         let a = std::f64::consts::TAU * k as f64 / n.max(1) as f64 - std::f64::consts::FRAC_PI_2;
         (cx + r * a.cos(), cy + r * a.sin())
     };
     let mut s = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-size=\"11\">\
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w:.0}\" height=\"{h:.0}\" font-size=\"11\">\
          <defs><marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"16\" refY=\"5\" markerWidth=\"6\" markerHeight=\"6\" orient=\"auto\"><path d=\"M0,0 L10,5 L0,10 z\" fill=\"#555\"/></marker></defs>"
     );
     for (t, row) in v.types.iter().enumerate() {
