@@ -115,7 +115,9 @@ window.addEventListener('load', () => {
     return [b.left, b.top, b.right, b.bottom].map(Math.round).join(' '); };
   const lines = ['page ' + document.documentElement.scrollWidth + ' ' + document.documentElement.scrollHeight];
   document.querySelectorAll('h1, h2, figure, table, svg, pre').forEach(e => {
-    const label = e.tagName === 'H1' || e.tagName === 'H2' ? e.textContent.split(' ')[0] : '';
+    let label = e.tagName === 'H1' || e.tagName === 'H2' ? e.textContent.split(' ')[0] : '';
+    if (e.tagName.toLowerCase() === 'svg') { const c = e.getBBox();
+      label = Math.round(c.width) + ' ' + Math.round(c.height); }
     lines.push(e.tagName.toLowerCase() + ' ' + r(e) + ' ' + label);
   });
   const out = document.createElement('pre');
@@ -220,6 +222,13 @@ fn check_layout(page: &Path, pictures: usize) -> i64 {
         headings[2].1 - graph.rect[3] < 80,
         "empty space below the type graph: {:?}",
         graph.rect
+    );
+    // … and inside it: the drawn content fills the canvas up to the margins.
+    let content: Vec<i64> = graph.label.split(' ').map(|x| x.parse().unwrap()).collect();
+    let (w, h) = (graph.rect[2] - graph.rect[0], graph.rect[3] - graph.rect[1]);
+    assert!(
+        w - content[0] <= 110 && h - content[1] <= 110,
+        "the type graph's canvas {w}×{h} is much larger than its content {content:?}"
     );
     // Three plots in the measures section.
     let plots = boxes
