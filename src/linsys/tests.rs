@@ -397,27 +397,17 @@ fn long_core_conflict_replays_the_elimination() {
     assert!(c.multipliers.iter().any(|t| t.0 == last));
 }
 
-/// Timing (release): `cargo test --release -- --ignored --nocapture scaling`.
+/// Structured systems of growing size: the solution space has the expected dimension and passes
+/// its independent check. (Timing lives in `benches/solver.rs`.)
 #[test]
-#[ignore]
-fn scaling_structured() {
-    for cells in [100, 2_000, 20_000] {
+fn structured_systems_of_growing_size() {
+    for cells in [100, 2_000] {
         let (sys, dof, _, _) = structured(cells, 5, 2);
-        let t = std::time::Instant::now();
         let s = match solve(&sys) {
             Solution::Consistent(s) => s,
             Solution::Inconsistent(_) => panic!("structured system is consistent"),
         };
-        let solved = t.elapsed();
-        assert_eq!(s.dof(), dof);
-        let t = std::time::Instant::now();
+        assert_eq!(s.dof(), dof, "{cells} cells");
         s.check(&sys).expect("check");
-        println!(
-            "{} unknowns, {} rows: solve {:?}, check {:?}",
-            sys.unknowns,
-            sys.rows.len(),
-            solved,
-            t.elapsed()
-        );
     }
 }
