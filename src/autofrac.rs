@@ -14,14 +14,16 @@
 //! 0 = A3, 2 = A2. AutoFrac2D's algorithm 1 ("surround delay and Bézier") merges delayed edges
 //! with neighbouring Bézier edges, which is not a spoke rule; it is accepted only where no delay
 //! occurs anywhere (where it coincides with A1 and A3; it is read as A1), and refused otherwise. The `c` section
-//! glues edges (`F1.E1 / F2.E2`); the `p` section (coordinates) is checked for well-formed finite
-//! numbers and otherwise ignored by the topology.
+//! glues edges (`F1.E1 / F2.E2`); the `p` section gives coordinates (one `x y` per line), read as
+//! described at [`crate::coords::read_point_section`]; the topology ignores them.
 
 use crate::assembly::{Assembly, SharedEdge};
+use crate::coords::{parse_coordinate, read_point_section, ExactPoint};
 use crate::edge::{EdgeKind, EdgeType};
-use crate::error::{Error, Result, Source};
+use crate::error::{Diagnostic, Error, Result, Source, Span};
 use crate::face::{Face, Params};
 use crate::rule::Algorithm;
+use num_rational::BigRational;
 
 #[derive(Clone, Copy, PartialEq)]
 enum Section {
@@ -53,6 +55,9 @@ pub fn parse_autofrac(src: &Source) -> Result<Assembly> {
     let mut faces: Vec<(String, Face)> = Vec::new();
     let mut shared = Vec::new();
     let mut lines = Vec::new();
+    let mut points: Vec<ExactPoint> = Vec::new();
+    let mut spans: Vec<Span> = Vec::new();
+    let mut p_span: Option<Span> = None;
     for (ln0, line) in src.text.lines().enumerate() {
         let ln = ln0 + 1;
         let t = line.trim();
@@ -62,7 +67,14 @@ pub fn parse_autofrac(src: &Source) -> Result<Assembly> {
         match t {
             "f" => section = Section::Faces,
             "c" => section = Section::Links,
-            "p" => section = Section::Points,
+            "p" => {
+                section = Section::Points;
+                p_span.get_or_insert(Span {
+                    line: ln,
+                    col: col_in(line, t),
+                    len: 1,
+                });
+            }
             _ => match section {
                 Section::None => {
                     return Err(Error::at(
@@ -126,20 +138,26 @@ pub fn parse_autofrac(src: &Source) -> Result<Assembly> {
                 }
                 Section::Points => {
                     let words: Vec<&str> = t.split_whitespace().collect();
-                    let ok = words.len() == 2
-                        && words
-                            .iter()
-                            .all(|w| w.parse::<f64>().is_ok_and(f64::is_finite) && w.len() < 64);
-                    if !ok {
-                        return Err(Error::at(
-                            "E0303",
-                            format!("expected a point `x y` with two finite numbers, found `{t}`"),
-                            ln,
-                            col_in(line, t),
-                            t.len(),
-                            src,
-                        ));
-                    }
+                    let xy: Vec<BigRational> = words.iter().filter_map(|w| number(w)).collect();
+                    let [x, y] = <[BigRational; 2]>::try_from(xy)
+                        .ok()
+                        .filter(|_| words.len() == 2)
+                        .ok_or_else(|| {
+                            Error::at(
+                                "E0303",
+                                format!("expected a point `x y` with two finite numbers of magnitude at most 10^15, found `{t}`"),
+                                ln,
+                                col_in(line, t),
+                                t.len(),
+                                src,
+                            )
+                        })?;
+                    points.push([x, y]);
+                    spans.push(Span {
+                        line: ln,
+                        col: col_in(line, t),
+                        len: t.chars().count(),
+                    });
                 }
             },
         }
@@ -154,9 +172,53 @@ pub fn parse_autofrac(src: &Source) -> Result<Assembly> {
             src,
         ));
     }
-    let asm = Assembly { faces, shared };
+    let mut asm = Assembly {
+        faces,
+        shared,
+        coords: Default::default(),
+    };
     asm.check(src, &lines)?;
+    // The topology ignores the coordinates: a `p` section that cannot be used is kept as an
+    // error for the placement (render, measure, report), so files that verified before still do.
+    if let Some(p) = p_span {
+        match read_point_section(&asm, points, spans, p, src) {
+            Ok(coords) => asm.coords = coords,
+            Err(e) => asm.coords.unread = Some(diagnostic(e)),
+        }
+        if let Err(e) = crate::coords::check(&asm) {
+            asm.coords.faces.clear();
+            asm.coords.unread = Some(diagnostic(e));
+        }
+    }
     Ok(asm)
+}
+
+fn diagnostic(e: Error) -> Diagnostic {
+    match e {
+        Error::Syntax(d) => *d,
+        other => Diagnostic {
+            code: other.code(),
+            message: other.to_string(),
+            span: None,
+            source: None,
+        },
+    }
+}
+
+/// A coordinate of the `p` section: exact when written as an integer, decimal or fraction, else
+/// the exact value of the floating-point number (`1e3`, as the AutoFrac2D tool reads it); finite,
+/// of magnitude at most 10¹⁵.
+fn number(w: &str) -> Option<BigRational> {
+    if w.len() >= 64 {
+        return None;
+    }
+    parse_coordinate(w).or_else(|| {
+        let f = w
+            .parse::<f64>()
+            .ok()
+            .filter(|f| f.is_finite() && f.abs() <= 1e15)?;
+        BigRational::from_float(f)
+    })
 }
 
 fn parse_edge(text: &str, line: &str, ln: usize, src: &Source) -> Result<EdgeType> {
