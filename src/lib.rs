@@ -36,6 +36,7 @@ mod linsys;
 mod matrix;
 mod measure;
 mod operator;
+mod placement;
 mod poly;
 mod presolve;
 mod ratio;
