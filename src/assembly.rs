@@ -129,10 +129,11 @@ impl Assembly {
                     col0 + kw.len() + head[kw.len()..].len() - head[kw.len()..].trim_start().len();
                 let list_col = col0 + head.chars().count() + 1;
                 let (points, spans) = parse_point_list(list, ln, list_col, src)?;
+                let lead = list.len() - list.trim_start().len();
                 let whole = Span {
                     line: ln,
-                    col: list_col,
-                    len: list.trim_end().chars().count().max(1),
+                    col: list_col + list[..lead].chars().count(),
+                    len: list.trim().chars().count().max(1),
                 };
                 let name_span = Span {
                     line: ln,

@@ -454,6 +454,15 @@ pub fn check(asm: &Assembly) -> Result<()> {
             }
         }
         let corners = fc.corners(face);
+        if let Some((i, j)) = self_intersection(&corners) {
+            return Err(uc.error(
+                "E0212",
+                format!(
+                    "face `{name}` is not a simple polygon: edges {i} and {j} of its corners meet"
+                ),
+                fc.corner_span(face, j),
+            ));
+        }
         // The polygon whose area is tested: all control points (a curved digon has area), else
         // the corners.
         let area = double_area(&fc.points);
@@ -467,15 +476,6 @@ pub fn check(asm: &Assembly) -> Result<()> {
                 "E0212",
                 format!("face `{name}` {what}: its points must go counter-clockwise around a region of positive area"),
                 &fc.spans[0],
-            ));
-        }
-        if let Some((i, j)) = self_intersection(&corners) {
-            return Err(uc.error(
-                "E0212",
-                format!(
-                    "face `{name}` is not a simple polygon: edges {i} and {j} of its corners meet"
-                ),
-                fc.corner_span(face, j),
             ));
         }
     }

@@ -188,7 +188,7 @@ pub(crate) fn place(input: &Input, types: &TypeSet, q: usize) -> Result<Vec<Star
     let unit_edge =
         (!user_edges.is_empty()).then(|| user_edges.iter().sum::<f64>() / user_edges.len() as f64);
     // Breadth-first placement, component by component.
-    let mut gauge: Vec<Option<[usize; 2]>> = vec![None; comps.len()];
+    let mut gauge: Vec<Option<usize>> = vec![None; comps.len()];
     for (c, members) in comps.iter().enumerate() {
         let mut queue: VecDeque<usize> = members
             .iter()
@@ -211,7 +211,7 @@ pub(crate) fn place(input: &Input, types: &TypeSet, q: usize) -> Result<Vec<Star
                 poly.iter_mut().for_each(|p| p[0] += shift);
             }
             corners[root] = Some(poly);
-            gauge[c] = Some([vid[root][0], vid[root][1 % n]]);
+            gauge[c] = Some(vid[root][0]);
             queue.push_back(root);
         }
         while let Some(f) = queue.pop_front() {
@@ -255,22 +255,20 @@ pub(crate) fn place(input: &Input, types: &TypeSet, q: usize) -> Result<Vec<Star
             }
         }
     }
-    for (c, g) in gauge.iter().enumerate() {
-        if let (Some(g), Some(_)) = (g, conflict[c]) {
-            fixed[g[0]] = true;
-            fixed[g[1]] = true;
-        }
-    }
-    let relax: Vec<usize> = (0..nf)
-        .filter(|&f| user[f].is_none() && conflict[comp[f]].is_some())
-        .collect();
-    if !relax.is_empty() {
-        least_squares(&relax, &vid, &corners, &fixed, &mut pos);
+    for (c, members) in comps.iter().enumerate() {
+        let Some((g, i)) = conflict[c] else {
+            continue;
+        };
+        let relax: Vec<usize> = members
+            .iter()
+            .copied()
+            .filter(|&f| user[f].is_none())
+            .collect();
+        relax_component(&relax, gauge[c], &vid, &corners, &fixed, &mut pos);
         for &f in &relax {
             let poly: Vec<Point> = vid[f].iter().map(|&v| pos[v].expect("placed")).collect();
             let area = double_area(&poly);
-            if !(area > tol * tol && is_simple(&poly) && area.is_finite()) {
-                let (g, i) = conflict[comp[f]].expect("relaxed");
+            if !(area.is_finite() && area > 1e-12 * size * size && is_simple(&poly)) {
                 return Err(placement_error(format!(
                     "the default placement cannot honour every shared edge: the regular polygons do not close around corner {i} of face `{}`, and the least-squares placement makes face `{}` flat, clockwise or self-crossing; give the faces' corners (`corners NAME: x y, …` lines)",
                     asm.faces[g].0, asm.faces[f].0
@@ -348,23 +346,39 @@ pub(crate) fn place(input: &Input, types: &TypeSet, q: usize) -> Result<Vec<Star
         .collect())
 }
 
-/// As-similar-as-possible placement of the faces `faces`: the unknowns are the positions of their
-/// vertices that are not `fixed` and a similarity `z ↦ (a + ib)·z + t` per face; the objective is
-/// Σ over their corners of |vertex − similarity(regular polygon corner)|², a linear least-squares
-/// problem solved by conjugate gradients on its normal equations, from the breadth-first
-/// placement `corners`. Written by hand: a few dozen lines, no sparse solver crate needed.
-fn least_squares(
+/// Least-squares (as-similar-as-possible) placement of the default faces `faces` of one
+/// component whose breadth-first placement `corners` does not close. The unknowns are the
+/// positions of their vertices that are not `fixed` and one similarity `z ↦ c·z + t` (c = a + ib)
+/// per face; the energy E is Σ over their corners of |vertex − similarity(regular polygon
+/// corner)|², quadratic in the unknowns.
+///
+/// - With user vertices in the component (they are `fixed`), E is minimised: a linear
+///   least-squares problem.
+/// - Without (`gauge` is the component's first vertex), E alone would shrink everything to a
+///   point, and fixing two vertices would favour their edge. The gauge vertex is fixed (at the
+///   origin, for the computation) and E is minimised under Σ |c_f|² = 1: the smallest generalised
+///   eigenvector, by inverse iteration. E/Σ|c_f|² is invariant under similarities and under
+///   relabelling the faces, so a symmetric assembly gets a symmetric placement. The result is
+///   scaled, rotated and translated back to the breadth-first placement's size, the first face's
+///   orientation and the gauge vertex's position.
+///
+/// Linear solves by conjugate gradients on the normal equations. Written by hand: a few dozen
+/// lines, no sparse solver crate needed.
+fn relax_component(
     faces: &[usize],
+    gauge: Option<usize>,
     vid: &[Vec<usize>],
     corners: &[Vec<Point>],
     fixed: &[bool],
     pos: &mut [Option<Point>],
 ) {
+    let origin = gauge.and_then(|g| pos[g]).unwrap_or([0.0, 0.0]);
+    let is_fixed = |v: usize| fixed[v] || Some(v) == gauge;
     let mut vmap = vec![usize::MAX; pos.len()];
     let mut free = Vec::new();
     for &f in faces {
         for &v in &vid[f] {
-            if !fixed[v] && vmap[v] == usize::MAX {
+            if !is_fixed(v) && vmap[v] == usize::MAX {
                 vmap[v] = free.len();
                 free.push(v);
             }
@@ -373,14 +387,15 @@ fn least_squares(
     let nfree = free.len();
     let unknowns = 2 * nfree + 4 * faces.len();
     let mut z = vec![0.0; unknowns];
-    // Start: vertices at the mean of their breadth-first positions; similarities fitted.
+    // Start: the breadth-first placement (relative to `origin`): vertices at the mean of their
+    // positions, similarities fitted (Procrustes).
     let mut count = vec![0.0; nfree];
     for &f in faces {
         for (i, &v) in vid[f].iter().enumerate() {
             if vmap[v] != usize::MAX {
                 let k = vmap[v];
-                z[2 * k] += corners[f][i][0];
-                z[2 * k + 1] += corners[f][i][1];
+                z[2 * k] += corners[f][i][0] - origin[0];
+                z[2 * k + 1] += corners[f][i][1] - origin[1];
                 count[k] += 1.0;
             }
         }
@@ -408,8 +423,8 @@ fn least_squares(
         }
         z[base] = sa / ss;
         z[base + 1] = sb / ss;
-        z[base + 2] = mean[0];
-        z[base + 3] = mean[1];
+        z[base + 2] = mean[0] - origin[0];
+        z[base + 3] = mean[1] - origin[1];
         for (i, &v) in vid[f].iter().enumerate() {
             let (rx, ry) = (r[i][0], r[i][1]);
             let mut x = vec![(base, -rx), (base + 1, ry), (base + 2, -1.0)];
@@ -417,8 +432,8 @@ fn least_squares(
             let (mut kx, mut ky) = (0.0, 0.0);
             if vmap[v] == usize::MAX {
                 let p = pos[v].expect("fixed vertices are placed");
-                kx = p[0];
-                ky = p[1];
+                kx = p[0] - origin[0];
+                ky = p[1] - origin[1];
             } else {
                 x.push((2 * vmap[v], 1.0));
                 y.push((2 * vmap[v] + 1, 1.0));
@@ -427,7 +442,6 @@ fn least_squares(
             rows.push((y, ky));
         }
     }
-    // Normal equations JᵀJ z = −Jᵀk by conjugate gradients.
     let apply = |z: &[f64]| -> Vec<f64> {
         let mut out = vec![0.0; unknowns];
         for (terms, _) in &rows {
@@ -438,40 +452,88 @@ fn least_squares(
         }
         out
     };
-    let mut b = vec![0.0; unknowns];
-    for (terms, k) in &rows {
-        for &(i, c) in terms {
-            b[i] -= c * k;
+    let scale_of = |z: &[f64]| -> f64 {
+        (0..faces.len())
+            .map(|j| z[2 * nfree + 4 * j].powi(2) + z[2 * nfree + 4 * j + 1].powi(2))
+            .sum()
+    };
+    if gauge.is_none() {
+        let mut b = vec![0.0; unknowns];
+        for (terms, k) in &rows {
+            for &(i, c) in terms {
+                b[i] -= c * k;
+            }
+        }
+        conjugate_gradients(&apply, &b, &mut z);
+    } else {
+        // Inverse iteration on A z = λ B z, B selecting the c entries.
+        let c0 = [z[2 * nfree], z[2 * nfree + 1]];
+        let size0 = scale_of(&z);
+        let mut y = z.clone();
+        for _ in 0..100 {
+            let mut b = vec![0.0; unknowns];
+            for j in 0..faces.len() {
+                b[2 * nfree + 4 * j] = z[2 * nfree + 4 * j];
+                b[2 * nfree + 4 * j + 1] = z[2 * nfree + 4 * j + 1];
+            }
+            conjugate_gradients(&apply, &b, &mut y);
+            let norm = (scale_of(&y) / size0).sqrt();
+            if !(norm.is_finite() && norm > 0.0) {
+                break;
+            }
+            let next: Vec<f64> = y.iter().map(|v| v / norm).collect();
+            let change: f64 = next.iter().zip(&z).map(|(a, b)| (a - b).powi(2)).sum();
+            z = next;
+            y.clone_from(&z);
+            if change <= 1e-24 * size0 {
+                break;
+            }
+        }
+        // Rotate so that the first face keeps its breadth-first orientation (this also fixes the
+        // sign of the eigenvector).
+        let c = [z[2 * nfree], z[2 * nfree + 1]];
+        let phi = c0[1].atan2(c0[0]) - c[1].atan2(c[0]);
+        let (cs, sn) = (phi.cos(), phi.sin());
+        for pair in 0..(unknowns / 2) {
+            let (x, y) = (z[2 * pair], z[2 * pair + 1]);
+            z[2 * pair] = cs * x - sn * y;
+            z[2 * pair + 1] = sn * x + cs * y;
         }
     }
-    let az = apply(&z);
+    for (k, &v) in free.iter().enumerate() {
+        pos[v] = Some([z[2 * k] + origin[0], z[2 * k + 1] + origin[1]]);
+    }
+}
+
+/// Solves `apply(z) = b` for a symmetric positive definite operator by conjugate gradients,
+/// starting from `z`.
+fn conjugate_gradients(apply: &dyn Fn(&[f64]) -> Vec<f64>, b: &[f64], z: &mut [f64]) {
+    let n = b.len();
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    let az = apply(z);
     let mut r: Vec<f64> = b.iter().zip(&az).map(|(x, y)| x - y).collect();
     let mut p = r.clone();
-    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
     let mut rr = dot(&r, &r);
-    let stop = 1e-28 * dot(&b, &b).max(1e-300);
-    for _ in 0..(10 * unknowns + 100) {
+    let stop = 1e-28 * dot(b, b).max(1e-300);
+    for _ in 0..(10 * n + 100) {
         if rr <= stop {
             break;
         }
         let ap = apply(&p);
         let pap = dot(&p, &ap);
-        if pap <= 0.0 {
+        if pap.is_nan() || pap <= 0.0 {
             break;
         }
         let alpha = rr / pap;
-        for i in 0..unknowns {
+        for i in 0..n {
             z[i] += alpha * p[i];
             r[i] -= alpha * ap[i];
         }
         let rr_new = dot(&r, &r);
         let beta = rr_new / rr;
         rr = rr_new;
-        for i in 0..unknowns {
+        for i in 0..n {
             p[i] = r[i] + beta * p[i];
         }
-    }
-    for (k, &v) in free.iter().enumerate() {
-        pos[v] = Some([z[2 * k], z[2 * k + 1]]);
     }
 }
