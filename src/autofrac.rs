@@ -18,7 +18,10 @@
 //! described at [`crate::coords::read_point_section`]; the topology ignores them.
 
 use crate::assembly::{Assembly, SharedEdge};
-use crate::coords::{parse_coordinate, read_point_section, ExactPoint};
+use crate::coords::{
+    control_count, parse_coordinate, vertices, CoordKind, ExactPoint, FaceCoords, UserCoords,
+    MAX_DEGREE,
+};
 use crate::edge::{EdgeKind, EdgeType};
 use crate::error::{Diagnostic, Error, Result, Source, Span};
 use crate::face::{Face, Params};
@@ -221,6 +224,102 @@ fn number(w: &str) -> Option<BigRational> {
     })
 }
 
+/// Reads the `p` section of an AutoFrac2D file (lacuna's reading; see docs/FORMATS.md): with C
+/// the total number of corners (Σ n_f), V the number of distinct vertices (shared edges identify
+/// corners) and K_q the total number of control points at Bézier degree q, a section of
+/// - C points gives the corners face after face, each face's corners in its edge order (corner i
+///   starts edge i) — the AutoFrac2D tool's own layout when it places inner points itself (`-a`);
+/// - K_q points (2 ≤ q ≤ 8; the tool writes q = 2, or 3 with `-c`) gives every control point,
+///   face after face: each edge's first corner then its inner Bézier points;
+/// - V points gives the distinct vertices in order of first appearance.
+///
+/// Any other count is error E0304 (at the `p` line), which lists the accepted counts; an empty
+/// section gives no coordinates.
+pub fn read_point_section(
+    asm: &Assembly,
+    points: Vec<ExactPoint>,
+    spans: Vec<Span>,
+    p_span: Span,
+    src: &Source,
+) -> Result<UserCoords> {
+    let mut out = UserCoords {
+        faces: Vec::new(),
+        source: Some(src.clone()),
+        unread: None,
+    };
+    let count = points.len();
+    if count == 0 {
+        return Ok(out);
+    }
+    let corners: usize = asm.faces.iter().map(|(_, f)| f.boundary.len()).sum();
+    let (ids, v) = vertices(asm);
+    let per_face = |q: Option<usize>| -> Vec<FaceCoords> {
+        let mut at = 0;
+        asm.faces
+            .iter()
+            .enumerate()
+            .map(|(f, (_, face))| {
+                let (k, kind) = match q {
+                    None => (face.boundary.len(), CoordKind::Corners),
+                    Some(degree) => (control_count(face, degree), CoordKind::Controls { degree }),
+                };
+                let fc = FaceCoords {
+                    face: f,
+                    kind,
+                    points: points[at..at + k].to_vec(),
+                    spans: spans[at..at + k].to_vec(),
+                };
+                at += k;
+                fc
+            })
+            .collect()
+    };
+    let degree = (2..=MAX_DEGREE).find(|&q| {
+        asm.faces
+            .iter()
+            .map(|(_, f)| control_count(f, q))
+            .sum::<usize>()
+            == count
+    });
+    out.faces = if count == corners {
+        per_face(None)
+    } else if let Some(q) = degree {
+        per_face(Some(q))
+    } else if count == v {
+        ids.iter()
+            .enumerate()
+            .map(|(f, vs)| FaceCoords {
+                face: f,
+                kind: CoordKind::Corners,
+                points: vs.iter().map(|&i| points[i].clone()).collect(),
+                spans: vs.iter().map(|&i| spans[i].clone()).collect(),
+            })
+            .collect()
+    } else {
+        let k2: usize = asm.faces.iter().map(|(_, f)| control_count(f, 2)).sum();
+        let k3: usize = asm.faces.iter().map(|(_, f)| control_count(f, 3)).sum();
+        let mut accepted = vec![format!("{corners} (the corners, face after face)")];
+        if k2 != corners {
+            accepted.push(format!(
+                "{k2} or {k3} (all control points at Bézier degree 2 or 3, face after face)"
+            ));
+        }
+        if v != corners {
+            accepted.push(format!("{v} (the distinct vertices)"));
+        }
+        return Err(Error::syntax(
+            "E0304",
+            format!(
+                "the `p` section has {count} points; lacuna reads {}",
+                accepted.join(", or ")
+            ),
+            p_span,
+            Some(src),
+        ));
+    };
+    Ok(out)
+}
+
 fn parse_edge(text: &str, line: &str, ln: usize, src: &Source) -> Result<EdgeType> {
     let col = col_in(line, text);
     let bad = |m: String| Error::at("E0301", m, ln, col, text.chars().count(), src);
@@ -354,6 +453,10 @@ mod tests {
         let a = parse_autofrac(&src(text)).unwrap();
         assert_eq!(a.faces.len(), 2);
         assert_eq!(a.faces[0].1.to_string(), "C2 B2 C2 B2 | C2 B2 B2 | A1");
+        // Two points fit no reading of the `p` section (8 corners, 12 or 16 control points, 6
+        // vertices): the topology reads the file, the placement will refuse it.
+        assert_eq!(a.coords.unread.as_ref().map(|d| d.code), Some("E0304"));
+        assert!(a.coords.faces.is_empty());
         assert_eq!(
             a.shared,
             vec![SharedEdge {

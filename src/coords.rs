@@ -52,7 +52,7 @@ pub struct FaceCoords {
 /// The user-given points of an assembly (faces without an entry are placed by default).
 #[derive(Clone, Debug, Default)]
 pub struct UserCoords {
-    /// One entry per face that has coordinates, in order of face index.
+    /// One entry per face that has coordinates, sorted by face index (at most one per face).
     pub faces: Vec<FaceCoords>,
     /// The text the spans point into.
     pub source: Option<Source>,
@@ -65,7 +65,10 @@ pub struct UserCoords {
 impl UserCoords {
     /// The coordinates of face `f`, if given.
     pub fn of(&self, f: usize) -> Option<&FaceCoords> {
-        self.faces.iter().find(|c| c.face == f)
+        self.faces
+            .binary_search_by_key(&f, |c| c.face)
+            .ok()
+            .map(|k| &self.faces[k])
     }
 
     /// The Bézier degree of the faces given with all their control points (they agree; checked).
@@ -563,98 +566,64 @@ pub fn set_corners(asm: &mut Assembly, text: &str) -> Result<()> {
     check(asm)
 }
 
-/// Reads the `p` section of an AutoFrac2D file (lacuna's reading; see docs/FORMATS.md): with C
-/// the total number of corners (Σ n_f), V the number of distinct vertices (shared edges identify
-/// corners) and K_q the total number of control points at Bézier degree q, a section of
-/// - C points gives the corners face after face, each face's corners in its edge order (corner i
-///   starts edge i) — the AutoFrac2D tool's own layout when it places inner points itself (`-a`);
-/// - K_q points (2 ≤ q ≤ 8; the tool writes q = 2, or 3 with `-c`) gives every control point,
-///   face after face: each edge's first corner then its inner Bézier points;
-/// - V points gives the distinct vertices in order of first appearance.
-///
-/// Any other count is error E0304 (at the `p` line), which lists the accepted counts; an empty
-/// section gives no coordinates.
-pub fn read_point_section(
-    asm: &Assembly,
-    points: Vec<ExactPoint>,
-    spans: Vec<Span>,
-    p_span: Span,
-    src: &Source,
-) -> Result<UserCoords> {
-    let mut out = UserCoords {
-        faces: Vec::new(),
-        source: Some(src.clone()),
-        unread: None,
-    };
-    let count = points.len();
-    if count == 0 {
-        return Ok(out);
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pts(p: &[(i64, i64)]) -> Vec<ExactPoint> {
+        p.iter()
+            .map(|&(x, y)| {
+                [
+                    BigRational::from_integer(x.into()),
+                    BigRational::from_integer(y.into()),
+                ]
+            })
+            .collect()
     }
-    let corners: usize = asm.faces.iter().map(|(_, f)| f.boundary.len()).sum();
-    let (ids, v) = vertices(asm);
-    let per_face = |q: Option<usize>| -> Vec<FaceCoords> {
-        let mut at = 0;
-        asm.faces
-            .iter()
-            .enumerate()
-            .map(|(f, (_, face))| {
-                let (k, kind) = match q {
-                    None => (face.boundary.len(), CoordKind::Corners),
-                    Some(degree) => (control_count(face, degree), CoordKind::Controls { degree }),
-                };
-                let fc = FaceCoords {
-                    face: f,
-                    kind,
-                    points: points[at..at + k].to_vec(),
-                    spans: spans[at..at + k].to_vec(),
-                };
-                at += k;
-                fc
-            })
-            .collect()
-    };
-    let degree = (2..=MAX_DEGREE).find(|&q| {
-        asm.faces
-            .iter()
-            .map(|(_, f)| control_count(f, q))
-            .sum::<usize>()
-            == count
-    });
-    out.faces = if count == corners {
-        per_face(None)
-    } else if let Some(q) = degree {
-        per_face(Some(q))
-    } else if count == v {
-        ids.iter()
-            .enumerate()
-            .map(|(f, vs)| FaceCoords {
-                face: f,
-                kind: CoordKind::Corners,
-                points: vs.iter().map(|&i| points[i].clone()).collect(),
-                spans: vs.iter().map(|&i| spans[i].clone()).collect(),
-            })
-            .collect()
-    } else {
-        let k2: usize = asm.faces.iter().map(|(_, f)| control_count(f, 2)).sum();
-        let k3: usize = asm.faces.iter().map(|(_, f)| control_count(f, 3)).sum();
-        let mut accepted = vec![format!("{corners} (the corners, face after face)")];
-        if k2 != corners {
-            accepted.push(format!(
-                "{k2} or {k3} (all control points at Bézier degree 2 or 3, face after face)"
-            ));
-        }
-        if v != corners {
-            accepted.push(format!("{v} (the distinct vertices)"));
-        }
-        return Err(Error::syntax(
-            "E0304",
-            format!(
-                "the `p` section has {count} points; lacuna reads {}",
-                accepted.join(", or ")
-            ),
-            p_span,
-            Some(src),
-        ));
-    };
-    Ok(out)
+
+    #[test]
+    fn simple_polygons_by_hand() {
+        assert_eq!(
+            self_intersection(&pts(&[(0, 0), (1, 0), (1, 1), (0, 1)])),
+            None
+        );
+        // Non-convex but simple (an L).
+        let l = pts(&[(0, 0), (2, 0), (2, 1), (1, 1), (1, 2), (0, 2)]);
+        assert_eq!(self_intersection(&l), None);
+        // Bow tie: edge 0 (0,0)-(2,0)... edges 1 (2,0)-(0,1) and 3 (3,1)-(0,0) cross at (1.2, 0.4).
+        assert_eq!(
+            self_intersection(&pts(&[(0, 0), (2, 0), (0, 1), (3, 1)])),
+            Some((1, 3))
+        );
+        // A corner repeated: edge 1 has length 0 and folds onto edge 0.
+        assert_eq!(
+            self_intersection(&pts(&[(0, 0), (1, 0), (1, 0), (0, 1)])),
+            Some((0, 1))
+        );
+        // Edge 2 runs back along edge 1: (0,0) (2,0) (2,2) (2,1) ...
+        assert!(self_intersection(&pts(&[(0, 0), (2, 0), (2, 2), (2, 1), (0, 1)])).is_some());
+        // Two non-adjacent corners at one point (a figure eight touching itself).
+        assert!(
+            self_intersection(&pts(&[(0, 0), (2, 0), (1, 1), (2, 2), (0, 2), (1, 1)])).is_some()
+        );
+        assert_eq!(
+            double_area(&pts(&[(0, 0), (2, 0), (2, 1), (0, 1)])),
+            BigRational::from_integer(4.into())
+        );
+    }
+
+    #[test]
+    fn vertices_merge_the_corners_of_shared_edges() {
+        let src = Source {
+            name: "t".into(),
+            text: "face 0: B2 B2 B2 | C2 B2 B2 | A1\nface 1: B2 B2 B2 B2 | C2 B2 B2 | A1\nface 0 edge 2 ~ face 1 edge 0\n".into(),
+        };
+        let a = Assembly::parse(&src).unwrap();
+        // Face 0 edge 2 runs corner 2 → corner 0; face 1 edge 0 runs corner 0 → corner 1, so face
+        // 1's corner 0 is face 0's corner 0 and its corner 1 is face 0's corner 2.
+        let (ids, v) = vertices(&a);
+        assert_eq!(ids, vec![vec![0, 1, 2], vec![0, 2, 3, 4]]);
+        assert_eq!(v, 5);
+        assert_eq!(control_count(&a.faces[1].1, 3), 12);
+    }
 }

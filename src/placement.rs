@@ -302,13 +302,15 @@ pub(crate) fn place(input: &Input, types: &TypeSet, q: usize) -> Result<Vec<Star
             }
         })
         .collect();
-    let rank = |f: usize| match uc.of(f).map(|c| c.kind) {
-        Some(CoordKind::Controls { .. }) => 2,
-        Some(CoordKind::Corners) => 1,
-        None => 0,
-    };
+    let rank: Vec<u8> = (0..nf)
+        .map(|f| match uc.of(f).map(|c| c.kind) {
+            Some(CoordKind::Controls { .. }) => 2,
+            Some(CoordKind::Corners) => 1,
+            None => 0,
+        })
+        .collect();
     for s in &asm.shared {
-        let (from, to) = if rank(s.b.0) > rank(s.a.0) {
+        let (from, to) = if rank[s.b.0] > rank[s.a.0] {
             (s.b, s.a)
         } else {
             (s.a, s.b)
