@@ -6,12 +6,14 @@
 //! face 0: C2 B2 C2 B2 | C2 B2 B2 | A1
 //! face 1: C2 B2 C2 B2 | C2 B2 B2 | R
 //! face 0 edge 2 ~ face 1 edge 0
+//! corners 0: 0 0, 1 0, 1 1, 0 1
 //! ```
 //! A shared edge must have the same type and delay on both sides; the two faces traverse it in
 //! opposite directions (both boundaries are counter-clockwise). Edge indices refer to the
 //! boundary as written.
 
-use crate::error::{Error, Result, Source};
+use crate::coords::{interpret, parse_point_list, ExactPoint, UserCoords};
+use crate::error::{Error, Result, Source, Span};
 use crate::face::Face;
 use crate::rule::Algorithm;
 use serde::Serialize;
@@ -32,7 +34,13 @@ pub struct Assembly {
     pub faces: Vec<(String, Face)>,
     /// The shared edges.
     pub shared: Vec<SharedEdge>,
+    /// User-given coordinates (`corners NAME: …`, `points NAME: …`, AutoFrac2D's `p` section).
+    pub coords: UserCoords,
 }
+
+/// A coordinates line as written: face name, its column, the points, whether corners only, and
+/// the span of the point list.
+type CoordLine = (String, Span, Vec<ExactPoint>, Vec<Span>, bool, Span);
 
 /// A reference `face NAME edge I` as written: (name, edge, column).
 type EdgeRef = (String, usize, usize);
@@ -43,6 +51,7 @@ impl Assembly {
         let mut rules: Vec<(String, Algorithm)> = Vec::new();
         let mut faces: Vec<(String, Face)> = Vec::new();
         let mut links: Vec<(usize, [EdgeRef; 2])> = Vec::new();
+        let mut coord_lines: Vec<CoordLine> = Vec::new();
         for (ln0, raw) in src.text.lines().enumerate() {
             let ln = ln0 + 1;
             let line = raw.split('#').next().unwrap_or("");
@@ -109,6 +118,29 @@ impl Assembly {
                 let face = Face::parse_with(notation, &rules)
                     .map_err(|e| e.within(src, ln, col0 - 1 + off))?;
                 faces.push((name, face));
+            } else if (trimmed.starts_with("corners ") || trimmed.starts_with("points "))
+                && trimmed.contains(':')
+            {
+                let (head, list) = trimmed.split_once(':').expect("checked");
+                let corners_only = head.starts_with("corners");
+                let kw = if corners_only { "corners " } else { "points " };
+                let name = head[kw.len()..].trim().to_string();
+                let name_col =
+                    col0 + kw.len() + head[kw.len()..].len() - head[kw.len()..].trim_start().len();
+                let list_col = col0 + head.chars().count() + 1;
+                let (points, spans) = parse_point_list(list, ln, list_col, src)?;
+                let lead = list.len() - list.trim_start().len();
+                let whole = Span {
+                    line: ln,
+                    col: list_col + list[..lead].chars().count(),
+                    len: list.trim().chars().count().max(1),
+                };
+                let name_span = Span {
+                    line: ln,
+                    col: name_col,
+                    len: name.chars().count().max(1),
+                };
+                coord_lines.push((name, name_span, points, spans, corners_only, whole));
             } else if trimmed.contains('~') {
                 let (l, r) = trimmed.split_once('~').expect("checked");
                 let rcol = col0 + l.chars().count() + 1;
@@ -118,7 +150,7 @@ impl Assembly {
             } else {
                 return Err(Error::at(
                     "E0201",
-                    format!("expected `face NAME: …`, `rule NAME = …` or `face A edge I ~ face B edge J`, found `{trimmed}`"),
+                    format!("expected `face NAME: …`, `rule NAME = …`, `face A edge I ~ face B edge J`, `corners NAME: x y, …` or `points NAME: x y, …`, found `{trimmed}`"),
                     ln,
                     col0,
                     trimmed.chars().count(),
@@ -155,12 +187,46 @@ impl Assembly {
                 src,
             ));
         }
+        let mut coords = UserCoords {
+            faces: Vec::new(),
+            source: Some(src.clone()),
+            unread: None,
+        };
+        for (name, name_span, points, spans, corners_only, whole) in coord_lines {
+            let Some(f) = faces.iter().position(|(n, _)| *n == name) else {
+                return Err(Error::syntax(
+                    "E0203",
+                    format!("no face named `{name}`"),
+                    name_span,
+                    Some(src),
+                ));
+            };
+            if coords.of(f).is_some() {
+                return Err(Error::syntax(
+                    "E0213",
+                    format!("coordinates of face `{name}` are given twice"),
+                    name_span,
+                    Some(src),
+                ));
+            }
+            coords.faces.push(interpret(
+                f,
+                &faces[f],
+                (points, spans),
+                corners_only,
+                &whole,
+                Some(src),
+            )?);
+        }
+        coords.faces.sort_by_key(|c| c.face);
         let asm = Assembly {
             faces,
             shared: shared.iter().map(|s| s.2).collect(),
+            coords,
         };
         let lines: Vec<(usize, usize)> = shared.iter().map(|s| (s.0, s.1)).collect();
         asm.check(src, &lines)?;
+        crate::coords::check(&asm)?;
         Ok(asm)
     }
 

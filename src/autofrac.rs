@@ -14,14 +14,19 @@
 //! 0 = A3, 2 = A2. AutoFrac2D's algorithm 1 ("surround delay and Bézier") merges delayed edges
 //! with neighbouring Bézier edges, which is not a spoke rule; it is accepted only where no delay
 //! occurs anywhere (where it coincides with A1 and A3; it is read as A1), and refused otherwise. The `c` section
-//! glues edges (`F1.E1 / F2.E2`); the `p` section (coordinates) is checked for well-formed finite
-//! numbers and otherwise ignored by the topology.
+//! glues edges (`F1.E1 / F2.E2`); the `p` section gives coordinates (one `x y` per line), read as
+//! described at [`crate::coords::read_point_section`]; the topology ignores them.
 
 use crate::assembly::{Assembly, SharedEdge};
+use crate::coords::{
+    control_count, parse_coordinate, vertices, CoordKind, ExactPoint, FaceCoords, UserCoords,
+    MAX_DEGREE,
+};
 use crate::edge::{EdgeKind, EdgeType};
-use crate::error::{Error, Result, Source};
+use crate::error::{Diagnostic, Error, Result, Source, Span};
 use crate::face::{Face, Params};
 use crate::rule::Algorithm;
+use num_rational::BigRational;
 
 #[derive(Clone, Copy, PartialEq)]
 enum Section {
@@ -53,6 +58,9 @@ pub fn parse_autofrac(src: &Source) -> Result<Assembly> {
     let mut faces: Vec<(String, Face)> = Vec::new();
     let mut shared = Vec::new();
     let mut lines = Vec::new();
+    let mut points: Vec<ExactPoint> = Vec::new();
+    let mut spans: Vec<Span> = Vec::new();
+    let mut p_span: Option<Span> = None;
     for (ln0, line) in src.text.lines().enumerate() {
         let ln = ln0 + 1;
         let t = line.trim();
@@ -62,7 +70,14 @@ pub fn parse_autofrac(src: &Source) -> Result<Assembly> {
         match t {
             "f" => section = Section::Faces,
             "c" => section = Section::Links,
-            "p" => section = Section::Points,
+            "p" => {
+                section = Section::Points;
+                p_span.get_or_insert(Span {
+                    line: ln,
+                    col: col_in(line, t),
+                    len: 1,
+                });
+            }
             _ => match section {
                 Section::None => {
                     return Err(Error::at(
@@ -126,20 +141,26 @@ pub fn parse_autofrac(src: &Source) -> Result<Assembly> {
                 }
                 Section::Points => {
                     let words: Vec<&str> = t.split_whitespace().collect();
-                    let ok = words.len() == 2
-                        && words
-                            .iter()
-                            .all(|w| w.parse::<f64>().is_ok_and(f64::is_finite) && w.len() < 64);
-                    if !ok {
-                        return Err(Error::at(
-                            "E0303",
-                            format!("expected a point `x y` with two finite numbers, found `{t}`"),
-                            ln,
-                            col_in(line, t),
-                            t.len(),
-                            src,
-                        ));
-                    }
+                    let xy: Vec<BigRational> = words.iter().filter_map(|w| number(w)).collect();
+                    let [x, y] = <[BigRational; 2]>::try_from(xy)
+                        .ok()
+                        .filter(|_| words.len() == 2)
+                        .ok_or_else(|| {
+                            Error::at(
+                                "E0303",
+                                format!("expected a point `x y` with two finite numbers of magnitude at most 10^15, found `{t}`"),
+                                ln,
+                                col_in(line, t),
+                                t.len(),
+                                src,
+                            )
+                        })?;
+                    points.push([x, y]);
+                    spans.push(Span {
+                        line: ln,
+                        col: col_in(line, t),
+                        len: t.chars().count(),
+                    });
                 }
             },
         }
@@ -154,9 +175,149 @@ pub fn parse_autofrac(src: &Source) -> Result<Assembly> {
             src,
         ));
     }
-    let asm = Assembly { faces, shared };
+    let mut asm = Assembly {
+        faces,
+        shared,
+        coords: Default::default(),
+    };
     asm.check(src, &lines)?;
+    // The topology ignores the coordinates: a `p` section that cannot be used is kept as an
+    // error for the placement (render, measure, report), so files that verified before still do.
+    if let Some(p) = p_span {
+        match read_point_section(&asm, points, spans, p, src) {
+            Ok(coords) => asm.coords = coords,
+            Err(e) => asm.coords.unread = Some(diagnostic(e)),
+        }
+        if let Err(e) = crate::coords::check(&asm) {
+            asm.coords.faces.clear();
+            asm.coords.unread = Some(diagnostic(e));
+        }
+    }
     Ok(asm)
+}
+
+fn diagnostic(e: Error) -> Diagnostic {
+    match e {
+        Error::Syntax(d) => *d,
+        other => Diagnostic {
+            code: other.code(),
+            message: other.to_string(),
+            span: None,
+            source: None,
+        },
+    }
+}
+
+/// A coordinate of the `p` section: exact when written as an integer, decimal or fraction, else
+/// the exact value of the floating-point number (`1e3`, as the AutoFrac2D tool reads it); finite,
+/// of magnitude at most 10¹⁵.
+fn number(w: &str) -> Option<BigRational> {
+    if w.len() >= 64 {
+        return None;
+    }
+    parse_coordinate(w).or_else(|| {
+        let f = w
+            .parse::<f64>()
+            .ok()
+            .filter(|f| f.is_finite() && f.abs() <= 1e15)?;
+        BigRational::from_float(f)
+    })
+}
+
+/// Reads the `p` section of an AutoFrac2D file (lacuna's reading; see docs/FORMATS.md): with C
+/// the total number of corners (Σ n_f), V the number of distinct vertices (shared edges identify
+/// corners) and K_q the total number of control points at Bézier degree q, a section of
+/// - C points gives the corners face after face, each face's corners in its edge order (corner i
+///   starts edge i) — the AutoFrac2D tool's own layout when it places inner points itself (`-a`);
+/// - K_q points (2 ≤ q ≤ 8; the tool writes q = 2, or 3 with `-c`) gives every control point,
+///   face after face: each edge's first corner then its inner Bézier points;
+/// - V points gives the distinct vertices in order of first appearance.
+///
+/// Any other count is error E0304 (at the `p` line), which lists the accepted counts; an empty
+/// section gives no coordinates.
+pub fn read_point_section(
+    asm: &Assembly,
+    points: Vec<ExactPoint>,
+    spans: Vec<Span>,
+    p_span: Span,
+    src: &Source,
+) -> Result<UserCoords> {
+    let mut out = UserCoords {
+        faces: Vec::new(),
+        source: Some(src.clone()),
+        unread: None,
+    };
+    let count = points.len();
+    if count == 0 {
+        return Ok(out);
+    }
+    let corners: usize = asm.faces.iter().map(|(_, f)| f.boundary.len()).sum();
+    let (ids, v) = vertices(asm);
+    let per_face = |q: Option<usize>| -> Vec<FaceCoords> {
+        let mut at = 0;
+        asm.faces
+            .iter()
+            .enumerate()
+            .map(|(f, (_, face))| {
+                let (k, kind) = match q {
+                    None => (face.boundary.len(), CoordKind::Corners),
+                    Some(degree) => (control_count(face, degree), CoordKind::Controls { degree }),
+                };
+                let fc = FaceCoords {
+                    face: f,
+                    kind,
+                    points: points[at..at + k].to_vec(),
+                    spans: spans[at..at + k].to_vec(),
+                };
+                at += k;
+                fc
+            })
+            .collect()
+    };
+    let degree = (2..=MAX_DEGREE).find(|&q| {
+        asm.faces
+            .iter()
+            .map(|(_, f)| control_count(f, q))
+            .sum::<usize>()
+            == count
+    });
+    out.faces = if count == corners {
+        per_face(None)
+    } else if let Some(q) = degree {
+        per_face(Some(q))
+    } else if count == v {
+        ids.iter()
+            .enumerate()
+            .map(|(f, vs)| FaceCoords {
+                face: f,
+                kind: CoordKind::Corners,
+                points: vs.iter().map(|&i| points[i].clone()).collect(),
+                spans: vs.iter().map(|&i| spans[i].clone()).collect(),
+            })
+            .collect()
+    } else {
+        let k2: usize = asm.faces.iter().map(|(_, f)| control_count(f, 2)).sum();
+        let k3: usize = asm.faces.iter().map(|(_, f)| control_count(f, 3)).sum();
+        let mut accepted = vec![format!("{corners} (the corners, face after face)")];
+        if k2 != corners {
+            accepted.push(format!(
+                "{k2} or {k3} (all control points at Bézier degree 2 or 3, face after face)"
+            ));
+        }
+        if v != corners {
+            accepted.push(format!("{v} (the distinct vertices)"));
+        }
+        return Err(Error::syntax(
+            "E0304",
+            format!(
+                "the `p` section has {count} points; lacuna reads {}",
+                accepted.join(", or ")
+            ),
+            p_span,
+            Some(src),
+        ));
+    };
+    Ok(out)
 }
 
 fn parse_edge(text: &str, line: &str, ln: usize, src: &Source) -> Result<EdgeType> {
@@ -292,6 +453,10 @@ mod tests {
         let a = parse_autofrac(&src(text)).unwrap();
         assert_eq!(a.faces.len(), 2);
         assert_eq!(a.faces[0].1.to_string(), "C2 B2 C2 B2 | C2 B2 B2 | A1");
+        // Two points fit no reading of the `p` section (8 corners, 12 or 16 control points, 6
+        // vertices): the topology reads the file, the placement will refuse it.
+        assert_eq!(a.coords.unread.as_ref().map(|d| d.code), Some("E0304"));
+        assert!(a.coords.faces.is_empty());
         assert_eq!(
             a.shared,
             vec![SharedEdge {

@@ -18,7 +18,7 @@
 //! to the given rationals before the fit.
 
 use crate::geometry::{bezier_point, Point};
-use crate::template::{control_points, dim_of, mean_value, regular_polygon, template, Template};
+use crate::template::{dim_of, mean_value, template, Template};
 use lacuna::{
     automaton_of, close_or_error, solve, EdgeKind, Face, GenOptions, Generated, Input, Limits,
     Linearized, Origin, Solution, TypeSet,
@@ -26,7 +26,6 @@ use lacuna::{
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{ToPrimitive, Zero};
-use std::f64::consts::PI;
 
 /// Errors of the geometry layer, each with a stable code (`E10xx`).
 #[derive(Debug, thiserror::Error)]
@@ -439,7 +438,7 @@ pub fn instantiate(input: &Input, opt: &InstantiateOptions) -> Result<Instance, 
         ops.push(tops);
         flags.push(tflags);
     }
-    let start = place(input, &types, q);
+    let start = crate::placement::place(input, &types, q)?;
     let inst = Instance {
         name: input.name.clone(),
         types,
@@ -456,77 +455,6 @@ pub fn instantiate(input: &Input, opt: &InstantiateOptions) -> Result<Instance, 
     };
     inst.check_exact()?;
     Ok(inst)
-}
-
-/// Places the start faces: face 0 on the regular polygon; every other face sharing an edge with a
-/// placed face as a regular polygon on the other side of that edge (for two quads: the reflection
-/// across the shared edge); a face without placed neighbour to the right of the others.
-fn place(input: &Input, types: &TypeSet, q: usize) -> Vec<StartFace> {
-    let asm = &input.assembly;
-    let mut corners: Vec<Option<Vec<Point>>> = vec![None; asm.faces.len()];
-    for f in 0..asm.faces.len() {
-        let n = asm.faces[f].1.boundary.len();
-        let link = asm.shared.iter().find_map(|s| {
-            if s.b.0 == f && s.a.0 != f && corners[s.a.0].is_some() {
-                Some((s.a, s.b.1))
-            } else if s.a.0 == f && s.b.0 != f && corners[s.b.0].is_some() {
-                Some((s.b, s.a.1))
-            } else {
-                None
-            }
-        });
-        let c = match link {
-            Some(((g, eg), ef)) => {
-                let cg = corners[g].as_ref().expect("placed");
-                let (pa, pb) = (cg[eg], cg[(eg + 1) % cg.len()]);
-                // Edge ef runs from pb to pa; continue counter-clockwise with equal sides.
-                let mut w = vec![[0.0; 2]; n];
-                w[ef] = pb;
-                w[(ef + 1) % n] = pa;
-                let turn = 2.0 * PI / n as f64;
-                let (cs, sn) = (turn.cos(), turn.sin());
-                for step in 1..n - 1 {
-                    let i = (ef + step) % n;
-                    let (prev, cur) = (w[(i + n - 1) % n], w[i]);
-                    let d = [cur[0] - prev[0], cur[1] - prev[1]];
-                    w[(i + 1) % n] = [
-                        cur[0] + cs * d[0] - sn * d[1],
-                        cur[1] + sn * d[0] + cs * d[1],
-                    ];
-                }
-                w
-            }
-            None => {
-                let shift = 2.5 * f as f64;
-                regular_polygon(n)
-                    .into_iter()
-                    .map(|p| [p[0] + shift, p[1]])
-                    .collect()
-            }
-        };
-        corners[f] = Some(c);
-    }
-    asm.faces
-        .iter()
-        .enumerate()
-        .map(|(f, (_, face))| {
-            let (canon, r) = face.canonical();
-            let n = face.boundary.len();
-            let cf = corners[f].as_ref().expect("placed");
-            let canon_corners: Vec<Point> = (0..n).map(|i| cf[(i + r) % n]).collect();
-            let free = (0..n)
-                .map(|i| {
-                    let e = (i + r) % n;
-                    !asm.shared.iter().any(|s| s.a == (f, e) || s.b == (f, e))
-                })
-                .collect();
-            StartFace {
-                ty: types.start[f],
-                points: control_points(&canon, &canon_corners, q),
-                free,
-            }
-        })
-        .collect()
 }
 
 impl Instance {

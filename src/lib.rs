@@ -16,6 +16,7 @@ mod automaton_format;
 mod census;
 mod class;
 mod closure;
+mod coords;
 mod count;
 mod curve;
 mod design;
@@ -35,6 +36,7 @@ mod linsys;
 mod matrix;
 mod measure;
 mod operator;
+mod placement;
 mod poly;
 mod presolve;
 mod ratio;
@@ -88,6 +90,9 @@ pub use template::{control_points, regular_polygon};
 
 pub use algebraic::{FieldElement, NumberField, RealAlgebraic};
 pub use assembly::{Assembly, SharedEdge};
+pub use coords::{
+    control_count, set_corners, vertices, CoordKind, ExactPoint, FaceCoords, UserCoords,
+};
 pub use library::{library, load_any, load_input, parse_text, Input, Loaded};
 pub use limits::Limits;
 pub use linsys::{

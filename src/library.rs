@@ -100,6 +100,7 @@ pub fn load_any(arg: &str) -> Result<Loaded> {
             assembly: Assembly {
                 faces: vec![("0".into(), face)],
                 shared: Vec::new(),
+                coords: Default::default(),
             },
         }));
     }

@@ -243,6 +243,10 @@ struct GeoArgs {
     /// Refuse before the work when level N has more cells than this.
     #[arg(long)]
     max_cells: Option<u64>,
+    /// The corners of a single face, exact, counter-clockwise: "X Y, X Y, …" (corner i starts
+    /// edge i as written).
+    #[arg(long, value_name = "\"X Y, X Y, …\"")]
+    corners: Option<String>,
 }
 
 #[derive(Args)]
@@ -378,11 +382,16 @@ fn instance(geo: &GeoArgs, limits: &Limits, default_cells: u64) -> Result<lacuna
             "--segments",
         ));
     }
-    let input = load_input(&geo.input)?;
+    let mut input = load_input(&geo.input)?;
+    if let Some(c) = &geo.corners {
+        lacuna::set_corners(&mut input.assembly, c)?;
+    }
     let mut opts = lacuna::InstantiateOptions {
         limits: limits.clone(),
         ..Default::default()
     };
+    // User control points fix the Bézier degree.
+    opts.degree = input.assembly.coords.degree().unwrap_or(opts.degree);
     for p in &geo.params {
         let parsed = p
             .split_once('=')
@@ -570,10 +579,11 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                     // Faces: instantiate (default parameters, projected exactly onto the solution
                     // space) and analyse the instantiated operators.
                     lacuna::Loaded::Faces(faces) => {
-                        let opts = lacuna::InstantiateOptions {
+                        let mut opts = lacuna::InstantiateOptions {
                             limits: limits.clone(),
                             ..Default::default()
                         };
+                        opts.degree = faces.assembly.coords.degree().unwrap_or(opts.degree);
                         let inst = lacuna::instantiate(&faces, &opts).map_err(geo_error)?;
                         Some(inst.instantiated_automaton())
                     }
