@@ -28,6 +28,7 @@ pub struct Progress {
     total: u64,
     done: u64,
     next: u64,
+    step: u64,
     shown: bool,
     enabled: bool,
     start: Instant,
@@ -36,11 +37,18 @@ pub struct Progress {
 impl Progress {
     /// A bar for `total` units, drawn only when progress bars are on.
     pub fn new(label: &'static str, total: u64) -> Progress {
+        Progress::with_step(label, total, STEP)
+    }
+
+    /// A bar redrawn every `step` units (for work whose units are slow, such as census faces).
+    pub fn with_step(label: &'static str, total: u64, step: u64) -> Progress {
+        let step = step.max(1);
         Progress {
             label,
             total: total.max(1),
             done: 0,
-            next: STEP,
+            next: step,
+            step,
             shown: false,
             enabled: ENABLED.load(Ordering::Relaxed),
             start: Instant::now(),
@@ -52,7 +60,7 @@ impl Progress {
     pub fn tick(&mut self) {
         self.done += 1;
         if self.done >= self.next {
-            self.next = self.done + STEP;
+            self.next = self.done + self.step;
             if self.enabled {
                 self.draw();
             }
@@ -63,7 +71,7 @@ impl Progress {
     pub fn add(&mut self, n: u64) {
         self.done += n;
         if self.done >= self.next {
-            self.next = self.done + STEP;
+            self.next = self.done + self.step;
             if self.enabled {
                 self.draw();
             }
