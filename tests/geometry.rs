@@ -55,7 +55,7 @@ fn user_values_are_kept_exactly() {
 
 #[test]
 fn level_one_cells_tile_the_face_without_overlap() {
-    for name in BUILT_IN {
+    for name in face_fixtures() {
         let i = inst(name);
         let bb = lacuna::bounds(&i, 4);
         let mut whole = Raster::fitting(bb, 1024, 8);
