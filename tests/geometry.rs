@@ -58,9 +58,11 @@ fn level_one_cells_tile_the_face_without_overlap() {
     for name in face_fixtures() {
         let i = inst(name);
         let bb = lacuna::bounds(&i, 4);
+        // The face itself finely flattened: the level-1 cells' flattened Bézier pieces are chords
+        // of the curve, inside it (a digon's bulging edge is most of its boundary).
         let mut whole = Raster::fitting(bb, 1024, 8);
         i.walk(0, false, |c| {
-            whole.fill_polygon(&i.cell_polygon(c.ty, c.points, 4))
+            whole.fill_polygon(&i.cell_polygon(c.ty, c.points, 64))
         });
         let mut cells = Raster::fitting(bb, 1024, 8);
         i.walk(1, false, |c| {
