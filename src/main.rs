@@ -811,13 +811,11 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             json,
         } => {
             check_raster(raster, 16_384)?;
-            if !(raster..=16_384).contains(&max_raster) || !max_raster.is_power_of_two() {
-                return Err(Error::limit(
-                    "the largest raster (a power of two, at least --raster)",
-                    max_raster,
-                    16_384,
-                    "--max-raster",
-                ));
+            check_raster(max_raster, 16_384)?;
+            if max_raster < raster {
+                return Err(Error::Analysis(format!(
+                    "--max-raster {max_raster} is below --raster {raster}"
+                )));
             }
             check_density_grid(density_grid, 0)?;
             let inst = instance(&geo, &limits, 20_000_000)?;
