@@ -162,6 +162,11 @@ pub fn census(spec: &CensusSpec, limits: &Limits) -> CensusReport {
     let start = Instant::now();
     let next = AtomicUsize::new(0);
     let results: Mutex<Vec<Option<Outcome>>> = Mutex::new((0..faces.len()).map(|_| None).collect());
+    let bar = Mutex::new(crate::progress::Progress::with_step(
+        "census",
+        faces.len() as u64,
+        16,
+    ));
     std::thread::scope(|s| {
         for _ in 0..spec.threads {
             s.spawn(|| loop {
@@ -179,6 +184,7 @@ pub fn census(spec: &CensusSpec, limits: &Limits) -> CensusReport {
                     Err(_) => Outcome::Refused,
                 };
                 results.lock().expect("no worker panics")[i] = Some(outcome);
+                bar.lock().expect("no worker panics").tick();
             });
         }
     });

@@ -328,14 +328,8 @@ fn chunk<W: Write>(out: &mut W, kind: &[u8; 4], data: &[u8]) -> io::Result<()> {
 
 /// Writes a raster as a 1-bit grayscale PNG (covered pixels black, the rest white). The image
 /// data is zlib with stored (uncompressed) deflate blocks: about size²/8 bytes.
-pub fn write_png<W: Write>(raster: &Raster, mut out: W) -> io::Result<()> {
+pub fn write_png<W: Write>(raster: &Raster, out: W) -> io::Result<()> {
     let n = raster.size;
-    out.write_all(&[0x89, b'P', b'N', b'G', 0x0D, 0x0A, 0x1A, 0x0A])?;
-    let mut ihdr = Vec::new();
-    ihdr.extend((n as u32).to_be_bytes());
-    ihdr.extend((n as u32).to_be_bytes());
-    ihdr.extend([1, 0, 0, 0, 0]);
-    chunk(&mut out, b"IHDR", &ihdr)?;
     let stride = n.div_ceil(8);
     let mut raw = Vec::with_capacity(n * (stride + 1));
     for r in 0..n {
@@ -348,6 +342,25 @@ pub fn write_png<W: Write>(raster: &Raster, mut out: W) -> io::Result<()> {
         }
         raw.extend(row);
     }
+    write_gray_png(n, n, 1, &raw, out)
+}
+
+/// Writes a grayscale PNG of `width × height` pixels at `depth` bits per pixel (1 or 8) from its
+/// filtered scanlines `raw` (each row a filter byte 0 then the packed pixels). The image data is
+/// zlib with stored (uncompressed) deflate blocks; no compression crate is needed for that.
+pub(crate) fn write_gray_png<W: Write>(
+    width: usize,
+    height: usize,
+    depth: u8,
+    raw: &[u8],
+    mut out: W,
+) -> io::Result<()> {
+    out.write_all(&[0x89, b'P', b'N', b'G', 0x0D, 0x0A, 0x1A, 0x0A])?;
+    let mut ihdr = Vec::new();
+    ihdr.extend((width as u32).to_be_bytes());
+    ihdr.extend((height as u32).to_be_bytes());
+    ihdr.extend([depth, 0, 0, 0, 0]);
+    chunk(&mut out, b"IHDR", &ihdr)?;
     let mut z = vec![0x78, 0x01];
     let blocks: Vec<&[u8]> = raw.chunks(65_535).collect();
     for (i, b) in blocks.iter().enumerate() {
@@ -358,7 +371,7 @@ pub fn write_png<W: Write>(raster: &Raster, mut out: W) -> io::Result<()> {
         z.extend_from_slice(b);
     }
     let (mut a, mut bsum) = (1u32, 0u32);
-    for &x in &raw {
+    for &x in raw {
         a = (a + x as u32) % 65_521;
         bsum = (bsum + a) % 65_521;
     }

@@ -174,6 +174,8 @@ pub struct Instance {
     pub fit_residual: f64,
     /// The start faces in the plane.
     pub start: Vec<StartFace>,
+    /// The assembly's shared edges as (start face, canonical edge index) pairs (exact components).
+    pub glue: Vec<crate::component::Glue>,
     /// Per type, per boundary edge.
     pub slots: Vec<Vec<EdgeSlot>>,
     /// Per type: number of control points.
@@ -448,6 +450,7 @@ pub fn instantiate(input: &Input, opt: &InstantiateOptions) -> Result<Instance, 
         parameters,
         fit_residual,
         start,
+        glue: crate::component::canonical_glue(input),
         slots,
         dims,
         ops,

@@ -16,9 +16,11 @@ mod automaton_format;
 mod census;
 mod class;
 mod closure;
+mod component;
 mod coords;
 mod count;
 mod curve;
+mod density;
 mod design;
 mod edge;
 mod error;
@@ -28,6 +30,7 @@ mod factor;
 mod fieldpoly;
 mod generate;
 mod geometry;
+mod hole;
 mod html;
 mod instantiate;
 mod library;
@@ -39,6 +42,7 @@ mod operator;
 mod placement;
 mod poly;
 mod presolve;
+mod progress;
 mod ratio;
 mod report;
 mod rule;
@@ -57,11 +61,13 @@ pub use automaton_format::{parse_automaton, parse_rational};
 pub use census::{census, CensusReport, CensusSpec};
 pub use class::{Class, ClassStructure};
 pub use closure::{close, close_or_error, Bound, Closure, FaceType, Runaway, TypeSet};
+pub use component::{canonical_glue, components_by_cells, components_by_induction, Glue};
 pub use count::{counts, counts_from, LevelCount};
 pub use curve::{
     analyse_automaton, estimate_curvature, AutomatonOperators, CurvatureEstimate, CurveReport,
     PointBehaviour, Side,
 };
+pub use density::{density_map, density_raster, DensityMap, DensitySummary};
 pub use design::{check_design, design_operator, DesignCheck, DesignError};
 pub use edge::{EdgeKind, EdgeType, JunctionKind};
 pub use error::{Diagnostic, Error, Result, Source, Span};
@@ -74,18 +80,20 @@ pub use geometry::{
     bezier_point, box_dimension, distance, fit_line, polyline_length, signed_area, BBox, Fit,
     Point, Raster, MIN_HOLE_PIXELS,
 };
+pub use hole::{polygon_size, smallest_holes};
 pub use html::report_html;
 pub use instantiate::{
     instantiate, Cell, EdgeSlot, GeometryError, Instance, InstantiateOptions, StartFace,
 };
 pub use measure::{
-    bounds, check_cells, exact_topology, measure, rasterize, ExactTopology, LevelMeasure,
-    MeasureOptions, MeasureReport,
+    bounds, cell_count, check_cells, exact_components, exact_topology, measure, raster_for_hole,
+    rasterize, ExactTopology, LevelMeasure, MeasureOptions, MeasureReport, MIN_HOLE_WIDTH,
 };
 pub use operator::{
     analyse_matrix, parse_matrix_arg, parse_rationals_arg, Behaviour, CurvatureClass, Eigenvalue,
     OperatorReport,
 };
+pub use progress::{set_progress, Progress};
 pub use template::{control_points, regular_polygon};
 
 pub use algebraic::{FieldElement, NumberField, RealAlgebraic};

@@ -21,6 +21,9 @@ struct Cli {
     command: Command,
     #[command(flatten)]
     limits: LimitArgs,
+    /// No progress bars (they are drawn on standard error only when it is a terminal).
+    #[arg(long, global = true, visible_alias = "quiet")]
+    no_progress: bool,
 }
 
 #[derive(Args)]
@@ -169,15 +172,29 @@ enum Command {
         /// PNG size in pixels.
         #[arg(long, default_value_t = 1024)]
         size: usize,
+        /// Write the relative-density map of level N as an 8-bit grayscale PNG (one pixel per
+        /// block, black = covered).
+        #[arg(long, value_name = "OUT.png")]
+        density: Option<std::path::PathBuf>,
+        /// Blocks per side of the density map.
+        #[arg(long, default_value_t = 64)]
+        density_grid: usize,
     },
     /// Measure the instantiated structure per level: area, perimeter and their factors, box-counting
     /// dimension, holes and components compared with the exact counts (a mismatch fails, exit 1).
     Measure {
         #[command(flatten)]
         geo: GeoArgs,
-        /// Raster size for holes, components and box counting (a power of two).
+        /// Raster size for box counting and the smallest raster for holes and components (a power
+        /// of two); a level gets a finer one when its smallest hole needs it.
         #[arg(long, default_value_t = 2048)]
         raster: usize,
+        /// The finest raster a level may get (a power of two); a hole still narrower fails (E1011).
+        #[arg(long, default_value_t = 8192)]
+        max_raster: usize,
+        /// Blocks per side of the relative-density map of level N (0: none).
+        #[arg(long, default_value_t = 64)]
+        density_grid: usize,
         /// Print JSON.
         #[arg(long)]
         json: bool,
@@ -429,6 +446,20 @@ fn check_raster(raster: usize, max: usize) -> Result<(), Error> {
     Ok(())
 }
 
+/// The density grid: from `min` to 1024 blocks per side (the map is rasterised at 16 pixels per
+/// block).
+fn check_density_grid(grid: usize, min: usize) -> Result<(), Error> {
+    if !(min..=1024).contains(&grid) {
+        return Err(Error::limit(
+            "the density grid (blocks per side)",
+            grid,
+            1024,
+            "--density-grid",
+        ));
+    }
+    Ok(())
+}
+
 /// Creates an output file for writing.
 fn create(path: &std::path::Path) -> Result<std::io::BufWriter<std::fs::File>, Error> {
     std::fs::File::create(path)
@@ -441,6 +472,7 @@ fn create(path: &std::path::Path) -> Result<std::io::BufWriter<std::fs::File>, E
 
 fn run(cli: Cli) -> Result<ExitCode, Error> {
     let l = cli.limits;
+    lacuna::set_progress(!cli.no_progress && std::io::IsTerminal::is_terminal(&std::io::stderr()));
     let limits = Limits {
         max_boundary: l.max_boundary,
         max_types: l.max_types,
@@ -690,17 +722,22 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             thickness,
             png,
             size,
+            density,
+            density_grid,
         } => {
             if svg.is_none()
                 && json_out.is_none()
                 && obj.is_none()
                 && stl.is_none()
                 && png.is_none()
+                && density.is_none()
             {
                 return Err(Error::Analysis(
-                    "nothing to write: give --svg, --json-out, --obj, --stl or --png".into(),
+                    "nothing to write: give --svg, --json-out, --obj, --stl, --png or --density"
+                        .into(),
                 ));
             }
+            check_density_grid(density_grid, 1)?;
             if !(1..=16_384).contains(&size) {
                 return Err(Error::limit("the PNG size", size, 16_384, "--size"));
             }
@@ -739,6 +776,11 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 lacuna::write_png(&raster, create(p)?).map_err(|e| io(p, e))?;
                 out(&format!("wrote {}\n", p.display()));
             }
+            if let Some(p) = &density {
+                let map = lacuna::density_map(&inst, level, density_grid, segs);
+                map.write_png(create(p)?).map_err(|e| io(p, e))?;
+                out(&format!("wrote {}\n", p.display()));
+            }
             Ok(ExitCode::SUCCESS)
         }
         Command::Report {
@@ -771,16 +813,34 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 ExitCode::from(EXIT_FAILED)
             })
         }
-        Command::Measure { geo, raster, json } => {
+        Command::Measure {
+            geo,
+            raster,
+            max_raster,
+            density_grid,
+            json,
+        } => {
             check_raster(raster, 16_384)?;
+            check_raster(max_raster, 16_384)?;
+            if max_raster < raster {
+                return Err(Error::Analysis(format!(
+                    "--max-raster {max_raster} is below --raster {raster}"
+                )));
+            }
+            check_density_grid(density_grid, 0)?;
             let inst = instance(&geo, &limits, 20_000_000)?;
             let opts = lacuna::MeasureOptions {
                 level: geo.level,
                 raster,
+                max_raster,
                 segments: geo.segments,
+                density_grid,
                 ..Default::default()
             };
             let r = lacuna::measure(&inst, &opts).map_err(geo_error)?;
+            for f in &r.failures {
+                eprintln!("verification failed: {f}");
+            }
             if json {
                 print_json(&r);
             } else {

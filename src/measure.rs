@@ -12,11 +12,21 @@
 //! free edge opens into the outside or into an existing hole: it is a notch, not a hole. So
 //! `holes_i = Σ central lacunas + (interior gap halves)/2`, and since SPEC §5 counts every gap as
 //! a half from each side, `N^L_i = holes_i + (free gaps)/2` — both are computed with big integers
-//! over the multiset of (type, flags) and checked against each other. The union stays connected:
-//! components must be 1.
+//! over the multiset of (type, flags) and checked against each other. The number of components
+//! is derived exactly in [`crate::component`] (by induction on the levels, or by union-find over
+//! the cells).
+//!
+//! **Resolution.** Each level is rasterised fine enough that its smallest hole (computed from the
+//! cells, [`crate::hole`]) is at least [`MIN_HOLE_WIDTH`] pixels wide, up to
+//! [`MeasureOptions::max_raster`]; a level whose smallest hole stays below that is a failure
+//! (E1011), never a silently different count. A mismatch of observed and exact counts is E1010.
 
-use crate::geometry::{box_dimension, distance, signed_area, BBox, Fit, Raster};
+use crate::component::{components_by_cells, components_by_induction};
+use crate::density::{density_map, DensitySummary, DEFAULT_GRID};
+use crate::geometry::{distance, fit_line, signed_area, BBox, Fit, Raster};
+use crate::hole::smallest_holes;
 use crate::instantiate::{GeometryError, Instance};
+use crate::progress::Progress;
 use lacuna::{counts, EdgeKind};
 use num_bigint::BigUint;
 use num_rational::BigRational;
@@ -46,8 +56,39 @@ pub struct ExactTopology {
     /// Gaps opened on free edges up to level i (notches: each is half a lacuna in N^L).
     #[serde(serialize_with = "ser_display")]
     pub notches: BigUint,
-    /// Components of the union: 1.
-    pub components: u32,
+    /// Components of the union (cells joined by shared edges; [`crate::component`]).
+    pub components: u64,
+}
+
+/// Above this many cells the union-find fallback of [`exact_components`] is not run.
+pub const UNION_FIND_CELLS: usize = 2_000_000;
+
+/// The exact number of components at levels 0 to `levels` and how it was derived: by induction
+/// when the sub-faces of every type are connected through their spokes (then it is the number of
+/// components of the start assembly at every level), else by union-find over the cells of each
+/// level (at most [`UNION_FIND_CELLS`]).
+pub fn exact_components(inst: &Instance, levels: u32) -> Result<(Vec<u64>, &'static str), String> {
+    let n = levels as usize + 1;
+    match components_by_induction(&inst.types, &inst.glue) {
+        Ok(c) => Ok((vec![c as u64; n], "induction")),
+        Err(t) => match components_by_cells(&inst.types, &inst.glue, levels, UNION_FIND_CELLS) {
+            Some(Ok(v)) => Ok((v.into_iter().map(|c| c as u64).collect(), "union-find")),
+            Some(Err(l)) => Err(format!(
+                "level {l}: an edge is shared by more than two cells"
+            )),
+            None => Err(format!(
+                "the sub-faces of T{t} are not connected through spokes and a level up to {levels} has more than {UNION_FIND_CELLS} cells: the components cannot be derived"
+            )),
+        },
+    }
+}
+
+/// The exact number of cells N^C at `level` (saturating at `u64::MAX`), for progress bars.
+pub fn cell_count(inst: &Instance, level: u32) -> u64 {
+    counts(&inst.types, u64::from(level))[level as usize]
+        .faces
+        .to_u64()
+        .unwrap_or(u64::MAX)
 }
 
 /// The exact topology for levels 0 to `levels`; also checks `N^L_i = holes_i + notches_i / 2`
@@ -59,6 +100,7 @@ pub fn exact_topology(inst: &Instance, levels: u32) -> Result<Vec<ExactTopology>
         *states.entry((s.ty, s.free.clone())).or_default() += 1u32;
     }
     let reference = counts(ts, levels as u64);
+    let (components, _) = exact_components(inst, levels)?;
     let (mut centre, mut interior_halves, mut notches) =
         (BigUint::zero(), BigUint::zero(), BigUint::zero());
     let mut out = Vec::new();
@@ -79,7 +121,7 @@ pub fn exact_topology(inst: &Instance, levels: u32) -> Result<Vec<ExactTopology>
             lacunas,
             holes,
             notches: notches.clone(),
-            components: 1,
+            components: components[level as usize],
         });
         if level == levels {
             break;
@@ -109,17 +151,28 @@ pub fn exact_topology(inst: &Instance, levels: u32) -> Result<Vec<ExactTopology>
     Ok(out)
 }
 
+/// A level's raster is chosen so that its smallest hole is at least this many pixels wide
+/// (`2·area/perimeter`, see [`crate::hole`]): its inscribed disk then holds well over
+/// [`crate::geometry::MIN_HOLE_PIXELS`] pixel centres, so ignoring smaller uncovered specks
+/// (sampling artefacts where two cells meet at a point) cannot drop a real hole.
+pub const MIN_HOLE_WIDTH: f64 = 2.5;
+
 /// What to measure.
 #[derive(Clone, Debug)]
 pub struct MeasureOptions {
     /// The deepest level.
     pub level: u32,
-    /// Raster size for holes, components and box counting (a power of two).
+    /// Raster size for box counting, and the smallest raster for holes and components (a power
+    /// of two).
     pub raster: usize,
+    /// The largest raster a level may be given to resolve its smallest hole (a power of two).
+    pub max_raster: usize,
     /// Smallest box-counting level k (boxes of side 2^-k of the window).
     pub box_min: u32,
     /// Segments per Bézier edge when flattening.
     pub segments: usize,
+    /// Blocks per side of the relative-density map of the deepest level (0: none).
+    pub density_grid: usize,
 }
 
 impl Default for MeasureOptions {
@@ -127,8 +180,10 @@ impl Default for MeasureOptions {
         MeasureOptions {
             level: 3,
             raster: 2048,
+            max_raster: 8192,
             box_min: 4,
             segments: 4,
+            density_grid: DEFAULT_GRID,
         }
     }
 }
@@ -148,6 +203,11 @@ pub struct LevelMeasure {
     pub holes: usize,
     /// Components counted on the raster.
     pub components: usize,
+    /// The raster size used for this level's holes and components.
+    pub raster: usize,
+    /// Width of the smallest hole in pixels of that raster (`2·area/perimeter`; none without
+    /// holes).
+    pub smallest_hole_pixels: Option<f64>,
     /// The exact topology it is compared with.
     pub exact: ExactTopology,
     /// Whether holes and components match the exact counts.
@@ -169,6 +229,8 @@ pub struct MeasureReport {
     pub holes: usize,
     /// Observed components at the deepest level.
     pub components: usize,
+    /// How the exact components were derived: `induction` or `union-find`.
+    pub components_by: &'static str,
     /// Box-counting dimension of the deepest level (least-squares slope).
     pub box_dimension: f64,
     /// The fit of log N against log 2^k (slope, intercept, RMS residual).
@@ -183,15 +245,17 @@ pub struct MeasureReport {
     pub area_fit: Fit,
     /// The fit of ln(P_i/P_0) against i.
     pub perimeter_fit: Fit,
+    /// The relative-density map of the deepest level (summary; `render --density` writes it).
+    pub density: Option<DensitySummary>,
     /// Per level.
     pub levels: Vec<LevelMeasure>,
-    /// Raster size used.
+    /// Raster size for box counting (and the smallest raster of the levels).
     pub raster: usize,
     /// RMS distance of the chosen control points to the template (instantiation quality).
     pub template_residual: f64,
     /// Every level's holes and components match the exact counts.
     pub verified: bool,
-    /// One line per mismatch.
+    /// One line per failure, starting with its code (E1010 mismatch, E1011 below resolution).
     pub failures: Vec<String>,
 }
 
@@ -206,13 +270,27 @@ pub fn bounds(inst: &Instance, segments: usize) -> BBox {
     bb
 }
 
-/// Rasterises the cells of one level.
+/// Rasterises the cells of one level (with a progress bar when they are on).
 pub fn rasterize(inst: &Instance, level: u32, size: usize, segments: usize) -> Raster {
     let mut r = Raster::fitting(bounds(inst, segments), size, (size / 64).max(2));
+    let mut bar = Progress::new("raster", cell_count(inst, level));
     inst.walk(level, false, |c| {
         r.fill_polygon(&inst.cell_polygon(c.ty, c.points, segments));
+        bar.tick();
     });
     r
+}
+
+/// The raster size (a power of two, at least `min`) whose window, fitted to a box of side
+/// `extent` as in [`rasterize`], makes a hole of size `hole` at least [`MIN_HOLE_WIDTH`] pixels
+/// wide.
+pub fn raster_for_hole(extent: f64, hole: f64, min: usize) -> usize {
+    let px = MIN_HOLE_WIDTH * extent / hole.max(1e-300);
+    let size = (px * 64.0 / 62.0).max(px + 4.0).ceil();
+    if !size.is_finite() || size > (1u64 << 40) as f64 {
+        return usize::MAX;
+    }
+    (size as usize).next_power_of_two().max(min)
 }
 
 /// Refuses a level whose exact number of cells N^C exceeds `limit`.
@@ -232,8 +310,11 @@ pub fn check_cells(inst: &Instance, level: u32, limit: u64) -> Result<(), Geomet
 /// Measures an instance at every level up to `opts.level`.
 pub fn measure(inst: &Instance, opts: &MeasureOptions) -> Result<MeasureReport, GeometryError> {
     let exact = exact_topology(inst, opts.level).map_err(GeometryError::Topology)?;
+    let (_, components_by) = exact_components(inst, opts.level).map_err(GeometryError::Topology)?;
     let n = opts.level as usize + 1;
     let (mut area, mut perim, mut cells) = (vec![0.0; n], vec![0.0; n], vec![0u64; n]);
+    let all: u64 = (0..=opts.level).map(|i| cell_count(inst, i)).sum();
+    let mut bar = Progress::new("measure", all);
     inst.walk(opts.level, true, |c| {
         let d = c.depth as usize;
         cells[d] += 1;
@@ -244,24 +325,38 @@ pub fn measure(inst: &Instance, opts: &MeasureOptions) -> Result<MeasureReport, 
                 perim[d] += pl.windows(2).map(|w| distance(w[0], w[1])).sum::<f64>();
             }
         }
+        bar.tick();
     });
+    bar.finish();
+    let extent = bounds(inst, opts.segments).size();
+    let smallest = smallest_holes(inst, opts.level, opts.segments);
     let mut levels = Vec::new();
     let mut failures = Vec::new();
     let mut last = None;
     for i in 0..n {
-        let r = rasterize(inst, i as u32, opts.raster, opts.segments);
+        let wanted = smallest[i].map_or(opts.raster, |h| raster_for_hole(extent, h, opts.raster));
+        let size = wanted.min(opts.max_raster.max(opts.raster));
+        let r = rasterize(inst, i as u32, size, opts.segments);
+        let hole_px = smallest[i].map(|h| h * r.scale);
+        if wanted > size {
+            failures.push(format!(
+                "E1011 level {i}: the smallest hole is {:.2} pixels wide at raster {size}, below the resolution of {MIN_HOLE_WIDTH} pixels (it needs a raster of {}): raise --max-raster or lower the level",
+                hole_px.unwrap_or(0.0),
+                if wanted == usize::MAX { "more than 2^40".to_string() } else { wanted.to_string() }
+            ));
+        }
         let (components, holes) = r.components_and_holes();
         let ex = exact[i].clone();
-        let matches = BigUint::from(holes) == ex.holes && components == 1;
+        let matches = BigUint::from(holes) == ex.holes && components as u64 == ex.components;
         if !matches {
             failures.push(format!(
-                "level {i}: observed {holes} holes and {components} components, exact {} holes and 1 component",
-                ex.holes
+                "E1010 level {i}: observed {holes} holes and {components} components at raster {size}, exact {} holes and {} components",
+                ex.holes, ex.components
             ));
         }
         if ex.faces.to_u64() != Some(cells[i]) {
             failures.push(format!(
-                "level {i}: {} cells evaluated, N^C = {}",
+                "E1010 level {i}: {} cells evaluated, N^C = {}",
                 cells[i], ex.faces
             ));
         }
@@ -272,24 +367,43 @@ pub fn measure(inst: &Instance, opts: &MeasureOptions) -> Result<MeasureReport, 
             perimeter: perim[i],
             holes,
             components,
+            raster: size,
+            smallest_hole_pixels: hole_px,
             exact: ex,
             matches,
         });
         last = Some(r);
     }
     let r = last.expect("at least level 0");
-    let box_counts = r.box_counts(opts.box_min);
-    let box_fit = box_dimension(&r, opts.box_min);
+    // Box counting from 1/2^box_min down to 1/raster, whatever raster the level needed.
+    let k_max = opts.raster.trailing_zeros();
+    let box_counts: Vec<(u32, u64)> = r
+        .box_counts(opts.box_min)
+        .into_iter()
+        .filter(|&(k, _)| k <= k_max)
+        .collect();
+    let box_fit = fit_line(
+        &box_counts
+            .iter()
+            .filter(|&&(_, c)| c > 0)
+            .map(|&(k, c)| (f64::from(k) * std::f64::consts::LN_2, (c as f64).ln()))
+            .collect::<Vec<_>>(),
+    );
     let log_fit = |v: &[f64]| {
         let data: Vec<(f64, f64)> = v
             .iter()
             .enumerate()
             .map(|(i, x)| (i as f64, (x / v[0]).ln()))
             .collect();
-        crate::geometry::fit_line(&data)
+        fit_line(&data)
     };
     let (area_fit, perimeter_fit) = (log_fit(&area), log_fit(&perim));
     let top = &levels[n - 1];
+    let density = (opts.density_grid > 0).then(|| {
+        let mut s = density_map(inst, opts.level, opts.density_grid, opts.segments).summary();
+        s.area_fraction = Some(top.area / (extent * extent));
+        s
+    });
     Ok(MeasureReport {
         name: inst.name.clone(),
         level: opts.level,
@@ -297,6 +411,7 @@ pub fn measure(inst: &Instance, opts: &MeasureOptions) -> Result<MeasureReport, 
         perimeter: top.perimeter,
         holes: top.holes,
         components: top.components,
+        components_by,
         box_dimension: box_fit.slope,
         box_fit,
         box_counts,
@@ -304,6 +419,7 @@ pub fn measure(inst: &Instance, opts: &MeasureOptions) -> Result<MeasureReport, 
         perimeter_factor: perimeter_fit.slope.exp(),
         area_fit,
         perimeter_fit,
+        density,
         raster: opts.raster,
         template_residual: inst.fit_residual,
         verified: failures.is_empty(),

@@ -23,25 +23,41 @@ pub(crate) fn lerp(a: Point, b: Point, t: f64) -> Point {
 }
 
 /// The control points of a face whose corners are `corners` (edge i from corner i to i + 1),
-/// every edge straight with its inner points evenly spaced.
+/// every edge straight with its inner points evenly spaced — except in a face of two edges (a
+/// digon, flat if both were straight), whose Bézier inner points are pushed outwards (to the right
+/// of the edge) by [`DIGON_BULGE`] times the chord, so that the face has an area.
 pub fn control_points(face: &Face, corners: &[Point], q: usize) -> Vec<Point> {
     let n = corners.len();
     let mut pts = Vec::new();
     for (i, e) in face.boundary.iter().enumerate() {
         let d = dim_of(e, q);
+        let (a, b) = (corners[i], corners[(i + 1) % n]);
         for c in 0..d - 1 {
-            pts.push(lerp(
-                corners[i],
-                corners[(i + 1) % n],
-                c as f64 / (d - 1) as f64,
-            ));
+            let t = c as f64 / (d - 1) as f64;
+            let mut p = lerp(a, b, t);
+            if n == 2 && c > 0 {
+                // Outward normal of a counter-clockwise face: the edge direction turned right.
+                let h = DIGON_BULGE * 4.0 * t * (1.0 - t);
+                p[0] += h * (b[1] - a[1]);
+                p[1] -= h * (b[0] - a[0]);
+            }
+            pts.push(p);
         }
     }
     pts
 }
 
+/// How far the Bézier inner points of a digon's edges are pushed out, relative to the chord (at
+/// the middle of the edge; less towards its ends).
+pub const DIGON_BULGE: f64 = 0.5;
+
 /// The corners of a regular n-gon of circumradius 1 centred at the origin, edge 0 at the bottom.
+/// For n = 2 (a digon, see [`control_points`]) the chord is raised by a quarter so that the origin
+/// lies inside the face once its Bézier edge bulges downwards.
 pub fn regular_polygon(n: usize) -> Vec<Point> {
+    if n == 2 {
+        return vec![[-1.0, 0.25], [1.0, 0.25]];
+    }
     (0..n)
         .map(|i| {
             let a = -PI / 2.0 - PI / n as f64 + 2.0 * PI * i as f64 / n as f64;
@@ -80,7 +96,22 @@ pub(crate) fn template(
     let n = face.boundary.len();
     let corners = regular_polygon(n);
     let points = control_points(face, &corners, q);
-    let at = |i: usize, s: f64| lerp(corners[i], corners[(i + 1) % n], s);
+    // Edge i's control points; a digon's bulging Bézier edges are followed along the curve (on a
+    // straight edge with evenly spaced points the curve is the chord, so others use the chord).
+    let mut edge_ctrl: Vec<Vec<Point>> = Vec::new();
+    let mut off = 0;
+    for e in &face.boundary {
+        let d = dim_of(e, q);
+        edge_ctrl.push((0..d).map(|c| points[(off + c) % points.len()]).collect());
+        off += d - 1;
+    }
+    let at = |i: usize, s: f64| {
+        if n == 2 {
+            crate::geometry::bezier_point(&edge_ctrl[i], s)
+        } else {
+            lerp(corners[i], corners[(i + 1) % n], s)
+        }
+    };
     let g = to_f64(&opt.cantor_gap);
     let gap_point = |i: usize, k: usize| {
         let e = &face.boundary[i];
