@@ -547,26 +547,25 @@ pub(crate) fn choose(
             let w = ty.children[c.sub];
             let wface = &types.types[w].face;
             let sf = &ty.subdivision.subfaces[c.sub];
-            // Control point c.point starts edge l; it is a lacuna vertex when edge l or the edge
-            // before it is a lacuna edge.
+            // Control points of the lacuna edges (`El`): both ends and the inner points.
+            let m_w = cx.generated.automaton.states[cx.generated.face_state[w]].dim;
             let mut off = 0;
-            let m = wface.boundary.len();
+            let mut on_lacuna = false;
             for (l, e) in wface.boundary.iter().enumerate() {
-                if off == c.point {
-                    let before = sf.origins[(l + m - 1) % m];
-                    let here = sf.origins[l];
-                    let lac = |o: lacuna::Origin| matches!(o, lacuna::Origin::Lacuna { .. });
-                    if lac(here) || lac(before) {
-                        vertices.push(LacunaVertex {
-                            name: format!("T{}.T{}[point {}]", c.ty, c.sub, c.point),
-                            unknowns: &ec.unknowns,
-                            target: &ec.target,
-                            points: &ex.types[c.ty].points,
-                            corners: &ex.types[c.ty].corners,
-                        });
-                    }
+                let d = crate::template::dim_of(e, cx.q);
+                if matches!(sf.origins[l], lacuna::Origin::Lacuna { .. }) {
+                    on_lacuna |= (0..d).any(|i| (off + i) % m_w == c.point);
                 }
-                off += crate::template::dim_of(e, cx.q) - 1;
+                off += d - 1;
+            }
+            if on_lacuna {
+                vertices.push(LacunaVertex {
+                    name: format!("T{}.T{}[point {}]", c.ty, c.sub, c.point),
+                    unknowns: &ec.unknowns,
+                    target: &ec.target,
+                    points: &ex.types[c.ty].points,
+                    corners: &ex.types[c.ty].corners,
+                });
             }
         }
         let constant = |u: usize| cx.param.expression(u).1.is_empty();

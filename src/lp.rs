@@ -136,7 +136,7 @@ pub(crate) fn inequalities(
                         [0, 1].map(|d| v.corners.iter().fold(Q::zero(), |a, c| a + &c[d]) / &n);
                     let dir = [0, 1].map(|d| (&v.target[d] - &centre[d]).to_f64().unwrap_or(0.0));
                     let len = dir[0].hypot(dir[1]);
-                    if !(len > 1e-9) {
+                    if len.is_nan() || len <= 1e-9 {
                         continue;
                     }
                     let d = dir.map(|c| crate::choose::dyadic(c / len, bits));

@@ -298,7 +298,12 @@ fn main() -> ExitCode {
                 print_json(&e.to_json());
             }
             eprint!("{}", e.render());
-            ExitCode::from(EXIT_BAD_INPUT)
+            // Goals that no parameters meet are a negative answer, not bad input.
+            ExitCode::from(if e.code() == "E1031" {
+                EXIT_FAILED
+            } else {
+                EXIT_BAD_INPUT
+            })
         }
     }
 }

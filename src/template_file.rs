@@ -249,6 +249,9 @@ fn tokens(line: &str) -> Vec<(usize, &str)> {
     out
 }
 
+/// A listed type being read: its index, the sub-faces seen, its corners if given, its line.
+type Listed = (usize, Vec<bool>, Option<Vec<QPoint>>, usize);
+
 /// Parses a template file for the closure `types` (Bézier degree `q`), starting from `default`:
 /// the types the file lists replace theirs. Errors carry the line and column (codes E1020–E1025).
 pub fn parse_template(
@@ -268,10 +271,8 @@ pub fn parse_template(
     let mut out = default.clone();
     // Per listed type: the line of its `type`, whether corners were given, sub-faces seen.
     let mut seen_types: Vec<Option<usize>> = vec![None; types.types.len()];
-    let mut current: Option<(usize, Vec<bool>, Option<Vec<QPoint>>, usize)> = None;
-    let finish = |cur: Option<(usize, Vec<bool>, Option<Vec<QPoint>>, usize)>,
-                  out: &mut ExactTemplate|
-     -> Result<(), Error> {
+    let mut current: Option<Listed> = None;
+    let finish = |cur: Option<Listed>, out: &mut ExactTemplate| -> Result<(), Error> {
         if let Some((t, subs, corners, line)) = cur {
             if let Some(k) = subs.iter().position(|s| !s) {
                 return Err(err(
