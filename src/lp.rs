@@ -230,6 +230,7 @@ pub(crate) fn meet_goals(
         .collect();
     let free: Vec<usize> = (0..fixed.len()).filter(|&k| fixed[k].is_none()).collect();
     let scale = 2f64.powi(-(bits as i32));
+    let mut last = t0.to_vec();
     for attempt in 0..4 {
         let tighten = |row: &Row| {
             if attempt == 0 {
@@ -285,11 +286,12 @@ pub(crate) fn meet_goals(
         if rows.iter().all(|r| value(r, &t) >= zero) {
             return Ok(t);
         }
+        last = t;
     }
     let broken = rows
         .iter()
         .zip(ineqs)
-        .find(|(r, _)| value(r, t0).is_negative())
+        .find(|(r, _)| value(r, &last).is_negative())
         .map(|(_, i)| format!("goal `{}` ({})", goals[i.goal], i.what))
         .unwrap_or_default();
     Err(GoalFailure::Snap(format!(
