@@ -15,7 +15,9 @@
 //! exactly as `particular + B·t` over Q. So the chosen operators satisfy every equation of the
 //! system exactly whatever the rounding — [`Instance::check_exact`] re-checks every row — and
 //! floating point only decides *which* exact solution is shown. Parameters given by name are fixed
-//! to the given rationals before the fit.
+//! to the given rationals before the fit. The choice itself lives in `crate::choose`: also the
+//! exact projection of a user template (`--template`, `crate::template_file`) and inequality goals
+//! through an LP (`--goal`, `crate::lp`).
 
 use crate::geometry::{bezier_point, Point};
 use crate::template::{control_points, dim_of, regular_polygon};
