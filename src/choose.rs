@@ -454,6 +454,8 @@ pub struct Choice {
     pub goals: Vec<String>,
     /// The smallest slack of the goals' inequalities, exactly (≥ 0).
     pub min_slack: Option<String>,
+    /// Whether the goals moved the parameters (false: the fit met them as it was).
+    pub moved_by_goals: bool,
     /// Root-mean-square distance of the level-1 control points to the floating-point template.
     pub rms: f64,
 }
@@ -578,7 +580,10 @@ pub(crate) fn choose(
             crate::instantiate::GeometryError::Goal { code, message }
         };
         t = match met {
-            Ok(t) => t,
+            Ok(met) => {
+                choice.moved_by_goals = met != t;
+                met
+            }
             Err(GoalFailure::Infeasible(m)) => return Err(goal_error("E1031", m)),
             Err(GoalFailure::Snap(m)) => return Err(goal_error("E1032", m)),
             Err(GoalFailure::Solver(m)) => {

@@ -467,11 +467,22 @@ fn choice_text(geo: &GeoArgs, inst: &lacuna::Instance) -> String {
             s += &format!("  T{t}: largest squared distance {m}\n");
         }
     }
-    if let Some(m) = &c.min_slack {
-        s += &format!(
-            "goals {} met exactly; smallest slack {m}\n",
-            c.goals.join(", ")
-        );
+    let how = if c.moved_by_goals {
+        "by the LP"
+    } else {
+        "by the fit as it was"
+    };
+    match &c.min_slack {
+        Some(m) => {
+            s += &format!(
+                "goals {} met exactly {how}; smallest slack {m}\n",
+                c.goals.join(", ")
+            )
+        }
+        None if !c.goals.is_empty() => {
+            s += &format!("goals {}: no inequality applies\n", c.goals.join(", "))
+        }
+        None => {}
     }
     s
 }
