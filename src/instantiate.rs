@@ -15,15 +15,16 @@
 //! exactly as `particular + B·t` over Q. So the chosen operators satisfy every equation of the
 //! system exactly whatever the rounding — [`Instance::check_exact`] re-checks every row — and
 //! floating point only decides *which* exact solution is shown. Parameters given by name are fixed
-//! to the given rationals before the fit.
+//! to the given rationals before the fit. The choice itself lives in `crate::choose`: also the
+//! exact projection of a user template (`--template`, `crate::template_file`) and inequality goals
+//! through an LP (`--goal`, `crate::lp`).
 
 use crate::geometry::{bezier_point, Point};
-use crate::template::{dim_of, mean_value, template, Template};
+use crate::template::dim_of;
 use lacuna::{
     automaton_of, close_or_error, solve, EdgeKind, Face, GenOptions, Generated, Input, Limits,
     Linearized, Origin, Solution, TypeSet,
 };
-use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{ToPrimitive, Zero};
 
@@ -64,6 +65,15 @@ pub enum GeometryError {
     /// The exact hole count disagrees with N^L (an internal error).
     #[error("exact topology: {0}")]
     Topology(String),
+    /// The goals of the parameter choice cannot be met (E1031), the LP answer cannot be
+    /// rounded to meet them exactly (E1032), or the LP solver failed (E1033).
+    #[error("{message}")]
+    Goal {
+        /// The code.
+        code: &'static str,
+        /// What went wrong, naming the goal.
+        message: String,
+    },
     /// An output file could not be written.
     #[error("cannot write `{path}`: {reason}")]
     Write {
@@ -85,6 +95,7 @@ impl GeometryError {
             GeometryError::NotExact { .. } => "E1004",
             GeometryError::Write { .. } => "E1005",
             GeometryError::Topology(_) => "E1006",
+            GeometryError::Goal { code, .. } => code,
         }
     }
 }
@@ -108,6 +119,10 @@ pub struct InstantiateOptions {
     pub bits: u32,
     /// The limits the closure is computed under.
     pub limits: Limits,
+    /// A template file (name and text) to project exactly instead of the default fit.
+    pub template: Option<lacuna::Source>,
+    /// Inequality goals met through an LP (`crate::lp`).
+    pub goals: Vec<crate::lp::Goal>,
 }
 
 impl Default for InstantiateOptions {
@@ -121,6 +136,8 @@ impl Default for InstantiateOptions {
             gap_depth: 0.85,
             bits: 20,
             limits: Limits::default(),
+            template: None,
+            goals: Vec::new(),
         }
     }
 }
@@ -172,6 +189,8 @@ pub struct Instance {
     pub parameters: Vec<(String, BigRational)>,
     /// Root-mean-square distance between the chosen level-1 control points and the template.
     pub fit_residual: f64,
+    /// How the parameters were chosen (method, exact residual, goals).
+    pub choice: crate::choose::Choice,
     /// The start faces in the plane.
     pub start: Vec<StartFace>,
     /// The assembly's shared edges as (start face, canonical edge index) pairs (exact components).
@@ -220,43 +239,6 @@ fn to_f64(r: &BigRational) -> f64 {
     r.to_f64().unwrap_or(f64::NAN)
 }
 
-/// Solves the dense symmetric positive definite system `h·t = g` (Gaussian elimination with
-/// partial pivoting, in place).
-fn solve_dense(mut h: Vec<Vec<f64>>, mut g: Vec<f64>) -> Vec<f64> {
-    let n = g.len();
-    for col in 0..n {
-        let p = (col..n)
-            .max_by(|&a, &b| h[a][col].abs().total_cmp(&h[b][col].abs()))
-            .unwrap_or(col);
-        h.swap(col, p);
-        g.swap(col, p);
-        let d = h[col][col];
-        if d.abs() < 1e-300 {
-            continue;
-        }
-        for r in col + 1..n {
-            let f = h[r][col] / d;
-            if f != 0.0 {
-                let (top, bottom) = h.split_at_mut(r);
-                for (x, y) in bottom[0][col..].iter_mut().zip(&top[col][col..]) {
-                    *x -= f * y;
-                }
-                g[r] -= f * g[col];
-            }
-        }
-    }
-    let mut t = vec![0.0; n];
-    for r in (0..n).rev() {
-        let s: f64 = (r + 1..n).map(|c| h[r][c] * t[c]).sum();
-        t[r] = if h[r][r].abs() < 1e-300 {
-            0.0
-        } else {
-            (g[r] - s) / h[r][r]
-        };
-    }
-    t
-}
-
 /// Instantiates an input: closes it, solves its constraint system exactly, chooses the free
 /// parameters (see the module documentation) and places the start faces.
 pub fn instantiate(input: &Input, opt: &InstantiateOptions) -> Result<Instance, GeometryError> {
@@ -291,124 +273,17 @@ pub fn instantiate(input: &Input, opt: &InstantiateOptions) -> Result<Instance, 
             .ok_or_else(|| GeometryError::UnknownParameter { name: name.clone() })?;
         fixed[k] = Some(v.clone());
     }
-    // The normal equations of the template fit in the parameters.
-    let mut h = vec![vec![0.0; dof]; dof];
-    let mut g = vec![0.0; dof];
-    let templates: Vec<Template> = types
-        .types
-        .iter()
-        .map(|ty| template(ty, &types, q, opt))
-        .collect();
-    let delta = opt.regularization;
-    let mut columns = Vec::new();
-    for (t, ty) in types.types.iter().enumerate() {
-        let p = &templates[t].points;
-        let m_t = p.len().max(1);
-        // A = PᵀP + δI.
-        let amat: Vec<Vec<f64>> = (0..m_t)
-            .map(|r| {
-                (0..m_t)
-                    .map(|s| {
-                        let pp = p[r][0] * p[s][0] + p[r][1] * p[s][1];
-                        pp + if r == s { delta } else { 0.0 }
-                    })
-                    .collect()
-            })
-            .collect();
-        for (k, &w) in ty.children.iter().enumerate() {
-            let op = generated.sub_ops[t][k];
-            let base = lin.offsets[op].expect("face sub-operators are unknown");
-            let targets = &templates[t].targets[k];
-            let m_w = a.states[generated.face_state[w]].dim;
-            for (c, &y) in targets.iter().enumerate().take(m_w) {
-                let reference = mean_value(p, y);
-                let unknowns: Vec<usize> = (0..m_t).map(|r| base + r * m_w + c).collect();
-                // x_c = e + E·t, with the fixed parameters folded into e.
-                let mut e = vec![0.0; m_t];
-                let mut rows: Vec<Vec<(usize, f64)>> = vec![Vec::new(); m_t];
-                for (r, &u) in unknowns.iter().enumerate() {
-                    let (cst, terms) = param.expression(u);
-                    e[r] = to_f64(cst);
-                    for (kk, coef) in terms {
-                        match &fixed[*kk] {
-                            Some(v) => e[r] += to_f64(coef) * to_f64(v),
-                            None => rows[r].push((*kk, to_f64(coef))),
-                        }
-                    }
-                }
-                // b = Pᵀy + δ·ref; gradient term Eᵀ(b − A e); Hessian EᵀAE.
-                let b: Vec<f64> = (0..m_t)
-                    .map(|r| p[r][0] * y[0] + p[r][1] * y[1] + delta * reference[r])
-                    .collect();
-                for r in 0..m_t {
-                    let ae: f64 = (0..m_t).map(|s| amat[r][s] * e[s]).sum();
-                    for &(kk, cf) in &rows[r] {
-                        g[kk] += cf * (b[r] - ae);
-                        for s in 0..m_t {
-                            let ars = amat[r][s];
-                            if ars == 0.0 {
-                                continue;
-                            }
-                            for &(kj, cj) in &rows[s] {
-                                h[kk][kj] += cf * ars * cj;
-                            }
-                        }
-                    }
-                }
-                columns.push((unknowns, y, t));
-            }
-        }
-    }
-    // Fixed parameters: identity rows.
-    for (k, f) in fixed.iter().enumerate() {
-        if let Some(v) = f {
-            h[k].iter_mut().for_each(|x| *x = 0.0);
-            h[k][k] = 1.0;
-            g[k] = to_f64(v);
-        }
-    }
-    let tf = solve_dense(h, g);
-    let denom = BigInt::from(1u64) << opt.bits;
-    let tq: Vec<BigRational> = tf
-        .iter()
-        .zip(&fixed)
-        .map(|(x, f)| match f {
-            Some(v) => v.clone(),
-            None => {
-                let scaled = (x * (1u64 << opt.bits) as f64).round();
-                let num = if scaled.is_finite() {
-                    BigInt::from(scaled as i64)
-                } else {
-                    BigInt::zero()
-                };
-                BigRational::new(num, denom.clone())
-            }
-        })
-        .collect();
-    // The exact unknowns.
-    let values: Vec<BigRational> = (0..lin.system.unknowns)
-        .map(|u| {
-            let (cst, terms) = param.expression(u);
-            let mut v = cst.clone();
-            for (kk, coef) in terms {
-                v += coef * &tq[*kk];
-            }
-            v
-        })
-        .collect();
-    // Residual of the fit.
-    let mut sq = 0.0;
-    for (unknowns, y, t) in &columns {
-        let p = &templates[*t].points;
-        let mut pos = [0.0, 0.0];
-        for (r, &u) in unknowns.iter().enumerate() {
-            let v = to_f64(&values[u]);
-            pos[0] += v * p[r][0];
-            pos[1] += v * p[r][1];
-        }
-        sq += (pos[0] - y[0]).powi(2) + (pos[1] - y[1]).powi(2);
-    }
-    let fit_residual = (sq / columns.len().max(1) as f64).sqrt();
+    let cx = crate::choose::Context {
+        types: &types,
+        generated: &generated,
+        lin: &lin,
+        param: &param,
+        fixed: &fixed,
+        q,
+    };
+    let (tq, choice) = crate::choose::choose(&cx, opt)?;
+    let values = crate::choose::unknowns_at(&param, lin.system.unknowns, &tq);
+    let fit_residual = choice.rms;
     let parameters = names.into_iter().zip(tq).collect();
     let slots: Vec<Vec<EdgeSlot>> = types.types.iter().map(|t| slots_of(&t.face, q)).collect();
     let dims: Vec<usize> = generated
@@ -449,6 +324,7 @@ pub fn instantiate(input: &Input, opt: &InstantiateOptions) -> Result<Instance, 
         values,
         parameters,
         fit_residual,
+        choice,
         start,
         glue: crate::component::canonical_glue(input),
         slots,

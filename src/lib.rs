@@ -14,6 +14,7 @@ mod autofrac;
 mod automaton;
 mod automaton_format;
 mod census;
+mod choose;
 mod class;
 mod closure;
 mod component;
@@ -36,6 +37,7 @@ mod instantiate;
 mod library;
 mod limits;
 mod linsys;
+mod lp;
 mod matrix;
 mod measure;
 mod operator;
@@ -48,6 +50,7 @@ mod report;
 mod rule;
 mod subdivision;
 mod template;
+mod template_file;
 
 pub mod certificate;
 pub mod certify;
@@ -59,6 +62,7 @@ pub use automaton::{
 };
 pub use automaton_format::{parse_automaton, parse_rational};
 pub use census::{census, CensusReport, CensusSpec};
+pub use choose::{project_exact, Choice, ExactColumn, Projection};
 pub use class::{Class, ClassStructure};
 pub use closure::{close, close_or_error, Bound, Closure, FaceType, Runaway, TypeSet};
 pub use component::{canonical_glue, components_by_cells, components_by_induction, Glue};
@@ -95,6 +99,9 @@ pub use operator::{
 };
 pub use progress::{set_progress, Progress};
 pub use template::{control_points, regular_polygon};
+pub use template_file::{
+    default_template, format_exact, parse_template, write_template, ExactTemplate, TypeTemplate,
+};
 
 pub use algebraic::{FieldElement, NumberField, RealAlgebraic};
 pub use assembly::{Assembly, SharedEdge};
@@ -107,6 +114,7 @@ pub use linsys::{
     forced_equal, solve, write_text, Conflict, Equation, LinearSystem, Parametrization, Solution,
     SolutionSpace, TextLayout, MINIMIZE_LIMIT,
 };
+pub use lp::{parse_goal, Goal};
 pub use matrix::{bezier_restriction, Matrix};
 pub use poly::Poly;
 pub use ratio::{analyse, ClassReport, LimitPoint, RatioError, RatioReport};

@@ -179,6 +179,9 @@ enum Command {
         /// Blocks per side of the density map.
         #[arg(long, default_value_t = 64)]
         density_grid: usize,
+        /// Write the default template (the targets to edit for --template) to this file.
+        #[arg(long, value_name = "FILE")]
+        write_template: Option<std::path::PathBuf>,
     },
     /// Measure the instantiated structure per level: area, perimeter and their factors, box-counting
     /// dimension, holes and components compared with the exact counts (a mismatch fails, exit 1).
@@ -264,6 +267,14 @@ struct GeoArgs {
     /// edge i as written).
     #[arg(long, value_name = "\"X Y, X Y, …\"")]
     corners: Option<String>,
+    /// Project this template file exactly onto the solution space instead of the default fit
+    /// (docs/FORMATS.md; `render --write-template` writes the default one to edit).
+    #[arg(long, value_name = "FILE")]
+    template: Option<std::path::PathBuf>,
+    /// An inequality goal met through an LP: `nonnegative`, `nonnegative=M`, `min-lacuna=S`
+    /// (repeatable; docs/GEOMETRY.md).
+    #[arg(long = "goal", value_name = "GOAL")]
+    goals: Vec<String>,
 }
 
 #[derive(Args)]
@@ -308,7 +319,12 @@ fn main() -> ExitCode {
                 print_json(&e.to_json());
             }
             eprint!("{}", e.render());
-            ExitCode::from(EXIT_BAD_INPUT)
+            // Goals that no parameters meet are a negative answer, not bad input.
+            ExitCode::from(if e.code() == "E1031" {
+                EXIT_FAILED
+            } else {
+                EXIT_BAD_INPUT
+            })
         }
     }
 }
@@ -427,10 +443,74 @@ fn instance(geo: &GeoArgs, limits: &Limits, default_cells: u64) -> Result<lacuna
         };
         opts.values.push(pair);
     }
+    parameter_choice(geo, &mut opts)?;
     let inst = lacuna::instantiate(&input, &opts).map_err(geo_error)?;
     lacuna::check_cells(&inst, geo.level, geo.max_cells.unwrap_or(default_cells))
         .map_err(geo_error)?;
     Ok(inst)
+}
+
+/// `--template` and `--goal` into the instantiation options.
+fn parameter_choice(geo: &GeoArgs, opts: &mut lacuna::InstantiateOptions) -> Result<(), Error> {
+    if let Some(path) = &geo.template {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
+            path: path.display().to_string(),
+            reason: e.to_string(),
+        })?;
+        opts.template = Some(lacuna::Source {
+            name: path.display().to_string(),
+            text,
+        });
+    }
+    for g in &geo.goals {
+        let goal = lacuna::parse_goal(g).ok_or_else(|| {
+            Error::syntax(
+                "E1030",
+                format!("--goal `{g}`: expected nonnegative, nonnegative=M or min-lacuna=S with exact M, S ≥ 0"),
+                lacuna::Span {
+                    line: 1,
+                    col: 1,
+                    len: g.chars().count().max(1),
+                },
+                Some(&lacuna::Source::command_line(g)),
+            )
+        })?;
+        opts.goals.push(goal);
+    }
+    Ok(())
+}
+
+/// How the parameters were chosen, when a template or goals were given (else nothing).
+fn choice_text(geo: &GeoArgs, inst: &lacuna::Instance) -> String {
+    if geo.template.is_none() && geo.goals.is_empty() {
+        return String::new();
+    }
+    let c = &inst.choice;
+    let mut s = format!("parameters: {}\n", c.method);
+    if let (Some(r), Some(a)) = (&c.residual, c.residual_approx) {
+        s += &format!("template residual Σ|P·c − y|² = {r} (≈ {a:.6e})\n");
+        for (t, m) in c.per_type_max.iter().enumerate() {
+            s += &format!("  T{t}: largest squared distance {m}\n");
+        }
+    }
+    let how = if c.moved_by_goals {
+        "by the LP"
+    } else {
+        "by the fit as it was"
+    };
+    match &c.min_slack {
+        Some(m) => {
+            s += &format!(
+                "goals {} met exactly {how}; smallest slack {m}\n",
+                c.goals.join(", ")
+            )
+        }
+        None if !c.goals.is_empty() => {
+            s += &format!("goals {}: no inequality applies\n", c.goals.join(", "))
+        }
+        None => {}
+    }
+    s
 }
 
 /// A raster size must be a power of two from 16 up to `max`.
@@ -724,6 +804,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             size,
             density,
             density_grid,
+            write_template,
         } => {
             if svg.is_none()
                 && json_out.is_none()
@@ -731,9 +812,10 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 && stl.is_none()
                 && png.is_none()
                 && density.is_none()
+                && write_template.is_none()
             {
                 return Err(Error::Analysis(
-                    "nothing to write: give --svg, --json-out, --obj, --stl, --png or --density"
+                    "nothing to write: give --svg, --json-out, --obj, --stl, --png, --density or --write-template"
                         .into(),
                 ));
             }
@@ -753,6 +835,12 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 reason: e.to_string(),
             };
             let (level, segs) = (geo.level, geo.segments);
+            out(&choice_text(&geo, &inst));
+            if let Some(p) = &write_template {
+                let text = lacuna::default_template(&inst, &lacuna::InstantiateOptions::default());
+                std::fs::write(p, text).map_err(|e| io(p, e))?;
+                out(&format!("wrote {}\n", p.display()));
+            }
             if let Some(p) = &svg {
                 lacuna::write_svg(&inst, level, segs, create(p)?).map_err(|e| io(p, e))?;
                 out(&format!("wrote {}\n", p.display()));
@@ -801,6 +889,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 ..Default::default()
             };
             let m = lacuna::measure(&inst, &opts).map_err(geo_error)?;
+            eprint!("{}", choice_text(&geo, &inst));
             let html = lacuna::report_html(&v, &inst, &m, geo.level, geo.segments);
             std::fs::write(&path, html).map_err(|e| Error::Io {
                 path: path.display().to_string(),
@@ -838,6 +927,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 ..Default::default()
             };
             let r = lacuna::measure(&inst, &opts).map_err(geo_error)?;
+            eprint!("{}", choice_text(&geo, &inst));
             for f in &r.failures {
                 eprintln!("verification failed: {f}");
             }
