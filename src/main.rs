@@ -146,8 +146,8 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Instantiate the verified model (default parameters projected exactly onto the solution
-    /// space) and export level N: SVG, JSON polygons, OBJ prisms, PNG raster.
+    /// Instantiate the verified model (default parameters: a template fit rounded to an exact point
+    /// of the solution space) and export level N: SVG, JSON polygons, OBJ and STL prisms, PNG.
     Render {
         #[command(flatten)]
         geo: GeoArgs,
@@ -688,8 +688,8 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 None => None,
                 Some(input) => match lacuna::load_any(input)? {
                     lacuna::Loaded::Automaton { automaton, .. } => Some(automaton),
-                    // Faces: instantiate (default parameters, projected exactly onto the solution
-                    // space) and analyse the instantiated operators.
+                    // Faces: instantiate (default parameters, an exact point of the solution space)
+                    // and analyse the instantiated operators.
                     lacuna::Loaded::Faces(faces) => {
                         let mut opts = lacuna::InstantiateOptions {
                             limits: limits.clone(),
