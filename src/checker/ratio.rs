@@ -1,0 +1,585 @@
+//! The limit-ratio step, in every case (shared radii, periodic classes, ρ = 1).
+//!
+//! 1. The classes reached from the start and their periods are recomputed (mutual reachability,
+//!    BFS levels) and compared with the certificate.
+//! 2. ρ is isolated (Sturm) and shown ≥ 1. Each class is transient, or *dominant* (a positive
+//!    left eigenvector of its block for ρ: by Perron–Frobenius its radius is ρ, and its
+//!    eigenvalues of modulus ρ are `ρ·ω`, `ω^p = 1`, p its period), or *below* (Collatz–Wielandt:
+//!    radius < lo ≤ ρ). `P` = lcm of the dominant periods.
+//! 3. The augmented matrix `A = [[M, c], [0, 1]]` on the reached types has its eigenvalues in the
+//!    class blocks and 1, so every eigenvalue of `A^P` of modulus ≥ ρ^P equals `y₀ = ρ^P` (ρ ≥ 1).
+//!    `q = det(y·I − A^P)` (Faddeev–LeVerrier, then Newton's identities) annihilates `A^P`
+//!    (Cayley–Hamilton), so for each residue `r` the counts `x_n = X_(P·n + r)` have the generating
+//!    function `N(w)/Q(w)`, `Q(w) = w^d·q(1/w)`, `N = Q·Σ x_n w^n mod w^d`, from the first `d`
+//!    terms, computed here by iterating the substitution.
+//! 4. With `y = 1/w`: `Σ x_n w^n = y·Ñ(y)/q(y)`, `Ñ(y) = y^(d−1)·N(1/y)`. The pole at `w₀ = 1/y₀`
+//!    (the only one on its circle) has order `m − j`, `m` the multiplicity of `y₀` in `q`, `j` that
+//!    in `Ñ`, decided by exact zero tests of derivatives at `y₀` in Q[x]/(p). Then
+//!    `x_n ~ C·n^(m−j−1)·ρ^(P·n)` with `C` proportional to `Ñ^(j)(y₀)`, the factor being common to
+//!    faces and lacunas: `R_r` is 1, 0, or `a_L / (a_L + 2·a_C)` (lacunas counted in halves).
+
+use super::closure::Substitution;
+use super::field::{add, scale, Root, P};
+use super::{rat, Q};
+use crate::certificate::{ClassClaim, PointClaim, RadiusWitness, RatioStep};
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_traits::{One, Signed, Zero};
+use std::collections::{BTreeMap, VecDeque};
+
+/// A recomputed class: members ascending and period (`None` for a transient type).
+type Class = (Vec<usize>, Option<u64>);
+
+/// Classes reached from `start` (members ascending, ordered by smallest member) with periods.
+fn classes(m: &[BTreeMap<usize, u64>], start: &[usize]) -> Vec<Class> {
+    let n = m.len();
+    let reach = |from: usize| {
+        let mut seen = vec![false; n];
+        let mut queue = VecDeque::from([from]);
+        seen[from] = true;
+        while let Some(t) = queue.pop_front() {
+            for &s in m[t].keys() {
+                if !std::mem::replace(&mut seen[s], true) {
+                    queue.push_back(s);
+                }
+            }
+        }
+        seen
+    };
+    let mut reached = vec![false; n];
+    start.iter().for_each(|&s| {
+        reach(s)
+            .iter()
+            .enumerate()
+            .for_each(|(t, &r)| reached[t] |= r)
+    });
+    let from: Vec<Vec<bool>> = (0..n)
+        .map(|t| if reached[t] { reach(t) } else { vec![] })
+        .collect();
+    let mut out = Vec::new();
+    let mut placed = vec![false; n];
+    for t in (0..n).filter(|&t| reached[t]) {
+        if placed[t] {
+            continue;
+        }
+        let members: Vec<usize> = (t..n)
+            .filter(|&s| reached[s] && from[t][s] && from[s][t])
+            .collect();
+        members.iter().for_each(|&s| placed[s] = true);
+        // Period: gcd of level(u) + 1 − level(v) over arcs inside the class (BFS levels).
+        let inside = |s: &usize| members.binary_search(s).is_ok();
+        let mut level: BTreeMap<usize, i64> = BTreeMap::from([(t, 0)]);
+        let mut queue = VecDeque::from([t]);
+        let mut g: i64 = 0;
+        while let Some(u) = queue.pop_front() {
+            for v in m[u].keys().filter(|v| inside(v)) {
+                let lu = level[&u];
+                match level.get(v) {
+                    Some(&lv) => g = g.gcd(&(lu + 1 - lv)),
+                    None => {
+                        level.insert(*v, lu + 1);
+                        queue.push_back(*v);
+                    }
+                }
+            }
+        }
+        let cyclic = members.len() > 1 || m[t].contains_key(&t);
+        out.push((members, cyclic.then_some(g.unsigned_abs())));
+    }
+    out
+}
+
+fn int(k: u64) -> Q {
+    Q::from_integer(k.into())
+}
+
+/// Checks the radius witness of one class; returns whether the class is dominant.
+fn check_radius(
+    m: &[BTreeMap<usize, u64>],
+    root: &Root,
+    (k, class): (usize, &ClassClaim),
+) -> Result<bool, String> {
+    let members = &class.members;
+    let entry = |t: usize, s: usize| int(m[t].get(&s).copied().unwrap_or(0));
+    match (&class.radius, class.period) {
+        (RadiusWitness::Transient, None) => Ok(false),
+        (RadiusWitness::Perron(y), Some(_)) => {
+            let y: Vec<P> = y
+                .iter()
+                .map(|v| root.element(v))
+                .collect::<Result<_, _>>()?;
+            if y.len() != members.len() {
+                return Err(format!("class {k}: the Perron vector has the wrong length"));
+            }
+            for (i, &s) in members.iter().enumerate() {
+                let yb = members.iter().zip(&y).fold(P::new(), |acc, (&t, yt)| {
+                    add(&acc, &scale(yt, &entry(t, s)))
+                });
+                if !root.is_zero(&add(
+                    &yb,
+                    &scale(&root.mul(&y[i], &[Q::zero(), Q::one()]), &-Q::one()),
+                )) {
+                    return Err(format!("class {k}: y·B ≠ ρ·y at type {s}"));
+                }
+            }
+            match y.iter().position(|v| root.sign(v) != Some(1)) {
+                Some(i) => Err(format!(
+                    "class {k}: y at type {} is not shown > 0",
+                    members[i]
+                )),
+                None => Ok(true),
+            }
+        }
+        (RadiusWitness::Below(x), Some(_)) => {
+            let x: Vec<Q> = x.iter().map(|s| rat(s)).collect::<Result<_, _>>()?;
+            if x.len() != members.len() || x.iter().any(|v| !v.is_positive()) {
+                return Err(format!(
+                    "class {k}: the bound is not a positive vector on its members"
+                ));
+            }
+            for (i, &t) in members.iter().enumerate() {
+                let bx: Q = members.iter().zip(&x).map(|(&s, v)| v * entry(t, s)).sum();
+                if bx >= &root.lo * &x[i] {
+                    return Err(format!(
+                        "class {k}: (B·x)_{t} ≥ lo·x_{t}, no Collatz–Wielandt bound"
+                    ));
+                }
+            }
+            Ok(false)
+        }
+        _ => Err(format!("class {k}: the witness does not fit its period")),
+    }
+}
+
+/// `det(x·I − A)` of a sparse integer matrix, by Faddeev–LeVerrier: `M₁ = I`,
+/// `c_(d−k) = −tr(A·M_k)/k`, `M_(k+1) = A·M_k + c_(d−k)·I`; the divisions are exact (the
+/// coefficients are integers). Coefficients ascending.
+fn charpoly(a: &[Vec<(usize, BigInt)>]) -> Result<Vec<BigInt>, String> {
+    let d = a.len();
+    let mut c = vec![BigInt::zero(); d + 1];
+    c[d] = BigInt::one();
+    let mut mk: Vec<Vec<BigInt>> = (0..d)
+        .map(|i| (0..d).map(|j| BigInt::from(u8::from(i == j))).collect())
+        .collect();
+    for k in 1..=d {
+        let am: Vec<Vec<BigInt>> = a
+            .iter()
+            .map(|row| {
+                let mut out = vec![BigInt::zero(); d];
+                for (j, x) in row {
+                    for (o, y) in out.iter_mut().zip(&mk[*j]) {
+                        *o += x * y;
+                    }
+                }
+                out
+            })
+            .collect();
+        let tr: BigInt = (0..d).map(|i| &am[i][i]).sum();
+        let (q, r) = tr.div_rem(&BigInt::from(k));
+        if !r.is_zero() {
+            return Err("Faddeev–LeVerrier: a trace is not divisible".into());
+        }
+        c[d - k] = -q;
+        mk = am;
+        for (i, row) in mk.iter_mut().enumerate() {
+            row[i] += &c[d - k];
+        }
+    }
+    Ok(c)
+}
+
+/// `det(y·I − A^P)` from `det(x·I − A)` (ascending coefficients): Newton's identities give the
+/// power sums `s_j` of the eigenvalues of A, those of `A^P` are `s_(P·j)`, and Newton's identities
+/// again give the coefficients (exact divisions).
+fn power_charpoly(chi: &[BigInt], period: usize) -> Result<Vec<BigInt>, String> {
+    let d = chi.len() - 1;
+    let a: Vec<&BigInt> = (0..=d).map(|i| &chi[d - i]).collect(); // x^d + a₁x^(d−1) + …
+    let mut s = vec![BigInt::zero(); period * d + 1];
+    for j in 1..=period * d {
+        let mut t = if j <= d {
+            a[j] * BigInt::from(j)
+        } else {
+            BigInt::zero()
+        };
+        for i in 1..j.min(d + 1) {
+            t += a[i] * &s[j - i];
+        }
+        s[j] = -t;
+    }
+    let mut b = vec![BigInt::one()];
+    for k in 1..=d {
+        let mut t = s[period * k].clone();
+        for i in 1..k {
+            t += &b[i] * &s[period * (k - i)];
+        }
+        let (q, r) = t.div_rem(&BigInt::from(k));
+        if !r.is_zero() {
+            return Err("Newton's identities: a division is not exact".into());
+        }
+        b.push(-q);
+    }
+    Ok(b.into_iter().rev().collect())
+}
+
+fn derivative(f: &[BigInt]) -> Vec<BigInt> {
+    f.iter()
+        .enumerate()
+        .skip(1)
+        .map(|(i, c)| c * BigInt::from(i))
+        .collect()
+}
+
+/// The multiplicity `j < cap` of `y₀` as a root of `f` and `f^(j)(y₀)`, or `None` when
+/// `f^(j)(y₀) = 0` for every `j < cap`.
+fn order(root: &Root, f: &[BigInt], y0: &[Q], cap: usize) -> Option<(usize, P)> {
+    let mut f = f.to_vec();
+    for j in 0..cap {
+        let v = root.eval_at(&f, y0);
+        if !root.is_zero(&v) {
+            return Some((j, v));
+        }
+        f = derivative(&f);
+    }
+    None
+}
+
+/// What one residue gives: `R_r = num / den` in Q[x]/(p) (`den` ≠ 0 at ρ), and how it was decided.
+struct Residue {
+    num: P,
+    den: P,
+    why: String,
+}
+
+impl Residue {
+    /// Whether `v = R_r`: `v·den − num = 0` at ρ.
+    fn is(&self, root: &Root, v: &[Q]) -> bool {
+        root.is_zero(&add(&root.mul(v, &self.den), &scale(&self.num, &-Q::one())))
+    }
+}
+
+/// `R_r` from `q` and the reflected numerators of lacunas (in halves) and faces.
+fn residue(
+    root: &Root,
+    q: &[BigInt],
+    nl: &[BigInt],
+    nc: &[BigInt],
+    y0: &[Q],
+) -> Result<Residue, String> {
+    let m = order(root, q, y0, q.len()).map_or(0, |(j, _)| j);
+    if m == 0 {
+        return Err("y₀ = ρ^P is not an eigenvalue of A^P".into());
+    }
+    let Some((jc, ac)) = order(root, nc, y0, m) else {
+        return Err("the face counts have no pole at w₀ = ρ^(−P)".into());
+    };
+    let one = vec![Q::one()];
+    let fixed = |v: P, why: String| Residue {
+        num: v,
+        den: one.clone(),
+        why,
+    };
+    if nl.iter().all(Zero::is_zero) {
+        return Ok(fixed(P::new(), "no lacuna ever: R = 0".into()));
+    }
+    let kc = m - jc;
+    Ok(match order(root, nl, y0, jc + 1) {
+        None => fixed(
+            P::new(),
+            format!("pole orders: lacunas < {kc} = faces: R = 0"),
+        ),
+        Some((jl, _)) if jl < jc => fixed(
+            one.clone(),
+            format!("pole orders: lacunas {} > {kc} = faces: R = 1", m - jl),
+        ),
+        Some((_, al)) => {
+            let den = add(&al, &scale(&ac, &int(2)));
+            if root.is_zero(&den) {
+                return Err("the leading coefficients cancel".into());
+            }
+            let why = format!("pole orders {kc} (lacunas and faces): R = a_L/(a_L + 2·a_C)");
+            Residue { num: al, den, why }
+        }
+    })
+}
+
+/// The counts `X_i` for `i < len` on the reached types: faces, and lacunas in halves.
+fn counts(
+    m: &[BTreeMap<usize, u64>],
+    c: &[u64],
+    start: &BTreeMap<usize, u64>,
+    len: usize,
+) -> (Vec<BigInt>, Vec<BigInt>) {
+    let mut v: BTreeMap<usize, BigInt> =
+        start.iter().map(|(&t, &k)| (t, BigInt::from(k))).collect();
+    let mut lac = BigInt::zero();
+    let (mut faces, mut lacunas) = (Vec::with_capacity(len), Vec::with_capacity(len));
+    for _ in 0..len {
+        faces.push(v.values().sum());
+        lacunas.push(lac.clone());
+        let mut next: BTreeMap<usize, BigInt> = BTreeMap::new();
+        for (t, x) in &v {
+            for (s, k) in &m[*t] {
+                *next.entry(*s).or_default() += x * BigInt::from(*k);
+            }
+            lac += x * BigInt::from(c[*t]);
+        }
+        v = next;
+    }
+    (faces, lacunas)
+}
+
+/// The parsed substitution of a ratio step: matrix rows and start counts.
+type Parsed = (Vec<BTreeMap<usize, u64>>, BTreeMap<usize, u64>);
+
+fn parse(r: &RatioStep) -> Result<Parsed, String> {
+    let n = r.matrix.len();
+    if r.contribution_halves.len() != n {
+        return Err(format!(
+            "{} contributions for {n} types",
+            r.contribution_halves.len()
+        ));
+    }
+    let mut m: Vec<BTreeMap<usize, u64>> = vec![BTreeMap::new(); n];
+    for (t, row) in r.matrix.iter().enumerate() {
+        for &(s, k) in row {
+            if s >= n {
+                return Err(format!("matrix row {t}: type {s} out of range"));
+            }
+            if k > 0 {
+                *m[t].entry(s).or_insert(0) += k;
+            }
+        }
+    }
+    let mut start: BTreeMap<usize, u64> = BTreeMap::new();
+    for &(t, k) in &r.start {
+        if t >= n || k == 0 {
+            return Err(format!("start ({t}, {k}) is out of range or empty"));
+        }
+        *start.entry(t).or_insert(0) += k;
+    }
+    if start.is_empty() {
+        return Err("no start type".into());
+    }
+    Ok((m, start))
+}
+
+/// The claimed decimal `d` with `k` digits: `0 ≤ v − d < 10^(−k)`.
+fn check_decimal(root: &Root, v: &[Q], text: &str) -> bool {
+    let (int, frac) = text.split_once('.').unwrap_or((text, ""));
+    let digits = u32::try_from(frac.len()).unwrap_or(u32::MAX);
+    let ulp = Q::new(BigInt::one(), BigInt::from(10).pow(digits));
+    let Ok(d) = format!("{int}{frac}").parse::<BigInt>() else {
+        return false;
+    };
+    let d = Q::from_integer(d) * &ulp;
+    let minus = |x: &Q| add(v, &[-x]);
+    int.chars().all(|c| c.is_ascii_digit())
+        && root.sign(&minus(&d)).is_some_and(|s| s >= 0)
+        && root.sign(&minus(&(d + ulp))) == Some(-1)
+}
+
+/// Checks one claimed limit point against the recomputed `R_r`.
+fn check_point(root: &Root, r: usize, got: &Residue, claim: &PointClaim) -> Result<P, String> {
+    let v = root.element(&claim.value)?;
+    if !got.is(root, &v) {
+        return Err(format!(
+            "residue {r}: the claimed value is not R_{r} ({})",
+            got.why
+        ));
+    }
+    let what = format!("R_{r}");
+    let real = Root::isolate(&claim.real.poly, &claim.real.lo, &claim.real.hi, &what)?;
+    let ints: Vec<BigInt> = real.p.iter().map(|c| c.to_integer()).collect();
+    let at_least = |x: &[Q], y: &Q| root.sign(&add(x, &[-y.clone()])).is_some_and(|s| s >= 0);
+    let hi_minus_v = add(std::slice::from_ref(&real.hi), &scale(&v, &-Q::one()));
+    if !root.is_zero(&root.eval_at(&ints, &v))
+        || !at_least(&v, &real.lo)
+        || !at_least(&hi_minus_v, &Q::zero())
+    {
+        return Err(format!(
+            "residue {r}: the claimed polynomial and interval do not isolate R_{r}"
+        ));
+    }
+    if !check_decimal(root, &v, &claim.decimal) {
+        return Err(format!(
+            "residue {r}: the decimal {} is not a truncation of R_{r}",
+            claim.decimal
+        ));
+    }
+    Ok(v)
+}
+
+pub(super) fn check_ratio(r: &RatioStep, closure: Option<&Substitution>) -> Result<String, String> {
+    let (m, start) = parse(r)?;
+    let tied = match closure {
+        Some(c)
+            if c.matrix == m && c.contributions == r.contribution_halves && c.start == start =>
+        {
+            "the closure's substitution"
+        }
+        Some(_) => {
+            return Err("matrix, contributions or start differ from the closure step".into())
+        }
+        None => "the given substitution (no closure step to tie it to)",
+    };
+    let start_types: Vec<usize> = start.keys().copied().collect();
+    let cls = classes(&m, &start_types);
+    let claimed: Vec<Class> = r
+        .classes
+        .iter()
+        .map(|c| (c.members.clone(), c.period))
+        .collect();
+    if cls != claimed {
+        return Err(
+            "the classes or periods differ from the checker's own (BFS, gcd of levels)".into(),
+        );
+    }
+    let root = Root::isolate(&r.rho.poly, &r.rho.lo, &r.rho.hi, "ρ")?;
+    if root.sign(&[-Q::one(), Q::one()]).is_none_or(|s| s < 0) {
+        return Err("ρ ≥ 1 is not shown".into());
+    }
+    let mut period = 1u64;
+    for (k, class) in r.classes.iter().enumerate() {
+        if check_radius(&m, &root, (k, class))? {
+            period = period.lcm(&class.period.expect("a Perron class has a cycle"));
+        }
+    }
+    if !r
+        .classes
+        .iter()
+        .any(|c| matches!(c.radius, RadiusWitness::Perron(_)))
+    {
+        return Err("no class has radius ρ (no Perron vector)".into());
+    }
+    if period != r.period || r.points.len() as u64 != period {
+        return Err(format!(
+            "the period is P = {period} (lcm of the dominant periods); the certificate claims {} with {} point(s)",
+            r.period,
+            r.points.len()
+        ));
+    }
+    // The augmented matrix on the reached types, the last index being the lacuna type.
+    let reached: Vec<usize> = cls.iter().flat_map(|(ms, _)| ms.iter().copied()).collect();
+    let mut reached = reached;
+    reached.sort_unstable();
+    let d = reached.len() + 1;
+    let at = |t: &usize| reached.binary_search(t).expect("reached");
+    let mut a: Vec<Vec<(usize, BigInt)>> = reached
+        .iter()
+        .map(|t| {
+            let mut row: Vec<(usize, BigInt)> = m[*t]
+                .iter()
+                .map(|(s, k)| (at(s), BigInt::from(*k)))
+                .collect();
+            row.push((d - 1, BigInt::from(r.contribution_halves[*t])));
+            row
+        })
+        .collect();
+    a.push(vec![(d - 1, BigInt::one())]);
+    let big_p = usize::try_from(period).map_err(|_| "the period is too large")?;
+    let q = power_charpoly(&charpoly(&a)?, big_p)?;
+    let (faces, lacunas) = counts(&m, &r.contribution_halves, &start, big_p * d);
+    let y0 = root.reduce(&[vec![Q::zero(); big_p], vec![Q::one()]].concat());
+    // Q(w) = Σ b_i w^i with b_i = q_(d−i); N_j = Σ_(i ≤ j) b_i·x_(j−i); Ñ reverses N.
+    let reflected = |seq: &[BigInt], res: usize| -> Vec<BigInt> {
+        let mut n: Vec<BigInt> = (0..d)
+            .map(|j| {
+                (0..=j)
+                    .map(|i| &q[d - i] * &seq[big_p * (j - i) + res])
+                    .sum()
+            })
+            .collect();
+        n.reverse();
+        n
+    };
+    let mut values: Vec<P> = Vec::new();
+    let mut whys = Vec::new();
+    for (res, claim) in r.points.iter().enumerate() {
+        let got = residue(
+            &root,
+            &q,
+            &reflected(&lacunas, res),
+            &reflected(&faces, res),
+            &y0,
+        )
+        .map_err(|e| format!("residue {res}: {e}"))?;
+        values.push(check_point(&root, res, &got, claim)?);
+        whys.push(got.why);
+    }
+    let exists = values
+        .iter()
+        .all(|v| root.is_zero(&add(v, &scale(&values[0], &-Q::one()))));
+    if exists != r.exists {
+        return Err(format!(
+            "the certificate claims the limit {}, but the residues give {}",
+            ["does not exist", "exists"][usize::from(r.exists)],
+            ["different limit points", "one value"][usize::from(exists)]
+        ));
+    }
+    let rho = match root.p.len() {
+        2 => format!("ρ = {}", root.lo),
+        _ => format!("ρ isolated in ({}, {}) (Sturm)", root.lo, root.hi),
+    };
+    let dominant = r
+        .classes
+        .iter()
+        .filter(|c| matches!(c.radius, RadiusWitness::Perron(_)))
+        .count();
+    let verdict = match exists {
+        true => format!(
+            "R exists and equals {} ({})",
+            shown(&r.points[0].value),
+            r.points[0].decimal
+        ),
+        false => format!(
+            "R_i has no limit; limit points by residue mod {period}: {}",
+            r.points
+                .iter()
+                .map(|p| format!("{} ({})", shown(&p.value), p.decimal))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    };
+    Ok(format!(
+        "{} class(es) re-derived for {tied}; {rho}, {dominant} dominant class(es) (Perron vectors, \
+         Collatz–Wielandt bounds), P = {period}; {}; {verdict}",
+        cls.len(),
+        whys.join("; ")
+    ))
+}
+
+fn shown(v: &[String]) -> String {
+    match v.len() {
+        0 => "0".into(),
+        1 => v[0].clone(),
+        _ => format!("({}) on 1, ρ, …", v.join(", ")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn charpoly_of_a_power() {
+        // A = [[0, 2], [8, 0]]: det(xI − A) = x² − 16; A² = 16·I: det(yI − A²) = (y − 16)².
+        let a = vec![vec![(1, BigInt::from(2))], vec![(0, BigInt::from(8))]];
+        let chi = charpoly(&a).unwrap();
+        assert_eq!(chi, [-16, 0, 1].map(BigInt::from));
+        assert_eq!(
+            power_charpoly(&chi, 2).unwrap(),
+            [256, -32, 1].map(BigInt::from)
+        );
+        // [[1, 1], [1, 0]]: x² − x − 1; squared: eigenvalues φ², φ'² with sum 3, product 1.
+        let a = vec![
+            vec![(0, BigInt::one()), (1, BigInt::one())],
+            vec![(0, BigInt::one())],
+        ];
+        let chi = charpoly(&a).unwrap();
+        assert_eq!(chi, [-1, -1, 1].map(BigInt::from));
+        assert_eq!(
+            power_charpoly(&chi, 2).unwrap(),
+            [1, -3, 1].map(BigInt::from)
+        );
+    }
+}
