@@ -1,4 +1,4 @@
-//! Certificates: plain data that the independent checker (`checker.rs`) re-verifies.
+//! Certificates: plain data that the independent checker (`checker/`) re-verifies.
 //!
 //! A [`Certificate`] is a versioned list of [`Step`]s. Every number is exact: integers as JSON
 //! numbers when they are small counts or indices, rationals and big integers as strings

@@ -19,8 +19,8 @@ use std::cmp::Ordering;
 /// Why a certificate could not be produced.
 #[derive(Debug, thiserror::Error)]
 pub enum CertifyError {
-    /// Certificate v1 writes algorithms as spoke sets; a custom chooser has no data form.
-    #[error("face type `{face}` uses the custom algorithm `{algorithm}`, which certificate v1 cannot express")]
+    /// Certificates write algorithms as spoke sets; a custom chooser has no data form.
+    #[error("face type `{face}` uses the custom algorithm `{algorithm}`, which certificates cannot express")]
     CustomAlgorithm {
         /// The face.
         face: String,

@@ -7,8 +7,9 @@
 //! - `closure.rs`: the subdivision of a face (SPEC §3), incidence identities, contributions;
 //! - `linear.rs`: exact linear checks and elimination modulo primes;
 //! - `field.rs`: polynomials over Q, Sturm isolation, exact zero and sign tests in Q[x]/(p);
-//! - `ratio.rs`: strongly connected classes and periods, Perron–Frobenius witnesses, the
-//!   characteristic polynomial and the generating functions of the counts, the limit ratio.
+//! - `ratio.rs`: strongly connected classes and periods, Perron–Frobenius witnesses, the verdict;
+//! - `series.rs`: the counts, the characteristic polynomial of `A^P` (Faddeev–LeVerrier, Newton)
+//!   and the pole of the generating functions at `ρ^(−P)`.
 //!
 //! What each step proves is documented on [`Step`] and in `docs/CERTIFICATES.md`.
 
@@ -16,6 +17,7 @@ mod closure;
 mod field;
 mod linear;
 mod ratio;
+mod series;
 
 use self::closure::{check_closure, Substitution};
 use self::linear::{check_conflict, check_solution};
