@@ -14,9 +14,10 @@ use lacuna::{Algorithm, EdgeKind, EdgeType, Face, GenOptions, Limits, Params};
 use num_rational::BigRational;
 use proptest::prelude::*;
 
-const FACE_FIXTURES: [&str; 7] = [
+const FACE_FIXTURES: [&str; 8] = [
     "F0",
     "cycle-sqrt17",
+    "shared-radius-pentagons",
     "square-B2",
     "triangle-C2",
     "delayed-B2-C2",
@@ -461,6 +462,23 @@ fn equal_radii_in_a_chain_are_certified() {
         values(&proved_step("chain of three", &m, &[0, 0, 1])),
         ["1/3"]
     );
+}
+
+#[test]
+fn shared_radius_fixture_is_certified() {
+    // fixtures/shared-radius-pentagons.txt: two one-type classes P → 5P, P' → 5P', contribution 1
+    // each, one start face of each: N^C_i = 2·5^i, N^L_i = 2(5^i − 1)/4, R = (1/2)/(1/2 + 2) = 1/5.
+    let cert = face_certificate("shared-radius-pentagons");
+    let Some(Step::LimitRatio(r)) = cert.steps.last() else {
+        panic!("no ratio step")
+    };
+    assert_eq!(r.classes.len(), 2);
+    assert!(r
+        .classes
+        .iter()
+        .all(|c| matches!(c.radius, RadiusWitness::Perron(_))));
+    assert_eq!(values(r), ["1/5"]);
+    assert!(check(&cert).all_proved());
 }
 
 #[test]
