@@ -28,6 +28,11 @@ use num_integer::Integer;
 use num_traits::{One, Signed, Zero};
 use std::collections::{BTreeMap, VecDeque};
 
+/// The most levels of counts (`P·d`) the checker computes: the counts grow like `ρ^(P·d)`, so
+/// a hostile period must not make it hang. Closures met in practice need `P·d` below a few
+/// hundred.
+const MAX_LEVELS: usize = 20_000;
+
 /// A recomputed class: members ascending and period (`None` for a transient type).
 type Class = (Vec<usize>, Option<u64>);
 
@@ -301,6 +306,11 @@ pub(super) fn check_ratio(r: &RatioStep, closure: Option<&Substitution>) -> Resu
         .collect();
     a.push(vec![(d - 1, BigInt::one())]);
     let big_p = usize::try_from(period).map_err(|_| "the period is too large")?;
+    if big_p.saturating_mul(d) > MAX_LEVELS {
+        return Err(format!(
+            "P·d = {period}·{d} levels of counts exceed the checker's limit of {MAX_LEVELS}"
+        ));
+    }
     let q = power_charpoly(&charpoly(&a)?, big_p)?;
     let (faces, lacunas) = counts(&m, &r.contribution_halves, &start, big_p * d);
     let y0 = root.reduce(&[vec![Q::zero(); big_p], vec![Q::one()]].concat());
