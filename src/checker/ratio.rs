@@ -8,7 +8,8 @@
 //!    radius < lo ≤ ρ). `P` = lcm of the dominant periods.
 //! 3. The augmented matrix `A = [[M, c], [0, 1]]` on the reached types has its eigenvalues in the
 //!    class blocks and 1, so every eigenvalue of `A^P` of modulus ≥ ρ^P equals `y₀ = ρ^P` (ρ ≥ 1).
-//!    `q = det(y·I − A^P)` (Faddeev–LeVerrier, then Newton's identities) annihilates `A^P`
+//!    `q = det(y·I − A^P)` (per class block by Faddeev–LeVerrier, then Newton's identities)
+//!    annihilates `A^P`
 //!    (Cayley–Hamilton), so for each residue `r` the counts `x_n = X_(P·n + r)` have the generating
 //!    function `N(w)/Q(w)`, `Q(w) = w^d·q(1/w)`, `N = Q·Σ x_n w^n mod w^d`, from the first `d`
 //!    terms, computed here by iterating the substitution.
@@ -32,6 +33,21 @@ use std::collections::{BTreeMap, VecDeque};
 /// a hostile period must not make it hang. Closures met in practice need `P·d` below a few
 /// hundred.
 const MAX_LEVELS: usize = 20_000;
+
+/// The largest class whose characteristic polynomial the checker computes (Faddeev–LeVerrier
+/// costs about `size²·arcs` big-integer operations).
+const MAX_CLASS: usize = 1_000;
+
+/// The product of two integer polynomials (ascending coefficients).
+fn times(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
+    let mut c = vec![BigInt::zero(); a.len() + b.len() - 1];
+    for (i, x) in a.iter().enumerate() {
+        for (j, y) in b.iter().enumerate() {
+            c[i + j] += x * y;
+        }
+    }
+    c
+}
 
 /// A recomputed class: members ascending and period (`None` for a transient type).
 type Class = (Vec<usize>, Option<u64>);
@@ -195,6 +211,9 @@ fn parse(r: &RatioStep) -> Result<Parsed, String> {
 /// The claimed decimal `d` with `k` digits: `0 ≤ v − d < 10^(−k)`.
 fn check_decimal(root: &Root, v: &[Q], text: &str) -> bool {
     let (int, frac) = text.split_once('.').unwrap_or((text, ""));
+    if frac.len() > 10_000 {
+        return false; // beyond any certified precision lacuna writes (and costly to check)
+    }
     let digits = u32::try_from(frac.len()).unwrap_or(u32::MAX);
     let ulp = Q::new(BigInt::one(), BigInt::from(10).pow(digits));
     let Ok(d) = format!("{int}{frac}").parse::<BigInt>() else {
@@ -287,31 +306,37 @@ pub(super) fn check_ratio(r: &RatioStep, closure: Option<&Substitution>) -> Resu
             r.points.len()
         ));
     }
-    // The augmented matrix on the reached types, the last index being the lacuna type.
-    let reached: Vec<usize> = cls.iter().flat_map(|(ms, _)| ms.iter().copied()).collect();
-    let mut reached = reached;
-    reached.sort_unstable();
-    let d = reached.len() + 1;
-    let at = |t: &usize| reached.binary_search(t).expect("reached");
-    let mut a: Vec<Vec<(usize, BigInt)>> = reached
-        .iter()
-        .map(|t| {
-            let mut row: Vec<(usize, BigInt)> = m[*t]
-                .iter()
-                .map(|(s, k)| (at(s), BigInt::from(*k)))
-                .collect();
-            row.push((d - 1, BigInt::from(r.contribution_halves[*t])));
-            row
-        })
-        .collect();
-    a.push(vec![(d - 1, BigInt::one())]);
+    // det(x·I − A) for the augmented matrix A = [[M, c], [0, 1]] on the reached types: ordered
+    // by the class DAG, A is block triangular, so it is the product of the class blocks'
+    // characteristic polynomials and (x − 1) for the lacuna type.
+    let d = cls.iter().map(|(ms, _)| ms.len()).sum::<usize>() + 1;
     let big_p = usize::try_from(period).map_err(|_| "the period is too large")?;
     if big_p.saturating_mul(d) > MAX_LEVELS {
         return Err(format!(
             "P·d = {period}·{d} levels of counts exceed the checker's limit of {MAX_LEVELS}"
         ));
     }
-    let q = power_charpoly(&charpoly(&a)?, big_p)?;
+    let mut chi = vec![-BigInt::one(), BigInt::one()];
+    for (members, _) in &cls {
+        if members.len() > MAX_CLASS {
+            return Err(format!(
+                "a class of {} types exceeds the checker's limit of {MAX_CLASS}",
+                members.len()
+            ));
+        }
+        let at = |s: &usize| members.binary_search(s).ok();
+        let block: Vec<Vec<(usize, BigInt)>> = members
+            .iter()
+            .map(|t| {
+                let inside = m[*t]
+                    .iter()
+                    .filter_map(|(s, k)| Some((at(s)?, BigInt::from(*k))));
+                inside.collect()
+            })
+            .collect();
+        chi = times(&chi, &charpoly(&block)?);
+    }
+    let q = power_charpoly(&chi, big_p)?;
     let (faces, lacunas) = counts(&m, &r.contribution_halves, &start, big_p * d);
     let y0 = root.reduce(&[vec![Q::zero(); big_p], vec![Q::one()]].concat());
     // Q(w) = Σ b_i w^i with b_i = q_(d−i); N_j = Σ_(i ≤ j) b_i·x_(j−i); Ñ reverses N.
