@@ -363,7 +363,10 @@ pub(super) fn check_ratio(r: &RatioStep, closure: Option<&Substitution>) -> Resu
         )
         .map_err(|e| format!("residue {res}: {e}"))?;
         values.push(check_point(&root, res, &got, claim)?);
-        whys.push(got.why);
+        whys.push(match period {
+            1 => got.why,
+            _ => format!("r = {res}: {}", got.why),
+        });
     }
     let exists = values
         .iter()
