@@ -1,4 +1,4 @@
-//! Certificates: plain data that the independent checker (`checker.rs`) re-verifies.
+//! Certificates: plain data that the independent checker (`checker/`) re-verifies.
 //!
 //! A [`Certificate`] is a versioned list of [`Step`]s. Every number is exact: integers as JSON
 //! numbers when they are small counts or indices, rationals and big integers as strings
@@ -15,7 +15,7 @@ use serde::{Deserialize, Serialize};
 pub const FORMAT: &str = "lacuna-certificate";
 
 /// The format version this code writes and checks.
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 
 /// A certificate: what was given and the steps that prove the verdicts.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -55,12 +55,16 @@ pub enum Step {
     /// **An inconsistent linear system.** Justification: `Σ m_i·row_i` has every coefficient 0
     /// and right-hand side `c ≠ 0`; any solution would satisfy `0 = c`.
     Inconsistent(ConflictStep),
-    /// **The limit ratio R.** Justification (covered case): the checker recomputes the classes
-    /// reached from the start and their periods, isolates ρ (Sturm), verifies a left Perron
-    /// eigenvector `y ≥ 0` with `y·M = ρ·y`, positive on the dominant class, and Collatz–Wielandt
-    /// vectors showing every other class has a smaller spectral radius; by Perron–Frobenius ρ is
-    /// then a simple dominant eigenvalue and `R = y·c / (y·c + (ρ−1)·y·1)`, which it recomputes
-    /// in Q(ρ). Other cases are stated as not covered by v1.
+    /// **The limit ratio R** (every case: shared radii, periodic classes, ρ = 1). Justification:
+    /// the checker recomputes the classes reached from the start and their periods, isolates ρ
+    /// (Sturm), and checks per class a positive Perron eigenvector for ρ or a Collatz–Wielandt
+    /// bound below ρ. By Perron–Frobenius the eigenvalues of the augmented matrix
+    /// `A = [[M, c], [0, 1]]` of modulus `σ = max(ρ, 1)` are `σ·ω`, `ω^P = 1`, with `P` the lcm
+    /// of the dominant periods, so for each residue `r` the generating function of
+    /// `X_(P·n + r)` (faces, lacunas) has a single dominant pole, at `w₀ = σ^(−P)`. The checker
+    /// computes the characteristic polynomial of `A^P` (Faddeev–LeVerrier, Newton), the
+    /// numerators from the counts, the pole orders and leading coefficients in Q(ρ) with exact
+    /// zero tests, and each `R_r`; the limit exists iff they agree.
     LimitRatio(RatioStep),
 }
 
@@ -261,13 +265,30 @@ pub struct ConflictStep {
     pub constant: String,
 }
 
-/// A strongly connected class of the types reached from the start.
+/// A strongly connected class of the types reached from the start, with the witness of its
+/// spectral radius.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct ClassClaim {
     /// Members, ascending.
     pub members: Vec<usize>,
     /// Gcd of the cycle lengths; `None` for a transient type (no cycle).
     pub period: Option<u64>,
+    /// Why its spectral radius is ρ, below ρ, or 0.
+    pub radius: RadiusWitness,
+}
+
+/// The witness of a class's spectral radius against ρ.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RadiusWitness {
+    /// A transient type (no cycle): its block is `[0]`.
+    Transient,
+    /// A dominant class: a left eigenvector `y > 0` of its block `B` for ρ (`y·B = ρ·y`), aligned
+    /// with the members, coordinates in Q(ρ). By Perron–Frobenius the radius of `B` is ρ.
+    Perron(Vec<FieldCoords>),
+    /// A smaller class: a rational `x > 0` aligned with the members with `B·x < lo·x`
+    /// componentwise (Collatz–Wielandt: the radius of `B` is below `lo ≤ ρ`).
+    Below(Vec<String>),
 }
 
 /// A real algebraic number: the only root of `poly` in `[lo, hi]`.
@@ -284,37 +305,16 @@ pub struct Algebraic {
 /// An element of Q(ρ): coordinates on the power basis `1, ρ, ρ², …`.
 pub type FieldCoords = Vec<String>;
 
-/// The proof of the limit in the covered case.
+/// The claimed limit of `R_(P·n + r)` for one residue `r`.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub struct LimitProof {
-    /// ρ, the Perron root.
-    pub rho: Algebraic,
-    /// Index into [`RatioStep::classes`] of the dominant class.
-    pub dominant: usize,
-    /// Left eigenvector of the reached matrix, sparse `(type, coordinates in Q(ρ))`; types not
-    /// listed are 0.
-    pub left_vector: Vec<(usize, FieldCoords)>,
-    /// For every other class (index into [`RatioStep::classes`]), a positive rational vector `x`
-    /// aligned with its members with `B_c·x < lo·x` componentwise.
-    pub bounds: Vec<(usize, Vec<String>)>,
-    /// The claimed limit R in Q(ρ).
-    pub ratio: FieldCoords,
-}
-
-/// What the certificate claims about the limit ratio.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum RatioClaim {
-    /// The limit exists and equals the given value (covered case of v1).
-    Limit(LimitProof),
-    /// The case is outside certificate v1 (several dominant classes, a periodic dominant class,
-    /// ρ ≤ 1); lacuna's own verdict is quoted but nothing about it is certified.
-    NotCovered {
-        /// Why.
-        reason: String,
-        /// lacuna's verdict, for people.
-        verdict: String,
-    },
+pub struct PointClaim {
+    /// The value in Q(ρ).
+    pub value: FieldCoords,
+    /// The same number as a root of its minimal polynomial, isolated (for people and other
+    /// tools; the checker verifies that the polynomial vanishes there and isolates it).
+    pub real: Algebraic,
+    /// Decimal digits, truncated: `decimal ≤ value < decimal + 10^(−digits)`.
+    pub decimal: String,
 }
 
 /// The limit ratio of a substitution.
@@ -326,10 +326,16 @@ pub struct RatioStep {
     pub contribution_halves: Vec<u64>,
     /// Start faces `(type, multiplicity)`.
     pub start: Vec<(usize, u64)>,
-    /// The classes reached from the start, ordered by smallest member.
+    /// The classes reached from the start, ordered by smallest member, with radius witnesses.
     pub classes: Vec<ClassClaim>,
-    /// The claim.
-    pub claim: RatioClaim,
+    /// ρ, the largest class radius (at least 1).
+    pub rho: Algebraic,
+    /// `P`: the lcm of the periods of the classes of radius ρ.
+    pub period: u64,
+    /// Whether `R_i` converges (all points equal).
+    pub exists: bool,
+    /// `lim R_(P·n + r)` for `r = 0 … P − 1`.
+    pub points: Vec<PointClaim>,
 }
 
 impl Certificate {

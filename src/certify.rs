@@ -3,13 +3,14 @@
 //!
 //! This side may use all of lacuna: the certificate claims what lacuna computed, and the checker
 //! re-verifies it without lacuna's code. The only new computations here are the witnesses the
-//! checker needs and lacuna does not report: the left Perron eigenvector over Q(ρ) (exact
-//! elimination in lacuna's number field) and the Collatz–Wielandt vectors of the other classes.
+//! checker needs and lacuna does not report: the left Perron eigenvector over Q(ρ) of every class
+//! of radius ρ (exact elimination in lacuna's number field), the Collatz–Wielandt vectors of the
+//! other classes, and the minimal polynomial of each limit point.
 
 use crate::certificate::{
     Adjacency, Algebraic, Certificate, ClassClaim, ClosureStep, ConflictStep, Edge, Face, Kind,
-    LimitProof, Origin, Params, Pattern, RatioClaim, RatioStep, Row, SolutionStep, SpokeItem, Step,
-    SubFace, System, TypeRule,
+    Origin, Params, Pattern, PointClaim, RadiusWitness, RatioStep, Row, SolutionStep, SpokeItem,
+    Step, SubFace, System, TypeRule,
 };
 use num_rational::BigRational;
 use num_traits::{One, Zero};
@@ -18,8 +19,8 @@ use std::cmp::Ordering;
 /// Why a certificate could not be produced.
 #[derive(Debug, thiserror::Error)]
 pub enum CertifyError {
-    /// Certificate v1 writes algorithms as spoke sets; a custom chooser has no data form.
-    #[error("face type `{face}` uses the custom algorithm `{algorithm}`, which certificate v1 cannot express")]
+    /// Certificates write algorithms as spoke sets; a custom chooser has no data form.
+    #[error("face type `{face}` uses the custom algorithm `{algorithm}`, which certificates cannot express")]
     CustomAlgorithm {
         /// The face.
         face: String,
@@ -259,57 +260,55 @@ pub fn ratio_step(
         .map(|&h| BigRational::new(h.into(), 2.into()))
         .collect();
     let report = lacuna::analyse(matrix, &c, start)?;
-    // Classes ordered by smallest member; `order[k]` is the report's index of class k.
+    let field = &report.field;
+    let rho = separated_rho(&report)?;
+    let lo = rho.interval().0.clone();
+    // Classes ordered by smallest member.
     let mut order: Vec<usize> = (0..report.classes.len()).collect();
     order.sort_by_key(|&i| report.classes[i].members[0]);
-    let classes: Vec<ClassClaim> = order
+    let classes = order
         .iter()
-        .map(|&i| ClassClaim {
-            members: report.classes[i].members.clone(),
-            period: report.classes[i].period,
+        .map(|&i| {
+            let class = &report.classes[i];
+            let radius = match (class.period, class.dominant) {
+                (None, _) => RadiusWitness::Transient,
+                (Some(_), true) => {
+                    RadiusWitness::Perron(perron_vector(field, matrix, &class.members)?)
+                }
+                (Some(_), false) => {
+                    RadiusWitness::Below(collatz_wielandt(&lo, matrix, &class.members)?)
+                }
+            };
+            Ok(ClassClaim {
+                members: class.members.clone(),
+                period: class.period,
+                radius,
+            })
         })
-        .collect();
-    let rho = report.field.generator().clone();
-    let one = lacuna::RealAlgebraic::rational(BigRational::one());
-    let not_covered = if report.dominant.len() > 1 {
-        Some(format!(
-            "{} classes share the spectral radius ρ",
-            report.dominant.len()
-        ))
-    } else if report.classes[report.dominant[0]].period != Some(1) {
-        Some(format!(
-            "the dominant class has period {}",
-            report.classes[report.dominant[0]].period.unwrap_or(0)
-        ))
-    } else if rho.cmp_exact(&one) != Ordering::Greater {
-        Some(format!("ρ = {rho} is not above 1"))
-    } else if report.ratio.is_none() {
-        Some("lacuna's analysis gives no single limit".into())
-    } else {
-        None
-    };
-    let claim = match not_covered {
-        Some(reason) => RatioClaim::NotCovered {
-            reason,
-            verdict: match &report.exact {
-                Some(r) => format!("R = {r} (ρ = {})", report.perron_root),
-                None => format!("no limit; {}", report.reasons.join("; ")),
-            },
-        },
-        None => {
-            let dominant = order
-                .iter()
-                .position(|&i| i == report.dominant[0])
-                .expect("the dominant class is listed");
-            RatioClaim::Limit(limit_proof(matrix, &report, &classes, dominant)?)
-        }
-    };
+        .collect::<Result<_, CertifyError>>()?;
+    let points = report
+        .limit_points
+        .iter()
+        .map(|p| {
+            Ok(PointClaim {
+                value: match p.value.coords() {
+                    [] => vec!["0".to_string()],
+                    c => strings(c),
+                },
+                real: algebraic(&real_of(field, &p.value)?),
+                decimal: p.decimal.clone(),
+            })
+        })
+        .collect::<Result<_, CertifyError>>()?;
     Ok(RatioStep {
         matrix: matrix.to_vec(),
         contribution_halves: contribution_halves.to_vec(),
         start: start.to_vec(),
         classes,
-        claim,
+        rho: algebraic(&rho),
+        period: report.period,
+        exists: report.exists,
+        points,
     })
 }
 
@@ -317,26 +316,36 @@ fn strings(v: &[BigRational]) -> Vec<String> {
     v.iter().map(|q| q.to_string()).collect()
 }
 
-/// The witnesses of the covered case: ρ's isolating interval (refined until its lower end lies
-/// above 1 and above every other class's radius), the left eigenvector, the bounds.
-fn limit_proof(
-    matrix: &[Vec<(usize, u64)>],
-    report: &lacuna::RatioReport,
-    classes: &[ClassClaim],
-    dominant: usize,
-) -> Result<LimitProof, CertifyError> {
-    let field = &report.field;
-    let mut rho = field.generator().clone();
+fn algebraic(x: &lacuna::RealAlgebraic) -> Algebraic {
+    let (lo, hi) = x.interval();
+    Algebraic {
+        poly: x
+            .min_poly()
+            .primitive_int()
+            .iter()
+            .map(|c| c.to_string())
+            .collect(),
+        lo: lo.to_string(),
+        hi: hi.to_string(),
+    }
+}
+
+/// ρ with an isolating interval whose lower end lies above 1 (when ρ is irrational) and above
+/// every smaller class radius, as the Collatz–Wielandt bounds need.
+fn separated_rho(report: &lacuna::RatioReport) -> Result<lacuna::RealAlgebraic, CertifyError> {
+    let mut rho = report.field.generator().clone();
     let others: Vec<&lacuna::RealAlgebraic> = report
         .classes
         .iter()
         .filter(|c| !c.dominant)
         .map(|c| &c.radius)
         .collect();
-    let lo_above = |r: &lacuna::RealAlgebraic, x: &lacuna::RealAlgebraic| {
-        lacuna::RealAlgebraic::rational(r.interval().0.clone()).cmp_exact(x) == Ordering::Greater
-    };
     let one = lacuna::RealAlgebraic::rational(BigRational::one());
+    let lo_above = |r: &lacuna::RealAlgebraic, x: &lacuna::RealAlgebraic| {
+        r.degree() == 1
+            || lacuna::RealAlgebraic::rational(r.interval().0.clone()).cmp_exact(x)
+                == Ordering::Greater
+    };
     let mut rounds = 0;
     while !(lo_above(&rho, &one) && others.iter().all(|x| lo_above(&rho, x))) {
         rounds += 1;
@@ -347,86 +356,114 @@ fn limit_proof(
         }
         rho.refine();
     }
-    let (lo, hi) = rho.interval();
-    let poly = rho.min_poly().primitive_int();
-    // Left eigenvector over the reached types: the kernel of (M − ρI)ᵀ.
-    let reached: Vec<usize> = classes.iter().flat_map(|c| c.members.clone()).collect();
-    let mut reached = reached;
-    reached.sort_unstable();
-    let at = |t: usize| reached.binary_search(&t).ok();
+    Ok(rho)
+}
+
+/// The left eigenvector `y` of the block of `members` for ρ (`y·B = ρ·y`), 1 at the first
+/// member; positive by Perron–Frobenius.
+fn perron_vector(
+    field: &lacuna::NumberField,
+    matrix: &[Vec<(usize, u64)>],
+    members: &[usize],
+) -> Result<Vec<Vec<String>>, CertifyError> {
     let r = field.generator_element();
     let zero = field.rational(BigRational::zero());
-    let mut rows = vec![vec![zero.clone(); reached.len()]; reached.len()];
-    for (j, &t) in reached.iter().enumerate() {
+    let size = members.len();
+    // Row i of (B − ρI)ᵀ: Σ_j y_j (B[j][i] − ρ δ_ij) = 0.
+    let mut rows = vec![vec![zero; size]; size];
+    for (j, &t) in members.iter().enumerate() {
         for &(s, k) in &matrix[t] {
-            if let Some(i) = at(s) {
-                let e = field.add(
+            if let Ok(i) = members.binary_search(&s) {
+                rows[i][j] = field.add(
                     &rows[i][j],
                     &field.rational(BigRational::from_integer(k.into())),
                 );
-                rows[i][j] = e;
             }
         }
         rows[j][j] = field.sub(&rows[j][j], &r);
     }
-    let y = kernel_vector(field, rows, reached.len())?;
-    // Normalise: 1 at the first type of the dominant class.
-    let d0 = at(classes[dominant].members[0]).expect("reached");
+    let y = kernel_vector(field, rows, size)?;
     let scale = field
-        .inv(&y[d0])
-        .ok_or_else(|| CertifyError::Witness("y vanishes on the dominant class".into()))?;
-    let left_vector = reached
-        .iter()
-        .zip(&y)
-        .map(|(&t, v)| (t, field.mul(v, &scale)))
-        .filter(|(_, v)| !v.is_zero())
-        .map(|(t, v)| (t, strings(v.coords())))
-        .collect();
-    // Collatz–Wielandt vectors: x = (lo·I − B_c)⁻¹·1 > 0, so B_c·x = lo·x − 1 < lo·x.
+        .inv(&y[0])
+        .ok_or_else(|| CertifyError::Witness("the Perron vector vanishes".into()))?;
+    Ok(y.iter()
+        .map(|v| strings(field.mul(v, &scale).coords()))
+        .collect())
+}
+
+/// `x = (lo·I − B)⁻¹·1 > 0` on the block of `members`, so `B·x = lo·x − 1 < lo·x`.
+fn collatz_wielandt(
+    lo: &BigRational,
+    matrix: &[Vec<(usize, u64)>],
+    members: &[usize],
+) -> Result<Vec<String>, CertifyError> {
     let q = lacuna::NumberField::new(lacuna::RealAlgebraic::rational(BigRational::zero()));
-    let mut bounds = Vec::new();
-    for (k, class) in classes.iter().enumerate().filter(|(k, _)| *k != dominant) {
-        let size = class.members.len();
-        let mut rows = vec![vec![q.rational(BigRational::zero()); size + 1]; size];
-        for (i, &t) in class.members.iter().enumerate() {
-            rows[i][i] = q.rational(lo.clone());
-            for &(s, m) in &matrix[t] {
-                if let Ok(j) = class.members.binary_search(&s) {
-                    let e = field_sub_int(&q, &rows[i][j], m);
-                    rows[i][j] = e;
-                }
+    let size = members.len();
+    let mut rows = vec![vec![q.rational(BigRational::zero()); size + 1]; size];
+    for (i, &t) in members.iter().enumerate() {
+        rows[i][i] = q.rational(lo.clone());
+        for &(s, m) in &matrix[t] {
+            if let Ok(j) = members.binary_search(&s) {
+                let e = field_sub_int(&q, &rows[i][j], m);
+                rows[i][j] = e;
             }
-            rows[i][size] = q.rational(BigRational::one());
         }
-        let (red, pivots) = rref(&q, rows, size);
-        if pivots.len() != size {
-            return Err(CertifyError::Witness(format!(
-                "class {k}: lo·I − B is singular"
-            )));
-        }
-        let x: Vec<String> = red
-            .iter()
-            .map(|row| {
-                row[size]
-                    .as_rational()
-                    .expect("a rational field")
-                    .to_string()
-            })
-            .collect();
-        bounds.push((k, x));
+        rows[i][size] = q.rational(BigRational::one());
     }
-    let ratio = report.ratio.as_ref().expect("covered case has a ratio");
-    Ok(LimitProof {
-        rho: Algebraic {
-            poly: poly.iter().map(|c| c.to_string()).collect(),
-            lo: lo.to_string(),
-            hi: hi.to_string(),
-        },
-        dominant,
-        left_vector,
-        bounds,
-        ratio: strings(ratio.coords()),
-    })
+    let (red, pivots) = rref(&q, rows, size);
+    if pivots.len() != size {
+        return Err(CertifyError::Witness("lo·I − B is singular".into()));
+    }
+    Ok(red
+        .iter()
+        .map(|row| {
+            row[size]
+                .as_rational()
+                .expect("a rational field")
+                .to_string()
+        })
+        .collect())
+}
+
+/// `v` as a real algebraic number: its minimal polynomial over Q (the first linear dependence
+/// among `1, v, v², …` in Q(ρ), a field) and the isolating interval of its root equal to `v`.
+fn real_of(
+    field: &lacuna::NumberField,
+    v: &lacuna::FieldElement,
+) -> Result<lacuna::RealAlgebraic, CertifyError> {
+    if let Some(q) = v.as_rational() {
+        return Ok(lacuna::RealAlgebraic::rational(q));
+    }
+    let q = lacuna::NumberField::new(lacuna::RealAlgebraic::rational(BigRational::zero()));
+    let deg = field.degree();
+    let coord = |x: &lacuna::FieldElement, i: usize| q.rational(x.poly().coeff(i));
+    let mut powers = vec![field.rational(BigRational::one())];
+    for k in 1..=deg {
+        powers.push(field.mul(&powers[k - 1], v));
+        // Solve Σ_(i<k) a_i·v^i = v^k on the coordinates.
+        let rows = (0..deg)
+            .map(|i| (0..=k).map(|j| coord(&powers[j], i)).collect())
+            .collect();
+        let (red, pivots) = rref(&q, rows, k + 1);
+        if pivots.contains(&k) {
+            continue; // v^k is independent of the lower powers
+        }
+        let mut coeffs: Vec<BigRational> = vec![BigRational::zero(); k + 1];
+        for (row, &p) in red.iter().zip(&pivots) {
+            coeffs[p] = -row[k].as_rational().expect("rational");
+        }
+        coeffs[k] = BigRational::one();
+        let f = lacuna::Poly::new(coeffs);
+        let sign = |x: &BigRational| field.sign(&field.sub(v, &field.rational(x.clone())));
+        return lacuna::RealAlgebraic::real_roots(&f)
+            .into_iter()
+            .find(|r| {
+                let (lo, hi) = r.interval();
+                sign(lo) == Ordering::Greater && sign(hi) == Ordering::Less
+            })
+            .ok_or_else(|| CertifyError::Witness("no root of the minimal polynomial is R".into()));
+    }
+    Err(CertifyError::Witness("no minimal polynomial found".into()))
 }
 
 fn field_sub_int(

@@ -24,6 +24,10 @@ pub fn library() -> &'static [(&'static str, &'static str)] {
             include_str!("../fixtures/autofrac-two-quads.txt"),
         ),
         ("cycle-sqrt17", include_str!("../fixtures/cycle-sqrt17.txt")),
+        (
+            "shared-radius-pentagons",
+            include_str!("../fixtures/shared-radius-pentagons.txt"),
+        ),
         ("spec-edge", include_str!("../fixtures/spec-edge.aut")),
         (
             "spec-edge-incidence",

@@ -597,7 +597,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                         }
                     }
                     Closure::Runaway(_) => {
-                        eprintln!("no certificate written: the closure did not close (certificate v1 has no runaway step)")
+                        eprintln!("no certificate written: the closure did not close (certificates have no runaway step)")
                     }
                 }
             }

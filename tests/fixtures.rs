@@ -162,3 +162,36 @@ fn two_quads_in_both_formats() {
         );
     }
 }
+
+#[test]
+fn shared_radius_pentagons() {
+    // Two pentagons B2^5 differing only in Ec (unused: no gap). A1: the five joints are the
+    // spokes; each run `B2 B2` closes with `Ea El Ea = B2 B2 B2` to the same pentagon: each type
+    // gives five copies of itself, contribution 1 (the centre). Two classes of radius 5.
+    let name = "shared-radius-pentagons";
+    let ts = closed(name);
+    assert_eq!(ts.types.len(), 2, "fixture {name}");
+    for p in [
+        "B2 B2 B2 B2 B2 | B2 B2 B2 | A1",
+        "B2 B2 B2 B2 B2 | B2 B2 C2 | A1",
+    ] {
+        rule(&ts, name, p, &[(p, 5)]);
+        assert_eq!(
+            ts.types[id(&ts, p)].contribution_halves(),
+            2,
+            "fixture {name}"
+        );
+    }
+    // N^C_i = 2·5^i; N^L_(i+1) = N^L_i + N^C_i·1: 0, 2, 12, 62.
+    let c = counts(&ts, 3);
+    assert_eq!(
+        strings(c.iter().map(|l| &l.faces)),
+        ["2", "10", "50", "250"],
+        "fixture {name}"
+    );
+    assert_eq!(
+        strings(c.iter().map(|l| &l.lacunas)),
+        ["0", "2", "12", "62"],
+        "fixture {name}"
+    );
+}

@@ -1,0 +1,341 @@
+//! The closure step: re-derives every listed type's subdivision (SPEC §3) with the checker's own
+//! code and checks the incidence identities and contributions (see `docs/CERTIFICATES.md`).
+
+use crate::certificate::{Adjacency, ClosureStep, Edge, Face, Kind, Origin, Pattern, SpokeItem};
+use std::collections::{BTreeMap, BTreeSet};
+
+/// The substitution read off a checked closure: matrix rows, contributions, start counts.
+pub(super) struct Substitution {
+    pub(super) matrix: Vec<BTreeMap<usize, u64>>,
+    pub(super) contributions: Vec<u64>,
+    pub(super) start: BTreeMap<usize, u64>,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum JKind {
+    Joint,
+    Gap,
+    Corner,
+}
+
+/// A sub-edge: its type, (edge, piece), and the junction after it (kind, edges around it).
+type SubEdge = (Edge, (usize, usize), (JKind, Edge, Edge));
+
+/// A derived sub-face: canonical boundary, aligned origins, delay.
+type Derived = (Vec<Edge>, Vec<Origin>, u32);
+
+fn spoke(spoke: usize, inward: bool) -> Origin {
+    Origin::Spoke { spoke, inward }
+}
+
+fn gap_side((edge, gap): (usize, usize), after: bool) -> Origin {
+    Origin::GapSide { edge, gap, after }
+}
+
+/// Pieces of a subdivided edge and their type: one `X^(d−1)` when delayed, else n copies.
+fn piece_type(e: &Edge) -> (usize, Edge) {
+    match e.delay >= 2 {
+        true => (
+            1,
+            Edge {
+                delay: e.delay - 1,
+                ..*e
+            },
+        ),
+        false => (e.n as usize, *e),
+    }
+}
+
+fn matches(p: &Pattern, e: &Edge) -> bool {
+    match p {
+        Pattern::Any => true,
+        Pattern::Kind(k) => e.kind == *k,
+        Pattern::Exact(x) => x == e,
+    }
+}
+
+/// The spoke predicate on a junction `(kind, edge before, edge after)`.
+fn is_spoke(items: &[SpokeItem], (kind, before, after): (JKind, Edge, Edge)) -> bool {
+    items.iter().any(|item| match (item, kind) {
+        (SpokeItem::Joint, JKind::Joint) | (SpokeItem::Gap, JKind::Gap) => true,
+        (SpokeItem::Corner, JKind::Corner) => true,
+        (SpokeItem::DelayedCorner, JKind::Corner) => before.delay >= 2 || after.delay >= 2,
+        (SpokeItem::CornerBetween(p, q), JKind::Corner) => {
+            matches(p, &before) && matches(q, &after)
+        }
+        (SpokeItem::Joint | SpokeItem::Gap, _) => false,
+        (SpokeItem::Corner | SpokeItem::DelayedCorner | SpokeItem::CornerBetween(..), _) => false,
+    })
+}
+
+/// The start of the lexicographically least rotation (order B < C, then n, then delay); ties go
+/// to the smallest start. Quadratic and plain on purpose.
+fn least_rotation(b: &[Edge]) -> usize {
+    let rot = |r: usize| b.iter().cycle().skip(r).take(b.len());
+    (1..b.len()).fold(0, |best, r| if rot(r).lt(rot(best)) { r } else { best })
+}
+
+fn canonical(raw: Vec<(Edge, Origin)>, delay: u32) -> Derived {
+    let (mut boundary, mut origins): (Vec<Edge>, Vec<Origin>) = raw.into_iter().unzip();
+    let r = least_rotation(&boundary);
+    boundary.rotate_left(r);
+    origins.rotate_left(r);
+    (boundary, origins, delay)
+}
+
+/// One subdivision step of `face` (SPEC §3), with lacuna's origin conventions.
+fn subdivide(face: &Face) -> Result<(Vec<Derived>, Vec<Adjacency>), String> {
+    let len = face.boundary.len();
+    // Sub-edge m: its type, (edge, piece), and the junction after it.
+    let mut pieces: Vec<SubEdge> = Vec::new();
+    for (i, e) in face.boundary.iter().enumerate() {
+        let (count, ty) = piece_type(e);
+        for k in 0..count {
+            let junction = match (k + 1 < count, e.kind) {
+                (false, _) => (JKind::Corner, *e, face.boundary[(i + 1) % len]),
+                (true, Kind::B) => (JKind::Joint, *e, *e),
+                (true, Kind::C) => (JKind::Gap, *e, *e),
+            };
+            pieces.push((ty, (i, k), junction));
+        }
+    }
+    let n = pieces.len();
+    let is_gap = |m: usize| pieces[m].2 .0 == JKind::Gap;
+    let piece = |m: usize| {
+        let (ty, (edge, piece), _) = pieces[m];
+        (ty, Origin::Piece { edge, piece })
+    };
+    let ec = |m: usize, after: bool| (face.params.ec, gap_side(pieces[m].1, after));
+    if face.delay >= 2 {
+        let mut raw = Vec::new();
+        for m in 0..n {
+            raw.push(piece(m));
+            if is_gap(m) {
+                raw.extend([ec(m, false), ec(m, true)]);
+            }
+        }
+        return Ok((vec![canonical(raw, face.delay - 1)], Vec::new()));
+    }
+    let spokes: Vec<usize> = (0..n)
+        .filter(|&m| is_spoke(&face.algorithm, pieces[m].2))
+        .collect();
+    let s = spokes.len();
+    if s == 0 {
+        return Err("the algorithm puts no spoke on this face".into());
+    }
+    let p = face.params;
+    let mut subs = Vec::with_capacity(s);
+    for k in 0..s {
+        let (start, end) = (spokes[k], spokes[(k + 1) % s]);
+        let run = if s == 1 { n } else { (end + n - start) % n };
+        let mut raw = Vec::new();
+        for step in 1..=run {
+            let m = (start + step) % n;
+            raw.push(piece(m));
+            if step < run && is_gap(m) {
+                raw.extend([ec(m, false), ec(m, true)]);
+            }
+        }
+        raw.extend(is_gap(end).then(|| ec(end, false)));
+        raw.push((p.ea, spoke((k + 1) % s, true)));
+        raw.push((p.el, Origin::Lacuna { side: k }));
+        raw.push((p.ea, spoke(k, false)));
+        raw.extend(is_gap(start).then(|| ec(start, true)));
+        subs.push(canonical(raw, 1));
+    }
+    let pos = |d: &Derived, o: Origin| d.1.iter().position(|x| *x == o).unwrap_or(0);
+    let adj: Vec<Adjacency> = (0..s)
+        .map(|k| (k, (k + 1) % s))
+        .map(|(k, next)| Adjacency {
+            first: (k, pos(&subs[k], spoke(next, true))),
+            second: (next, pos(&subs[next], spoke(next, false))),
+        })
+        .collect();
+    Ok((subs, adj))
+}
+
+fn same_face(a: &Face, b: &Face) -> bool {
+    let set =
+        |f: &Face| -> BTreeSet<String> { f.algorithm.iter().map(|i| format!("{i:?}")).collect() };
+    a.boundary == b.boundary && a.params == b.params && a.delay == b.delay && set(a) == set(b)
+}
+
+/// Lacunas of one step in halves (SPEC §5): 2 for the centre (d = 1), n−1 per non-delayed `Cn`.
+fn contribution(f: &Face) -> u64 {
+    let gaps = f
+        .boundary
+        .iter()
+        .filter(|e| e.kind == Kind::C && e.delay == 1);
+    2 * u64::from(f.delay == 1) + gaps.map(|e| u64::from(e.n) - 1).sum::<u64>()
+}
+
+pub(super) fn check_closure(c: &ClosureStep) -> Result<(String, Substitution), String> {
+    let nt = c.types.len();
+    if c.start.is_empty() || c.start.iter().any(|&s| s >= nt) {
+        return Err("the start types are missing or out of range".into());
+    }
+    for (t, rule) in c.types.iter().enumerate() {
+        let (f, p) = (&rule.face, rule.face.params);
+        let edges_ok = f
+            .boundary
+            .iter()
+            .chain([&p.ea, &p.el, &p.ec])
+            .all(|e| e.n >= 2 && e.delay >= 1);
+        if f.boundary.is_empty() || f.delay < 1 || f.algorithm.is_empty() || !edges_ok {
+            return Err(format!(
+                "type {t}: empty boundary or algorithm, n < 2 or a delay 0"
+            ));
+        }
+        if least_rotation(&f.boundary) != 0 {
+            return Err(format!(
+                "type {t}: the boundary is not in canonical rotation"
+            ));
+        }
+        if let Some(u) = (0..t).find(|&u| same_face(&c.types[u].face, f)) {
+            return Err(format!("types {u} and {t} are the same face type"));
+        }
+    }
+    let mut matrix = Vec::with_capacity(nt);
+    for (t, rule) in c.types.iter().enumerate() {
+        let (subs, adj) = subdivide(&rule.face).map_err(|e| format!("type {t}: {e}"))?;
+        if subs.len() != rule.subfaces.len() {
+            return Err(format!(
+                "type {t}: {} sub-faces listed, {} derived",
+                rule.subfaces.len(),
+                subs.len()
+            ));
+        }
+        let mut row = BTreeMap::new();
+        for (k, ((boundary, origins, delay), sf)) in
+            subs.into_iter().zip(&rule.subfaces).enumerate()
+        {
+            let want = Face {
+                boundary,
+                delay,
+                ..rule.face.clone()
+            };
+            match c.types.get(sf.type_index) {
+                Some(target) if same_face(&target.face, &want) => {}
+                _ => {
+                    return Err(format!(
+                        "type {t} sub-face {k}: type {} is not the derived face",
+                        sf.type_index
+                    ))
+                }
+            }
+            if sf.origins != origins {
+                return Err(format!(
+                    "type {t} sub-face {k}: origins differ from the derived ones"
+                ));
+            }
+            *row.entry(sf.type_index).or_insert(0) += 1;
+        }
+        if adj != rule.adjacencies {
+            return Err(format!(
+                "type {t}: adjacencies differ from the derived ones"
+            ));
+        }
+        if contribution(&rule.face) != rule.contribution_halves {
+            return Err(format!("type {t}: contribution is not the one of SPEC §5"));
+        }
+        identities(c, t).map_err(|e| format!("type {t}: {e}"))?;
+        matrix.push(row);
+    }
+    let mut start = BTreeMap::new();
+    c.start
+        .iter()
+        .for_each(|&s| *start.entry(s).or_insert(0) += 1);
+    let subs: usize = c.types.iter().map(|r| r.subfaces.len()).sum();
+    let msg = format!(
+        "{nt} face type(s) closed under subdivision: {subs} sub-faces re-derived (SPEC §3), \
+         every incidence identity and contribution holds"
+    );
+    let contributions = c.types.iter().map(|r| r.contribution_halves).collect();
+    Ok((
+        msg,
+        Substitution {
+            matrix,
+            contributions,
+            start,
+        },
+    ))
+}
+
+/// The incidence identities of type `t`, on the certificate's own data: every edge has the type
+/// its origin demands; the origins are each sub-edge, each gap side, each spoke side (inward and
+/// outward) and each lacuna side exactly once; adjacencies pair the two sides of every spoke.
+fn identities(c: &ClosureStep, t: usize) -> Result<(), String> {
+    let (rule, f) = (&c.types[t], &c.types[t].face);
+    let s = if f.delay == 1 { rule.subfaces.len() } else { 0 };
+    if f.delay >= 2 && (rule.subfaces.len() != 1 || !rule.adjacencies.is_empty()) {
+        return Err("a delayed face has exactly one sub-face and no adjacency".into());
+    }
+    let mut expected: Vec<Origin> = Vec::new();
+    for (edge, e) in f.boundary.iter().enumerate() {
+        let (count, _) = piece_type(e);
+        expected.extend((0..count).map(|piece| Origin::Piece { edge, piece }));
+        for gap in (0..count - 1).filter(|_| e.kind == Kind::C && e.delay == 1) {
+            expected.extend([gap_side((edge, gap), false), gap_side((edge, gap), true)]);
+        }
+    }
+    for j in 0..s {
+        expected.extend([spoke(j, true), spoke(j, false), Origin::Lacuna { side: j }]);
+    }
+    let mut seen: Vec<Origin> = Vec::new();
+    for (k, sf) in rule.subfaces.iter().enumerate() {
+        let sub = &c.types[sf.type_index].face;
+        let delay = if f.delay >= 2 { f.delay - 1 } else { 1 };
+        if sub.delay != delay || sub.params != f.params || sub.boundary.len() != sf.origins.len() {
+            return Err(format!("sub-face {k} has the wrong delay, E or length"));
+        }
+        for (pos, (o, ty)) in sf.origins.iter().zip(&sub.boundary).enumerate() {
+            let want = match *o {
+                Origin::Piece { edge, piece } => match f.boundary.get(edge).map(piece_type) {
+                    Some((count, ty)) if piece < count => ty,
+                    _ => return Err(format!("sub-face {k} position {pos}: no such piece")),
+                },
+                Origin::Spoke { .. } => f.params.ea,
+                Origin::Lacuna { .. } => f.params.el,
+                Origin::GapSide { .. } => f.params.ec,
+            };
+            if want != *ty {
+                return Err(format!(
+                    "sub-face {k} position {pos}: edge type differs from its origin"
+                ));
+            }
+        }
+        seen.extend(&sf.origins);
+    }
+    expected.sort();
+    seen.sort();
+    if seen != expected {
+        return Err(
+            "the origins are not each sub-edge, gap side, spoke side and lacuna side once".into(),
+        );
+    }
+    let origin = |(f, p): (usize, usize)| rule.subfaces.get(f).and_then(|x| x.origins.get(p));
+    let mut paired = BTreeSet::new();
+    for a in &rule.adjacencies {
+        match (origin(a.first), origin(a.second)) {
+            (
+                Some(&Origin::Spoke {
+                    spoke: j,
+                    inward: true,
+                }),
+                Some(&y),
+            ) if y == spoke(j, false) && paired.insert(j) => {}
+            _ => {
+                return Err(format!(
+                    "adjacency {a:?} does not pair the two sides of a spoke"
+                ))
+            }
+        }
+    }
+    match paired.len() == s {
+        true => Ok(()),
+        false => Err(format!(
+            "{} of {s} spokes paired by adjacencies",
+            paired.len()
+        )),
+    }
+}

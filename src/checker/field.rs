@@ -1,0 +1,237 @@
+//! Polynomials over Q and the real algebraic number ρ: Sturm isolation, and exact zero and sign
+//! tests of elements of Q[x]/(p) evaluated at ρ.
+//!
+//! The checker works modulo the certificate's polynomial `p` without knowing that it is
+//! irreducible: evaluation at ρ is a ring homomorphism Q[x]/(p) → R, so identities proved modulo
+//! `p` hold at ρ. Only *nonvanishing* needs care (a nonzero remainder may still vanish at ρ when
+//! `p` is reducible): [`Root::is_zero`] decides it exactly with `gcd(p, z)`.
+
+use super::{rat, Q};
+use num_bigint::BigInt;
+use num_traits::{One, Signed, Zero};
+
+/// Polynomials over Q, constant term first, without trailing zeros.
+pub(super) type P = Vec<Q>;
+
+pub(super) fn trim(mut p: P) -> P {
+    while p.last().is_some_and(Zero::is_zero) {
+        p.pop();
+    }
+    p
+}
+
+pub(super) fn eval(p: &[Q], x: &Q) -> Q {
+    p.iter().rev().fold(Q::zero(), |acc, c| acc * x + c)
+}
+
+pub(super) fn rem(a: &[Q], d: &[Q]) -> P {
+    let mut r = trim(a.to_vec());
+    let lead = d.last().expect("divisor is nonzero");
+    while r.len() >= d.len() {
+        let q = r.last().expect("nonzero") / lead;
+        let shift = r.len() - d.len();
+        for (i, c) in d.iter().enumerate() {
+            r[shift + i] -= &q * c;
+        }
+        r = trim(r);
+    }
+    r
+}
+
+pub(super) fn mul(a: &[Q], b: &[Q]) -> P {
+    let mut c = vec![Q::zero(); (a.len() + b.len()).saturating_sub(1)];
+    for (i, x) in a.iter().enumerate() {
+        for (j, y) in b.iter().enumerate() {
+            c[i + j] += x * y;
+        }
+    }
+    trim(c)
+}
+
+pub(super) fn add(a: &[Q], b: &[Q]) -> P {
+    let mut c = vec![Q::zero(); a.len().max(b.len())];
+    for (i, x) in a.iter().enumerate() {
+        c[i] += x;
+    }
+    for (i, x) in b.iter().enumerate() {
+        c[i] += x;
+    }
+    trim(c)
+}
+
+pub(super) fn scale(a: &[Q], k: &Q) -> P {
+    trim(a.iter().map(|x| x * k).collect())
+}
+
+/// The monic gcd over Q (Euclid).
+fn gcd(a: &[Q], b: &[Q]) -> P {
+    let (mut a, mut b) = (trim(a.to_vec()), trim(b.to_vec()));
+    while !b.is_empty() {
+        let r = rem(&a, &b);
+        (a, b) = (b, r);
+    }
+    let lead = a.last().cloned().unwrap_or_else(Q::one);
+    a.iter().map(|c| c / &lead).collect()
+}
+
+fn sign_changes(chain: &[P], x: &Q) -> usize {
+    let signs: Vec<bool> = chain
+        .iter()
+        .map(|p| eval(p, x))
+        .filter(|v| !v.is_zero())
+        .map(|v| v.is_positive())
+        .collect();
+    signs.windows(2).filter(|w| w[0] != w[1]).count()
+}
+
+/// A real algebraic number: the only root of the squarefree `p` in `[lo, hi]`.
+pub(super) struct Root {
+    pub(super) p: P,
+    pub(super) lo: Q,
+    pub(super) hi: Q,
+}
+
+impl Root {
+    /// Confirms that `[lo, hi]` isolates exactly one root of `poly` (Sturm, `poly` squarefree);
+    /// `what` names the number in messages.
+    pub(super) fn isolate(poly: &[String], lo: &str, hi: &str, what: &str) -> Result<Root, String> {
+        let p = trim(
+            poly.iter()
+                .map(|c| c.parse::<BigInt>().map(Q::from_integer))
+                .collect::<Result<_, _>>()
+                .map_err(|_| format!("{what}'s polynomial has a non-integer coefficient"))?,
+        );
+        let (lo, hi) = (rat(lo)?, rat(hi)?);
+        if p.len() < 2 {
+            return Err(format!("{what}'s polynomial is constant"));
+        }
+        if p.len() == 2 {
+            let root = -&p[0] / &p[1];
+            return match lo == root && hi == root {
+                true => Ok(Root { p, lo, hi }),
+                false => Err(format!(
+                    "{what}: the interval [{lo}, {hi}] is not the rational root {root}"
+                )),
+            };
+        }
+        if lo >= hi || eval(&p, &lo).is_zero() || eval(&p, &hi).is_zero() {
+            return Err(format!("{what}: [{lo}, {hi}] is empty or ends at a root"));
+        }
+        let derivative = (1..p.len()).map(|i| &p[i] * Q::from_integer(i.into()));
+        let mut chain = vec![p.clone(), trim(derivative.collect())];
+        while chain.last().is_some_and(|q| q.len() > 1) {
+            let r = rem(&chain[chain.len() - 2], &chain[chain.len() - 1]);
+            if r.is_empty() {
+                return Err(format!("{what}'s polynomial is not squarefree"));
+            }
+            chain.push(r.into_iter().map(|c| -c).collect());
+        }
+        match sign_changes(&chain, &lo) - sign_changes(&chain, &hi) {
+            1 => Ok(Root { p, lo, hi }),
+            k => Err(format!(
+                "{what}: [{lo}, {hi}] holds {k} roots of its polynomial, not 1"
+            )),
+        }
+    }
+
+    /// `z` reduced modulo `p`.
+    pub(super) fn reduce(&self, z: &[Q]) -> P {
+        rem(z, &self.p)
+    }
+
+    /// `a·b` in Q[x]/(p).
+    pub(super) fn mul(&self, a: &[Q], b: &[Q]) -> P {
+        rem(&mul(a, b), &self.p)
+    }
+
+    /// The integer polynomial `f` evaluated at the element `y` (Horner in Q[x]/(p)).
+    pub(super) fn eval_at(&self, f: &[BigInt], y: &[Q]) -> P {
+        f.iter().rev().fold(P::new(), |acc, c| {
+            add(&self.mul(&acc, y), &trim(vec![Q::from_integer(c.clone())]))
+        })
+    }
+
+    /// Whether `z(ρ) = 0`, exactly. With `g = gcd(p, z)`: `z(ρ) = 0` iff `g(ρ) = 0`; `g` divides
+    /// the squarefree `p`, whose only root in `[lo, hi]` is ρ (simple) and which does not vanish
+    /// at `lo`, `hi`; so `g` has ρ as a root iff it changes sign on `[lo, hi]`.
+    pub(super) fn is_zero(&self, z: &[Q]) -> bool {
+        let z = self.reduce(z);
+        if z.is_empty() {
+            return true;
+        }
+        if self.p.len() == 2 {
+            return false; // a nonzero constant
+        }
+        let g = gcd(&self.p, &z);
+        g.len() > 1 && (eval(&g, &self.lo) * eval(&g, &self.hi)).is_negative()
+    }
+
+    /// The sign of `z(ρ)` (−1, 0, 1): the exact zero test, then interval Horner evaluation on
+    /// bisections of `[lo, hi]` until the enclosure excludes 0 (it does, `z(ρ)` being nonzero);
+    /// `None` if that takes more than 4000 bisections.
+    pub(super) fn sign(&self, z: &[Q]) -> Option<i32> {
+        if self.is_zero(z) {
+            return Some(0);
+        }
+        let q = self.reduce(z);
+        let (mut lo, mut hi) = (self.lo.clone(), self.hi.clone());
+        let s_lo = eval(&self.p, &lo).is_positive();
+        for _ in 0..4000 {
+            if lo == hi || eval(&self.p, &lo).is_zero() {
+                return Some(if eval(&q, &lo).is_positive() { 1 } else { -1 });
+            }
+            // Interval Horner: [a, b] ∋ q(x) for every x in [lo, hi].
+            let (mut a, mut b) = (Q::zero(), Q::zero());
+            for c in q.iter().rev() {
+                let ps = [&a * &lo, &a * &hi, &b * &lo, &b * &hi];
+                a = ps.iter().min().expect("four").clone() + c;
+                b = ps.iter().max().expect("four").clone() + c;
+            }
+            if a.is_positive() {
+                return Some(1);
+            }
+            if b.is_negative() {
+                return Some(-1);
+            }
+            let mid = (&lo + &hi) / Q::from_integer(2.into());
+            let pm = eval(&self.p, &mid);
+            if pm.is_zero() {
+                (lo, hi) = (mid.clone(), mid);
+            } else if pm.is_positive() == s_lo {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        None
+    }
+
+    /// An element of Q[x]/(p) from certificate coordinates.
+    pub(super) fn element(&self, coords: &[String]) -> Result<P, String> {
+        let p = trim(coords.iter().map(|s| rat(s)).collect::<Result<_, _>>()?);
+        Ok(self.reduce(&p))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn q(n: i64) -> Q {
+        Q::from_integer(n.into())
+    }
+
+    #[test]
+    fn zero_test_works_modulo_a_reducible_polynomial() {
+        // p = (x − 2)(x² − 2) = x³ − 2x² − 2x + 4, ρ = 2 isolated in [3/2, 5/2]
+        // (√2 ≈ 1.414 lies outside). z = x² − 2 is a nonzero remainder vanishing at √2 only,
+        // z = x − 2 vanishes at ρ although x − 2 ∤ … is not a multiple of p.
+        let root = Root::isolate(&["4", "-2", "-2", "1"].map(String::from), "3/2", "5/2", "ρ")
+            .expect("isolates");
+        assert!(!root.is_zero(&[q(-2), q(0), q(1)]));
+        assert!(root.is_zero(&[q(-2), q(1)]));
+        assert_eq!(root.sign(&[q(-2), q(0), q(1)]), Some(1)); // ρ² − 2 = 2
+        assert_eq!(root.sign(&[q(1), q(-1)]), Some(-1)); // 1 − ρ
+        assert!(Root::isolate(&["4", "-2", "-2", "1"].map(String::from), "1", "3", "ρ").is_err());
+    }
+}
