@@ -1,20 +1,8 @@
 //! The `lacuna` binary on fixtures: exit codes, JSON fields scripts rely on, and snapshots of
 //! what users see (checked by eye against the hand derivations in tests/fixtures.rs).
 
-use std::process::Command;
-
-fn lacuna(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_lacuna"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs");
-    (
-        out.status.code().expect("exited, not killed"),
-        String::from_utf8(out.stdout).expect("utf-8 stdout"),
-        String::from_utf8(out.stderr).expect("utf-8 stderr"),
-    )
-}
+mod common;
+use common::lacuna;
 
 fn json(args: &[&str]) -> serde_json::Value {
     let (code, out, err) = lacuna(args);

@@ -1,23 +1,11 @@
 //! Choosing the free parameters from the command line (docs/GEOMETRY.md §1): template files
 //! (`--write-template`, `--template`) and LP goals (`--goal`), on the built-in faces.
 
+mod common;
+use common::lacuna;
 use lacuna::{instantiate, load_input, parse_template, Goal, Instance, InstantiateOptions, Origin};
 use num_rational::BigRational as Q;
 use num_traits::{Signed, ToPrimitive, Zero};
-use std::process::Command;
-
-fn lacuna(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_lacuna"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs");
-    (
-        out.status.code().expect("exited, not killed"),
-        String::from_utf8(out.stdout).expect("utf-8 stdout"),
-        String::from_utf8(out.stderr).expect("utf-8 stderr"),
-    )
-}
 
 fn scratch(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("lacuna-parameters-{}", std::process::id()));

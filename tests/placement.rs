@@ -2,13 +2,14 @@
 // syntax and its coded errors, AutoFrac2D's `p` section, shared edges drawn once, cycles of faces,
 // and the affine invariance of the level-1 cells.
 
+mod common;
+use common::lacuna;
 use lacuna::{
     instantiate, load_input, parse_text, regular_polygon, set_corners, Assembly, CoordKind, Input,
     Instance, InstantiateOptions, Point, Source,
 };
 use num_rational::BigRational;
 use proptest::prelude::*;
-use std::process::Command;
 
 fn src(text: &str) -> Source {
     Source {
@@ -292,19 +293,6 @@ fn the_fixture_p_section_is_read_as_corners() {
     // The file's points 5–8: face 1 is (10,10), (0,10), (0,0), (10,0).
     assert_eq!(a.coords.of(1).unwrap().kind, CoordKind::Corners);
     assert_eq!(a.coords.of(1).unwrap().points[3], [q(10, 1), q(0, 1)]);
-}
-
-fn lacuna(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_lacuna"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs");
-    (
-        out.status.code().expect("exited"),
-        String::from_utf8(out.stdout).unwrap(),
-        String::from_utf8(out.stderr).unwrap(),
-    )
 }
 
 #[test]
