@@ -1,6 +1,7 @@
 //! Every library fixture against the structure derived by hand in its header (and repeated
 //! here, with the derivation). Assertion messages name the fixture.
 
+mod common;
 use lacuna::{close_or_error, counts, load_input, Face, Limits, TypeSet};
 
 fn closed(name: &str) -> TypeSet {
@@ -9,6 +10,7 @@ fn closed(name: &str) -> TypeSet {
         .unwrap_or_else(|e| panic!("fixture {name}: {}", e.render()));
     ts.verify()
         .unwrap_or_else(|e| panic!("fixture {name}: {e}"));
+    common::assert_certified(name, &ts);
     ts
 }
 

@@ -1,5 +1,6 @@
 //! The limit ratio R on fixtures, against hand derivations written here.
 
+mod common;
 use lacuna::{close_or_error, counts, load_input, ratio_of, Limits, TypeSet};
 use num_bigint::BigInt;
 use num_rational::BigRational;
@@ -7,7 +8,9 @@ use num_traits::Signed;
 
 fn closed(name: &str) -> TypeSet {
     let input = load_input(name).unwrap_or_else(|e| panic!("fixture {name}: {}", e.render()));
-    close_or_error(&input.faces(), &Limits::default()).unwrap()
+    let ts = close_or_error(&input.faces(), &Limits::default()).unwrap();
+    common::assert_certified(name, &ts);
+    ts
 }
 
 /// A decimal string as an exact rational.

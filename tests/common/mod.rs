@@ -1,4 +1,5 @@
-//! Shared by the integration tests that run the `lacuna` binary.
+//! Shared by the integration tests: running the `lacuna` binary, round-tripping certificates.
+#![allow(dead_code)] // each test crate uses a part of it
 
 use std::process::Command;
 
@@ -14,4 +15,19 @@ pub fn lacuna(args: &[&str]) -> (i32, String, String) {
         String::from_utf8(out.stdout).expect("utf-8 stdout"),
         String::from_utf8(out.stderr).expect("utf-8 stderr"),
     )
+}
+
+/// STYLE rule 5: a pipeline test also emits the certificate of what it computed (closure,
+/// solution space of the generated system, limit ratio), round-trips it through JSON and has the
+/// independent checker prove every step.
+pub fn assert_certified(name: &str, ts: &lacuna::TypeSet) {
+    let cert = lacuna::certify::certificate_for(name, ts, lacuna::GenOptions::default())
+        .unwrap_or_else(|e| panic!("{name}: no certificate: {e}"));
+    let json = cert.to_json();
+    let report = lacuna::checker::check_json(&json);
+    assert!(
+        report.all_proved(),
+        "{name}: certificate not proved:\n{}",
+        report.to_text()
+    );
 }
