@@ -66,6 +66,22 @@ pub enum Error {
         /// The algorithm.
         algorithm: String,
     },
+    /// Flags that do not fit the input or each other (nothing to write, an option that needs an
+    /// automaton, an operator that is not there, …).
+    #[error("{0}")]
+    Usage(String),
+    /// A flag's value outside the range the command accepts (not a configurable limit).
+    #[error("{flag} {value}: {what} must be {range}")]
+    OutOfRange {
+        /// The flag.
+        flag: &'static str,
+        /// The value given.
+        value: String,
+        /// What the flag sets.
+        what: &'static str,
+        /// The accepted values, in words.
+        range: String,
+    },
     /// A configurable limit was exceeded before the work started.
     #[error("{what} is {value}, above the limit {limit} (raise it with {flag})")]
     Limit {
@@ -165,6 +181,8 @@ impl Error {
             Error::Syntax(d) => d.code,
             Error::NoSpoke { .. } => "E0401",
             Error::Limit { .. } => "E0501",
+            Error::OutOfRange { .. } => "E0503",
+            Error::Usage(_) => "E0504",
             Error::Io { .. } => "E0601",
             Error::NotText { .. } => "E0602",
             Error::Analysis(_) => "E0801",
@@ -178,6 +196,8 @@ impl Error {
             Error::Syntax(d) => d.span.as_ref(),
             Error::NoSpoke { .. }
             | Error::Limit { .. }
+            | Error::OutOfRange { .. }
+            | Error::Usage(_)
             | Error::Io { .. }
             | Error::NotText { .. }
             | Error::Analysis(_)

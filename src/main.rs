@@ -69,7 +69,7 @@ fn curvature_estimate(
 ) -> Result<lacuna::CurvatureEstimate, Error> {
     use num_traits::ToPrimitive;
     let Some(op) = a.operators.iter().find(|o| o.name == name) else {
-        return Err(Error::Analysis(format!(
+        return Err(Error::Usage(format!(
             "no operator `{name}` in the automaton"
         )));
     };
@@ -81,14 +81,14 @@ fn curvature_estimate(
         })
         .collect();
     let Some(index) = curve.iter().position(|o| o.name == name) else {
-        return Err(Error::Analysis(format!(
+        return Err(Error::Usage(format!(
             "`{name}` is not a known subdivision operator of its state onto itself"
         )));
     };
     let ops: Vec<lacuna::Matrix> = curve.iter().filter_map(|o| o.value.clone()).collect();
     let m = lacuna::parse_matrix_arg(points)?;
     if m.cols != 2 {
-        return Err(Error::Analysis(format!(
+        return Err(Error::Usage(format!(
             "--points needs rows `x y`, found {} columns",
             m.cols
         )));
@@ -102,7 +102,7 @@ fn curvature_estimate(
         })
         .collect();
     if pts.iter().flatten().any(|v| !v.is_finite()) {
-        return Err(Error::Analysis("--points must be finite numbers".into()));
+        return Err(Error::Usage("--points must be finite numbers".into()));
     }
     lacuna::estimate_curvature(&ops, index, &pts, level.min(16))
 }
@@ -231,14 +231,14 @@ fn choice_text(geo: &GeoArgs, inst: &lacuna::Instance) -> String {
 }
 
 /// A raster size must be a power of two from 16 up to `max`.
-fn check_raster(raster: usize, max: usize) -> Result<(), Error> {
+fn check_raster(flag: &'static str, raster: usize, max: usize) -> Result<(), Error> {
     if !(16..=max).contains(&raster) || !raster.is_power_of_two() {
-        return Err(Error::limit(
-            "the raster size (a power of two from 16)",
-            raster,
-            max,
-            "--raster",
-        ));
+        return Err(Error::OutOfRange {
+            flag,
+            value: raster.to_string(),
+            what: "the raster size",
+            range: format!("a power of two from 16 to {max}"),
+        });
     }
     Ok(())
 }
@@ -247,12 +247,15 @@ fn check_raster(raster: usize, max: usize) -> Result<(), Error> {
 /// block).
 fn check_density_grid(grid: usize, min: usize) -> Result<(), Error> {
     if !(min..=1024).contains(&grid) {
-        return Err(Error::limit(
-            "the density grid (blocks per side)",
-            grid,
-            1024,
-            "--density-grid",
-        ));
+        return Err(Error::OutOfRange {
+            flag: "--density-grid",
+            value: grid.to_string(),
+            what: "the number of blocks per side",
+            range: format!(
+                "from {min} to 1024{}",
+                if min == 0 { " (0: no map)" } else { "" }
+            ),
+        });
     }
     Ok(())
 }
@@ -426,9 +429,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             let estimate = match (&curvature, &points, &loaded) {
                 (Some(name), Some(pts), Some(a)) => Some(curvature_estimate(a, name, pts, level)?),
                 (Some(_), _, None) => {
-                    return Err(Error::Analysis(
-                        "--curvature needs an automaton file".into(),
-                    ));
+                    return Err(Error::Usage("--curvature needs an automaton file".into()));
                 }
                 _ => None,
             };
@@ -486,7 +487,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                         Some(lacuna::check_design(&automaton, name, &t)?)
                     }
                     lacuna::Loaded::Faces(_) => {
-                        return Err(Error::Analysis(format!("`{file}` is not an automaton")))
+                        return Err(Error::Usage(format!("`{file}` is not an automaton")))
                     }
                 },
                 _ => None,
@@ -531,17 +532,22 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 && density.is_none()
                 && write_template.is_none()
             {
-                return Err(Error::Analysis(
+                return Err(Error::Usage(
                     "nothing to write: give --svg, --json-out, --obj, --stl, --png, --density or --write-template"
                         .into(),
                 ));
             }
             check_density_grid(density_grid, 1)?;
             if !(1..=16_384).contains(&size) {
-                return Err(Error::limit("the PNG size", size, 16_384, "--size"));
+                return Err(Error::OutOfRange {
+                    flag: "--size",
+                    value: size.to_string(),
+                    what: "the PNG size in pixels",
+                    range: "from 1 to 16384".into(),
+                });
             }
             if !(thickness.is_finite() && thickness > 0.0) {
-                return Err(Error::Analysis(format!(
+                return Err(Error::Usage(format!(
                     "--thickness {thickness} must be a positive number"
                 )));
             }
@@ -593,7 +599,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             out: path,
             raster,
         } => {
-            check_raster(raster, 8192)?;
+            check_raster("--raster", raster, 8192)?;
             // The pictures embed every cell of every level as SVG: keep them small.
             let inst = instance(&geo, &limits, 200_000)?;
             let input = load_input(&geo.input)?;
@@ -626,12 +632,15 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             density_grid,
             json,
         } => {
-            check_raster(raster, 16_384)?;
-            check_raster(max_raster, 16_384)?;
+            check_raster("--raster", raster, 16_384)?;
+            check_raster("--max-raster", max_raster, 16_384)?;
             if max_raster < raster {
-                return Err(Error::Analysis(format!(
-                    "--max-raster {max_raster} is below --raster {raster}"
-                )));
+                return Err(Error::OutOfRange {
+                    flag: "--max-raster",
+                    value: max_raster.to_string(),
+                    what: "the finest raster",
+                    range: format!("at least --raster ({raster})"),
+                });
             }
             check_density_grid(density_grid, 0)?;
             let inst = instance(&geo, &limits, 20_000_000)?;

@@ -340,7 +340,7 @@ pub fn measure(inst: &Instance, opts: &MeasureOptions) -> Result<MeasureReport, 
         let hole_px = smallest[i].map(|h| h * r.scale);
         if wanted > size {
             failures.push(format!(
-                "E1011 level {i}: the smallest hole is {:.2} pixels wide at raster {size}, below the resolution of {MIN_HOLE_WIDTH} pixels (it needs a raster of {}): raise --max-raster or lower the level",
+                "E1011 level {i}: the smallest hole is {:.2} pixels wide at raster {size}, below the resolution of {MIN_HOLE_WIDTH} pixels (it needs a raster of {}): raise --max-raster (at most 16384) or lower the level",
                 hole_px.unwrap_or(0.0),
                 if wanted == usize::MAX { "more than 2^40".to_string() } else { wanted.to_string() }
             ));

@@ -118,17 +118,6 @@ fn absurd_levels_and_digits_are_refused_before_the_work() {
             "--svg",
             "target/hostile.svg",
         ],
-        vec![
-            "render",
-            "F0",
-            "--level",
-            "2",
-            "--png",
-            "target/hostile.png",
-            "--size",
-            "100000",
-        ],
-        vec!["measure", "F0", "--level", "2", "--raster", "1000000"],
     ] {
         let (code, err) = run(&args);
         assert_eq!(code, 2, "{args:?}: {err}");
@@ -137,5 +126,56 @@ fn absurd_levels_and_digits_are_refused_before_the_work() {
             (err.contains("E0501") || err.contains("E1003")) && err.contains("(raise it with --"),
             "{args:?}: {err}"
         );
+    }
+    // Values outside a flag's fixed range (E0503, naming the flag and the range) and flags that
+    // do not fit together (E0504): not limits to raise.
+    let png = ["--png", "target/hostile.png"];
+    for (args, code, flag) in [
+        (
+            vec!["render", "F0", "--size", "100000"],
+            "E0503",
+            "--size 100000",
+        ),
+        (vec!["render", "F0", "--size", "0"], "E0503", "--size 0"),
+        (
+            vec!["measure", "F0", "--raster", "1000000"],
+            "E0503",
+            "--raster 1000000",
+        ),
+        (
+            vec!["measure", "F0", "--raster", "100"],
+            "E0503",
+            "--raster 100",
+        ),
+        (
+            vec!["measure", "F0", "--raster", "1024", "--max-raster", "512"],
+            "E0503",
+            "--max-raster 512",
+        ),
+        (
+            vec![
+                "render",
+                "F0",
+                "--density-grid",
+                "0",
+                "--density",
+                "target/h.png",
+            ],
+            "E0503",
+            "--density-grid 0",
+        ),
+        (vec!["render", "F0"], "E0504", "nothing to write"),
+    ] {
+        let mut args = args;
+        if args[0] == "render" && args.contains(&"--size") {
+            args.extend(png);
+        }
+        let (status, err) = run(&args);
+        assert_eq!(status, 2, "{args:?}: {err}");
+        assert!(
+            err.contains(&format!("error[{code}]")) && err.contains(flag),
+            "{args:?}: {err}"
+        );
+        assert!(!err.contains("raise it with"), "{args:?}: {err}");
     }
 }
