@@ -758,8 +758,13 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                         .collect::<Vec<_>>(),
                 );
             } else {
+                let width = names
+                    .iter()
+                    .map(|(n, _)| n.chars().count())
+                    .max()
+                    .unwrap_or(0);
                 for (n, d) in names {
-                    out(&format!("{n:<20} {d}\n"));
+                    out(&format!("{n:<width$}  {d}\n"));
                 }
             }
             Ok(ExitCode::SUCCESS)
