@@ -15,7 +15,7 @@ use serde::{Deserialize, Serialize};
 pub const FORMAT: &str = "lacuna-certificate";
 
 /// The format version this code writes and checks.
-pub const VERSION: u32 = 2;
+pub const VERSION: u32 = 3;
 
 /// A certificate: what was given and the steps that prove the verdicts.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -232,6 +232,22 @@ pub struct System {
     pub unknowns: usize,
     /// The equations.
     pub rows: Vec<Row>,
+    /// How the system is generated from the closure step (SPEC §6), for systems of face
+    /// closures; the checker rebuilds the system from the closure and requires the rows above to
+    /// be exactly the rebuilt ones. `None` for a hand-written automaton: the system as given.
+    pub recipe: Option<Recipe>,
+}
+
+/// The recipe of a system generated from a closure (SPEC §6).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Recipe {
+    /// Bézier degree q of the `Bn` edges (m = q + 1 control points).
+    pub degree: usize,
+    /// Cantor layout: the length of a gap relative to the length of a piece (a rational > 0).
+    pub cantor_gap: String,
+    /// The name of every unknown, in column order: entry `[r][c]` of the sub-face operator `k`
+    /// of face type `t` is `T<t>.T<k>[r][c]`.
+    pub unknowns: Vec<String>,
 }
 
 /// The solution space of a consistent system.
