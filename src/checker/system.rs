@@ -65,8 +65,7 @@ fn mul(a: &Mat, b: &Mat) -> Mat {
 /// The de Casteljau restriction of a degree-q Bézier curve to `[a, b]`: column i is the blossom
 /// `f(a, …, a, b, …, b)` (`q − i` times a, i times b) as weights of the q + 1 control points.
 fn restriction(q: usize, a: &Q, b: &Q) -> Mat {
-    let mut out = zeros(q + 1, q + 1);
-    for i in 0..=q {
+    let column = |i: usize| -> Vec<Q> {
         let mut pts: Mat = identity(q + 1);
         for step in 0..q {
             let u = if step < q - i { a } else { b };
@@ -81,11 +80,12 @@ fn restriction(q: usize, a: &Q, b: &Q) -> Mat {
                 })
                 .collect();
         }
-        for (k, w) in pts[0].iter().enumerate() {
-            out[k][i] = w.clone();
-        }
-    }
-    out
+        pts.swap_remove(0)
+    };
+    let columns: Mat = (0..=q).map(column).collect();
+    (0..=q)
+        .map(|k| columns.iter().map(|c| c[k].clone()).collect())
+        .collect()
 }
 
 /// One side of a constraint: a known matrix, or `X · right` with X the unknown operator whose
@@ -418,5 +418,37 @@ pub(super) fn tie(
                 recipe.cantor_gap
             ))
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn q(n: i64, d: i64) -> Q {
+        Q::new(n.into(), d.into())
+    }
+
+    #[test]
+    fn restriction_and_cantor_pieces_by_hand() {
+        // [0, 1/2] of a quadratic: P0, (P0 + P1)/2, (P0 + 2·P1 + P2)/4 as columns.
+        let want = [[q(1, 1), q(1, 2), q(1, 4)], [q(0, 1), q(1, 2), q(1, 2)]];
+        let got = restriction(2, &q(0, 1), &q(1, 2));
+        assert_eq!(got[..2], want.map(|r| r.to_vec()));
+        assert_eq!(got[2], vec![q(0, 1), q(0, 1), q(1, 4)]);
+        // C2 with equal gaps: pieces [0, 1/3] and [2/3, 1]; the second has end points
+        // (1/3·A + 2/3·B) and B.
+        let e = Edge {
+            kind: Kind::C,
+            n: 2,
+            delay: 1,
+        };
+        let b = Builder {
+            q: 2,
+            gap: q(1, 1),
+            rows: Vec::new(),
+        };
+        let one = vec![vec![q(1, 3), q(0, 1)], vec![q(2, 3), q(1, 1)]];
+        assert_eq!(b.subs(&e)[1], one);
     }
 }
