@@ -15,7 +15,7 @@ use serde::{Deserialize, Serialize};
 pub const FORMAT: &str = "lacuna-certificate";
 
 /// The format version this code writes and checks.
-pub const VERSION: u32 = 2;
+pub const VERSION: u32 = 3;
 
 /// A certificate: what was given and the steps that prove the verdicts.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -45,14 +45,18 @@ pub enum Step {
     /// once, each spoke once inward and once outward and paired by an adjacency, one lacuna side
     /// per sub-face) and the contribution of SPEC §5.
     Closure(ClosureStep),
-    /// **A consistent linear system and its solution space.** Justification: the particular
+    /// **A consistent linear system and its solution space.** With a recipe, the checker first
+    /// rebuilds the system of SPEC §6 from the proved closure step and requires the rows to be
+    /// exactly the rebuilt ones (unknowns matched by name); without one, the system as given.
+    /// Justification: the particular
     /// solution satisfies every row; every basis vector satisfies the homogeneous rows and is 1 at
     /// its own free unknown and 0 at the others (so the basis is independent: nullity ≥ dof); the
     /// pivot minor is nonsingular (elimination modulo a prime; a nonzero determinant mod p is
     /// nonzero over Q: rank ≥ |pivots|); and |pivots| + dof = unknowns. Hence rank = |pivots| and
     /// the basis spans the kernel: the solution set is exactly `particular + span(basis)`.
     SolutionSpace(SolutionStep),
-    /// **An inconsistent linear system.** Justification: `Σ m_i·row_i` has every coefficient 0
+    /// **An inconsistent linear system** (tied to the closure by its recipe, as above).
+    /// Justification: `Σ m_i·row_i` has every coefficient 0
     /// and right-hand side `c ≠ 0`; any solution would satisfy `0 = c`.
     Inconsistent(ConflictStep),
     /// **The limit ratio R** (every case: shared radii, periodic classes, ρ = 1). Justification:
@@ -232,6 +236,22 @@ pub struct System {
     pub unknowns: usize,
     /// The equations.
     pub rows: Vec<Row>,
+    /// How the system is generated from the closure step (SPEC §6), for systems of face
+    /// closures; the checker rebuilds the system from the closure and requires the rows above to
+    /// be exactly the rebuilt ones. `None` for a hand-written automaton: the system as given.
+    pub recipe: Option<Recipe>,
+}
+
+/// The recipe of a system generated from a closure (SPEC §6).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Recipe {
+    /// Bézier degree q of the `Bn` edges (m = q + 1 control points).
+    pub degree: usize,
+    /// Cantor layout: the length of a gap relative to the length of a piece (a rational > 0).
+    pub cantor_gap: String,
+    /// The name of every unknown, in column order: entry `[r][c]` of the sub-face operator `k`
+    /// of face type `t` is `T<t>.T<k>[r][c]`.
+    pub unknowns: Vec<String>,
 }
 
 /// The solution space of a consistent system.

@@ -9,8 +9,8 @@
 
 use crate::certificate::{
     Adjacency, Algebraic, Certificate, ClassClaim, ClosureStep, ConflictStep, Edge, Face, Kind,
-    Origin, Params, Pattern, PointClaim, RadiusWitness, RatioStep, Row, SolutionStep, SpokeItem,
-    Step, SubFace, System, TypeRule,
+    Origin, Params, Pattern, PointClaim, RadiusWitness, RatioStep, Recipe, Row, SolutionStep,
+    SpokeItem, Step, SubFace, System, TypeRule,
 };
 use num_rational::BigRational;
 use num_traits::{One, Zero};
@@ -51,10 +51,25 @@ pub fn certificate_for(
         "the constraints of the automaton generated from the closure (SPEC §6, Bézier degree {}, Cantor gap/piece ratio {})",
         opts.degree, opts.cantor_gap
     );
+    let recipe = Recipe {
+        degree: opts.degree.max(1),
+        cantor_gap: opts.cantor_gap.to_string(),
+        unknowns: Vec::new(),
+    };
     let generated = lacuna::automaton_of(ts, opts);
     let (_, lin, solution) = lacuna::solve_automaton(&generated.automaton)?;
-    cert.steps
-        .push(solution_step(&source, &lin.system, &solution));
+    let recipe = Recipe {
+        unknowns: lin
+            .unknown_entries
+            .iter()
+            .map(|&e| generated.automaton.entry_name(e))
+            .collect(),
+        ..recipe
+    };
+    cert.steps.push(step_of_system(
+        system(&source, &lin.system, Some(recipe)),
+        &solution,
+    ));
     let matrix = ts.matrix();
     let c: Vec<u64> = ts.types.iter().map(|t| t.contribution_halves()).collect();
     let mut start: Vec<(usize, u64)> = Vec::new();
@@ -203,8 +218,9 @@ fn terms(v: &[(usize, BigRational)]) -> Vec<(usize, String)> {
     v.iter().map(|(i, c)| (*i, c.to_string())).collect()
 }
 
-fn system(source: &str, sys: &lacuna::LinearSystem) -> System {
+fn system(source: &str, sys: &lacuna::LinearSystem, recipe: Option<Recipe>) -> System {
     System {
+        recipe,
         source: source.to_string(),
         unknowns: sys.unknowns,
         rows: sys
@@ -218,15 +234,20 @@ fn system(source: &str, sys: &lacuna::LinearSystem) -> System {
     }
 }
 
-/// The step certifying lacuna's solution of `sys`: its solution space, or its conflict.
+/// The step certifying lacuna's solution of `sys` (a system as given, without recipe): its
+/// solution space, or its conflict.
 pub fn solution_step(
     source: &str,
     sys: &lacuna::LinearSystem,
     solution: &lacuna::Solution,
 ) -> Step {
+    step_of_system(system(source, sys, None), solution)
+}
+
+fn step_of_system(system: System, solution: &lacuna::Solution) -> Step {
     match solution {
         lacuna::Solution::Consistent(s) => Step::SolutionSpace(SolutionStep {
-            system: system(source, sys),
+            system,
             particular: s
                 .particular
                 .iter()
@@ -241,7 +262,7 @@ pub fn solution_step(
             dof: s.dof(),
         }),
         lacuna::Solution::Inconsistent(c) => Step::Inconsistent(ConflictStep {
-            system: system(source, sys),
+            system,
             multipliers: terms(&c.multipliers),
             constant: c.constant.to_string(),
         }),

@@ -313,6 +313,141 @@ fn mutated_solution_spaces_are_rejected() {
     assert_rejected("a free unknown as pivot", &c, "solution-space");
 }
 
+/// Asserts that the solution-space step fails because its system is not the closure's.
+fn assert_not_the_closures(what: &str, cert: &Certificate) {
+    assert_rejected(what, cert, "solution-space");
+    let report = check(cert);
+    let step = report
+        .step("solution-space")
+        .expect("a solution-space step");
+    assert!(
+        step.message
+            .contains("the system does not match the closure"),
+        "{what}: {}",
+        step.message
+    );
+}
+
+fn solution_of(cert: &mut Certificate) -> &mut lacuna::certificate::SolutionStep {
+    let found = cert.steps.iter_mut().find_map(|s| match s {
+        Step::SolutionSpace(s) => Some(s),
+        _ => None,
+    });
+    found.expect("a solution-space step")
+}
+
+/// The certificate's system as lacuna's `LinearSystem`.
+fn linear_system(s: &lacuna::certificate::System) -> lacuna::LinearSystem {
+    let q = |x: &str| x.parse::<BigRational>().expect("rational");
+    lacuna::LinearSystem {
+        unknowns: s.unknowns,
+        rows: s
+            .rows
+            .iter()
+            .map(|r| lacuna::Equation {
+                terms: r.terms.iter().map(|(v, c)| (*v, q(c))).collect(),
+                rhs: q(&r.rhs),
+            })
+            .collect(),
+    }
+}
+
+#[test]
+fn systems_that_are_not_the_closures_are_rejected() {
+    let base = face_certificate("F0");
+    let edit = |f: &dyn Fn(&mut lacuna::certificate::SolutionStep)| {
+        let mut cert = base.clone();
+        f(solution_of(&mut cert));
+        cert
+    };
+    let one = BigRational::from_integer(1.into());
+    // One coefficient changed (the first row with a term).
+    let c = edit(&|s| {
+        let row = s.system.rows.iter_mut().find(|r| !r.terms.is_empty());
+        let term = &mut row.expect("a row with a term").terms[0].1;
+        *term = (term.parse::<BigRational>().unwrap() + &one).to_string();
+    });
+    assert_not_the_closures("change one coefficient", &c);
+    // One row dropped: the last one that is not a pivot row, so the rest of the step (particular,
+    // basis, rank witness) stays valid for the smaller system and only the tie can object.
+    let c = edit(&|s| {
+        let pivot_rows: Vec<usize> = s.pivots.iter().map(|p| p.0).collect();
+        let last = (0..s.system.rows.len())
+            .rev()
+            .find(|i| !pivot_rows.contains(i))
+            .expect("a non-pivot row");
+        s.system.rows.remove(last);
+    });
+    assert_not_the_closures("drop a row", &c);
+    // One row added that is implied (the sum of rows 0 and 1): the old checks all hold.
+    let c = edit(&|s| {
+        let (a, b) = (s.system.rows[0].clone(), s.system.rows[1].clone());
+        let q = |x: &str| x.parse::<BigRational>().unwrap();
+        s.system.rows.push(lacuna::certificate::Row {
+            terms: a.terms.into_iter().chain(b.terms).collect(),
+            rhs: (q(&a.rhs) + q(&b.rhs)).to_string(),
+        });
+    });
+    assert_not_the_closures("add an implied row", &c);
+    // One row added that is not implied (the first free unknown is 0), with the solution space
+    // recomputed so that the step is consistent on its own: without the closure it is proved
+    // ("system as given"), with it it is rejected.
+    let mut c = base.clone();
+    let s = solution_of(&mut c);
+    let mut sys = linear_system(&s.system);
+    sys.rows.push(lacuna::Equation {
+        terms: vec![(s.free[0], one.clone())],
+        rhs: BigRational::from_integer(0.into()),
+    });
+    let solution = lacuna::solve(&sys);
+    let Step::SolutionSpace(mut forged) = lacuna::certify::solution_step("forged", &sys, &solution)
+    else {
+        panic!("the forged system is consistent");
+    };
+    assert_eq!(forged.dof + 1, s.dof, "the added row is not implied");
+    forged.system.recipe = s.system.recipe.clone();
+    *s = forged;
+    assert_not_the_closures("add a row that is not implied", &c);
+    let mut alone = c.clone();
+    alone.steps.retain(|s| s.name() == "solution-space");
+    solution_of(&mut alone).system.recipe = None;
+    let report = check(&alone);
+    assert!(report.all_proved(), "{}", report.to_text());
+    assert!(report.to_text().contains("system as given"));
+    // A wrong recipe: another Bézier degree, another Cantor ratio, permuted unknown names.
+    let c = edit(&|s| s.system.recipe.as_mut().expect("a recipe").degree = 3);
+    assert_not_the_closures("degree 3", &c);
+    let c = edit(&|s| {
+        s.system
+            .recipe
+            .as_mut()
+            .expect("a recipe")
+            .unknowns
+            .swap(0, 1)
+    });
+    assert_not_the_closures("two unknown names swapped", &c);
+    let c = edit(&|s| {
+        s.system
+            .recipe
+            .as_mut()
+            .expect("a recipe")
+            .unknowns
+            .reverse()
+    });
+    assert_not_the_closures("unknown names reversed", &c);
+    let mut c = face_certificate("triangle-C2");
+    solution_of(&mut c)
+        .system
+        .recipe
+        .as_mut()
+        .expect("a recipe")
+        .cantor_gap = "1/2".into();
+    assert_not_the_closures("Cantor gap 1/2 instead of 1", &c);
+    // A face certificate whose system has no recipe is not tied to its closure: rejected.
+    let c = edit(&|s| s.system.recipe = None);
+    assert_rejected("no recipe after a closure", &c, "solution-space");
+}
+
 #[test]
 fn inconsistent_systems_are_certified_and_mutations_rejected() {
     // x0 + x1 = 1, x1 + x2 = 1, x0 − x2 = 1 (the first minus the second gives x0 − x2 = 0), x3 = 5.
@@ -600,20 +735,24 @@ fn wrong_versions_are_rejected() {
     cert.version = 99;
     assert_rejected("version 99", &cert, "header");
     assert!(check_json("{").failed());
-    // A version-1 file (its limit-ratio step had another form) is refused by its version, not by
-    // a parse error.
-    let json = face_certificate("F0")
-        .to_json()
-        .replacen("\"version\":2", "\"version\":1", 1);
-    let report = check_json(&json);
-    assert!(report.failed(), "{}", report.to_text());
-    assert!(
-        report.steps[0]
-            .message
-            .contains("unknown certificate version 1"),
-        "{}",
-        report.to_text()
-    );
+    // Files of versions 1 and 2 (other step forms: version 2 had no recipe) are refused by their
+    // version, not by a parse error.
+    for old in ["1", "2"] {
+        let json = face_certificate("F0").to_json().replacen(
+            "\"version\":3",
+            &format!("\"version\":{old}"),
+            1,
+        );
+        let report = check_json(&json);
+        assert!(report.failed(), "{}", report.to_text());
+        assert!(
+            report.steps[0]
+                .message
+                .contains(&format!("unknown certificate version {old}")),
+            "{}",
+            report.to_text()
+        );
+    }
 }
 
 fn edge() -> impl Strategy<Value = EdgeType> {

@@ -1,8 +1,9 @@
 //! The linear-system steps: a solution space (particular solution, kernel basis, a pivot minor
 //! shown nonsingular modulo a prime) and an inconsistency (a combination giving `0 = c ≠ 0`).
 
+use super::system::tie;
 use super::{rat, Checked, Equation, Q};
-use crate::certificate::{ConflictStep, Row, SolutionStep};
+use crate::certificate::{ClosureStep, ConflictStep, Row, SolutionStep};
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_traits::{One, ToPrimitive, Zero};
@@ -40,9 +41,11 @@ fn dot(terms: &[(usize, Q)], x: &BTreeMap<usize, Q>) -> Q {
         .sum()
 }
 
-pub(super) fn check_solution(s: &SolutionStep) -> Checked {
+/// A solution space; with a recipe, of the system rebuilt from the proved closure step.
+pub(super) fn check_solution(s: &SolutionStep, closure: Option<&ClosureStep>) -> Checked {
     let n = s.system.unknowns;
     let rows = parse_rows(&s.system.rows, n)?;
+    let system = tie(&s.system, &rows, closure)?;
     let part = sparse(&s.particular, n, "particular solution")?;
     if let Some(i) = rows.iter().position(|(t, rhs)| dot(t, &part) != *rhs) {
         return Err(format!("the particular solution fails row {i}"));
@@ -90,9 +93,8 @@ pub(super) fn check_solution(s: &SolutionStep) -> Checked {
     }
     let p = nonsingular_minor(&rows, &s.pivots, n)?;
     Ok(format!(
-        "{} rows, {n} unknowns: rank {} (pivot minor nonsingular mod {p}), {dof} degrees of \
-         freedom; the solution set is exactly particular + span(basis)",
-        rows.len(),
+        "{system}; rank {} (pivot minor nonsingular mod {p}), {dof} degrees of freedom; the \
+         solution set is exactly particular + span(basis)",
         s.rank
     ))
 }
@@ -165,8 +167,10 @@ fn nonsingular_minor(
     Err(format!("the pivot minor is not shown nonsingular: {why}"))
 }
 
-pub(super) fn check_conflict(c: &ConflictStep) -> Checked {
+/// An inconsistency; with a recipe, of the system rebuilt from the proved closure step.
+pub(super) fn check_conflict(c: &ConflictStep, closure: Option<&ClosureStep>) -> Checked {
     let rows = parse_rows(&c.system.rows, c.system.unknowns)?;
+    let system = tie(&c.system, &rows, closure)?;
     let mut sum: BTreeMap<usize, Q> = BTreeMap::new();
     let mut rhs = Q::zero();
     let mut used = BTreeSet::new();
@@ -190,8 +194,7 @@ pub(super) fn check_conflict(c: &ConflictStep) -> Checked {
         ));
     }
     Ok(format!(
-        "{} of {} rows combine to 0 = {rhs}: no solution",
-        c.multipliers.len(),
-        rows.len()
+        "{system}; {} of them combine to 0 = {rhs}: no solution",
+        c.multipliers.len()
     ))
 }

@@ -5,6 +5,7 @@
 //! lacuna. Everything it needs is re-implemented here, small, one file per concern:
 //!
 //! - `closure.rs`: the subdivision of a face (SPEC §3), incidence identities, contributions;
+//! - `system.rs`: the constraint system of a closure (SPEC §6) rebuilt from the closure step;
 //! - `linear.rs`: exact linear checks and elimination modulo primes;
 //! - `field.rs`: polynomials over Q, Sturm isolation, exact zero and sign tests in Q[x]/(p);
 //! - `ratio.rs`: strongly connected classes and periods, Perron–Frobenius witnesses, the verdict;
@@ -18,6 +19,7 @@ mod field;
 mod linear;
 mod ratio;
 mod series;
+mod system;
 
 use self::closure::{check_closure, Substitution};
 use self::linear::{check_conflict, check_solution};
@@ -159,18 +161,20 @@ pub fn check(cert: &Certificate) -> CheckReport {
     }
     let mut steps = Vec::new();
     let mut closure: Option<Substitution> = None;
+    let mut proved_closure = None;
     for (i, step) in cert.steps.iter().enumerate() {
         let name = step.name();
         let (outcome, result) = match step {
             Step::Closure(c) => match check_closure(c) {
                 Ok((msg, sub)) => {
                     closure = Some(sub);
+                    proved_closure = Some(c);
                     (Outcome::Proved, Ok(msg))
                 }
                 Err(e) => (Outcome::Failed, Err(e)),
             },
-            Step::SolutionSpace(s) => (Outcome::Proved, check_solution(s)),
-            Step::Inconsistent(c) => (Outcome::Proved, check_conflict(c)),
+            Step::SolutionSpace(s) => (Outcome::Proved, check_solution(s, proved_closure)),
+            Step::Inconsistent(c) => (Outcome::Proved, check_conflict(c, proved_closure)),
             Step::LimitRatio(r) => (Outcome::Proved, check_ratio(r, closure.as_ref())),
         };
         let (outcome, detail) = match result {
