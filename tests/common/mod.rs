@@ -21,13 +21,68 @@ pub fn lacuna(args: &[&str]) -> (i32, String, String) {
 /// solution space of the generated system, limit ratio), round-trips it through JSON and has the
 /// independent checker prove every step.
 pub fn assert_certified(name: &str, ts: &lacuna::TypeSet) {
-    let cert = lacuna::certify::certificate_for(name, ts, lacuna::GenOptions::default())
+    let cert = certificate_for(name, ts, GenOptions::default())
         .unwrap_or_else(|e| panic!("{name}: no certificate: {e}"));
+    assert_proved(name, &cert);
+}
+
+// ---- certificates ----
+
+use lacuna::certificate::{Certificate, Step};
+use lacuna::certify::{certificate_for, certificate_for_automaton};
+use lacuna::checker::{check, check_json, Outcome};
+use lacuna::{GenOptions, Limits};
+
+pub fn face_certificate(name: &str) -> Certificate {
+    let input = lacuna::load_input(name).unwrap_or_else(|e| panic!("{name}: {}", e.render()));
+    let ts = lacuna::close_or_error(&input.faces(), &Limits::default()).expect("closes");
+    certificate_for(name, &ts, GenOptions::default()).expect("certifiable")
+}
+
+pub fn automaton_certificate(name: &str) -> Certificate {
+    match lacuna::load_any(name).expect("loads") {
+        lacuna::Loaded::Automaton { automaton, .. } => {
+            certificate_for_automaton(name, &automaton).expect("certifiable")
+        }
+        lacuna::Loaded::Faces(_) => panic!("{name} is not an automaton"),
+    }
+}
+
+/// Emits, round-trips and checks a certificate (STYLE rule 5): every step must be proved.
+pub fn assert_proved(name: &str, cert: &Certificate) {
     let json = cert.to_json();
-    let report = lacuna::checker::check_json(&json);
+    assert_eq!(
+        json,
+        cert.to_json(),
+        "{name}: serialisation is not deterministic"
+    );
+    let back = Certificate::from_json(&json).expect("parses back");
+    assert_eq!(
+        &back, cert,
+        "{name}: JSON round trip changed the certificate"
+    );
+    let report = check_json(&json);
+    assert!(report.all_proved(), "{name}:\n{}", report.to_text());
+}
+
+/// Asserts that the checker rejects `cert` at the step called `step`, with a message naming it.
+pub fn assert_rejected(what: &str, cert: &Certificate, step: &str) {
+    let report = check(cert);
+    let failed: Vec<_> = report
+        .steps
+        .iter()
+        .filter(|s| s.outcome == Outcome::Failed)
+        .collect();
     assert!(
-        report.all_proved(),
-        "{name}: certificate not proved:\n{}",
+        failed
+            .iter()
+            .any(|s| s.step == step && s.message.contains(step)),
+        "{what}: expected step `{step}` to fail, got:\n{}",
         report.to_text()
     );
+    assert!(!report.all_proved());
+}
+
+pub fn steps_named<'a>(cert: &'a mut Certificate, name: &str) -> Vec<&'a mut Step> {
+    cert.steps.iter_mut().filter(|s| s.name() == name).collect()
 }
