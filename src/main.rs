@@ -660,10 +660,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             if json {
                 print_json(&r);
             } else {
-                out(&format!(
-                    "{}\n",
-                    serde_json::to_string_pretty(&r).unwrap_or_default()
-                ));
+                out(&r.to_text());
             }
             Ok(if r.verified {
                 ExitCode::SUCCESS

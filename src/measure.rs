@@ -427,3 +427,64 @@ pub fn measure(inst: &Instance, opts: &MeasureOptions) -> Result<MeasureReport, 
         levels,
     })
 }
+
+impl MeasureReport {
+    /// The human-readable report of `lacuna measure` (without `--json`): a table per level with
+    /// the observed and exact holes and components, the factors, the box-counting dimension, the
+    /// density summary and the verdict.
+    pub fn to_text(&self) -> String {
+        use std::fmt::Write;
+        let mut s = format!(
+            "{} up to level {} (floating point; holes and components compared with the exact counts)\n\n",
+            self.name, self.level
+        );
+        s += "level        cells          area     perimeter  holes (exact)  components (exact)  raster  match\n";
+        for l in &self.levels {
+            let _ = writeln!(
+                s,
+                "{:>5} {:>12} {:>13.6} {:>13.6} {:>14} {:>19} {:>7}  {}",
+                l.level,
+                l.cells,
+                l.area,
+                l.perimeter,
+                format!("{} ({})", l.holes, l.exact.holes),
+                format!("{} ({})", l.components, l.exact.components),
+                l.raster,
+                if l.matches { "yes" } else { "NO" }
+            );
+        }
+        let _ = writeln!(
+            s,
+            "\nF_A = {:.6} (fit residual {:.4}), F_P = {:.6} (fit residual {:.4})",
+            self.area_factor,
+            self.area_fit.residual,
+            self.perimeter_factor,
+            self.perimeter_fit.residual
+        );
+        let _ = writeln!(
+            s,
+            "box-counting dimension {:.4} (fit residual {:.4}, boxes 1/{} to 1/{})",
+            self.box_dimension,
+            self.box_fit.residual,
+            self.box_counts.first().map_or(0, |b| 1u64 << b.0),
+            self.box_counts.last().map_or(0, |b| 1u64 << b.0),
+        );
+        if let Some(d) = &self.density {
+            let _ = writeln!(
+                s,
+                "relative density on a {0}×{0} grid: min {1:.4}, mean {2:.4}, max {3:.4}",
+                d.grid, d.min, d.mean, d.max
+            );
+        }
+        let _ = writeln!(s, "components derived by {}", self.components_by);
+        if self.verified {
+            s += "verdict: VERIFIED (observed holes and components equal the exact counts)\n";
+        } else {
+            s += "verdict: NOT VERIFIED\n";
+            for f in &self.failures {
+                let _ = writeln!(s, "  {f}");
+            }
+        }
+        s
+    }
+}

@@ -149,3 +149,27 @@ fn census_runs_a_small_family() {
     assert_eq!(v["faces"], 5);
     assert_eq!(v["runaway"], 0);
 }
+
+#[test]
+fn measure_prints_a_table_with_the_exact_counts() {
+    // F0's holes per level are 0, 1, 13 (derived by hand in tests/geometry.rs: at level 2 the
+    // level-1 lacuna, the 6 cells' own lacunas and the 6 gaps closed between them, 1 + 6 + 6).
+    let (code, out, err) = lacuna(&["measure", "F0", "--level", "2", "--raster", "512"]);
+    assert_eq!(code, 0, "{err}");
+    let rows: Vec<&str> = out
+        .lines()
+        .filter(|l| l.trim_start().starts_with(|c: char| c.is_ascii_digit()))
+        .collect();
+    assert_eq!(rows.len(), 3, "{out}");
+    for (row, (cells, holes)) in rows.iter().zip([(1, 0), (6, 1), (36, 13)]) {
+        let words: Vec<&str> = row.split_whitespace().collect();
+        assert_eq!(words[1], cells.to_string(), "{row}");
+        assert_eq!(
+            words[4..6],
+            [holes.to_string(), format!("({holes})")],
+            "{row}"
+        );
+        assert_eq!(words.last(), Some(&"yes"), "{row}");
+    }
+    assert!(out.contains("verdict: VERIFIED"), "{out}");
+}
