@@ -18,7 +18,7 @@ for t in face_notation input_files automaton_file certificate pipeline; do
   cp seeds/"$t"/* "$work/$t/"
   log="$work/$t.log"
   if ! cargo fuzz run --sanitizer none "$t" "$work/$t" -- -seed="$seed" -runs="$runs" \
-      -max_total_time="$secs" -max_len=4096 >"$log" 2>&1; then
+      -max_total_time="$secs" -max_len=8192 >"$log" 2>&1; then
     tail -40 "$log"
     echo "fuzz target $t FAILED (crash input saved under fuzz/artifacts/$t)"
     exit 1

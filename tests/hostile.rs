@@ -179,3 +179,73 @@ fn absurd_levels_and_digits_are_refused_before_the_work() {
         assert!(!err.contains("raise it with"), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn hostile_coordinates_templates_and_goals_get_coded_errors() {
+    let big = format!("1{}", "0".repeat(400));
+    let long_line = format!("type T0\nsub 0 {}\n", "0 0; ".repeat(200_000));
+    let cases: Vec<(Vec<String>, &str)> = vec![
+        // Template files: empty of sub-faces is fine (nothing to project) only when it parses;
+        // garbage, non-UTF-8, huge and non-finite numbers, a very long line.
+        (
+            vec!["--template".into(), temp("t1.tpl", b"\xff\xfe\x00")],
+            "E0",
+        ),
+        (
+            vec![
+                "--template".into(),
+                temp("t2.tpl", b"type T0\nsub 0 NaN 0\n"),
+            ],
+            "E10",
+        ),
+        (
+            vec![
+                "--template".into(),
+                temp("t3.tpl", format!("type T0\nsub 0 {big} 0\n").as_bytes()),
+            ],
+            "E10",
+        ),
+        (
+            vec!["--template".into(), temp("t4.tpl", long_line.as_bytes())],
+            "E10",
+        ),
+        (
+            vec!["--template".into(), temp("t5.tpl", b"delta -1\n")],
+            "E10",
+        ),
+        // Corners on the command line.
+        (vec!["--corners".into(), "NaN 0, 1 0, 1 1".into()], "E02"),
+        (
+            vec![
+                "--corners".into(),
+                format!("{big} 0, 1 0, 1 1, 0 1, 0 2, 5 5"),
+            ],
+            "E02",
+        ),
+        (
+            vec!["--corners".into(), "0 0, 0 0, 0 0, 0 0, 0 0, 0 0".into()],
+            "E02",
+        ),
+        (vec!["--corners".into(), ",,,".into()], "E02"),
+        // Goals.
+        (vec!["--goal".into(), format!("min-lacuna={big}")], "E10"),
+        (vec!["--goal".into(), "min-lacuna=inf".into()], "E10"),
+        (vec!["--goal".into(), "nonnegative=1/0".into()], "E10"),
+        (vec!["--goal".into(), "".into()], "E10"),
+    ];
+    for (extra, code) in cases {
+        let mut args: Vec<String> = ["render", "F0", "--level", "1", "--svg", "target/h.svg"]
+            .map(String::from)
+            .to_vec();
+        args.extend(extra);
+        let argv: Vec<&str> = args.iter().map(String::as_str).collect();
+        let (status, err) = run(&argv);
+        assert_ne!(status, 0, "{argv:?}: {err}");
+        assert!(
+            err.contains(&format!("error[{code}")),
+            "{:?}: {}",
+            &argv[6..],
+            err.chars().take(400).collect::<String>()
+        );
+    }
+}
