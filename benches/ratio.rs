@@ -6,7 +6,7 @@
 //! Run: `cargo bench --bench ratio [-- --export DIR]`.
 
 use lacuna::{close_or_error, ratio_of, Face, Limits};
-use std::time::Instant;
+mod common;
 
 const FACES: &[&str] = &[
     "C2 B3 C3 C3 B3 B3 | B2 C2 C2 | A1",
@@ -16,15 +16,7 @@ const FACES: &[&str] = &[
 ];
 
 fn main() {
-    let args: Vec<String> = std::env::args().collect();
-    let export = args
-        .iter()
-        .position(|a| a == "--export")
-        .and_then(|i| args.get(i + 1))
-        .cloned();
-    if let Some(dir) = &export {
-        std::fs::create_dir_all(dir).expect("export directory");
-    }
+    let export = common::export_dir();
     println!(
         "{:>3}  {:>5}  {:>10}  {:<24}  R (50 digits)  face",
         "#", "types", "R (s)", "rho"
@@ -32,15 +24,7 @@ fn main() {
     for (k, text) in FACES.iter().enumerate() {
         let ts = close_or_error(&[Face::parse(text).expect("valid")], &Limits::default())
             .expect("closes");
-        let mut best = f64::INFINITY;
-        let mut last = None;
-        for _ in 0..3 {
-            let t = Instant::now();
-            let r = ratio_of(&ts, 50).expect("ratio");
-            best = best.min(t.elapsed().as_secs_f64());
-            last = Some(r);
-        }
-        let r = last.expect("ran");
+        let (best, r) = common::best_of(3, || ratio_of(&ts, 50).expect("ratio"));
         println!(
             "{k:>3}  {:>5}  {best:>10.4}  {:<24}  {}  {text}",
             ts.types.len(),

@@ -8,7 +8,7 @@
 use lacuna::{
     automaton_of, close_or_error, solve, write_text, Face, GenOptions, Limits, Solution, TextLayout,
 };
-use std::time::Instant;
+mod common;
 
 /// Faces whose closures grow from a few hundred to over a million unknowns.
 const SERIES: &[&str] = &[
@@ -25,15 +25,7 @@ const SERIES: &[&str] = &[
 ];
 
 fn main() {
-    let args: Vec<String> = std::env::args().collect();
-    let export = args
-        .iter()
-        .position(|a| a == "--export")
-        .and_then(|i| args.get(i + 1))
-        .cloned();
-    if let Some(dir) = &export {
-        std::fs::create_dir_all(dir).expect("export directory");
-    }
+    let export = common::export_dir();
     println!(
         "{:>3}  {:>6}  {:>9}  {:>9}  {:>10}  {:>10}  face",
         "#", "types", "unknowns", "equations", "solve (s)", "consistent"
@@ -43,14 +35,8 @@ fn main() {
         let ts = close_or_error(&[face], &Limits::default()).expect("closes");
         let g = automaton_of(&ts, GenOptions::default());
         let lin = g.automaton.linearize().expect("linear");
-        let mut best = f64::INFINITY;
-        let mut consistent = false;
-        for _ in 0..3 {
-            let t = Instant::now();
-            let sol = solve(&lin.system);
-            best = best.min(t.elapsed().as_secs_f64());
-            consistent = matches!(sol, Solution::Consistent(_));
-        }
+        let (best, consistent) =
+            common::best_of(3, || matches!(solve(&lin.system), Solution::Consistent(_)));
         println!(
             "{k:>3}  {:>6}  {:>9}  {:>9}  {best:>10.4}  {consistent:>10}  {text}",
             ts.types.len(),
