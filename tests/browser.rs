@@ -7,6 +7,7 @@
 //! command with `cargo test --test browser -- --ignored`. Set `LACUNA_CHROMIUM` to use another
 //! binary; `LACUNA_BLESS=1` rewrites the reference screenshots.
 
+mod common;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -86,19 +87,17 @@ fn tempdir(what: &str) -> PathBuf {
 fn report(input: &str, level: &str) -> PathBuf {
     let dir = scratch(input);
     let path = dir.join("report.html");
-    let out = Command::new(env!("CARGO_BIN_EXE_lacuna"))
-        .args([
-            "report", input, "--level", level, "--raster", "256", "--out",
-        ])
-        .arg(&path)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let (code, _, err) = common::lacuna(&[
+        "report",
+        input,
+        "--level",
+        level,
+        "--raster",
+        "256",
+        "--out",
+        path.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
     path
 }
 

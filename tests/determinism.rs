@@ -1,20 +1,12 @@
 //! Determinism: the same input gives byte-identical JSON and certificates across runs and thread
 //! counts (issue #8).
 
-use std::process::Command;
+mod common;
 
-fn stdout(args: &[&str]) -> Vec<u8> {
-    let out = Command::new(env!("CARGO_BIN_EXE_lacuna"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("runs");
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out.stdout
+fn stdout(args: &[&str]) -> String {
+    let (code, out, err) = common::lacuna(args);
+    assert_eq!(code, 0, "{args:?}: {err}");
+    out
 }
 
 #[test]

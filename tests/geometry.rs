@@ -2,6 +2,7 @@
 // observed holes and components match the exact counts, exports are well formed, box counting
 // recovers known dimensions. Also writes the pictures of docs/images/ (made by the code).
 
+mod common;
 use lacuna::{
     box_dimension, check_cells, counts, exact_topology, instantiate, load_input, measure,
     write_json, write_obj, write_png, write_svg, BBox, Instance, InstantiateOptions,
@@ -595,25 +596,17 @@ fn html_report_is_self_contained_and_complete() {
     let dir = std::env::temp_dir().join(format!("lacuna-report-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("f0.html");
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_lacuna"))
-        .args([
-            "report",
-            "F0",
-            "--level",
-            "2",
-            "--raster",
-            "256",
-            "--out",
-            path.to_str().unwrap(),
-        ])
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let (code, _, err) = common::lacuna(&[
+        "report",
+        "F0",
+        "--level",
+        "2",
+        "--raster",
+        "256",
+        "--out",
+        path.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
     let html = std::fs::read_to_string(&path).unwrap();
     // Pictures of levels 0, 1, 2, the type graph and three plots, all inline; no external file.
     assert_eq!(html.matches("<figure").count(), 3);

@@ -1,6 +1,7 @@
 //! Operator eigen analysis and inverse design (SPEC §8, issue #7). Every expected value is derived
 //! by hand in the test that checks it.
 
+mod common;
 use lacuna::{
     analyse_automaton, analyse_matrix, check_design, design_operator, estimate_curvature,
     parse_automaton, parse_matrix_arg, parse_rational, parse_rationals_arg, Automaton, Behaviour,
@@ -395,23 +396,19 @@ proptest! {
 fn cli_curvature_estimate_of_the_parabola() {
     // B(t) = (2t, 2t − 2t²) for the control points (0,0), (1,1), (2,0): at t = 0,
     // κ = (x'y'' − y'x'')/(x'² + y'²)^{3/2} = (2·(−4) − 0)/8^{3/2} = −1/(2√2).
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_lacuna"))
-        .args([
-            "operators",
-            "de-casteljau-edge",
-            "--curvature",
-            "e.T0",
-            "--points",
-            "0 0; 1 1; 2 0",
-            "--level",
-            "6",
-            "--json",
-        ])
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap();
-    assert!(out.status.success());
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let (code, out, err) = common::lacuna(&[
+        "operators",
+        "de-casteljau-edge",
+        "--curvature",
+        "e.T0",
+        "--points",
+        "0 0; 1 1; 2 0",
+        "--level",
+        "6",
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     let side = &v["curvature"]["positive_side"];
     let want = -1.0 / (2.0 * 2f64.sqrt());
     for k in 0..2 {

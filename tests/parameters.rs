@@ -128,16 +128,20 @@ fn a_template_in_the_solution_space_is_reproduced_exactly() {
 fn a_bad_template_is_an_error_with_line_and_column() {
     let path = scratch("bad.tpl");
     std::fs::write(&path, "delta 0\ntype T0\nsub 0 0 0; 1 1\n").unwrap();
-    let (code, _, err) = lacuna(&[
-        "render",
-        "F0",
-        "--level",
-        "1",
-        "--template",
-        s(&path),
-        "--png",
-        s(&scratch("x.png")),
-    ]);
+    let png = scratch("x.png");
+    let render = || {
+        lacuna(&[
+            "render",
+            "F0",
+            "--level",
+            "1",
+            "--template",
+            s(&path),
+            "--png",
+            s(&png),
+        ])
+    };
+    let (code, _, err) = render();
     assert_eq!(code, 2);
     assert!(
         err.contains("error[E1023]: sub-face 0 of type T0 has 9 control points; this line gives 2"),
@@ -145,16 +149,7 @@ fn a_bad_template_is_an_error_with_line_and_column() {
     );
     assert!(err.contains("bad.tpl:3:1"), "{err}");
     std::fs::write(&path, "type T0\nsub 0 0 0; 1 x\n").unwrap();
-    let (code, _, err) = lacuna(&[
-        "render",
-        "F0",
-        "--level",
-        "1",
-        "--template",
-        s(&path),
-        "--png",
-        s(&scratch("x.png")),
-    ]);
+    let (code, _, err) = render();
     assert_eq!(code, 2);
     assert!(
         err.contains("error[E1021]") && err.contains("bad.tpl:2:14"),
