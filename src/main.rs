@@ -120,9 +120,13 @@ fn geo_error(e: lacuna::GeometryError) -> Error {
     }
 }
 
-/// The instance of `geo.input` with the parameters given, after checking the limits on the
-/// level and on the number of output cells.
-fn instance(geo: &GeoArgs, limits: &Limits, default_cells: u64) -> Result<lacuna::Instance, Error> {
+/// The input (with `--corners` applied) and its instance with the parameters given, after
+/// checking the limits on the level and on the number of output cells.
+fn instance(
+    geo: &GeoArgs,
+    limits: &Limits,
+    default_cells: u64,
+) -> Result<(lacuna::Input, lacuna::Instance), Error> {
     limits.check_level(u64::from(geo.level))?;
     if !(1..=64).contains(&geo.segments) {
         return Err(Error::limit(
@@ -164,7 +168,7 @@ fn instance(geo: &GeoArgs, limits: &Limits, default_cells: u64) -> Result<lacuna
     let inst = lacuna::instantiate(&input, &opts).map_err(geo_error)?;
     lacuna::check_cells(&inst, geo.level, geo.max_cells.unwrap_or(default_cells))
         .map_err(geo_error)?;
-    Ok(inst)
+    Ok((input, inst))
 }
 
 /// `--template` and `--goal` into the instantiation options.
@@ -552,7 +556,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 )));
             }
             let vector = svg.is_some() || json_out.is_some() || obj.is_some() || stl.is_some();
-            let inst = instance(&geo, &limits, if vector { 2_000_000 } else { 100_000_000 })?;
+            let (_, inst) = instance(&geo, &limits, if vector { 2_000_000 } else { 100_000_000 })?;
             let io = |path: &std::path::Path, e: std::io::Error| Error::Io {
                 path: path.display().to_string(),
                 reason: e.to_string(),
@@ -601,9 +605,9 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
         } => {
             check_raster("--raster", raster, 8192)?;
             // The pictures embed every cell of every level as SVG: keep them small.
-            let inst = instance(&geo, &limits, 200_000)?;
-            let input = load_input(&geo.input)?;
-            let closure = Closure::of(&input.faces(), &limits)?;
+            let (input, inst) = instance(&geo, &limits, 200_000)?;
+            // The instance's closure is the one `Closure::of` would compute again.
+            let closure = Closure::Closed(inst.types.clone());
             let v = verify_report(&input, &closure, u64::from(geo.level).max(5), &limits)?;
             let opts = lacuna::MeasureOptions {
                 level: geo.level,
@@ -643,7 +647,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 });
             }
             check_density_grid(density_grid, 0)?;
-            let inst = instance(&geo, &limits, 20_000_000)?;
+            let (_, inst) = instance(&geo, &limits, 20_000_000)?;
             let opts = lacuna::MeasureOptions {
                 level: geo.level,
                 raster,
