@@ -2,7 +2,7 @@
 //! length ≤ 6 over {B2, C2, B3, C3}, E over {B2, C2}³ and A1/A2. Reports faces per second and
 //! per core, single-threaded and on all cores. Run with `cargo bench --bench census`.
 
-use lacuna::{census, CensusSpec, Limits};
+use lacuna::{analysis::census, analysis::CensusSpec, topology::Limits};
 
 fn main() {
     let cores = std::thread::available_parallelism()

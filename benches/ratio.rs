@@ -5,7 +5,7 @@
 //!
 //! Run: `cargo bench --bench ratio [-- --export DIR]`.
 
-use lacuna::{close_or_error, ratio_of, Face, Limits};
+use lacuna::{export::ratio_of, topology::close_or_error, topology::Face, topology::Limits};
 mod common;
 
 const FACES: &[&str] = &[

@@ -4,7 +4,8 @@
 // runs a smaller level.
 
 use lacuna::{
-    box_dimension, instantiate, load_input, render_raster, write_png, InstantiateOptions,
+    export::render_raster, export::write_png, geometry::box_dimension, geometry::instantiate,
+    geometry::InstantiateOptions, input::load_input,
 };
 use std::time::Instant;
 

@@ -1,12 +1,14 @@
 //! Benchmark (issue #4): the exact solver on the constraint systems of a series of growing
 //! closures. For each face: unknowns, equations, the time to solve (best of 3, release), and
 //! whether the system is consistent. With `--export DIR` it also writes each system as a sparse
-//! text matrix (`lacuna::write_text`) for the FLINT comparison in `benches/compare_flint.sh`.
+//! text matrix (`lacuna::constraint::write_text`) for the FLINT comparison in `benches/compare_flint.sh`.
 //!
 //! Run: `cargo bench --bench solver [-- --export DIR]`.
 
 use lacuna::{
-    automaton_of, close_or_error, solve, write_text, Face, GenOptions, Limits, Solution, TextLayout,
+    constraint::automaton_of, constraint::solve, constraint::write_text, constraint::GenOptions,
+    constraint::Solution, constraint::TextLayout, topology::close_or_error, topology::Face,
+    topology::Limits,
 };
 mod common;
 

@@ -2,7 +2,7 @@
 //!
 //! Every user-facing failure is an [`Error`] with a stable code (`E0103`, …; the table is in
 //! `docs/ERRORS.md`) and, where there is a source text, the span it points at. "The recursion did
-//! not close" is *not* an error: it is [`crate::Closure::Runaway`].
+//! not close" is *not* an error: it is [`crate::topology::Closure::Runaway`].
 
 use serde::Serialize;
 use std::fmt;

@@ -5,10 +5,13 @@
 //! `proofs/*.json` are regenerated and compared byte for byte; after an intended change rewrite
 //! them with `LACUNA_BLESS=1 cargo test --test certificates`.
 
+use lacuna::certificate::{certificate_for, certificate_for_system};
 use lacuna::certificate::{Certificate, Step};
-use lacuna::certify::{certificate_for, certificate_for_system};
 use lacuna::checker::{check, check_json, Outcome};
-use lacuna::{Algorithm, EdgeKind, EdgeType, Face, GenOptions, Limits, Params};
+use lacuna::{
+    constraint::GenOptions, topology::Algorithm, topology::EdgeKind, topology::EdgeType,
+    topology::Face, topology::Limits, topology::Params,
+};
 use num_rational::BigRational;
 use proptest::prelude::*;
 
@@ -39,7 +42,7 @@ const AUTOMATON_FIXTURES: [&str; 7] = [
 
 #[test]
 fn every_library_entry_has_a_proof() {
-    for (name, _) in lacuna::library() {
+    for (name, _) in lacuna::input::library() {
         assert!(
             FACE_FIXTURES.contains(name) || AUTOMATON_FIXTURES.contains(name),
             "library entry {name} has no certificate in proofs/: add it to the lists above and bless"
@@ -92,7 +95,10 @@ fn checker_imports_only_the_certificate_module() {
             (f.as_str(), roots)
         })
         .collect();
-    all.push(("src/certificate.rs", &["std", "serde", "serde_json"][..]));
+    all.push((
+        "src/certificate/format.rs",
+        &["std", "serde", "serde_json"][..],
+    ));
     for (file, roots) in all {
         let text = std::fs::read_to_string(format!("{dir}/{file}")).expect("readable");
         let mut bad_paths = vec![
@@ -286,14 +292,14 @@ fn solution_of(cert: &mut Certificate) -> &mut lacuna::certificate::SolutionStep
 }
 
 /// The certificate's system as lacuna's `LinearSystem`.
-fn linear_system(s: &lacuna::certificate::System) -> lacuna::LinearSystem {
+fn linear_system(s: &lacuna::certificate::System) -> lacuna::constraint::LinearSystem {
     let q = |x: &str| x.parse::<BigRational>().expect("rational");
-    lacuna::LinearSystem {
+    lacuna::constraint::LinearSystem {
         unknowns: s.unknowns,
         rows: s
             .rows
             .iter()
-            .map(|r| lacuna::Equation {
+            .map(|r| lacuna::constraint::Equation {
                 terms: r.terms.iter().map(|(v, c)| (*v, q(c))).collect(),
                 rhs: q(&r.rhs),
             })
@@ -344,12 +350,13 @@ fn systems_that_are_not_the_closures_are_rejected() {
     let mut c = base.clone();
     let s = solution_of(&mut c);
     let mut sys = linear_system(&s.system);
-    sys.rows.push(lacuna::Equation {
+    sys.rows.push(lacuna::constraint::Equation {
         terms: vec![(s.free[0], one.clone())],
         rhs: BigRational::from_integer(0.into()),
     });
-    let solution = lacuna::solve(&sys);
-    let Step::SolutionSpace(mut forged) = lacuna::certify::solution_step("forged", &sys, &solution)
+    let solution = lacuna::constraint::solve(&sys);
+    let Step::SolutionSpace(mut forged) =
+        lacuna::certificate::solution_step("forged", &sys, &solution)
     else {
         panic!("the forged system is consistent");
     };
@@ -401,11 +408,11 @@ fn systems_that_are_not_the_closures_are_rejected() {
 fn inconsistent_systems_are_certified_and_mutations_rejected() {
     // x0 + x1 = 1, x1 + x2 = 1, x0 − x2 = 1 (the first minus the second gives x0 − x2 = 0), x3 = 5.
     let q = |n: i64| BigRational::from_integer(n.into());
-    let row = |terms: &[(usize, i64)], rhs: i64| lacuna::Equation {
+    let row = |terms: &[(usize, i64)], rhs: i64| lacuna::constraint::Equation {
         terms: terms.iter().map(|&(v, c)| (v, q(c))).collect(),
         rhs: q(rhs),
     };
-    let sys = lacuna::LinearSystem {
+    let sys = lacuna::constraint::LinearSystem {
         unknowns: 4,
         rows: vec![
             row(&[(3, 1)], 5),
@@ -414,8 +421,11 @@ fn inconsistent_systems_are_certified_and_mutations_rejected() {
             row(&[(0, 1), (2, -1)], 1),
         ],
     };
-    let solution = lacuna::solve(&sys);
-    assert!(matches!(solution, lacuna::Solution::Inconsistent(_)));
+    let solution = lacuna::constraint::solve(&sys);
+    assert!(matches!(
+        solution,
+        lacuna::constraint::Solution::Inconsistent(_)
+    ));
     let cert = certificate_for_system("planted", "a planted inconsistent system", &sys, &solution);
     assert_proved("planted", &cert);
     let mut bad = cert.clone();
@@ -523,7 +533,7 @@ proptest! {
     #[test]
     fn random_faces_certify_and_mutations_fail(f in face(), which in 0usize..4) {
         let limits = Limits { max_types: 60, max_boundary: 12, ..Limits::default() };
-        let Ok(ts) = lacuna::close_or_error(std::slice::from_ref(&f), &limits) else {
+        let Ok(ts) = lacuna::topology::close_or_error(std::slice::from_ref(&f), &limits) else {
             return Ok(()); // no spoke or a runaway: nothing to certify
         };
         let Ok(cert) = certificate_for(&f.to_string(), &ts, GenOptions::default()) else {

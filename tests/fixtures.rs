@@ -2,7 +2,10 @@
 //! here, with the derivation). Assertion messages name the fixture.
 
 mod common;
-use lacuna::{close_or_error, counts, load_input, Face, Limits, TypeSet};
+use lacuna::{
+    input::load_input, topology::close_or_error, topology::counts, topology::Face,
+    topology::Limits, topology::TypeSet,
+};
 
 fn closed(name: &str) -> TypeSet {
     let input = load_input(name).unwrap_or_else(|e| panic!("fixture {name}: {}", e.render()));

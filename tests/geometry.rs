@@ -4,9 +4,10 @@
 
 mod common;
 use lacuna::{
-    box_dimension, check_cells, counts, exact_topology, instantiate, load_input, measure,
-    write_json, write_obj, write_png, write_svg, BBox, Instance, InstantiateOptions,
-    MeasureOptions, Raster,
+    export::write_json, export::write_obj, export::write_png, export::write_svg,
+    geometry::box_dimension, geometry::instantiate, geometry::BBox, geometry::Instance,
+    geometry::InstantiateOptions, geometry::Raster, input::load_input, measure::check_cells,
+    measure::exact_topology, measure::measure, measure::MeasureOptions, topology::counts,
 };
 
 const BUILT_IN: [&str; 5] = [
@@ -58,7 +59,7 @@ fn user_values_are_kept_exactly() {
 fn level_one_cells_tile_the_face_without_overlap() {
     for name in face_fixtures() {
         let i = inst(name);
-        let bb = lacuna::bounds(&i, 4);
+        let bb = lacuna::geometry::bounds(&i, 4);
         // The face itself finely flattened: the level-1 cells' flattened Bézier pieces are chords
         // of the curve, inside it (a digon's bulging edge is most of its boundary).
         let mut whole = Raster::fitting(bb, 1024, 8);
@@ -89,7 +90,7 @@ fn level_one_cells_tile_the_face_without_overlap() {
 
 /// Every built-in fixture made of faces (`lacuna library` lists them; automata are skipped).
 fn face_fixtures() -> Vec<&'static str> {
-    lacuna::library()
+    lacuna::input::library()
         .iter()
         .map(|(n, _)| *n)
         .filter(|n| load_input(n).is_ok())
@@ -116,7 +117,7 @@ fn observed_holes_and_components_match_the_exact_counts_at_levels_1_to_4() {
         .unwrap();
         assert!(r.verified, "{name}: {:?}", r.failures);
         // Independent derivation of the components: union-find over the cells.
-        let by_cells = lacuna::components_by_cells(&i.types, &i.glue, 4, 1_000_000)
+        let by_cells = lacuna::topology::components_by_cells(&i.types, &i.glue, 4, 1_000_000)
             .expect("under the cell limit")
             .expect("no edge held by three cells");
         for l in &r.levels {
@@ -135,7 +136,7 @@ fn observed_holes_and_components_match_the_exact_counts_at_levels_1_to_4() {
             if l.level >= 1 {
                 let px = l.smallest_hole_pixels.expect("a hole from level 1 on");
                 assert!(
-                    px >= lacuna::MIN_HOLE_WIDTH,
+                    px >= lacuna::measure::MIN_HOLE_WIDTH,
                     "{name} level {}: {px}",
                     l.level
                 );
@@ -159,9 +160,9 @@ fn two_faces_without_a_shared_edge_are_two_components() {
     let text =
         "face 0: C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1\nface 1: C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1\n";
     let f0 = load_input("F0").unwrap();
-    let input = lacuna::Input {
+    let input = lacuna::input::Input {
         name: "two-apart".into(),
-        assembly: lacuna::parse_text(&lacuna::Source {
+        assembly: lacuna::input::parse_text(&lacuna::Source {
             name: "two-apart".into(),
             text: text.into(),
         })
@@ -254,7 +255,7 @@ fn svg_json_obj_png_are_well_formed() {
         6 * (2 + 9)
     );
     let mut png = Vec::new();
-    write_png(&lacuna::render_raster(&i, 2, 64, 2), &mut png).unwrap();
+    write_png(&lacuna::export::render_raster(&i, 2, 64, 2), &mut png).unwrap();
     assert_eq!(&png[1..4], b"PNG");
 }
 
@@ -486,7 +487,7 @@ fn density_maps_are_right_and_decode() {
     )
     .unwrap();
     let d = r.density.clone().expect("a density summary");
-    let side = lacuna::bounds(&i, 4).size();
+    let side = lacuna::geometry::bounds(&i, 4).size();
     let fraction = r.area / (side * side);
     assert_eq!(d.area_fraction, Some(fraction));
     // 512² samples: the boundary pixels of the cells are about 4·P·512/s of 512², well under 1%.
@@ -497,9 +498,9 @@ fn density_maps_are_right_and_decode() {
     );
     assert!(d.min == 0.0 && d.max <= 1.0 && d.max > 0.9, "{d:?}");
     // The PNG: 32 × 32 8-bit gray, one pixel per block, 255·(1 − density).
-    let map = lacuna::density_map(&i, 2, 32, 4);
+    let map = lacuna::measure::density_map(&i, 2, 32, 4);
     let mut png = Vec::new();
-    map.write_png(&mut png).unwrap();
+    lacuna::export::write_density_png(&map, &mut png).unwrap();
     let (w, h, depth, raw) = decode_png(&png);
     assert_eq!((w, h, depth), (32, 32, 8));
     assert_eq!(raw.len(), 32 * 33);
@@ -512,7 +513,7 @@ fn density_maps_are_right_and_decode() {
     }
     // The 1-bit picture decodes too: F0 level 0 is a filled face, its centre pixel black.
     let mut png1 = Vec::new();
-    write_png(&lacuna::render_raster(&i, 0, 64, 4), &mut png1).unwrap();
+    write_png(&lacuna::export::render_raster(&i, 0, 64, 4), &mut png1).unwrap();
     let (w, h, depth, raw) = decode_png(&png1);
     assert_eq!((w, h, depth, raw.len()), (64, 64, 1, 64 * 9));
     assert_eq!(raw[32 * 9 + 1 + 4] & 0x80, 0, "centre covered (black)");
@@ -539,7 +540,7 @@ fn pictures_for_the_docs() {
 #[test]
 fn triangulation_covers_a_non_convex_polygon() {
     // An L shape (area 3) has a reflex corner: the ear clipping must not use it as an ear.
-    let l: Vec<lacuna::Point> = vec![
+    let l: Vec<lacuna::geometry::Point> = vec![
         [0.0, 0.0],
         [2.0, 0.0],
         [2.0, 1.0],
@@ -547,25 +548,27 @@ fn triangulation_covers_a_non_convex_polygon() {
         [1.0, 2.0],
         [0.0, 2.0],
     ];
-    let tris = lacuna::triangulate(&l);
+    let tris = lacuna::export::triangulate(&l);
     assert_eq!(tris.len(), 4);
     let area: f64 = tris
         .iter()
-        .map(|t| lacuna::signed_area(&[l[t[0]], l[t[1]], l[t[2]]]))
+        .map(|t| lacuna::geometry::signed_area(&[l[t[0]], l[t[1]], l[t[2]]]))
         .sum();
     assert!((area - 3.0).abs() < 1e-12, "{area}");
     assert!(tris
         .iter()
-        .all(|t| lacuna::signed_area(&[l[t[0]], l[t[1]], l[t[2]]]) > 0.0));
+        .all(|t| lacuna::geometry::signed_area(&[l[t[0]], l[t[1]], l[t[2]]]) > 0.0));
 }
 
 #[test]
 fn stl_prisms_are_closed_surfaces() {
     // A union of closed oriented surfaces: every directed edge a→b is matched by as many b→a.
-    let input = lacuna::load_input("F0").unwrap();
-    let inst = lacuna::instantiate(&input, &lacuna::InstantiateOptions::default()).unwrap();
+    let input = lacuna::input::load_input("F0").unwrap();
+    let inst =
+        lacuna::geometry::instantiate(&input, &lacuna::geometry::InstantiateOptions::default())
+            .unwrap();
     let mut buf = Vec::new();
-    lacuna::write_stl(&inst, 1, 4, 0.1, &mut buf).unwrap();
+    lacuna::export::write_stl(&inst, 1, 4, 0.1, &mut buf).unwrap();
     let text = String::from_utf8(buf).unwrap();
     let mut verts: Vec<String> = Vec::new();
     let mut edges: std::collections::HashMap<(String, String), i64> = Default::default();

@@ -3,9 +3,11 @@
 
 mod common;
 use lacuna::{
-    analyse_automaton, analyse_matrix, check_design, design_operator, estimate_curvature,
-    parse_automaton, parse_matrix_arg, parse_rational, parse_rationals_arg, Automaton, Behaviour,
-    CurvatureClass, DesignError, Matrix, Source,
+    algebra::Matrix, analysis::analyse_automaton, analysis::analyse_matrix, analysis::check_design,
+    analysis::design_operator, analysis::estimate_curvature, analysis::parse_matrix_arg,
+    analysis::parse_rationals_arg, analysis::Behaviour, analysis::CurvatureClass,
+    analysis::DesignError, constraint::Automaton, input::parse_automaton, input::parse_rational,
+    Source,
 };
 use num_rational::BigRational;
 use proptest::prelude::*;

@@ -3,7 +3,10 @@
 
 mod common;
 use common::lacuna;
-use lacuna::{instantiate, load_input, parse_template, Goal, Instance, InstantiateOptions, Origin};
+use lacuna::{
+    geometry::instantiate, geometry::parse_template, geometry::Goal, geometry::Instance,
+    geometry::InstantiateOptions, input::load_input, topology::Origin,
+};
 use num_rational::BigRational as Q;
 use num_traits::{Signed, ToPrimitive, Zero};
 
@@ -18,9 +21,9 @@ fn s(p: &std::path::Path) -> &str {
 }
 
 /// The exact template of an instance as `--write-template` writes it, read back.
-fn default_exact(inst: &Instance) -> lacuna::ExactTemplate {
+fn default_exact(inst: &Instance) -> lacuna::geometry::ExactTemplate {
     let opts = InstantiateOptions::default();
-    let text = lacuna::default_template(inst, &opts);
+    let text = inst.default_template(&opts);
     // Parsing the written file against the default gives the default: nothing to compare with
     // but itself, so parse it against a template with every target moved away.
     let mut moved = parse_template(&text, "default", &inst.types, 2, &dummy(inst)).unwrap();
@@ -28,15 +31,15 @@ fn default_exact(inst: &Instance) -> lacuna::ExactTemplate {
     moved
 }
 
-fn dummy(inst: &Instance) -> lacuna::ExactTemplate {
+fn dummy(inst: &Instance) -> lacuna::geometry::ExactTemplate {
     let zero = || [Q::zero(), Q::zero()];
-    lacuna::ExactTemplate {
+    lacuna::geometry::ExactTemplate {
         types: inst
             .types
             .types
             .iter()
             .enumerate()
-            .map(|(t, ty)| lacuna::TypeTemplate {
+            .map(|(t, ty)| lacuna::geometry::TypeTemplate {
                 corners: vec![zero(); ty.face.boundary.len()],
                 points: vec![zero(); inst.dims[t]],
                 targets: ty
@@ -52,7 +55,13 @@ fn dummy(inst: &Instance) -> lacuna::ExactTemplate {
 
 /// Exact level-1 position of control point `c` of sub-face `k` of type `t`, in the exact
 /// template of `t`: Σ_r T_k[r][c]·P_r.
-fn position(inst: &Instance, ex: &lacuna::ExactTemplate, t: usize, k: usize, c: usize) -> [Q; 2] {
+fn position(
+    inst: &Instance,
+    ex: &lacuna::geometry::ExactTemplate,
+    t: usize,
+    k: usize,
+    c: usize,
+) -> [Q; 2] {
     let w = inst.types.types[t].children[k];
     let op = inst.operator_exact(t, k);
     let mut pos = [Q::zero(), Q::zero()];
@@ -77,7 +86,7 @@ fn a_template_in_the_solution_space_is_reproduced_exactly() {
             }
         }
     }
-    let text = lacuna::write_template("F0", &inst.types, 2, &ex);
+    let text = lacuna::geometry::write_template("F0", &inst.types, 2, &ex);
     let path = scratch("in-space.tpl");
     std::fs::write(&path, &text).unwrap();
     let svg = scratch("in-space.svg");
@@ -202,7 +211,11 @@ fn lacuna_points_at_least(inst: &Instance, size: &Q) -> usize {
             let m = inst.dims[ty.children[k]];
             let mut off = 0;
             for (l, e) in sf.face.boundary.iter().enumerate() {
-                let d = if e.kind == lacuna::EdgeKind::B { 3 } else { 2 };
+                let d = if e.kind == lacuna::topology::EdgeKind::B {
+                    3
+                } else {
+                    2
+                };
                 if matches!(sf.origins[l], Origin::Lacuna { .. }) {
                     for i in 0..d {
                         let c = (off + i) % m;

@@ -5,8 +5,9 @@
 mod common;
 use common::lacuna;
 use lacuna::{
-    instantiate, load_input, parse_text, regular_polygon, set_corners, Assembly, CoordKind, Input,
-    Instance, InstantiateOptions, Point, Source,
+    geometry::instantiate, geometry::regular_polygon, geometry::Instance,
+    geometry::InstantiateOptions, geometry::Point, input::load_input, input::parse_text,
+    input::set_corners, input::Assembly, input::CoordKind, input::Input, Source,
 };
 use num_rational::BigRational;
 use proptest::prelude::*;
@@ -276,7 +277,7 @@ fn autofrac_point_sections_are_read_three_ways() {
     assert_eq!(d.faces().len(), 2);
     let e = instantiate(&d, &InstantiateOptions::default()).unwrap_err();
     assert_eq!(e.code(), "E0304");
-    let lacuna::GeometryError::Lacuna(le) = e else {
+    let lacuna::geometry::GeometryError::Lacuna(le) = e else {
         panic!("a lacuna error")
     };
     assert_eq!(le.span().map(|s| s.line), Some(6));

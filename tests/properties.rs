@@ -1,8 +1,9 @@
 //! Property tests over random boundaries, parameters and algorithms (issue #2).
 
 use lacuna::{
-    close, counts, subdivide, Algorithm, Bound, Closure, EdgeKind, EdgePattern, EdgeType, Face,
-    Limits, Params, SpokeItem, TypeSet,
+    topology::close, topology::counts, topology::subdivide, topology::Algorithm, topology::Bound,
+    topology::Closure, topology::EdgeKind, topology::EdgePattern, topology::EdgeType,
+    topology::Face, topology::Limits, topology::Params, topology::SpokeItem, topology::TypeSet,
 };
 use num_bigint::BigUint;
 use num_rational::BigRational;
@@ -123,7 +124,7 @@ proptest! {
                     prop_assert_eq!(sub.subfaces.len(), 1);
                 }
                 let pieces: usize = f.boundary.iter().map(|e| e.piece_count() as usize).sum();
-                let used: usize = sub.subfaces.iter().flat_map(|s| &s.origins).filter(|o| matches!(o, lacuna::Origin::Piece { .. })).count();
+                let used: usize = sub.subfaces.iter().flat_map(|s| &s.origins).filter(|o| matches!(o, lacuna::topology::Origin::Piece { .. })).count();
                 prop_assert_eq!(pieces, used);
             }
             Err(e) => {
@@ -187,7 +188,7 @@ proptest! {
     ) {
         let f = Face { boundary, params: Params { ea, el, ec }, algorithm: alg, delay: 1 };
         let Ok(Closure::Closed(ts)) = close(&f, &Limits::default()) else { return Ok(()) };
-        let r = lacuna::ratio_of(&ts, 30).unwrap();
+        let r = lacuna::export::ratio_of(&ts, 30).unwrap();
         let c = counts(&ts, 120);
         let tol = BigRational::new(1.into(), num_bigint::BigInt::from(10).pow(25));
         let zero = BigRational::from_integer(0.into());

@@ -1,7 +1,10 @@
 //! The limit ratio R on fixtures, against hand derivations written here.
 
 mod common;
-use lacuna::{close_or_error, counts, load_input, ratio_of, Limits, TypeSet};
+use lacuna::{
+    export::ratio_of, input::load_input, topology::close_or_error, topology::counts,
+    topology::Limits, topology::TypeSet,
+};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::Signed;
@@ -85,7 +88,7 @@ fn delayed_fixture_is_dominated_by_g6() {
 
 mod self_similar {
     use super::*;
-    use lacuna::{close, CensusSpec, Closure, Face};
+    use lacuna::{analysis::CensusSpec, topology::close, topology::Closure, topology::Face};
     use proptest::prelude::*;
 
     /// R of a closure that is a single self-similar type must be l/(l + k − 1) (SPEC §5), with

@@ -4,8 +4,8 @@
 
 mod common;
 use common::{assert_proved, assert_rejected, face_certificate, steps_named};
+use lacuna::certificate::ratio_step;
 use lacuna::certificate::{Certificate, RadiusWitness, RatioStep, Step};
-use lacuna::certify::ratio_step;
 use lacuna::checker::check;
 use num_rational::BigRational;
 

@@ -1,8 +1,8 @@
 //! Every fuzz crash becomes a named regression test: the input is kept in tests/regressions/.
 
-use lacuna::{parse_automaton, solve, Solution, Source};
+use lacuna::{constraint::solve, constraint::Solution, input::parse_automaton, Source};
 
-fn solve_file(name: &str) -> (Solution, lacuna::LinearSystem) {
+fn solve_file(name: &str) -> (Solution, lacuna::constraint::LinearSystem) {
     let path = format!("{}/tests/regressions/{name}", env!("CARGO_MANIFEST_DIR"));
     let text = String::from_utf8_lossy(&std::fs::read(&path).unwrap()).into_owned();
     let a = parse_automaton(&Source { name: path, text }).expect("parses");

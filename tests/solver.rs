@@ -2,8 +2,10 @@
 //! automata. Every expected number is derived by hand in the test that checks it.
 
 use lacuna::{
-    bezier_restriction, load_any, parse_rational, solve_automaton, solve_closure, Automaton,
-    GenOptions, Linearized, Loaded, Matrix, Solution,
+    algebra::bezier_restriction, algebra::Matrix, constraint::solve_automaton,
+    constraint::solve_closure, constraint::Automaton, constraint::GenOptions,
+    constraint::Linearized, constraint::Solution, input::load_any, input::parse_rational,
+    input::Loaded,
 };
 use num_rational::BigRational;
 use num_traits::Zero;
@@ -48,7 +50,7 @@ fn satisfies(a: &Automaton, lin: &Linearized, values: &[(&str, Matrix)]) -> bool
     })
 }
 
-fn space(a: &Automaton) -> (lacuna::SolveReport, Linearized, Solution) {
+fn space(a: &Automaton) -> (lacuna::constraint::SolveReport, Linearized, Solution) {
     let (report, lin, sol) = solve_automaton(a).unwrap();
     if let Solution::Consistent(s) = &sol {
         s.check(&lin.system)
@@ -185,9 +187,15 @@ fn itertools4() -> impl Iterator<Item = (usize, usize, usize, usize)> {
 
 #[test]
 fn generated_f0_system_is_consistent_and_not_degenerate() {
-    let input = lacuna::load_input("F0").unwrap();
-    let ts = lacuna::close_or_error(&input.faces(), &lacuna::Limits::default()).unwrap();
-    let r = solve_closure(&ts, GenOptions::default(), &lacuna::Limits::default()).unwrap();
+    let input = lacuna::input::load_input("F0").unwrap();
+    let ts = lacuna::topology::close_or_error(&input.faces(), &lacuna::topology::Limits::default())
+        .unwrap();
+    let r = solve_closure(
+        &ts,
+        GenOptions::default(),
+        &lacuna::topology::Limits::default(),
+    )
+    .unwrap();
     assert!(r.consistent, "{}", r.to_text(false));
     assert!(r.degeneracy_checked);
     assert!(r.degenerate.is_empty(), "{:?}", r.degenerate);
@@ -220,7 +228,10 @@ fn a_non_barycentric_fixed_operator_is_inconsistent_with_a_certificate() {
 
 mod properties {
     use super::*;
-    use lacuna::{automaton_of, close, Closure, EdgeKind, EdgeType, Face, Limits, Params};
+    use lacuna::{
+        constraint::automaton_of, topology::close, topology::Closure, topology::EdgeKind,
+        topology::EdgeType, topology::Face, topology::Limits, topology::Params,
+    };
     use proptest::prelude::*;
 
     fn face() -> impl Strategy<Value = Face> {
@@ -233,9 +244,9 @@ mod properties {
         let plain = (prop_oneof![Just(EdgeKind::B), Just(EdgeKind::C)], 2u32..=3)
             .prop_map(|(k, n)| EdgeType::new(k, n));
         let alg = prop_oneof![
-            Just(lacuna::Algorithm::a1()),
-            Just(lacuna::Algorithm::a2()),
-            Just(lacuna::Algorithm::a3())
+            Just(lacuna::topology::Algorithm::a1()),
+            Just(lacuna::topology::Algorithm::a2()),
+            Just(lacuna::topology::Algorithm::a3())
         ];
         (
             proptest::collection::vec(edge, 2..=5),
@@ -286,9 +297,13 @@ fn the_degeneracy_check_reports_a_forced_collapse() {
     // Add to F0's system a constraint that glues the lacuna vertex at the start of sub-face 0's
     // El edge to the one at the start of sub-face 2's: two combinatorially distinct corners are
     // then forced to coincide, and the check must say so (and say nothing without it).
-    use lacuna::{automaton_of, degeneracies, Constraint, ConstraintKind, Factor, Origin};
-    let input = lacuna::load_input("F0").unwrap();
-    let ts = lacuna::close_or_error(&input.faces(), &lacuna::Limits::default()).unwrap();
+    use lacuna::{
+        constraint::automaton_of, constraint::degeneracies, constraint::Constraint,
+        constraint::ConstraintKind, constraint::Factor, topology::Origin,
+    };
+    let input = lacuna::input::load_input("F0").unwrap();
+    let ts = lacuna::topology::close_or_error(&input.faces(), &lacuna::topology::Limits::default())
+        .unwrap();
     let mut g = automaton_of(&ts, GenOptions::default());
     let (_, lin, sol) = solve_automaton(&g.automaton).unwrap();
     let Solution::Consistent(space) = sol else {
@@ -329,9 +344,10 @@ fn the_degeneracy_check_reports_a_forced_collapse() {
 fn cantor_layout_is_configurable() {
     // C2 with gap/piece ratio g: pieces of length p = 1/(2 + g), the second starting at p + g·p.
     // g = 1/2: p = 2/5, pieces [0, 2/5] and [3/5, 1]: T1 = [1 − 3/5, 0; 3/5, 1] = [2/5 0; 3/5 1].
-    use lacuna::automaton_of;
-    let input = lacuna::load_input("F0").unwrap();
-    let ts = lacuna::close_or_error(&input.faces(), &lacuna::Limits::default()).unwrap();
+    use lacuna::constraint::automaton_of;
+    let input = lacuna::input::load_input("F0").unwrap();
+    let ts = lacuna::topology::close_or_error(&input.faces(), &lacuna::topology::Limits::default())
+        .unwrap();
     let opts = GenOptions {
         cantor_gap: parse_rational("1/2").unwrap(),
         ..GenOptions::default()

@@ -11,15 +11,15 @@ fuzz_target!(|data: &[u8]| {
         name: "fuzz".into(),
         text: text.into(),
     };
-    let Ok(a) = lacuna::parse_automaton(&src) else {
+    let Ok(a) = lacuna::input::parse_automaton(&src) else {
         return;
     };
     let Ok(lin) = a.linearize() else { return };
     if lin.system.unknowns > 2_000 || lin.system.rows.len() > 4_000 {
         return;
     }
-    match lacuna::solve(&lin.system) {
-        lacuna::Solution::Consistent(s) => s.check(&lin.system).expect("solution re-checks"),
-        lacuna::Solution::Inconsistent(c) => c.check(&lin.system).expect("conflict re-checks"),
+    match lacuna::constraint::solve(&lin.system) {
+        lacuna::constraint::Solution::Consistent(s) => s.check(&lin.system).expect("solution re-checks"),
+        lacuna::constraint::Solution::Inconsistent(c) => c.check(&lin.system).expect("conflict re-checks"),
     }
 });

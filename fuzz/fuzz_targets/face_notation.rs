@@ -7,9 +7,9 @@ fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else {
         return;
     };
-    match lacuna::Face::parse(text) {
+    match lacuna::topology::Face::parse(text) {
         Ok(face) => {
-            let again = lacuna::Face::parse(&face.to_string()).expect("printed notation parses");
+            let again = lacuna::topology::Face::parse(&face.to_string()).expect("printed notation parses");
             assert_eq!(again, face);
         }
         Err(e) => {

@@ -11,7 +11,7 @@ fuzz_target!(|data: &[u8]| {
         name: "fuzz".into(),
         text: text.into(),
     };
-    match lacuna::parse_text(&src) {
+    match lacuna::input::parse_text(&src) {
         Ok(a) => {
             for s in &a.shared {
                 assert_eq!(

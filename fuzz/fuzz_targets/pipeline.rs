@@ -7,10 +7,10 @@ fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else {
         return;
     };
-    let Ok(face) = lacuna::Face::parse(text) else {
+    let Ok(face) = lacuna::topology::Face::parse(text) else {
         return;
     };
-    let limits = lacuna::Limits {
+    let limits = lacuna::topology::Limits {
         max_boundary: 48,
         max_types: 200,
         max_level: 20,
@@ -19,8 +19,8 @@ fuzz_target!(|data: &[u8]| {
         max_digits: 100,
         max_unknowns: 100_000,
     };
-    if let Ok(lacuna::Closure::Closed(ts)) = lacuna::close(&face, &limits) {
+    if let Ok(lacuna::topology::Closure::Closed(ts)) = lacuna::topology::close(&face, &limits) {
         ts.verify().expect("closure identities");
-        let _ = lacuna::counts(&ts, 8);
+        let _ = lacuna::topology::counts(&ts, 8);
     }
 });

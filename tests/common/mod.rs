@@ -20,7 +20,7 @@ pub fn lacuna(args: &[&str]) -> (i32, String, String) {
 /// STYLE rule 5: a pipeline test also emits the certificate of what it computed (closure,
 /// solution space of the generated system, limit ratio), round-trips it through JSON and has the
 /// independent checker prove every step.
-pub fn assert_certified(name: &str, ts: &lacuna::TypeSet) {
+pub fn assert_certified(name: &str, ts: &lacuna::topology::TypeSet) {
     let cert = certificate_for(name, ts, GenOptions::default())
         .unwrap_or_else(|e| panic!("{name}: no certificate: {e}"));
     assert_proved(name, &cert);
@@ -28,23 +28,24 @@ pub fn assert_certified(name: &str, ts: &lacuna::TypeSet) {
 
 // ---- certificates ----
 
+use lacuna::certificate::{certificate_for, certificate_for_automaton};
 use lacuna::certificate::{Certificate, Step};
-use lacuna::certify::{certificate_for, certificate_for_automaton};
 use lacuna::checker::{check, check_json, Outcome};
-use lacuna::{GenOptions, Limits};
+use lacuna::{constraint::GenOptions, topology::Limits};
 
 pub fn face_certificate(name: &str) -> Certificate {
-    let input = lacuna::load_input(name).unwrap_or_else(|e| panic!("{name}: {}", e.render()));
-    let ts = lacuna::close_or_error(&input.faces(), &Limits::default()).expect("closes");
+    let input =
+        lacuna::input::load_input(name).unwrap_or_else(|e| panic!("{name}: {}", e.render()));
+    let ts = lacuna::topology::close_or_error(&input.faces(), &Limits::default()).expect("closes");
     certificate_for(name, &ts, GenOptions::default()).expect("certifiable")
 }
 
 pub fn automaton_certificate(name: &str) -> Certificate {
-    match lacuna::load_any(name).expect("loads") {
-        lacuna::Loaded::Automaton { automaton, .. } => {
+    match lacuna::input::load_any(name).expect("loads") {
+        lacuna::input::Loaded::Automaton { automaton, .. } => {
             certificate_for_automaton(name, &automaton).expect("certifiable")
         }
-        lacuna::Loaded::Faces(_) => panic!("{name} is not an automaton"),
+        lacuna::input::Loaded::Faces(_) => panic!("{name} is not an automaton"),
     }
 }
 

@@ -1,0 +1,322 @@
+//! Polynomials and linear algebra over a real number field K = Q(λ), for the exact eigen
+//! analysis of operators ([`crate::analysis::operator`]): Euclid, the Schur–Cohn test "every root in the
+//! open unit disk", the position of roots relative to the unit circle, null spaces.
+//!
+//! K is a [`NumberField`] (degree 1 for Q); signs are exact ([`NumberField::sign`]). Written by
+//! hand: [`crate::algebra::poly`] works over Q only, and these few routines are all the analysis needs.
+
+use crate::algebra::algebraic::{FieldElement, NumberField, RealAlgebraic};
+use crate::algebra::matrix::Matrix;
+use crate::algebra::poly::Poly;
+use num_rational::BigRational;
+use num_traits::{One, Zero};
+use std::cmp::Ordering;
+
+/// A polynomial over K, lowest degree first, without trailing zeros.
+pub(crate) type KPoly = Vec<FieldElement>;
+
+fn q(n: i64) -> BigRational {
+    BigRational::from_integer(n.into())
+}
+
+pub(crate) fn trim(mut p: KPoly) -> KPoly {
+    while p.last().is_some_and(FieldElement::is_zero) {
+        p.pop();
+    }
+    p
+}
+
+pub(crate) fn to_k(k: &NumberField, p: &Poly) -> KPoly {
+    trim(p.coeffs().iter().map(|c| k.rational(c.clone())).collect())
+}
+
+pub(crate) fn k_eval(k: &NumberField, p: &[FieldElement], x: &FieldElement) -> FieldElement {
+    p.iter()
+        .rev()
+        .fold(k.rational(BigRational::zero()), |acc, c| {
+            k.add(&k.mul(&acc, x), c)
+        })
+}
+
+pub(crate) fn k_monic(k: &NumberField, p: KPoly) -> KPoly {
+    let p = trim(p);
+    match p.last() {
+        None => p,
+        Some(lc) => {
+            let inv = k.inv(lc).expect("non-zero leading coefficient");
+            p.iter().map(|c| k.mul(c, &inv)).collect()
+        }
+    }
+}
+
+/// `(quotient, remainder)` of `a / b`, `b ≠ 0`.
+pub(crate) fn k_divrem(k: &NumberField, a: &[FieldElement], b: &[FieldElement]) -> (KPoly, KPoly) {
+    let b = trim(b.to_vec());
+    let mut r = trim(a.to_vec());
+    let db = b.len() - 1;
+    let inv = k.inv(&b[db]).expect("non-zero divisor");
+    let mut quo = vec![k.rational(BigRational::zero()); r.len().saturating_sub(db).max(1)];
+    while r.len() > db && !r.is_empty() {
+        let s = r.len() - 1 - db;
+        let c = k.mul(&r[r.len() - 1], &inv);
+        for (i, bi) in b.iter().enumerate() {
+            r[s + i] = k.sub(&r[s + i], &k.mul(&c, bi));
+        }
+        quo[s] = c;
+        r.pop();
+        r = trim(r);
+    }
+    (trim(quo), r)
+}
+
+pub(crate) fn k_gcd(k: &NumberField, a: &[FieldElement], b: &[FieldElement]) -> KPoly {
+    let (mut a, mut b) = (trim(a.to_vec()), trim(b.to_vec()));
+    while !b.is_empty() {
+        let (_, r) = k_divrem(k, &a, &b);
+        a = b;
+        b = r;
+    }
+    k_monic(k, a)
+}
+
+/// `p(c·x)`.
+pub(crate) fn k_scale_var(k: &NumberField, p: &[FieldElement], c: &FieldElement) -> KPoly {
+    let mut pow = k.rational(BigRational::one());
+    let mut out = Vec::with_capacity(p.len());
+    for a in p {
+        out.push(k.mul(a, &pow));
+        pow = k.mul(&pow, c);
+    }
+    trim(out)
+}
+
+/// Schur–Cohn: every root of the real polynomial `p ≠ 0` lies in the open unit disk. With
+/// `p*(x) = x^n p(1/x)`, this holds iff `|a_0| < |a_n|` and `(a_n·p − a_0·p*)/x` (degree n − 1)
+/// passes the same test (Rouché on the unit circle).
+pub(crate) fn inside_unit_disk(k: &NumberField, p: &[FieldElement]) -> bool {
+    let mut p = k_monic(k, p.to_vec());
+    while p.len() > 1 {
+        let n = p.len() - 1;
+        let (a0, an) = (&p[0], &p[n]);
+        let d = k.sub(&k.mul(an, an), &k.mul(a0, a0));
+        if k.sign(&d) != Ordering::Greater {
+            return false;
+        }
+        let next: KPoly = (0..n)
+            .map(|i| k.sub(&k.mul(an, &p[i + 1]), &k.mul(a0, &p[n - 1 - i])))
+            .collect();
+        p = k_monic(k, next);
+    }
+    true
+}
+
+/// Where the roots of a real polynomial lie relative to the unit circle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Position {
+    /// Every root strictly inside.
+    Inside,
+    /// None outside, at least one on the circle.
+    OnCircle,
+    /// At least one strictly outside.
+    Outside,
+    /// Not decided by the exact tests implemented.
+    Undecided,
+}
+
+/// Exact position of the roots of `g` relative to the unit circle. Roots on the circle are roots
+/// of `c = gcd(g, g*)` (for real g, |z| = 1 ⇔ 1/z = z̄ is a root); the rest of g is tested by
+/// Schur–Cohn; c itself is split into `x ∓ 1` factors and inverse pairs {z, 1/z}, decided by
+/// the discriminant when one pair is left (real pair: one root outside; complex: on the circle).
+pub(crate) fn circle_position(k: &NumberField, g: &[FieldElement]) -> Position {
+    let g = trim(g.to_vec());
+    if g.len() <= 1 {
+        return Position::Inside;
+    }
+    let rev: KPoly = g.iter().rev().cloned().collect();
+    let c = k_gcd(k, &g, &rev);
+    if c.len() <= 1 {
+        return if inside_unit_disk(k, &g) {
+            Position::Inside
+        } else {
+            Position::Outside
+        };
+    }
+    let mut rest = g;
+    loop {
+        let (quo, r) = k_divrem(k, &rest, &c);
+        if !r.is_empty() {
+            break;
+        }
+        rest = quo;
+    }
+    loop {
+        let common = k_gcd(k, &rest, &c);
+        if common.len() <= 1 {
+            break;
+        }
+        rest = k_divrem(k, &rest, &common).0;
+    }
+    if !inside_unit_disk(k, &rest) {
+        return Position::Outside;
+    }
+    // Strip x − 1 and x + 1 from c (simple roots of the square-free gcd).
+    let mut c = c;
+    for s in [1i64, -1] {
+        let root = k.rational(q(s));
+        if k_eval(k, &c, &root).is_zero() {
+            c = k_divrem(k, &c, &[k.rational(q(-s)), k.rational(q(1))]).0;
+        }
+    }
+    match c.len() {
+        0 | 1 => Position::OnCircle,
+        3 => {
+            // x² + b·x + 1 (roots z, 1/z): on the circle iff b² − 4 < 0.
+            let c = k_monic(k, c);
+            let disc = k.sub(&k.mul(&c[1], &c[1]), &k.rational(q(4)));
+            if k.sign(&disc) == Ordering::Less {
+                Position::OnCircle
+            } else {
+                Position::Outside
+            }
+        }
+        _ => Position::Undecided,
+    }
+}
+
+/// A basis of the null space of the `n × n` matrix `a` over K, each vector scaled so that its last
+/// non-zero coordinate is 1.
+pub(crate) fn null_space(k: &NumberField, mut a: Vec<Vec<FieldElement>>) -> Vec<Vec<FieldElement>> {
+    let rows = a.len();
+    let cols = a.first().map_or(0, Vec::len);
+    let mut pivots = Vec::new();
+    let mut r = 0;
+    for c in 0..cols {
+        let Some(p) = (r..rows).find(|&i| !a[i][c].is_zero()) else {
+            continue;
+        };
+        a.swap(r, p);
+        let inv = k.inv(&a[r][c]).expect("pivot");
+        a[r] = a[r].iter().map(|x| k.mul(x, &inv)).collect();
+        for i in 0..rows {
+            if i != r && !a[i][c].is_zero() {
+                let f = a[i][c].clone();
+                let row_r = a[r].clone();
+                for (x, y) in a[i].iter_mut().zip(&row_r) {
+                    *x = k.sub(x, &k.mul(&f, y));
+                }
+            }
+        }
+        pivots.push(c);
+        r += 1;
+        if r == rows {
+            break;
+        }
+    }
+    let free: Vec<usize> = (0..cols).filter(|c| !pivots.contains(c)).collect();
+    free.iter()
+        .map(|&f| {
+            let mut v = vec![k.rational(BigRational::zero()); cols];
+            v[f] = k.rational(BigRational::one());
+            for (i, &pc) in pivots.iter().enumerate() {
+                v[pc] = k.sub(&v[pc], &a[i][f]);
+            }
+            let last = v.iter().rev().find(|x| !x.is_zero()).cloned();
+            let inv = k
+                .inv(&last.expect("non-zero basis vector"))
+                .expect("non-zero");
+            v.iter().map(|x| k.mul(x, &inv)).collect()
+        })
+        .collect()
+}
+
+/// `T − λ·I` over K.
+pub(crate) fn shifted(
+    k: &NumberField,
+    t: &Matrix,
+    lambda: &FieldElement,
+) -> Vec<Vec<FieldElement>> {
+    (0..t.rows)
+        .map(|i| {
+            (0..t.cols)
+                .map(|j| {
+                    let e = k.rational(t.get(i, j).clone());
+                    if i == j {
+                        k.sub(&e, lambda)
+                    } else {
+                        e
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// `T · v` for a rational matrix and a vector over K.
+pub(crate) fn apply(k: &NumberField, t: &Matrix, v: &[FieldElement]) -> Vec<FieldElement> {
+    (0..t.rows)
+        .map(|i| {
+            v.iter()
+                .enumerate()
+                .fold(k.rational(BigRational::zero()), |acc, (j, x)| {
+                    k.add(&acc, &k.mul(&k.rational(t.get(i, j).clone()), x))
+                })
+        })
+        .collect()
+}
+
+/// The rational field Q as a [`NumberField`] of degree 1.
+pub(crate) fn rationals() -> NumberField {
+    NumberField::new(RealAlgebraic::rational(BigRational::zero()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn poly(c: &[i64], den: i64) -> Poly {
+        Poly::new(
+            c.iter()
+                .map(|&x| BigRational::new(x.into(), den.into()))
+                .collect(),
+        )
+    }
+
+    #[test]
+    fn schur_cohn_on_known_roots() {
+        let k = rationals();
+        let inside = |p: &Poly| inside_unit_disk(&k, &to_k(&k, p));
+        assert!(inside(&poly(&[1, 0, 4], 4))); // x² + 1/4: ±i/2
+        assert!(!inside(&poly(&[-1, 1], 1))); // x − 1: on the circle
+        assert!(!inside(&poly(&[2, -9, 4], 4))); // (x − 2)(x − 1/4)
+        assert!(inside(&poly(&[0, 0, 1], 1))); // x²: 0 twice
+    }
+
+    #[test]
+    fn circle_positions() {
+        let k = rationals();
+        let pos = |p: &Poly| circle_position(&k, &to_k(&k, p));
+        assert_eq!(pos(&poly(&[1, 0, 1], 1)), Position::OnCircle); // ±i
+        assert_eq!(pos(&poly(&[3, -10, 3], 3)), Position::Outside); // 3 and 1/3
+        assert_eq!(pos(&poly(&[1, 1], 1)), Position::OnCircle); // −1
+        assert_eq!(pos(&poly(&[1, 4], 8)), Position::Inside); // −1/4
+        assert_eq!(pos(&poly(&[-1, 0, 0, 1], 1)), Position::OnCircle); // cube roots of 1
+    }
+
+    #[test]
+    fn all_real_roots_and_null_space() {
+        // x³ − 3x + 1 has three real roots (2cos(2π/9), …), ≈ −1.879, 0.347, 1.532.
+        let roots = RealAlgebraic::real_roots(&Poly::from_ints(&[1, -3, 0, 1]));
+        let d: Vec<String> = roots.iter().map(|r| r.decimal(3)).collect();
+        assert_eq!(d, ["-1.879", "0.347", "1.532"]);
+        assert!(RealAlgebraic::real_roots(&Poly::from_ints(&[1, 0, 1])).is_empty());
+        let k = rationals();
+        let a = Matrix::from_rows(vec![
+            vec![BigRational::one(), BigRational::one()],
+            vec![BigRational::one(), BigRational::one()],
+        ]);
+        let zero = k.rational(BigRational::zero());
+        let ns = null_space(&k, shifted(&k, &a, &zero));
+        assert_eq!(ns.len(), 1);
+        assert_eq!(ns[0][0].as_rational(), Some(-BigRational::one()));
+    }
+}

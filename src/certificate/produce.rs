@@ -1,0 +1,556 @@
+//! The certificate producer: writes lacuna's results (closure, solution space, limit ratio) as a
+//! [`Certificate`] for the independent checker ([`crate::checker`]).
+//!
+//! This side may use all of lacuna: the certificate claims what lacuna computed, and the checker
+//! re-verifies it without lacuna's code. The only new computations here are the witnesses the
+//! checker needs and lacuna does not report: the left Perron eigenvector over Q(ρ) of every class
+//! of radius ρ (exact elimination in lacuna's number field), the Collatz–Wielandt vectors of the
+//! other classes, and the minimal polynomial of each limit point.
+
+use crate::certificate::format::{
+    Adjacency, Algebraic, Certificate, ClassClaim, ClosureStep, ConflictStep, Edge, Face, Kind,
+    Origin, Params, Pattern, PointClaim, RadiusWitness, RatioStep, Recipe, Row, SolutionStep,
+    SpokeItem, Step, SubFace, System, TypeRule,
+};
+use num_rational::BigRational;
+use num_traits::{One, Zero};
+use std::cmp::Ordering;
+
+/// Why a certificate could not be produced.
+#[derive(Debug, thiserror::Error)]
+pub enum CertifyError {
+    /// Certificates write algorithms as spoke sets; a custom chooser has no data form.
+    #[error("face type `{face}` uses the custom algorithm `{algorithm}`, which certificates cannot express")]
+    CustomAlgorithm {
+        /// The face.
+        face: String,
+        /// The algorithm's name.
+        algorithm: String,
+    },
+    /// lacuna itself failed (linearising the automaton).
+    #[error(transparent)]
+    Lacuna(#[from] crate::Error),
+    /// The eigen analysis failed.
+    #[error(transparent)]
+    Ratio(#[from] crate::analysis::RatioError),
+    /// A witness could not be built (a disagreement inside lacuna's own results).
+    #[error("no witness for the limit ratio: {0}")]
+    Witness(String),
+}
+
+/// The full certificate of a closed type set: the closure, the solution space (or conflict) of
+/// the generated constraint system, and the limit ratio.
+pub fn certificate_for(
+    input: &str,
+    ts: &crate::topology::TypeSet,
+    opts: crate::constraint::GenOptions,
+) -> Result<Certificate, CertifyError> {
+    let mut cert = Certificate::new(input);
+    cert.steps.push(Step::Closure(closure_step(ts)?));
+    let source = format!(
+        "the constraints of the automaton generated from the closure (SPEC §6, Bézier degree {}, Cantor gap/piece ratio {})",
+        opts.degree, opts.cantor_gap
+    );
+    let recipe = Recipe {
+        degree: opts.degree.max(1),
+        cantor_gap: opts.cantor_gap.to_string(),
+        unknowns: Vec::new(),
+    };
+    let generated = crate::constraint::automaton_of(ts, opts);
+    let (_, lin, solution) = crate::constraint::solve_automaton(&generated.automaton)?;
+    let recipe = Recipe {
+        unknowns: lin
+            .unknown_entries
+            .iter()
+            .map(|&e| generated.automaton.entry_name(e))
+            .collect(),
+        ..recipe
+    };
+    cert.steps.push(step_of_system(
+        system(&source, &lin.system, Some(recipe)),
+        &solution,
+    ));
+    let matrix = ts.matrix();
+    let c: Vec<u64> = ts.types.iter().map(|t| t.contribution_halves()).collect();
+    let mut start: Vec<(usize, u64)> = Vec::new();
+    for &t in &ts.start {
+        match start.iter_mut().find(|(s, _)| *s == t) {
+            Some(e) => e.1 += 1,
+            None => start.push((t, 1)),
+        }
+    }
+    start.sort_unstable();
+    cert.steps
+        .push(Step::LimitRatio(ratio_step(&matrix, &c, &start)?));
+    Ok(cert)
+}
+
+/// The certificate of a hand-written automaton's constraint system.
+pub fn certificate_for_automaton(
+    name: &str,
+    automaton: &crate::constraint::Automaton,
+) -> Result<Certificate, CertifyError> {
+    let (_, lin, solution) = crate::constraint::solve_automaton(automaton)?;
+    let source = format!("the constraints of the automaton `{name}`");
+    Ok(certificate_for_system(
+        name,
+        &source,
+        &lin.system,
+        &solution,
+    ))
+}
+
+/// The certificate of an explicit linear system and lacuna's solution of it.
+pub fn certificate_for_system(
+    name: &str,
+    source: &str,
+    sys: &crate::constraint::LinearSystem,
+    solution: &crate::constraint::Solution,
+) -> Certificate {
+    let mut cert = Certificate::new(name);
+    cert.steps.push(solution_step(source, sys, solution));
+    cert
+}
+
+fn edge(e: &crate::topology::EdgeType) -> Edge {
+    let kind = match e.kind {
+        crate::topology::EdgeKind::B => Kind::B,
+        crate::topology::EdgeKind::C => Kind::C,
+    };
+    Edge {
+        kind,
+        n: e.n,
+        delay: e.delay,
+    }
+}
+
+fn pattern(p: &crate::topology::EdgePattern) -> Pattern {
+    match p {
+        crate::topology::EdgePattern::Any => Pattern::Any,
+        crate::topology::EdgePattern::Kind(k) => Pattern::Kind(match k {
+            crate::topology::EdgeKind::B => Kind::B,
+            crate::topology::EdgeKind::C => Kind::C,
+        }),
+        crate::topology::EdgePattern::Exact(e) => Pattern::Exact(edge(e)),
+    }
+}
+
+fn face(f: &crate::topology::Face) -> Result<Face, CertifyError> {
+    let algorithm = match &f.algorithm {
+        crate::topology::Algorithm::Spokes(items) => items
+            .iter()
+            .map(|i| match i {
+                crate::topology::SpokeItem::Joint => SpokeItem::Joint,
+                crate::topology::SpokeItem::Gap => SpokeItem::Gap,
+                crate::topology::SpokeItem::Corner => SpokeItem::Corner,
+                crate::topology::SpokeItem::DelayedCorner => SpokeItem::DelayedCorner,
+                crate::topology::SpokeItem::CornerBetween(p, q) => {
+                    SpokeItem::CornerBetween(pattern(p), pattern(q))
+                }
+            })
+            .collect(),
+        crate::topology::Algorithm::Custom(c) => {
+            return Err(CertifyError::CustomAlgorithm {
+                face: f.to_string(),
+                algorithm: c.name(),
+            })
+        }
+    };
+    Ok(Face {
+        boundary: f.boundary.iter().map(edge).collect(),
+        params: Params {
+            ea: edge(&f.params.ea),
+            el: edge(&f.params.el),
+            ec: edge(&f.params.ec),
+        },
+        algorithm,
+        delay: f.delay,
+    })
+}
+
+fn origin(o: &crate::topology::Origin) -> Origin {
+    match *o {
+        crate::topology::Origin::Piece { edge, piece } => Origin::Piece { edge, piece },
+        crate::topology::Origin::Spoke { spoke, inward } => Origin::Spoke { spoke, inward },
+        crate::topology::Origin::Lacuna { side } => Origin::Lacuna { side },
+        crate::topology::Origin::GapSide { edge, gap, after } => {
+            Origin::GapSide { edge, gap, after }
+        }
+    }
+}
+
+/// The closure step of a closed type set.
+pub fn closure_step(ts: &crate::topology::TypeSet) -> Result<ClosureStep, CertifyError> {
+    let types = ts
+        .types
+        .iter()
+        .map(|t| {
+            Ok(TypeRule {
+                face: face(&t.face)?,
+                subfaces: t
+                    .subdivision
+                    .subfaces
+                    .iter()
+                    .zip(&t.children)
+                    .map(|(s, &c)| SubFace {
+                        type_index: c,
+                        origins: s.origins.iter().map(origin).collect(),
+                    })
+                    .collect(),
+                adjacencies: t
+                    .subdivision
+                    .adjacencies
+                    .iter()
+                    .map(|a| Adjacency {
+                        first: a.first,
+                        second: a.second,
+                    })
+                    .collect(),
+                contribution_halves: t.contribution_halves(),
+            })
+        })
+        .collect::<Result<_, CertifyError>>()?;
+    Ok(ClosureStep {
+        types,
+        start: ts.start.clone(),
+    })
+}
+
+fn terms(v: &[(usize, BigRational)]) -> Vec<(usize, String)> {
+    v.iter().map(|(i, c)| (*i, c.to_string())).collect()
+}
+
+fn system(source: &str, sys: &crate::constraint::LinearSystem, recipe: Option<Recipe>) -> System {
+    System {
+        recipe,
+        source: source.to_string(),
+        unknowns: sys.unknowns,
+        rows: sys
+            .rows
+            .iter()
+            .map(|r| Row {
+                terms: terms(&r.terms),
+                rhs: r.rhs.to_string(),
+            })
+            .collect(),
+    }
+}
+
+/// The step certifying lacuna's solution of `sys` (a system as given, without recipe): its
+/// solution space, or its conflict.
+pub fn solution_step(
+    source: &str,
+    sys: &crate::constraint::LinearSystem,
+    solution: &crate::constraint::Solution,
+) -> Step {
+    step_of_system(system(source, sys, None), solution)
+}
+
+fn step_of_system(system: System, solution: &crate::constraint::Solution) -> Step {
+    match solution {
+        crate::constraint::Solution::Consistent(s) => Step::SolutionSpace(SolutionStep {
+            system,
+            particular: s
+                .particular
+                .iter()
+                .enumerate()
+                .filter(|(_, x)| !x.is_zero())
+                .map(|(i, x)| (i, x.to_string()))
+                .collect(),
+            free: s.free.clone(),
+            basis: s.basis.iter().map(|b| terms(b)).collect(),
+            pivots: s.pivots.clone(),
+            rank: s.rank,
+            dof: s.dof(),
+        }),
+        crate::constraint::Solution::Inconsistent(c) => Step::Inconsistent(ConflictStep {
+            system,
+            multipliers: terms(&c.multipliers),
+            constant: c.constant.to_string(),
+        }),
+    }
+}
+
+/// The limit-ratio step of a substitution (`matrix[t]` lists `(s, k)`), contributions in halves
+/// and start `(type, multiplicity)`, with lacuna's verdict and the checker's witnesses.
+pub fn ratio_step(
+    matrix: &[Vec<(usize, u64)>],
+    contribution_halves: &[u64],
+    start: &[(usize, u64)],
+) -> Result<RatioStep, CertifyError> {
+    let c: Vec<BigRational> = contribution_halves
+        .iter()
+        .map(|&h| BigRational::new(h.into(), 2.into()))
+        .collect();
+    let report = crate::analysis::analyse(matrix, &c, start)?;
+    let field = &report.field;
+    let rho = separated_rho(&report)?;
+    let lo = rho.interval().0.clone();
+    // Classes ordered by smallest member.
+    let mut order: Vec<usize> = (0..report.classes.len()).collect();
+    order.sort_by_key(|&i| report.classes[i].members[0]);
+    let classes = order
+        .iter()
+        .map(|&i| {
+            let class = &report.classes[i];
+            let radius = match (class.period, class.dominant) {
+                (None, _) => RadiusWitness::Transient,
+                (Some(_), true) => {
+                    RadiusWitness::Perron(perron_vector(field, matrix, &class.members)?)
+                }
+                (Some(_), false) => {
+                    RadiusWitness::Below(collatz_wielandt(&lo, matrix, &class.members)?)
+                }
+            };
+            Ok(ClassClaim {
+                members: class.members.clone(),
+                period: class.period,
+                radius,
+            })
+        })
+        .collect::<Result<_, CertifyError>>()?;
+    let points = report
+        .limit_points
+        .iter()
+        .map(|p| {
+            Ok(PointClaim {
+                value: match p.value.coords() {
+                    [] => vec!["0".to_string()],
+                    c => strings(c),
+                },
+                real: algebraic(&real_of(field, &p.value)?),
+                decimal: p.decimal.clone(),
+            })
+        })
+        .collect::<Result<_, CertifyError>>()?;
+    Ok(RatioStep {
+        matrix: matrix.to_vec(),
+        contribution_halves: contribution_halves.to_vec(),
+        start: start.to_vec(),
+        classes,
+        rho: algebraic(&rho),
+        period: report.period,
+        exists: report.exists,
+        points,
+    })
+}
+
+fn strings(v: &[BigRational]) -> Vec<String> {
+    v.iter().map(|q| q.to_string()).collect()
+}
+
+fn algebraic(x: &crate::algebra::RealAlgebraic) -> Algebraic {
+    let (lo, hi) = x.interval();
+    Algebraic {
+        poly: x
+            .min_poly()
+            .primitive_int()
+            .iter()
+            .map(|c| c.to_string())
+            .collect(),
+        lo: lo.to_string(),
+        hi: hi.to_string(),
+    }
+}
+
+/// ρ with an isolating interval whose lower end lies above 1 (when ρ is irrational) and above
+/// every smaller class radius, as the Collatz–Wielandt bounds need.
+fn separated_rho(
+    report: &crate::analysis::RatioReport,
+) -> Result<crate::algebra::RealAlgebraic, CertifyError> {
+    let mut rho = report.field.generator().clone();
+    let others: Vec<&crate::algebra::RealAlgebraic> = report
+        .classes
+        .iter()
+        .filter(|c| !c.dominant)
+        .map(|c| &c.radius)
+        .collect();
+    let one = crate::algebra::RealAlgebraic::rational(BigRational::one());
+    let lo_above = |r: &crate::algebra::RealAlgebraic, x: &crate::algebra::RealAlgebraic| {
+        r.degree() == 1
+            || crate::algebra::RealAlgebraic::rational(r.interval().0.clone()).cmp_exact(x)
+                == Ordering::Greater
+    };
+    let mut rounds = 0;
+    while !(lo_above(&rho, &one) && others.iter().all(|x| lo_above(&rho, x))) {
+        rounds += 1;
+        if rounds > 10_000 {
+            return Err(CertifyError::Witness(
+                "ρ does not separate from a class".into(),
+            ));
+        }
+        rho.refine();
+    }
+    Ok(rho)
+}
+
+/// The left eigenvector `y` of the block of `members` for ρ (`y·B = ρ·y`), 1 at the first
+/// member; positive by Perron–Frobenius.
+fn perron_vector(
+    field: &crate::algebra::NumberField,
+    matrix: &[Vec<(usize, u64)>],
+    members: &[usize],
+) -> Result<Vec<Vec<String>>, CertifyError> {
+    let r = field.generator_element();
+    let zero = field.rational(BigRational::zero());
+    let size = members.len();
+    // Row i of (B − ρI)ᵀ: Σ_j y_j (B[j][i] − ρ δ_ij) = 0.
+    let mut rows = vec![vec![zero; size]; size];
+    for (j, &t) in members.iter().enumerate() {
+        for &(s, k) in &matrix[t] {
+            if let Ok(i) = members.binary_search(&s) {
+                rows[i][j] = field.add(
+                    &rows[i][j],
+                    &field.rational(BigRational::from_integer(k.into())),
+                );
+            }
+        }
+        rows[j][j] = field.sub(&rows[j][j], &r);
+    }
+    let y = kernel_vector(field, rows, size)?;
+    let scale = field
+        .inv(&y[0])
+        .ok_or_else(|| CertifyError::Witness("the Perron vector vanishes".into()))?;
+    Ok(y.iter()
+        .map(|v| strings(field.mul(v, &scale).coords()))
+        .collect())
+}
+
+/// `x = (lo·I − B)⁻¹·1 > 0` on the block of `members`, so `B·x = lo·x − 1 < lo·x`.
+fn collatz_wielandt(
+    lo: &BigRational,
+    matrix: &[Vec<(usize, u64)>],
+    members: &[usize],
+) -> Result<Vec<String>, CertifyError> {
+    let q = crate::algebra::NumberField::new(crate::algebra::RealAlgebraic::rational(
+        BigRational::zero(),
+    ));
+    let size = members.len();
+    let mut rows = vec![vec![q.rational(BigRational::zero()); size + 1]; size];
+    for (i, &t) in members.iter().enumerate() {
+        rows[i][i] = q.rational(lo.clone());
+        for &(s, m) in &matrix[t] {
+            if let Ok(j) = members.binary_search(&s) {
+                let e = field_sub_int(&q, &rows[i][j], m);
+                rows[i][j] = e;
+            }
+        }
+        rows[i][size] = q.rational(BigRational::one());
+    }
+    let (red, pivots) = rref(&q, rows, size);
+    if pivots.len() != size {
+        return Err(CertifyError::Witness("lo·I − B is singular".into()));
+    }
+    Ok(red
+        .iter()
+        .map(|row| {
+            row[size]
+                .as_rational()
+                .expect("a rational field")
+                .to_string()
+        })
+        .collect())
+}
+
+/// `v` as a real algebraic number: its minimal polynomial over Q (the first linear dependence
+/// among `1, v, v², …` in Q(ρ), a field) and the isolating interval of its root equal to `v`.
+fn real_of(
+    field: &crate::algebra::NumberField,
+    v: &crate::algebra::FieldElement,
+) -> Result<crate::algebra::RealAlgebraic, CertifyError> {
+    if let Some(q) = v.as_rational() {
+        return Ok(crate::algebra::RealAlgebraic::rational(q));
+    }
+    let q = crate::algebra::NumberField::new(crate::algebra::RealAlgebraic::rational(
+        BigRational::zero(),
+    ));
+    let deg = field.degree();
+    let coord = |x: &crate::algebra::FieldElement, i: usize| q.rational(x.poly().coeff(i));
+    let mut powers = vec![field.rational(BigRational::one())];
+    for k in 1..=deg {
+        powers.push(field.mul(&powers[k - 1], v));
+        // Solve Σ_(i<k) a_i·v^i = v^k on the coordinates.
+        let rows = (0..deg)
+            .map(|i| (0..=k).map(|j| coord(&powers[j], i)).collect())
+            .collect();
+        let (red, pivots) = rref(&q, rows, k + 1);
+        if pivots.contains(&k) {
+            continue; // v^k is independent of the lower powers
+        }
+        let mut coeffs: Vec<BigRational> = vec![BigRational::zero(); k + 1];
+        for (row, &p) in red.iter().zip(&pivots) {
+            coeffs[p] = -row[k].as_rational().expect("rational");
+        }
+        coeffs[k] = BigRational::one();
+        let f = crate::algebra::Poly::new(coeffs);
+        let sign = |x: &BigRational| field.sign(&field.sub(v, &field.rational(x.clone())));
+        return crate::algebra::RealAlgebraic::real_roots(&f)
+            .into_iter()
+            .find(|r| {
+                let (lo, hi) = r.interval();
+                sign(lo) == Ordering::Greater && sign(hi) == Ordering::Less
+            })
+            .ok_or_else(|| CertifyError::Witness("no root of the minimal polynomial is R".into()));
+    }
+    Err(CertifyError::Witness("no minimal polynomial found".into()))
+}
+
+fn field_sub_int(
+    f: &crate::algebra::NumberField,
+    a: &crate::algebra::FieldElement,
+    m: u64,
+) -> crate::algebra::FieldElement {
+    f.sub(a, &f.rational(BigRational::from_integer(m.into())))
+}
+
+/// Reduced row echelon form over the field on the first `cols` columns; returns the pivot
+/// columns.
+fn rref(
+    f: &crate::algebra::NumberField,
+    mut a: Vec<Vec<crate::algebra::FieldElement>>,
+    cols: usize,
+) -> (Vec<Vec<crate::algebra::FieldElement>>, Vec<usize>) {
+    let mut pivots = Vec::new();
+    for col in 0..cols {
+        let r = pivots.len();
+        let Some(p) = (r..a.len()).find(|&i| !a[i][col].is_zero()) else {
+            continue;
+        };
+        a.swap(r, p);
+        let inv = f.inv(&a[r][col]).expect("nonzero pivot");
+        a[r] = a[r].iter().map(|x| f.mul(x, &inv)).collect();
+        for i in 0..a.len() {
+            if i != r && !a[i][col].is_zero() {
+                let k = a[i][col].clone();
+                let pivot_row = a[r].clone();
+                for (x, y) in a[i].iter_mut().zip(&pivot_row) {
+                    *x = f.sub(x, &f.mul(&k, y));
+                }
+            }
+        }
+        pivots.push(col);
+    }
+    (a, pivots)
+}
+
+/// The one-dimensional kernel of a square matrix, as a vector.
+fn kernel_vector(
+    f: &crate::algebra::NumberField,
+    rows: Vec<Vec<crate::algebra::FieldElement>>,
+    n: usize,
+) -> Result<Vec<crate::algebra::FieldElement>, CertifyError> {
+    let (red, pivots) = rref(f, rows, n);
+    let free: Vec<usize> = (0..n).filter(|c| !pivots.contains(c)).collect();
+    if free.len() != 1 {
+        return Err(CertifyError::Witness(format!(
+            "the eigenspace of ρ has dimension {}, expected 1",
+            free.len()
+        )));
+    }
+    let mut y = vec![f.rational(BigRational::zero()); n];
+    y[free[0]] = f.rational(BigRational::one());
+    for (i, &p) in pivots.iter().enumerate() {
+        y[p] = f.sub(&f.rational(BigRational::zero()), &red[i][free[0]]);
+    }
+    Ok(y)
+}

@@ -1,0 +1,23 @@
+//! `lacuna check`.
+
+use super::*;
+
+/// Runs `lacuna check`.
+pub(super) fn run(args: CheckArgs) -> Result<ExitCode, Error> {
+    let CheckArgs { certificate, json } = args;
+    let text = std::fs::read_to_string(&certificate).map_err(|e| Error::Io {
+        path: certificate.display().to_string(),
+        reason: e.to_string(),
+    })?;
+    let report = lacuna::checker::check_json(&text);
+    if json {
+        print_json(&report.to_json());
+    } else {
+        out(&report.to_text());
+    }
+    Ok(if report.all_proved() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(EXIT_FAILED)
+    })
+}

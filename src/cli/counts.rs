@@ -1,0 +1,29 @@
+//! `lacuna counts`.
+
+use super::*;
+
+/// Runs `lacuna counts`.
+pub(super) fn run(args: CountsArgs, limits: &Limits) -> Result<ExitCode, Error> {
+    let CountsArgs {
+        input,
+        levels,
+        json,
+    } = args;
+    limits.check_level(levels)?;
+    let input = load_input(&input)?;
+    let ts = lacuna::topology::close_or_error(&input.faces(), limits)?;
+    if json {
+        print_json(&lacuna::export::counts_json(&ts, &input, levels));
+    } else {
+        out(&format!(
+            "{} ({} face type{})\n",
+            input.name,
+            ts.types.len(),
+            if ts.types.len() == 1 { "" } else { "s" }
+        ));
+        out(&lacuna::export::counts_table(&lacuna::topology::counts(
+            &ts, levels,
+        )));
+    }
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,167 @@
+//! What `render`, `measure`, `report` and `operators` share: the instance of the input with the
+//! parameters given on the command line, and the checks of raster and grid sizes.
+
+use super::*;
+
+/// A geometry error as a lacuna error (same code and message).
+pub(super) fn geo_error(e: lacuna::geometry::GeometryError) -> Error {
+    match e {
+        lacuna::geometry::GeometryError::Lacuna(e) => e,
+        other => Error::Syntax(Box::new(lacuna::Diagnostic {
+            code: other.code(),
+            message: other.to_string(),
+            span: None,
+            source: None,
+        })),
+    }
+}
+
+/// The input (with `--corners` applied) and its instance with the parameters given, after
+/// checking the limits on the level and on the number of output cells.
+pub(super) fn instance(
+    geo: &GeoArgs,
+    limits: &Limits,
+    default_cells: u64,
+) -> Result<(lacuna::input::Input, lacuna::geometry::Instance), Error> {
+    limits.check_level(u64::from(geo.level))?;
+    if !(1..=64).contains(&geo.segments) {
+        return Err(Error::limit(
+            "the segments per Bézier edge",
+            geo.segments,
+            64,
+            "--segments",
+        ));
+    }
+    let mut input = load_input(&geo.input)?;
+    if let Some(c) = &geo.corners {
+        lacuna::input::set_corners(&mut input.assembly, c)?;
+    }
+    let mut opts = lacuna::geometry::InstantiateOptions {
+        limits: limits.clone(),
+        ..Default::default()
+    };
+    // User control points fix the Bézier degree.
+    opts.degree = input.assembly.coords.degree().unwrap_or(opts.degree);
+    for p in &geo.params {
+        let parsed = p.split_once('=').and_then(|(n, v)| {
+            Some((
+                n.trim().to_string(),
+                lacuna::input::parse_rational(v.trim())?,
+            ))
+        });
+        let Some(pair) = parsed else {
+            return Err(Error::syntax(
+                "E1007",
+                format!("--param `{p}`: expected NAME=VALUE with an exact value (1/7, 0.25)"),
+                lacuna::Span {
+                    line: 1,
+                    col: 1,
+                    len: p.chars().count().max(1),
+                },
+                Some(&lacuna::Source::command_line(p)),
+            ));
+        };
+        opts.values.push(pair);
+    }
+    parameter_choice(geo, &mut opts)?;
+    let inst = lacuna::geometry::instantiate(&input, &opts).map_err(geo_error)?;
+    lacuna::measure::check_cells(&inst, geo.level, geo.max_cells.unwrap_or(default_cells))
+        .map_err(geo_error)?;
+    Ok((input, inst))
+}
+
+/// `--template` and `--goal` into the instantiation options.
+pub(super) fn parameter_choice(
+    geo: &GeoArgs,
+    opts: &mut lacuna::geometry::InstantiateOptions,
+) -> Result<(), Error> {
+    if let Some(path) = &geo.template {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
+            path: path.display().to_string(),
+            reason: e.to_string(),
+        })?;
+        opts.template = Some(lacuna::Source {
+            name: path.display().to_string(),
+            text,
+        });
+    }
+    for g in &geo.goals {
+        let goal = lacuna::geometry::parse_goal(g).ok_or_else(|| {
+            Error::syntax(
+                "E1030",
+                format!("--goal `{g}`: expected nonnegative, nonnegative=M or min-lacuna=S with exact M, S ≥ 0"),
+                lacuna::Span {
+                    line: 1,
+                    col: 1,
+                    len: g.chars().count().max(1),
+                },
+                Some(&lacuna::Source::command_line(g)),
+            )
+        })?;
+        opts.goals.push(goal);
+    }
+    Ok(())
+}
+
+/// How the parameters were chosen, when a template or goals were given (else nothing).
+pub(super) fn choice_text(geo: &GeoArgs, inst: &lacuna::geometry::Instance) -> String {
+    if geo.template.is_none() && geo.goals.is_empty() {
+        return String::new();
+    }
+    let c = &inst.choice;
+    let mut s = format!("parameters: {}\n", c.method);
+    if let (Some(r), Some(a)) = (&c.residual, c.residual_approx) {
+        s += &format!("template residual Σ|P·c − y|² = {r} (≈ {a:.6e})\n");
+        for (t, m) in c.per_type_max.iter().enumerate() {
+            s += &format!("  T{t}: largest squared distance {m}\n");
+        }
+    }
+    let how = if c.moved_by_goals {
+        "by the LP"
+    } else {
+        "by the fit as it was"
+    };
+    match &c.min_slack {
+        Some(m) => {
+            s += &format!(
+                "goals {} met exactly {how}; smallest slack {m}\n",
+                c.goals.join(", ")
+            )
+        }
+        None if !c.goals.is_empty() => {
+            s += &format!("goals {}: no inequality applies\n", c.goals.join(", "))
+        }
+        None => {}
+    }
+    s
+}
+
+/// A raster size must be a power of two from 16 up to `max`.
+pub(super) fn check_raster(flag: &'static str, raster: usize, max: usize) -> Result<(), Error> {
+    if !(16..=max).contains(&raster) || !raster.is_power_of_two() {
+        return Err(Error::OutOfRange {
+            flag,
+            value: raster.to_string(),
+            what: "the raster size",
+            range: format!("a power of two from 16 to {max}"),
+        });
+    }
+    Ok(())
+}
+
+/// The density grid: from `min` to 1024 blocks per side (the map is rasterised at 16 pixels per
+/// block).
+pub(super) fn check_density_grid(grid: usize, min: usize) -> Result<(), Error> {
+    if !(min..=1024).contains(&grid) {
+        return Err(Error::OutOfRange {
+            flag: "--density-grid",
+            value: grid.to_string(),
+            what: "the number of blocks per side",
+            range: format!(
+                "from {min} to 1024{}",
+                if min == 0 { " (0: no map)" } else { "" }
+            ),
+        });
+    }
+    Ok(())
+}

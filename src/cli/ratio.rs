@@ -1,0 +1,23 @@
+//! `lacuna ratio`.
+
+use super::*;
+
+/// Runs `lacuna ratio`.
+pub(super) fn run(args: RatioArgs, limits: &Limits) -> Result<ExitCode, Error> {
+    let RatioArgs {
+        input,
+        digits,
+        json,
+    } = args;
+    limits.check_digits(digits)?;
+    let input = load_input(&input)?;
+    let ts = lacuna::topology::close_or_error(&input.faces(), limits)?;
+    let r = lacuna::export::ratio_of(&ts, digits)?;
+    if json {
+        print_json(&r);
+    } else {
+        out(&format!("{} ({} face types)\n", input.name, ts.types.len()));
+        out(&lacuna::export::ratio_text(&r));
+    }
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,60 @@
+//! `lacuna solve`.
+
+use super::*;
+
+/// Runs `lacuna solve`.
+pub(super) fn run(args: SolveArgs, limits: &Limits) -> Result<ExitCode, Error> {
+    let SolveArgs {
+        input,
+        params,
+        degree,
+        cantor_gap,
+        json,
+    } = args;
+    let gap = lacuna::input::parse_rational(cantor_gap.trim())
+        .filter(|g| *g > num_rational::BigRational::from_integer(0.into()))
+        .ok_or_else(|| {
+            Error::syntax(
+                "E0113",
+                format!(
+                    "--cantor-gap `{cantor_gap}` must be an exact positive number (1, 1/2, 0.25)"
+                ),
+                lacuna::Span {
+                    line: 1,
+                    col: 1,
+                    len: cantor_gap.chars().count().max(1),
+                },
+                Some(&lacuna::Source::command_line(&cantor_gap)),
+            )
+        })?;
+    if !(1..=8).contains(&degree) {
+        return Err(Error::limit("the Bézier degree", degree, 8, "--degree"));
+    }
+    let report = match lacuna::input::load_any(&input)? {
+        lacuna::input::Loaded::Automaton { automaton, .. } => {
+            limits.check_unknowns(automaton.unknown_count())?;
+            lacuna::constraint::solve_automaton(&automaton)?.0
+        }
+        lacuna::input::Loaded::Faces(input) => {
+            let ts = lacuna::topology::close_or_error(&input.faces(), limits)?;
+            lacuna::constraint::solve_closure(
+                &ts,
+                lacuna::constraint::GenOptions {
+                    degree,
+                    cantor_gap: gap,
+                },
+                limits,
+            )?
+        }
+    };
+    if json {
+        print_json(&report);
+    } else {
+        out(&report.to_text(params));
+    }
+    Ok(if report.ok() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(EXIT_FAILED)
+    })
+}

@@ -1,0 +1,558 @@
+//! The exact sparse linear system of the BC-IFS constraints (SPEC §6): solve over Q, report rank,
+//! degrees of freedom, a particular solution and a basis of directions, or a small conflicting
+//! set of equations with the rational combination that proves `0 = c ≠ 0`.
+//!
+//! # Method
+//! 1. **Presolve** (`crate::constraint::presolve`): rows that after substitution read `0 = c`, `a·x = c` or
+//!    `a·x + b·y = c` become facts (fixed values, affine union-find links), repeated to a fixed
+//!    point. The BC-IFS systems (column sums, `x = c` incidences, `x = y` adjacencies) are mostly
+//!    solved here in near-linear time.
+//! 2. **Core**: the remaining rows, over the remaining roots, are cleared to integers and
+//!    eliminated fraction-free (`row ← (a/g)·row − (b/g)·pivot row`, then divided by the row's
+//!    content), choosing pivots Markowitz-style (shortest active row, then the column with the
+//!    fewest active rows, preferring unit coefficients), then back-substituted to reduced form.
+//! 3. **Conflict**: the derivation of `0 = c ≠ 0` is replayed backwards into a combination of
+//!    original rows: through the fact forest (`crate::constraint::presolve`), and for a contradiction found
+//!    in the core by re-running the (deterministic) elimination while tracking each row's
+//!    combination of core rows. Its support is the conflicting row plus pivot rows, so at most
+//!    `rank + 1` rows. When it has at most [`MINIMIZE_LIMIT`] rows it is then made minimal: on
+//!    those rows `R` the transposed system `yᵀ[A_R | b_R] = (0,…,0,1)` is solved; its particular
+//!    solution (free parameters 0) is basic, so its support is a minimal inconsistent subsystem
+//!    (independent in `[A|b]`, exactly one dependency in `A`: dropping any row leaves a
+//!    consistent system). Above the limit the transposed solve can fill in quadratically (long
+//!    chains of `x = y` make every certificate long), so the derivation is returned as is.
+//!
+//! Rank witness: each fact and each core pivot is a pair (row, unknown). The pivot rows, taken in
+//! the order their facts were made, only use facts from earlier pivot rows, so with the free roots
+//! set to 0 the homogeneous subsystem on the pivot rows forces every pivot unknown to 0: the minor
+//! is nonsingular. With the basis vectors (unit on their free unknown) this makes
+//! `rank = |pivots|` and `span(basis) = kernel` checkable ([`SolutionSpace::check`]).
+//!
+//! Written by hand: crates.io has sparse solvers over `f64` only (rsparse, russell_sparse,
+//! sparsela), none exact, rank-revealing or certifying.
+
+use crate::constraint::presolve::{integer_row, Presolve, RowFate, Q, Z};
+use num_rational::BigRational;
+use num_traits::Zero;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::io::{self, Write};
+
+/// A linear system `Σ coef·x[var] = rhs` over Q in `unknowns` unknowns.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct LinearSystem {
+    /// Number of unknowns; every variable index is below it.
+    pub unknowns: usize,
+    /// The equations.
+    pub rows: Vec<Equation>,
+}
+
+/// One equation `Σ coef·x[var] = rhs`; a variable may repeat (coefficients add up), `terms` may
+/// be empty.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Equation {
+    /// `(variable, coefficient)` pairs.
+    #[serde(with = "rat_terms")]
+    pub terms: Vec<(usize, BigRational)>,
+    /// Right-hand side.
+    #[serde(with = "rat")]
+    pub rhs: BigRational,
+}
+
+/// Outcome of [`solve`]: inconsistency is a result with its certificate, not an error.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Solution {
+    /// The system has solutions: `particular + span(basis)`.
+    Consistent(SolutionSpace),
+    /// No solution; the conflict proves it.
+    Inconsistent(Conflict),
+}
+
+/// All solutions of a consistent system: `particular + Σ t_k·basis[k]`, `t_k ∈ Q`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SolutionSpace {
+    /// Rank of the coefficient matrix.
+    pub rank: usize,
+    /// One solution, with every free parameter 0.
+    #[serde(with = "rat_vec")]
+    pub particular: Vec<BigRational>,
+    /// The unknown serving as free parameter of each direction, increasing.
+    pub free: Vec<usize>,
+    /// Sparse direction vectors sorted by unknown; `basis[k]` is 1 at `free[k]` and 0 at the other
+    /// free unknowns.
+    #[serde(with = "rat_basis")]
+    pub basis: Vec<Vec<(usize, BigRational)>>,
+    /// Rank witness: `(equation, unknown)` pairs whose square minor is nonsingular, in
+    /// elimination order (each pivot row only needs earlier ones to isolate its unknown; the
+    /// checker eliminates in this order).
+    pub pivots: Vec<(usize, usize)>,
+}
+
+/// A certificate of inconsistency: `Σ m_i·row_i` has every coefficient 0 and right-hand side
+/// `constant ≠ 0`. Multipliers are coprime integers; the rows form a minimal conflicting set.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Conflict {
+    /// `(equation index, multiplier)`, by increasing equation index.
+    #[serde(with = "rat_terms")]
+    pub multipliers: Vec<(usize, BigRational)>,
+    /// `Σ m_i·rhs_i`.
+    #[serde(with = "rat")]
+    pub constant: BigRational,
+}
+
+/// Solves the system exactly (see the module documentation for the method).
+///
+/// # Panics
+/// If a term names an unknown `≥ sys.unknowns`, or `sys.unknowns ≥ 2^32 − 1`.
+pub fn solve(sys: &LinearSystem) -> Solution {
+    let rows = sys.rows.iter().map(|e| {
+        let mut t: Vec<(u32, Q)> = e
+            .terms
+            .iter()
+            .map(|(v, c)| {
+                assert!(*v < sys.unknowns, "unknown {v} out of range");
+                (*v as u32, Q::from_big(c))
+            })
+            .collect();
+        (merge_terms(&mut t), Q::from_big(&e.rhs))
+    });
+    assert!(
+        sys.unknowns < u32::MAX as usize,
+        "at most 2^32 − 2 unknowns"
+    );
+    match run(sys.unknowns, rows, true) {
+        Ok(space) => Solution::Consistent(space),
+        Err(failure) => {
+            let (ps, seeds) = *failure;
+            Solution::Inconsistent(certificate(&ps, seeds))
+        }
+    }
+}
+
+fn merge_terms(t: &mut Vec<(u32, Q)>) -> Vec<(u32, Q)> {
+    t.sort_by_key(|x| x.0);
+    let mut out: Vec<(u32, Q)> = Vec::with_capacity(t.len());
+    for (v, q) in t.drain(..) {
+        match out.last_mut() {
+            Some((lv, lq)) if *lv == v => *lq = lq.add(&q),
+            _ => out.push((v, q)),
+        }
+    }
+    out.retain(|x| !x.1.is_zero());
+    out
+}
+
+/// The presolve state and the substituted rows (with weights) whose sum reads `0 = c ≠ 0`.
+type Failure = Box<(Presolve, Vec<(usize, Q)>)>;
+
+/// Presolve + core. On inconsistency returns the presolve state and the conflicting combination.
+fn run(
+    n: usize,
+    rows: impl Iterator<Item = (Vec<(u32, Q)>, Q)>,
+    want_basis: bool,
+) -> Result<SolutionSpace, Failure> {
+    let mut ps = Presolve::new(n, rows);
+    if let Some(bad) = ps.run() {
+        return Err(Box::new((ps, vec![(bad, Q::int(Z::one()))])));
+    }
+    // Core: pending rows over the remaining roots.
+    let pending: Vec<usize> = (0..ps.rows())
+        .filter(|&i| ps.fate[i] == RowFate::Pending)
+        .collect();
+    let (crows, roots, _) = build_core(&mut ps, &pending);
+    let core = match eliminate(crows, roots.len(), false) {
+        Ok(core) => core,
+        Err(_) => {
+            // Replay the deterministic elimination, now tracking combinations.
+            let (crows, roots, scales) = build_core(&mut ps, &pending);
+            let (_, combo) = eliminate(crows, roots.len(), true).expect_err("same elimination");
+            let seeds = combo
+                .into_iter()
+                .map(|(k, w)| (pending[k as usize], w.mul(&scales[k as usize])));
+            let seeds = seeds.collect();
+            return Err(Box::new((ps, seeds)));
+        }
+    };
+    Ok(assemble(&mut ps, &pending, &roots, core, want_basis))
+}
+
+/// The pending rows substituted and cleared to integers over local column ids; the roots of the
+/// local columns; the integer scale of each row.
+fn build_core(ps: &mut Presolve, pending: &[usize]) -> (Vec<CRow>, Vec<u32>, Vec<Q>) {
+    let mut local: Vec<u32> = vec![u32::MAX; ps.n];
+    let (mut roots, mut crows, mut scales) = (vec![], Vec::with_capacity(pending.len()), vec![]);
+    for &i in pending {
+        let (terms, rhs) = ps.substitute(i);
+        let (row, r, scale) = integer_row(&terms, &rhs);
+        let mut t: Vec<(u32, Z)> = row
+            .into_iter()
+            .map(|(root, z)| {
+                if local[root as usize] == u32::MAX {
+                    local[root as usize] = roots.len() as u32;
+                    roots.push(root);
+                }
+                (local[root as usize], z)
+            })
+            .collect();
+        t.sort_unstable_by_key(|x| x.0);
+        let (cols, vals) = t.into_iter().unzip();
+        crows.push(CRow { cols, vals, rhs: r });
+        scales.push(scale);
+    }
+    (crows, roots, scales)
+}
+
+/// Builds the public solution space from the facts and the reduced core.
+fn assemble(
+    ps: &mut Presolve,
+    pending: &[usize],
+    roots: &[u32],
+    core: Vec<(usize, u32, CRow)>,
+    want_basis: bool,
+) -> SolutionSpace {
+    let n = ps.n;
+    // Value (free parameters 0) of each pivot root, and its dependence on free roots.
+    let mut core_of: Vec<u32> = vec![u32::MAX; n];
+    let mut pivots: Vec<(usize, usize)> = vec![];
+    let mut facts: Vec<(u32, usize, usize)> = vec![];
+    for (i, fate) in ps.fate.iter().enumerate() {
+        if let RowFate::Pivot(c) = fate {
+            facts.push((ps.fact_time(*c), i, *c as usize));
+        }
+    }
+    facts.sort_unstable();
+    pivots.extend(facts.into_iter().map(|(_, i, c)| (i, c)));
+    for (k, (i, p, _)) in core.iter().enumerate() {
+        core_of[roots[*p as usize] as usize] = k as u32;
+        pivots.push((pending[*i], roots[*p as usize] as usize));
+    }
+    ps.compress_all();
+    let ps = &*ps;
+    let root_val = |r: u32| -> Q {
+        if let Some(v) = ps.root_value(r) {
+            return v.clone();
+        }
+        match core.get(core_of[r as usize] as usize) {
+            Some((_, p, row)) => {
+                Q::int(row.rhs.clone()).div(&Q::int(row.coef(*p).expect("pivot").clone()))
+            }
+            None => Q::zero(),
+        }
+    };
+    let mut particular = Vec::with_capacity(n);
+    let mut free = vec![];
+    for x in 0..n as u32 {
+        let (r, f, g) = ps.relation(x);
+        if r == x {
+            let v = root_val(x);
+            if ps.root_value(x).is_none() && core_of[x as usize] == u32::MAX {
+                free.push(x as usize);
+            }
+            particular.push(v.big());
+        } else if let Some(v) = ps.root_value(r).filter(|_| r < x) {
+            // Common case (fixed class): no need to revisit the root.
+            particular.push(f.mul(v).add(g).big());
+        } else {
+            particular.push(f.mul(&root_val(r)).add(g).big());
+        }
+    }
+    let mut basis = vec![];
+    if want_basis {
+        // dirs[local core column of a free root]: (pivot root, coefficient of that parameter)
+        let mut dirs: Vec<Vec<(u32, Q)>> = vec![vec![]; roots.len()];
+        for (_, p, row) in &core {
+            let d = Q::int(row.coef(*p).expect("pivot").clone());
+            for (c, v) in row.cols.iter().zip(&row.vals) {
+                if c != p {
+                    dirs[*c as usize].push((roots[*p as usize], Q::int(v.neg()).div(&d)));
+                }
+            }
+        }
+        let mut local: Vec<u32> = vec![u32::MAX; n];
+        roots
+            .iter()
+            .enumerate()
+            .for_each(|(k, r)| local[*r as usize] = k as u32);
+        // members of each class (CSR by root)
+        let mut start = vec![0u32; n + 1];
+        (0..n as u32).for_each(|x| start[ps.relation(x).0 as usize + 1] += 1);
+        (0..n).for_each(|i| start[i + 1] += start[i]);
+        let mut fill = start.clone();
+        let mut members = vec![0u32; n];
+        for x in 0..n as u32 {
+            let r = ps.relation(x).0 as usize;
+            members[fill[r] as usize] = x;
+            fill[r] += 1;
+        }
+        drop(fill);
+        let one = Q::int(Z::one());
+        let none: Vec<(u32, Q)> = vec![];
+        for &f in &free {
+            let mut v: Vec<(usize, BigRational)> = vec![];
+            let d = dirs.get(local[f] as usize).unwrap_or(&none);
+            for (root, c) in std::iter::once((f as u32, &one)).chain(d.iter().map(|(r, c)| (*r, c)))
+            {
+                for &x in &members[start[root as usize] as usize..start[root as usize + 1] as usize]
+                {
+                    v.push((x as usize, ps.relation(x).1.mul(c).big()));
+                }
+            }
+            v.sort_unstable_by_key(|t| t.0);
+            basis.push(v);
+        }
+    }
+    debug_assert_eq!(pivots.len() + free.len(), n);
+    SolutionSpace {
+        rank: pivots.len(),
+        particular,
+        free,
+        basis,
+        pivots,
+    }
+}
+
+/// Largest derivation certificate that is shrunk to a minimal one (see the module docs).
+pub const MINIMIZE_LIMIT: usize = 2000;
+
+/// The certificate: the replayed derivation, minimised when small.
+fn certificate(ps: &Presolve, seeds: Vec<(usize, Q)>) -> Conflict {
+    let derived = ps.combination(&seeds);
+    let support: Vec<usize> = derived.keys().copied().collect();
+    let conflict = |m: Vec<(usize, Q)>| {
+        // Scale to coprime integers.
+        let terms: Vec<(u32, Q)> = m
+            .iter()
+            .enumerate()
+            .map(|(k, (_, q))| (k as u32, q.clone()))
+            .collect();
+        let (ints, _, _) = integer_row(&terms, &Q::zero());
+        let multipliers: Vec<(usize, BigRational)> = ints
+            .into_iter()
+            .map(|(k, z)| (m[k as usize].0, BigRational::from_integer(z.big())))
+            .collect();
+        let constant = multipliers
+            .iter()
+            .fold(BigRational::zero(), |s, (i, m)| s + m * ps.rhs[*i].big());
+        Conflict {
+            multipliers,
+            constant,
+        }
+    };
+    if support.len() <= MINIMIZE_LIMIT {
+        if let Some(m) = minimal(ps, &support) {
+            return conflict(m);
+        }
+    }
+    conflict(derived.into_iter().collect())
+}
+
+/// The basic solution of `yᵀ[A_R | b_R] = (0,…,0,1)` on the inconsistent rows `R`.
+fn minimal(ps: &Presolve, rows: &[usize]) -> Option<Vec<(usize, Q)>> {
+    // Column j of A_R becomes the equation Σ_k A[r_k][j]·y_k = 0; the last one Σ b·y = 1.
+    let mut by_col: BTreeMap<u32, Vec<(u32, Q)>> = BTreeMap::new();
+    for (k, &i) in rows.iter().enumerate() {
+        for t in ps.start[i]..ps.start[i + 1] {
+            by_col
+                .entry(ps.cols[t])
+                .or_default()
+                .push((k as u32, ps.coefs[t].clone()));
+        }
+    }
+    let rhs_row: Vec<(u32, Q)> = rows
+        .iter()
+        .enumerate()
+        .filter(|(_, &i)| !ps.rhs[i].is_zero())
+        .map(|(k, &i)| (k as u32, ps.rhs[i].clone()))
+        .collect();
+    let eqs = by_col.into_values().map(|t| (t, Q::zero()));
+    let space = run(
+        rows.len(),
+        eqs.chain(std::iter::once((rhs_row, Q::int(Z::one())))),
+        false,
+    )
+    .ok()?;
+    let m: Vec<(usize, Q)> = space
+        .particular
+        .iter()
+        .enumerate()
+        .filter(|(_, y)| !y.is_zero())
+        .map(|(k, y)| (rows[k], Q::from_big(y)))
+        .collect();
+    Some(m)
+}
+
+mod rat {
+    use num_rational::BigRational;
+    use serde::{de::Error, Deserialize, Deserializer, Serializer};
+    pub fn serialize<S: Serializer>(r: &BigRational, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(r)
+    }
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<BigRational, D::Error> {
+        String::deserialize(d)?.parse().map_err(D::Error::custom)
+    }
+}
+mod rat_vec {
+    use num_rational::BigRational;
+    use serde::{de::Error, Deserialize, Deserializer, Serializer};
+    pub fn serialize<S: Serializer>(v: &[BigRational], s: S) -> Result<S::Ok, S::Error> {
+        s.collect_seq(v.iter().map(|r| r.to_string()))
+    }
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<BigRational>, D::Error> {
+        Vec::<String>::deserialize(d)?
+            .iter()
+            .map(|s| s.parse().map_err(D::Error::custom))
+            .collect()
+    }
+}
+mod rat_terms {
+    use num_rational::BigRational;
+    use serde::{de::Error, Deserialize, Deserializer, Serializer};
+    pub fn serialize<S: Serializer>(v: &[(usize, BigRational)], s: S) -> Result<S::Ok, S::Error> {
+        s.collect_seq(v.iter().map(|(i, r)| (i, r.to_string())))
+    }
+    pub fn deserialize<'de, D: Deserializer<'de>>(
+        d: D,
+    ) -> Result<Vec<(usize, BigRational)>, D::Error> {
+        let raw = Vec::<(usize, String)>::deserialize(d)?;
+        raw.into_iter()
+            .map(|(i, s)| Ok((i, s.parse().map_err(D::Error::custom)?)))
+            .collect()
+    }
+}
+mod rat_basis {
+    use num_rational::BigRational;
+    use serde::{de::Error, Deserialize, Deserializer, Serializer};
+    type Basis = Vec<Vec<(usize, BigRational)>>;
+    pub fn serialize<S: Serializer>(v: &Basis, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_seq(v.iter().map(|b| {
+            b.iter()
+                .map(|(i, r)| (*i, r.to_string()))
+                .collect::<Vec<_>>()
+        }))
+    }
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Basis, D::Error> {
+        let raw = Vec::<Vec<(usize, String)>>::deserialize(d)?;
+        raw.into_iter()
+            .map(|b| {
+                b.into_iter()
+                    .map(|(i, s)| Ok((i, s.parse().map_err(D::Error::custom)?)))
+                    .collect()
+            })
+            .collect()
+    }
+}
+
+/// Each unknown as `particular + Σ_k coef·t_k` (the transpose of the basis), for answering many
+/// [`Parametrization::forced_equal`] queries.
+#[derive(Clone, Debug)]
+pub struct Parametrization {
+    constant: Vec<BigRational>,
+    params: Vec<Vec<(usize, BigRational)>>,
+}
+
+impl SolutionSpace {
+    /// Transposes the basis: the affine form of every unknown in the free parameters.
+    pub fn parametrize(&self) -> Parametrization {
+        let mut params = vec![vec![]; self.particular.len()];
+        for (k, b) in self.basis.iter().enumerate() {
+            b.iter().for_each(|(x, c)| params[*x].push((k, c.clone())));
+        }
+        Parametrization {
+            constant: self.particular.clone(),
+            params,
+        }
+    }
+}
+
+impl Parametrization {
+    /// Unknown `x` as an affine function of the free parameters: its constant and its
+    /// `(parameter index, coefficient)` terms (sorted by parameter, no zeros). Two unknowns are
+    /// equal on every solution exactly when these coincide.
+    pub fn expression(&self, x: usize) -> (&BigRational, &[(usize, BigRational)]) {
+        (&self.constant[x], &self.params[x])
+    }
+
+    /// Same answer as [`forced_equal`], in time proportional to the unknowns involved.
+    pub fn forced_equal(&self, a: &[(usize, BigRational)], b: &[(usize, BigRational)]) -> bool {
+        let mut sum: BTreeMap<usize, BigRational> = BTreeMap::new();
+        let mut c = BigRational::zero();
+        for (x, w) in difference(a, b) {
+            c += &w * &self.constant[x];
+            for (k, v) in &self.params[x] {
+                *sum.entry(*k).or_insert_with(BigRational::zero) += &w * v;
+            }
+        }
+        c.is_zero() && sum.values().all(|v| v.is_zero())
+    }
+}
+
+/// Text layouts of [`write_text`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TextLayout {
+    /// First line `rows cols`; then per equation `c_0 c_1 … c_{cols−1} | rhs`.
+    Dense,
+    /// First line `rows cols`; then per equation `rhs | col:coef col:coef …` (columns increasing,
+    /// repeats summed, zeros omitted).
+    Sparse,
+}
+
+/// Writes the system as text for an external comparison; rationals are `p/q` or `p`.
+///
+/// Reading it with python-flint (`fmpq_mat.rref()` returns `(rref, rank)`; consistency is
+/// `rank(A) = rank([A|b])`):
+/// ```text
+/// from fractions import Fraction
+/// import flint
+/// def q(s):
+///     f = Fraction(s)
+///     return flint.fmpq(f.numerator, f.denominator)
+/// def read(path, sparse):
+///     with open(path) as f:
+///         m, n = map(int, f.readline().split())
+///         a, b = [[flint.fmpq(0)] * n for _ in range(m)], []
+///         for i, line in enumerate(f):
+///             left, right = line.split("|")
+///             if sparse:  # rhs | col:coef ...
+///                 b.append(q(left))
+///                 for t in right.split():
+///                     c, v = t.split(":")
+///                     a[i][int(c)] = q(v)
+///             else:       # c_0 ... c_{n-1} | rhs
+///                 a[i] = [q(v) for v in left.split()]
+///                 b.append(q(right))
+///         return flint.fmpq_mat(m, n, [x for r in a for x in r]), flint.fmpq_mat(m, 1, b)
+/// ```
+pub fn write_text<W: Write>(sys: &LinearSystem, layout: TextLayout, mut out: W) -> io::Result<()> {
+    writeln!(out, "{} {}", sys.rows.len(), sys.unknowns)?;
+    for e in &sys.rows {
+        let d = difference(&e.terms, &[]);
+        match layout {
+            TextLayout::Dense => {
+                for v in 0..sys.unknowns {
+                    match d.get(&v) {
+                        Some(c) => write!(out, "{c} ")?,
+                        None => write!(out, "0 ")?,
+                    }
+                }
+                writeln!(out, "| {}", e.rhs)?;
+            }
+            TextLayout::Sparse => {
+                write!(out, "{} |", e.rhs)?;
+                for (v, c) in d {
+                    write!(out, " {v}:{c}")?;
+                }
+                writeln!(out)?;
+            }
+        }
+    }
+    Ok(())
+}
+
+mod check;
+mod elimination;
+#[cfg(test)]
+mod tests;
+
+use check::difference;
+pub use check::forced_equal;
+use elimination::{eliminate, CRow};

@@ -1,0 +1,21 @@
+//! The BC-IFS constraint system: automata (states, operators, words), their generation from a
+//! closure, the exact sparse solver over Q with presolve and conflict certificates, and the
+//! degeneracy check.
+//!
+//! Architecture invariant: imports only [`crate::topology`], [`crate::algebra`] and the root
+//! utilities; exact throughout.
+
+pub(crate) mod automaton;
+pub(crate) mod generate;
+pub(crate) mod linsys;
+pub(crate) mod presolve;
+
+pub use automaton::{
+    solve_automaton, Automaton, Constraint, ConstraintKind, Factor, Linearized, OpKind, Operator,
+    RowOrigin, SolveReport, State,
+};
+pub use generate::{automaton_of, degeneracies, solve_closure, GenOptions, Generated};
+pub use linsys::{
+    forced_equal, solve, write_text, Conflict, Equation, LinearSystem, Parametrization, Solution,
+    SolutionSpace, TextLayout, MINIMIZE_LIMIT,
+};

@@ -1,0 +1,643 @@
+//! Exact numbers with a machine-word fast path, and the presolve of [`crate::constraint::linsys`]: the
+//! equations `x = c` and `a·x + b·y = c` are turned into facts about unknowns (fixed values and
+//! affine links kept in a union-find forest) before any elimination.
+//!
+//! Written by hand: no crate offers exact sparse presolve; `Z`/`Q` exist because the BC-IFS
+//! systems are millions of tiny numbers, where an allocation per `BigInt` operation dominates.
+//!
+//! # Facts and their provenance
+//! Every unknown starts as a root. A row that, after substituting the current facts, has one
+//! unknown fixes that root; with two unknowns it links the root of the smaller class below the
+//! other (`child = f·parent + g`). Each fact stores the row that created it, an event time, the
+//! coefficient of its unknown in the substituted row and (links) the original `f`. Links are never
+//! rewritten in `orig_parent`; path compression only touches `parent/f/g`. So the derivation of
+//! any substituted row can be replayed backwards, latest fact first, as a combination of original
+//! rows ([`Presolve::combination`]): this is how conflict certificates are obtained.
+
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_rational::BigRational;
+use num_traits::ToPrimitive;
+use std::collections::BTreeMap;
+
+/// An integer: `S` while it fits an `i64`, else boxed big (never `B` for a value that fits).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) enum Z {
+    S(i64),
+    B(Box<BigInt>),
+}
+
+fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
+    while b != 0 {
+        if a <= u64::MAX as u128 && b <= u64::MAX as u128 {
+            // Hardware 64-bit remainders are much cheaper than the 128-bit library routine.
+            let (mut x, mut y) = (a as u64, b as u64);
+            while y != 0 {
+                (x, y) = (y, x % y);
+            }
+            return x as u128;
+        }
+        (a, b) = (b, a % b);
+    }
+    a
+}
+
+impl Z {
+    pub(crate) fn zero() -> Z {
+        Z::S(0)
+    }
+    pub(crate) fn one() -> Z {
+        Z::S(1)
+    }
+    pub(crate) fn from_i128(v: i128) -> Z {
+        match i64::try_from(v) {
+            Ok(s) => Z::S(s),
+            Err(_) => Z::B(Box::new(BigInt::from(v))),
+        }
+    }
+    pub(crate) fn from_big(b: BigInt) -> Z {
+        match b.to_i64() {
+            Some(s) => Z::S(s),
+            None => Z::B(Box::new(b)),
+        }
+    }
+    pub(crate) fn big(&self) -> BigInt {
+        match self {
+            Z::S(s) => BigInt::from(*s),
+            Z::B(b) => (**b).clone(),
+        }
+    }
+    pub(crate) fn is_zero(&self) -> bool {
+        matches!(self, Z::S(0))
+    }
+    pub(crate) fn is_unit(&self) -> bool {
+        matches!(self, Z::S(1) | Z::S(-1))
+    }
+    pub(crate) fn neg(&self) -> Z {
+        match self {
+            Z::S(s) => Z::from_i128(-(*s as i128)),
+            Z::B(b) => Z::from_big(-(**b).clone()),
+        }
+    }
+    pub(crate) fn mul(&self, o: &Z) -> Z {
+        match (self, o) {
+            (Z::S(a), Z::S(b)) => Z::from_i128(*a as i128 * *b as i128),
+            _ => Z::from_big(self.big() * o.big()),
+        }
+    }
+    /// `a·x − b·y`, the fraction-free elimination step.
+    pub(crate) fn lin(a: &Z, x: &Z, b: &Z, y: &Z) -> Z {
+        if let (Z::S(a), Z::S(x), Z::S(b), Z::S(y)) = (a, x, b, y) {
+            // Each product is below 2^126 in magnitude, so the difference fits an i128.
+            return Z::from_i128(*a as i128 * *x as i128 - *b as i128 * *y as i128);
+        }
+        Z::from_big(a.big() * x.big() - b.big() * y.big())
+    }
+    /// Non-negative gcd (`gcd(0, 0) = 0`).
+    pub(crate) fn gcd(&self, o: &Z) -> Z {
+        match (self, o) {
+            (Z::S(a), Z::S(b)) => {
+                Z::from_i128(gcd_u128(a.unsigned_abs() as u128, b.unsigned_abs() as u128) as i128)
+            }
+            _ => Z::from_big(self.big().gcd(&o.big())),
+        }
+    }
+    /// Exact quotient (the caller guarantees divisibility).
+    pub(crate) fn div_exact(&self, o: &Z) -> Z {
+        match (self, o) {
+            (Z::S(a), Z::S(b)) => Z::from_i128(*a as i128 / *b as i128),
+            _ => Z::from_big(self.big() / o.big()),
+        }
+    }
+}
+
+/// A rational `n/d`, `d > 0`, reduced; the fast path computes in `i128`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct Q {
+    pub(crate) n: Z,
+    pub(crate) d: Z,
+}
+
+impl Q {
+    pub(crate) fn zero() -> Q {
+        Q {
+            n: Z::zero(),
+            d: Z::one(),
+        }
+    }
+    pub(crate) fn int(n: Z) -> Q {
+        Q { n, d: Z::one() }
+    }
+    fn from_i128(n: i128, d: i128) -> Q {
+        let g = gcd_u128(n.unsigned_abs(), d.unsigned_abs()) as i128;
+        let (mut n, mut d) = (n / g, d / g);
+        if d < 0 {
+            (n, d) = (-n, -d);
+        }
+        Q {
+            n: Z::from_i128(n),
+            d: Z::from_i128(d),
+        }
+    }
+    pub(crate) fn from_big(r: &BigRational) -> Q {
+        let z = |b: &BigInt| match b.to_i64() {
+            Some(s) => Z::S(s),
+            None => Z::B(Box::new(b.clone())),
+        };
+        Q {
+            n: z(r.numer()),
+            d: z(r.denom()),
+        }
+    }
+    pub(crate) fn big(&self) -> BigRational {
+        BigRational::new_raw(self.n.big(), self.d.big())
+    }
+    fn from_big_unreduced(r: BigRational) -> Q {
+        // BigRational arithmetic returns reduced values.
+        Q::from_big(&r)
+    }
+    pub(crate) fn is_zero(&self) -> bool {
+        self.n.is_zero()
+    }
+    pub(crate) fn neg(&self) -> Q {
+        Q {
+            n: self.n.neg(),
+            d: self.d.clone(),
+        }
+    }
+    pub(crate) fn add(&self, o: &Q) -> Q {
+        if let (Z::S(a), Z::S(b), Z::S(c), Z::S(d)) = (&self.n, &self.d, &o.n, &o.d) {
+            let (a, b, c, d) = (*a as i128, *b as i128, *c as i128, *d as i128);
+            return Q::from_i128(a * d + c * b, b * d);
+        }
+        Q::from_big_unreduced(self.big() + o.big())
+    }
+    pub(crate) fn sub(&self, o: &Q) -> Q {
+        self.add(&o.neg())
+    }
+    pub(crate) fn mul(&self, o: &Q) -> Q {
+        if let (Z::S(a), Z::S(b), Z::S(c), Z::S(d)) = (&self.n, &self.d, &o.n, &o.d) {
+            return Q::from_i128(*a as i128 * *c as i128, *b as i128 * *d as i128);
+        }
+        Q::from_big_unreduced(self.big() * o.big())
+    }
+    /// `self / o`, `o ≠ 0`.
+    pub(crate) fn div(&self, o: &Q) -> Q {
+        if let (Z::S(a), Z::S(b), Z::S(c), Z::S(d)) = (&self.n, &self.d, &o.n, &o.d) {
+            return Q::from_i128(*a as i128 * *d as i128, *b as i128 * *c as i128);
+        }
+        Q::from_big_unreduced(self.big() / o.big())
+    }
+}
+
+/// Integer form of a rational row: multiply by the lcm of the denominators, divide by the content.
+/// Returns the scaled `(coefficients, rhs)`.
+/// The third component is the scale: integer row = scale · rational row.
+pub(crate) fn integer_row(terms: &[(u32, Q)], rhs: &Q) -> (Vec<(u32, Z)>, Z, Q) {
+    let mut l = rhs.d.clone();
+    for (_, q) in terms {
+        let g = l.gcd(&q.d);
+        l = l.div_exact(&g).mul(&q.d);
+    }
+    let scale = |q: &Q| q.n.mul(&l.div_exact(&q.d));
+    let mut row: Vec<(u32, Z)> = terms.iter().map(|(c, q)| (*c, scale(q))).collect();
+    let mut r = scale(rhs);
+    let mut g = r.clone();
+    for (_, z) in &row {
+        g = g.gcd(z);
+    }
+    if !g.is_zero() && g != Z::one() {
+        for (_, z) in row.iter_mut() {
+            *z = z.div_exact(&g);
+        }
+        r = r.div_exact(&g);
+    }
+    let scale = if g.is_zero() {
+        Q::int(l)
+    } else {
+        Q::int(l).div(&Q::int(g))
+    };
+    (row, r, scale)
+}
+
+const NONE: u32 = u32::MAX;
+
+/// What a presolved row turned into.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum RowFate {
+    /// Not yet decided (ends in the core if still pending after presolve).
+    Pending,
+    /// Reduced to `0 = 0`.
+    Redundant,
+    /// Created a fact (fixed or linked the given unknown, its rank-witness column).
+    Pivot(u32),
+}
+
+/// The presolve state. Rows are stored compactly (CSR, duplicates merged, zeros dropped).
+pub(crate) struct Presolve {
+    pub(crate) n: usize,
+    pub(crate) start: Vec<usize>,
+    pub(crate) cols: Vec<u32>,
+    pub(crate) coefs: Vec<Q>,
+    pub(crate) rhs: Vec<Q>,
+    // union-find: x = f[x]·parent[x] + g[x]
+    parent: Vec<u32>,
+    f: Vec<Q>,
+    g: Vec<Q>,
+    size: Vec<u32>,
+    orig_parent: Vec<u32>,
+    link_row: Vec<u32>,
+    link_time: Vec<u32>,
+    /// Original `f` of a link (before path compression).
+    link_f: Vec<Q>,
+    /// Coefficient of the fact's unknown (child or fixed root) in its substituted row.
+    fact_a: Vec<Q>,
+    /// Fixed value of a root, with the row and time that fixed it.
+    value: Vec<Option<Q>>,
+    fix_row: Vec<u32>,
+    fix_time: Vec<u32>,
+    pub(crate) fate: Vec<RowFate>,
+    pub(crate) time: u32,
+    // registration lists (flat linked lists per root) and row bookkeeping
+    head: Vec<u32>,
+    ent_row: Vec<u32>,
+    ent_epoch: Vec<u32>,
+    ent_next: Vec<u32>,
+    epoch: Vec<u32>,
+    live: Vec<u32>,
+    queued: Vec<bool>,
+    queue: Vec<u32>,
+}
+
+/// A substituted row: distinct roots with nonzero coefficients, and the right-hand side.
+pub(crate) type SubRow = (Vec<(u32, Q)>, Q);
+
+impl Presolve {
+    /// Compacts the rows (`terms` must already have merged duplicates and no zeros).
+    pub(crate) fn new(n: usize, rows: impl Iterator<Item = (Vec<(u32, Q)>, Q)>) -> Presolve {
+        let (mut start, mut cols, mut coefs, mut rhs) = (vec![0], vec![], vec![], vec![]);
+        for (terms, r) in rows {
+            for (c, q) in terms {
+                cols.push(c);
+                coefs.push(q);
+            }
+            start.push(cols.len());
+            rhs.push(r);
+        }
+        let m = rhs.len();
+        Presolve {
+            n,
+            start,
+            cols,
+            coefs,
+            rhs,
+            parent: (0..n as u32).collect(),
+            f: vec![Q::int(Z::one()); n],
+            g: vec![Q::zero(); n],
+            size: vec![1; n],
+            orig_parent: (0..n as u32).collect(),
+            link_row: vec![NONE; n],
+            link_time: vec![0; n],
+            link_f: vec![Q::zero(); n],
+            fact_a: vec![Q::zero(); n],
+            value: vec![None; n],
+            fix_row: vec![NONE; n],
+            fix_time: vec![0; n],
+            fate: vec![RowFate::Pending; m],
+            time: 0,
+            head: vec![NONE; n],
+            ent_row: vec![],
+            ent_epoch: vec![],
+            ent_next: vec![],
+            epoch: vec![0; m],
+            live: vec![0; m],
+            queued: vec![false; m],
+            queue: vec![],
+        }
+    }
+
+    pub(crate) fn rows(&self) -> usize {
+        self.rhs.len()
+    }
+
+    /// `(root, F, G)` with `x = F·root + G`, compressing the path.
+    pub(crate) fn find(&mut self, x: u32) -> (u32, Q, Q) {
+        let p = self.parent[x as usize];
+        if p == x {
+            return (x, Q::int(Z::one()), Q::zero());
+        }
+        if self.parent[p as usize] == p {
+            return (p, self.f[x as usize].clone(), self.g[x as usize].clone());
+        }
+        let mut path = vec![];
+        let mut r = x;
+        while self.parent[r as usize] != r {
+            path.push(r);
+            r = self.parent[r as usize];
+        }
+        // Walk back from the node nearest the root, composing relations.
+        let (mut cf, mut cg) = (Q::int(Z::one()), Q::zero());
+        for &y in path.iter().rev() {
+            let y = y as usize;
+            // y = f_y·p + g_y and p = cf·r + cg  ⇒  y = (f_y·cf)·r + (f_y·cg + g_y)
+            let nf = self.f[y].mul(&cf);
+            let ng = self.f[y].mul(&cg).add(&self.g[y]);
+            self.parent[y] = r;
+            self.f[y] = nf.clone();
+            self.g[y] = ng.clone();
+            (cf, cg) = (nf, ng);
+        }
+        (r, cf, cg)
+    }
+
+    /// Compresses every path, after which [`Presolve::relation`] is valid.
+    pub(crate) fn compress_all(&mut self) {
+        for x in 0..self.n as u32 {
+            self.find(x);
+        }
+    }
+
+    /// `(root, F, G)` with `x = F·root + G`; only valid right after [`Presolve::compress_all`].
+    pub(crate) fn relation(&self, x: u32) -> (u32, &Q, &Q) {
+        (
+            self.parent[x as usize],
+            &self.f[x as usize],
+            &self.g[x as usize],
+        )
+    }
+
+    /// When the fact about `c` (a fixed root or a linked child) was made.
+    pub(crate) fn fact_time(&self, c: u32) -> u32 {
+        match self.value[c as usize] {
+            Some(_) => self.fix_time[c as usize],
+            None => self.link_time[c as usize],
+        }
+    }
+
+    /// The fixed value of a root, if any.
+    pub(crate) fn root_value(&self, r: u32) -> Option<&Q> {
+        self.value[r as usize].as_ref()
+    }
+
+    /// Row `i` after substituting all current facts, roots sorted.
+    pub(crate) fn substitute(&mut self, i: usize) -> SubRow {
+        let mut rhs = self.rhs[i].clone();
+        let mut terms: Vec<(u32, Q)> = Vec::with_capacity(self.start[i + 1] - self.start[i]);
+        for k in self.start[i]..self.start[i + 1] {
+            let (v, a) = (self.cols[k], self.coefs[k].clone());
+            let (r, f, g) = self.find(v);
+            let shift = match &self.value[r as usize] {
+                Some(val) => f.mul(val).add(&g),
+                None => {
+                    terms.push((r, a.mul(&f)));
+                    g
+                }
+            };
+            if !shift.is_zero() {
+                rhs = rhs.sub(&a.mul(&shift));
+            }
+        }
+        terms.sort_unstable_by_key(|t| t.0);
+        let mut out: Vec<(u32, Q)> = Vec::with_capacity(terms.len());
+        for (r, q) in terms {
+            match out.last_mut() {
+                Some((lr, lq)) if *lr == r => *lq = lq.add(&q),
+                _ => out.push((r, q)),
+            }
+        }
+        out.retain(|t| !t.1.is_zero());
+        (out, rhs)
+    }
+
+    fn push(&mut self, i: u32) {
+        if !self.queued[i as usize] && self.fate[i as usize] == RowFate::Pending {
+            self.queued[i as usize] = true;
+            self.queue.push(i);
+        }
+    }
+
+    /// Walks the registrations of root `r` (consuming them); `on_valid` decides to requeue;
+    /// `move_to` re-hangs still valid entries under another root.
+    fn notify(&mut self, r: u32, threshold: u32, decrement: bool, move_to: Option<u32>) {
+        let mut e = std::mem::replace(&mut self.head[r as usize], NONE);
+        while e != NONE {
+            let next = self.ent_next[e as usize];
+            let row = self.ent_row[e as usize] as usize;
+            if self.fate[row] == RowFate::Pending && self.ent_epoch[e as usize] == self.epoch[row] {
+                if decrement {
+                    self.live[row] = self.live[row].saturating_sub(1);
+                }
+                if self.live[row] <= threshold {
+                    self.push(row as u32);
+                } else if let Some(b) = move_to {
+                    self.ent_next[e as usize] = self.head[b as usize];
+                    self.head[b as usize] = e;
+                }
+            }
+            e = next;
+        }
+    }
+
+    /// Runs the presolve to a fixed point. Returns the row found to read `0 = c ≠ 0`, if any.
+    pub(crate) fn run(&mut self) -> Option<usize> {
+        self.queue = (0..self.rows() as u32).rev().collect();
+        self.queued.iter_mut().for_each(|q| *q = true);
+        loop {
+            while let Some(i) = self.queue.pop() {
+                self.queued[i as usize] = false;
+                if self.fate[i as usize] != RowFate::Pending {
+                    continue;
+                }
+                if let Some(bad) = self.process(i as usize) {
+                    return Some(bad);
+                }
+            }
+            // Sweep: the registrations are a heuristic, so re-examine every pending row once.
+            let before = self.time;
+            for i in 0..self.rows() {
+                if self.fate[i] == RowFate::Pending {
+                    if let Some(bad) = self.process(i) {
+                        return Some(bad);
+                    }
+                }
+            }
+            if self.time == before && self.queue.is_empty() {
+                return None;
+            }
+        }
+    }
+
+    fn process(&mut self, i: usize) -> Option<usize> {
+        let (terms, rhs) = self.substitute(i);
+        match terms.len() {
+            0 => {
+                if rhs.is_zero() {
+                    self.fate[i] = RowFate::Redundant;
+                    None
+                } else {
+                    Some(i)
+                }
+            }
+            1 => {
+                let (r, a) = &terms[0];
+                self.time += 1;
+                self.value[*r as usize] = Some(rhs.div(a));
+                self.fact_a[*r as usize] = a.clone();
+                self.fix_row[*r as usize] = i as u32;
+                self.fix_time[*r as usize] = self.time;
+                self.fate[i] = RowFate::Pivot(*r);
+                self.notify(*r, 2, true, None);
+                None
+            }
+            2 => {
+                // Link the smaller class below the larger: child = −(b/a)·parent + c/a.
+                let (mut x, mut y) = (terms[0].clone(), terms[1].clone());
+                if self.size[x.0 as usize] > self.size[y.0 as usize] {
+                    std::mem::swap(&mut x, &mut y);
+                }
+                let (c, p) = (x.0 as usize, y.0);
+                self.time += 1;
+                self.parent[c] = p;
+                self.orig_parent[c] = p;
+                self.f[c] = y.1.div(&x.1).neg();
+                self.link_f[c] = self.f[c].clone();
+                self.fact_a[c] = x.1.clone();
+                self.g[c] = rhs.div(&x.1);
+                self.size[p as usize] += self.size[c];
+                self.link_row[c] = i as u32;
+                self.link_time[c] = self.time;
+                self.fate[i] = RowFate::Pivot(c as u32);
+                self.notify(c as u32, 3, false, Some(p));
+                None
+            }
+            len => {
+                self.epoch[i] += 1;
+                self.live[i] = len as u32;
+                for (r, _) in terms {
+                    self.ent_row.push(i as u32);
+                    self.ent_epoch.push(self.epoch[i]);
+                    self.ent_next.push(self.head[r as usize]);
+                    self.head[r as usize] = self.ent_row.len() as u32 - 1;
+                }
+                None
+            }
+        }
+    }
+
+    /// Replays derivations backwards. `seeds` are `(row, weight)` for rows substituted with all
+    /// facts; returns `m` with `Σ m_r·row_r = Σ weight·(substituted row)`, as original rows.
+    ///
+    /// Substituting `α·x` for a child `x` subtracts `α·D_x`, with `D_x: x − f·p = g` the link
+    /// normalised to coefficient 1 (for a fixed root, `D_y: y = v`); `D_x` itself is the
+    /// substituted fact row divided by `fact_a[x]`, a combination of strictly older facts. So the
+    /// weights on the facts are resolved latest first, each exactly once.
+    pub(crate) fn combination(&self, seeds: &[(usize, Q)]) -> BTreeMap<usize, Q> {
+        let mut m: BTreeMap<usize, Q> = BTreeMap::new();
+        let mut w: BTreeMap<u32, (u32, Q)> = BTreeMap::new();
+        for (r, q) in seeds {
+            self.expand(*r, u32::MAX, q, &mut m, &mut w);
+        }
+        while let Some((t, (x, q))) = w.pop_last() {
+            if q.is_zero() {
+                continue;
+            }
+            let x = x as usize;
+            let row = if self.value[x].is_some() {
+                self.fix_row[x]
+            } else {
+                self.link_row[x]
+            };
+            self.expand(row as usize, t, &q.div(&self.fact_a[x]), &mut m, &mut w);
+        }
+        m.retain(|_, q| !q.is_zero());
+        m
+    }
+
+    /// Adds `weight·row_i` and the (negated) weights of the facts older than `t` it substitutes.
+    fn expand(
+        &self,
+        i: usize,
+        t: u32,
+        weight: &Q,
+        m: &mut BTreeMap<usize, Q>,
+        w: &mut BTreeMap<u32, (u32, Q)>,
+    ) {
+        let e = m.entry(i).or_insert_with(Q::zero);
+        *e = e.add(weight);
+        let mut sub = |time: u32, x: usize, alpha: &Q| {
+            let e = w.entry(time).or_insert_with(|| (x as u32, Q::zero()));
+            e.1 = e.1.sub(alpha);
+        };
+        for k in self.start[i]..self.start[i + 1] {
+            let mut alpha = weight.mul(&self.coefs[k]);
+            let mut x = self.cols[k] as usize;
+            while self.orig_parent[x] as usize != x && self.link_time[x] < t {
+                sub(self.link_time[x], x, &alpha);
+                alpha = alpha.mul(&self.link_f[x]);
+                x = self.orig_parent[x] as usize;
+            }
+            if self.value[x].is_some() && self.fix_time[x] < t {
+                sub(self.fix_time[x], x, &alpha);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn q(n: i64, d: i64) -> Q {
+        Q::from_i128(n as i128, d as i128)
+    }
+
+    #[test]
+    fn small_and_big_paths_agree() {
+        let big = Q::from_big(&BigRational::new(BigInt::from(1) << 80, BigInt::from(3)));
+        let a = q(i64::MAX, 7);
+        // (2^63−1)/7 + 2^80/3, computed through the big path, checked against BigRational.
+        let want = a.big() + big.big();
+        assert_eq!(a.add(&big).big(), want);
+        // Overflowing small·small falls back to big.
+        let p = a.mul(&a);
+        assert_eq!(p.big(), a.big() * a.big());
+        assert!(matches!(p.n, Z::B(_)));
+        // and back to small when it fits again
+        assert_eq!(p.div(&a), a);
+        assert_eq!(
+            Z::lin(&Z::S(i64::MAX), &Z::S(2), &Z::S(i64::MAX), &Z::S(2)),
+            Z::zero()
+        );
+        assert_eq!(q(2, -4), q(-1, 2));
+        assert_eq!(q(1, 3).sub(&q(1, 3)), Q::zero());
+    }
+
+    #[test]
+    fn integer_row_clears_denominators_and_content() {
+        // (1/2)x + (1/3)y = 5/6  ⇒  3x + 2y = 5
+        let (row, r, s) = integer_row(&[(0, q(1, 2)), (1, q(1, 3))], &q(5, 6));
+        assert_eq!(row, vec![(0, Z::S(3)), (1, Z::S(2))]);
+        assert_eq!((r, s), (Z::S(5), q(6, 1)));
+        // 4x + 6y = 2  ⇒  2x + 3y = 1
+        let (row, r, s) = integer_row(&[(0, q(4, 1)), (1, q(6, 1))], &q(2, 1));
+        assert_eq!(row, vec![(0, Z::S(2)), (1, Z::S(3))]);
+        assert_eq!((r, s), (Z::S(1), q(1, 2)));
+    }
+
+    #[test]
+    fn chain_of_links_composes() {
+        // x0 = 2·x1 (x0 − 2x1 = 0), x1 = x2 + 1, x2 = 3  ⇒  x1 = 4, x0 = 8
+        let rows = vec![
+            (vec![(0, q(1, 1)), (1, q(-2, 1))], Q::zero()),
+            (vec![(1, q(1, 1)), (2, q(-1, 1))], q(1, 1)),
+            (vec![(2, q(1, 1))], q(3, 1)),
+        ];
+        let mut p = Presolve::new(3, rows.into_iter());
+        assert_eq!(p.run(), None);
+        for (x, want) in [(0, 8), (1, 4), (2, 3)] {
+            let (r, f, g) = p.find(x);
+            let v = p.root_value(r).expect("fixed");
+            assert_eq!(f.mul(v).add(&g), q(want, 1), "x{x}");
+        }
+    }
+}

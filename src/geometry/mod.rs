@@ -1,0 +1,31 @@
+//! Geometry, only after verification: points, polygons and rasters, templates, the choice of free
+//! parameters (template fit, exact projection, LP goals), placement of the start faces in the plane
+//! and the streamed instantiation of the attractor.
+//!
+//! Architecture invariant: floats live here, but never decide a verdict; it imports the exact layers
+//! (topology, algebra, constraint, input) and never measures, exports or the command line.
+
+pub(crate) mod choose;
+pub(crate) mod instantiate;
+pub(crate) mod lp;
+pub(crate) mod options;
+pub(crate) mod placement;
+pub(crate) mod point;
+pub(crate) mod raster;
+pub(crate) mod template;
+pub(crate) mod template_file;
+
+pub use choose::{project_exact, Choice, ExactColumn, Projection};
+pub use instantiate::{instantiate, Cell, EdgeSlot, Instance};
+pub use lp::{parse_goal, Goal};
+pub use options::{GeometryError, InstantiateOptions};
+pub use placement::StartFace;
+pub use point::{
+    bezier_point, box_dimension, distance, fit_line, polyline_length, signed_area, BBox, Fit,
+    Point, Raster, MIN_HOLE_PIXELS,
+};
+pub use raster::{bounds, cell_count, rasterize};
+pub use template::{control_points, regular_polygon};
+pub use template_file::{
+    format_exact, parse_template, write_template, ExactTemplate, TypeTemplate,
+};

@@ -1,0 +1,192 @@
+//! The library of named structures (plain-text fixtures shipped with lacuna) and the loading of
+//! a command-line input: face notation, a file, or a library name.
+
+use crate::constraint::automaton::Automaton;
+use crate::error::{Error, Result, Source};
+use crate::input::assembly::Assembly;
+use crate::input::autofrac::{is_autofrac, parse_autofrac};
+use crate::input::automaton_format::{is_automaton, parse_automaton};
+use crate::topology::face::Face;
+
+/// The named structures: `(name, text)`, each a file of `fixtures/`.
+pub fn library() -> &'static [(&'static str, &'static str)] {
+    &[
+        ("F0", include_str!("../../fixtures/F0.txt")),
+        ("square-B2", include_str!("../../fixtures/square-B2.txt")),
+        (
+            "triangle-C2",
+            include_str!("../../fixtures/triangle-C2.txt"),
+        ),
+        (
+            "delayed-B2-C2",
+            include_str!("../../fixtures/delayed-B2-C2.txt"),
+        ),
+        ("two-quads", include_str!("../../fixtures/two-quads.txt")),
+        (
+            "autofrac-two-quads",
+            include_str!("../../fixtures/autofrac-two-quads.txt"),
+        ),
+        (
+            "cycle-sqrt17",
+            include_str!("../../fixtures/cycle-sqrt17.txt"),
+        ),
+        (
+            "shared-radius-pentagons",
+            include_str!("../../fixtures/shared-radius-pentagons.txt"),
+        ),
+        ("spec-edge", include_str!("../../fixtures/spec-edge.aut")),
+        (
+            "spec-edge-incidence",
+            include_str!("../../fixtures/spec-edge-incidence.aut"),
+        ),
+        (
+            "half-tangent-edge",
+            include_str!("../../fixtures/half-tangent-edge.aut"),
+        ),
+        (
+            "bspline-quadratic",
+            include_str!("../../fixtures/bspline-quadratic.aut"),
+        ),
+        ("quad-patch", include_str!("../../fixtures/quad-patch.aut")),
+        (
+            "de-casteljau-edge",
+            include_str!("../../fixtures/de-casteljau-edge.aut"),
+        ),
+        (
+            "chaikin-known",
+            include_str!("../../fixtures/chaikin-known.aut"),
+        ),
+    ]
+}
+
+/// What the user asked to work on.
+#[derive(Clone, Debug)]
+pub struct Input {
+    /// A short name for reports: the notation, the file path or the library name.
+    pub name: String,
+    /// The faces with their shared edges (a single face is an assembly of one).
+    pub assembly: Assembly,
+}
+
+impl Input {
+    /// The start faces.
+    pub fn faces(&self) -> Vec<Face> {
+        self.assembly.face_list()
+    }
+}
+
+/// Parses a text in either file format (AutoFrac2D files start with an `f` line).
+pub fn parse_text(src: &Source) -> Result<Assembly> {
+    if is_autofrac(&src.text) {
+        parse_autofrac(src)
+    } else {
+        Assembly::parse(src)
+    }
+}
+
+/// What a command-line argument names: faces (a face, an assembly) or a hand-written automaton.
+#[derive(Clone, Debug)]
+#[allow(clippy::large_enum_variant)]
+pub enum Loaded {
+    /// Faces with their shared edges.
+    Faces(Input),
+    /// A hand-written automaton.
+    Automaton {
+        /// The file path or library name.
+        name: String,
+        /// The automaton.
+        automaton: Automaton,
+    },
+}
+
+/// Resolves a command-line argument: face notation when it contains `|`, otherwise a file path,
+/// otherwise a library name. Files and library entries are automata when their first line
+/// declares a state.
+pub fn load_any(arg: &str) -> Result<Loaded> {
+    if arg.contains('|') {
+        let face = Face::parse(arg)?;
+        return Ok(Loaded::Faces(Input {
+            name: arg.trim().to_string(),
+            assembly: Assembly {
+                faces: vec![("0".into(), face)],
+                shared: Vec::new(),
+                coords: Default::default(),
+            },
+        }));
+    }
+    let (name, src) = read_source(arg)?;
+    if is_automaton(&src.text) {
+        let automaton = parse_automaton(&src)?;
+        return Ok(Loaded::Automaton { name, automaton });
+    }
+    Ok(Loaded::Faces(Input {
+        name,
+        assembly: parse_text(&src)?,
+    }))
+}
+
+/// Like [`load_any`], for commands that work on faces only.
+pub fn load_input(arg: &str) -> Result<Input> {
+    match load_any(arg)? {
+        Loaded::Faces(input) => Ok(input),
+        Loaded::Automaton { name, .. } => Err(Error::Io {
+            path: name,
+            reason: "this is an automaton, not faces: only `lacuna solve` reads automata".into(),
+        }),
+    }
+}
+
+/// Reads a file (or a library entry) as text.
+fn read_source(arg: &str) -> Result<(String, Source)> {
+    let path = std::path::Path::new(arg);
+    if path.is_file() {
+        let bytes = std::fs::read(path).map_err(|e| Error::Io {
+            path: arg.into(),
+            reason: e.to_string(),
+        })?;
+        let text = String::from_utf8(bytes).map_err(|e| Error::NotText {
+            path: arg.into(),
+            offset: e.utf8_error().valid_up_to(),
+        })?;
+        return Ok((
+            arg.into(),
+            Source {
+                name: arg.into(),
+                text,
+            },
+        ));
+    }
+    if let Some((name, text)) = library().iter().find(|(n, _)| *n == arg) {
+        return Ok((
+            name.to_string(),
+            Source {
+                name: format!("library:{name}"),
+                text: text.to_string(),
+            },
+        ));
+    }
+    let names: Vec<&str> = library().iter().map(|(n, _)| *n).collect();
+    Err(Error::Io {
+        path: arg.into(),
+        reason: format!(
+            "no such file, and not face notation (no `|`) nor a library name ({})",
+            names.join(", ")
+        ),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_library_entry_loads() {
+        for (name, _) in library() {
+            match load_any(name).unwrap_or_else(|e| panic!("{name}: {}", e.render())) {
+                Loaded::Faces(input) => assert!(!input.faces().is_empty()),
+                Loaded::Automaton { automaton, .. } => assert!(!automaton.states.is_empty()),
+            }
+        }
+        assert_eq!(load_input("no-such-thing").unwrap_err().code(), "E0601");
+    }
+}

@@ -1,0 +1,16 @@
+//! What users write: the library of named structures, assembly files, AutoFrac2D files, hand-written
+//! automaton files and exact user coordinates, with diagnostics that point at line and column.
+//!
+//! Architecture invariant: parses into the types of [`crate::topology`] and [`crate::constraint`];
+//! never imports analysis, geometry or output.
+
+pub(crate) mod assembly;
+pub(crate) mod autofrac;
+pub(crate) mod automaton_format;
+pub(crate) mod coords;
+pub(crate) mod library;
+
+pub use assembly::{set_corners, vertices, Assembly, SharedEdge};
+pub use automaton_format::{parse_automaton, parse_rational};
+pub use coords::{control_count, CoordKind, ExactPoint, FaceCoords, UserCoords};
+pub use library::{library, load_any, load_input, parse_text, Input, Loaded};

@@ -1,0 +1,16 @@
+//! Measures of an instance: area, perimeter, their factors, box-counting dimension, density maps,
+//! the smallest holes, and observed holes and components compared with the exact counts.
+//!
+//! Architecture invariant: imports geometry and the exact layers; the one verdict it gives compares
+//! integers. It never imports exports or the command line.
+
+pub(crate) mod density;
+pub(crate) mod hole;
+pub(crate) mod measurement;
+
+pub use density::{density_map, density_raster, DensityMap, DensitySummary};
+pub use hole::{polygon_size, smallest_holes};
+pub use measurement::{
+    check_cells, exact_components, exact_topology, measure, raster_for_hole, ExactTopology,
+    LevelMeasure, MeasureOptions, MeasureReport, MIN_HOLE_WIDTH,
+};

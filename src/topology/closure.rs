@@ -1,0 +1,475 @@
+//! The closure: every face type the recursion produces, with the type graph (SPEC §4).
+//!
+//! Breadth-first from the start faces, identifying types by canonical face. "Did not close" is a
+//! result ([`Closure::Runaway`], with the chain of growing types), not an error. For the built-in
+//! algorithms the closure is finite, and [`Bound::stated`] gives the bound in advance; the
+//! closure is checked against it.
+
+use crate::error::{Error, Result};
+use crate::topology::class::ClassStructure;
+use crate::topology::edge::EdgeType;
+use crate::topology::face::Face;
+use crate::topology::limits::Limits;
+use crate::topology::rule::{Algorithm, SpokeItem};
+use crate::topology::subdivision::{subdivide, Subdivision};
+use num_bigint::BigUint;
+use petgraph::graph::DiGraph;
+use serde::Serialize;
+use std::collections::{BTreeSet, HashMap};
+
+/// One face type of a closure.
+#[derive(Clone, Debug)]
+pub struct FaceType {
+    /// The canonical face.
+    pub face: Face,
+    /// Its subdivision step with the incidence map.
+    pub subdivision: Subdivision,
+    /// The type index of each sub-face, aligned with `subdivision.subfaces`.
+    pub children: Vec<usize>,
+    /// The type through which it was first reached (`None` for a start type).
+    pub parent: Option<usize>,
+}
+
+impl FaceType {
+    /// Lacunas contributed by one subdivision step, in halves (SPEC §5).
+    pub fn contribution_halves(&self) -> u64 {
+        self.face.contribution_halves()
+    }
+}
+
+/// The bound on a closure stated in advance (built-in algorithms only).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct Bound {
+    /// Every type's boundary has at most this many edges.
+    pub max_length: usize,
+    /// There are at most this many types.
+    #[serde(serialize_with = "ser_display")]
+    pub max_types: BigUint,
+    /// How the bound was derived, for the report.
+    pub reason: String,
+}
+
+/// A closed set of face types.
+#[derive(Clone, Debug)]
+pub struct TypeSet {
+    /// The types; the start types come first, in the order given.
+    pub types: Vec<FaceType>,
+    /// The type index of each start face (one per face of an assembly).
+    pub start: Vec<usize>,
+    /// The bound stated in advance, when the algorithms allow one.
+    pub bound: Option<Bound>,
+}
+
+/// A closure that did not close within the limits: the chain of types from a start face to the
+/// type that broke a limit.
+#[derive(Clone, Debug, Serialize)]
+pub struct Runaway {
+    /// The limit that was hit.
+    pub reason: String,
+    /// The witness chain: each face is a sub-face of the previous one.
+    pub witness: Vec<String>,
+}
+
+/// The outcome of closing a set of faces.
+#[derive(Clone, Debug)]
+#[allow(clippy::large_enum_variant)]
+pub enum Closure {
+    /// The recursion closes: every sub-face type is in the set.
+    Closed(TypeSet),
+    /// The recursion grew past a limit.
+    Runaway(Runaway),
+}
+
+impl Closure {
+    /// Closes the given start faces under subdivision.
+    pub fn of(start: &[Face], limits: &Limits) -> Result<Closure> {
+        for f in start {
+            limits.check_face(f)?;
+        }
+        let bound = Bound::stated(start);
+        let mut types: Vec<FaceType> = Vec::new();
+        let mut index: HashMap<Face, usize> = HashMap::new();
+        let mut start_idx = Vec::new();
+        let mut queue = std::collections::VecDeque::new();
+        for f in start {
+            let (c, _) = f.canonical();
+            let id = *index.entry(c.clone()).or_insert_with(|| {
+                types.push(FaceType {
+                    face: c,
+                    subdivision: empty_subdivision(),
+                    children: Vec::new(),
+                    parent: None,
+                });
+                queue.push_back(types.len() - 1);
+                types.len() - 1
+            });
+            start_idx.push(id);
+        }
+        while let Some(t) = queue.pop_front() {
+            let sub = subdivide(&types[t].face)?;
+            let mut children = Vec::with_capacity(sub.subfaces.len());
+            for s in &sub.subfaces {
+                let id = match index.get(&s.face) {
+                    Some(&id) => id,
+                    None => {
+                        let id = types.len();
+                        let len = s.face.boundary.len();
+                        if len > limits.max_boundary || id >= limits.max_types {
+                            let reason = if len > limits.max_boundary {
+                                format!(
+                                    "a sub-face boundary has {len} edges, above the limit {} (--max-boundary)",
+                                    limits.max_boundary
+                                )
+                            } else {
+                                format!("more than {} face types (--max-types)", limits.max_types)
+                            };
+                            let mut witness = vec![s.face.to_string()];
+                            let mut cur = Some(t);
+                            while let Some(c) = cur {
+                                witness.push(types[c].face.to_string());
+                                cur = types[c].parent;
+                            }
+                            witness.reverse();
+                            return Ok(Closure::Runaway(Runaway { reason, witness }));
+                        }
+                        index.insert(s.face.clone(), id);
+                        types.push(FaceType {
+                            face: s.face.clone(),
+                            subdivision: empty_subdivision(),
+                            children: Vec::new(),
+                            parent: Some(t),
+                        });
+                        queue.push_back(id);
+                        id
+                    }
+                };
+                children.push(id);
+            }
+            types[t].subdivision = sub;
+            types[t].children = children;
+        }
+        Ok(Closure::Closed(TypeSet {
+            types,
+            start: start_idx,
+            bound,
+        }))
+    }
+}
+
+fn empty_subdivision() -> Subdivision {
+    Subdivision {
+        junctions: Vec::new(),
+        spokes: Vec::new(),
+        subfaces: Vec::new(),
+        adjacencies: Vec::new(),
+    }
+}
+
+impl Bound {
+    /// The bound for the closure of `start`, when every face uses a built-in algorithm.
+    ///
+    /// Derivation (A1, A2 and A3 all put spokes at every joint and gap):
+    /// * Only the start faces and their delayed descendants have delay ≥ 2 (sub-faces of a
+    ///   non-delayed face have delay 1). That chain is computed exactly: `d` faces per start face.
+    /// * A sub-face of a non-delayed face is a *run* of sub-edges between two spokes plus at most
+    ///   five edges (`[Ec] Ea El Ea [Ec]`), and no `Ec Ec` is inserted inside a run because every gap
+    ///   is a spoke. So its length is at most `r + 5`, where `r` bounds the run length:
+    ///   - A2: every junction is a spoke, r = 1;
+    ///   - A3: a delayed edge's single sub-edge is cut off by spokes at both its corners, so a run
+    ///     is at most the last piece of one non-delayed edge and the first of the next: r = 2;
+    ///   - A1: a run goes from a joint/gap of a non-delayed edge through the single sub-edges of
+    ///     the delayed edges that follow to the first joint/gap of the next non-delayed edge, so
+    ///     r ≤ 2 + D with D the longest cyclic stretch of delayed edges of a non-delayed face. A
+    ///     sub-face's delayed stretches are the parent's stretch (delays lowered by one) and the
+    ///     stretch inside `Ec Ea El Ea Ec`, separated by the run's non-delayed end pieces, so
+    ///     D ≤ max(D of the start faces and chain ends, D of `Ec Ea El Ea Ec`).
+    /// * A sub-face type is fixed by its run (a word of length ≤ r over the edge types that can
+    ///   occur: `X^k` for every `X^d` of the start faces and of E, k ≤ d) and whether it has a
+    ///   leading and a trailing `Ec`: at most 4·Σ_{j≤r} |alphabet|^j types per (E, A).
+    pub fn stated(start: &[Face]) -> Option<Bound> {
+        if start.is_empty() || !start.iter().all(|f| f.algorithm.is_builtin()) {
+            return None;
+        }
+        let mut max_length = 0usize;
+        let mut chain_types = 0usize;
+        let mut alphabet: BTreeSet<EdgeType> = BTreeSet::new();
+        let mut groups: BTreeSet<String> = BTreeSet::new();
+        let mut max_run = 0usize;
+        for f in start {
+            groups.insert(format!(
+                "{} {} {} {}",
+                f.params.ea, f.params.el, f.params.ec, f.algorithm
+            ));
+            let p = f.params;
+            for e in f.boundary.iter().chain([&p.ea, &p.el, &p.ec]) {
+                for k in 1..=e.delay {
+                    alphabet.insert(e.delayed(k));
+                }
+            }
+            // The delayed chain, computed exactly.
+            let mut cur = f.boundary.clone();
+            max_length = max_length.max(cur.len());
+            chain_types += f.delay as usize;
+            for _ in 1..f.delay {
+                let mut next = Vec::new();
+                for e in &cur {
+                    for k in 0..e.piece_count() {
+                        next.push(e.piece());
+                        if k + 1 < e.piece_count()
+                            && e.inner_junction() == Some(crate::topology::edge::JunctionKind::Gap)
+                        {
+                            next.extend([p.ec, p.ec]);
+                        }
+                    }
+                }
+                cur = next;
+                max_length = max_length.max(cur.len());
+            }
+            let r = match &f.algorithm {
+                Algorithm::Spokes(items) if items.contains(&SpokeItem::Corner) => 1,
+                Algorithm::Spokes(items) if items.contains(&SpokeItem::DelayedCorner) => 2,
+                _ => {
+                    let pattern = [p.ec, p.ea, p.el, p.ea, p.ec];
+                    2 + delayed_stretch(&cur, true).max(delayed_stretch(&pattern, false))
+                }
+            };
+            max_run = max_run.max(r);
+        }
+        max_length = max_length.max(max_run + 5);
+        let a = BigUint::from(alphabet.len());
+        let mut words = BigUint::from(0u32);
+        for j in 1..=max_run {
+            words += a.pow(j as u32);
+        }
+        let max_types = BigUint::from(chain_types) + words * 4u32 * BigUint::from(groups.len());
+        Some(Bound {
+            max_length,
+            max_types,
+            reason: format!(
+                "built-in algorithm: runs of at most {max_run} sub-edges, so sub-faces have at most {} edges; \
+                 at most 4·Σ|alphabet|^j over {} edge types for runs, plus {chain_types} start/delayed types",
+                max_run + 5,
+                alphabet.len()
+            ),
+        })
+    }
+}
+
+/// The longest stretch of consecutive delayed edges (cyclically when `cyclic`).
+fn delayed_stretch(edges: &[EdgeType], cyclic: bool) -> usize {
+    let n = edges.len();
+    if cyclic && edges.iter().all(EdgeType::is_delayed) {
+        return n;
+    }
+    let span = if cyclic { 2 * n } else { n };
+    let (mut best, mut cur) = (0, 0);
+    for i in 0..span {
+        if edges[i % n].is_delayed() {
+            cur += 1;
+            best = best.max(cur.min(n));
+        } else {
+            cur = 0;
+        }
+    }
+    best
+}
+
+impl TypeSet {
+    /// Successor lists of the type graph (one entry per sub-face).
+    pub fn successors(&self) -> Vec<Vec<usize>> {
+        self.types.iter().map(|t| t.children.clone()).collect()
+    }
+
+    /// The type graph as a petgraph multigraph: a node per type (its notation), an arc per
+    /// sub-face (weighted by the sub-face's index).
+    pub fn graph(&self) -> DiGraph<String, usize> {
+        let mut g = DiGraph::new();
+        let nodes: Vec<_> = self
+            .types
+            .iter()
+            .map(|t| g.add_node(t.face.to_string()))
+            .collect();
+        for (t, ty) in self.types.iter().enumerate() {
+            for (k, &c) in ty.children.iter().enumerate() {
+                g.add_edge(nodes[t], nodes[c], k);
+            }
+        }
+        g
+    }
+
+    /// The strongly connected classes reached from the start faces, with their periods.
+    pub fn classes(&self) -> ClassStructure {
+        ClassStructure::new(&self.successors(), &self.start)
+    }
+
+    /// The substitution matrix, sparse: `matrix()[t]` lists (s, number of sub-faces of type s).
+    pub fn matrix(&self) -> Vec<Vec<(usize, u64)>> {
+        self.types
+            .iter()
+            .map(|t| {
+                let mut m: std::collections::BTreeMap<usize, u64> = Default::default();
+                for &c in &t.children {
+                    *m.entry(c).or_default() += 1;
+                }
+                m.into_iter().collect()
+            })
+            .collect()
+    }
+
+    /// Checks the closure: every step's structural identities, every sub-face listed with the
+    /// right type, and the stated bound (when there is one).
+    pub fn verify(&self) -> std::result::Result<(), String> {
+        for (t, ty) in self.types.iter().enumerate() {
+            ty.subdivision
+                .verify(&ty.face)
+                .map_err(|e| format!("type T{t}: {e}"))?;
+            if ty.children.len() != ty.subdivision.subfaces.len() {
+                return Err(format!(
+                    "type T{t}: children and sub-faces differ in number"
+                ));
+            }
+            for (s, &c) in ty.subdivision.subfaces.iter().zip(&ty.children) {
+                match self.types.get(c) {
+                    Some(ct) if ct.face == s.face => {}
+                    _ => return Err(format!("type T{t}: sub-face `{}` is not type T{c}", s.face)),
+                }
+            }
+        }
+        if let Some(b) = &self.bound {
+            let longest = self
+                .types
+                .iter()
+                .map(|t| t.face.boundary.len())
+                .max()
+                .unwrap_or(0);
+            if longest > b.max_length {
+                return Err(format!(
+                    "a boundary of {longest} edges breaks the stated bound {}",
+                    b.max_length
+                ));
+            }
+            if BigUint::from(self.types.len()) > b.max_types {
+                return Err(format!(
+                    "{} types break the stated bound {}",
+                    self.types.len(),
+                    b.max_types
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Asserts [`TypeSet::verify`] (tests and fuzzing).
+    #[cfg(any(test, fuzzing))]
+    pub fn sanity_check(&self) {
+        if let Err(e) = self.verify() {
+            panic!("closure broke an identity: {e}");
+        }
+    }
+}
+
+/// Closes a single face; convenience for the common case.
+pub fn close(face: &Face, limits: &Limits) -> Result<Closure> {
+    Closure::of(std::slice::from_ref(face), limits)
+}
+
+/// The closed type set, or a limit error naming the runaway (for callers that need a closed set).
+pub fn close_or_error(start: &[Face], limits: &Limits) -> Result<TypeSet> {
+    match Closure::of(start, limits)? {
+        Closure::Closed(ts) => Ok(ts),
+        Closure::Runaway(r) => Err(Error::Runaway {
+            reason: r.reason,
+            chain: r.witness.len(),
+        }),
+    }
+}
+
+/// Serialises any `Display` value as a JSON string (exact numbers stay exact).
+pub fn ser_display<T: std::fmt::Display, S: serde::Serializer>(
+    v: &T,
+    s: S,
+) -> Result<S::Ok, S::Error> {
+    s.collect_str(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn closed(s: &str) -> TypeSet {
+        match close(&Face::parse(s).unwrap(), &Limits::default()).unwrap() {
+            Closure::Closed(ts) => {
+                ts.sanity_check();
+                ts
+            }
+            Closure::Runaway(r) => panic!("runaway: {r:?}"),
+        }
+    }
+
+    #[test]
+    fn f0_closes_on_itself() {
+        let ts = closed("C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1");
+        assert_eq!(ts.types.len(), 1);
+        assert_eq!(ts.types[0].children, vec![0; 6]);
+        assert_eq!(ts.matrix(), vec![vec![(0, 6)]]);
+        let cl = ts.classes();
+        assert_eq!(cl.classes.len(), 1);
+        assert_eq!(cl.classes[0].period, Some(1));
+        assert_eq!(ts.graph().edge_count(), 6);
+    }
+
+    #[test]
+    fn square_of_b2_closes_with_a_hand_checked_type() {
+        // `B2 B2 B2 B2 | B2 B2 B2 | A1`: 4 joints are the spokes; each run is the second half of
+        // one B2 and the first half of the next, closed by Ea El Ea: 5 × B2. The pentagon of B2
+        // subdivides into 5 runs of the same shape, so the closure is {square, pentagon} with
+        // square → 4 pentagons, pentagon → 5 pentagons.
+        let ts = closed("B2 B2 B2 B2 | B2 B2 B2 | A1");
+        assert_eq!(ts.types.len(), 2);
+        assert_eq!(ts.types[1].face.boundary.len(), 5);
+        assert_eq!(ts.matrix(), vec![vec![(1, 4)], vec![(1, 5)]]);
+        let cl = ts.classes();
+        assert_eq!(cl.classes.len(), 2);
+        assert_eq!(cl.classes[0].period, None);
+    }
+
+    #[test]
+    fn runaway_is_a_result_with_a_witness() {
+        // Spokes only at joints: every gap stays inside a run and adds `Ec Ec`, so C3 boundaries
+        // grow without end.
+        let f = Face::parse("B2 C3 | B2 B2 C3 | {joint}").unwrap();
+        let limits = Limits {
+            max_boundary: 40,
+            ..Limits::default()
+        };
+        match close(&f, &limits).unwrap() {
+            Closure::Runaway(r) => {
+                assert!(r.witness.len() >= 2);
+                assert!(r.reason.contains("--max-boundary"));
+                let lens: Vec<usize> = r
+                    .witness
+                    .iter()
+                    .map(|w| w.split('|').next().unwrap().split_whitespace().count())
+                    .collect();
+                assert!(
+                    lens.windows(2).all(|w| w[0] < w[1]),
+                    "chain grows: {lens:?}"
+                );
+            }
+            Closure::Closed(ts) => panic!("expected runaway, got {} types", ts.types.len()),
+        }
+    }
+
+    #[test]
+    fn delayed_chain_stays_within_the_stated_bound() {
+        let ts = closed("B3 C2 B2^3 C3 B2 | C2 B2 C2 | A3");
+        let b = ts.bound.clone().unwrap();
+        assert!(ts
+            .types
+            .iter()
+            .all(|t| t.face.boundary.len() <= b.max_length));
+        let ts = closed("B2 C2^3 | C2 B2 B2 | A1 | 3");
+        assert_eq!(ts.types[0].face.delay, 3);
+        assert_eq!(ts.types[1].face.delay, 2);
+    }
+}
