@@ -103,7 +103,8 @@ pub enum Loaded {
 /// otherwise a library name. Files and library entries are automata when their first line
 /// declares a state.
 pub fn load_any(arg: &str) -> Result<Loaded> {
-    if arg.contains('|') {
+    // An empty argument is an empty face notation (E0101), not a file name.
+    if arg.contains('|') || arg.trim().is_empty() {
         let face = Face::parse(arg)?;
         return Ok(Loaded::Faces(Input {
             name: arg.trim().to_string(),
