@@ -40,9 +40,20 @@ const AUTOMATON_FIXTURES: [&str; 7] = [
     "quad-patch",
 ];
 
+/// Volumes (THEORY §10) have no certificate step yet: the checker re-derives face closures and
+/// linear systems only. Listed by name so that a new entry cannot slip through unnoticed.
+const VOLUME_FIXTURES_WITHOUT_PROOF: &[&str] = &["cube-B2", "tetrahedron-B2"];
+
 #[test]
 fn every_library_entry_has_a_proof() {
-    for (name, _) in lacuna::input::library() {
+    for (name, text) in lacuna::input::library() {
+        if VOLUME_FIXTURES_WITHOUT_PROOF.contains(name) {
+            assert!(
+                lacuna::input::is_volume_text(text),
+                "{name} is not a volume"
+            );
+            continue;
+        }
         assert!(
             FACE_FIXTURES.contains(name) || AUTOMATON_FIXTURES.contains(name),
             "library entry {name} has no certificate in proofs/: add it to the lists above and bless"

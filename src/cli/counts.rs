@@ -9,6 +9,10 @@ pub(super) fn run(args: CountsArgs, limits: &Limits) -> Result<ExitCode, Error> 
         levels,
         json,
     } = args;
+    if let Some((name, v)) = lacuna::input::load_volume(&input)? {
+        limits.check_level(levels)?;
+        return volume::counts(&name, &v, levels, json, limits);
+    }
     limits.check_level(levels)?;
     let input = load_input(&input)?;
     let ts = lacuna::topology::close_or_error(&input.faces(), limits)?;

@@ -18,6 +18,7 @@ mod render;
 mod report;
 mod solve;
 mod verify;
+mod volume;
 
 use args::*;
 use clap::Parser;

@@ -9,6 +9,10 @@ pub(super) fn run(args: RatioArgs, limits: &Limits) -> Result<ExitCode, Error> {
         digits,
         json,
     } = args;
+    if let Some((name, v)) = lacuna::input::load_volume(&input)? {
+        limits.check_digits(digits)?;
+        return volume::ratio(&name, &v, digits, json, limits);
+    }
     limits.check_digits(digits)?;
     let input = load_input(&input)?;
     let ts = lacuna::topology::close_or_error(&input.faces(), limits)?;

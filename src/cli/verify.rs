@@ -10,6 +10,10 @@ pub(super) fn run(args: VerifyArgs, limits: &Limits) -> Result<ExitCode, Error> 
         json,
         certificate,
     } = args;
+    if let Some((name, v)) = lacuna::input::load_volume(input.as_deref().unwrap_or("F0"))? {
+        limits.check_level(levels)?;
+        return volume::verify(&name, &v, levels, json, limits);
+    }
     limits.check_level(levels)?;
     let input = load_input(input.as_deref().unwrap_or("F0"))?;
     let closure = Closure::of(&input.faces(), limits)?;

@@ -6,12 +6,16 @@
 
 pub(crate) mod html;
 pub(crate) mod report;
+pub(crate) mod volume_report;
 pub(crate) mod writer;
 
 pub use html::report_html;
 pub use report::{
     closure_json, closure_report, counts_json, counts_table, ratio_of, ratio_text, verify_report,
     VerifyReport,
+};
+pub use volume_report::{
+    surface_summary, volume_closure_json, volume_closure_text, volume_counts_table, volume_ratio,
 };
 pub use writer::{
     render_raster, triangulate, write_density_png, write_json, write_obj, write_png, write_stl,

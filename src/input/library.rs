@@ -56,6 +56,11 @@ pub fn library() -> &'static [(&'static str, &'static str)] {
             "chaikin-known",
             include_str!("../../fixtures/chaikin-known.aut"),
         ),
+        ("cube-B2", include_str!("../../fixtures/cube-B2.txt")),
+        (
+            "tetrahedron-B2",
+            include_str!("../../fixtures/tetrahedron-B2.txt"),
+        ),
     ]
 }
 
@@ -116,6 +121,13 @@ pub fn load_any(arg: &str) -> Result<Loaded> {
         }));
     }
     let (name, src) = read_source(arg)?;
+    if crate::input::volume_file::is_volume_text(&src.text) {
+        return Err(Error::Io {
+            path: name,
+            reason: "this is a volume: `closure`, `counts`, `ratio` and `verify` read volumes"
+                .into(),
+        });
+    }
     if is_automaton(&src.text) {
         let automaton = parse_automaton(&src)?;
         return Ok(Loaded::Automaton { name, automaton });
@@ -138,7 +150,7 @@ pub fn load_input(arg: &str) -> Result<Input> {
 }
 
 /// Reads a file (or a library entry) as text.
-fn read_source(arg: &str) -> Result<(String, Source)> {
+pub(crate) fn read_source(arg: &str) -> Result<(String, Source)> {
     let path = std::path::Path::new(arg);
     if path.is_file() {
         let bytes = std::fs::read(path).map_err(|e| Error::Io {
@@ -182,7 +194,14 @@ mod tests {
 
     #[test]
     fn every_library_entry_loads() {
-        for (name, _) in library() {
+        for (name, text) in library() {
+            if crate::input::volume_file::is_volume_text(text) {
+                let (_, v) = crate::input::volume_file::load_volume(name)
+                    .unwrap_or_else(|e| panic!("{name}: {}", e.render()))
+                    .unwrap_or_else(|| panic!("{name}: not read as a volume"));
+                assert_eq!(v.surface.check(), Ok(()), "{name}");
+                continue;
+            }
             match load_any(name).unwrap_or_else(|e| panic!("{name}: {}", e.render())) {
                 Loaded::Faces(input) => assert!(!input.faces().is_empty()),
                 Loaded::Automaton { automaton, .. } => assert!(!automaton.states.is_empty()),

@@ -14,6 +14,7 @@ pub(crate) mod face;
 pub(crate) mod limits;
 pub(crate) mod rule;
 pub(crate) mod subdivision;
+pub mod volume;
 
 pub use class::{Class, ClassStructure};
 pub use closure::{close, close_or_error, Bound, Closure, FaceType, Runaway, TypeSet};

@@ -1,0 +1,147 @@
+//! Volumes (THEORY §10) in `closure`, `counts`, `ratio` and `verify`: the commands try
+//! [`lacuna::input::load_volume`] first and hand a volume to these functions.
+
+use super::*;
+use lacuna::topology::volume::{volume_counts, Volume, VolumeClosure};
+
+/// `lacuna closure` of a volume.
+pub(super) fn closure(
+    name: &str,
+    v: &Volume,
+    json: bool,
+    limits: &Limits,
+) -> Result<ExitCode, Error> {
+    let c = VolumeClosure::of(std::slice::from_ref(v), limits)?;
+    if json {
+        print_json(&lacuna::export::volume_closure_json(name, &c));
+    } else {
+        out(&lacuna::export::volume_closure_text(name, &c));
+    }
+    Ok(match c {
+        VolumeClosure::Closed(_) => ExitCode::SUCCESS,
+        VolumeClosure::Runaway(_) => ExitCode::from(EXIT_FAILED),
+    })
+}
+
+/// The closed set of a volume, or the runaway as a coded error (for the commands that need it).
+fn closed(v: &Volume, limits: &Limits) -> Result<lacuna::topology::volume::VolumeTypeSet, Error> {
+    match VolumeClosure::of(std::slice::from_ref(v), limits)? {
+        VolumeClosure::Closed(set) => Ok(set),
+        VolumeClosure::Runaway(r) => Err(Error::Usage(format!(
+            "the volume's closure did not close: {} (see `lacuna closure`)",
+            r.reason
+        ))),
+    }
+}
+
+/// `lacuna counts` of a volume.
+pub(super) fn counts(
+    name: &str,
+    v: &Volume,
+    levels: u64,
+    json: bool,
+    limits: &Limits,
+) -> Result<ExitCode, Error> {
+    let set = closed(v, limits)?;
+    let c = volume_counts(&set, levels);
+    if json {
+        print_json(
+            &serde_json::json!({"input": name, "volume_types": set.types.len(), "counts": c}),
+        );
+    } else {
+        let n = set.types.len();
+        out(&format!(
+            "{name} ({n} volume type{})\n",
+            if n == 1 { "" } else { "s" }
+        ));
+        out(&lacuna::export::volume_counts_table(&c));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `lacuna ratio` of a volume.
+pub(super) fn ratio(
+    name: &str,
+    v: &Volume,
+    digits: usize,
+    json: bool,
+    limits: &Limits,
+) -> Result<ExitCode, Error> {
+    let set = closed(v, limits)?;
+    let r = lacuna::export::volume_ratio(&set, digits)?;
+    if json {
+        print_json(&r);
+    } else {
+        let n = set.types.len();
+        out(&format!(
+            "{name} ({n} volume type{})\n",
+            if n == 1 { "" } else { "s" }
+        ));
+        out(&lacuna::export::ratio_text(&r));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `lacuna verify` of a volume: the closure, every sub-volume's surface a sphere, counts and R.
+pub(super) fn verify(
+    name: &str,
+    v: &Volume,
+    levels: u64,
+    json: bool,
+    limits: &Limits,
+) -> Result<ExitCode, Error> {
+    let c = VolumeClosure::of(std::slice::from_ref(v), limits)?;
+    let VolumeClosure::Closed(set) = c else {
+        return closure(name, v, json, limits).map(|_| ExitCode::from(EXIT_FAILED));
+    };
+    let mut failures = Vec::new();
+    for (i, t) in set.types.iter().enumerate() {
+        for (k, s) in t.subdivision.subvolumes.iter().enumerate() {
+            if let Err(e) = s.volume.surface.check() {
+                failures.push(format!("V{i} sub-volume {k}: {e}"));
+            }
+        }
+    }
+    let counts = volume_counts(&set, levels);
+    let r = lacuna::export::volume_ratio(&set, 30)?;
+    let verified = failures.is_empty();
+    if json {
+        print_json(&serde_json::json!({
+            "input": name,
+            "verified": verified,
+            "volume_types": set.types.len(),
+            "failures": failures,
+            "counts": counts,
+            "ratio": r,
+        }));
+    } else {
+        out(&lacuna::export::volume_closure_text(
+            name,
+            &VolumeClosure::Closed(set),
+        ));
+        out(&format!(
+            "\nstructure: every sub-volume's boundary is a sphere{}\n\ncounts\n",
+            if verified { "" } else { ": FAILED" }
+        ));
+        for f in &failures {
+            out(&format!("  {f}\n"));
+        }
+        out(&lacuna::export::volume_counts_table(&counts));
+        out("\n");
+        out(&lacuna::export::ratio_text(&r));
+        out("\nconstraints: not generated for volumes yet (the solver reads faces and automata)\n");
+        out(&format!(
+            "\nverdict: {}\n",
+            if verified {
+                "VERIFIED (closure, structure, counts and R; constraints not generated)"
+            } else {
+                "NOT VERIFIED"
+            }
+        ));
+    }
+    Ok(if verified {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(EXIT_FAILED)
+    })
+}

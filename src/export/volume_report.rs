@@ -1,0 +1,165 @@
+//! Text and JSON reports of volumes (THEORY §10): the closure of volume types, counts per level
+//! and the limit ratio.
+
+use crate::analysis::ratio::{analyse, RatioReport};
+use crate::error::{Error, Result};
+use crate::export::report::ratio_decimal;
+use crate::topology::volume::{Volume, VolumeClosure, VolumeLevelCount, VolumeTypeSet};
+use num_rational::BigRational;
+use serde_json::{json, Value};
+use std::collections::BTreeMap;
+use std::fmt::Write;
+
+/// The exact limit ratio of the start volumes of a closed set, with `digits` certified decimals
+/// (the eigen analysis of THEORY §5 on the volume substitution and contributions).
+pub fn volume_ratio(set: &VolumeTypeSet, digits: usize) -> Result<RatioReport> {
+    let m: Vec<Vec<(usize, u64)>> = set
+        .types
+        .iter()
+        .map(|t| {
+            let mut row: BTreeMap<usize, u64> = BTreeMap::new();
+            for &c in &t.children {
+                *row.entry(c).or_default() += 1;
+            }
+            row.into_iter().collect()
+        })
+        .collect();
+    let c: Vec<BigRational> = set
+        .types
+        .iter()
+        .map(|t| BigRational::new(t.volume.contribution_quarters().into(), 4.into()))
+        .collect();
+    let mut start: BTreeMap<usize, u64> = BTreeMap::new();
+    for &t in &set.start {
+        *start.entry(t).or_default() += 1;
+    }
+    let start: Vec<(usize, u64)> = start.into_iter().collect();
+    analyse(&m, &c, &start)
+        .map(|r| r.with_digits(digits))
+        .map_err(|e| Error::Analysis(e.to_string()))
+}
+
+/// The faces of a volume's surface grouped by type: `3×(B2 B2 B2 B2 B2) + 9×(B2 B2 B2 B2)`.
+pub fn surface_summary(v: &Volume) -> String {
+    let mut groups: BTreeMap<String, usize> = BTreeMap::new();
+    for f in &v.surface.faces {
+        let (c, _) = f.canonical();
+        let edges: Vec<String> = c.boundary.iter().map(|e| e.to_string()).collect();
+        *groups.entry(edges.join(" ")).or_default() += 1;
+    }
+    let mut parts: Vec<(usize, String)> = groups.into_iter().map(|(k, n)| (n, k)).collect();
+    parts.sort_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
+    parts
+        .iter()
+        .map(|(n, k)| format!("{n}×({k})"))
+        .collect::<Vec<_>>()
+        .join(" + ")
+}
+
+/// `lacuna closure` of a volume.
+pub fn volume_closure_text(name: &str, closure: &VolumeClosure) -> String {
+    let mut o = String::new();
+    let _ = writeln!(o, "lacuna closure: {name}\n");
+    match closure {
+        VolumeClosure::Runaway(r) => {
+            let _ = writeln!(o, "closure: RUNAWAY — {}", r.reason);
+            let _ = writeln!(
+                o,
+                "witness chain (each volume is a sub-volume of the one before):"
+            );
+            for (k, w) in r.witness.iter().enumerate() {
+                let _ = writeln!(o, "  {k:>3}. {w}");
+            }
+            let _ = writeln!(
+                o,
+                "\nverdict: NOT VERIFIED (the recursion did not close within the limits)"
+            );
+        }
+        VolumeClosure::Closed(set) => {
+            let n = set.types.len();
+            let _ = writeln!(
+                o,
+                "closure: closed, {n} volume type{} (no bound is proved for volumes: checked against --max-types and --max-boundary)",
+                if n == 1 { "" } else { "s" }
+            );
+            for (i, t) in set.types.iter().enumerate() {
+                let (_, corners) = t.volume.surface.vertices();
+                let _ = writeln!(
+                    o,
+                    "  V{i}  {} faces, {corners} corners, {} edges (a sphere); delay {}; contributes {}",
+                    t.volume.surface.faces.len(),
+                    t.volume.surface.edge_count(),
+                    t.volume.delay,
+                    BigRational::new(t.volume.contribution_quarters().into(), 4.into())
+                );
+                let _ = writeln!(o, "       faces: {}", surface_summary(&t.volume));
+                let mut children: BTreeMap<usize, usize> = BTreeMap::new();
+                for &c in &t.children {
+                    *children.entry(c).or_default() += 1;
+                }
+                let list: Vec<String> = children.iter().map(|(c, k)| format!("{k}×V{c}")).collect();
+                let _ = writeln!(o, "       → {}", list.join(" + "));
+            }
+        }
+    }
+    o
+}
+
+/// The closure of a volume as JSON.
+pub fn volume_closure_json(name: &str, closure: &VolumeClosure) -> Value {
+    match closure {
+        VolumeClosure::Runaway(r) => json!({"input": name, "closed": false, "runaway": r}),
+        VolumeClosure::Closed(set) => json!({
+            "input": name,
+            "closed": true,
+            "start": set.start,
+            "types": set.types.iter().map(|t| {
+                let (_, corners) = t.volume.surface.vertices();
+                json!({
+                    "faces": t.volume.surface.faces.len(),
+                    "corners": corners,
+                    "edges": t.volume.surface.edge_count(),
+                    "surface": surface_summary(&t.volume),
+                    "delay": t.volume.delay,
+                    "contribution": BigRational::new(t.volume.contribution_quarters().into(), 4.into()).to_string(),
+                    "children": t.children,
+                })
+            }).collect::<Vec<_>>(),
+        }),
+    }
+}
+
+/// The counts of volumes as an aligned table.
+pub fn volume_counts_table(levels: &[VolumeLevelCount]) -> String {
+    let rows: Vec<[String; 5]> = levels
+        .iter()
+        .map(|l| {
+            [
+                l.level.to_string(),
+                l.cells.to_string(),
+                l.lacunas.to_string(),
+                l.ratio.to_string(),
+                ratio_decimal(&l.ratio, 6),
+            ]
+        })
+        .collect();
+    let heads = ["level", "cells N^C", "lacunas N^L", "R_i", "R_i ≈"];
+    let mut w = heads.map(|h| h.chars().count());
+    for r in &rows {
+        for (k, c) in r.iter().enumerate() {
+            w[k] = w[k].max(c.chars().count());
+        }
+    }
+    let line = |cells: &[String]| {
+        let mut s = String::from(" ");
+        for (k, c) in cells.iter().enumerate() {
+            s += &format!(" {}{}", " ".repeat(w[k] - c.chars().count()), c);
+        }
+        s + "\n"
+    };
+    let mut o = line(&heads.map(String::from));
+    for r in &rows {
+        o += &line(r);
+    }
+    o
+}

@@ -1,0 +1,194 @@
+//! The closure of volume types and their exact counts (THEORY §10).
+//!
+//! Breadth-first from the start volumes, identifying types by canonical volume, as for faces
+//! (THEORY §4). No bound on the closure of volumes is proved yet, so growth past the limits is a
+//! runaway with its witness chain: more than `--max-types` volume types, or a volume whose surface
+//! has more than `--max-boundary` faces.
+
+use crate::error::Result;
+use crate::topology::closure::Runaway;
+use crate::topology::limits::Limits;
+use crate::topology::volume::step::{subdivide_volume, VolumeSubdivision};
+use crate::topology::volume::Volume;
+use num_bigint::BigUint;
+use num_rational::BigRational;
+use num_traits::Zero;
+use serde::Serialize;
+use std::collections::{HashMap, VecDeque};
+
+/// One volume type of a closure.
+#[derive(Clone, Debug)]
+pub struct VolumeType {
+    /// The canonical volume.
+    pub volume: Volume,
+    /// Its subdivision step.
+    pub subdivision: VolumeSubdivision,
+    /// The type index of each sub-volume, aligned with `subdivision.subvolumes`.
+    pub children: Vec<usize>,
+    /// The type through which it was first reached (`None` for a start type).
+    pub parent: Option<usize>,
+}
+
+/// A closed set of volume types.
+#[derive(Clone, Debug)]
+pub struct VolumeTypeSet {
+    /// The types; the start types first.
+    pub types: Vec<VolumeType>,
+    /// The type index of each start volume.
+    pub start: Vec<usize>,
+}
+
+/// The outcome of closing a set of volumes.
+#[derive(Clone, Debug)]
+#[allow(clippy::large_enum_variant)]
+pub enum VolumeClosure {
+    /// Every sub-volume type is in the set.
+    Closed(VolumeTypeSet),
+    /// The recursion grew past a limit.
+    Runaway(Runaway),
+}
+
+impl VolumeClosure {
+    /// Closes the given start volumes under subdivision.
+    pub fn of(start: &[Volume], limits: &Limits) -> Result<VolumeClosure> {
+        for v in start {
+            for f in &v.surface.faces {
+                limits.check_face(f)?;
+            }
+        }
+        let mut types: Vec<VolumeType> = Vec::new();
+        let mut index: HashMap<Volume, usize> = HashMap::new();
+        let mut queue = VecDeque::new();
+        let mut start_idx = Vec::new();
+        let empty = || VolumeSubdivision {
+            subvolumes: Vec::new(),
+        };
+        for v in start {
+            let c = v.canonical();
+            let id = match index.get(&c) {
+                Some(&id) => id,
+                None => {
+                    index.insert(c.clone(), types.len());
+                    types.push(VolumeType {
+                        volume: c,
+                        subdivision: empty(),
+                        children: Vec::new(),
+                        parent: None,
+                    });
+                    queue.push_back(types.len() - 1);
+                    types.len() - 1
+                }
+            };
+            start_idx.push(id);
+        }
+        while let Some(t) = queue.pop_front() {
+            let sub = subdivide_volume(&types[t].volume)?;
+            let mut children = Vec::with_capacity(sub.subvolumes.len());
+            for s in &sub.subvolumes {
+                if let Some(&id) = index.get(&s.volume) {
+                    children.push(id);
+                    continue;
+                }
+                let id = types.len();
+                let faces = s.volume.surface.faces.len();
+                if faces > limits.max_boundary || id >= limits.max_types {
+                    let reason = if faces > limits.max_boundary {
+                        format!(
+                            "a sub-volume has {faces} faces, above the limit {} (--max-boundary)",
+                            limits.max_boundary
+                        )
+                    } else {
+                        format!("more than {} volume types (--max-types)", limits.max_types)
+                    };
+                    let mut witness = vec![s.volume.to_string()];
+                    let mut cur = Some(t);
+                    while let Some(c) = cur {
+                        witness.push(types[c].volume.to_string());
+                        cur = types[c].parent;
+                    }
+                    witness.reverse();
+                    return Ok(VolumeClosure::Runaway(Runaway { reason, witness }));
+                }
+                index.insert(s.volume.clone(), id);
+                types.push(VolumeType {
+                    volume: s.volume.clone(),
+                    subdivision: empty(),
+                    children: Vec::new(),
+                    parent: Some(t),
+                });
+                queue.push_back(id);
+                children.push(id);
+            }
+            types[t].subdivision = sub;
+            types[t].children = children;
+        }
+        Ok(VolumeClosure::Closed(VolumeTypeSet {
+            types,
+            start: start_idx,
+        }))
+    }
+}
+
+/// The counts of volumes at one level.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct VolumeLevelCount {
+    /// The level i.
+    pub level: u64,
+    /// N^C_i: the number of sub-volumes (cells).
+    #[serde(serialize_with = "crate::topology::closure::ser_display")]
+    pub cells: BigUint,
+    /// N^L_i, a multiple of 1/4: cavities count 1, face holes and gaps are shared by two cells.
+    #[serde(serialize_with = "crate::topology::closure::ser_display")]
+    pub lacunas: BigRational,
+    /// R_i = N^L_i / (N^L_i + N^C_i).
+    #[serde(serialize_with = "crate::topology::closure::ser_display")]
+    pub ratio: BigRational,
+}
+
+/// Exact counts of the start volumes from level 0 to `levels`, on the vector of type
+/// multiplicities with big integers (lacunas in quarters).
+pub fn volume_counts(set: &VolumeTypeSet, levels: u64) -> Vec<VolumeLevelCount> {
+    let n = set.types.len();
+    let quarters: Vec<u64> = set
+        .types
+        .iter()
+        .map(|t| t.volume.contribution_quarters())
+        .collect();
+    let mut v = vec![BigUint::zero(); n];
+    for &t in &set.start {
+        v[t] += 1u32;
+    }
+    let mut lacuna_quarters = BigUint::zero();
+    let mut out = Vec::new();
+    for level in 0..=levels {
+        let cells: BigUint = v.iter().sum();
+        let lacunas = BigRational::new(lacuna_quarters.clone().into(), 4.into());
+        let denom = &lacunas + BigRational::from_integer(cells.clone().into());
+        let ratio = if denom.is_zero() {
+            BigRational::zero()
+        } else {
+            &lacunas / denom
+        };
+        out.push(VolumeLevelCount {
+            level,
+            cells,
+            lacunas,
+            ratio,
+        });
+        if level == levels {
+            break;
+        }
+        let mut next = vec![BigUint::zero(); n];
+        for (t, vt) in v.iter().enumerate() {
+            if vt.is_zero() {
+                continue;
+            }
+            lacuna_quarters += vt * quarters[t];
+            for &c in &set.types[t].children {
+                next[c] += vt;
+            }
+        }
+        v = next;
+    }
+    out
+}

@@ -1,0 +1,367 @@
+//! One subdivision step of a volume (THEORY §10).
+//!
+//! The level-1 surface is made of the sub-faces of every face of S. Its sides (half-edges) are
+//! paired when two sub-faces share an edge: the two sides of a spoke edge Ea of one face, and the
+//! pieces of an edge of S seen from its two faces (piece `j` of an edge with `n` pieces is piece
+//! `n − 1 − j` from the other side). Lacuna edges El and gap sides Ec stay unpaired: they border
+//! holes. Cutting along the rule's spoke edges leaves patches; each patch must be a disk (one rim
+//! loop, V − E + F = 1), and becomes the outer boundary of one sub-volume, closed by a side face
+//! `X Er Ei Er` on every rim edge and an inner face `Ei … Ei`. A delayed volume instead keeps the
+//! whole level-1 surface and caps every hole with a face of the hole's edge types.
+
+use crate::error::{Error, Result};
+use crate::topology::subdivision::{subdivide, Origin, Subdivision};
+use crate::topology::volume::surface::Surface;
+use crate::topology::volume::Volume;
+use std::collections::HashMap;
+
+/// A side of the level-1 surface: (face of S, sub-face, position in the sub-face's boundary).
+type Side = (usize, usize, usize);
+
+/// A patch: the sub-faces (face of S, sub-face) of one sub-volume's outer boundary.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Patch {
+    /// The sub-faces, in the order of the sub-volume's faces.
+    pub subfaces: Vec<(usize, usize)>,
+    /// Rim edges that are spoke edges (shared with a neighbouring sub-volume).
+    pub spoke_sides: usize,
+    /// Rim edges that border a hole (wall faces).
+    pub wall_sides: usize,
+}
+
+/// One sub-volume with the patch it stands on (none for the single sub-volume of a delayed one).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SubVolume {
+    /// The sub-volume, in canonical form.
+    pub volume: Volume,
+    /// Its patch.
+    pub patch: Option<Patch>,
+}
+
+/// The result of one step.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct VolumeSubdivision {
+    /// The sub-volumes.
+    pub subvolumes: Vec<SubVolume>,
+}
+
+/// The level-1 surface of a volume: every face subdivided, and the pairing of sides.
+struct Level1 {
+    subs: Vec<Subdivision>,
+    partner: HashMap<Side, Side>,
+}
+
+impl Level1 {
+    fn of(v: &Volume) -> Result<Level1> {
+        let subs = v
+            .surface
+            .faces
+            .iter()
+            .map(subdivide)
+            .collect::<Result<Vec<_>>>()?;
+        let mut partner = HashMap::new();
+        // Where each piece of each face edge lies: (face, origin) -> (sub-face, position).
+        let mut piece_at: HashMap<(usize, Origin), (usize, usize)> = HashMap::new();
+        for (f, sub) in subs.iter().enumerate() {
+            for (k, s) in sub.subfaces.iter().enumerate() {
+                for (p, o) in s.origins.iter().enumerate() {
+                    if let Origin::Piece { .. } = o {
+                        piece_at.insert((f, *o), (k, p));
+                    }
+                }
+            }
+            for a in &sub.adjacencies {
+                let x = (f, a.first.0, a.first.1);
+                let y = (f, a.second.0, a.second.1);
+                partner.insert(x, y);
+                partner.insert(y, x);
+            }
+        }
+        for (f, sub) in subs.iter().enumerate() {
+            for (k, s) in sub.subfaces.iter().enumerate() {
+                for (p, o) in s.origins.iter().enumerate() {
+                    let Origin::Piece { edge, piece } = *o else {
+                        continue;
+                    };
+                    let (g, j) = v.surface.glue[f][edge];
+                    let n = v.surface.faces[f].boundary[edge].piece_count() as usize;
+                    let there = Origin::Piece {
+                        edge: j,
+                        piece: n - 1 - piece,
+                    };
+                    let Some(&(k2, p2)) = piece_at.get(&(g, there)) else {
+                        return Err(Error::Usage(format!(
+                            "volume: piece {piece} of edge {edge} of face {f} has no partner"
+                        )));
+                    };
+                    partner.insert((f, k, p), (g, k2, p2));
+                }
+            }
+        }
+        Ok(Level1 { subs, partner })
+    }
+
+    fn len(&self, f: usize, k: usize) -> usize {
+        self.subs[f].subfaces[k].face.boundary.len()
+    }
+
+    fn origin(&self, (f, k, p): Side) -> Origin {
+        self.subs[f].subfaces[k].origins[p]
+    }
+
+    /// The sub-faces as (face of S, sub-face) pairs.
+    fn subfaces(&self) -> Vec<(usize, usize)> {
+        self.subs
+            .iter()
+            .enumerate()
+            .flat_map(|(f, s)| (0..s.subfaces.len()).map(move |k| (f, k)))
+            .collect()
+    }
+
+    /// The next rim side after `h`, where `interior(side)` tells the sides glued inside the
+    /// region: from the end of `h`, turn around its end point across interior sides until a rim
+    /// side starts there.
+    fn next_rim(&self, h: Side, interior: &dyn Fn(Side) -> bool) -> Side {
+        let (f, k, p) = h;
+        let mut c = (f, k, (p + 1) % self.len(f, k));
+        let mut guard = 0usize;
+        while interior(c) {
+            let (f2, k2, p2) = self.partner[&c];
+            c = (f2, k2, (p2 + 1) % self.len(f2, k2));
+            guard += 1;
+            assert!(guard <= self.partner.len() + 1, "rim walk loops");
+        }
+        c
+    }
+
+    /// The rim loops of a region (its rim sides, each loop in walking order).
+    fn loops(&self, rim: &[Side], interior: &dyn Fn(Side) -> bool) -> Vec<Vec<Side>> {
+        let mut done: HashMap<Side, bool> = rim.iter().map(|&s| (s, false)).collect();
+        let mut out = Vec::new();
+        for &s in rim {
+            if done[&s] {
+                continue;
+            }
+            let mut cycle = Vec::new();
+            let mut c = s;
+            while !done[&c] {
+                done.insert(c, true);
+                cycle.push(c);
+                c = self.next_rim(c, interior);
+            }
+            out.push(cycle);
+        }
+        out
+    }
+}
+
+/// Subdivides a volume: its sub-volumes, each in canonical form.
+pub fn subdivide_volume(v: &Volume) -> Result<VolumeSubdivision> {
+    let l1 = Level1::of(v)?;
+    if v.delay >= 2 {
+        return Ok(VolumeSubdivision {
+            subvolumes: vec![delayed(v, &l1)],
+        });
+    }
+    let all = l1.subfaces();
+    let index: HashMap<(usize, usize), usize> =
+        all.iter().enumerate().map(|(i, &s)| (s, i)).collect();
+    // Patches: sub-faces joined across paired sides that are not spoke edges.
+    let mut uf: Vec<usize> = (0..all.len()).collect();
+    fn find(uf: &mut [usize], mut x: usize) -> usize {
+        while uf[x] != x {
+            uf[x] = uf[uf[x]];
+            x = uf[x];
+        }
+        x
+    }
+    for (&a, &b) in &l1.partner {
+        if !v.rule.is_spoke(&l1.origin(a)) {
+            let (ra, rb) = (
+                find(&mut uf, index[&(a.0, a.1)]),
+                find(&mut uf, index[&(b.0, b.1)]),
+            );
+            uf[ra] = rb;
+        }
+    }
+    let mut groups: Vec<Vec<(usize, usize)>> = Vec::new();
+    let mut group_of: HashMap<usize, usize> = HashMap::new();
+    for (i, &s) in all.iter().enumerate() {
+        let r = find(&mut uf, i);
+        let g = *group_of.entry(r).or_insert_with(|| {
+            groups.push(Vec::new());
+            groups.len() - 1
+        });
+        groups[g].push(s);
+    }
+    let subvolumes = groups
+        .iter()
+        .enumerate()
+        .map(|(n, g)| raise(v, &l1, n, g))
+        .collect::<Result<Vec<_>>>()?;
+    Ok(VolumeSubdivision { subvolumes })
+}
+
+/// The sub-volume over one patch.
+fn raise(v: &Volume, l1: &Level1, n: usize, patch: &[(usize, usize)]) -> Result<SubVolume> {
+    let member: HashMap<(usize, usize), usize> =
+        patch.iter().enumerate().map(|(i, &s)| (s, i)).collect();
+    let interior = |s: Side| -> bool {
+        !v.rule.is_spoke(&l1.origin(s))
+            && l1
+                .partner
+                .get(&s)
+                .is_some_and(|t| member.contains_key(&(t.0, t.1)))
+    };
+    let sides: Vec<Side> = patch
+        .iter()
+        .flat_map(|&(f, k)| (0..l1.len(f, k)).map(move |p| (f, k, p)))
+        .collect();
+    let rim: Vec<Side> = sides.iter().copied().filter(|&s| !interior(s)).collect();
+    let loops = l1.loops(&rim, &interior);
+    // The patch's Euler characteristic: corners identified across interior sides.
+    let corner: HashMap<Side, usize> = sides.iter().enumerate().map(|(i, &s)| (s, i)).collect();
+    let mut uf: Vec<usize> = (0..sides.len()).collect();
+    fn find(uf: &mut [usize], mut x: usize) -> usize {
+        while uf[x] != x {
+            uf[x] = uf[uf[x]];
+            x = uf[x];
+        }
+        x
+    }
+    let mut interior_sides = 0usize;
+    for &s in &sides {
+        if interior(s) {
+            interior_sides += 1;
+            let t = l1.partner[&s];
+            let after = (t.0, t.1, (t.2 + 1) % l1.len(t.0, t.1));
+            let (a, b) = (find(&mut uf, corner[&s]), find(&mut uf, corner[&after]));
+            uf[a] = b;
+        }
+    }
+    let vertices = (0..sides.len()).filter(|&i| find(&mut uf, i) == i).count();
+    let edges = interior_sides / 2 + rim.len();
+    let chi = vertices as i64 - edges as i64 + patch.len() as i64;
+    if loops.len() != 1 || chi != 1 {
+        let names: Vec<String> = patch
+            .iter()
+            .map(|&(f, k)| format!("face {f} sub-face {k}"))
+            .collect();
+        return Err(Error::Usage(format!(
+            "volume rule {}: patch {n} ({}) is not a disk ({} rim loop{}, V − E + F = {chi}): the rule cannot raise a sub-volume over it",
+            v.rule,
+            names.join(", "),
+            loops.len(),
+            if loops.len() == 1 { "" } else { "s" }
+        )));
+    }
+    let rim = &loops[0];
+    let m = rim.len();
+    let mut faces = Vec::with_capacity(patch.len() + m + 1);
+    let mut glue: Vec<Vec<(usize, usize)>> = Vec::new();
+    for &(f, k) in patch {
+        faces.push(l1.subs[f].subfaces[k].face.clone());
+        glue.push(vec![(usize::MAX, 0); l1.len(f, k)]);
+    }
+    for &s in &sides {
+        if interior(s) {
+            let t = l1.partner[&s];
+            glue[member[&(s.0, s.1)]][s.2] = (member[&(t.0, t.1)], t.2);
+        }
+    }
+    let side0 = patch.len();
+    let inner_face = side0 + m;
+    let mut spoke_sides = 0;
+    for (i, &r) in rim.iter().enumerate() {
+        let x = l1.subs[r.0].subfaces[r.1].face.boundary[r.2];
+        if v.rule.is_spoke(&l1.origin(r)) {
+            spoke_sides += 1;
+        }
+        faces.push(v.inner_face(vec![x, v.radial, v.inner, v.radial]));
+        let prev = side0 + (i + m - 1) % m;
+        let next = side0 + (i + 1) % m;
+        glue[member[&(r.0, r.1)]][r.2] = (side0 + i, 0);
+        glue.push(vec![
+            (member[&(r.0, r.1)], r.2),
+            (prev, 3),
+            (inner_face, m - 1 - i),
+            (next, 1),
+        ]);
+    }
+    faces.push(v.inner_face(vec![v.inner; m]));
+    glue.push((0..m).map(|k| (side0 + (m - 1 - k), 2)).collect());
+    let sub = Volume {
+        surface: Surface { faces, glue },
+        delay: 1,
+        ..v.clone()
+    };
+    debug_assert!(sub.surface.check().is_ok(), "{:?}", sub.surface.check());
+    Ok(SubVolume {
+        volume: sub.canonical(),
+        patch: Some(Patch {
+            subfaces: patch.to_vec(),
+            spoke_sides,
+            wall_sides: m - spoke_sides,
+        }),
+    })
+}
+
+/// The single sub-volume of a delayed volume: the level-1 surface with a cap over every hole.
+fn delayed(v: &Volume, l1: &Level1) -> SubVolume {
+    let all = l1.subfaces();
+    let index: HashMap<(usize, usize), usize> =
+        all.iter().enumerate().map(|(i, &s)| (s, i)).collect();
+    let interior = |s: Side| l1.partner.contains_key(&s);
+    let mut faces = Vec::new();
+    let mut glue: Vec<Vec<(usize, usize)>> = Vec::new();
+    let mut holes = Vec::new();
+    for &(f, k) in &all {
+        faces.push(l1.subs[f].subfaces[k].face.clone());
+        glue.push(
+            (0..l1.len(f, k))
+                .map(|p| match l1.partner.get(&(f, k, p)) {
+                    Some(t) => (index[&(t.0, t.1)], t.2),
+                    None => (usize::MAX, 0),
+                })
+                .collect(),
+        );
+        for p in 0..l1.len(f, k) {
+            if !interior((f, k, p)) {
+                holes.push((f, k, p));
+            }
+        }
+    }
+    for hole in l1.loops(&holes, &interior) {
+        // The cap runs round the hole the other way: its edge c is the hole's side m − 1 − c.
+        let m = hole.len();
+        let cap = faces.len();
+        let boundary = (0..m)
+            .map(|c| {
+                let (f, k, p) = hole[m - 1 - c];
+                l1.subs[f].subfaces[k].face.boundary[p]
+            })
+            .collect();
+        faces.push(v.inner_face(boundary));
+        glue.push(
+            (0..m)
+                .map(|c| {
+                    let (f, k, p) = hole[m - 1 - c];
+                    (index[&(f, k)], p)
+                })
+                .collect(),
+        );
+        for (c, &(f, k, p)) in hole.iter().rev().enumerate() {
+            glue[index[&(f, k)]][p] = (cap, c);
+        }
+    }
+    let sub = Volume {
+        surface: Surface { faces, glue },
+        delay: v.delay - 1,
+        ..v.clone()
+    };
+    debug_assert!(sub.surface.check().is_ok(), "{:?}", sub.surface.check());
+    SubVolume {
+        volume: sub.canonical(),
+        patch: None,
+    }
+}

@@ -1,0 +1,293 @@
+//! Hand derivations for volumes (THEORY §10).
+
+use super::*;
+use crate::topology::limits::Limits;
+
+fn cube(rule: &str) -> Volume {
+    parse_volume(&format!("cube B2 | B2 B2 B2 | A1 | B2 B2 | {rule}")).unwrap()
+}
+
+/// (faces, corners, edges) of a surface.
+fn fve(s: &Surface) -> (usize, usize, usize) {
+    (s.faces.len(), s.vertices().1, s.edge_count())
+}
+
+#[test]
+fn the_solids_are_spheres_with_their_known_counts() {
+    let x = crate::topology::face::Face::parse("B2 B2 B2 | B2 B2 B2 | A1").unwrap();
+    for (solid, expected) in [
+        (Solid::Cube, (6, 8, 12)),
+        (Solid::Tetrahedron, (4, 4, 6)),
+        (Solid::Octahedron, (8, 6, 12)),
+        // A prism over a pentagon: 2 + 5 faces, 10 corners, 15 edges.
+        (Solid::Prism(5), (7, 10, 15)),
+        // Truncated tetrahedron: 4 triangles and 4 hexagons, 12 corners, 18 edges.
+        (Solid::TruncatedTetrahedron, (8, 12, 18)),
+    ] {
+        let s = solid.surface(x.boundary[0], &x);
+        assert_eq!(s.check(), Ok(()), "{solid:?}");
+        assert_eq!(fve(&s), expected, "{solid:?}");
+    }
+}
+
+#[test]
+fn a_bad_gluing_is_refused() {
+    let mut v = cube("V1");
+    v.surface.glue[0][0] = v.surface.glue[0][1];
+    assert!(v.surface.check().is_err());
+    // Two separate tetrahedra: connected fails.
+    let t = Solid::Tetrahedron.surface(v.surface.faces[0].boundary[0], &v.surface.faces[0]);
+    let mut two = t.clone();
+    for (f, row) in t.glue.iter().enumerate() {
+        two.faces.push(t.faces[f].clone());
+        two.glue
+            .push(row.iter().map(|&(g, j)| (g + t.faces.len(), j)).collect());
+    }
+    assert!(two.check().unwrap_err().contains("not connected"));
+}
+
+#[test]
+fn the_worked_example_of_the_cube() {
+    // THEORY §10: each square becomes four pentagons (one per corner); the spokes separate
+    // them and the cube's edges do not, so each patch is the three pentagons around a cube
+    // corner: 8 sub-volumes. Each has 3 pentagons, 9 side faces (6 on spokes, 3 on walls) and
+    // one 9-gon: 13 faces; 10 corners on the patch plus 9 inner copies of the rim corners: 19;
+    // 12 patch edges + 9 radial + 9 inner: 30 edges.
+    let v = cube("V1");
+    let sub = subdivide_volume(&v).unwrap();
+    assert_eq!(sub.subvolumes.len(), 8);
+    for s in &sub.subvolumes {
+        assert_eq!(s.volume.surface.check(), Ok(()));
+        assert_eq!(fve(&s.volume.surface), (13, 19, 30));
+        let p = s.patch.as_ref().unwrap();
+        assert_eq!((p.subfaces.len(), p.spoke_sides, p.wall_sides), (3, 6, 3));
+    }
+    // The cube's rotations carry any corner to any other: one sub-volume type.
+    assert!(sub
+        .subvolumes
+        .iter()
+        .all(|s| s.volume == sub.subvolumes[0].volume));
+    // One cavity and six face holes shared with the outside: 1 + 6/2 = 4 lacunas.
+    assert_eq!(v.contribution_quarters(), 16);
+}
+
+#[test]
+fn rule_v2_raises_one_sub_volume_per_pentagon() {
+    // V2 also cuts along the cube's edges: 24 patches of one pentagon. Each pentagon's rim is
+    // its five edges (two pieces and two spokes shared with neighbours, one lacuna edge):
+    // 1 + 5 + 1 = 7 faces, 5 + 5 = 10 corners, 15 edges.
+    let sub = subdivide_volume(&cube("V2")).unwrap();
+    assert_eq!(sub.subvolumes.len(), 24);
+    for s in &sub.subvolumes {
+        assert_eq!(fve(&s.volume.surface), (7, 10, 15));
+        let p = s.patch.as_ref().unwrap();
+        assert_eq!((p.spoke_sides, p.wall_sides), (4, 1));
+    }
+}
+
+#[test]
+fn a_delayed_cube_caps_its_six_holes() {
+    // One sub-volume: 24 pentagons and 6 square caps; corners: 8 cube corners, 12 edge
+    // midpoints and 4 lacuna corners per square: 8 + 12 + 24 = 44; edges: the 24
+    // pentagons have 120 sides, the caps 24 more, each edge two sides: 72. 44 − 72 + 30 = 2.
+    let v = parse_volume("cube B2 | B2 B2 B2 | A1 | B2 B2 | V1 | 2").unwrap();
+    let sub = subdivide_volume(&v).unwrap();
+    assert_eq!(sub.subvolumes.len(), 1);
+    let s = &sub.subvolumes[0].volume;
+    assert_eq!(s.delay, 1);
+    assert_eq!(fve(&s.surface), (30, 44, 72));
+    assert_eq!(v.contribution_quarters(), 0);
+}
+
+#[test]
+fn the_cube_closes_with_three_types_and_counts_by_hand() {
+    // With B2 edges and A1 every sub-face is a pentagon holding one corner of its face, so a
+    // V1 patch is the pentagons around one corner of the surface: a volume with V corners has V
+    // children, whose type depends only on the corner's degree k (W3: 13 faces, W4: 17).
+    // W3's 19 corners: the patch centre (degree 3), 3 edge midpoints (degree 4: two pentagons
+    // and two side faces), 6 lacuna corners and 9 inner corners (degree 3): 16 W3 + 3 W4.
+    // W4's 25 corners: centre and 4 midpoints of degree 4, 8 + 12 of degree 3: 20 W3 + 5 W4.
+    let v = cube("V1");
+    let VolumeClosure::Closed(set) = VolumeClosure::of(&[v], &Limits::default()).unwrap() else {
+        panic!("the cube closes")
+    };
+    assert_eq!(set.types.len(), 3);
+    let c = volume_counts(&set, 3);
+    let cells: Vec<u64> = c
+        .iter()
+        .map(|l| l.cells.clone().try_into().unwrap())
+        .collect();
+    // 1; 8; 8·19 = 152; 8·(16·19 + 3·25) = 8·379 = 3032.
+    assert_eq!(cells, vec![1, 8, 152, 3032]);
+    // Lacunas in quarters: cube 16, W3 4 + 13·2 = 30, W4 4 + 17·2 = 38.
+    // N^L: 0; 4; 4 + 8·30/4 = 64; 64 + (128·30 + 24·38)/4 = 64 + 1188 = 1252.
+    let lac: Vec<String> = c.iter().map(|l| l.lacunas.to_string()).collect();
+    assert_eq!(lac, vec!["0", "4", "64", "1252"]);
+    // R_1 = 4 / (4 + 8) = 1/3.
+    assert_eq!(c[1].ratio.to_string(), "1/3");
+}
+
+#[test]
+fn the_tetrahedron_shares_the_cube_corner_type() {
+    let t = parse_volume("tetrahedron B2 | B2 B2 B2 | A1 | B2 B2 | V1").unwrap();
+    let c = cube("V1");
+    let st = subdivide_volume(&t).unwrap();
+    let sc = subdivide_volume(&c).unwrap();
+    assert_eq!(st.subvolumes.len(), 4);
+    assert_eq!(st.subvolumes[0].volume, sc.subvolumes[0].volume);
+}
+
+#[test]
+fn the_notation_refuses_what_it_cannot_read() {
+    for (text, code) in [
+        ("cube B2 | B2 B2 B2 | A1 | B2 B2", "E1201"),
+        ("sphere B2 | B2 B2 B2 | A1 | B2 B2 | V1", "E1202"),
+        ("cube B2 | B2 B2 | A1 | B2 B2 | V1", "E1203"),
+        ("cube B2 | B2 B2 B2 | A1 | B2 | V1", "E1204"),
+        ("cube B2 | B2 B2 B2 | A1 | B2 B2 | V3", "E1205"),
+        ("cube B2 | B2 B2 B2 | A1 | B2 B2 | V1 | 0", "E1206"),
+        ("cube | B2 B2 B2 | A1 | B2 B2 | V1", "E1201"),
+    ] {
+        assert_eq!(parse_volume(text).unwrap_err().code(), code, "{text}");
+    }
+}
+
+mod random {
+    //! Property tests over random volumes: small solids with random B/C edges, random E and
+    //! algorithms, both rules, delays 1 and 2.
+    use super::*;
+    use crate::topology::edge::EdgeType;
+    use crate::topology::face::Face;
+    use proptest::prelude::*;
+
+    fn edge_type() -> impl Strategy<Value = EdgeType> {
+        prop_oneof![
+            Just("B2"),
+            Just("B3"),
+            Just("C2"),
+            Just("C3"),
+            Just("B2^2"),
+            Just("C2^2")
+        ]
+        .prop_map(|t| EdgeType::parse(t, 1).unwrap())
+    }
+
+    fn volume() -> impl Strategy<Value = Volume> {
+        let solid = prop_oneof![
+            Just(Solid::Cube),
+            Just(Solid::Tetrahedron),
+            Just(Solid::Octahedron),
+            (3usize..6).prop_map(Solid::Prism),
+            Just(Solid::TruncatedTetrahedron)
+        ];
+        (
+            solid,
+            proptest::collection::vec(edge_type(), 18),
+            proptest::sample::select(vec!["B2 B2 B2", "C2 B2 B2", "B2 B2 C2", "B3 C2 B2"]),
+            proptest::sample::select(vec!["A1", "A2", "A3"]),
+            proptest::sample::select(vec![VolumeRule::V1, VolumeRule::V2]),
+            1u32..3,
+        )
+            .prop_map(|(solid, edges, e, a, rule, delay)| {
+                let template = Face::parse(&format!("B2 B2 B2 | {e} | {a}")).unwrap();
+                Volume {
+                    surface: solid.surface_with(|k| edges[k % edges.len()], &template),
+                    radial: EdgeType::parse("B2", 1).unwrap(),
+                    inner: EdgeType::parse("B2", 1).unwrap(),
+                    params: template.params,
+                    algorithm: template.algorithm,
+                    rule,
+                    delay,
+                }
+            })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+        #[test]
+        fn every_sub_volume_is_a_sphere_and_the_patches_cover_the_surface(v in volume()) {
+            prop_assert_eq!(v.surface.check(), Ok(()));
+            let subs: Vec<usize> = v
+                .surface
+                .faces
+                .iter()
+                .map(|f| crate::topology::subdivision::subdivide(f).map(|s| s.subfaces.len()))
+                .collect::<crate::error::Result<_>>()
+                .unwrap_or_default();
+            match subdivide_volume(&v) {
+                Err(e) => {
+                    // Refusals are named: a patch that is not a disk, or a face without spokes.
+                    let m = e.to_string();
+                    prop_assert!(m.contains("not a disk") || m.contains("spoke"), "{}", m);
+                }
+                Ok(sub) => {
+                    for s in &sub.subvolumes {
+                        prop_assert_eq!(s.volume.surface.check(), Ok(()));
+                        // The canonical form is a fixed point.
+                        prop_assert_eq!(&s.volume.canonical(), &s.volume);
+                    }
+                    let total: usize = subs.iter().sum();
+                    if v.delay >= 2 {
+                        prop_assert_eq!(sub.subvolumes.len(), 1);
+                        // The sub-faces are all on the one sub-volume, with the caps.
+                        prop_assert!(sub.subvolumes[0].volume.surface.faces.len() >= total);
+                    } else {
+                        // Every sub-face of S lies on exactly one patch.
+                        let mut seen = std::collections::HashSet::new();
+                        for s in &sub.subvolumes {
+                            for &sf in &s.patch.as_ref().unwrap().subfaces {
+                                prop_assert!(seen.insert(sf), "sub-face {:?} on two patches", sf);
+                            }
+                        }
+                        prop_assert_eq!(seen.len(), total);
+                        // Every spoke edge is a rim edge of the patches on both its sides: the
+                        // spoke sides of all patches are the spoke-rule sides of the surface.
+                        let spoke_sides: usize =
+                            sub.subvolumes.iter().map(|s| s.patch.as_ref().unwrap().spoke_sides).sum();
+                        let expected: usize = v
+                            .surface
+                            .faces
+                            .iter()
+                            .map(|f| {
+                                let s = crate::topology::subdivision::subdivide(f).unwrap();
+                                s.subfaces
+                                    .iter()
+                                    .flat_map(|x| x.origins.iter())
+                                    .filter(|o| v.rule.is_spoke(o))
+                                    .count()
+                            })
+                            .sum();
+                        prop_assert_eq!(spoke_sides, expected);
+                    }
+                }
+            }
+        }
+
+        #[test]
+        fn a_volume_is_its_type_under_relabelling(v in volume(), shift in 0usize..8) {
+            // Relabel the faces cyclically and rotate every face's boundary: same canonical form.
+            let n = v.surface.faces.len();
+            let s = shift % n;
+            let rot = |f: usize| (f + s) % n;
+            let mut faces = vec![v.surface.faces[0].clone(); n];
+            let mut glue = vec![Vec::new(); n];
+            for f in 0..n {
+                let len = v.surface.faces[f].boundary.len();
+                let r = shift % len;
+                let mut face = v.surface.faces[f].clone();
+                face.boundary.rotate_left(r);
+                faces[rot(f)] = face;
+                glue[rot(f)] = (0..len)
+                    .map(|k| {
+                        let (g, j) = v.surface.glue[f][(k + r) % len];
+                        let lg = v.surface.faces[g].boundary.len();
+                        (rot(g), (j + lg - shift % lg) % lg)
+                    })
+                    .collect();
+            }
+            let moved = Volume { surface: Surface { faces, glue }, ..v.clone() };
+            prop_assert_eq!(moved.surface.check(), Ok(()));
+            prop_assert_eq!(moved.canonical(), v.canonical());
+        }
+    }
+}
