@@ -44,10 +44,14 @@ pub(super) fn counts(
 ) -> Result<ExitCode, Error> {
     let set = closed(v, limits)?;
     let c = volume_counts(&set, levels);
+    let solid = lacuna::topology::volume::solid_topology(&set, levels)?;
     if json {
-        print_json(
-            &serde_json::json!({"input": name, "volume_types": set.types.len(), "counts": c}),
-        );
+        print_json(&serde_json::json!({
+            "input": name,
+            "volume_types": set.types.len(),
+            "counts": c,
+            "solid": solid,
+        }));
     } else {
         let n = set.types.len();
         out(&format!(
@@ -55,6 +59,8 @@ pub(super) fn counts(
             if n == 1 { "" } else { "s" }
         ));
         out(&lacuna::export::volume_counts_table(&c));
+        out("\nthe level-n solid (exact cell counts; – where not derived)\n");
+        out(&lacuna::export::solid_table(&solid));
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -103,6 +109,7 @@ pub(super) fn verify(
         }
     }
     let counts = volume_counts(&set, levels);
+    let solid = lacuna::topology::volume::solid_topology(&set, levels)?;
     let r = lacuna::export::volume_ratio(&set, 30)?;
     let verified = failures.is_empty();
     if json {
@@ -112,6 +119,7 @@ pub(super) fn verify(
             "volume_types": set.types.len(),
             "failures": failures,
             "counts": counts,
+            "solid": solid,
             "ratio": r,
         }));
     } else {
@@ -127,6 +135,8 @@ pub(super) fn verify(
             out(&format!("  {f}\n"));
         }
         out(&lacuna::export::volume_counts_table(&counts));
+        out("\nthe level-n solid (exact cell counts; – where not derived)\n");
+        out(&lacuna::export::solid_table(&solid));
         out("\n");
         out(&lacuna::export::ratio_text(&r));
         out("\nconstraints: not generated for volumes yet (the solver reads faces and automata)\n");

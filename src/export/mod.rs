@@ -15,7 +15,8 @@ pub use report::{
     VerifyReport,
 };
 pub use volume_report::{
-    surface_summary, volume_closure_json, volume_closure_text, volume_counts_table, volume_ratio,
+    solid_table, surface_summary, volume_closure_json, volume_closure_text, volume_counts_table,
+    volume_ratio,
 };
 pub use writer::{
     render_raster, triangulate, write_density_png, write_json, write_obj, write_png, write_stl,

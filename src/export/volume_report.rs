@@ -4,7 +4,7 @@
 use crate::analysis::ratio::{analyse, RatioReport};
 use crate::error::{Error, Result};
 use crate::export::report::ratio_decimal;
-use crate::topology::volume::{Volume, VolumeClosure, VolumeLevelCount, VolumeTypeSet};
+use crate::topology::volume::{SolidLevel, Volume, VolumeClosure, VolumeLevelCount, VolumeTypeSet};
 use num_rational::BigRational;
 use serde_json::{json, Value};
 use std::collections::BTreeMap;
@@ -144,6 +144,56 @@ pub fn volume_counts_table(levels: &[VolumeLevelCount]) -> String {
         })
         .collect();
     let heads = ["level", "cells N^C", "lacunas N^L", "R_i", "R_i ≈"];
+    let mut w = heads.map(|h| h.chars().count());
+    for r in &rows {
+        for (k, c) in r.iter().enumerate() {
+            w[k] = w[k].max(c.chars().count());
+        }
+    }
+    let line = |cells: &[String]| {
+        let mut s = String::from(" ");
+        for (k, c) in cells.iter().enumerate() {
+            s += &format!(" {}{}", " ".repeat(w[k] - c.chars().count()), c);
+        }
+        s + "\n"
+    };
+    let mut o = line(&heads.map(String::from));
+    for r in &rows {
+        o += &line(r);
+    }
+    o
+}
+
+/// The exact topology of the solid per level as an aligned table (`–` where not derived).
+pub fn solid_table(levels: &[SolidLevel]) -> String {
+    let opt = |x: Option<String>| x.unwrap_or_else(|| "–".into());
+    let rows: Vec<[String; 9]> = levels
+        .iter()
+        .map(|l| {
+            [
+                l.level.to_string(),
+                l.volumes.to_string(),
+                l.faces.to_string(),
+                l.edges.to_string(),
+                l.corners.to_string(),
+                l.euler.to_string(),
+                opt(l.components.map(|x| x.to_string())),
+                opt(l.voids.map(|x| x.to_string())),
+                opt(l.tunnels.as_ref().map(|x| x.to_string())),
+            ]
+        })
+        .collect();
+    let heads = [
+        "level",
+        "volumes",
+        "faces",
+        "edges",
+        "corners",
+        "χ",
+        "components",
+        "voids",
+        "tunnels",
+    ];
     let mut w = heads.map(|h| h.chars().count());
     for r in &rows {
         for (k, c) in r.iter().enumerate() {

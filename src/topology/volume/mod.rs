@@ -5,18 +5,21 @@
 //! - [`surface`]: closed surfaces as oriented maps (gluing, sphere check, canonical form);
 //! - [`solid`]: the common solids and the one-line volume notation;
 //! - [`step`]: one subdivision step of a volume, with its patches and sub-volumes;
-//! - [`closure`]: the closure of volume types, exact counts of sub-volumes and lacunas.
+//! - [`closure`]: the closure of volume types, exact counts of sub-volumes and lacunas;
+//! - [`complex`]: the exact topology of the level-n solid (cells, χ, components, voids, tunnels).
 //!
 //! Like the rest of the topology layer this never sees a float.
 
 pub(crate) mod closure;
+pub(crate) mod complex;
 pub(crate) mod solid;
 pub(crate) mod step;
 pub(crate) mod surface;
 
 pub use closure::{volume_counts, VolumeClosure, VolumeLevelCount, VolumeType, VolumeTypeSet};
+pub use complex::{solid_topology, SolidLevel};
 pub use solid::{parse_volume, Solid};
-pub use step::{subdivide_volume, Patch, SubVolume, VolumeSubdivision};
+pub use step::{interior, subdivide_volume, Interior, Patch, SubVolume, VolumeSubdivision};
 pub use surface::Surface;
 
 use crate::topology::edge::EdgeType;

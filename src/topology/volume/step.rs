@@ -365,3 +365,168 @@ fn delayed(v: &Volume, l1: &Level1) -> SubVolume {
         patch: None,
     }
 }
+
+/// The cells a step creates in the relative interior of a volume (THEORY §10): they and the
+/// cells born inside the faces, edges and corners of the previous level make up the level-n solid
+/// without double counting, since every cell of the level-n complex is born inside exactly one
+/// cell of the level before.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Interior {
+    /// Faces created inside: one side face per spoke edge (shared by the two sub-volumes) and per
+    /// wall edge, one inner face per sub-volume; for a delayed volume, its caps.
+    pub faces: Vec<crate::topology::face::Face>,
+    /// Radial edges Er: one per fan of sub-volumes around a rim point (sub-volumes joined by
+    /// spoke faces share it); one inner corner at the end of each.
+    pub radial_edges: usize,
+    /// Inner edges Ei: one per side face.
+    pub inner_edges: usize,
+    /// Whether the level-1 surface has a hole (an unpaired side): the central cavity opens.
+    pub opens: bool,
+    /// Whether the sub-volumes are connected to each other (through shared surface points).
+    pub children_connected: bool,
+}
+
+/// The interior cells of one step of `v` (see [`Interior`]).
+pub fn interior(v: &Volume) -> Result<Interior> {
+    let l1 = Level1::of(v)?;
+    let sub = subdivide_volume(v)?;
+    let all = l1.subfaces();
+    let sides: Vec<Side> = all
+        .iter()
+        .flat_map(|&(f, k)| (0..l1.len(f, k)).map(move |p| (f, k, p)))
+        .collect();
+    let paired = |s: Side| l1.partner.contains_key(&s);
+    let holes: Vec<Side> = sides.iter().copied().filter(|&s| !paired(s)).collect();
+    let opens = !holes.is_empty();
+    if v.delay >= 2 {
+        // One cap over every hole, with the hole's edge types.
+        let faces = l1
+            .loops(&holes, &paired)
+            .iter()
+            .map(|hole| {
+                let boundary = hole
+                    .iter()
+                    .rev()
+                    .map(|&(f, k, p)| l1.subs[f].subfaces[k].face.boundary[p])
+                    .collect();
+                v.inner_face(boundary).canonical().0
+            })
+            .collect();
+        return Ok(Interior {
+            faces,
+            radial_edges: 0,
+            inner_edges: 0,
+            opens,
+            children_connected: true,
+        });
+    }
+    // Side faces: a spoke edge once (from its smaller side), a wall edge once; then the inner
+    // faces, one per sub-volume.
+    let mut faces = Vec::new();
+    let mut walls = Vec::new();
+    for &s in &sides {
+        let x = l1.subs[s.0].subfaces[s.1].face.boundary[s.2];
+        let side_face = || {
+            v.inner_face(vec![x, v.radial, v.inner, v.radial])
+                .canonical()
+                .0
+        };
+        match l1.partner.get(&s) {
+            None => walls.push(side_face()),
+            Some(t) if v.rule.is_spoke(&l1.origin(s)) && s < *t => faces.push(side_face()),
+            Some(_) => {}
+        }
+    }
+    faces.extend(walls);
+    let inner_edges = faces.len();
+    for s in &sub.subvolumes {
+        let m = s.patch.as_ref().map_or(0, |p| p.spoke_sides + p.wall_sides);
+        faces.push(v.inner_face(vec![v.inner; m]).canonical().0);
+    }
+    // Fans around the points of the level-1 surface: the corners (sectors) met turning across
+    // paired sides, broken at holes. A fan ended by holes, or crossing a spoke side, has one
+    // radial edge (the sub-volumes of the fan share it through their spoke faces); a full turn
+    // across non-spoke sides only is a point inside one patch.
+    let before = |c: Side| -> Option<Side> {
+        let n = l1.len(c.0, c.1);
+        l1.partner.get(&(c.0, c.1, (c.2 + n - 1) % n)).copied()
+    };
+    let after = |c: Side| -> Option<Side> {
+        l1.partner
+            .get(&c)
+            .map(|t| (t.0, t.1, (t.2 + 1) % l1.len(t.0, t.1)))
+    };
+    let mut radial_edges = 0usize;
+    let mut seen: std::collections::HashSet<Side> = std::collections::HashSet::new();
+    for &c0 in &sides {
+        if seen.contains(&c0) {
+            continue;
+        }
+        let mut first = c0;
+        let mut cyclic = false;
+        while let Some(q) = before(first) {
+            first = q;
+            if first == c0 {
+                cyclic = true;
+                break;
+            }
+        }
+        let mut radial = !cyclic;
+        let mut c = first;
+        loop {
+            seen.insert(c);
+            match after(c) {
+                None => break,
+                Some(d) => {
+                    radial |= v.rule.is_spoke(&l1.origin(c));
+                    if d == first {
+                        break;
+                    }
+                    c = d;
+                }
+            }
+        }
+        radial_edges += usize::from(radial);
+    }
+    // The sub-volumes are joined when their patches share an edge of the level-1 surface (the
+    // sub-volumes of one fan share its point, and a fan is joined across paired sides).
+    let index: HashMap<(usize, usize), usize> = sub
+        .subvolumes
+        .iter()
+        .enumerate()
+        .flat_map(|(i, s)| {
+            s.patch
+                .as_ref()
+                .map(|p| {
+                    p.subfaces
+                        .iter()
+                        .map(move |&sf| (sf, i))
+                        .collect::<Vec<_>>()
+                })
+                .unwrap_or_default()
+        })
+        .collect();
+    let mut uf: Vec<usize> = (0..sub.subvolumes.len()).collect();
+    fn find(uf: &mut [usize], mut x: usize) -> usize {
+        while uf[x] != x {
+            uf[x] = uf[uf[x]];
+            x = uf[x];
+        }
+        x
+    }
+    for (&a, &b) in &l1.partner {
+        let (ra, rb) = (
+            find(&mut uf, index[&(a.0, a.1)]),
+            find(&mut uf, index[&(b.0, b.1)]),
+        );
+        uf[ra] = rb;
+    }
+    let children_connected = (0..uf.len()).filter(|&i| find(&mut uf, i) == i).count() == 1;
+    Ok(Interior {
+        faces,
+        radial_edges,
+        inner_edges,
+        opens,
+        children_connected,
+    })
+}

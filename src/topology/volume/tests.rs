@@ -291,3 +291,87 @@ mod random {
         }
     }
 }
+
+#[test]
+fn the_solid_of_the_cube_at_levels_0_and_1_by_hand() {
+    // Level 0: the cube, 1 volume, 6 faces, 12 edges, 8 corners: χ = 8 − 12 + 6 − 1 = 1.
+    // Level 1 (THEORY §10): 8 volumes; faces: 24 pentagons, 24 spoke faces (48 spoke sides seen
+    // from two sub-volumes), 24 wall faces, 8 inner faces = 80; edges: the level-1 surface has 72
+    // (96 paired sides make 48 edges, and 24 lacuna edges), 36 radial edges (one at each of
+    // the 12 edge midpoints and 24 lacuna corners; none at the 8 cube corners, inside a patch),
+    // 48 inner edges = 156; corners: 44 on the surface + 36 inner = 80. χ = 80 − 156 + 80 − 8 =
+    // −4: one component, no void (the cavity opens through the six face holes), 5 tunnels —
+    // the thickened cube graph, 12 − 8 + 1.
+    let VolumeClosure::Closed(set) = VolumeClosure::of(&[cube("V1")], &Limits::default()).unwrap()
+    else {
+        panic!("closes")
+    };
+    let t = solid_topology(&set, 2).unwrap();
+    let row = |l: &SolidLevel| [&l.volumes, &l.faces, &l.edges, &l.corners].map(|x| x.to_string());
+    assert_eq!(row(&t[0]), ["1", "6", "12", "8"]);
+    assert_eq!(t[0].euler.to_string(), "1");
+    assert_eq!(row(&t[1]), ["8", "80", "156", "80"]);
+    assert_eq!(t[1].euler.to_string(), "-4");
+    assert_eq!(t[1].components, Some(1));
+    assert_eq!(t[1].voids, Some(0));
+    assert_eq!(
+        t[1].tunnels.as_ref().map(|x| x.to_string()),
+        Some("5".into())
+    );
+    // Level 2 by the same births: inside W3 (×8) 19 sub-volumes; every cell count follows, and
+    // χ must stay an integer consistent with V − E + F − C.
+    assert_eq!(t[2].volumes.to_string(), "152");
+}
+
+#[test]
+fn face_births_agree_with_the_level_1_complex() {
+    // The corners and edges a face creates inside itself, plus those on its boundary, are the
+    // vertices and edges of its level-1 complex (computed independently by corner classes).
+    for text in [
+        "C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1",
+        "B3 C3 B2^2 | C2 B2 B2 | A2",
+        "C2 C2 C3 | B2 C2 B2 | A1",
+        "B2 C2 | B2 B2 B2 | A1 | 3",
+        "C2^2 B2 C3 | B2 B2 C2 | A3",
+    ] {
+        let f = crate::topology::face::Face::parse(text).unwrap();
+        let sub = crate::topology::subdivision::subdivide(&f).unwrap();
+        let cx = sub.level1_complex(&f);
+        let gaps = sub
+            .junctions
+            .iter()
+            .filter(|j| j.kind == crate::topology::edge::JunctionKind::Gap)
+            .count();
+        let boundary_corners: usize = f
+            .boundary
+            .iter()
+            .map(|e| {
+                1 + match e.inner_junction() {
+                    None => 0,
+                    Some(crate::topology::edge::JunctionKind::Gap) => {
+                        2 * (e.piece_count() as usize - 1)
+                    }
+                    Some(_) => e.piece_count() as usize - 1,
+                }
+            })
+            .sum();
+        let pieces: usize = f.boundary.iter().map(|e| e.piece_count() as usize).sum();
+        assert_eq!(
+            cx.vertices,
+            boundary_corners + sub.spokes.len() + gaps,
+            "{text}"
+        );
+        let lacuna = if f.delay == 1 { sub.subfaces.len() } else { 0 };
+        let gap_sides: std::collections::HashSet<_> = sub
+            .subfaces
+            .iter()
+            .flat_map(|s| s.origins.iter())
+            .filter(|o| matches!(o, crate::topology::subdivision::Origin::GapSide { .. }))
+            .collect();
+        assert_eq!(
+            cx.edges,
+            pieces + sub.spokes.len() + lacuna + gap_sides.len(),
+            "{text}"
+        );
+    }
+}

@@ -1,0 +1,311 @@
+//! The exact topology of the level-n solid (THEORY §10): the numbers of corners, edges, faces and
+//! volumes of its cell complex, its Euler characteristic, components, voids and tunnels.
+//!
+//! **Every cell is born inside exactly one cell of the level before.** A step creates, inside a
+//! volume, its sub-volumes, the side faces (one per spoke edge, shared by the two sub-volumes, and
+//! one per wall edge), the inner faces, the radial edges (one per fan of sub-volumes around a rim
+//! point), the inner edges and the inner corners ([`crate::topology::volume::step::interior`]);
+//! inside a face, its sub-faces, its spokes Ea, lacuna edges El and gap sides Ec, its lacuna
+//! corners and gap points; inside an edge, its pieces and the joints or gap ends between them; a
+//! corner stays a corner. A face shared by two volumes is one cell of the complex and is
+//! subdivided once, so counting by birth counts every cell once. The counts are linear recurrences
+//! on the vector of cell types (volume, face and edge types, and corners), in big integers.
+//!
+//! **Components** stay the same from level to level when the sub-volumes of every volume type are
+//! connected (children of cells that share a cell still share its subdivision); otherwise they are
+//! not derived. **Voids** (enclosed cavities): none at any level when no volume and no face of the
+//! recursion is delayed — every face of the level before then has a hole at the next level, every
+//! new cavity opens through the faces of its volume, and every group of volumes joined by shared
+//! faces has a face on the boundary of the solid, so every cavity reaches the outside; at level 1
+//! the start volume's cavity is a void exactly when its level-1 surface has no hole. Otherwise
+//! voids are not derived. With b0 components and b2 voids, the tunnels (first Betti number, the
+//! genus of a connected solid) are b1 = b0 + b2 − χ.
+
+use crate::error::Result;
+use crate::topology::edge::EdgeType;
+use crate::topology::face::Face;
+use crate::topology::subdivision::{subdivide, Origin};
+use crate::topology::volume::closure::VolumeTypeSet;
+use crate::topology::volume::step::interior;
+use num_bigint::{BigInt, BigUint};
+use num_traits::Zero;
+use serde::Serialize;
+use std::collections::{HashMap, HashSet};
+
+/// The exact topology of the solid at one level.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct SolidLevel {
+    /// The level.
+    pub level: u64,
+    /// Volumes (3-cells).
+    #[serde(serialize_with = "crate::topology::closure::ser_display")]
+    pub volumes: BigUint,
+    /// Faces (2-cells).
+    #[serde(serialize_with = "crate::topology::closure::ser_display")]
+    pub faces: BigUint,
+    /// Edges (1-cells).
+    #[serde(serialize_with = "crate::topology::closure::ser_display")]
+    pub edges: BigUint,
+    /// Corners (0-cells).
+    #[serde(serialize_with = "crate::topology::closure::ser_display")]
+    pub corners: BigUint,
+    /// χ = corners − edges + faces − volumes.
+    #[serde(serialize_with = "crate::topology::closure::ser_display")]
+    pub euler: BigInt,
+    /// Connected components b0, where derived.
+    pub components: Option<u64>,
+    /// Enclosed cavities b2, where derived.
+    pub voids: Option<u64>,
+    /// Tunnels b1 = b0 + b2 − χ, where b0 and b2 are derived.
+    #[serde(serialize_with = "ser_option")]
+    pub tunnels: Option<BigInt>,
+}
+
+fn ser_option<S: serde::Serializer>(
+    v: &Option<BigInt>,
+    s: S,
+) -> std::result::Result<S::Ok, S::Error> {
+    match v {
+        Some(x) => s.collect_str(x),
+        None => s.serialize_none(),
+    }
+}
+
+/// What one cell of each type creates in its relative interior.
+#[derive(Default)]
+struct Birth {
+    volumes: Vec<usize>,
+    faces: Vec<Face>,
+    edges: Vec<EdgeType>,
+    corners: u64,
+}
+
+/// Registry of face and edge types met so far, with what each creates.
+#[derive(Default)]
+struct Cells {
+    faces: Vec<Face>,
+    face_index: HashMap<Face, usize>,
+    face_birth: Vec<(Vec<usize>, Vec<usize>, u64)>,
+    edges: Vec<EdgeType>,
+    edge_index: HashMap<EdgeType, usize>,
+    edge_birth: Vec<(Vec<usize>, u64)>,
+}
+
+impl Cells {
+    fn edge(&mut self, e: EdgeType) -> usize {
+        if let Some(&i) = self.edge_index.get(&e) {
+            return i;
+        }
+        let i = self.edges.len();
+        self.edges.push(e);
+        self.edge_index.insert(e, i);
+        self.edge_birth.push((Vec::new(), 0));
+        // Pieces and the corners between them (a joint, or the two ends of a gap).
+        let piece = self.edge(e.piece());
+        let n = e.piece_count() as u64;
+        let corners = match e.inner_junction() {
+            None => 0,
+            Some(crate::topology::edge::JunctionKind::Gap) => 2 * (n - 1),
+            Some(_) => n - 1,
+        };
+        self.edge_birth[i] = (vec![piece; n as usize], corners);
+        i
+    }
+
+    fn face(&mut self, f: &Face) -> Result<usize> {
+        let (f, _) = f.canonical();
+        if let Some(&i) = self.face_index.get(&f) {
+            return Ok(i);
+        }
+        let i = self.faces.len();
+        self.faces.push(f.clone());
+        self.face_index.insert(f.clone(), i);
+        self.face_birth.push((Vec::new(), Vec::new(), 0));
+        let sub = subdivide(&f)?;
+        let mut inner_edges = Vec::new();
+        let mut gap_sides = HashSet::new();
+        for s in &sub.subfaces {
+            for (k, o) in s.origins.iter().enumerate() {
+                let e = s.face.boundary[k];
+                match o {
+                    Origin::Lacuna { .. } => inner_edges.push(self.edge(e)),
+                    Origin::GapSide { .. } => {
+                        if gap_sides.insert(*o) {
+                            inner_edges.push(self.edge(e));
+                        }
+                    }
+                    Origin::Spoke { inward: true, .. } => inner_edges.push(self.edge(e)),
+                    Origin::Spoke { inward: false, .. } | Origin::Piece { .. } => {}
+                }
+            }
+        }
+        let gaps = sub
+            .junctions
+            .iter()
+            .filter(|j| j.kind == crate::topology::edge::JunctionKind::Gap)
+            .count() as u64;
+        // A lacuna corner per spoke, a gap point per gap.
+        let corners = sub.spokes.len() as u64 + gaps;
+        let subfaces = sub
+            .subfaces
+            .iter()
+            .map(|s| self.face(&s.face))
+            .collect::<Result<Vec<_>>>()?;
+        self.face_birth[i] = (subfaces, inner_edges, corners);
+        Ok(i)
+    }
+}
+
+/// The exact topology of the solid of each start volume together (their disjoint union), from
+/// level 0 to `levels`.
+pub fn solid_topology(set: &VolumeTypeSet, levels: u64) -> Result<Vec<SolidLevel>> {
+    let mut cells = Cells::default();
+    let mut births: Vec<Birth> = Vec::with_capacity(set.types.len());
+    let mut all_connected = true;
+    let mut any_delayed = false;
+    for t in &set.types {
+        let int = interior(&t.volume)?;
+        all_connected &= int.children_connected;
+        any_delayed |= t.volume.delay >= 2;
+        let mut edges = vec![t.volume.radial; int.radial_edges];
+        edges.extend(vec![t.volume.inner; int.inner_edges]);
+        births.push(Birth {
+            volumes: t.children.clone(),
+            faces: int.faces,
+            edges,
+            corners: int.radial_edges as u64,
+        });
+    }
+    // Register every face and edge type reachable, so that the vectors have fixed length.
+    let mut vol_faces: Vec<(Vec<usize>, Vec<usize>)> = Vec::new();
+    for b in &births {
+        let f = b
+            .faces
+            .iter()
+            .map(|f| cells.face(f))
+            .collect::<Result<Vec<_>>>()?;
+        let e = b.edges.iter().map(|&e| cells.edge(e)).collect();
+        vol_faces.push((f, e));
+    }
+    // Level 0: each start volume with its surface.
+    let nv = set.types.len();
+    let mut vol = vec![BigUint::zero(); nv];
+    let mut fac: Vec<BigUint> = Vec::new();
+    let mut edg: Vec<BigUint> = Vec::new();
+    let mut corners = BigUint::zero();
+    let mut start_faces = Vec::new();
+    let mut start_edges = Vec::new();
+    for &s in &set.start {
+        vol[s] += 1u32;
+        let surface = &set.types[s].volume.surface;
+        for f in &surface.faces {
+            start_faces.push(cells.face(f)?);
+        }
+        for (f, row) in surface.glue.iter().enumerate() {
+            for (i, &(g, j)) in row.iter().enumerate() {
+                if (f, i) < (g, j) {
+                    start_edges.push(cells.edge(surface.faces[f].boundary[i]));
+                }
+            }
+        }
+        corners += surface.vertices().1;
+    }
+    let any_delayed_face = cells.faces.iter().any(|f| f.delay >= 2);
+    fac.resize(cells.faces.len(), BigUint::zero());
+    edg.resize(cells.edges.len(), BigUint::zero());
+    for f in start_faces {
+        fac[f] += 1u32;
+    }
+    for e in start_edges {
+        edg[e] += 1u32;
+    }
+    let starts = set.start.len() as u64;
+    let level1_voids: u64 = set
+        .start
+        .iter()
+        .map(|&s| {
+            let v = &set.types[s].volume;
+            u64::from(v.delay == 1 && !interior(v).map(|i| i.opens).unwrap_or(true))
+        })
+        .sum();
+    let mut out = Vec::new();
+    for level in 0..=levels {
+        let sum = |v: &[BigUint]| v.iter().sum::<BigUint>();
+        let (c, f, e) = (sum(&vol), sum(&fac), sum(&edg));
+        let euler = BigInt::from(corners.clone()) - BigInt::from(e.clone())
+            + BigInt::from(f.clone())
+            - BigInt::from(c.clone());
+        let components = (level == 0 || all_connected).then_some(starts);
+        let voids = match level {
+            0 => Some(0),
+            _ if !any_delayed && !any_delayed_face => Some(0),
+            1 => Some(level1_voids),
+            _ => None,
+        };
+        let tunnels = match (components, voids) {
+            (Some(b0), Some(b2)) => Some(BigInt::from(b0) + BigInt::from(b2) - &euler),
+            _ => None,
+        };
+        out.push(SolidLevel {
+            level,
+            volumes: c,
+            faces: f,
+            edges: e,
+            corners: corners.clone(),
+            euler,
+            components,
+            voids,
+            tunnels,
+        });
+        if level == levels {
+            break;
+        }
+        let mut nvol = vec![BigUint::zero(); nv];
+        let mut nfac = vec![BigUint::zero(); cells.faces.len()];
+        let mut nedg = vec![BigUint::zero(); cells.edges.len()];
+        let mut ncor = corners.clone();
+        for (t, k) in vol.iter().enumerate() {
+            if k.is_zero() {
+                continue;
+            }
+            for &ch in &births[t].volumes {
+                nvol[ch] += k;
+            }
+            for &x in &vol_faces[t].0 {
+                nfac[x] += k;
+            }
+            for &x in &vol_faces[t].1 {
+                nedg[x] += k;
+            }
+            ncor += k * births[t].corners;
+        }
+        for (t, k) in fac.iter().enumerate() {
+            if k.is_zero() {
+                continue;
+            }
+            let (subs, inner, born) = &cells.face_birth[t];
+            for &x in subs {
+                nfac[x] += k;
+            }
+            for &x in inner {
+                nedg[x] += k;
+            }
+            ncor += k * born;
+        }
+        for (t, k) in edg.iter().enumerate() {
+            if k.is_zero() {
+                continue;
+            }
+            let (pieces, born) = &cells.edge_birth[t];
+            for &x in pieces {
+                nedg[x] += k;
+            }
+            ncor += k * born;
+        }
+        vol = nvol;
+        fac = nfac;
+        edg = nedg;
+        corners = ncor;
+    }
+    Ok(out)
+}
