@@ -149,6 +149,27 @@ pub fn load_input(arg: &str) -> Result<Input> {
     }
 }
 
+/// The volume a command-line argument names, if it names one: notation, a file or a library
+/// entry. `None` when the argument is something else (faces, an automaton, nothing readable).
+pub fn load_volume(arg: &str) -> Result<Option<(String, crate::topology::volume::Volume)>> {
+    if arg.contains('|') {
+        return match crate::input::volume_file::is_volume_notation(arg) {
+            true => Ok(Some((
+                arg.trim().to_string(),
+                crate::topology::volume::parse_volume(arg)?,
+            ))),
+            false => Ok(None),
+        };
+    }
+    match read_source(arg) {
+        Ok((name, src)) if crate::input::volume_file::is_volume_text(&src.text) => Ok(Some((
+            name,
+            crate::input::volume_file::parse_volume_text(&src)?,
+        ))),
+        _ => Ok(None),
+    }
+}
+
 /// Reads a file (or a library entry) as text.
 pub(crate) fn read_source(arg: &str) -> Result<(String, Source)> {
     let path = std::path::Path::new(arg);
@@ -196,7 +217,7 @@ mod tests {
     fn every_library_entry_loads() {
         for (name, text) in library() {
             if crate::input::volume_file::is_volume_text(text) {
-                let (_, v) = crate::input::volume_file::load_volume(name)
+                let (_, v) = load_volume(name)
                     .unwrap_or_else(|e| panic!("{name}: {}", e.render()))
                     .unwrap_or_else(|| panic!("{name}: not read as a volume"));
                 assert_eq!(v.surface.check(), Ok(()), "{name}");

@@ -3,7 +3,6 @@
 //! `volume NOTATION`.
 
 use crate::error::{Error, Result, Source};
-use crate::input::library::read_source;
 use crate::topology::volume::{parse_volume, Solid, Volume};
 
 /// Whether a command-line argument is volume notation: it has `|` and starts with a solid name.
@@ -64,19 +63,4 @@ pub fn parse_volume_text(src: &Source) -> Result<Volume> {
         path: src.name.clone(),
         reason: "no `volume` line".into(),
     })
-}
-
-/// The volume a command-line argument names, if it names one: notation, a file or a library
-/// entry. `None` when the argument is something else (faces, an automaton, nothing readable).
-pub fn load_volume(arg: &str) -> Result<Option<(String, Volume)>> {
-    if arg.contains('|') {
-        return match is_volume_notation(arg) {
-            true => Ok(Some((arg.trim().to_string(), parse_volume(arg)?))),
-            false => Ok(None),
-        };
-    }
-    match read_source(arg) {
-        Ok((name, src)) if is_volume_text(&src.text) => Ok(Some((name, parse_volume_text(&src)?))),
-        _ => Ok(None),
-    }
 }
