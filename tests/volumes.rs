@@ -62,7 +62,23 @@ fn bad_volume_notation_is_a_coded_error() {
     assert!(err.contains("E1205"), "{err}");
     assert!(err.contains("V1 or V2"), "{err}");
     // A volume where only faces are read is refused by name.
-    let (code, _, err) = lacuna(&["solve", "cube-B2"]);
+    let (code, _, err) = lacuna(&["measure", "cube-B2", "--level", "1"]);
     assert_eq!(code, 2);
     assert!(err.contains("this is a volume"), "{err}");
+}
+
+#[test]
+fn solve_a_volume() {
+    let (code, out, err) = lacuna(&["solve", "tetrahedron-B2", "--degree", "1", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["consistent"], true);
+    assert_eq!(v["degeneracy_checked"], true);
+    assert_eq!(v["degenerate"].as_array().unwrap().len(), 0);
+    // A state per volume type (the tetrahedron, W3 and W4), beside the face states.
+    let states = v["dof_by_state"].as_object().unwrap();
+    assert!(
+        ["V0", "V1", "V2"].iter().all(|s| states.contains_key(*s)),
+        "{states:?}"
+    );
 }

@@ -30,21 +30,30 @@ pub(super) fn run(args: SolveArgs, limits: &Limits) -> Result<ExitCode, Error> {
     if !(1..=8).contains(&degree) {
         return Err(Error::limit("the Bézier degree", degree, 8, "--degree"));
     }
-    let report = match lacuna::input::load_any(&input)? {
-        lacuna::input::Loaded::Automaton { automaton, .. } => {
-            limits.check_unknowns(automaton.unknown_count())?;
-            lacuna::constraint::solve_automaton(&automaton)?.0
-        }
-        lacuna::input::Loaded::Faces(input) => {
-            let ts = lacuna::topology::close_or_error(&input.faces(), limits)?;
-            lacuna::constraint::solve_closure(
-                &ts,
-                lacuna::constraint::GenOptions {
-                    degree,
-                    cantor_gap: gap,
-                },
-                limits,
-            )?
+    let opts = lacuna::constraint::GenOptions {
+        degree,
+        cantor_gap: gap.clone(),
+    };
+    let report = if let Some((_, v)) = lacuna::input::load_volume(&input)? {
+        let set = volume::closed(&v, limits)?;
+        lacuna::constraint::solve_volumes(&set, opts, limits)?
+    } else {
+        match lacuna::input::load_any(&input)? {
+            lacuna::input::Loaded::Automaton { automaton, .. } => {
+                limits.check_unknowns(automaton.unknown_count())?;
+                lacuna::constraint::solve_automaton(&automaton)?.0
+            }
+            lacuna::input::Loaded::Faces(input) => {
+                let ts = lacuna::topology::close_or_error(&input.faces(), limits)?;
+                lacuna::constraint::solve_closure(
+                    &ts,
+                    lacuna::constraint::GenOptions {
+                        degree,
+                        cantor_gap: gap,
+                    },
+                    limits,
+                )?
+            }
         }
     };
     if json {

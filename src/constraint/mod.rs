@@ -9,6 +9,7 @@ pub(crate) mod automaton;
 pub(crate) mod generate;
 pub(crate) mod linsys;
 pub(crate) mod presolve;
+pub(crate) mod volume;
 
 pub use automaton::{
     solve_automaton, Automaton, Constraint, ConstraintKind, Factor, Linearized, OpKind, Operator,
@@ -19,3 +20,4 @@ pub use linsys::{
     forced_equal, solve, write_text, Conflict, Equation, LinearSystem, Parametrization, Solution,
     SolutionSpace, TextLayout, MINIMIZE_LIMIT,
 };
+pub use volume::{solve_volumes, volume_automaton, GeneratedVolumes};

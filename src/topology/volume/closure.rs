@@ -62,6 +62,7 @@ impl VolumeClosure {
         let mut start_idx = Vec::new();
         let empty = || VolumeSubdivision {
             subvolumes: Vec::new(),
+            spoke_pairs: Vec::new(),
         };
         for v in start {
             let c = v.canonical();

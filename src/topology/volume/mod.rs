@@ -19,7 +19,7 @@ pub(crate) mod surface;
 pub use closure::{volume_counts, VolumeClosure, VolumeLevelCount, VolumeType, VolumeTypeSet};
 pub use complex::{solid_topology, SolidLevel};
 pub use solid::{parse_volume, Solid};
-pub use step::{interior, subdivide_volume, Interior, Patch, SubVolume, VolumeSubdivision};
+pub use step::{interior, subdivide_volume, Interior, Patch, Placed, SubVolume, VolumeSubdivision};
 pub use surface::Surface;
 
 use crate::topology::edge::EdgeType;

@@ -16,7 +16,7 @@ use crate::topology::volume::Volume;
 use std::collections::HashMap;
 
 /// A side of the level-1 surface: (face of S, sub-face, position in the sub-face's boundary).
-type Side = (usize, usize, usize);
+pub type Side = (usize, usize, usize);
 
 /// A patch: the sub-faces (face of S, sub-face) of one sub-volume's outer boundary.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -29,6 +29,18 @@ pub struct Patch {
     pub wall_sides: usize,
 }
 
+/// Where a face of the step lies on a sub-volume's canonical surface, and how its frame turns:
+/// its boundary as built (a sub-face in the canonical form its face type gives it, a side face as
+/// `X Er Ei Er`) rotated left by `rotation` is the canonical form of its type as the sub-volume's
+/// surface reads it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Placed {
+    /// The face's index on the sub-volume's canonical surface.
+    pub face: usize,
+    /// The rotation from the face as built to the canonical frame of the sub-volume's surface.
+    pub rotation: usize,
+}
+
 /// One sub-volume with the patch it stands on (none for the single sub-volume of a delayed one).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SubVolume {
@@ -36,6 +48,26 @@ pub struct SubVolume {
     pub volume: Volume,
     /// Its patch.
     pub patch: Option<Patch>,
+    /// The level-1 sub-faces `(face of S, sub-face)` on its surface.
+    pub subfaces: Vec<((usize, usize), Placed)>,
+    /// Its side faces: the rim side `(face of S, sub-face, position)` each stands on.
+    pub sides: Vec<(Side, Placed)>,
+}
+
+/// Canonicalizes a built sub-volume and places the faces it was built from.
+fn placed(sub: Volume) -> (Volume, impl Fn(usize) -> Placed) {
+    let (surface, index, root) = sub.surface.canonical_map();
+    let frames: Vec<usize> = surface
+        .faces
+        .iter()
+        .map(|f| crate::topology::face::least_rotation(&f.boundary))
+        .collect();
+    let lens: Vec<usize> = sub.surface.faces.iter().map(|f| f.boundary.len()).collect();
+    let place = move |old: usize| Placed {
+        face: index[old],
+        rotation: (root[old] + frames[index[old]]) % lens[old],
+    };
+    (Volume { surface, ..sub }, place)
 }
 
 /// The result of one step.
@@ -43,6 +75,9 @@ pub struct SubVolume {
 pub struct VolumeSubdivision {
     /// The sub-volumes.
     pub subvolumes: Vec<SubVolume>,
+    /// The two sides `(face of S, sub-face, position)` of every spoke edge, each pair once (the
+    /// sub-volumes on either side share the side face over it).
+    pub spoke_pairs: Vec<(Side, Side)>,
 }
 
 /// The level-1 surface of a volume: every face subdivided, and the pairing of sides.
@@ -53,12 +88,16 @@ struct Level1 {
 
 impl Level1 {
     fn of(v: &Volume) -> Result<Level1> {
-        let subs = v
-            .surface
-            .faces
-            .iter()
-            .map(subdivide)
-            .collect::<Result<Vec<_>>>()?;
+        // Every face is subdivided in its canonical form, so that sub-face k is sub-face k of its
+        // face type (the constraint generator ties them to the face type's operators); edge e of
+        // the canonical form is edge (e + rot) of the face as it lies on the surface.
+        let mut subs = Vec::new();
+        let mut rot = Vec::new();
+        for f in &v.surface.faces {
+            let (c, r) = f.canonical();
+            subs.push(subdivide(&c)?);
+            rot.push(r);
+        }
         let mut partner = HashMap::new();
         // Where each piece of each face edge lies: (face, origin) -> (sub-face, position).
         let mut piece_at: HashMap<(usize, Origin), (usize, usize)> = HashMap::new();
@@ -83,10 +122,13 @@ impl Level1 {
                     let Origin::Piece { edge, piece } = *o else {
                         continue;
                     };
-                    let (g, j) = v.surface.glue[f][edge];
-                    let n = v.surface.faces[f].boundary[edge].piece_count() as usize;
+                    let len_f = v.surface.faces[f].boundary.len();
+                    let (g, j) = v.surface.glue[f][(edge + rot[f]) % len_f];
+                    let len_g = v.surface.faces[g].boundary.len();
+                    let n =
+                        v.surface.faces[f].boundary[(edge + rot[f]) % len_f].piece_count() as usize;
                     let there = Origin::Piece {
-                        edge: j,
+                        edge: (j + len_g - rot[g]) % len_g,
                         piece: n - 1 - piece,
                     };
                     let Some(&(k2, p2)) = piece_at.get(&(g, there)) else {
@@ -161,6 +203,7 @@ pub fn subdivide_volume(v: &Volume) -> Result<VolumeSubdivision> {
     if v.delay >= 2 {
         return Ok(VolumeSubdivision {
             subvolumes: vec![delayed(v, &l1)],
+            spoke_pairs: Vec::new(),
         });
     }
     let all = l1.subfaces();
@@ -199,7 +242,17 @@ pub fn subdivide_volume(v: &Volume) -> Result<VolumeSubdivision> {
         .enumerate()
         .map(|(n, g)| raise(v, &l1, n, g))
         .collect::<Result<Vec<_>>>()?;
-    Ok(VolumeSubdivision { subvolumes })
+    let mut spoke_pairs: Vec<(Side, Side)> = l1
+        .partner
+        .iter()
+        .filter(|(a, b)| a < b && v.rule.is_spoke(&l1.origin(**a)))
+        .map(|(&a, &b)| (a, b))
+        .collect();
+    spoke_pairs.sort();
+    Ok(VolumeSubdivision {
+        subvolumes,
+        spoke_pairs,
+    })
 }
 
 /// The sub-volume over one patch.
@@ -296,13 +349,24 @@ fn raise(v: &Volume, l1: &Level1, n: usize, patch: &[(usize, usize)]) -> Result<
         ..v.clone()
     };
     debug_assert!(sub.surface.check().is_ok(), "{:?}", sub.surface.check());
+    let (volume, place) = placed(sub);
     Ok(SubVolume {
-        volume: sub.canonical(),
+        volume,
         patch: Some(Patch {
             subfaces: patch.to_vec(),
             spoke_sides,
             wall_sides: m - spoke_sides,
         }),
+        subfaces: patch
+            .iter()
+            .enumerate()
+            .map(|(i, &sf)| (sf, place(i)))
+            .collect(),
+        sides: rim
+            .iter()
+            .enumerate()
+            .map(|(i, &r)| (r, place(side0 + i)))
+            .collect(),
     })
 }
 
@@ -360,9 +424,16 @@ fn delayed(v: &Volume, l1: &Level1) -> SubVolume {
         ..v.clone()
     };
     debug_assert!(sub.surface.check().is_ok(), "{:?}", sub.surface.check());
+    let (volume, place) = placed(sub);
     SubVolume {
-        volume: sub.canonical(),
+        volume,
         patch: None,
+        subfaces: all
+            .iter()
+            .enumerate()
+            .map(|(i, &sf)| (sf, place(i)))
+            .collect(),
+        sides: Vec::new(),
     }
 }
 

@@ -171,6 +171,12 @@ impl Surface {
     /// rotated to start at its root edge. Two surfaces are of the same type exactly when their
     /// canonical forms are equal. (The surface must be connected.)
     pub fn canonical(&self) -> Surface {
+        self.canonical_map().0
+    }
+
+    /// [`Surface::canonical`] with where each face went: face `f` becomes face `index[f]`, its
+    /// boundary rotated left by `root[f]`.
+    pub fn canonical_map(&self) -> (Surface, Vec<usize>, Vec<usize>) {
         // The code starts with the root face read from its root edge: only the least such
         // reading can start the least code.
         let rotation = |f: usize, i: usize| {
@@ -199,7 +205,7 @@ impl Surface {
             new_index[f] = k;
         }
         let mut faces = Vec::with_capacity(seq.len());
-        let mut glue = Vec::with_capacity(seq.len());
+        let mut glue: Vec<Vec<(usize, usize)>> = Vec::with_capacity(seq.len());
         for &f in &seq {
             let len = self.faces[f].boundary.len();
             let mut face = self.faces[f].clone();
@@ -215,6 +221,6 @@ impl Surface {
                     .collect(),
             );
         }
-        Surface { faces, glue }
+        (Surface { faces, glue }, new_index, root)
     }
 }
