@@ -207,3 +207,36 @@ fn bad_options_are_coded() {
         assert!(err.contains(code), "{args:?}: {err}");
     }
 }
+
+/// `census --json` lists every face with its type count, exact R and verdict (issue #23).
+#[test]
+fn census_json_lists_every_face() {
+    let (code, out, err) = lacuna(&[
+        "census",
+        "--max-length",
+        "2",
+        "--edges",
+        "B2,C2",
+        "--params",
+        "B2",
+        "--algorithms",
+        "A1,{joint}",
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: Value = serde_json::from_str(&out).unwrap();
+    let faces = v["per_face"].as_array().unwrap();
+    assert_eq!(faces.len(), v["faces"].as_u64().unwrap() as usize);
+    let find = |f: &str| faces.iter().find(|x| x["face"] == f).unwrap();
+    // B2 | B2 B2 B2 | A1: one spoke (the joint), one sub-face `B2 B2 B2 B2 B2` (both pieces, then
+    // Ea El Ea). That face has 5 joint spokes and 5 sub-faces, each the last piece of one edge,
+    // the first of the next and Ea El Ea: itself again. So 2 types; a step adds the central
+    // lacuna only (no Cn), l = 1, k = 5, and R = l / (l + k − 1) = 1/5 (SPEC §5).
+    assert_eq!(find("B2 | B2 B2 B2 | A1")["types"], 2);
+    assert_eq!(find("B2 | B2 B2 B2 | A1")["ratio"], "1/5");
+    assert_eq!(find("B2 | B2 B2 B2 | A1")["verdict"], "closed");
+    let refused = find("C2 | B2 B2 B2 | {joint}");
+    assert_eq!(refused["verdict"], "refused");
+    assert_eq!(refused["code"], "E0401");
+    assert!(refused["ratio"].is_null());
+}

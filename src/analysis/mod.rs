@@ -12,7 +12,7 @@ pub(crate) mod explore;
 pub(crate) mod operator;
 pub(crate) mod ratio;
 
-pub use census::{census, CensusReport, CensusSpec};
+pub use census::{census, CensusFace, CensusReport, CensusSpec};
 pub use curve::{
     analyse_automaton, estimate_curvature, AutomatonOperators, CurvatureEstimate, CurveReport,
     PointBehaviour, Side,
