@@ -75,6 +75,8 @@ pub(super) fn run(args: ExploreArgs, limits: &Limits) -> Result<ExitCode, Error>
             Err(report.to_text())
         }
     };
+    // In the text, a minimal counterexample's witness is printed the first time only.
+    let mut shown = std::collections::HashSet::new();
     let summary = lacuna::analysis::explore(&spec, limits, Some(&check), |r| {
         if json {
             out(&(serde_json::to_string(r).expect("results serialise") + "\n"));
@@ -95,8 +97,12 @@ pub(super) fn run(args: ExploreArgs, limits: &Limits) -> Result<ExitCode, Error>
                     f.shrunk.face,
                     f.shrunk.witness.kind
                 );
-                for d in f.shrunk.witness.detail.iter().take(12) {
-                    o += &format!("      {d}\n");
+                if shown.insert((f.shrunk.face.clone(), f.property)) {
+                    for d in f.shrunk.witness.detail.iter().take(12) {
+                        o += &format!("      {d}\n");
+                    }
+                } else {
+                    o += "      (witness above)\n";
                 }
             }
             out(&o);
