@@ -240,3 +240,33 @@ fn census_json_lists_every_face() {
     assert_eq!(refused["code"], "E0401");
     assert!(refused["ratio"].is_null());
 }
+
+/// The opt-in `holes` property instantiates the default geometry and compares the holes observed
+/// per level with the exact count: a triangle of C2 edges has the central lacuna at level 1
+/// (1 hole, observed), while one- and two-edge faces placed with straight edges have no area and
+/// are skipped, not failed.
+#[test]
+fn holes_property_is_measured_on_the_geometry() {
+    let (code, lines, _) = explore(&[
+        "--edges",
+        "C2",
+        "--max-length",
+        "3",
+        "--params",
+        "C2",
+        "--properties",
+        "holes",
+        "--holes-level",
+        "1",
+    ]);
+    assert_eq!(code, 0);
+    let outcome = |k: usize| {
+        lines[k]["properties"]["holes"]
+            .as_str()
+            .unwrap()
+            .to_string()
+    };
+    assert_eq!(lines[2]["face"], "C2 C2 C2 | C2 C2 C2 | A1");
+    assert_eq!(outcome(2), "pass");
+    assert!(outcome(0).starts_with("skip"), "{}", outcome(0));
+}

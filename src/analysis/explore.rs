@@ -5,9 +5,10 @@
 //! seeded random sample, crossed with every E over given edge types, under one algorithm. Each
 //! face is checked for the requested properties — the closure closes (within the bound stated in
 //! advance for the built-ins), the generated constraint system is consistent, no two distinct
-//! corner points of a level-1 complex are forced to coincide, the limit ratio R exists, and the
-//! certificate checks (the last one is supplied by the caller: the certificate layer sits above
-//! this one). A failure is shrunk greedily to a minimal counterexample — fewer edges, smaller n,
+//! corner points of a level-1 complex are forced to coincide, the limit ratio R exists, the
+//! certificate checks, and (opt-in) the holes observed in the geometry equal the exact count. The
+//! last two are supplied by the caller ([`Checks`]): the certificate layer and the geometry sit
+//! above this one. A failure is shrunk greedily to a minimal counterexample — fewer edges, smaller n,
 //! smaller delays, `Cn` → `Bn`, simpler E — that fails the same property, and reported with its
 //! shortest witness: the runaway chain (breadth-first, so shortest), the conflicting constraints,
 //! the collapsing pair, the limit points.
@@ -42,10 +43,13 @@ pub enum Property {
     Ratio,
     /// The certificate of every verdict is proved by the independent checker.
     Certificate,
+    /// The holes observed in the instantiated geometry equal the exact count at every level up
+    /// to a given one (opt-in: it needs geometry, which the caller supplies).
+    Holes,
 }
 
 impl Property {
-    /// Every property, in the order they are checked.
+    /// Every exact property, in the order they are checked (`all`; `holes` is opt-in).
     pub const ALL: [Property; 5] = [
         Property::Closes,
         Property::Consistent,
@@ -62,6 +66,7 @@ impl Property {
             Property::NoCollapse => "no-collapse",
             Property::Ratio => "ratio",
             Property::Certificate => "certificate",
+            Property::Holes => "holes",
         }
     }
 }
@@ -87,9 +92,18 @@ pub enum Outcome {
     Skip(String),
 }
 
-/// The certificate check, supplied by a caller that may use the certificate layer: `Ok` when the
-/// checker proves every step of the certificate of the closed type set, else the reason.
-pub type CertificateCheck<'a> = &'a (dyn Fn(&TypeSet) -> std::result::Result<(), String> + Sync);
+/// A property checked by a layer above this one (the certificate layer, the geometry), supplied
+/// by the caller: its outcome on a face and its closed type set.
+pub type Check<'a> = &'a (dyn Fn(&Face, &TypeSet) -> Outcome + Sync);
+
+/// The checks supplied from above; a property without its check is skipped.
+#[derive(Clone, Copy, Default)]
+pub struct Checks<'a> {
+    /// `certificate`: the certificate of the closed type set is proved by the checker.
+    pub certificate: Option<Check<'a>>,
+    /// `holes`: observed holes equal the exact count.
+    pub holes: Option<Check<'a>>,
+}
 
 /// What was explored.
 #[derive(Clone, Debug)]
@@ -137,10 +151,14 @@ pub fn parse_properties(text: &str) -> Result<Vec<Property>> {
         if item == "all" {
             return Ok(Property::ALL.to_vec());
         }
-        let Some(p) = Property::ALL.iter().find(|p| p.name() == item) else {
+        let Some(p) = Property::ALL
+            .iter()
+            .chain(&[Property::Holes])
+            .find(|p| p.name() == item)
+        else {
             return Err(bad_option(
                 text,
-                format!("unknown property `{item}` (closes, consistent, no-collapse, ratio, certificate or all)"),
+                format!("unknown property `{item}` (closes, consistent, no-collapse, ratio, certificate, holes or all)"),
             ));
         };
         if !out.contains(p) {
@@ -350,12 +368,7 @@ struct Evaluation {
 }
 
 /// Checks `props` on one face (and what they need first).
-fn evaluate(
-    face: &Face,
-    props: &[Property],
-    limits: &Limits,
-    certificate: Option<CertificateCheck>,
-) -> Evaluation {
+fn evaluate(face: &Face, props: &[Property], limits: &Limits, checks: &Checks) -> Evaluation {
     let mut ev = Evaluation {
         refused: None,
         types: None,
@@ -523,18 +536,17 @@ fn evaluate(
         };
         ev.outcomes.push((Property::Ratio, outcome));
     }
-    if props.contains(&Property::Certificate) {
-        let outcome = match certificate {
-            None => Outcome::Skip("no certificate checker supplied".into()),
-            Some(check) => match check(&ts) {
-                Ok(()) => Outcome::Pass,
-                Err(why) => Outcome::Fail(Witness {
-                    kind: "certificate".into(),
-                    detail: vec![why],
-                }),
-            },
-        };
-        ev.outcomes.push((Property::Certificate, outcome));
+    for (p, check) in [
+        (Property::Certificate, checks.certificate),
+        (Property::Holes, checks.holes),
+    ] {
+        if props.contains(&p) {
+            let outcome = match check {
+                None => Outcome::Skip(format!("no {} check supplied", p.name())),
+                Some(check) => check(face, &ts),
+            };
+            ev.outcomes.push((p, outcome));
+        }
     }
     ev
 }
@@ -605,13 +617,8 @@ fn candidates(f: &Face) -> Vec<Face> {
 }
 
 /// The witness of `p` on `f` when it fails `p`.
-fn fails(
-    f: &Face,
-    p: Property,
-    limits: &Limits,
-    certificate: Option<CertificateCheck>,
-) -> Option<Witness> {
-    let ev = evaluate(f, &[p], limits, certificate);
+fn fails(f: &Face, p: Property, limits: &Limits, checks: &Checks) -> Option<Witness> {
+    let ev = evaluate(f, &[p], limits, checks);
     ev.outcomes.into_iter().find_map(|(q, o)| match o {
         Outcome::Fail(w) if q == p => Some(w),
         _ => None,
@@ -625,7 +632,7 @@ fn shrink(
     p: Property,
     limits: &Limits,
     budget: usize,
-    certificate: Option<CertificateCheck>,
+    checks: &Checks,
 ) -> Shrunk {
     let (mut cur, mut witness, mut steps, mut spent) = (f.clone(), w, 0usize, 0usize);
     'outer: loop {
@@ -639,7 +646,7 @@ fn shrink(
                 };
             }
             spent += 1;
-            if let Some(w) = fails(&g, p, limits, certificate) {
+            if let Some(w) = fails(&g, p, limits, checks) {
                 cur = g;
                 witness = w;
                 steps += 1;
@@ -661,9 +668,9 @@ pub fn explore_face(
     face: &Face,
     spec: &ExploreSpec,
     limits: &Limits,
-    certificate: Option<CertificateCheck>,
+    checks: &Checks,
 ) -> BoundaryResult {
-    let ev = evaluate(face, &spec.properties, limits, certificate);
+    let ev = evaluate(face, &spec.properties, limits, checks);
     let mut r = BoundaryResult {
         index,
         face: face.to_string(),
@@ -690,7 +697,7 @@ pub fn explore_face(
         };
         r.properties.insert(p.name(), text);
         if let Outcome::Fail(w) = o {
-            let shrunk = shrink(face, w.clone(), p, limits, spec.shrink_budget, certificate);
+            let shrunk = shrink(face, w.clone(), p, limits, spec.shrink_budget, checks);
             r.failures.push(Failure {
                 property: p,
                 witness: w,
@@ -709,7 +716,7 @@ pub fn explore_face(
 pub fn explore(
     spec: &ExploreSpec,
     limits: &Limits,
-    certificate: Option<CertificateCheck>,
+    checks: &Checks,
     mut emit: impl FnMut(&BoundaryResult),
 ) -> Result<Summary> {
     spec.check()?;
@@ -725,7 +732,7 @@ pub fn explore(
         if k % of != shard {
             continue;
         }
-        let r = explore_face(k, face, spec, limits, certificate);
+        let r = explore_face(k, face, spec, limits, checks);
         s.boundaries += 1;
         match r.status {
             "pass" => s.passed += 1,

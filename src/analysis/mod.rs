@@ -19,7 +19,7 @@ pub use curve::{
 };
 pub use design::{check_design, design_operator, DesignCheck, DesignError};
 pub use explore::{
-    explore, explore_face, parse_properties, parse_shard, BoundaryResult, CertificateCheck,
+    explore, explore_face, parse_properties, parse_shard, BoundaryResult, Check, Checks,
     ExploreSpec, Failure, Outcome, Property, Shrunk, Summary, Witness, MAX_FAMILY,
 };
 pub use operator::{

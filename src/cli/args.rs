@@ -132,7 +132,8 @@ pub(crate) struct ExploreArgs {
     #[arg(long, default_value = "A1")]
     pub(crate) algorithm: String,
     /// Properties to check (comma-separated): closes, consistent, no-collapse, ratio,
-    /// certificate; `all` for every one.
+    /// certificate, holes (opt-in: instantiates and measures the geometry); `all` for every one
+    /// but holes.
     #[arg(long, default_value = "closes,consistent,no-collapse,ratio")]
     pub(crate) properties: String,
     /// Random family: this many boundaries (lengths 1..=max-length, edges uniform) instead of
@@ -149,6 +150,9 @@ pub(crate) struct ExploreArgs {
     /// Most property evaluations spent shrinking one failure.
     #[arg(long, default_value_t = 400)]
     pub(crate) shrink_budget: usize,
+    /// The last level at which the `holes` property compares observed and exact holes (1 to 6).
+    #[arg(long, default_value_t = 2)]
+    pub(crate) holes_level: u32,
     /// JSON lines: one per boundary, then a summary line.
     #[arg(long)]
     pub(crate) json: bool,

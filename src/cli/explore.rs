@@ -30,6 +30,71 @@ fn list(text: &str, what: &str) -> Result<Vec<lacuna::topology::EdgeType>, Error
     Ok(out)
 }
 
+/// The `holes` property: the face instantiated with the default parameters, measured at levels
+/// 0..=`level` (raster 512, refined up to 4096 for narrow holes); the observed holes must equal the
+/// exact count at every level. A geometry that cannot be measured is a skip, not a failure.
+fn holes_outcome(
+    face: &lacuna::topology::Face,
+    level: u32,
+    limits: &Limits,
+) -> lacuna::analysis::Outcome {
+    use lacuna::analysis::{Outcome, Witness};
+    let input = lacuna::input::Input {
+        name: face.to_string(),
+        assembly: lacuna::input::Assembly {
+            faces: vec![("0".into(), face.clone())],
+            shared: Vec::new(),
+            coords: Default::default(),
+        },
+    };
+    let opts = lacuna::geometry::InstantiateOptions {
+        limits: limits.clone(),
+        ..Default::default()
+    };
+    let inst = match lacuna::geometry::instantiate(&input, &opts) {
+        Ok(i) => i,
+        Err(e) => return Outcome::Skip(format!("{}: {e}", e.code())),
+    };
+    if let Err(e) = lacuna::measure::check_cells(&inst, level, 2_000_000) {
+        return Outcome::Skip(format!("{}: {e}", e.code()));
+    }
+    let mopts = lacuna::measure::MeasureOptions {
+        level,
+        raster: 512,
+        max_raster: 4096,
+        density_grid: 0,
+        ..Default::default()
+    };
+    match lacuna::measure::measure(&inst, &mopts) {
+        Err(e) => Outcome::Skip(format!("{}: {e}", e.code())),
+        // A boundary of one or two straight-placed edges has no area: nothing to observe.
+        Ok(r) if r.levels.first().is_none_or(|l| l.area.abs() < 1e-12) => {
+            Outcome::Skip("the default placement of this face has no area".into())
+        }
+        Ok(r) => {
+            let bad: Vec<String> = r
+                .levels
+                .iter()
+                .filter(|l| num_bigint::BigUint::from(l.holes) != l.exact.holes)
+                .map(|l| {
+                    format!(
+                        "level {}: {} holes observed, {} exact",
+                        l.level, l.holes, l.exact.holes
+                    )
+                })
+                .collect();
+            if bad.is_empty() {
+                Outcome::Pass
+            } else {
+                Outcome::Fail(Witness {
+                    kind: "holes".into(),
+                    detail: bad,
+                })
+            }
+        }
+    }
+}
+
 /// Runs `lacuna explore`.
 pub(super) fn run(args: ExploreArgs, limits: &Limits) -> Result<ExitCode, Error> {
     let ExploreArgs {
@@ -42,6 +107,7 @@ pub(super) fn run(args: ExploreArgs, limits: &Limits) -> Result<ExitCode, Error>
         seed,
         shard,
         shrink_budget,
+        holes_level,
         json,
     } = args;
     let algorithm = lacuna::topology::Algorithm::parse(algorithm.trim(), 1, &[])
@@ -60,24 +126,52 @@ pub(super) fn run(args: ExploreArgs, limits: &Limits) -> Result<ExitCode, Error>
         },
         shrink_budget,
     };
-    // The certificate layer sits above the analysis: its check is supplied here.
-    let check = |ts: &lacuna::topology::TypeSet| -> Result<(), String> {
-        let cert = lacuna::certificate::certificate_for(
+    limits.check_level(u64::from(holes_level))?;
+    if !(1..=6).contains(&holes_level) {
+        return Err(Error::limit(
+            "the level of the holes property",
+            holes_level,
+            6,
+            "--holes-level",
+        ));
+    }
+    // The certificate layer and the geometry sit above the analysis: their checks are supplied
+    // here.
+    use lacuna::analysis::{Outcome, Witness};
+    let certificate = |_: &lacuna::topology::Face, ts: &lacuna::topology::TypeSet| -> Outcome {
+        let cert = match lacuna::certificate::certificate_for(
             "explore",
             ts,
             lacuna::constraint::GenOptions::default(),
-        )
-        .map_err(|e| format!("no certificate: {e}"))?;
+        ) {
+            Ok(c) => c,
+            Err(e) => {
+                return Outcome::Fail(Witness {
+                    kind: "certificate".into(),
+                    detail: vec![format!("no certificate: {e}")],
+                })
+            }
+        };
         let report = lacuna::checker::check(&cert);
         if report.all_proved() {
-            Ok(())
+            Outcome::Pass
         } else {
-            Err(report.to_text())
+            Outcome::Fail(Witness {
+                kind: "certificate".into(),
+                detail: report.to_text().lines().map(String::from).collect(),
+            })
         }
+    };
+    let holes = |face: &lacuna::topology::Face, _: &lacuna::topology::TypeSet| -> Outcome {
+        holes_outcome(face, holes_level, limits)
+    };
+    let checks = lacuna::analysis::Checks {
+        certificate: Some(&certificate),
+        holes: Some(&holes),
     };
     // In the text, a minimal counterexample's witness is printed the first time only.
     let mut shown = std::collections::HashSet::new();
-    let summary = lacuna::analysis::explore(&spec, limits, Some(&check), |r| {
+    let summary = lacuna::analysis::explore(&spec, limits, &checks, |r| {
         if json {
             out(&(serde_json::to_string(r).expect("results serialise") + "\n"));
         } else if !r.failures.is_empty() {
