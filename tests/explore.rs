@@ -200,6 +200,7 @@ fn bad_options_are_coded() {
         (vec!["explore", "--edges", "B2,,C2"], "E0112"),
         (vec!["explore", "--algorithm", "A9"], "E0108"),
         (vec!["explore", "--max-length", "13"], "E0501"),
+        (vec!["explore", "--max-length", "0"], "E0503"),
         (vec!["explore", "--random", "100000000"], "E0501"),
     ] {
         let (exit, _, err) = lacuna(&args);
