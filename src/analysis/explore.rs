@@ -208,6 +208,14 @@ impl ExploreSpec {
             12,
             "--max-length",
         )?;
+        if self.max_length == 0 {
+            return Err(Error::OutOfRange {
+                flag: "--max-length",
+                value: "0".into(),
+                what: "the largest boundary length",
+                range: "1 to 12".into(),
+            });
+        }
         if self.edges.is_empty() || self.params.is_empty() {
             return Err(Error::Usage(
                 "explore needs at least one edge type in --edges and in --params".into(),
