@@ -205,3 +205,18 @@ fn edge_states(text: &str) -> usize {
         })
         .count()
 }
+
+/// The shared edge of `two-quads` in MODITERE's indices, derived by hand: both faces are
+/// `C2 B2 C2 B2`, whose canonical rotation `B2 C2 B2 C2` starts at written edge 1, so written edge
+/// 3 of face 0 is canonical edge 2 and written edge 1 of face 1 is canonical edge 0 (both B2).
+#[test]
+fn moditere_shared_edges_use_the_canonical_rotation() {
+    let (code, out, err) =
+        common::lacuna(&["export", "fixtures/two-quads.txt", "--format", "moditere"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("    init.subs = {Sub('0'): Cell_0, Sub('1'): Cell_0}\n"));
+    assert!(out.contains(
+        "    Cell_0.bords = {Bord('0'): B2, Bord('1'): C2, Bord('2'): B2, Bord('3'): C2}\n"
+    ));
+    assert!(out.contains("    init(Sub('0') + Bord('2') + Permut('0'), Sub('1') + Bord('0'))\n"));
+}
