@@ -169,6 +169,14 @@ fn sharded_runs_merge_to_one_run() {
     merged.sort_by_key(|l| l["index"].as_u64().unwrap());
     assert_eq!(merged, whole);
     assert_eq!(total, summary["boundaries"].as_u64().unwrap());
+    // The thread count changes nothing either.
+    for threads in ["1", "3"] {
+        let mut args = family.to_vec();
+        args.extend(["--threads", threads]);
+        let (_, lines, s) = explore(&args);
+        assert_eq!(lines, whole, "--threads {threads}");
+        assert_eq!(s, summary, "--threads {threads}");
+    }
     // A random family too: the sample depends on the seed only.
     let random = [
         "--random",

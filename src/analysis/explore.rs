@@ -126,6 +126,8 @@ pub struct ExploreSpec {
     pub shard: (u64, u64),
     /// Most property evaluations spent shrinking one failure.
     pub shrink_budget: usize,
+    /// Worker threads (the output does not depend on their number).
+    pub threads: usize,
 }
 
 /// The largest family (boundaries × E) explored in one run.
@@ -244,23 +246,23 @@ impl ExploreSpec {
         Ok(())
     }
 
-    /// The boundaries of the family, in a fixed order (before E is chosen).
-    fn boundaries(&self) -> Vec<Vec<EdgeType>> {
+    /// Calls `f` with every boundary of the family, in a fixed order (before E is chosen),
+    /// generating them one at a time.
+    fn for_each_boundary(&self, mut f: impl FnMut(Vec<EdgeType>)) {
         let k = self.edges.len();
-        let mut out = Vec::new();
         if let Some(n) = self.random {
             let mut rng = SplitMix(self.seed);
             for _ in 0..n {
                 let len = 1 + rng.below(self.max_length.max(1));
-                out.push((0..len).map(|_| self.edges[rng.below(k)]).collect());
+                f((0..len).map(|_| self.edges[rng.below(k)]).collect());
             }
-            return out;
+            return;
         }
         for len in 1..=self.max_length {
             let mut digits = vec![0usize; len];
             loop {
                 if least_rotation(&digits) == 0 {
-                    out.push(digits.iter().map(|&d| self.edges[d]).collect());
+                    f(digits.iter().map(|&d| self.edges[d]).collect());
                 }
                 let mut i = 0;
                 while i < len && digits[i] + 1 == k {
@@ -273,27 +275,34 @@ impl ExploreSpec {
                 digits[i] += 1;
             }
         }
-        out
     }
 
-    /// Every face of the family with its index, in order (all of them, every shard).
-    pub fn family(&self) -> Vec<Face> {
-        let mut faces = Vec::new();
-        for b in self.boundaries() {
+    /// Calls `f` with every face of the family and its index, in order, one at a time (the
+    /// family is never held in memory).
+    pub fn for_each_face(&self, mut f: impl FnMut(u64, Face)) {
+        let mut k = 0u64;
+        self.for_each_boundary(|b| {
             for &ea in &self.params {
                 for &el in &self.params {
                     for &ec in &self.params {
-                        let f = Face {
+                        let face = Face {
                             boundary: b.clone(),
                             params: Params { ea, el, ec },
                             algorithm: self.algorithm.clone(),
                             delay: 1,
                         };
-                        faces.push(f.canonical().0);
+                        f(k, face.canonical().0);
+                        k += 1;
                     }
                 }
             }
-        }
+        });
+    }
+
+    /// Every face of the family, in order (all of them, every shard).
+    pub fn family(&self) -> Vec<Face> {
+        let mut faces = Vec::new();
+        self.for_each_face(|_, f| faces.push(f));
         faces
     }
 }
@@ -733,32 +742,93 @@ pub fn explore(
         shard: format!("{}/{}", shard + 1, of),
         ..Summary::default()
     };
-    let family = spec.family();
-    let mut bar = crate::progress::Progress::with_step("explore", family.len() as u64 / of + 1, 1);
-    for (k, face) in family.iter().enumerate() {
-        let k = k as u64;
-        if k % of != shard {
-            continue;
-        }
-        let r = explore_face(k, face, spec, limits, checks);
-        s.boundaries += 1;
-        match r.status {
-            "pass" => s.passed += 1,
-            "fail" => s.failed += 1,
-            "limit" => s.limit += 1,
-            _ => s.refused += 1,
-        }
-        for f in &r.failures {
-            *s.failures.entry(f.property.name()).or_default() += 1;
-            let c = (f.shrunk.face.clone(), f.property);
-            if !s.counterexamples.contains(&c) {
-                s.counterexamples.push(c);
+    let total = family_size(spec);
+    let bar = std::sync::Mutex::new(crate::progress::Progress::with_step(
+        "explore",
+        total / of + 1,
+        1,
+    ));
+    let threads = spec.threads.max(1);
+    // Faces are explored in blocks, in parallel, and emitted in index order: the output does not
+    // depend on the thread count, and memory stays bounded by the block.
+    let mut block: Vec<(u64, Face)> = Vec::new();
+    let mut flush = |block: &mut Vec<(u64, Face)>, s: &mut Summary| {
+        let results: Vec<BoundaryResult> = if threads == 1 || block.len() == 1 {
+            block
+                .iter()
+                .map(|(k, f)| {
+                    let r = explore_face(*k, f, spec, limits, checks);
+                    bar.lock().expect("no worker panics").tick();
+                    r
+                })
+                .collect()
+        } else {
+            let next = std::sync::atomic::AtomicUsize::new(0);
+            let slots: std::sync::Mutex<Vec<Option<BoundaryResult>>> =
+                std::sync::Mutex::new((0..block.len()).map(|_| None).collect());
+            std::thread::scope(|sc| {
+                for _ in 0..threads.min(block.len()) {
+                    sc.spawn(|| loop {
+                        let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                        let Some((k, f)) = block.get(i) else { break };
+                        let r = explore_face(*k, f, spec, limits, checks);
+                        slots.lock().expect("no worker panics")[i] = Some(r);
+                        bar.lock().expect("no worker panics").tick();
+                    });
+                }
+            });
+            slots
+                .into_inner()
+                .expect("no worker panics")
+                .into_iter()
+                .map(|r| r.expect("every face explored"))
+                .collect()
+        };
+        for r in &results {
+            s.boundaries += 1;
+            match r.status {
+                "pass" => s.passed += 1,
+                "fail" => s.failed += 1,
+                "limit" => s.limit += 1,
+                _ => s.refused += 1,
             }
+            for f in &r.failures {
+                *s.failures.entry(f.property.name()).or_default() += 1;
+                let c = (f.shrunk.face.clone(), f.property);
+                if !s.counterexamples.contains(&c) {
+                    s.counterexamples.push(c);
+                }
+            }
+            emit(r);
         }
-        emit(&r);
-        bar.tick();
-    }
+        block.clear();
+    };
+    spec.for_each_face(|k, face| {
+        if k % of != shard {
+            return;
+        }
+        block.push((k, face));
+        if block.len() >= 16 * threads {
+            flush(&mut block, &mut s);
+        }
+    });
+    flush(&mut block, &mut s);
     Ok(s)
+}
+
+/// The number of faces of the family (boundaries × E), for the progress bar: the necklaces are
+/// counted by enumerating them (at most [`MAX_FAMILY`] cheap steps, as checked before).
+fn family_size(spec: &ExploreSpec) -> u64 {
+    let e = (spec.params.len() as u64).pow(3);
+    let boundaries = match spec.random {
+        Some(n) => n,
+        None => {
+            let mut n = 0u64;
+            spec.for_each_boundary(|_| n += 1);
+            n
+        }
+    };
+    boundaries * e
 }
 
 #[cfg(test)]
@@ -781,6 +851,7 @@ mod tests {
             seed: 0,
             shard: (0, 1),
             shrink_budget: 100,
+            threads: 1,
         }
     }
 

@@ -150,6 +150,9 @@ pub(crate) struct ExploreArgs {
     /// Most property evaluations spent shrinking one failure.
     #[arg(long, default_value_t = 400)]
     pub(crate) shrink_budget: usize,
+    /// Worker threads (default: all cores); the output does not depend on their number.
+    #[arg(long)]
+    pub(crate) threads: Option<usize>,
     /// The last level at which the `holes` property compares observed and exact holes (1 to 6).
     #[arg(long, default_value_t = 2)]
     pub(crate) holes_level: u32,

@@ -108,6 +108,7 @@ pub(super) fn run(args: ExploreArgs, limits: &Limits) -> Result<ExitCode, Error>
         shard,
         shrink_budget,
         holes_level,
+        threads,
         json,
     } = args;
     let algorithm = lacuna::topology::Algorithm::parse(algorithm.trim(), 1, &[])
@@ -125,6 +126,13 @@ pub(super) fn run(args: ExploreArgs, limits: &Limits) -> Result<ExitCode, Error>
             None => (0, 1),
         },
         shrink_budget,
+        threads: threads
+            .unwrap_or_else(|| {
+                std::thread::available_parallelism()
+                    .map(|n| n.get())
+                    .unwrap_or(1)
+            })
+            .clamp(1, 256),
     };
     limits.check_level(u64::from(holes_level))?;
     if !(1..=6).contains(&holes_level) {
