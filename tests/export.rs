@@ -220,3 +220,48 @@ fn moditere_shared_edges_use_the_canonical_rotation() {
     ));
     assert!(out.contains("    init(Sub('0') + Bord('2') + Permut('0'), Sub('1') + Bord('0'))\n"));
 }
+
+#[test]
+fn bad_export_options_are_coded() {
+    for (args, code) in [
+        (
+            vec!["export", "F0", "--format", "aut", "--degree", "9"],
+            "E0501",
+        ),
+        (
+            vec!["export", "F0", "--format", "aut", "--cantor-gap=-1"],
+            "E0113",
+        ),
+        (vec!["export", "no-such-input", "--format", "aut"], "E0601"),
+        (
+            vec![
+                "export",
+                "F0",
+                "--format",
+                "moditere",
+                "-o",
+                "/nonexistent-dir/x.py",
+            ],
+            "E0601",
+        ),
+        (
+            vec!["export", "C2 B2 | C2 B2 | A1", "--format", "moditere"],
+            "E0107",
+        ),
+    ] {
+        let (exit, _, err) = common::lacuna(&args);
+        assert_eq!(exit, 2, "{args:?}");
+        assert!(err.contains(code), "{args:?}: {err}");
+    }
+    // A runaway has no automaton to export.
+    let (exit, _, err) = common::lacuna(&[
+        "export",
+        "C2 | B2 B2 B2 | {gap}",
+        "--format",
+        "aut",
+        "--max-boundary",
+        "30",
+    ]);
+    assert_eq!(exit, 2);
+    assert!(err.contains("E0502"), "{err}");
+}
