@@ -8,6 +8,31 @@ use lacuna::topology::{
 };
 use proptest::prelude::*;
 
+mod common;
+
+/// An AutoFrac2D file with algorithm 1 and delays is read as AF1, closes, and its certificate
+/// (with the new spoke item) is proved by the independent checker.
+#[test]
+fn autofrac_algorithm_1_with_delays_closes_and_is_certified() {
+    let dir = std::env::temp_dir().join(format!("lacuna-af1-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("af1.txt");
+    std::fs::write(
+        &file,
+        "f\nB_2_0 - C_2_1 - B_2_0 - C_2_0 / C_2_0 - B_2_0 - B_2_0 / 0 / 1\n",
+    )
+    .unwrap();
+    let input = lacuna::input::load_input(file.to_str().unwrap()).unwrap();
+    assert_eq!(
+        input.faces()[0].to_string(),
+        "B2 C2^2 B2 C2 | C2 B2 B2 | AF1"
+    );
+    let ts = lacuna::topology::close_or_error(&input.faces(), &Limits::default()).unwrap();
+    ts.verify().unwrap();
+    common::assert_certified("af1.txt", &ts);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 fn edge() -> impl Strategy<Value = EdgeType> {
     (
         prop_oneof![Just(EdgeKind::B), Just(EdgeKind::C)],

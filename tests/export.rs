@@ -25,7 +25,9 @@ fn face_fixtures() -> Vec<String> {
 
 #[test]
 fn exported_automaton_solves_like_the_input_for_every_fixture() {
-    for path in face_fixtures() {
+    let mut cases = face_fixtures();
+    cases.push("C2 B2^3 C2^2 B3 | C2 B2 B2 | AF1".into());
+    for path in cases {
         let input = load_input(&path).unwrap_or_else(|e| panic!("{path}: {}", e.render()));
         let ts = close_or_error(&input.faces(), &Limits::default()).unwrap();
         let direct = solve_closure(&ts, GenOptions::default(), &Limits::default()).unwrap();
