@@ -29,6 +29,24 @@ pub struct CensusSpec {
     pub threads: usize,
     /// Levels of counts computed per face.
     pub levels: u64,
+    /// Also report every face (its type count, R and verdict), as `census --json` does.
+    pub per_face: bool,
+}
+
+/// One face of a census, when [`CensusSpec::per_face`] asks for them.
+#[derive(Clone, Debug, Serialize)]
+pub struct CensusFace {
+    /// The face, canonical notation.
+    pub face: String,
+    /// `closed`, `runaway` or `refused`.
+    pub verdict: &'static str,
+    /// The error code of a refused face (`E0401`: no spoke).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub code: Option<&'static str>,
+    /// The number of face types of the closure, when it closed.
+    pub types: Option<usize>,
+    /// The limit ratio R, exact, when the closure closed and the limit exists.
+    pub ratio: Option<String>,
 }
 
 /// What the census found.
@@ -46,6 +64,9 @@ pub struct CensusReport {
     pub distribution: BTreeMap<usize, usize>,
     /// The face with the largest closure, and its number of types.
     pub largest: Option<(String, usize)>,
+    /// Every face, in the family's order, when [`CensusSpec::per_face`] asks for them.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub per_face: Vec<CensusFace>,
     /// Worker threads used (not in the JSON, which is identical for every thread count).
     #[serde(skip)]
     pub threads: usize,
@@ -109,6 +130,7 @@ impl CensusSpec {
             max_length,
             threads,
             levels: 10,
+            per_face: false,
         })
     }
 
@@ -156,9 +178,9 @@ impl CensusSpec {
 }
 
 enum Outcome {
-    Closed(usize),
+    Closed(usize, Option<String>),
     Runaway,
-    Refused,
+    Refused(&'static str),
 }
 
 /// Runs the census.
@@ -183,10 +205,15 @@ pub fn census(spec: &CensusSpec, limits: &Limits) -> CensusReport {
                     Ok(Closure::Closed(ts)) => {
                         let c = counts(&ts, spec.levels);
                         debug_assert_eq!(c.len() as u64, spec.levels + 1);
-                        Outcome::Closed(ts.types.len())
+                        let ratio = if spec.per_face {
+                            exact_ratio(&ts)
+                        } else {
+                            None
+                        };
+                        Outcome::Closed(ts.types.len(), ratio)
                     }
                     Ok(Closure::Runaway(_)) => Outcome::Runaway,
-                    Err(_) => Outcome::Refused,
+                    Err(e) => Outcome::Refused(e.code()),
                 };
                 results.lock().expect("no worker panics")[i] = Some(outcome);
                 bar.lock().expect("no worker panics").tick();
@@ -202,12 +229,28 @@ pub fn census(spec: &CensusSpec, limits: &Limits) -> CensusReport {
         refused: 0,
         distribution: BTreeMap::new(),
         largest: None,
+        per_face: Vec::new(),
         threads: spec.threads,
         elapsed_seconds: elapsed,
     };
     for (face, r) in faces.iter().zip(results) {
-        match r.expect("every face was surveyed") {
-            Outcome::Closed(n) => {
+        let r = r.expect("every face was surveyed");
+        if spec.per_face {
+            let (verdict, code, types, ratio) = match &r {
+                Outcome::Closed(n, ratio) => ("closed", None, Some(*n), ratio.clone()),
+                Outcome::Runaway => ("runaway", None, None, None),
+                Outcome::Refused(code) => ("refused", Some(*code), None, None),
+            };
+            report.per_face.push(CensusFace {
+                face: face.to_string(),
+                verdict,
+                code,
+                types,
+                ratio,
+            });
+        }
+        match r {
+            Outcome::Closed(n, _) => {
                 report.closed += 1;
                 *report.distribution.entry(n).or_default() += 1;
                 if report.largest.as_ref().is_none_or(|(_, m)| n > *m) {
@@ -215,10 +258,22 @@ pub fn census(spec: &CensusSpec, limits: &Limits) -> CensusReport {
                 }
             }
             Outcome::Runaway => report.runaway += 1,
-            Outcome::Refused => report.refused += 1,
+            Outcome::Refused(_) => report.refused += 1,
         }
     }
     report
+}
+
+/// The exact limit ratio of a one-face closure, when it exists (and the analysis succeeds).
+fn exact_ratio(ts: &crate::topology::closure::TypeSet) -> Option<String> {
+    let c: Vec<num_rational::BigRational> = ts
+        .types
+        .iter()
+        .map(|t| num_rational::BigRational::new(t.contribution_halves().into(), 2.into()))
+        .collect();
+    crate::analysis::ratio::analyse(&ts.matrix(), &c, &[(ts.start[0], 1)])
+        .ok()
+        .and_then(|r| r.exact)
 }
 
 impl CensusReport {
@@ -263,5 +318,30 @@ mod tests {
         let r = census(&spec, &Limits::default());
         assert_eq!(r.closed + r.runaway + r.refused, r.faces);
         assert_eq!(r.runaway, 0, "built-in algorithms always close");
+        assert!(r.per_face.is_empty());
+    }
+
+    #[test]
+    fn per_face_gives_types_ratio_and_verdict() {
+        let mut spec = CensusSpec::parse("B2,C2", "C2,B2", "A1,{joint}", 2, Some(1)).unwrap();
+        spec.per_face = true;
+        let r = census(&spec, &Limits::default());
+        assert_eq!(r.per_face.len(), r.faces);
+        let f0_like = r
+            .per_face
+            .iter()
+            .find(|f| f.face == "B2 C2 | C2 B2 B2 | A1")
+            .unwrap();
+        assert_eq!(f0_like.verdict, "closed");
+        assert!(f0_like.ratio.is_some() && f0_like.types.is_some());
+        // {joint} on a boundary of Cantor edges only: no spoke.
+        let c = r
+            .per_face
+            .iter()
+            .find(|f| f.face == "C2 | C2 B2 B2 | {joint}")
+            .unwrap();
+        assert_eq!((c.verdict, c.code), ("refused", Some("E0401")));
+        let closed = r.per_face.iter().filter(|f| f.verdict == "closed").count();
+        assert_eq!(closed, r.closed);
     }
 }

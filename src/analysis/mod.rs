@@ -1,6 +1,6 @@
 //! Exact analysis above the topology and the constraints: the limit ratio R by eigen analysis, the
-//! operators' eigen analysis and curves (pseudo-curvature classes), inverse design, and the census of
-//! a family of faces.
+//! operators' eigen analysis and curves (pseudo-curvature classes), inverse design, the census of
+//! a family of faces, and the property-based exploration of a rule with shrinking.
 //!
 //! Architecture invariant: imports the layers below (topology, algebra, constraint, input) and never
 //! geometry or output; floats appear only in labelled estimates, never in a verdict.
@@ -8,15 +8,20 @@
 pub(crate) mod census;
 pub(crate) mod curve;
 pub(crate) mod design;
+pub(crate) mod explore;
 pub(crate) mod operator;
 pub(crate) mod ratio;
 
-pub use census::{census, CensusReport, CensusSpec};
+pub use census::{census, CensusFace, CensusReport, CensusSpec};
 pub use curve::{
     analyse_automaton, estimate_curvature, AutomatonOperators, CurvatureEstimate, CurveReport,
     PointBehaviour, Side,
 };
 pub use design::{check_design, design_operator, DesignCheck, DesignError};
+pub use explore::{
+    explore, explore_face, parse_properties, parse_shard, BoundaryResult, Check, Checks,
+    ExploreSpec, Failure, Outcome, Property, Shrunk, Summary, Witness, MAX_FAMILY,
+};
 pub use operator::{
     analyse_matrix, parse_matrix_arg, parse_rationals_arg, Behaviour, CurvatureClass, Eigenvalue,
     OperatorReport,

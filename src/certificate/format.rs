@@ -127,6 +127,9 @@ pub enum SpokeItem {
     Corner,
     /// Every corner next to a delayed edge.
     DelayedCorner,
+    /// Every corner next to a delayed edge where neither edge is a non-delayed `Bn` (AutoFrac2D's
+    /// algorithm 1).
+    DelayedCornerNotB,
     /// Corners from an edge matching the first pattern to one matching the second.
     CornerBetween(Pattern, Pattern),
 }

@@ -144,6 +144,7 @@ fn face(f: &crate::topology::Face) -> Result<Face, CertifyError> {
                 crate::topology::SpokeItem::Gap => SpokeItem::Gap,
                 crate::topology::SpokeItem::Corner => SpokeItem::Corner,
                 crate::topology::SpokeItem::DelayedCorner => SpokeItem::DelayedCorner,
+                crate::topology::SpokeItem::DelayedCornerNotB => SpokeItem::DelayedCornerNotB,
                 crate::topology::SpokeItem::CornerBetween(p, q) => {
                     SpokeItem::CornerBetween(pattern(p), pattern(q))
                 }

@@ -60,11 +60,21 @@ fn is_spoke(items: &[SpokeItem], (kind, before, after): (JKind, Edge, Edge)) -> 
         (SpokeItem::Joint, JKind::Joint) | (SpokeItem::Gap, JKind::Gap) => true,
         (SpokeItem::Corner, JKind::Corner) => true,
         (SpokeItem::DelayedCorner, JKind::Corner) => before.delay >= 2 || after.delay >= 2,
+        (SpokeItem::DelayedCornerNotB, JKind::Corner) => {
+            let plain_b = |e: &Edge| e.kind == Kind::B && e.delay < 2;
+            (before.delay >= 2 || after.delay >= 2) && !plain_b(&before) && !plain_b(&after)
+        }
         (SpokeItem::CornerBetween(p, q), JKind::Corner) => {
             matches(p, &before) && matches(q, &after)
         }
         (SpokeItem::Joint | SpokeItem::Gap, _) => false,
-        (SpokeItem::Corner | SpokeItem::DelayedCorner | SpokeItem::CornerBetween(..), _) => false,
+        (
+            SpokeItem::Corner
+            | SpokeItem::DelayedCorner
+            | SpokeItem::DelayedCornerNotB
+            | SpokeItem::CornerBetween(..),
+            _,
+        ) => false,
     })
 }
 

@@ -77,6 +77,88 @@ pub(crate) enum Command {
     Census(CensusArgs),
     /// List the named structures of the library.
     Library(LibraryArgs),
+    /// Write the generated automaton of a face or an assembly: in lacuna's automaton format
+    /// (`aut`, which `lacuna solve` reads back with the same rank and degrees of freedom) or as
+    /// the MODITERE Python model that AutoFrac2D writes (`moditere`).
+    Export(ExportArgs),
+    /// Property-based exploration of a rule over a family of boundaries: closes, consistent, no
+    /// forced collapse, R exists, the certificate checks; each failure shrunk to a minimal
+    /// counterexample (exit 1 when a property fails).
+    Explore(ExploreArgs),
+}
+
+/// The export formats.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub(crate) enum ExportFormat {
+    /// lacuna's automaton format (docs/FORMATS.md).
+    Aut,
+    /// The MODITERE Python model of AutoFrac2DCLI (docs/FORMATS.md).
+    Moditere,
+}
+
+/// The arguments of `lacuna export`.
+#[derive(Args)]
+pub(crate) struct ExportArgs {
+    /// Face notation in quotes, an assembly or AutoFrac2D file, a library name (or, for `aut`,
+    /// an automaton file).
+    pub(crate) input: String,
+    /// The format.
+    #[arg(long)]
+    pub(crate) format: ExportFormat,
+    /// Write to this file instead of standard output.
+    #[arg(short = 'o', long = "output", value_name = "FILE")]
+    pub(crate) output: Option<std::path::PathBuf>,
+    /// Bézier degree of `Bn` edges in the generated automaton.
+    #[arg(long, default_value_t = 2)]
+    pub(crate) degree: usize,
+    /// Cantor layout of the generated automaton: gap length / piece length (exact, > 0).
+    #[arg(long, default_value = "1")]
+    pub(crate) cantor_gap: String,
+}
+
+/// The arguments of `lacuna explore`.
+#[derive(Args)]
+pub(crate) struct ExploreArgs {
+    /// Edge types of the boundaries (comma-separated).
+    #[arg(long, default_value = "B2,C2")]
+    pub(crate) edges: String,
+    /// Largest boundary length (every length from 1 up).
+    #[arg(long, default_value_t = 4)]
+    pub(crate) max_length: usize,
+    /// Edge types for each of Ea, El, Ec (comma-separated; every combination is explored).
+    #[arg(long, default_value = "C2,B2")]
+    pub(crate) params: String,
+    /// The algorithm: A1, A2, A3, AF1 or a spoke set such as '{gap}'.
+    #[arg(long, default_value = "A1")]
+    pub(crate) algorithm: String,
+    /// Properties to check (comma-separated): closes, consistent, no-collapse, ratio,
+    /// certificate, holes (opt-in: instantiates and measures the geometry); `all` for every one
+    /// but holes.
+    #[arg(long, default_value = "closes,consistent,no-collapse,ratio")]
+    pub(crate) properties: String,
+    /// Random family: this many boundaries (lengths 1..=max-length, edges uniform) instead of
+    /// every boundary.
+    #[arg(long, value_name = "N")]
+    pub(crate) random: Option<u64>,
+    /// Seed of the random family.
+    #[arg(long, default_value_t = 0)]
+    pub(crate) seed: u64,
+    /// Explore only part i of n of the family (1 ≤ i ≤ n): boundary k belongs to part
+    /// k mod n + 1. Merged parts give the lines of one run.
+    #[arg(long, value_name = "i/n")]
+    pub(crate) shard: Option<String>,
+    /// Most property evaluations spent shrinking one failure.
+    #[arg(long, default_value_t = 400)]
+    pub(crate) shrink_budget: usize,
+    /// Worker threads (default: all cores); the output does not depend on their number.
+    #[arg(long)]
+    pub(crate) threads: Option<usize>,
+    /// The last level at which the `holes` property compares observed and exact holes (1 to 6).
+    #[arg(long, default_value_t = 2)]
+    pub(crate) holes_level: u32,
+    /// JSON lines: one per boundary, then a summary line.
+    #[arg(long)]
+    pub(crate) json: bool,
 }
 
 /// The arguments of `lacuna verify`.

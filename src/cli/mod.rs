@@ -10,6 +10,8 @@ mod check;
 mod closure;
 mod counts;
 mod design;
+mod explore;
+mod export;
 mod library;
 mod measure;
 mod operators;
@@ -50,7 +52,8 @@ pub(crate) fn main() -> ExitCode {
         Command::Design(a) => a.json,
         Command::Census(a) => a.json,
         Command::Library(a) => a.json,
-        Command::Render(_) | Command::Report(_) => false,
+        Command::Explore(a) => a.json,
+        Command::Render(_) | Command::Report(_) | Command::Export(_) => false,
     };
     match run(cli) {
         Ok(code) => code,
@@ -122,5 +125,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
         Command::Solve(a) => solve::run(a, &limits),
         Command::Census(a) => census::run(a, &limits),
         Command::Library(a) => library::run(a),
+        Command::Export(a) => export::run(a, &limits),
+        Command::Explore(a) => explore::run(a, &limits),
     }
 }

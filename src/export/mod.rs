@@ -1,15 +1,20 @@
 //! What leaves lacuna: SVG, PNG, OBJ, STL and JSON writers, the text and JSON reports of the
-//! pipeline, and the self-contained HTML report.
+//! pipeline, the self-contained HTML report, and the generated automaton in lacuna's automaton
+//! format and in the MODITERE Python format of the seed authors' AutoFrac2D tool.
 //!
 //! Architecture invariant: formats what the layers below computed; decides nothing itself. Only the
 //! command line sits above it.
 
+pub(crate) mod automaton_text;
 pub(crate) mod html;
+pub(crate) mod moditere;
 pub(crate) mod report;
 pub(crate) mod volume_report;
 pub(crate) mod writer;
 
+pub use automaton_text::automaton_text;
 pub use html::report_html;
+pub use moditere::moditere_text;
 pub use report::{
     closure_json, closure_report, counts_json, counts_table, ratio_of, ratio_text, verify_report,
     VerifyReport,

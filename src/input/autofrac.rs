@@ -11,9 +11,9 @@
 //! ```
 //! `X_n_d` is an edge of kind X with n sub-edges and *remaining* delay d (so lacuna's delay is
 //! d + 1); the third field is the face delay (again remaining, +1); the fourth the algorithm:
-//! 0 = A3, 2 = A2. AutoFrac2D's algorithm 1 ("surround delay and Bézier") merges delayed edges
-//! with neighbouring Bézier edges, which is not a spoke rule; it is accepted only where no delay
-//! occurs anywhere (where it coincides with A1 and A3; it is read as A1), and refused otherwise. The `c` section
+//! 0 = A3, 1 = AF1, 2 = A2. AutoFrac2D's algorithm 1 ("surround delay and Bézier") keeps a delayed
+//! edge with its non-delayed Bézier neighbours: the spoke rule `AF1`. A face line without any delay
+//! reads it as A1 (the two coincide there, and the names stay those of earlier versions). The `c` section
 //! glues edges (`F1.E1 / F2.E2`); the `p` section gives coordinates (one `x y` per line), read as
 //! described at [`crate::input::coords::read_point_section`]; the topology ignores them.
 
@@ -410,18 +410,16 @@ fn parse_face(line: &str, t: &str, ln: usize, src: &Source) -> Result<Face> {
         "0" => Algorithm::a3(),
         "2" => Algorithm::a2(),
         "1" if !any_delay => Algorithm::a1(),
-        "1" => {
+        "1" => Algorithm::af1(),
+        _ => {
             return Err(Error::at(
                 "E0302",
-                "AutoFrac2D algorithm 1 (surround delay and Bézier) merges delayed edges with Bézier neighbours, which is not a spoke rule; it is supported only without delays",
+                format!("unknown AutoFrac2D algorithm `{atext}` (0, 1 or 2)"),
                 ln,
                 col_in(line, atext),
                 atext.len(),
                 src,
-            ))
-        }
-        _ => {
-            return Err(Error::at("E0302", format!("unknown AutoFrac2D algorithm `{atext}` (0, 1 or 2)"), ln, col_in(line, atext), atext.len(), src));
+            ));
         }
     };
     Ok(Face {
@@ -474,13 +472,17 @@ mod tests {
     }
 
     #[test]
+    fn algorithm_1_with_delays_is_af1() {
+        let a = parse_autofrac(&src("f\nC_2_0 - B_2_1 / C_2_0 - B_2_0 - B_2_0 / 0 / 1\n")).unwrap();
+        assert_eq!(a.faces[0].1.to_string(), "C2 B2^2 | C2 B2 B2 | AF1");
+        let a = parse_autofrac(&src("f\nC_2_0 - B_2_0 / C_2_0 - B_2_0 - B_2_0 / 1 / 1\n")).unwrap();
+        assert_eq!(a.faces[0].1.to_string(), "C2 B2 | C2 B2 B2 | AF1 | 2");
+    }
+
+    #[test]
     fn errors_have_codes() {
         let cases = [
             ("f\nC_2_0 - B_2_0 / C_2_0 - B_2_0 / 0 / 1\n", "E0107"),
-            (
-                "f\nC_2_0 - B_2_1 / C_2_0 - B_2_0 - B_2_0 / 0 / 1\n",
-                "E0302",
-            ),
             (
                 "f\nC_2_0 - B_2_0 / C_2_0 - B_2_0 - B_2_0 / 0 / 7\n",
                 "E0302",

@@ -177,6 +177,8 @@ impl Bound {
     ///   - A2: every junction is a spoke, r = 1;
     ///   - A3: a delayed edge's single sub-edge is cut off by spokes at both its corners, so a run
     ///     is at most the last piece of one non-delayed edge and the first of the next: r = 2;
+    ///   - AF1: as A3, except that a delayed edge next to a non-delayed `Bn` stays joined to it;
+    ///     two delayed edges are always separated, so r = 3 (`Bn` piece, delayed edge, `Bn` piece);
     ///   - A1: a run goes from a joint/gap of a non-delayed edge through the single sub-edges of
     ///     the delayed edges that follow to the first joint/gap of the next non-delayed edge, so
     ///     r ≤ 2 + D with D the longest cyclic stretch of delayed edges of a non-delayed face. A
@@ -228,6 +230,10 @@ impl Bound {
             let r = match &f.algorithm {
                 Algorithm::Spokes(items) if items.contains(&SpokeItem::Corner) => 1,
                 Algorithm::Spokes(items) if items.contains(&SpokeItem::DelayedCorner) => 2,
+                // AF1: a delayed edge is cut off at every corner except next to a non-delayed Bn,
+                // and two delayed edges are always separated by a spoke, so a run is at most the
+                // last piece of a Bn, one delayed edge and the first piece of the next Bn.
+                Algorithm::Spokes(items) if items.contains(&SpokeItem::DelayedCornerNotB) => 3,
                 _ => {
                     let pattern = [p.ec, p.ea, p.el, p.ea, p.ec];
                     2 + delayed_stretch(&cur, true).max(delayed_stretch(&pattern, false))

@@ -56,6 +56,10 @@ pub enum SpokeItem {
     DelayedCorner,
     /// `corner(P,Q)`: corners from an edge matching P to an edge matching Q (counter-clockwise).
     CornerBetween(EdgePattern, EdgePattern),
+    /// `delayed-corner-not-b`: every corner where at least one of the two edges is delayed and
+    /// neither is a non-delayed `Bn` (a delayed edge stays merged with its non-delayed Bézier
+    /// neighbours, as in AutoFrac2D's algorithm 1 "surround delay and Bézier").
+    DelayedCornerNotB,
 }
 
 impl SpokeItem {
@@ -68,6 +72,12 @@ impl SpokeItem {
             }
             (SpokeItem::CornerBetween(p, q), JunctionKind::Corner) => {
                 p.matches(&j.before) && q.matches(&j.after)
+            }
+            (SpokeItem::DelayedCornerNotB, JunctionKind::Corner) => {
+                let plain_b = |e: &EdgeType| e.kind == EdgeKind::B && !e.is_delayed();
+                (j.before.is_delayed() || j.after.is_delayed())
+                    && !plain_b(&j.before)
+                    && !plain_b(&j.after)
             }
             _ => false,
         }
@@ -87,7 +97,8 @@ pub trait SpokeChooser: fmt::Debug + Send + Sync {
 /// [`SpokeChooser`].
 #[derive(Clone, Debug)]
 pub enum Algorithm {
-    /// A spoke set; A1 = {joint, gap}, A2 = A1 + corner, A3 = A1 + delayed-corner.
+    /// A spoke set; A1 = {joint, gap}, A2 = A1 + corner, A3 = A1 + delayed-corner,
+    /// AF1 = A1 + delayed-corner-not-b.
     Spokes(BTreeSet<SpokeItem>),
     /// A custom algorithm, identified by its name.
     Custom(Arc<dyn SpokeChooser>),
@@ -107,15 +118,36 @@ impl Algorithm {
         Algorithm::Spokes([SpokeItem::Joint, SpokeItem::Gap, SpokeItem::DelayedCorner].into())
     }
 
-    /// The built-in name (`A1`, `A2`, `A3`) if this is one of them.
-    pub fn builtin_name(&self) -> Option<&'static str> {
-        [("A1", Self::a1()), ("A2", Self::a2()), ("A3", Self::a3())]
-            .into_iter()
-            .find(|(_, a)| a == self)
-            .map(|(n, _)| n)
+    /// `AF1`, AutoFrac2D's algorithm 1 ("surround delay and Bézier"): A1 plus every corner where
+    /// at least one of the two edges is delayed and neither is a non-delayed `Bn`. A delayed edge
+    /// thus forms one sub-face with the last piece of a Bézier edge before it and the first piece
+    /// of a Bézier edge after it; next to a Cantor or another delayed edge it is cut off. Without
+    /// delayed edges AF1 = A1.
+    pub fn af1() -> Self {
+        Algorithm::Spokes(
+            [
+                SpokeItem::Joint,
+                SpokeItem::Gap,
+                SpokeItem::DelayedCornerNotB,
+            ]
+            .into(),
+        )
     }
 
-    /// True for the spoke sets whose closure the tool can bound in advance (A1, A2, A3).
+    /// The built-in name (`A1`, `A2`, `A3`, `AF1`) if this is one of them.
+    pub fn builtin_name(&self) -> Option<&'static str> {
+        [
+            ("A1", Self::a1()),
+            ("A2", Self::a2()),
+            ("A3", Self::a3()),
+            ("AF1", Self::af1()),
+        ]
+        .into_iter()
+        .find(|(_, a)| a == self)
+        .map(|(n, _)| n)
+    }
+
+    /// True for the spoke sets whose closure the tool can bound in advance (A1, A2, A3, AF1).
     pub fn is_builtin(&self) -> bool {
         self.builtin_name().is_some()
     }
@@ -150,6 +182,7 @@ impl Algorithm {
             "A1" => return Ok(Self::a1()),
             "A2" => return Ok(Self::a2()),
             "A3" => return Ok(Self::a3()),
+            "AF1" => return Ok(Self::af1()),
             _ => {}
         }
         if let Some((_, a)) = named.iter().find(|(n, _)| n == text) {
@@ -158,7 +191,7 @@ impl Algorithm {
         let Some(inner) = text.strip_prefix('{') else {
             return err(
                 "E0108",
-                format!("unknown algorithm `{text}` (expected A1, A2, A3, a defined rule name, or a spoke set like {{joint gap corner(C,B)}})"),
+                format!("unknown algorithm `{text}` (expected A1, A2, A3, AF1, a defined rule name, or a spoke set like {{joint gap corner(C,B)}})"),
                 col,
                 text.chars().count(),
             );
@@ -228,13 +261,14 @@ fn parse_item(item: &str, col: usize) -> Result<SpokeItem> {
         "gap" => Ok(SpokeItem::Gap),
         "corner" => Ok(SpokeItem::Corner),
         "delayed-corner" => Ok(SpokeItem::DelayedCorner),
+        "delayed-corner-not-b" => Ok(SpokeItem::DelayedCornerNotB),
         _ => {
             let Some(args) = item
                 .strip_prefix("corner(")
                 .and_then(|r| r.strip_suffix(')'))
             else {
                 return bad(format!(
-                    "unknown spoke item `{item}` (expected joint, gap, corner, delayed-corner or corner(P,Q))"
+                    "unknown spoke item `{item}` (expected joint, gap, corner, delayed-corner, delayed-corner-not-b or corner(P,Q))"
                 ));
             };
             let Some((p, q)) = args.split_once(',') else {
@@ -296,6 +330,7 @@ impl fmt::Display for SpokeItem {
             SpokeItem::Gap => f.write_str("gap"),
             SpokeItem::Corner => f.write_str("corner"),
             SpokeItem::DelayedCorner => f.write_str("delayed-corner"),
+            SpokeItem::DelayedCornerNotB => f.write_str("delayed-corner-not-b"),
             SpokeItem::CornerBetween(p, q) => write!(f, "corner({p},{q})"),
         }
     }
@@ -326,7 +361,7 @@ mod tests {
 
     #[test]
     fn builtins_parse_and_print() {
-        for n in ["A1", "A2", "A3"] {
+        for n in ["A1", "A2", "A3", "AF1"] {
             assert_eq!(Algorithm::parse(n, 1, &[]).unwrap().to_string(), n);
         }
         // A spoke set equal to a built-in is that built-in.
@@ -357,6 +392,32 @@ mod tests {
         assert_eq!(
             custom.spokes(&[plain, corner("B2", "C2")]),
             vec![true, false]
+        );
+    }
+
+    #[test]
+    fn af1_keeps_delayed_edges_with_plain_bezier_neighbours() {
+        let corner = |a: &str, b: &str| Junction {
+            kind: JunctionKind::Corner,
+            before: t(a),
+            after: t(b),
+        };
+        let af1 = Algorithm::af1();
+        let js = [
+            corner("B2", "C2^2"),   // a plain Bn next to the delayed edge: merged
+            corner("C2^2", "B3"),   // idem, after it
+            corner("C2", "C2^2"),   // a Cantor neighbour: cut off
+            corner("B2^2", "C3^3"), // two delayed edges: cut off
+            corner("B2^2", "C2"),   // a delayed Bn is not a plain Bn: cut off
+            corner("B2", "C2"),     // no delay: as A1
+        ];
+        assert_eq!(af1.spokes(&js), vec![false, false, true, true, true, false]);
+        assert_eq!(Algorithm::parse("AF1", 1, &[]).unwrap(), af1);
+        assert_eq!(
+            Algorithm::parse("{joint gap delayed-corner-not-b}", 1, &[])
+                .unwrap()
+                .to_string(),
+            "AF1"
         );
     }
 
