@@ -8,7 +8,7 @@ pub(crate) mod html;
 pub(crate) mod report;
 pub(crate) mod writer;
 
-pub use html::report_html;
+pub use html::{report_html, report_html_unverified};
 pub use report::{
     closure_json, closure_report, counts_json, counts_table, ratio_of, ratio_text, verify_report,
     VerifyReport,

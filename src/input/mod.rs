@@ -13,4 +13,4 @@ pub(crate) mod library;
 pub use assembly::{set_corners, vertices, Assembly, SharedEdge};
 pub use automaton_format::{parse_automaton, parse_rational};
 pub use coords::{control_count, CoordKind, ExactPoint, FaceCoords, UserCoords};
-pub use library::{library, load_any, load_input, parse_text, Input, Loaded};
+pub use library::{library, load_any, load_input, parse_text, read_text, Input, Loaded};
