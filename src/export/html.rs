@@ -173,9 +173,9 @@ fn page_head(v: &VerifyReport) -> String {
 /// with its runaway witness, and no geometry (there is no finite automaton to instantiate).
 pub fn report_html_unverified(v: &VerifyReport) -> String {
     let mut h = page_head(v);
-    let _ = write!(
+    let _ = writeln!(
         h,
-        "<p class=\"bad\"><b>Verdict: NOT VERIFIED</b> (the closure did not close: nothing to draw or measure)</p><h2>Verification</h2><pre>{}</pre></body></html>\n",
+        "<p class=\"bad\"><b>Verdict: NOT VERIFIED</b> (the closure did not close: nothing to draw or measure)</p><h2>Verification</h2><pre>{}</pre></body></html>",
         esc(&v.to_text())
     );
     h
