@@ -155,6 +155,23 @@ fn hardening_07_outputs_are_checked_complete_and_never_an_input() {
         assert!(err.contains("error[E1005]"), "{err}");
         assert!(!out.contains("wrote"), "{out}");
     }
+    // A failure after a complete output names it.
+    if Path::new("/dev/full").exists() {
+        let first = s(&d.join("first.svg"));
+        let (code, _, err) = lacuna(&[
+            "render",
+            "F0",
+            "--level",
+            "1",
+            "--svg",
+            &first,
+            "--png",
+            "/dev/full",
+        ]);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains(&format!("written before: {first}")), "{err}");
+        std::fs::remove_file(&first).unwrap();
+    }
     // An output that is an input is refused, and the input is left as it was.
     let input = d.join("in.txt");
     let text = "face 0: C2 B2 C2 B2 | C2 B2 B2 | A1\n";
