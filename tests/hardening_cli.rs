@@ -1,7 +1,8 @@
 //! Issue #20 ("Hardening"), the command-line items: one regression test per item, named after
 //! it, each reproducing what the issue reports. Expected values come from the issue's statement
-//! and from hand derivations noted beside them, not from lacuna's own output. (Item 4's test is
-//! beside the code: `hardening_04_specks_in_slivers_are_not_holes` in src/geometry/point.rs.)
+//! and from hand derivations noted beside them, not from lacuna's own output. (Item 4 also has a
+//! unit test beside the code: `hardening_04_specks_in_slivers_are_not_holes` in
+//! src/geometry/point.rs.)
 
 mod common;
 use common::lacuna;
@@ -72,6 +73,24 @@ fn hardening_03_one_edge_face_is_refused_by_every_command_that_places_it() {
     // The topology of a disk bounded by one loop is still read and verified.
     let (code, out, err) = lacuna(&["verify", face]);
     assert_eq!(code, 0, "{out}{err}");
+}
+
+#[test]
+fn hardening_04_corner_fans_of_the_pentagon_open_no_extra_hole() {
+    // The paper's face F3: a pentagon of C2 edges with spokes at gaps and corners, 10 sub-faces,
+    // each the same pentagon. Hand count of the holes at level 4: a level-i cell opens its
+    // central lacuna at level i + 1, and each shared edge of level i its gap, one hole (gaps on
+    // free edges are notches). Shared edges: level 1 has the 10 spokes; level i + 1 has 10 spokes
+    // per cell of level i plus 2 pieces of each shared edge of level i: 10, 100 + 20 = 120,
+    // 1000 + 240 = 1240. Holes: 1 + (10 + 10) + (100 + 120) + (1000 + 1240) = 2481.
+    let input = lacuna::input::load_input("C2 C2 C2 C2 C2 | C2 C2 C2 | A2").unwrap();
+    let inst =
+        lacuna::geometry::instantiate(&input, &lacuna::geometry::InstantiateOptions::default())
+            .unwrap();
+    // At raster 4096 the former rule (specks of 4 pixels and more are holes) saw 2491: specks one
+    // pixel wide in the fans of thin cells at the corners.
+    let raster = lacuna::geometry::rasterize(&inst, 4, 4096, 4);
+    assert_eq!(raster.components_and_holes(), (1, 2481));
 }
 
 #[test]
