@@ -113,6 +113,14 @@ pub enum Error {
         /// Byte offset of the first invalid byte.
         offset: usize,
     },
+    /// An output file could not be written (the message says which outputs were written before).
+    #[error("cannot write `{path}`: {reason}")]
+    Write {
+        /// The path.
+        path: String,
+        /// Why.
+        reason: String,
+    },
     /// An input file could not be read.
     #[error("cannot read `{path}`: {reason}")]
     Io {
@@ -184,6 +192,7 @@ impl Error {
             Error::OutOfRange { .. } => "E0503",
             Error::Usage(_) => "E0504",
             Error::Io { .. } => "E0601",
+            Error::Write { .. } => "E1005",
             Error::NotText { .. } => "E0602",
             Error::Analysis(_) => "E0801",
             Error::Runaway { .. } => "E0502",
@@ -199,6 +208,7 @@ impl Error {
             | Error::OutOfRange { .. }
             | Error::Usage(_)
             | Error::Io { .. }
+            | Error::Write { .. }
             | Error::NotText { .. }
             | Error::Analysis(_)
             | Error::Runaway { .. } => None,

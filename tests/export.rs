@@ -229,8 +229,9 @@ fn moditere_shared_edges_use_the_canonical_rotation() {
 fn bad_export_options_are_coded() {
     for (args, code) in [
         (
+            // A fixed range, not a limit to raise (issue #20 item 12).
             vec!["export", "F0", "--format", "aut", "--degree", "9"],
-            "E0501",
+            "E0503",
         ),
         (
             vec!["export", "F0", "--format", "aut", "--cantor-gap=-1"],
@@ -246,7 +247,8 @@ fn bad_export_options_are_coded() {
                 "-o",
                 "/nonexistent-dir/x.py",
             ],
-            "E0601",
+            // A failed write (issue #20 item 6).
+            "E1005",
         ),
         (
             vec!["export", "C2 B2 | C2 B2 | A1", "--format", "moditere"],

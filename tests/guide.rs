@@ -1,6 +1,8 @@
 //! Keeps docs/GUIDE.md true: every `$ lacuna …` command in its console blocks is run and its
 //! output (stdout, then stderr) must be exactly what the guide shows. Regenerate the guide with
-//! `cargo build --release && python3 docs/make-guide.py`.
+//! `cargo build --release && python3 docs/make-guide.py`. The commands run in a temporary folder
+//! holding a copy of `fixtures/`, so the files they write never depend on (nor land in) the
+//! checkout's `target/` (issue #20 item 6).
 
 use std::process::Command;
 
@@ -33,9 +35,25 @@ fn split(line: &str) -> Vec<String> {
     out
 }
 
+/// A fresh folder with a copy of the repository's `fixtures/`.
+fn work_folder() -> std::path::PathBuf {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let work = std::env::temp_dir().join(format!("lacuna-guide-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&work);
+    std::fs::create_dir_all(work.join("fixtures")).unwrap();
+    for entry in std::fs::read_dir(root.join("fixtures")).unwrap() {
+        let entry = entry.unwrap();
+        if entry.file_type().unwrap().is_file() {
+            std::fs::copy(entry.path(), work.join("fixtures").join(entry.file_name())).unwrap();
+        }
+    }
+    work
+}
+
 #[test]
 fn every_command_of_the_guide_prints_what_the_guide_shows() {
     let root = env!("CARGO_MANIFEST_DIR");
+    let work = work_folder();
     let guide = std::fs::read_to_string(format!("{root}/docs/GUIDE.md")).unwrap();
     let lines: Vec<&str> = guide.lines().collect();
     let mut checked = 0;
@@ -50,7 +68,7 @@ fn every_command_of_the_guide_prints_what_the_guide_shows() {
             }
             let out = Command::new(env!("CARGO_BIN_EXE_lacuna"))
                 .args(split(cmd))
-                .current_dir(root)
+                .current_dir(&work)
                 .output()
                 .unwrap();
             let got = String::from_utf8_lossy(&out.stdout).to_string()
@@ -67,5 +85,6 @@ fn every_command_of_the_guide_prints_what_the_guide_shows() {
             i += 1;
         }
     }
+    let _ = std::fs::remove_dir_all(&work);
     assert!(checked >= 8, "only {checked} commands found in the guide");
 }

@@ -13,78 +13,106 @@ use lacuna::topology::Limits;
 pub(crate) struct Cli {
     #[command(subcommand)]
     pub(crate) command: Command,
-    #[command(flatten)]
-    pub(crate) limits: LimitArgs,
     /// No progress bars (they are drawn on standard error only when it is a terminal).
-    #[arg(long, global = true, visible_alias = "quiet")]
+    #[arg(long, global = true, visible_alias = "quiet", help_heading = "Global")]
     pub(crate) no_progress: bool,
 }
 
+/// The limits of the exact work, on the commands that do such work (not on `check`, `design`,
+/// `library`), under their own help heading.
 #[derive(Args)]
 pub(crate) struct LimitArgs {
     /// Maximum boundary length of a face type.
-    #[arg(long, global = true, default_value_t = Limits::default().max_boundary)]
+    #[arg(long, help_heading = "Limits", default_value_t = Limits::default().max_boundary)]
     pub(crate) max_boundary: usize,
     /// Maximum number of face types in a closure.
-    #[arg(long, global = true, default_value_t = Limits::default().max_types)]
+    #[arg(long, help_heading = "Limits", default_value_t = Limits::default().max_types)]
     pub(crate) max_types: usize,
     /// Maximum level for counts.
-    #[arg(long, global = true, default_value_t = Limits::default().max_level)]
+    #[arg(long, help_heading = "Limits", default_value_t = Limits::default().max_level)]
     pub(crate) max_level: u64,
     /// Maximum sub-edge count n of an edge type.
-    #[arg(long, global = true, default_value_t = Limits::default().max_subedges)]
+    #[arg(long, help_heading = "Limits", default_value_t = Limits::default().max_subedges)]
     pub(crate) max_subedges: u32,
     /// Maximum delay of an edge or a face.
-    #[arg(long, global = true, default_value_t = Limits::default().max_delay)]
+    #[arg(long, help_heading = "Limits", default_value_t = Limits::default().max_delay)]
     pub(crate) max_delay: u32,
     /// Maximum number of certified digits.
-    #[arg(long, global = true, default_value_t = Limits::default().max_digits)]
+    #[arg(long, help_heading = "Limits", default_value_t = Limits::default().max_digits)]
     pub(crate) max_digits: usize,
     /// Maximum number of unknowns of a constraint system.
-    #[arg(long, global = true, default_value_t = Limits::default().max_unknowns)]
+    #[arg(long, help_heading = "Limits", default_value_t = Limits::default().max_unknowns)]
     pub(crate) max_unknowns: usize,
+}
+
+impl LimitArgs {
+    /// The limits these flags set.
+    pub(crate) fn limits(&self) -> Limits {
+        Limits {
+            max_boundary: self.max_boundary,
+            max_types: self.max_types,
+            max_level: self.max_level,
+            max_subedges: self.max_subedges,
+            max_delay: self.max_delay,
+            max_digits: self.max_digits,
+            max_unknowns: self.max_unknowns,
+        }
+    }
+}
+
+/// A command's own arguments followed by the limit flags.
+#[derive(Args)]
+pub(crate) struct Limited<T: Args> {
+    #[command(flatten)]
+    pub(crate) args: T,
+    #[command(flatten)]
+    pub(crate) limits: LimitArgs,
 }
 
 #[derive(Subcommand)]
 pub(crate) enum Command {
     /// Verify a face, an assembly file or a library entry (default: the built-in F0).
-    Verify(VerifyArgs),
+    Verify(Limited<VerifyArgs>),
     /// Run only the independent checker on a certificate; exit 0 when every step is proved.
     Check(CheckArgs),
     /// The closure: every face type with its sub-faces and contribution.
-    Closure(ClosureArgs),
+    Closure(Limited<ClosureArgs>),
     /// Exact counts of faces and lacunas per level.
-    Counts(CountsArgs),
+    Counts(Limited<CountsArgs>),
     /// The exact limit ratio R of lacunas against sub-faces, by eigen analysis.
-    Ratio(RatioArgs),
+    Ratio(Limited<RatioArgs>),
     /// Eigen analysis of subdivision operators (SPEC §8): eigenvalues, fixed point, contraction,
     /// tangent and pseudo-curvature class, end and joining points of curves.
-    Operators(OperatorsArgs),
+    Operators(Limited<OperatorsArgs>),
     /// Inverse design: T = V·D·V⁻¹ from eigenvalues and eigenvectors (one per row), exact.
     Design(DesignArgs),
     /// Instantiate the verified model (default parameters: a template fit rounded to an exact point
     /// of the solution space) and export level N: SVG, JSON polygons, OBJ and STL prisms, PNG.
-    Render(RenderArgs),
+    Render(Limited<RenderArgs>),
     /// Measure the instantiated structure per level: area, perimeter and their factors, box-counting
     /// dimension, holes and components compared with the exact counts (a mismatch fails, exit 1).
-    Measure(MeasureArgs),
+    Measure(Limited<MeasureArgs>),
     /// One self-contained HTML page: pictures of levels 0–N, type graph, counts, R, the solver's
     /// verdict, measures with the plots of ln A, ln P and the box-counting fit.
-    Report(ReportArgs),
+    Report(Limited<ReportArgs>),
     /// Solve the BC-IFS constraint system of an automaton file, a face or an assembly exactly.
-    Solve(SolveArgs),
+    Solve(Limited<SolveArgs>),
     /// Close and count every face of a family, in parallel; print the distribution of type counts.
-    Census(CensusArgs),
+    Census(Limited<CensusArgs>),
     /// List the named structures of the library.
     Library(LibraryArgs),
     /// Write the generated automaton of a face or an assembly: in lacuna's automaton format
     /// (`aut`, which `lacuna solve` reads back with the same rank and degrees of freedom) or as
     /// the MODITERE Python model that AutoFrac2D writes (`moditere`).
-    Export(ExportArgs),
+    Export(Limited<ExportArgs>),
     /// Property-based exploration of a rule over a family of boundaries: closes, consistent, no
     /// forced collapse, R exists, the certificate checks; each failure shrunk to a minimal
     /// counterexample (exit 1 when a property fails).
-    Explore(ExploreArgs),
+    Explore(Limited<ExploreArgs>),
+    /// Print a shell completion script (bash, zsh, fish, elvish, powershell) on standard output.
+    Completions(CompletionsArgs),
+    /// Print the manual page (roff, for `man -l -`) on standard output.
+    Man,
 }
 
 /// The export formats.
@@ -161,10 +189,17 @@ pub(crate) struct ExploreArgs {
     pub(crate) json: bool,
 }
 
+/// The arguments of `lacuna completions`.
+#[derive(Args)]
+pub(crate) struct CompletionsArgs {
+    /// The shell.
+    pub(crate) shell: clap_complete::Shell,
+}
+
 /// The arguments of `lacuna verify`.
 #[derive(Args)]
 pub(crate) struct VerifyArgs {
-    /// Face notation in quotes, a file, or a library name.
+    /// Face notation in quotes, a file (`-`: standard input), or a library name.
     pub(crate) input: Option<String>,
     /// Levels of the counts table.
     #[arg(long, default_value_t = 5)]
@@ -180,7 +215,7 @@ pub(crate) struct VerifyArgs {
 /// The arguments of `lacuna check`.
 #[derive(Args)]
 pub(crate) struct CheckArgs {
-    /// The certificate file (JSON).
+    /// The certificate file (JSON; `-`: standard input).
     pub(crate) certificate: std::path::PathBuf,
     /// Print JSON.
     #[arg(long)]
@@ -190,7 +225,7 @@ pub(crate) struct CheckArgs {
 /// The arguments of `lacuna closure`.
 #[derive(Args)]
 pub(crate) struct ClosureArgs {
-    /// Face notation in quotes, a file, or a library name.
+    /// Face notation in quotes, a file (`-`: standard input), or a library name.
     pub(crate) input: String,
     /// Print JSON.
     #[arg(long)]
@@ -200,7 +235,7 @@ pub(crate) struct ClosureArgs {
 /// The arguments of `lacuna counts`.
 #[derive(Args)]
 pub(crate) struct CountsArgs {
-    /// Face notation in quotes, a file, or a library name.
+    /// Face notation in quotes, a file (`-`: standard input), or a library name.
     pub(crate) input: String,
     /// The last level.
     #[arg(long)]
@@ -213,7 +248,7 @@ pub(crate) struct CountsArgs {
 /// The arguments of `lacuna ratio`.
 #[derive(Args)]
 pub(crate) struct RatioArgs {
-    /// Face notation in quotes, a file, or a library name.
+    /// Face notation in quotes, a file (`-`: standard input), or a library name.
     pub(crate) input: String,
     /// Certified decimal digits.
     #[arg(long, default_value_t = 30)]
@@ -272,7 +307,8 @@ pub(crate) struct DesignArgs {
 pub(crate) struct RenderArgs {
     #[command(flatten)]
     pub(crate) geo: GeoArgs,
-    /// Write an SVG picture (cells filled, lacunas open).
+    /// Write an SVG picture (cells filled, lacunas open); `-` writes it on standard output, as
+    /// every output flag.
     #[arg(long, value_name = "OUT.svg")]
     pub(crate) svg: Option<std::path::PathBuf>,
     /// Write the level-N cells as JSON polygons.
@@ -284,9 +320,9 @@ pub(crate) struct RenderArgs {
     /// Write an ASCII STL mesh: every cell a closed, triangulated prism (printable).
     #[arg(long, value_name = "OUT.stl")]
     pub(crate) stl: Option<std::path::PathBuf>,
-    /// Prism thickness for --obj and --stl.
-    #[arg(long, default_value_t = 0.05)]
-    pub(crate) thickness: f64,
+    /// Prism thickness for --obj and --stl (exact: 0.05, 1/20).
+    #[arg(long, default_value = "0.05")]
+    pub(crate) thickness: String,
     /// Write a PNG raster (black cells on white).
     #[arg(long, value_name = "OUT.png")]
     pub(crate) png: Option<std::path::PathBuf>,
@@ -312,10 +348,10 @@ pub(crate) struct MeasureArgs {
     pub(crate) geo: GeoArgs,
     /// Raster size for box counting and the smallest raster for holes and components (a power
     /// of two); a level gets a finer one when its smallest hole needs it.
-    #[arg(long, default_value_t = 2048)]
+    #[arg(long, default_value_t = lacuna::measure::MeasureOptions::default().raster)]
     pub(crate) raster: usize,
     /// The finest raster a level may get (a power of two); a hole still narrower fails (E1011).
-    #[arg(long, default_value_t = 8192)]
+    #[arg(long, default_value_t = lacuna::measure::MeasureOptions::default().max_raster)]
     pub(crate) max_raster: usize,
     /// Blocks per side of the relative-density map of level N (0: none).
     #[arg(long, default_value_t = 64)]
@@ -333,8 +369,9 @@ pub(crate) struct ReportArgs {
     /// The HTML file to write.
     #[arg(long, value_name = "OUT.html")]
     pub(crate) out: std::path::PathBuf,
-    /// Raster size for the measures (a power of two).
-    #[arg(long, default_value_t = 1024)]
+    /// Raster size for box counting and the smallest raster for holes and components (a power
+    /// of two), as in `lacuna measure`.
+    #[arg(long, default_value_t = lacuna::measure::MeasureOptions::default().raster)]
     pub(crate) raster: usize,
 }
 
@@ -377,7 +414,7 @@ pub(crate) struct LibraryArgs {
 
 #[derive(Args)]
 pub(crate) struct GeoArgs {
-    /// Face notation in quotes, a file, or a library name.
+    /// Face notation in quotes, a file (`-`: standard input), or a library name.
     pub(crate) input: String,
     /// The level.
     #[arg(long, default_value_t = 3)]

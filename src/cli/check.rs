@@ -5,10 +5,7 @@ use super::*;
 /// Runs `lacuna check`.
 pub(super) fn run(args: CheckArgs) -> Result<ExitCode, Error> {
     let CheckArgs { certificate, json } = args;
-    let text = std::fs::read_to_string(&certificate).map_err(|e| Error::Io {
-        path: certificate.display().to_string(),
-        reason: e.to_string(),
-    })?;
+    let text = lacuna::input::read_text(&certificate.to_string_lossy())?;
     let report = lacuna::checker::check_json(&text);
     if json {
         print_json(&report.to_json());

@@ -31,8 +31,21 @@ pub(super) fn run(args: ExportArgs, limits: &Limits) -> Result<ExitCode, Error> 
     } = args;
     let gap = cantor_gap(&gap)?;
     if !(1..=8).contains(&degree) {
-        return Err(Error::limit("the Bézier degree", degree, 8, "--degree"));
+        return Err(Error::OutOfRange {
+            flag: "--degree",
+            value: degree.to_string(),
+            what: "the Bézier degree",
+            range: "from 1 to 8".into(),
+        });
     }
+    // The output is checked before the work: never the input, in an existing folder.
+    let mut outputs = match &output {
+        Some(p) => Some(Outputs::check(
+            &[std::path::Path::new(&input)],
+            &[("--output", p)],
+        )?),
+        None => None,
+    };
     let opts = lacuna::constraint::GenOptions {
         degree,
         cantor_gap: gap.clone(),
@@ -85,18 +98,9 @@ pub(super) fn run(args: ExportArgs, limits: &Limits) -> Result<ExitCode, Error> 
             }
         }
     };
-    match output {
-        Some(path) => {
-            use std::io::Write;
-            let mut f = create(&path)?;
-            f.write_all(text.as_bytes())
-                .and_then(|_| f.flush())
-                .map_err(|e| Error::Io {
-                    path: path.display().to_string(),
-                    reason: e.to_string(),
-                })?;
-        }
-        None => out(&text),
+    match (output, outputs.as_mut()) {
+        (Some(path), Some(o)) => o.write(&path, |w| w.write_all(text.as_bytes()))?,
+        _ => out(&text),
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -16,6 +16,15 @@ pub(super) fn geo_error(e: lacuna::geometry::GeometryError) -> Error {
     }
 }
 
+impl GeoArgs {
+    /// The files this command reads (the input, the template), which no output may overwrite.
+    pub(super) fn inputs(&self) -> Vec<&std::path::Path> {
+        let mut v = vec![std::path::Path::new(&self.input)];
+        v.extend(self.template.as_deref());
+        v
+    }
+}
+
 /// The input (with `--corners` applied) and its instance with the parameters given, after
 /// checking the limits on the level and on the number of output cells.
 pub(super) fn instance(
@@ -25,12 +34,13 @@ pub(super) fn instance(
 ) -> Result<(lacuna::input::Input, lacuna::geometry::Instance), Error> {
     limits.check_level(u64::from(geo.level))?;
     if !(1..=64).contains(&geo.segments) {
-        return Err(Error::limit(
-            "the segments per Bézier edge",
-            geo.segments,
-            64,
-            "--segments",
-        ));
+        // A fixed range, not a limit to raise (issue #20 item 12).
+        return Err(Error::OutOfRange {
+            flag: "--segments",
+            value: geo.segments.to_string(),
+            what: "the segments per Bézier edge",
+            range: "from 1 to 64".into(),
+        });
     }
     let mut input = load_input(&geo.input)?;
     if let Some(c) = &geo.corners {
@@ -76,10 +86,7 @@ pub(super) fn parameter_choice(
     opts: &mut lacuna::geometry::InstantiateOptions,
 ) -> Result<(), Error> {
     if let Some(path) = &geo.template {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
-            path: path.display().to_string(),
-            reason: e.to_string(),
-        })?;
+        let text = lacuna::input::read_text(&path.to_string_lossy())?;
         opts.template = Some(lacuna::Source {
             name: path.display().to_string(),
             text,

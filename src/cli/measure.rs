@@ -11,8 +11,8 @@ pub(super) fn run(args: MeasureArgs, limits: &Limits) -> Result<ExitCode, Error>
         density_grid,
         json,
     } = args;
-    check_raster("--raster", raster, 16_384)?;
-    check_raster("--max-raster", max_raster, 16_384)?;
+    check_raster("--raster", raster, lacuna::measure::LARGEST_RASTER)?;
+    check_raster("--max-raster", max_raster, lacuna::measure::LARGEST_RASTER)?;
     if max_raster < raster {
         return Err(Error::OutOfRange {
             flag: "--max-raster",

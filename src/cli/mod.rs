@@ -4,6 +4,7 @@
 
 mod args;
 mod geo;
+mod output;
 
 mod census;
 mod check;
@@ -23,12 +24,13 @@ mod verify;
 mod volume;
 
 use args::*;
-use clap::Parser;
+use clap::{CommandFactory, Parser};
 use geo::*;
 use lacuna::export::verify_report;
 use lacuna::input::load_input;
 use lacuna::topology::{Closure, Limits};
 use lacuna::Error;
+use output::Outputs;
 use std::process::ExitCode;
 
 /// Exit code: verification failed (the input was fine, the verdict is negative).
@@ -41,19 +43,23 @@ const EXIT_BAD_INPUT: u8 = 2;
 pub(crate) fn main() -> ExitCode {
     let cli = Cli::parse();
     let json = match &cli.command {
-        Command::Verify(a) => a.json,
-        Command::Closure(a) => a.json,
-        Command::Counts(a) => a.json,
-        Command::Solve(a) => a.json,
-        Command::Ratio(a) => a.json,
+        Command::Verify(a) => a.args.json,
+        Command::Closure(a) => a.args.json,
+        Command::Counts(a) => a.args.json,
+        Command::Solve(a) => a.args.json,
+        Command::Ratio(a) => a.args.json,
         Command::Check(a) => a.json,
-        Command::Measure(a) => a.json,
-        Command::Operators(a) => a.json,
+        Command::Measure(a) => a.args.json,
+        Command::Operators(a) => a.args.json,
         Command::Design(a) => a.json,
-        Command::Census(a) => a.json,
+        Command::Census(a) => a.args.json,
         Command::Library(a) => a.json,
-        Command::Explore(a) => a.json,
-        Command::Render(_) | Command::Report(_) | Command::Export(_) => false,
+        Command::Explore(a) => a.args.json,
+        Command::Render(_)
+        | Command::Report(_)
+        | Command::Export(_)
+        | Command::Completions(_)
+        | Command::Man => false,
     };
     match run(cli) {
         Ok(code) => code,
@@ -86,46 +92,47 @@ pub(crate) fn print_json(v: &impl serde::Serialize) {
     out(&(serde_json::to_string_pretty(v).expect("reports serialise") + "\n"));
 }
 
-/// Creates an output file for writing.
-pub(crate) fn create(path: &std::path::Path) -> Result<std::io::BufWriter<std::fs::File>, Error> {
-    std::fs::File::create(path)
-        .map(std::io::BufWriter::new)
-        .map_err(|e| Error::Io {
-            path: path.display().to_string(),
-            reason: e.to_string(),
-        })
-}
-
-/// The limits of the command line, then the command.
+/// The command, with its limits.
 fn run(cli: Cli) -> Result<ExitCode, Error> {
-    let l = cli.limits;
     lacuna::progress::set_progress(
         !cli.no_progress && std::io::IsTerminal::is_terminal(&std::io::stderr()),
     );
-    let limits = Limits {
-        max_boundary: l.max_boundary,
-        max_types: l.max_types,
-        max_level: l.max_level,
-        max_subedges: l.max_subedges,
-        max_delay: l.max_delay,
-        max_digits: l.max_digits,
-        max_unknowns: l.max_unknowns,
-    };
     match cli.command {
-        Command::Verify(a) => verify::run(a, &limits),
+        Command::Verify(a) => verify::run(a.args, &a.limits.limits()),
         Command::Check(a) => check::run(a),
-        Command::Closure(a) => closure::run(a, &limits),
-        Command::Counts(a) => counts::run(a, &limits),
-        Command::Ratio(a) => ratio::run(a, &limits),
-        Command::Operators(a) => operators::run(a, &limits),
+        Command::Closure(a) => closure::run(a.args, &a.limits.limits()),
+        Command::Counts(a) => counts::run(a.args, &a.limits.limits()),
+        Command::Ratio(a) => ratio::run(a.args, &a.limits.limits()),
+        Command::Operators(a) => operators::run(a.args, &a.limits.limits()),
         Command::Design(a) => design::run(a),
-        Command::Render(a) => render::run(a, &limits),
-        Command::Report(a) => report::run(a, &limits),
-        Command::Measure(a) => measure::run(a, &limits),
-        Command::Solve(a) => solve::run(a, &limits),
-        Command::Census(a) => census::run(a, &limits),
+        Command::Render(a) => render::run(a.args, &a.limits.limits()),
+        Command::Report(a) => report::run(a.args, &a.limits.limits()),
+        Command::Measure(a) => measure::run(a.args, &a.limits.limits()),
+        Command::Solve(a) => solve::run(a.args, &a.limits.limits()),
+        Command::Census(a) => census::run(a.args, &a.limits.limits()),
         Command::Library(a) => library::run(a),
-        Command::Export(a) => export::run(a, &limits),
-        Command::Explore(a) => explore::run(a, &limits),
+        Command::Export(a) => export::run(a.args, &a.limits.limits()),
+        Command::Explore(a) => explore::run(a.args, &a.limits.limits()),
+        Command::Completions(a) => {
+            let mut out = Vec::new();
+            clap_complete::generate(a.shell, &mut Cli::command(), "lacuna", &mut out);
+            print_bytes(&out)
+        }
+        Command::Man => {
+            let mut out = Vec::new();
+            clap_mangen::Man::new(Cli::command())
+                .render(&mut out)
+                .map_err(|e| Error::Write {
+                    path: "<standard output>".into(),
+                    reason: e.to_string(),
+                })?;
+            print_bytes(&out)
+        }
     }
+}
+
+/// Writes bytes to standard output (a closed pipe is not an error), exit 0.
+fn print_bytes(bytes: &[u8]) -> Result<ExitCode, Error> {
+    out(&String::from_utf8_lossy(bytes));
+    Ok(ExitCode::SUCCESS)
 }

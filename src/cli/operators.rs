@@ -86,6 +86,15 @@ fn curvature_estimate(
     level: u32,
 ) -> Result<lacuna::analysis::CurvatureEstimate, Error> {
     use num_traits::ToPrimitive;
+    // Issue #20 item 14: refused, not silently lowered to 16.
+    if level > 16 {
+        return Err(Error::OutOfRange {
+            flag: "--level",
+            value: level.to_string(),
+            what: "the word length of the curvature samples",
+            range: "from 0 to 16".into(),
+        });
+    }
     let Some(op) = a.operators.iter().find(|o| o.name == name) else {
         return Err(Error::Usage(format!(
             "no operator `{name}` in the automaton"
@@ -125,5 +134,5 @@ fn curvature_estimate(
     if pts.iter().flatten().any(|v| !v.is_finite()) {
         return Err(Error::Usage("--points must be finite numbers".into()));
     }
-    lacuna::analysis::estimate_curvature(&ops, index, &pts, level.min(16))
+    lacuna::analysis::estimate_curvature(&ops, index, &pts, level)
 }

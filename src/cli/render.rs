@@ -17,14 +17,19 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         density_grid,
         write_template,
     } = args;
-    if svg.is_none()
-        && json_out.is_none()
-        && obj.is_none()
-        && stl.is_none()
-        && png.is_none()
-        && density.is_none()
-        && write_template.is_none()
-    {
+    let wanted: Vec<(&str, &std::path::Path)> = [
+        ("--write-template", &write_template),
+        ("--svg", &svg),
+        ("--json-out", &json_out),
+        ("--obj", &obj),
+        ("--stl", &stl),
+        ("--png", &png),
+        ("--density", &density),
+    ]
+    .into_iter()
+    .filter_map(|(flag, p)| p.as_deref().map(|p| (flag, p)))
+    .collect();
+    if wanted.is_empty() {
         return Err(Error::Usage(
             "nothing to write: give --svg, --json-out, --obj, --stl, --png, --density or --write-template"
                 .into(),
@@ -39,51 +44,63 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             range: "from 1 to 16384".into(),
         });
     }
-    if !(thickness.is_finite() && thickness > 0.0) {
-        return Err(Error::Usage(format!(
-            "--thickness {thickness} must be a positive number"
-        )));
-    }
+    let thickness = positive_number("--thickness", &thickness)?;
+    let mut outputs = Outputs::check(&geo.inputs(), &wanted)?;
     let vector = svg.is_some() || json_out.is_some() || obj.is_some() || stl.is_some();
     let (_, inst) = instance(&geo, limits, if vector { 2_000_000 } else { 100_000_000 })?;
-    let io = |path: &std::path::Path, e: std::io::Error| Error::Io {
-        path: path.display().to_string(),
-        reason: e.to_string(),
-    };
     let (level, segs) = (geo.level, geo.segments);
-    out(&choice_text(&geo, &inst));
+    outputs.say(&choice_text(&geo, &inst));
+    let wrote = |o: &Outputs, p: &std::path::Path| o.say(&format!("wrote {}\n", p.display()));
     if let Some(p) = &write_template {
         let text = inst.default_template(&lacuna::geometry::InstantiateOptions::default());
-        std::fs::write(p, text).map_err(|e| io(p, e))?;
-        out(&format!("wrote {}\n", p.display()));
+        outputs.write(p, |w| w.write_all(text.as_bytes()))?;
+        wrote(&outputs, p);
     }
     if let Some(p) = &svg {
-        lacuna::export::write_svg(&inst, level, segs, create(p)?).map_err(|e| io(p, e))?;
-        out(&format!("wrote {}\n", p.display()));
+        outputs.write(p, |w| lacuna::export::write_svg(&inst, level, segs, w))?;
+        wrote(&outputs, p);
     }
     if let Some(p) = &json_out {
-        lacuna::export::write_json(&inst, level, segs, create(p)?).map_err(|e| io(p, e))?;
-        out(&format!("wrote {}\n", p.display()));
+        outputs.write(p, |w| lacuna::export::write_json(&inst, level, segs, w))?;
+        wrote(&outputs, p);
     }
     if let Some(p) = &obj {
-        lacuna::export::write_obj(&inst, level, segs, thickness, create(p)?)
-            .map_err(|e| io(p, e))?;
-        out(&format!("wrote {}\n", p.display()));
+        outputs.write(p, |w| {
+            lacuna::export::write_obj(&inst, level, segs, thickness, w)
+        })?;
+        wrote(&outputs, p);
     }
     if let Some(p) = &stl {
-        lacuna::export::write_stl(&inst, level, segs, thickness, create(p)?)
-            .map_err(|e| io(p, e))?;
-        out(&format!("wrote {}\n", p.display()));
+        outputs.write(p, |w| {
+            lacuna::export::write_stl(&inst, level, segs, thickness, w)
+        })?;
+        wrote(&outputs, p);
     }
     if let Some(p) = &png {
         let raster = lacuna::export::render_raster(&inst, level, size, segs);
-        lacuna::export::write_png(&raster, create(p)?).map_err(|e| io(p, e))?;
-        out(&format!("wrote {}\n", p.display()));
+        outputs.write(p, |w| lacuna::export::write_png(&raster, w))?;
+        wrote(&outputs, p);
     }
     if let Some(p) = &density {
         let map = lacuna::measure::density_map(&inst, level, density_grid, segs);
-        lacuna::export::write_density_png(&map, create(p)?).map_err(|e| io(p, e))?;
-        out(&format!("wrote {}\n", p.display()));
+        outputs.write(p, |w| lacuna::export::write_density_png(&map, w))?;
+        wrote(&outputs, p);
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// A positive exact number given on the command line (an integer, a decimal or a fraction, as
+/// every number of lacuna), as a float.
+fn positive_number(flag: &'static str, text: &str) -> Result<f64, Error> {
+    let value = lacuna::input::parse_rational(text.trim())
+        .and_then(|r| num_traits::ToPrimitive::to_f64(&r).filter(|x| x.is_finite()));
+    match value {
+        Some(x) if x > 0.0 => Ok(x),
+        _ => Err(Error::OutOfRange {
+            flag,
+            value: text.to_string(),
+            what: "the prism thickness",
+            range: "a positive number: an integer, a decimal or a fraction (0.05, 1/20)".into(),
+        }),
+    }
 }

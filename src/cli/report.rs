@@ -10,8 +10,22 @@ pub(super) fn run(args: ReportArgs, limits: &Limits) -> Result<ExitCode, Error> 
         raster,
     } = args;
     check_raster("--raster", raster, 8192)?;
+    let mut outputs = Outputs::check(&geo.inputs(), &[("--out", &path)])?;
     // The pictures embed every cell of every level as SVG: keep them small.
-    let (input, inst) = instance(&geo, limits, 200_000)?;
+    let (input, inst) = match instance(&geo, limits, 200_000) {
+        // A closure that does not close is a negative verdict, as in `lacuna verify` (exit 1):
+        // the page says so, with the runaway witness, and has nothing to draw.
+        Err(Error::Runaway { .. }) => {
+            let input = load_input(&geo.input)?;
+            let closure = Closure::of(&input.faces(), limits)?;
+            let v = verify_report(&input, &closure, u64::from(geo.level).max(5), limits)?;
+            let html = lacuna::export::report_html_unverified(&v);
+            outputs.write(&path, |w| w.write_all(html.as_bytes()))?;
+            outputs.say(&format!("wrote {}\n", path.display()));
+            return Ok(ExitCode::from(EXIT_FAILED));
+        }
+        other => other?,
+    };
     // The instance's closure is the one `Closure::of` would compute again.
     let closure = Closure::Closed(inst.types.clone());
     let v = verify_report(&input, &closure, u64::from(geo.level).max(5), limits)?;
@@ -24,11 +38,8 @@ pub(super) fn run(args: ReportArgs, limits: &Limits) -> Result<ExitCode, Error> 
     let m = lacuna::measure::measure(&inst, &opts).map_err(geo_error)?;
     eprint!("{}", choice_text(&geo, &inst));
     let html = lacuna::export::report_html(&v, &inst, &m, geo.level, geo.segments);
-    std::fs::write(&path, html).map_err(|e| Error::Io {
-        path: path.display().to_string(),
-        reason: e.to_string(),
-    })?;
-    out(&format!("wrote {}\n", path.display()));
+    outputs.write(&path, |w| w.write_all(html.as_bytes()))?;
+    outputs.say(&format!("wrote {}\n", path.display()));
     Ok(if v.verified && m.verified {
         ExitCode::SUCCESS
     } else {

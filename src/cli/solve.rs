@@ -28,7 +28,13 @@ pub(super) fn run(args: SolveArgs, limits: &Limits) -> Result<ExitCode, Error> {
             )
         })?;
     if !(1..=8).contains(&degree) {
-        return Err(Error::limit("the Bézier degree", degree, 8, "--degree"));
+        // A fixed range, not a limit to raise (issue #20 item 12).
+        return Err(Error::OutOfRange {
+            flag: "--degree",
+            value: degree.to_string(),
+            what: "the Bézier degree",
+            range: "from 1 to 8".into(),
+        });
     }
     let opts = lacuna::constraint::GenOptions {
         degree,

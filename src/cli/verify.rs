@@ -15,36 +15,54 @@ pub(super) fn run(args: VerifyArgs, limits: &Limits) -> Result<ExitCode, Error> 
         return volume::verify(&name, &v, levels, json, limits);
     }
     limits.check_level(levels)?;
-    let input = load_input(input.as_deref().unwrap_or("F0"))?;
+    let arg = input.as_deref().unwrap_or("F0");
+    let mut outputs = match &certificate {
+        Some(path) => Outputs::check(&[std::path::Path::new(arg)], &[("--certificate", path)])?,
+        None => Outputs::check(&[], &[])?,
+    };
+    if json && outputs.to_stdout {
+        return Err(Error::Usage(
+            "--json and --certificate - would both write to standard output".into(),
+        ));
+    }
+    let input = load_input(arg)?;
     let closure = Closure::of(&input.faces(), limits)?;
     let report = verify_report(&input, &closure, levels, limits)?;
-    if json {
-        print_json(&report);
-    } else {
+    // The text report comes first; under --json the report is printed only once everything
+    // succeeded, so that standard output holds one JSON document (the report or the error).
+    if !json && !outputs.to_stdout {
         out(&report.to_text());
     }
     if let Some(path) = &certificate {
-        let io = |e: String| Error::Io {
-            path: path.display().to_string(),
-            reason: e,
-        };
         match &closure {
             Closure::Closed(ts) => {
+                use lacuna::certificate::CertifyError;
                 let cert = lacuna::certificate::certificate_for(
                     &input.name,
                     ts,
                     lacuna::constraint::GenOptions::default(),
                 )
-                .map_err(|e| io(e.to_string()))?;
-                std::fs::write(path, cert.to_json()).map_err(|e| io(e.to_string()))?;
+                .map_err(|e| match e {
+                    CertifyError::Lacuna(e) => e,
+                    e @ CertifyError::CustomAlgorithm { .. } => {
+                        Error::Usage(format!("--certificate: {e}"))
+                    }
+                    e => Error::Analysis(e.to_string()),
+                })?;
+                outputs.write(path, |w| w.write_all(cert.to_json().as_bytes()))?;
                 if !json {
-                    out(&format!("certificate written to {}\n", path.display()));
+                    outputs.say(&format!("certificate written to {}\n", path.display()));
                 }
             }
             Closure::Runaway(_) => {
                 eprintln!("no certificate written: the closure did not close (certificates have no runaway step)")
             }
         }
+    }
+    if json {
+        print_json(&report);
+    } else if outputs.to_stdout {
+        eprint!("{}", report.to_text());
     }
     Ok(if report.verified {
         ExitCode::SUCCESS

@@ -157,6 +157,30 @@ fn type_graph(v: &VerifyReport) -> String {
     s + "</svg>"
 }
 
+/// The head of the page and its title.
+fn page_head(v: &VerifyReport) -> String {
+    format!(
+        "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>lacuna report: {0}</title>\
+         <style>body{{font-family:sans-serif;max-width:1100px;margin:2em auto;line-height:1.4}}\
+         table{{border-collapse:collapse}}td,th{{border:1px solid #ccc;padding:2px 8px;text-align:right}}\
+         .pics svg{{width:250px;height:250px;border:1px solid #eee;margin:4px}}pre{{background:#f6f6f6;padding:8px;overflow-x:auto}}\
+         .ok{{color:#063}}.bad{{color:#a00}}</style></head><body><h1>lacuna report: {0}</h1>",
+        esc(&v.input)
+    )
+}
+
+/// The page of an input whose closure did not close: the verdict and the verification report
+/// with its runaway witness, and no geometry (there is no finite automaton to instantiate).
+pub fn report_html_unverified(v: &VerifyReport) -> String {
+    let mut h = page_head(v);
+    let _ = writeln!(
+        h,
+        "<p class=\"bad\"><b>Verdict: NOT VERIFIED</b> (the closure did not close: nothing to draw or measure)</p><h2>Verification</h2><pre>{}</pre></body></html>",
+        esc(&v.to_text())
+    );
+    h
+}
+
 /// The HTML page. `pictures_up_to` is the deepest level drawn (pictures of levels 0..=it).
 pub fn report_html(
     v: &VerifyReport,
@@ -165,16 +189,7 @@ pub fn report_html(
     pictures_up_to: u32,
     segments: usize,
 ) -> String {
-    let mut h = String::new();
-    let _ = write!(
-        h,
-        "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>lacuna report: {0}</title>\
-         <style>body{{font-family:sans-serif;max-width:1100px;margin:2em auto;line-height:1.4}}\
-         table{{border-collapse:collapse}}td,th{{border:1px solid #ccc;padding:2px 8px;text-align:right}}\
-         .pics svg{{width:250px;height:250px;border:1px solid #eee;margin:4px}}pre{{background:#f6f6f6;padding:8px;overflow-x:auto}}\
-         .ok{{color:#063}}.bad{{color:#a00}}</style></head><body><h1>lacuna report: {0}</h1>",
-        esc(&v.input)
-    );
+    let mut h = page_head(v);
     let verdict = if v.verified && m.verified {
         ("ok", "VERIFIED")
     } else {
@@ -248,6 +263,14 @@ pub fn report_html(
         );
     }
     h += "</table>";
+    let rasters: Vec<String> = m.levels.iter().map(|l| l.raster.to_string()).collect();
+    let _ = write!(
+        h,
+        "<p>Rasters (pixels per side), levels 0–{}: {}; box counting with boxes 1/16 to 1/{}.</p>",
+        m.level,
+        rasters.join(", "),
+        m.raster
+    );
     let lnrel = |f: &dyn Fn(&crate::measure::measurement::LevelMeasure) -> f64| -> Vec<(f64, f64)> {
         let base = m.levels.first().map(f).unwrap_or(1.0);
         m.levels

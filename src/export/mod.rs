@@ -13,7 +13,7 @@ pub(crate) mod volume_report;
 pub(crate) mod writer;
 
 pub use automaton_text::automaton_text;
-pub use html::report_html;
+pub use html::{report_html, report_html_unverified};
 pub use moditere::moditere_text;
 pub use report::{
     closure_json, closure_report, counts_json, counts_table, ratio_of, ratio_text, verify_report,

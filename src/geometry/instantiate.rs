@@ -122,7 +122,18 @@ fn to_f64(r: &BigRational) -> f64 {
 pub fn instantiate(input: &Input, opt: &InstantiateOptions) -> Result<Instance, GeometryError> {
     let q = opt.degree.max(1);
     let faces = input.faces();
+    // A one-edge face has no placement with area (issue #20 item 3): refused before the work.
+    if let Some(f) = faces.iter().find(|f| f.boundary.len() == 1) {
+        return Err(GeometryError::OneEdge {
+            face: f.to_string(),
+        });
+    }
     let types = close_or_error(&faces, &opt.limits)?;
+    if let Some(t) = types.types.iter().find(|t| t.face.boundary.len() == 1) {
+        return Err(GeometryError::OneEdge {
+            face: t.face.to_string(),
+        });
+    }
     let generated = automaton_of(
         &types,
         GenOptions {

@@ -22,7 +22,7 @@ pub use options::{GeometryError, InstantiateOptions};
 pub use placement::StartFace;
 pub use point::{
     bezier_point, box_dimension, distance, fit_line, polyline_length, signed_area, BBox, Fit,
-    Point, Raster, MIN_HOLE_PIXELS,
+    Point, Raster,
 };
 pub use raster::{bounds, cell_count, rasterize};
 pub use template::{control_points, regular_polygon};

@@ -51,6 +51,14 @@ pub enum GeometryError {
         /// What went wrong, naming the goal.
         message: String,
     },
+    /// A face of one edge: its edge starts and ends at its only corner, so every placement makes
+    /// it a loop without area (its Bézier control points at the default degree lie on one segment),
+    /// and its cells could not be drawn or measured.
+    #[error("face `{face}` has a single edge, which starts and ends at its only corner: it has no area in the plane, so it cannot be placed (give the face at least two edges)")]
+    OneEdge {
+        /// The face, in notation.
+        face: String,
+    },
     /// An output file could not be written.
     #[error("cannot write `{path}`: {reason}")]
     Write {
@@ -71,6 +79,7 @@ impl GeometryError {
             GeometryError::TooManyCells { .. } => "E1003",
             GeometryError::NotExact { .. } => "E1004",
             GeometryError::Write { .. } => "E1005",
+            GeometryError::OneEdge { .. } => "E1009",
             GeometryError::Topology(_) => "E1006",
             GeometryError::Goal { code, .. } => code,
         }

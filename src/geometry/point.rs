@@ -114,9 +114,6 @@ pub struct Raster {
 /// by both neighbours through rounding, and show as a false one-pixel hole).
 const JITTER: f64 = 0.293_847_561;
 
-/// Holes smaller than this many pixels are ignored by [`Raster::components_and_holes`].
-pub const MIN_HOLE_PIXELS: usize = 4;
-
 impl Raster {
     /// A raster of `size` pixels per side whose window contains `bbox` with a margin of `margin`
     /// pixels on every side.
@@ -230,8 +227,14 @@ impl Raster {
 
     /// Connected components of the covered pixels (8-connectivity) and holes: components of the
     /// uncovered pixels (4-connectivity, the dual of 8) that do not touch the border of the raster.
-    /// Holes of fewer than [`MIN_HOLE_PIXELS`] pixels are not counted: they are sampling
-    /// artefacts at the tip of acute notches, where two cells meet at a point.
+    /// A component of uncovered pixels counts as a hole only when it holds a 2×2 block of
+    /// uncovered pixels. Pixel centres that happen to fall in a sliver narrower than one pixel —
+    /// the tip of an acute notch or hole, such as the fans of thin cells at the corners of a face
+    /// with corner spokes — form specks that 4-connectivity separates from the region they belong
+    /// to; a 2×2 block of pixel centres is at least one pixel wide in every direction, so no such
+    /// speck holds one. A real hole does: a hole whose inscribed disk has a radius above √2 pixels
+    /// contains the 2×2 block around the pixel centre nearest to the disk's centre
+    /// ([`crate::measure::MIN_HOLE_WIDTH`] chooses rasters that make it so).
     pub fn components_and_holes(&self) -> (usize, usize) {
         let n = self.size;
         let mut seen = vec![false; n * n];
@@ -245,10 +248,15 @@ impl Raster {
             seen[start] = true;
             stack.push(start);
             let mut touches_border = false;
-            let mut pixels = 0usize;
+            let mut block = false;
             while let Some(i) = stack.pop() {
-                pixels += 1;
                 let (r, c) = (i / n, i % n);
+                if !filled && !block && r + 1 < n && c + 1 < n {
+                    let free = |j: usize| self.counts[j] == 0;
+                    // The 2×2 block with this pixel at its top left: a block's four pixels are
+                    // 4-connected, so the component holding a block visits its top-left pixel.
+                    block = free(i + 1) && free(i + n) && free(i + n + 1);
+                }
                 if r == 0 || c == 0 || r == n - 1 || c == n - 1 {
                     touches_border = true;
                 }
@@ -271,7 +279,7 @@ impl Raster {
             }
             if filled {
                 components += 1;
-            } else if !touches_border && pixels >= MIN_HOLE_PIXELS {
+            } else if !touches_border && block {
                 holes += 1;
             }
         }
@@ -372,6 +380,33 @@ mod tests {
         let area = r.covered_count() as f64 * r.pixel_area();
         assert!((area - 1.0).abs() < 0.02, "{area}");
         assert_eq!(r.components_and_holes(), (1, 0));
+    }
+
+    /// Issue #20 item 4: a speck of uncovered pixels one pixel wide (pixel centres in a sliver
+    /// narrower than a pixel) is not a hole; a 2×2 block is.
+    #[test]
+    fn hardening_04_specks_in_slivers_are_not_holes() {
+        let mut r = Raster::unit(10);
+        r.counts.fill(1);
+        // A horizontal speck of 4 pixels (row 2, columns 1–4) and a diagonal one of 3.
+        for c in 1..5 {
+            r.counts[2 * 10 + c] = 0;
+        }
+        for k in 1..4 {
+            r.counts[(4 + k) * 10 + k] = 0;
+        }
+        assert_eq!(r.components_and_holes(), (1, 0));
+        // A 2×2 block (rows 6–7, columns 6–7) is one hole; joined to the horizontal speck through
+        // a column of pixels, speck and block are one hole.
+        for (row, col) in [(6, 6), (6, 7), (7, 6), (7, 7)] {
+            r.counts[row * 10 + col] = 0;
+        }
+        assert_eq!(r.components_and_holes(), (1, 1));
+        for row in 2..6 {
+            r.counts[row * 10 + 6] = 0;
+        }
+        r.counts[2 * 10 + 5] = 0;
+        assert_eq!(r.components_and_holes(), (1, 1));
     }
 
     #[test]

@@ -61,11 +61,26 @@ pub fn parse_autofrac(src: &Source) -> Result<Assembly> {
     let mut points: Vec<ExactPoint> = Vec::new();
     let mut spans: Vec<Span> = Vec::new();
     let mut p_span: Option<Span> = None;
+    // The line of each section header seen (`f`, `c`, `p`): each comes once (issue #20 item 17).
+    let mut headers: Vec<(&str, usize)> = Vec::new();
     for (ln0, line) in src.text.lines().enumerate() {
         let ln = ln0 + 1;
         let t = line.trim();
         if t.is_empty() || t.starts_with('#') {
             continue;
+        }
+        if matches!(t, "f" | "c" | "p") {
+            if let Some((_, first)) = headers.iter().find(|(h, _)| *h == t) {
+                return Err(Error::at(
+                    "E0301",
+                    format!("the `{t}` section is given twice (first at line {first})"),
+                    ln,
+                    col_in(line, t),
+                    1,
+                    src,
+                ));
+            }
+            headers.push((t, ln));
         }
         match t {
             "f" => section = Section::Faces,
@@ -148,7 +163,7 @@ pub fn parse_autofrac(src: &Source) -> Result<Assembly> {
                         .ok_or_else(|| {
                             Error::at(
                                 "E0303",
-                                format!("expected a point `x y` with two finite numbers of magnitude at most 10^15, found `{t}`"),
+                                format!("expected a point `x y` with two finite numbers of magnitude at most 10^15 (a non-zero one not below 2.2e-308, where a float would round it to 0), found `{t}`"),
                                 ln,
                                 col_in(line, t),
                                 t.len(),
@@ -210,7 +225,8 @@ fn diagnostic(e: Error) -> Diagnostic {
 
 /// A coordinate of the `p` section: exact when written as an integer, decimal or fraction, else
 /// the exact value of the floating-point number (`1e3`, as the AutoFrac2D tool reads it); finite,
-/// of magnitude at most 10¹⁵.
+/// of magnitude at most 10¹⁵, and not a non-zero number that the float reading would turn into
+/// 0 or a subnormal (`1e-400`, `1e-310`: refused rather than read silently as 0).
 fn number(w: &str) -> Option<BigRational> {
     if w.len() >= 64 {
         return None;
@@ -220,6 +236,11 @@ fn number(w: &str) -> Option<BigRational> {
             .parse::<f64>()
             .ok()
             .filter(|f| f.is_finite() && f.abs() <= 1e15)?;
+        let mantissa = w.split(['e', 'E']).next().unwrap_or("");
+        let nonzero = mantissa.bytes().any(|b| (b'1'..=b'9').contains(&b));
+        if nonzero && f.abs() < f64::MIN_POSITIVE {
+            return None;
+        }
         BigRational::from_float(f)
     })
 }

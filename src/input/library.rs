@@ -152,6 +152,10 @@ pub fn load_input(arg: &str) -> Result<Input> {
 /// The volume a command-line argument names, if it names one: notation, a file or a library
 /// entry. `None` when the argument is something else (faces, an automaton, nothing readable).
 pub fn load_volume(arg: &str) -> Result<Option<(String, crate::topology::volume::Volume)>> {
+    // Standard input is read once, by the loader of faces and automata.
+    if arg == "-" {
+        return Ok(None);
+    }
     if arg.contains('|') {
         return match crate::input::volume_file::is_volume_notation(arg) {
             true => Ok(Some((
@@ -170,22 +174,48 @@ pub fn load_volume(arg: &str) -> Result<Option<(String, crate::topology::volume:
     }
 }
 
-/// Reads a file (or a library entry) as text.
-pub(crate) fn read_source(arg: &str) -> Result<(String, Source)> {
-    let path = std::path::Path::new(arg);
-    if path.is_file() {
-        let bytes = std::fs::read(path).map_err(|e| Error::Io {
-            path: arg.into(),
+/// Reads a text file, or standard input for `-`: UTF-8 (else E0602, naming the offset of the
+/// first invalid byte), without a leading byte-order mark (editors on some systems write one; it
+/// is not part of the text). A file that cannot be read is E0601.
+pub fn read_text(path: &str) -> Result<String> {
+    let bytes = if path == "-" {
+        let mut b = Vec::new();
+        std::io::Read::read_to_end(&mut std::io::stdin(), &mut b).map_err(|e| Error::Io {
+            path: "<standard input>".into(),
             reason: e.to_string(),
         })?;
-        let text = String::from_utf8(bytes).map_err(|e| Error::NotText {
-            path: arg.into(),
-            offset: e.utf8_error().valid_up_to(),
-        })?;
+        b
+    } else {
+        std::fs::read(path).map_err(|e| Error::Io {
+            path: path.into(),
+            reason: e.to_string(),
+        })?
+    };
+    let bom = if bytes.starts_with(b"\xEF\xBB\xBF") {
+        3
+    } else {
+        0
+    };
+    String::from_utf8(bytes[bom..].to_vec()).map_err(|e| Error::NotText {
+        path: if path == "-" {
+            "<standard input>".into()
+        } else {
+            path.into()
+        },
+        offset: bom + e.utf8_error().valid_up_to(),
+    })
+}
+
+/// Reads a file, standard input (`-`) or a library entry as text.
+fn read_source(arg: &str) -> Result<(String, Source)> {
+    let path = std::path::Path::new(arg);
+    if arg == "-" || path.is_file() {
+        let name = if arg == "-" { "<standard input>" } else { arg };
+        let text = read_text(arg)?;
         return Ok((
-            arg.into(),
+            name.into(),
             Source {
-                name: arg.into(),
+                name: name.into(),
                 text,
             },
         ));

@@ -14,5 +14,7 @@ pub(crate) mod volume_file;
 pub use assembly::{set_corners, vertices, Assembly, SharedEdge};
 pub use automaton_format::{parse_automaton, parse_rational};
 pub use coords::{control_count, CoordKind, ExactPoint, FaceCoords, UserCoords};
-pub use library::{library, load_any, load_input, load_volume, parse_text, Input, Loaded};
+pub use library::{
+    library, load_any, load_input, load_volume, parse_text, read_text, Input, Loaded,
+};
 pub use volume_file::{is_volume_notation, is_volume_text, parse_volume_text};

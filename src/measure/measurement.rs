@@ -140,10 +140,14 @@ pub fn exact_topology(inst: &Instance, levels: u32) -> Result<Vec<ExactTopology>
 }
 
 /// A level's raster is chosen so that its smallest hole is at least this many pixels wide
-/// (`2·area/perimeter`, see [`crate::measure::hole`]): its inscribed disk then holds well over
-/// [`crate::geometry::point::MIN_HOLE_PIXELS`] pixel centres, so ignoring smaller uncovered specks
-/// (sampling artefacts where two cells meet at a point) cannot drop a real hole.
-pub const MIN_HOLE_WIDTH: f64 = 2.5;
+/// (`2·area/perimeter`, see [`crate::measure::hole`]). For a convex hole that size is between
+/// the radius r of its inscribed disk and 2r, so r ≥ 1.5 pixels > √2: the disk holds a 2×2 block
+/// of pixel centres, and [`crate::geometry::Raster::components_and_holes`], which counts only
+/// uncovered components holding such a block, cannot drop a real hole.
+pub const MIN_HOLE_WIDTH: f64 = 3.0;
+
+/// The finest raster `lacuna measure` accepts (`--max-raster`): 16384² pixels.
+pub const LARGEST_RASTER: usize = 16_384;
 
 /// What to measure.
 #[derive(Clone, Debug)]
@@ -198,7 +202,10 @@ pub struct LevelMeasure {
     pub smallest_hole_pixels: Option<f64>,
     /// The exact topology it is compared with.
     pub exact: ExactTopology,
-    /// Whether holes and components match the exact counts.
+    /// Whether the raster was fine enough for the level's smallest hole (else the observed
+    /// counts are not trusted: E1011, and no comparison).
+    pub resolved: bool,
+    /// Whether holes and components were resolved and match the exact counts.
     pub matches: bool,
 }
 
@@ -304,22 +311,34 @@ pub fn measure(inst: &Instance, opts: &MeasureOptions) -> Result<MeasureReport, 
         let size = wanted.min(opts.max_raster.max(opts.raster));
         let r = rasterize(inst, i as u32, size, opts.segments);
         let hole_px = smallest[i].map(|h| h * r.scale);
-        if wanted > size {
+        let resolved = wanted <= size;
+        if !resolved {
+            let needs = if wanted == usize::MAX {
+                "more than 2^40".to_string()
+            } else {
+                wanted.to_string()
+            };
+            let advice = if wanted <= LARGEST_RASTER {
+                format!("raise --max-raster to {wanted} or lower the level")
+            } else {
+                format!("above the finest raster accepted ({LARGEST_RASTER}): lower the level")
+            };
             failures.push(format!(
-                "E1011 level {i}: the smallest hole is {:.2} pixels wide at raster {size}, below the resolution of {MIN_HOLE_WIDTH} pixels (it needs a raster of {}): raise --max-raster (at most 16384) or lower the level",
+                "E1011 level {i}: the smallest hole is {:.2} pixels wide at raster {size}, below the resolution of {MIN_HOLE_WIDTH} pixels (it needs a raster of {needs}): {advice}",
                 hole_px.unwrap_or(0.0),
-                if wanted == usize::MAX { "more than 2^40".to_string() } else { wanted.to_string() }
             ));
         }
         let (components, holes) = r.components_and_holes();
         let ex = exact[i].clone();
-        let matches = BigUint::from(holes) == ex.holes && components as u64 == ex.components;
-        if !matches {
+        let equal = BigUint::from(holes) == ex.holes && components as u64 == ex.components;
+        // A level below the resolution is E1011 alone: its counts are not compared.
+        if resolved && !equal {
             failures.push(format!(
                 "E1010 level {i}: observed {holes} holes and {components} components at raster {size}, exact {} holes and {} components",
                 ex.holes, ex.components
             ));
         }
+        let matches = resolved && equal;
         if ex.faces.to_u64() != Some(cells[i]) {
             failures.push(format!(
                 "E1010 level {i}: {} cells evaluated, N^C = {}",
@@ -336,6 +355,7 @@ pub fn measure(inst: &Instance, opts: &MeasureOptions) -> Result<MeasureReport, 
             raster: size,
             smallest_hole_pixels: hole_px,
             exact: ex,
+            resolved,
             matches,
         });
         last = Some(r);
@@ -416,7 +436,11 @@ impl MeasureReport {
                 format!("{} ({})", l.holes, l.exact.holes),
                 format!("{} ({})", l.components, l.exact.components),
                 l.raster,
-                if l.matches { "yes" } else { "NO" }
+                match (l.resolved, l.matches) {
+                    (false, _) => "not resolved (E1011)",
+                    (true, true) => "yes",
+                    (true, false) => "NO",
+                }
             );
         }
         let _ = writeln!(

@@ -12,5 +12,5 @@ pub use density::{density_map, density_raster, DensityMap, DensitySummary};
 pub use hole::{polygon_size, smallest_holes};
 pub use measurement::{
     check_cells, exact_components, exact_topology, measure, raster_for_hole, ExactTopology,
-    LevelMeasure, MeasureOptions, MeasureReport, MIN_HOLE_WIDTH,
+    LevelMeasure, MeasureOptions, MeasureReport, LARGEST_RASTER, MIN_HOLE_WIDTH,
 };
