@@ -13,6 +13,8 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         thickness,
         png,
         size,
+        background,
+        no_legend,
         density,
         density_grid,
         write_template,
@@ -31,12 +33,12 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         ));
     }
     check_density_grid(density_grid, 1)?;
-    if !(1..=16_384).contains(&size) {
+    if !(1..=8192).contains(&size) {
         return Err(Error::OutOfRange {
             flag: "--size",
             value: size.to_string(),
             what: "the PNG size in pixels",
-            range: "from 1 to 16384".into(),
+            range: "from 1 to 8192".into(),
         });
     }
     if !(thickness.is_finite() && thickness > 0.0) {
@@ -57,8 +59,21 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         std::fs::write(p, text).map_err(|e| io(p, e))?;
         out(&format!("wrote {}\n", p.display()));
     }
+    let picture = lacuna::export::PictureOptions {
+        width: size as u32,
+        background: match background {
+            BackgroundArg::White => lacuna::export::Background::White,
+            BackgroundArg::Transparent => lacuna::export::Background::Transparent,
+        },
+        legend: !no_legend,
+        ..Default::default()
+    };
     if let Some(p) = &svg {
-        lacuna::export::write_svg(&inst, level, segs, create(p)?).map_err(|e| io(p, e))?;
+        let opts = lacuna::export::PictureOptions {
+            width: 512,
+            ..picture.clone()
+        };
+        lacuna::export::write_svg_picture(&inst, level, &opts, create(p)?).map_err(|e| io(p, e))?;
         out(&format!("wrote {}\n", p.display()));
     }
     if let Some(p) = &json_out {
@@ -76,13 +91,18 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         out(&format!("wrote {}\n", p.display()));
     }
     if let Some(p) = &png {
-        let raster = lacuna::export::render_raster(&inst, level, size, segs);
-        lacuna::export::write_png(&raster, create(p)?).map_err(|e| io(p, e))?;
+        lacuna::export::write_png_picture(&inst, level, &picture, create(p)?)
+            .map_err(|e| io(p, e))?;
         out(&format!("wrote {}\n", p.display()));
     }
     if let Some(p) = &density {
         let map = lacuna::measure::density_map(&inst, level, density_grid, segs);
-        lacuna::export::write_density_png(&map, create(p)?).map_err(|e| io(p, e))?;
+        let pic = lacuna::export::DensityPicture {
+            size: size as u32,
+            level,
+            window: lacuna::geometry::bounds(&inst, segs).size(),
+        };
+        lacuna::export::write_density_picture(&map, &pic, create(p)?).map_err(|e| io(p, e))?;
         out(&format!("wrote {}\n", p.display()));
     }
     Ok(ExitCode::SUCCESS)
