@@ -6,9 +6,11 @@
 //! command line sits above it.
 
 pub(crate) mod bitmap;
+pub(crate) mod graph;
 pub(crate) mod html;
 pub(crate) mod palette;
 pub(crate) mod picture;
+pub(crate) mod plot;
 pub(crate) mod report;
 pub(crate) mod writer;
 
