@@ -117,7 +117,9 @@ fn png_hole_shows_the_background_white_or_transparent() {
     // F0 level 1: the central lacuna contains the centre of the start face.
     let i = inst("F0");
     let mut centre = [0.0, 0.0];
-    i.walk(0, false, |c| centre = centroid(&outline(&i, c.ty, c.points, 1e-4)));
+    i.walk(0, false, |c| {
+        centre = centroid(&outline(&i, c.ty, c.points, 1e-4))
+    });
     for (background, want) in [
         (Background::White, [255, 255, 255, 255]),
         (Background::Transparent, [0, 0, 0, 0]),
@@ -134,7 +136,11 @@ fn png_hole_shows_the_background_white_or_transparent() {
         let f = Frame::of(&i, 300);
         assert_eq!(h, f.height, "no legend");
         let [x, y] = f.to_pixel(centre);
-        assert_eq!(px[y as usize * w as usize + x as usize], want, "{background:?}");
+        assert_eq!(
+            px[y as usize * w as usize + x as usize],
+            want,
+            "{background:?}"
+        );
         // A corner of the picture is background too; some pixel is covered.
         assert_eq!(px[0], want);
         assert!(px.iter().any(|p| p[3] == 255 && p[..3] == type_colour(0)));
@@ -159,7 +165,11 @@ fn density_picture_colours_each_block_and_has_a_colour_bar() {
     for (row, col) in [(0, 0), (8, 8), (5, 11), (15, 15)] {
         let (x, y) = (m + col * 20 + 10, m + row * 20 + 10);
         let c = density_colour(map.values[row * 16 + col]);
-        assert_eq!(px[y * w as usize + x], [c[0], c[1], c[2], 255], "block {row},{col}");
+        assert_eq!(
+            px[y * w as usize + x],
+            [c[0], c[1], c[2], 255],
+            "block {row},{col}"
+        );
     }
     // The colour bar: red (1) at its top, blue (0) at its bottom.
     let bx = m + 320 + m + 4;
@@ -174,9 +184,15 @@ fn svg_has_curves_a_legend_per_type_and_outlines_relative_to_the_cells() {
     let mut svg = Vec::new();
     write_svg_picture(&i, 2, &PictureOptions::default(), &mut svg).unwrap();
     let svg = String::from_utf8(svg).unwrap();
-    assert_eq!(svg.matches("class=\"legend-entry\"").count(), i.types.types.len());
+    assert_eq!(
+        svg.matches("class=\"legend-entry\"").count(),
+        i.types.types.len()
+    );
     for (t, ty) in i.types.types.iter().enumerate() {
-        assert!(svg.contains(&format!("<tspan font-weight=\"bold\">T{t}</tspan> {}", ty.face)));
+        assert!(svg.contains(&format!(
+            "<tspan font-weight=\"bold\">T{t}</tspan> {}",
+            ty.face
+        )));
     }
     // B2 edges are quadratic Bézier curves, drawn as such.
     assert!(svg.contains(" Q"), "no quadratic curve");
