@@ -13,7 +13,9 @@ use crate::export::picture::{
 };
 use crate::geometry::instantiate::Instance;
 use crate::geometry::point::Point;
+use crate::geometry::raster::cell_count;
 use crate::measure::DensityMap;
+use crate::progress::Progress;
 use noto_sans_mono_bitmap::{get_raster, get_raster_width, FontWeight, RasterHeight};
 use std::io::{self, Write};
 use zeno::{Command, Join, Mask, PathBuilder, Scratch, Stroke};
@@ -45,9 +47,8 @@ impl Canvas {
         }
         let i = (y as usize * self.width as usize + x as usize) * 4;
         let a = u32::from(cov);
-        for k in 0..3 {
-            let d = u32::from(self.data[i + k]);
-            self.data[i + k] = ((u32::from(c[k]) * a + d * (255 - a) + 127) / 255) as u8;
+        for (d, &v) in self.data[i..i + 3].iter_mut().zip(&c) {
+            *d = ((u32::from(v) * a + u32::from(*d) * (255 - a) + 127) / 255) as u8;
         }
         let d = u32::from(self.data[i + 3]);
         self.data[i + 3] = ((255 * a + d * (255 - a) + 127) / 255) as u8;
@@ -68,10 +69,12 @@ impl Canvas {
         }
     }
 
-    /// Fills (and optionally outlines) a closed polygon given in pixel coordinates.
+    /// Fills (and optionally outlines) a closed polygon given in pixel coordinates. The coverage
+    /// mask covers only the polygon's pixel box (clipped to the canvas) and reuses `buf`.
     fn polygon(
         &mut self,
         scratch: &mut Scratch,
+        buf: &mut Vec<u8>,
         poly: &[[f64; 2]],
         fill: Option<Rgb>,
         line: Option<(Rgb, f64)>,
@@ -79,21 +82,53 @@ impl Canvas {
         if poly.len() < 2 {
             return;
         }
+        let pad = line.map_or(0.0, |l| l.1) + 1.0;
+        let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
+        for p in poly {
+            x0 = x0.min(p[0]);
+            y0 = y0.min(p[1]);
+            x1 = x1.max(p[0]);
+            y1 = y1.max(p[1]);
+        }
+        let x0 = ((x0 - pad).floor()).max(0.0);
+        let y0 = ((y0 - pad).floor()).max(0.0);
+        let x1 = ((x1 + pad).ceil()).min(f64::from(self.width));
+        let y1 = ((y1 + pad).ceil()).min(f64::from(self.height));
+        if !(x1 > x0 && y1 > y0) {
+            return;
+        }
+        let (w, h) = ((x1 - x0) as u32, (y1 - y0) as u32);
         let mut path: Vec<Command> = Vec::with_capacity(poly.len() + 2);
-        path.move_to([poly[0][0] as f32, poly[0][1] as f32]);
+        path.move_to([(poly[0][0] - x0) as f32, (poly[0][1] - y0) as f32]);
         for p in &poly[1..] {
-            path.line_to([p[0] as f32, p[1] as f32]);
+            path.line_to([(p[0] - x0) as f32, (p[1] - y0) as f32]);
         }
         path.close();
+        let place = zeno::Placement {
+            left: x0 as i32,
+            top: y0 as i32,
+            width: w,
+            height: h,
+        };
+        let n = w as usize * h as usize;
         if let Some(c) = fill {
-            let (m, p) = Mask::with_scratch(&path, scratch).render();
-            self.mask(&m, p, c);
+            buf.clear();
+            buf.resize(n, 0);
+            Mask::with_scratch(&path, scratch)
+                .size(w, h)
+                .render_into(buf, None);
+            self.mask(buf, place, c);
         }
-        if let Some((c, w)) = line {
-            let mut stroke = Stroke::new(w as f32);
+        if let Some((c, lw)) = line {
+            let mut stroke = Stroke::new(lw as f32);
             stroke.join(Join::Round);
-            let (m, p) = Mask::with_scratch(&path, scratch).style(stroke).render();
-            self.mask(&m, p, c);
+            buf.clear();
+            buf.resize(n, 0);
+            Mask::with_scratch(&path, scratch)
+                .style(stroke)
+                .size(w, h)
+                .render_into(buf, None);
+            self.mask(buf, place, c);
         }
     }
 
@@ -145,6 +180,83 @@ impl Canvas {
     }
 }
 
+/// The cells of one type gathered into one path, filled at once with the non-zero rule: every
+/// cell is oriented the same way, so an edge shared by two cells of the type is crossed once in
+/// each direction and cancels, and no seam of background shows between them (filling cells one by
+/// one would blend each shared pixel twice with partial coverage). Flushed every
+/// [`Batch::LIMIT`] commands to bound memory.
+struct Batch {
+    path: Vec<Command>,
+    bbox: [f64; 4],
+}
+
+impl Batch {
+    const LIMIT: usize = 1 << 18;
+
+    fn new() -> Batch {
+        Batch {
+            path: Vec::new(),
+            bbox: [f64::MAX, f64::MAX, f64::MIN, f64::MIN],
+        }
+    }
+
+    /// Adds a closed polygon (pixel coordinates), counter-clockwise on the screen.
+    fn add(&mut self, poly: &[[f64; 2]]) {
+        if poly.len() < 3 {
+            return;
+        }
+        let area: f64 = (0..poly.len())
+            .map(|k| {
+                let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
+                a[0] * b[1] - b[0] * a[1]
+            })
+            .sum();
+        let mut pts: Vec<[f64; 2]> = poly.to_vec();
+        if area < 0.0 {
+            pts.reverse();
+        }
+        self.path.move_to([pts[0][0] as f32, pts[0][1] as f32]);
+        for p in &pts[1..] {
+            self.path.line_to([p[0] as f32, p[1] as f32]);
+        }
+        self.path.close();
+        for p in &pts {
+            self.bbox[0] = self.bbox[0].min(p[0]);
+            self.bbox[1] = self.bbox[1].min(p[1]);
+            self.bbox[2] = self.bbox[2].max(p[0]);
+            self.bbox[3] = self.bbox[3].max(p[1]);
+        }
+    }
+
+    /// Fills the gathered path in colour `c` and empties the batch.
+    fn flush(&mut self, canvas: &mut Canvas, scratch: &mut Scratch, buf: &mut Vec<u8>, c: Rgb) {
+        if self.path.is_empty() {
+            return;
+        }
+        let x0 = (self.bbox[0] - 1.0).floor().max(0.0);
+        let y0 = (self.bbox[1] - 1.0).floor().max(0.0);
+        let x1 = (self.bbox[2] + 1.0).ceil().min(f64::from(canvas.width));
+        let y1 = (self.bbox[3] + 1.0).ceil().min(f64::from(canvas.height));
+        if x1 > x0 && y1 > y0 {
+            let (w, h) = ((x1 - x0) as u32, (y1 - y0) as u32);
+            buf.clear();
+            buf.resize(w as usize * h as usize, 0);
+            Mask::with_scratch(&self.path, scratch)
+                .size(w, h)
+                .offset(zeno::Vector::new(-x0 as f32, -y0 as f32))
+                .render_into(buf, None);
+            let place = zeno::Placement {
+                left: x0 as i32,
+                top: y0 as i32,
+                width: w,
+                height: h,
+            };
+            canvas.mask(buf, place, c);
+        }
+        *self = Batch::new();
+    }
+}
+
 /// The text size for a picture of this width.
 fn text_size(width: u32) -> RasterHeight {
     if width >= 1400 {
@@ -183,20 +295,33 @@ pub fn write_png_picture<W: Write>(
     let tol = opts.tolerance.max(1e-6) / f.scale;
     let stroke = stroke_width(inst, level, f.scale) * f.scale;
     let mut scratch = Scratch::new();
+    let mut buf = Vec::new();
     let to_px =
         |poly: Vec<Point>| -> Vec<[f64; 2]> { poly.into_iter().map(|p| f.to_pixel(p)).collect() };
-    // Fills first; where cells are too small for an outline, a hairline of the fill colour closes
-    // the seams that anti-aliasing leaves between neighbouring cells.
+    // Fills first, one batch per type; then the outlines, cell by cell.
+    let mut bar = Progress::new(
+        "picture",
+        cell_count(inst, level) * if stroke > 0.0 { 2 } else { 1 },
+    );
+    let mut batches: Vec<Batch> = (0..inst.types.types.len()).map(|_| Batch::new()).collect();
     inst.walk(level, false, |c| {
-        let poly = to_px(outline(inst, c.ty, c.points, tol));
-        let seam = (stroke == 0.0).then_some((type_colour(c.ty), 0.5));
-        canvas.polygon(&mut scratch, &poly, Some(type_colour(c.ty)), seam);
+        bar.tick();
+        let b = &mut batches[c.ty];
+        b.add(&to_px(outline(inst, c.ty, c.points, tol)));
+        if b.path.len() >= Batch::LIMIT {
+            b.flush(&mut canvas, &mut scratch, &mut buf, type_colour(c.ty));
+        }
     });
+    for (t, b) in batches.iter_mut().enumerate() {
+        b.flush(&mut canvas, &mut scratch, &mut buf, type_colour(t));
+    }
     if stroke > 0.0 {
         inst.walk(level, false, |c| {
+            bar.tick();
             let poly = to_px(outline(inst, c.ty, c.points, tol));
             canvas.polygon(
                 &mut scratch,
+                &mut buf,
                 &poly,
                 None,
                 Some((outline_colour(c.ty), stroke)),

@@ -3,7 +3,7 @@
 //!
 //! The type palette is Paul Tol's "muted" qualitative scheme (designed to stay distinct under the
 //! common colour-vision deficiencies and in grey print), in his order. None of its colours is close
-//! to the white background (the lightest, sand, is 22 units of CIE L* darker than white), so a cell
+//! to the white background (the lightest, sand, has CIE L* 82 against white's 100), so a cell
 //! never looks like a hole. Past nine types the colours repeat, darker each round; the legend names
 //! every type with its notation.
 //!
