@@ -4,7 +4,8 @@
 //! colour), one arrow per (parent, child) pair. An arrow ends on the child's circle with its head
 //! outside it, so direction is always visible; when two types point at each other, the two arrows
 //! bend apart; a self-loop leaves the node away from the centre. The multiplicity is written beside
-//! the middle of its arrow as `×k`, on a white halo. Beyond [`MAX_DRAWN`] types, a table (a drawing
+//! the middle of its arrow as `×k`, on a white halo, when k > 1 (an arrow without a label has
+//! multiplicity 1, which keeps graphs of many types legible). Beyond [`MAX_DRAWN`] types, a table (a drawing
 //! would be unreadable).
 //!
 //! Classes for the browser tests: `node` (a type's circle, `r` its radius), `edge`, `loop`,
@@ -103,11 +104,12 @@ pub(crate) fn type_graph(v: &VerifyReport) -> String {
         }
         return s + "</table>";
     }
-    // Nodes on a circle whose circumference gives every node about 70 px; a single type alone.
+    // Nodes on a circle whose circumference gives every node about 100 px (at most 440 px of
+    // radius, which the page's width holds); a single type alone.
     let r = if n <= 1 {
         0.0
     } else {
-        (70.0 * n as f64 / TAU).max(70.0)
+        (100.0 * n as f64 / TAU).clamp(70.0, 440.0)
     };
     // Room for the self-loops and their labels around the nodes (a lone node needs less).
     let margin = if n <= 1 { NODE + 42.0 } else { NODE + 62.0 };
@@ -142,7 +144,9 @@ pub(crate) fn type_graph(v: &VerifyReport) -> String {
                 "<path class=\"loop\" d=\"M{:.1},{:.1} C{:.1},{:.1} {:.1},{:.1} {:.1},{:.1}\" fill=\"none\" stroke=\"#444\" stroke-width=\"1.3\"/>{head}",
                 start.0, start.1, c0.0, c0.1, c1.0, c1.1, base.0, base.1
             );
-            labels += &label(add(a, mul(out, NODE * 3.6)), k);
+            if k > 1 {
+                labels += &label(add(a, mul(out, NODE * 3.6)), k);
+            }
         } else {
             let both = pairs.iter().any(|&(x, y, _)| x == ch && y == t);
             let d = sub(b, a);
@@ -162,7 +166,9 @@ pub(crate) fn type_graph(v: &VerifyReport) -> String {
             );
             // The middle of the curve, pushed a little to its side.
             let mid = add(mul(add(a, b), 0.25), mul(ctrl, 0.5));
-            labels += &label(add(mid, mul(nrm, if both { 9.0 } else { 0.0 })), k);
+            if k > 1 {
+                labels += &label(add(mid, mul(nrm, if both { 9.0 } else { 0.0 })), k);
+            }
         }
     }
     s += &labels;
@@ -184,4 +190,50 @@ pub(crate) fn type_graph(v: &VerifyReport) -> String {
         );
     }
     s + "</svg>"
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::export::report::verify_report;
+    use crate::topology::{Closure, Limits};
+
+    fn f0_report() -> VerifyReport {
+        let input = crate::input::load_input("F0").unwrap();
+        let limits = Limits::default();
+        let closure = Closure::of(&input.faces(), &limits).unwrap();
+        verify_report(&input, &closure, 3, &limits).unwrap()
+    }
+
+    #[test]
+    fn one_type_has_a_self_loop_with_its_multiplicity_and_the_head_outside_the_node() {
+        let svg = type_graph(&f0_report());
+        assert_eq!(svg.matches("class=\"node\"").count(), 1);
+        assert_eq!(svg.matches("class=\"loop\"").count(), 1);
+        assert_eq!(svg.matches("class=\"arrowhead\"").count(), 1);
+        assert!(svg.contains(">×6</text>"), "{svg}");
+    }
+
+    #[test]
+    fn past_thirty_types_the_graph_is_a_table_and_multiplicities_are_counted() {
+        let mut v = f0_report();
+        let row = v.types[0].clone();
+        v.types = (0..=MAX_DRAWN)
+            .map(|k| {
+                let mut r = row.clone();
+                r.id = format!("T{k}");
+                r.children = vec![format!("T{}", (k + 1) % (MAX_DRAWN + 1)); 2];
+                r
+            })
+            .collect();
+        let pairs = edges(&v);
+        assert_eq!(pairs.len(), MAX_DRAWN + 1);
+        assert!(pairs
+            .iter()
+            .all(|&(t, c, k)| c == (t + 1) % (MAX_DRAWN + 1) && k == 2));
+        let html = type_graph(&v);
+        assert!(!html.contains("<svg"));
+        assert_eq!(html.matches("<tr>").count(), MAX_DRAWN + 2);
+        assert!(html.contains("<td>T30</td><td style=\"text-align:left\">T0 ×2</td>"));
+    }
 }

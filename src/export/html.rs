@@ -124,7 +124,7 @@ pub fn report_html(
         );
     }
     h += "</ul></div><h2>Type graph</h2>";
-    h += "<p class=\"note\">An arrow from a type to each type of its sub-faces, labelled with how many sub-faces of that type it has.</p>";
+    h += "<p class=\"note\">An arrow from a type to each type of its sub-faces, labelled ×k when it has k &gt; 1 sub-faces of that type (no label: one).</p>";
     h += &type_graph(v);
     h += "<h2>Face types</h2><table class=\"types\"><tr><th>type</th><th>face</th><th>sub-faces</th><th>contribution (exact)</th></tr>";
     for (k, t) in v.types.iter().enumerate() {
