@@ -7,7 +7,7 @@
 //! no font file to load); the image is encoded by `png`. The canvas is premultiplied RGBA, 8 bits
 //! per channel; source-over compositing.
 
-use crate::export::palette::{density_colour, outline_colour, type_colour, Rgb};
+use crate::export::palette::{darker, density_colour, outline_colour, type_colour, Rgb};
 use crate::export::picture::{
     legend_entries, legend_grid, outline, stroke_width, Background, Frame, PictureOptions,
 };
@@ -284,7 +284,7 @@ pub fn write_png_picture<W: Write>(
     );
     let entries = legend_entries(inst);
     let swatch = ch * 0.75;
-    let (columns, rows, column) = legend_grid(&entries, f.width, cw, swatch);
+    let (_, rows, column) = legend_grid(&entries, f.width, cw, swatch);
     let row_h = (ch * 1.25).round();
     let legend_h = if opts.legend {
         (rows as f64 * row_h + ch * 0.75).round() as u32
@@ -329,14 +329,13 @@ pub fn write_png_picture<W: Write>(
         });
     }
     if opts.legend {
-        let _ = columns;
         for (k, (id, colour, face)) in entries.iter().enumerate() {
             let (col, r) = (k / rows, k % rows);
             let x = (ch * 0.4 + col as f64 * column).round() as i64;
             let y = (f64::from(f.height) + ch * 0.4 + r as f64 * row_h).round() as i64;
             let s = swatch.round() as i64;
             let sy = y + ((ch - swatch) / 2.0).round() as i64;
-            canvas.rect(x, sy, s, s, colour.map(|v| (f64::from(v) * 0.45) as u8));
+            canvas.rect(x, sy, s, s, darker(*colour));
             canvas.rect(x + 1, sy + 1, s - 2, s - 2, *colour);
             let tx = x + (swatch * 1.6).round() as i64;
             let used = canvas.text(tx, y, id, size, [0, 0, 0]);

@@ -37,7 +37,12 @@ pub fn type_colour(ty: usize) -> Rgb {
 
 /// The outline colour of a cell of type `ty`: its fill, darkened.
 pub fn outline_colour(ty: usize) -> Rgb {
-    type_colour(ty).map(|c| (f64::from(c) * 0.45).round() as u8)
+    darker(type_colour(ty))
+}
+
+/// A colour darkened to 45% (outlines of cells and legend swatches).
+pub fn darker(c: Rgb) -> Rgb {
+    c.map(|v| (f64::from(v) * 0.45).round() as u8)
 }
 
 /// `#rrggbb`.

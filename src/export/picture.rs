@@ -267,7 +267,7 @@ pub fn write_svg_picture<W: Write>(
     let view = format!("{} {} {} {}", fmt(f.left), fmt(-f.top), fmt(w), fmt(h));
     let entries = legend_entries(inst);
     let (font, row, swatch, char_width) = (13.0, 20.0, 12.0, 7.6);
-    let (columns, rows, column) = legend_grid(&entries, f.width, char_width, swatch);
+    let (_, rows, column) = legend_grid(&entries, f.width, char_width, swatch);
     let legend_h = if opts.legend {
         rows as f64 * row + 12.0
     } else {
@@ -351,7 +351,7 @@ pub fn write_svg_picture<W: Write>(
                 "<g class=\"legend-entry\"><rect x=\"{x}\" y=\"{}\" width=\"{swatch}\" height=\"{swatch}\" fill=\"{}\" stroke=\"{}\"/><text x=\"{}\" y=\"{}\"><tspan font-weight=\"bold\">{}</tspan> {}</text></g>",
                 y + 3.0,
                 hex(*colour),
-                hex(colour.map(|c| (f64::from(c) * 0.45) as u8)),
+                hex(crate::export::palette::darker(*colour)),
                 x + swatch * 1.6,
                 y + 3.0 + swatch - 1.0,
                 xml_escape(id),
@@ -359,12 +359,6 @@ pub fn write_svg_picture<W: Write>(
             );
         }
         s.push_str("</g>\n");
-        // One legend column per `columns`: keep the count in a comment for readers of the file.
-        let _ = writeln!(
-            s,
-            "<!-- legend: {} types in {columns} columns -->",
-            entries.len()
-        );
         out.write_all(s.as_bytes())?;
         writeln!(out, "</svg>")?;
     }
