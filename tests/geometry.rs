@@ -520,7 +520,8 @@ fn density_maps_are_right_and_decode() {
     assert_eq!(raw[1], 0xFF, "corner white");
 }
 
-/// Writes docs/images/<name>.svg (level 3) for every built-in face; the pictures of GEOMETRY.md.
+/// Writes docs/images/<name>.svg (level 3) for every built-in face, colour PNGs of three inputs and
+/// a density map: the pictures of GEOMETRY.md.
 #[test]
 fn pictures_for_the_docs() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/images");
@@ -535,6 +536,31 @@ fn pictures_for_the_docs() {
         write_svg(&i, 3, 4, &mut svg).unwrap();
         std::fs::write(dir.join(format!("{name}.svg")), svg).unwrap();
     }
+    // Colour PNG pictures (with their legends) and a density map.
+    for (name, level, width) in [
+        ("F0", 4, 640),
+        ("triangle-C2", 3, 640),
+        ("delayed-B2-C2", 3, 640),
+    ] {
+        let i = inst(name);
+        let opts = lacuna::export::PictureOptions {
+            width,
+            ..Default::default()
+        };
+        let mut png = Vec::new();
+        lacuna::export::write_png_picture(&i, level, &opts, &mut png).unwrap();
+        std::fs::write(dir.join(format!("{name}-level{level}.png")), png).unwrap();
+    }
+    let i = inst("F0");
+    let map = lacuna::measure::density_map(&i, 4, 64, 4);
+    let pic = lacuna::export::DensityPicture {
+        size: 448,
+        level: 4,
+        window: lacuna::geometry::bounds(&i, 4).size(),
+    };
+    let mut png = Vec::new();
+    lacuna::export::write_density_picture(&map, &pic, &mut png).unwrap();
+    std::fs::write(dir.join("F0-density-level4.png"), png).unwrap();
 }
 
 #[test]

@@ -323,14 +323,20 @@ pub(crate) struct RenderArgs {
     /// Prism thickness for --obj and --stl (exact: 0.05, 1/20).
     #[arg(long, default_value = "0.05")]
     pub(crate) thickness: String,
-    /// Write a PNG raster (black cells on white).
+    /// Write a colour PNG: anti-aliased cells filled by type (the SVG's palette), with a legend.
     #[arg(long, value_name = "OUT.png")]
     pub(crate) png: Option<std::path::PathBuf>,
-    /// PNG size in pixels.
+    /// Width in pixels of the PNG picture, and side of the density map.
     #[arg(long, default_value_t = 1024)]
     pub(crate) size: usize,
-    /// Write the relative-density map of level N as an 8-bit grayscale PNG (one pixel per
-    /// block, black = covered).
+    /// Background of the SVG and PNG pictures.
+    #[arg(long, value_enum, default_value_t = BackgroundArg::White)]
+    pub(crate) background: BackgroundArg,
+    /// Leave the legend (type → colour and notation) out of the SVG and PNG pictures.
+    #[arg(long)]
+    pub(crate) no_legend: bool,
+    /// Write the relative-density map of level N as a colour PNG, --size pixels a side (blue
+    /// empty to red full), with a colour bar, the grid and the mask stated.
     #[arg(long, value_name = "OUT.png")]
     pub(crate) density: Option<std::path::PathBuf>,
     /// Blocks per side of the density map.
@@ -339,6 +345,15 @@ pub(crate) struct RenderArgs {
     /// Write the default template (the targets to edit for --template) to this file.
     #[arg(long, value_name = "FILE")]
     pub(crate) write_template: Option<std::path::PathBuf>,
+}
+
+/// The background of a picture.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub(crate) enum BackgroundArg {
+    /// Opaque white.
+    White,
+    /// Transparent.
+    Transparent,
 }
 
 /// The arguments of `lacuna measure`.

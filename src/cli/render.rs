@@ -13,6 +13,8 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         thickness,
         png,
         size,
+        background,
+        no_legend,
         density,
         density_grid,
         write_template,
@@ -36,12 +38,12 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         ));
     }
     check_density_grid(density_grid, 1)?;
-    if !(1..=16_384).contains(&size) {
+    if !(1..=8192).contains(&size) {
         return Err(Error::OutOfRange {
             flag: "--size",
             value: size.to_string(),
             what: "the PNG size in pixels",
-            range: "from 1 to 16384".into(),
+            range: "from 1 to 8192".into(),
         });
     }
     let thickness = positive_number("--thickness", &thickness)?;
@@ -56,8 +58,23 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         outputs.write(p, |w| w.write_all(text.as_bytes()))?;
         wrote(&outputs, p);
     }
+    let picture = lacuna::export::PictureOptions {
+        width: size as u32,
+        background: match background {
+            BackgroundArg::White => lacuna::export::Background::White,
+            BackgroundArg::Transparent => lacuna::export::Background::Transparent,
+        },
+        legend: !no_legend,
+        ..Default::default()
+    };
     if let Some(p) = &svg {
-        outputs.write(p, |w| lacuna::export::write_svg(&inst, level, segs, w))?;
+        let opts = lacuna::export::PictureOptions {
+            width: 512,
+            ..picture.clone()
+        };
+        outputs.write(p, |w| {
+            lacuna::export::write_svg_picture(&inst, level, &opts, w)
+        })?;
         wrote(&outputs, p);
     }
     if let Some(p) = &json_out {
@@ -77,13 +94,21 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         wrote(&outputs, p);
     }
     if let Some(p) = &png {
-        let raster = lacuna::export::render_raster(&inst, level, size, segs);
-        outputs.write(p, |w| lacuna::export::write_png(&raster, w))?;
+        outputs.write(p, |w| {
+            lacuna::export::write_png_picture(&inst, level, &picture, w)
+        })?;
         wrote(&outputs, p);
     }
     if let Some(p) = &density {
         let map = lacuna::measure::density_map(&inst, level, density_grid, segs);
-        outputs.write(p, |w| lacuna::export::write_density_png(&map, w))?;
+        let pic = lacuna::export::DensityPicture {
+            size: size as u32,
+            level,
+            window: lacuna::geometry::bounds(&inst, segs).size(),
+        };
+        outputs.write(p, |w| {
+            lacuna::export::write_density_picture(&map, &pic, w)
+        })?;
         wrote(&outputs, p);
     }
     Ok(ExitCode::SUCCESS)

@@ -1,13 +1,17 @@
 //! `lacuna report`: one self-contained HTML page with the verdicts and the pictures — the pictures
-//! of levels 0–k, the type graph, the counts table, R and how it was decided, the solver's verdict,
-//! and the plots of ln A and ln P against the level and of the box-counting fit. Everything is
-//! computed elsewhere; this module only lays it out (inline SVG, no script, no external file).
+//! of levels 0–k with the legend of the types, the type graph, the counts table, R and how it was
+//! decided, the solver's verdict, the measures with the raster and level of each, and the plots of
+//! ln A and ln P against the level and of the box-counting fit (axes, ticks, the fitted line's
+//! equation). Everything is computed elsewhere; this module only lays it out (inline SVG, no
+//! script, no external file).
 
+use crate::export::graph::type_graph;
+use crate::export::palette::hex;
+use crate::export::picture::{legend_entries, write_svg_picture, PictureOptions};
+use crate::export::plot::{plot_svg, signed, Plot};
 use crate::export::report::VerifyReport;
-use crate::export::writer::write_svg;
 use crate::geometry::instantiate::Instance;
-use crate::geometry::point::Fit;
-use crate::measure::measurement::MeasureReport;
+use crate::measure::measurement::{LevelMeasure, MeasureReport};
 use std::fmt::Write as _;
 
 /// Escapes text for HTML.
@@ -17,153 +21,54 @@ fn esc(s: &str) -> String {
         .replace('>', "&gt;")
 }
 
-/// A small inline SVG scatter plot of `points` with the fitted line `fit` (if any).
-fn plot(
-    title: &str,
-    xlabel: &str,
-    ylabel: &str,
-    points: &[(f64, f64)],
-    fit: Option<&Fit>,
-) -> String {
-    let (w, h, m) = (360.0, 240.0, 40.0);
-    let finite: Vec<(f64, f64)> = points
-        .iter()
-        .copied()
-        .filter(|(x, y)| x.is_finite() && y.is_finite())
-        .collect();
-    if finite.is_empty() {
-        return format!("<p>{}: no data</p>", esc(title));
-    }
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-    for &(x, y) in &finite {
-        x0 = x0.min(x);
-        x1 = x1.max(x);
-        y0 = y0.min(y);
-        y1 = y1.max(y);
-    }
-    if (x1 - x0).abs() < 1e-12 {
-        x1 = x0 + 1.0;
-    }
-    if (y1 - y0).abs() < 1e-12 {
-        y1 = y0 + 1.0;
-    }
-    let px = |x: f64| m + (x - x0) / (x1 - x0) * (w - 2.0 * m);
-    let py = |y: f64| h - m - (y - y0) / (y1 - y0) * (h - 2.0 * m);
-    let mut s = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-size=\"11\"><rect width=\"{w}\" height=\"{h}\" fill=\"white\" stroke=\"#ccc\"/>\
-         <text x=\"{}\" y=\"14\" text-anchor=\"middle\">{}</text>\
-         <text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\
-         <text x=\"12\" y=\"{}\" transform=\"rotate(-90 12 {})\" text-anchor=\"middle\">{}</text>",
-        w / 2.0,
-        esc(title),
-        w / 2.0,
-        h - 8.0,
-        esc(xlabel),
-        h / 2.0,
-        h / 2.0,
-        esc(ylabel)
-    );
-    let _ = write!(
-        s,
-        "<line x1=\"{m}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#999\"/><line x1=\"{m}\" y1=\"{m}\" x2=\"{m}\" y2=\"{}\" stroke=\"#999\"/>",
-        h - m,
-        w - m,
-        h - m,
-        h - m
-    );
-    if let Some(f) = fit {
-        let _ = write!(
-            s,
-            "<line x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" stroke=\"#c33\" stroke-dasharray=\"4,3\"/>",
-            px(x0),
-            py(f.intercept + f.slope * x0),
-            px(x1),
-            py(f.intercept + f.slope * x1)
-        );
-    }
-    for (x, y) in finite {
-        let _ = write!(
-            s,
-            "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"3\" fill=\"#236\"/>",
-            px(x),
-            py(y)
-        );
-    }
-    s + "</svg>"
-}
-
-/// The type graph as an SVG: the types on a circle, an arrow per distinct (parent, child) pair
-/// labelled with its multiplicity.
-fn type_graph(v: &VerifyReport) -> String {
-    let n = v.types.len();
-    // The types on a circle whose radius grows with their number (a single type sits alone); the
-    // picture is cropped to the nodes plus a margin for self-loops and labels.
-    let r = if n <= 1 {
-        0.0
-    } else {
-        (24.0 * n as f64 / std::f64::consts::PI).clamp(60.0, 260.0)
-    };
-    let margin = 48.0;
-    let (cx, cy) = (r + margin, r + margin);
-    let (w, h) = (2.0 * (r + margin), 2.0 * (r + margin));
-    let pos = |k: usize| {
-        let a = std::f64::consts::TAU * k as f64 / n.max(1) as f64 - std::f64::consts::FRAC_PI_2;
-        (cx + r * a.cos(), cy + r * a.sin())
-    };
-    let mut s = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w:.0}\" height=\"{h:.0}\" font-size=\"11\">\
-         <defs><marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"16\" refY=\"5\" markerWidth=\"6\" markerHeight=\"6\" orient=\"auto\"><path d=\"M0,0 L10,5 L0,10 z\" fill=\"#555\"/></marker></defs>"
-    );
-    for (t, row) in v.types.iter().enumerate() {
-        let mut seen: Vec<(usize, usize)> = Vec::new();
-        for c in &row.children {
-            let c: usize = c.trim_start_matches('T').parse().unwrap_or(0);
-            match seen.iter_mut().find(|(x, _)| *x == c) {
-                Some(e) => e.1 += 1,
-                None => seen.push((c, 1)),
-            }
+/// The solver's verdict for a web page: the counts and the degeneracy check as text, and the
+/// particular solution (every unknown operator's exact matrix) in a collapsed section.
+fn solver_section(s: &crate::constraint::automaton::SolveReport, input: &str) -> String {
+    let mut text = String::new();
+    let mut skipping = false;
+    for line in s.to_text(false).lines() {
+        if line.starts_with("particular solution") {
+            skipping = true;
+            continue;
         }
-        for (c, k) in seen {
-            let ((x0, y0), (x1, y1)) = (pos(t), pos(c));
-            if c == t {
-                let _ = write!(
-                    s,
-                    "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"18\" fill=\"none\" stroke=\"#555\"/><text x=\"{:.1}\" y=\"{:.1}\">{k}</text>",
-                    x0,
-                    y0 - 18.0,
-                    x0 + 14.0,
-                    y0 - 32.0
-                );
-            } else {
-                let _ = write!(
-                    s,
-                    "<line x1=\"{x0:.1}\" y1=\"{y0:.1}\" x2=\"{x1:.1}\" y2=\"{y1:.1}\" stroke=\"#555\" marker-end=\"url(#arrow)\"/><text x=\"{:.1}\" y=\"{:.1}\">{k}</text>",
-                    (x0 + 2.0 * x1) / 3.0,
-                    (y0 + 2.0 * y1) / 3.0
-                );
-            }
+        if skipping && line.starts_with("  ") {
+            continue;
         }
+        skipping = false;
+        text += line;
+        text.push('\n');
     }
-    for (t, row) in v.types.iter().enumerate() {
-        let (x, y) = pos(t);
+    let mut h = format!("<pre>{}</pre>", esc(&text));
+    if s.consistent && !s.particular.is_empty() {
         let _ = write!(
-            s,
-            "<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"12\" fill=\"#def\" stroke=\"#236\"><title>{}</title></circle><text x=\"{x:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}</text>",
-            esc(&row.face),
-            y + 4.0,
-            esc(&row.id)
+            h,
+            "<details class=\"particular\"><summary>A particular solution: the exact matrices of the {} unknown operators ({} unknowns; <code>lacuna solve {} --json</code> prints them as JSON)</summary><div class=\"matrices\">",
+            s.particular.len(),
+            s.unknowns,
+            esc(input)
         );
+        for (name, m) in &s.particular {
+            let _ = write!(h, "<div><code>{} = {}</code></div>", esc(name), esc(m));
+        }
+        h += "</div></details>";
     }
-    s + "</svg>"
+    h
 }
 
 /// The head of the page and its title.
 fn page_head(v: &VerifyReport) -> String {
     format!(
-        "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>lacuna report: {0}</title>\
-         <style>body{{font-family:sans-serif;max-width:1100px;margin:2em auto;line-height:1.4}}\
+        "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\"><title>lacuna report: {0}</title>\
+         <style>body{{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;line-height:1.4}}\
          table{{border-collapse:collapse}}td,th{{border:1px solid #ccc;padding:2px 8px;text-align:right}}\
-         .pics svg{{width:250px;height:250px;border:1px solid #eee;margin:4px}}pre{{background:#f6f6f6;padding:8px;overflow-x:auto}}\
+         .pics figure{{display:inline-block;margin:4px}}.pics figure>svg{{width:250px;height:250px;border:1px solid #eee}}\
+         pre{{background:#f6f6f6;padding:8px;overflow-x:auto}}\
+         ul.legend{{list-style:none;padding:0;margin:4px 0 0 4px;columns:2 300px}}\
+         ul.legend li{{margin:2px 0}}.swatch{{display:inline-block;width:12px;height:12px;border:1px solid #333;margin-right:6px;vertical-align:-1px}}\
+         .plots svg{{margin:4px;border:1px solid #ddd}}\
+         details.particular{{margin:8px 0}}details .matrices{{max-height:24em;overflow:auto;font-size:90%;background:#f6f6f6;padding:8px}}\
+         .note{{color:#555;font-size:92%}}\
          .ok{{color:#063}}.bad{{color:#a00}}</style></head><body><h1>lacuna report: {0}</h1>",
         esc(&v.input)
     )
@@ -182,6 +87,7 @@ pub fn report_html_unverified(v: &VerifyReport) -> String {
 }
 
 /// The HTML page. `pictures_up_to` is the deepest level drawn (pictures of levels 0..=it).
+/// `segments` is the flattening of the measures (the pictures draw the curves themselves).
 pub fn report_html(
     v: &VerifyReport,
     inst: &Instance,
@@ -201,28 +107,53 @@ pub fn report_html(
         verdict.0, verdict.1
     );
     h += "<h2>Pictures</h2><div class=\"pics\">";
+    let opts = PictureOptions {
+        width: 250,
+        legend: false,
+        ..Default::default()
+    };
     for level in 0..=pictures_up_to {
         let mut buf = Vec::new();
-        if write_svg(inst, level, segments, &mut buf).is_ok() {
+        if write_svg_picture(inst, level, &opts, &mut buf).is_ok() {
             let svg = String::from_utf8_lossy(&buf);
-            let body = svg.split_once("?>").map_or(svg.as_ref(), |(_, b)| b);
-            let _ = write!(h, "<figure style=\"display:inline-block\">{body}<figcaption>level {level}</figcaption></figure>");
+            let cells = m
+                .levels
+                .iter()
+                .find(|l| l.level == level)
+                .map(|l| format!(": {} cells", l.cells))
+                .unwrap_or_default();
+            let _ = write!(
+                h,
+                "<figure>{svg}<figcaption>level {level}{cells}</figcaption></figure>"
+            );
         }
     }
-    h += "</div><h2>Type graph</h2>";
-    h += &type_graph(v);
-    h += "<h2>Face types</h2><table><tr><th>type</th><th>face</th><th>sub-faces</th><th>contribution</th></tr>";
-    for t in &v.types {
+    h += "<ul class=\"legend\">";
+    for (id, colour, face) in legend_entries(inst) {
         let _ = write!(
             h,
-            "<tr><td>{}</td><td style=\"text-align:left\">{}</td><td>{}</td><td>{}</td></tr>",
+            "<li class=\"legend-entry\"><span class=\"swatch\" style=\"background:{}\"></span><b>{}</b> {}</li>",
+            hex(colour),
+            esc(&id),
+            esc(&face)
+        );
+    }
+    h += "</ul></div><h2>Type graph</h2>";
+    h += "<p class=\"note\">An arrow from a type to each type of its sub-faces, labelled ×k when it has k &gt; 1 sub-faces of that type (no label: one).</p>";
+    h += &type_graph(v);
+    h += "<h2>Face types</h2><table class=\"types\"><tr><th>type</th><th>face</th><th>sub-faces</th><th>contribution (exact)</th></tr>";
+    for (k, t) in v.types.iter().enumerate() {
+        let _ = write!(
+            h,
+            "<tr><td><span class=\"swatch\" style=\"background:{}\"></span>{}</td><td style=\"text-align:left\">{}</td><td>{}</td><td>{}</td></tr>",
+            hex(crate::export::palette::type_colour(k)),
             esc(&t.id),
             esc(&t.face),
             t.children.len(),
             esc(&t.contribution)
         );
     }
-    h += "</table><h2>Counts</h2><table><tr><th>level</th><th>faces N<sup>C</sup></th><th>lacunas N<sup>L</sup></th><th>R<sub>i</sub></th></tr>";
+    h += "</table><h2>Counts (exact)</h2><table><tr><th>level</th><th>faces N<sup>C</sup></th><th>lacunas N<sup>L</sup></th><th>R<sub>i</sub></th></tr>";
     for l in &v.counts {
         let _ = write!(
             h,
@@ -234,30 +165,33 @@ pub fn report_html(
     if let Some(r) = &v.ratio {
         let _ = write!(
             h,
-            "<h2>Limit ratio R</h2><pre>{}</pre>",
+            "<h2>Limit ratio R (exact)</h2><pre>{}</pre>",
             esc(&crate::export::report::ratio_text(r))
         );
     }
     if let Some(s) = &v.solver {
-        let _ = write!(
-            h,
-            "<h2>Constraint solver</h2><pre>{}</pre>",
-            esc(&s.to_text(false))
-        );
+        h += "<h2>Constraint solver (exact)</h2>";
+        h += &solver_section(s, &v.input);
     }
     h += "<h2>Measures (floating point; holes and components compared with the exact counts)</h2>";
-    h += "<table><tr><th>level</th><th>cells</th><th>area</th><th>perimeter</th><th>holes (exact)</th><th>components</th><th>match</th></tr>";
+    let _ = write!(
+        h,
+        "<p class=\"note\">Area and perimeter from the cells' polygons (Bézier edges flattened to {segments} segments); holes and components counted on the raster of each level, given in pixels per side (a level's raster is fine enough for its smallest hole).</p>"
+    );
+    h += "<table><tr><th>level</th><th>cells</th><th>area A<sub>i</sub></th><th>perimeter P<sub>i</sub></th><th>raster</th><th>holes (exact)</th><th>components (exact)</th><th>match</th></tr>";
     for l in &m.levels {
         let _ = write!(
             h,
-            "<tr><td>{}</td><td>{}</td><td>{:.6}</td><td>{:.6}</td><td>{} ({})</td><td>{}</td><td class=\"{}\">{}</td></tr>",
+            "<tr><td>{}</td><td>{}</td><td>{:.6}</td><td>{:.6}</td><td>{}²</td><td>{} ({})</td><td>{} ({})</td><td class=\"{}\">{}</td></tr>",
             l.level,
             l.cells,
             l.area,
             l.perimeter,
+            l.raster,
             l.holes,
             l.exact.holes,
             l.components,
+            l.exact.components,
             if l.matches { "ok" } else { "bad" },
             if l.matches { "yes" } else { "NO" }
         );
@@ -271,36 +205,94 @@ pub fn report_html(
         rasters.join(", "),
         m.raster
     );
-    let lnrel = |f: &dyn Fn(&crate::measure::measurement::LevelMeasure) -> f64| -> Vec<(f64, f64)> {
+    let lnrel = |f: &dyn Fn(&LevelMeasure) -> f64| -> Vec<(f64, f64)> {
         let base = m.levels.first().map(f).unwrap_or(1.0);
         m.levels
             .iter()
             .map(|l| (f64::from(l.level), (f(l) / base).ln()))
             .collect()
     };
+    let (kmin, kmax) = (
+        m.box_counts.first().map_or(0, |c| c.0),
+        m.box_counts.last().map_or(0, |c| c.0),
+    );
+    let levels = format!("levels 0–{}", m.level);
+    let box_where = format!(
+        "level {}, raster {}², boxes of side 2⁻ᵏ of the window, k = {kmin}…{kmax}",
+        m.level, m.raster
+    );
     let _ = write!(
         h,
-        "<p>F<sub>A</sub> = {:.6}, F<sub>P</sub> = {:.6}, box-counting dimension {:.4} (fit residual {:.4})</p><div>{}{}{}</div>",
+        "<p>F<sub>A</sub> = {:.6}, F<sub>P</sub> = {:.6} (slopes of the fits over {levels}); box-counting dimension {:.4} (fit residual {:.4}; {box_where})</p><div class=\"plots\">{}{}{}</div>",
         m.area_factor,
         m.perimeter_factor,
         m.box_dimension,
         m.box_fit.residual,
-        plot("ln(A_i / A_0)", "level i", "ln A", &lnrel(&|l| l.area), Some(&m.area_fit)),
-        plot("ln(P_i / P_0)", "level i", "ln P", &lnrel(&|l| l.perimeter), Some(&m.perimeter_fit)),
-        plot(
-            "box counting",
-            "ln(1/ε)",
-            "ln N",
-            &m.box_counts
+        plot_svg(&Plot {
+            title: "ln(Aᵢ/A₀) against the level i",
+            subtitle: &format!("area of the cells, {levels}"),
+            xlabel: "level i",
+            ylabel: "ln(Aᵢ/A₀)",
+            points: &lnrel(&|l| l.area),
+            fit: Some((
+                &m.area_fit,
+                format!(
+                    "ln(Aᵢ/A₀) ≈ {}·i {};  F_A = e^slope = {:.4}",
+                    signed(m.area_fit.slope, 4),
+                    signed_term(m.area_fit.intercept),
+                    m.area_factor
+                )
+            )),
+        }),
+        plot_svg(&Plot {
+            title: "ln(Pᵢ/P₀) against the level i",
+            subtitle: &format!("perimeter of the union, {levels}"),
+            xlabel: "level i",
+            ylabel: "ln(Pᵢ/P₀)",
+            points: &lnrel(&|l| l.perimeter),
+            fit: Some((
+                &m.perimeter_fit,
+                format!(
+                    "ln(Pᵢ/P₀) ≈ {}·i {};  F_P = e^slope = {:.4}",
+                    signed(m.perimeter_fit.slope, 4),
+                    signed_term(m.perimeter_fit.intercept),
+                    m.perimeter_factor
+                )
+            )),
+        }),
+        plot_svg(&Plot {
+            title: "box counting: ln N(ε) against ln(1/ε)",
+            subtitle: &box_where,
+            xlabel: "ln(1/ε)",
+            ylabel: "ln N(ε)",
+            points: &m
+                .box_counts
                 .iter()
                 .map(|&(k, n)| (f64::from(k) * std::f64::consts::LN_2, (n as f64).ln()))
                 .collect::<Vec<_>>(),
-            Some(&m.box_fit)
-        )
+            fit: Some((
+                &m.box_fit,
+                format!(
+                    "ln N ≈ {}·ln(1/ε) {};  dimension {:.4}",
+                    signed(m.box_fit.slope, 4),
+                    signed_term(m.box_fit.intercept),
+                    m.box_dimension
+                )
+            )),
+        })
     );
     for f in &m.failures {
         let _ = write!(h, "<p class=\"bad\">{}</p>", esc(f));
     }
     h += "</body></html>\n";
     h
+}
+
+/// `+ 0.1234` or `− 0.1234`.
+fn signed_term(x: f64) -> String {
+    if x < 0.0 {
+        format!("− {:.4}", -x)
+    } else {
+        format!("+ {x:.4}")
+    }
 }

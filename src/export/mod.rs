@@ -1,19 +1,30 @@
-//! What leaves lacuna: SVG, PNG, OBJ, STL and JSON writers, the text and JSON reports of the
-//! pipeline, the self-contained HTML report, and the generated automaton in lacuna's automaton
-//! format and in the MODITERE Python format of the seed authors' AutoFrac2D tool.
+//! What leaves lacuna: SVG and colour PNG pictures with legends, density maps, OBJ, STL and JSON
+//! writers, the text and JSON reports of the pipeline, the self-contained HTML report, and the
+//! generated automaton in lacuna's automaton format and in the MODITERE Python format of the seed
+//! authors' AutoFrac2D tool.
 //!
 //! Architecture invariant: formats what the layers below computed; decides nothing itself. Only the
 //! command line sits above it.
 
 pub(crate) mod automaton_text;
+pub(crate) mod bitmap;
+pub(crate) mod graph;
 pub(crate) mod html;
 pub(crate) mod moditere;
+pub(crate) mod palette;
+pub(crate) mod picture;
+pub(crate) mod plot;
 pub(crate) mod report;
 pub(crate) mod volume_report;
 pub(crate) mod writer;
 
 pub use automaton_text::automaton_text;
+pub use bitmap::{write_density_picture, write_png_picture, DensityPicture};
 pub use html::{report_html, report_html_unverified};
+pub use palette::{density_colour, hex, lightness, outline_colour, type_colour, Rgb, MUTED};
+pub use picture::{
+    legend_entries, outline, stroke_width, write_svg_picture, Background, Frame, PictureOptions,
+};
 pub use moditere::moditere_text;
 pub use report::{
     closure_json, closure_report, counts_json, counts_table, ratio_of, ratio_text, verify_report,

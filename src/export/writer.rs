@@ -1,19 +1,17 @@
 //! Exports of the level-n cells (SPEC §7): SVG, JSON, Wavefront OBJ prisms and PNG.
 //!
-//! Every format is written as text (or bytes) by hand, streaming: the formats needed are small
-//! (SVG paths, a JSON array, OBJ `v`/`f` lines, a 1-bit PNG with stored deflate blocks), so no
-//! crate is needed, and the output is deterministic (fixed number formatting, depth-first order).
+//! JSON, OBJ and STL are written as text by hand, streaming: the formats are small (a JSON array,
+//! OBJ `v`/`f` lines), and the output is deterministic (fixed number formatting, depth-first
+//! order). The pictures are in [`crate::export::picture`] (SVG) and [`crate::export::bitmap`]
+//! (colour PNG); here remain the 1-bit coverage PNG of a raster and the grayscale density PNG
+//! (one pixel per block), written with stored deflate blocks.
 
+use crate::export::picture::{write_svg_picture, PictureOptions};
 use crate::geometry::instantiate::Instance;
 use crate::geometry::point::{signed_area, Point, Raster};
-use crate::geometry::raster::{bounds, rasterize};
+use crate::geometry::raster::rasterize;
 use crate::measure::DensityMap;
 use std::io::{self, Write};
-
-/// A few fill colours, one per face type (cycled).
-const PALETTE: [&str; 6] = [
-    "#2f6690", "#3a7ca5", "#81c3d7", "#16425b", "#d9dcd6", "#5c8001",
-];
 
 fn fmt(x: f64) -> String {
     let s = format!("{x:.6}");
@@ -24,68 +22,12 @@ fn fmt(x: f64) -> String {
     }
 }
 
-/// Writes the cells of `level` as an SVG picture: one `<path>` per cell, filled by face type;
-/// lacunas and notches stay open (they are not covered by any cell). The viewBox fits the level-0
-/// faces with a 2% margin; y points up in the plane and down in SVG, so y is negated.
-pub fn write_svg<W: Write>(
-    inst: &Instance,
-    level: u32,
-    segments: usize,
-    mut out: W,
-) -> io::Result<()> {
-    let bb = bounds(inst, segments);
-    let m = 0.02 * bb.size();
-    let (x0, y0) = (bb.min[0] - m, -bb.max[1] - m);
-    let (w, h) = (
-        bb.max[0] - bb.min[0] + 2.0 * m,
-        bb.max[1] - bb.min[1] + 2.0 * m,
-    );
-    writeln!(
-        out,
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"{} {} {} {}\" width=\"512\" height=\"{}\">",
-        fmt(x0),
-        fmt(y0),
-        fmt(w),
-        fmt(h),
-        (512.0 * h / w).round()
-    )?;
-    writeln!(
-        out,
-        "<title>{} level {level}</title>",
-        xml_escape(&inst.name)
-    )?;
-    writeln!(
-        out,
-        "<g stroke=\"#000\" stroke-width=\"{}\">",
-        fmt(bb.size() / 2000.0)
-    )?;
-    let mut result = Ok(());
-    inst.walk(level, false, |c| {
-        if result.is_err() {
-            return;
-        }
-        let poly = inst.cell_polygon(c.ty, c.points, segments);
-        let mut d = String::with_capacity(poly.len() * 24);
-        for (i, p) in poly.iter().enumerate() {
-            d.push_str(if i == 0 { "M" } else { " L" });
-            d.push_str(&fmt(p[0]));
-            d.push(' ');
-            d.push_str(&fmt(-p[1]));
-        }
-        result = writeln!(
-            out,
-            "<path fill=\"{}\" d=\"{d} Z\"/>",
-            PALETTE[c.ty % PALETTE.len()]
-        );
-    });
-    result?;
-    writeln!(out, "</g>\n</svg>")
-}
-
-fn xml_escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
+/// Writes the cells of `level` as an SVG picture 512 pixels wide with its legend, on white:
+/// [`write_svg_picture`] with the default [`PictureOptions`]. Edges are drawn as the curves
+/// themselves (or flattened to 0.1 pixel), so `segments` is no longer used; it stays for callers.
+pub fn write_svg<W: Write>(inst: &Instance, level: u32, segments: usize, out: W) -> io::Result<()> {
+    let _ = segments;
+    write_svg_picture(inst, level, &PictureOptions::default(), out)
 }
 
 /// Writes the cells of `level` as JSON: `{"name", "level", "cells": [{"type", "polygon": [[x, y],

@@ -6,6 +6,7 @@
 //! (topology, algebra, constraint, input) and never measures, exports or the command line.
 
 pub(crate) mod choose;
+pub(crate) mod flatten;
 pub(crate) mod instantiate;
 pub(crate) mod lp;
 pub(crate) mod options;
@@ -16,6 +17,7 @@ pub(crate) mod template;
 pub(crate) mod template_file;
 
 pub use choose::{project_exact, Choice, ExactColumn, Projection};
+pub use flatten::flatten_bezier;
 pub use instantiate::{instantiate, Cell, EdgeSlot, Instance};
 pub use lp::{parse_goal, Goal};
 pub use options::{GeometryError, InstantiateOptions};

@@ -1,0 +1,204 @@
+// Pictures (issue #22): the colour PNG is read back and its pixels checked — each type's colour
+// inside its cells, the background in a hole, the legend below the picture; the density picture
+// shows the colour of each block; the SVG draws the curves themselves and has one legend entry per
+// type; outlines scale with the cells of the level.
+
+use lacuna::export::{
+    density_colour, outline, stroke_width, type_colour, write_density_picture, write_png_picture,
+    write_svg_picture, Background, DensityPicture, Frame, PictureOptions,
+};
+use lacuna::geometry::{instantiate, signed_area, Instance, InstantiateOptions, Point};
+use lacuna::input::load_input;
+
+fn inst(name: &str) -> Instance {
+    let input = load_input(name).unwrap_or_else(|e| panic!("{name}: {e}"));
+    instantiate(&input, &InstantiateOptions::default()).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// Decodes an 8-bit RGBA PNG: (width, height, pixels).
+fn decode(bytes: &[u8]) -> (u32, u32, Vec<[u8; 4]>) {
+    let decoder = png::Decoder::new(std::io::Cursor::new(bytes));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    assert_eq!(info.color_type, png::ColorType::Rgba);
+    assert_eq!(info.bit_depth, png::BitDepth::Eight);
+    let px = buf[..info.buffer_size()]
+        .chunks(4)
+        .map(|p| [p[0], p[1], p[2], p[3]])
+        .collect();
+    (info.width, info.height, px)
+}
+
+fn centroid(poly: &[Point]) -> Point {
+    let a = signed_area(poly);
+    let (mut cx, mut cy) = (0.0, 0.0);
+    for k in 0..poly.len() {
+        let (p, q) = (poly[k], poly[(k + 1) % poly.len()]);
+        let w = p[0] * q[1] - q[0] * p[1];
+        cx += (p[0] + q[0]) * w;
+        cy += (p[1] + q[1]) * w;
+    }
+    [cx / (6.0 * a), cy / (6.0 * a)]
+}
+
+/// Distance from `p` to the polygon's boundary, and whether `p` is inside (even-odd).
+fn inside_by(poly: &[Point], p: Point) -> (bool, f64) {
+    let mut inside = false;
+    let mut d = f64::INFINITY;
+    for k in 0..poly.len() {
+        let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
+        if (a[1] > p[1]) != (b[1] > p[1])
+            && p[0] < a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0])
+        {
+            inside = !inside;
+        }
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        let t = (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (dx * dx + dy * dy)).clamp(0.0, 1.0);
+        d = d.min((p[0] - a[0] - t * dx).hypot(p[1] - a[1] - t * dy));
+    }
+    (inside, d)
+}
+
+/// Samples every cell of `level` well inside (at its centroid, when that lies at least 3 pixels
+/// plus the outline inside the cell) and checks the pixel has the type's colour exactly; returns
+/// the types seen.
+fn check_cell_colours(i: &Instance, level: u32, width: u32) -> Vec<usize> {
+    let opts = PictureOptions {
+        width,
+        ..Default::default()
+    };
+    let mut bytes = Vec::new();
+    write_png_picture(i, level, &opts, &mut bytes).unwrap();
+    let (w, h, px) = decode(&bytes);
+    let f = Frame::of(i, width);
+    assert_eq!(w, width);
+    assert!(h > f.height, "the legend is below the picture");
+    let stroke = stroke_width(i, level, f.scale) * f.scale;
+    let mut seen = Vec::new();
+    let mut sampled = 0;
+    i.walk(level, false, |c| {
+        let poly = outline(i, c.ty, c.points, 0.01 / f.scale);
+        let p = centroid(&poly);
+        let (inside, d) = inside_by(&poly, p);
+        if !inside || d * f.scale < 3.0 + stroke {
+            return;
+        }
+        let [x, y] = f.to_pixel(p);
+        let got = px[y as usize * w as usize + x as usize];
+        let want = type_colour(c.ty);
+        assert_eq!(
+            got,
+            [want[0], want[1], want[2], 255],
+            "{} level {level}: a T{} cell at pixel ({x:.0}, {y:.0})",
+            i.name,
+            c.ty
+        );
+        sampled += 1;
+        if !seen.contains(&c.ty) {
+            seen.push(c.ty);
+        }
+    });
+    assert!(sampled > 0, "{}: no cell sampled", i.name);
+    seen.sort();
+    seen
+}
+
+#[test]
+fn png_cells_have_their_types_colour() {
+    // triangle-C2 at level 2 has cells of T1, T2 and T3; F0 at level 2 only T0.
+    let t = inst("triangle-C2");
+    assert_eq!(check_cell_colours(&t, 2, 600), vec![1, 2, 3]);
+    assert_eq!(check_cell_colours(&inst("F0"), 2, 400), vec![0]);
+}
+
+#[test]
+fn png_hole_shows_the_background_white_or_transparent() {
+    // F0 level 1: the central lacuna contains the centre of the start face.
+    let i = inst("F0");
+    let mut centre = [0.0, 0.0];
+    i.walk(0, false, |c| {
+        centre = centroid(&outline(&i, c.ty, c.points, 1e-4))
+    });
+    for (background, want) in [
+        (Background::White, [255, 255, 255, 255]),
+        (Background::Transparent, [0, 0, 0, 0]),
+    ] {
+        let opts = PictureOptions {
+            width: 300,
+            background,
+            legend: false,
+            ..Default::default()
+        };
+        let mut bytes = Vec::new();
+        write_png_picture(&i, 1, &opts, &mut bytes).unwrap();
+        let (w, h, px) = decode(&bytes);
+        let f = Frame::of(&i, 300);
+        assert_eq!(h, f.height, "no legend");
+        let [x, y] = f.to_pixel(centre);
+        assert_eq!(
+            px[y as usize * w as usize + x as usize],
+            want,
+            "{background:?}"
+        );
+        // A corner of the picture is background too; some pixel is covered.
+        assert_eq!(px[0], want);
+        assert!(px.iter().any(|p| p[3] == 255 && p[..3] == type_colour(0)));
+    }
+}
+
+#[test]
+fn density_picture_colours_each_block_and_has_a_colour_bar() {
+    let i = inst("F0");
+    let map = lacuna::measure::density_map(&i, 2, 16, 4);
+    let pic = DensityPicture {
+        size: 320,
+        level: 2,
+        window: lacuna::geometry::bounds(&i, 4).size(),
+    };
+    let mut bytes = Vec::new();
+    write_density_picture(&map, &pic, &mut bytes).unwrap();
+    let (w, h, px) = decode(&bytes);
+    assert!(w > 320 && h > 320, "{w}×{h}");
+    // Blocks are 20 × 20 pixels; the map starts at the margin m = 8 (half the 16-pixel text).
+    let m = 8;
+    for (row, col) in [(0, 0), (8, 8), (5, 11), (15, 15)] {
+        let (x, y) = (m + col * 20 + 10, m + row * 20 + 10);
+        let c = density_colour(map.values[row * 16 + col]);
+        assert_eq!(
+            px[y * w as usize + x],
+            [c[0], c[1], c[2], 255],
+            "block {row},{col}"
+        );
+    }
+    // The colour bar: red (1) at its top, blue (0) at its bottom.
+    let bx = m + 320 + m + 4;
+    let near = |p: [u8; 4], c: [u8; 3]| (0..3).all(|k| p[k].abs_diff(c[k]) <= 4);
+    assert!(near(px[(m + 1) * w as usize + bx], density_colour(1.0)));
+    assert!(near(px[(m + 318) * w as usize + bx], density_colour(0.0)));
+}
+
+#[test]
+fn svg_has_curves_a_legend_per_type_and_outlines_relative_to_the_cells() {
+    let i = inst("triangle-C2");
+    let mut svg = Vec::new();
+    write_svg_picture(&i, 2, &PictureOptions::default(), &mut svg).unwrap();
+    let svg = String::from_utf8(svg).unwrap();
+    assert_eq!(
+        svg.matches("class=\"legend-entry\"").count(),
+        i.types.types.len()
+    );
+    for (t, ty) in i.types.types.iter().enumerate() {
+        assert!(svg.contains(&format!(
+            "<tspan font-weight=\"bold\">T{t}</tspan> {}",
+            ty.face
+        )));
+    }
+    // B2 edges are quadratic Bézier curves, drawn as such.
+    assert!(svg.contains(" Q"), "no quadratic curve");
+    // Outlines: thinner at deeper levels, none when the cells are a few pixels wide.
+    let f = Frame::of(&i, 512);
+    let (w1, w3) = (stroke_width(&i, 1, f.scale), stroke_width(&i, 3, f.scale));
+    assert!(w1 > 2.0 * w3 && w3 > 0.0, "{w1} {w3}");
+    assert_eq!(stroke_width(&i, 7, f.scale), 0.0);
+}
