@@ -106,6 +106,8 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
         max_delay: l.max_delay,
         max_digits: l.max_digits,
         max_unknowns: l.max_unknowns,
+        max_memory_mb: l.max_memory,
+        max_matrix: l.max_matrix,
     };
     match cli.command {
         Command::Verify(a) => verify::run(a, &limits),

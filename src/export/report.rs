@@ -473,7 +473,8 @@ pub fn counts_table(levels: &[LevelCount]) -> String {
 pub fn ratio_decimal(r: &BigRational, digits: usize) -> String {
     use num_traits::Signed;
     let scale = num_bigint::BigInt::from(10u32).pow(digits as u32);
-    let scaled = (r.abs() * BigRational::from_integer(scale.clone())).to_integer();
+    // In integers: a rational product would reduce by a gcd of numbers of thousands of digits.
+    let scaled = r.numer().abs() * &scale / r.denom();
     let int = &scaled / &scale;
     let frac = (&scaled % &scale).to_string();
     let sign = if r.is_negative() { "-" } else { "" };
