@@ -676,6 +676,27 @@ mod tests {
     }
 
     #[test]
+    fn zero_digits_and_long_expansions() {
+        // Issue #20 item 1: no digit after the point is the integer part, not an underflow.
+        assert_eq!(sqrt2().decimal(0), "1");
+        assert_eq!(RealAlgebraic::rational(q(-7, 2)).decimal(0), "-3");
+        // 2,000 digits of √2 against an independent integer square root, floor(√(2·10^4000)):
+        // the Newton refinement must agree with it digit for digit.
+        let ten = num_bigint::BigUint::from(10u32).pow(2000);
+        let isqrt = (num_bigint::BigUint::from(2u32) * &ten * &ten).sqrt();
+        let digits = isqrt.to_string();
+        let want = format!("{}.{}", &digits[..1], &digits[1..]);
+        assert_eq!(sqrt2().decimal(2000), want);
+        // A refined interval is certified: the root stays inside, the width is met.
+        let mut r = sqrt2();
+        let width = q(1, 1) / BigRational::from_integer(BigInt::from(10).pow(500));
+        r.refine_to(&width);
+        let (lo, hi) = r.interval();
+        assert!(hi - lo <= width);
+        assert!(lo * lo < q(2, 1) && hi * hi > q(2, 1));
+    }
+
+    #[test]
     fn golden_ratio_forms() {
         let phi = RealAlgebraic::largest_root(&Poly::from_ints(&[-1, -1, 1])).unwrap();
         assert_eq!(phi.to_string(), "(1 + sqrt(5))/2");

@@ -613,9 +613,56 @@ mod tests {
         assert!(ts
             .types
             .iter()
-            .all(|t| t.face.boundary.len() <= b.max_length));
+            .all(|t| BigUint::from(t.face.boundary.len()) <= b.max_length));
         let ts = closed("B2 C2^3 | C2 B2 B2 | A1 | 3");
         assert_eq!(ts.types[0].face.delay, 3);
         assert_eq!(ts.types[1].face.delay, 2);
+    }
+
+    /// The shapes agree with the delayed chain built step by step (the old way), on faces with
+    /// delayed edges, delayed E and every kind of edge.
+    #[test]
+    fn chain_shapes_match_the_built_chain() {
+        for s in [
+            "B2 C2 | B2 B2 B2 | A1 | 6",
+            "B3 C2^3 B2^2 C3 | C2 B2 C2^2 | A1 | 5",
+            "C2^4 C2^4 B2 | B2^2 C3 C2^3 | A3 | 4",
+            "B2^5 B2^5 | C2 B2 B2 | A1 | 3",
+            "C3 B2^2 B2^2 B2^2 C2 | B2 B2 C2^2 | A1 | 4",
+        ] {
+            let f = Face::parse(s).unwrap();
+            let p = f.params;
+            let mut cur = f.boundary.clone();
+            for _ in 1..f.delay {
+                let mut next = Vec::new();
+                for e in &cur {
+                    for k in 0..e.piece_count() {
+                        next.push(e.piece());
+                        if k + 1 < e.piece_count()
+                            && e.inner_junction() == Some(crate::topology::edge::JunctionKind::Gap)
+                        {
+                            next.extend([p.ec, p.ec]);
+                        }
+                    }
+                }
+                cur = next;
+            }
+            let mut table = ShapeTable::new(p.ec);
+            let shape = f
+                .boundary
+                .iter()
+                .fold(Shape::empty(), |w, e| w.then(&table.after(*e, f.delay - 1)));
+            assert_eq!(shape.len, BigUint::from(cur.len()), "{s}");
+            // The longest cyclic stretch of delayed edges, by a direct scan of two turns.
+            let n = cur.len();
+            let (mut best, mut run) = (0usize, 0usize);
+            for i in 0..2 * n {
+                run = if cur[i % n].is_delayed() { run + 1 } else { 0 };
+                best = best.max(run.min(n));
+            }
+            assert_eq!(shape.cyclic_stretch(), BigUint::from(best), "{s}");
+            let b = Bound::stated(std::slice::from_ref(&f)).unwrap();
+            assert_eq!(b.chain_length, BigUint::from(n), "{s}");
+        }
     }
 }
