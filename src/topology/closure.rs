@@ -290,7 +290,7 @@ impl Bound {
                 limit: limits.max_boundary.to_string(),
                 detail: if self.chain_length > BigUint::from(limits.max_boundary) {
                     format!(
-                        "a delayed start face has a boundary of {} edges; raise --max-boundary to at least that",
+                        "the delayed chain of a start face reaches {} edges; raise --max-boundary to at least that",
                         self.chain_length
                     )
                 } else {
