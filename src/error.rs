@@ -94,6 +94,19 @@ pub enum Error {
         /// The command-line flag that sets it.
         flag: &'static str,
     },
+    /// The stated bound proves a closure finite, but larger than a configured limit (SPEC §4):
+    /// a resource bound, not a verdict, so never reported as a runaway.
+    #[error("closes: {proved} proved, above {flag} {limit} ({detail})")]
+    ProvedAboveLimit {
+        /// What the bound proves, in words (`boundary length ≤ 285`).
+        proved: String,
+        /// The limit's flag.
+        flag: &'static str,
+        /// The limit in force.
+        limit: String,
+        /// What was met and what to raise.
+        detail: String,
+    },
     /// A command that needs a closed closure met a runaway one.
     #[error("the closure did not close: {reason}; the witness chain has {chain} types (`lacuna closure` shows it)")]
     Runaway {
@@ -188,7 +201,7 @@ impl Error {
         match self {
             Error::Syntax(d) => d.code,
             Error::NoSpoke { .. } => "E0401",
-            Error::Limit { .. } => "E0501",
+            Error::Limit { .. } | Error::ProvedAboveLimit { .. } => "E0501",
             Error::OutOfRange { .. } => "E0503",
             Error::Usage(_) => "E0504",
             Error::Io { .. } => "E0601",
@@ -205,6 +218,7 @@ impl Error {
             Error::Syntax(d) => d.span.as_ref(),
             Error::NoSpoke { .. }
             | Error::Limit { .. }
+            | Error::ProvedAboveLimit { .. }
             | Error::OutOfRange { .. }
             | Error::Usage(_)
             | Error::Io { .. }

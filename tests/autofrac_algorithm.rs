@@ -104,7 +104,7 @@ proptest! {
         if let Ok(Closure::Closed(ts)) = close(&f, &limits) {
             let bound = ts.bound.clone().expect("AF1 is built in: a bound is stated");
             for t in &ts.types {
-                prop_assert!(t.face.boundary.len() <= bound.max_length, "{} in the closure of {}", t.face, f);
+                prop_assert!(num_bigint::BigUint::from(t.face.boundary.len()) <= bound.max_length, "{} in the closure of {}", t.face, f);
             }
             prop_assert!(num_bigint::BigUint::from(ts.types.len()) <= bound.max_types);
         } else if let Ok(Closure::Runaway(r)) = close(&f, &limits) {

@@ -90,7 +90,8 @@ fn by_recursion(ts: &TypeSet, levels: usize) -> Vec<Vec<(BigUint, BigRational)>>
 }
 
 fn wide_limits(f: &Face) -> Limits {
-    let bound_len = Bound::stated(std::slice::from_ref(f)).map_or(0, |b| b.max_length);
+    let bound_len = Bound::stated(std::slice::from_ref(f))
+        .map_or(0, |b| usize::try_from(&b.max_length).unwrap_or(usize::MAX));
     Limits {
         max_boundary: bound_len.max(48),
         max_types: 3000,

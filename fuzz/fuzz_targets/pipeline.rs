@@ -18,6 +18,8 @@ fuzz_target!(|data: &[u8]| {
         max_delay: 4,
         max_digits: 100,
         max_unknowns: 100_000,
+        max_memory_mb: 256,
+        max_matrix: 8,
     };
     if let Ok(lacuna::topology::Closure::Closed(ts)) = lacuna::topology::close(&face, &limits) {
         ts.verify().expect("closure identities");

@@ -120,23 +120,64 @@ impl RealAlgebraic {
 
     /// Halves the isolating interval (no-op for rationals).
     pub fn refine(&mut self) {
-        self.refine_to(&((&self.hi - &self.lo) / two()));
-    }
-
-    /// Refines by bisection until the interval is no wider than `width`.
-    pub fn refine_to(&mut self, width: &BigRational) {
-        if self.degree() == 1 || &(&self.hi - &self.lo) <= width {
+        if self.degree() == 1 {
             return;
         }
         let ints = self.min_poly.primitive_int();
         let s_lo = sign_at_int(&ints, &self.lo);
-        while &(&self.hi - &self.lo) > width {
-            let mid = (&self.lo + &self.hi) / two();
-            // No rational root: the sign at `mid` is never zero.
-            if sign_at_int(&ints, &mid) == s_lo {
-                self.lo = mid;
-            } else {
-                self.hi = mid;
+        self.bisect(&ints, s_lo);
+    }
+
+    /// One bisection step; `s_lo` is the sign of the minimal polynomial at `lo`.
+    fn bisect(&mut self, ints: &[BigInt], s_lo: i32) {
+        let mid = (&self.lo + &self.hi) / two();
+        // No rational root: the sign at `mid` is never zero.
+        if sign_at_int(ints, &mid) == s_lo {
+            self.lo = mid;
+        } else {
+            self.hi = mid;
+        }
+    }
+
+    /// Refines until the interval is no wider than `width`. Newton's iteration in fixed point
+    /// with doubling precision reaches the width in O(log) steps of growing size; the result is
+    /// certified, not trusted: the minimal polynomial must change sign across the new interval,
+    /// which must lie inside the old one (whose only root is this number). When that fails (the
+    /// start point is not yet in Newton's basin) a few bisection steps shrink the interval and
+    /// Newton is tried again, so the refinement always ends. Bisection alone costs a full
+    /// polynomial evaluation on ever longer rationals per bit: cubic in the number of digits.
+    pub fn refine_to(&mut self, width: &BigRational) {
+        if self.degree() == 1 || !wider(&self.lo, &self.hi, width) {
+            return;
+        }
+        let ints = self.min_poly.primitive_int();
+        let s_lo = sign_at_int(&ints, &self.lo);
+        // 2^-k ≤ width/2, so an interval x ± 2^-k is no wider than `width`.
+        let k = (width.denom().bits() + 2)
+            .saturating_sub(width.numer().bits())
+            .max(1);
+        loop {
+            if !wider(&self.lo, &self.hi, width) {
+                return;
+            }
+            let current = &self.hi - &self.lo;
+            let have = current
+                .denom()
+                .bits()
+                .saturating_sub(current.numer().bits());
+            // Close to the goal, bisection is as cheap as Newton.
+            if k.saturating_sub(have) > 16 {
+                if let Some((lo, hi)) = newton_interval(&ints, &self.lo, &self.hi, have, k) {
+                    self.lo = lo;
+                    self.hi = hi;
+                    return;
+                }
+            }
+            for _ in 0..16 {
+                if !wider(&self.lo, &self.hi, width) {
+                    return;
+                }
+                self.bisect(&ints, s_lo);
             }
         }
     }
@@ -203,6 +244,88 @@ impl fmt::Display for RealAlgebraic {
     }
 }
 
+/// Exact comparison of two rationals by cross-multiplication (denominators are positive).
+/// `num_rational`'s own `Ord` expands continued fractions recursively, which on numbers of
+/// thousands of digits is far slower than two products.
+fn cmp_rat(x: &BigRational, y: &BigRational) -> Ordering {
+    (x.numer() * y.denom()).cmp(&(y.numer() * x.denom()))
+}
+
+/// True when the interval `[lo, hi]` is wider than `width`.
+fn wider(lo: &BigRational, hi: &BigRational, width: &BigRational) -> bool {
+    // hi − lo > width ⟺ (hi·dl − lo·dh)·dw > nw·dl·dh, all denominators positive.
+    let (dl, dh, dw) = (lo.denom(), hi.denom(), width.denom());
+    let diff = hi.numer() * dl - lo.numer() * dh;
+    diff * dw > width.numer() * dl * dh
+}
+
+/// `2^(p·deg)·f(m/2^p)` and `2^(p·(deg−1))·f'(m/2^p)` for integer coefficients `f` (low degree
+/// first): the polynomial and its derivative at a fixed-point number, in integers.
+fn eval_fixed(f: &[BigInt], m: &BigInt, p: u64) -> (BigInt, BigInt) {
+    let d = f.len() - 1;
+    let (mut v, mut dv) = (BigInt::zero(), BigInt::zero());
+    for (i, a) in f.iter().enumerate().rev() {
+        // v = Σ a_i m^i 2^(p(d−i)); dv = Σ i a_i m^(i−1) 2^(p(d−i)).
+        let scaled = a << (p * (d - i) as u64);
+        if i >= 1 {
+            dv = dv * m + &scaled * BigInt::from(i);
+        }
+        v = v * m + scaled;
+    }
+    // dv was accumulated with one factor m fewer per term but the same powers of two: its
+    // terms carry 2^(p(d−i)) = 2^(p(d−1−(i−1))), which is the derivative's scaling.
+    (v, dv)
+}
+
+/// Newton's iteration for the root of `f` in `(lo, hi)` (width about `2^-have`), to an interval
+/// `x ± 2^-k` certified by a sign change of `f` inside `(lo, hi)`; `None` when it does not certify.
+fn newton_interval(
+    f: &[BigInt],
+    lo: &BigRational,
+    hi: &BigRational,
+    have: u64,
+    k: u64,
+) -> Option<(BigRational, BigRational)> {
+    let target = k + 8;
+    let mut p = (have + 8).clamp(32, target);
+    let mid = (lo + hi) / two();
+    let mut m = floor_scaled(&mid, p);
+    let mut last = false;
+    loop {
+        let (v, dv) = eval_fixed(f, &m, p);
+        if dv.is_zero() {
+            return None;
+        }
+        // x − f(x)/f'(x), in units of 2^-p: m − v/dv (rounded).
+        let (q, r) = v.div_mod_floor(&dv);
+        let round_up = (&r << 1u32).abs() >= dv.abs();
+        m -= if round_up { q + 1 } else { q };
+        if last {
+            break;
+        }
+        if p == target {
+            last = true;
+        } else {
+            let next = (2 * p).min(target);
+            m <<= next - p;
+            p = next;
+        }
+    }
+    // The candidate interval m/2^p ± 2^-k, checked exactly.
+    let delta = BigInt::one() << (p - k);
+    let (a, b) = (&m - &delta, &m + &delta);
+    let sa = eval_fixed(f, &a, p).0.sign();
+    let sb = eval_fixed(f, &b, p).0.sign();
+    let scale = BigInt::one() << p;
+    let (a, b) = (
+        BigRational::new(a, scale.clone()),
+        BigRational::new(b, scale),
+    );
+    let inside = cmp_rat(&a, lo) != Ordering::Less && cmp_rat(&b, hi) != Ordering::Greater;
+    let opposite = sa != sb && sa != num_bigint::Sign::NoSign && sb != num_bigint::Sign::NoSign;
+    (inside && opposite).then_some((a, b))
+}
+
 /// Truncated decimal of a number known to lie in `[lo, hi]`, when the interval decides every
 /// digit (`exact`: `lo = hi` is the number itself).
 fn decide_digits(lo: &BigRational, hi: &BigRational, digits: usize, exact: bool) -> Option<String> {
@@ -215,27 +338,29 @@ fn decide_digits(lo: &BigRational, hi: &BigRational, digits: usize, exact: bool)
     } else {
         return None;
     };
-    let scale = BigRational::from_integer(BigInt::from(10).pow(digits as u32));
+    let ten = BigInt::from(10).pow(digits as u32);
     let (a, b) = if neg {
         (-hi, -lo)
     } else {
         (lo.clone(), hi.clone())
     };
-    let fa = (a * &scale).floor().to_integer();
-    let fb = (b * &scale).floor().to_integer();
+    // floor(x·10^digits) in integers: a rational product would reduce by a gcd of numbers of
+    // thousands of digits.
+    let floor_scaled10 = |x: &BigRational| (x.numer() * &ten).div_floor(x.denom());
+    let fa = floor_scaled10(&a);
+    let fb = floor_scaled10(&b);
     if fa != fb {
         return None;
     }
-    let ten = BigInt::from(10).pow(digits as u32);
     let (int, frac) = fa.div_rem(&ten);
-    let frac = frac.to_string();
     let sign = if neg { "-" } else { "" };
-    let pad = "0".repeat(digits - frac.len());
-    Some(if digits == 0 {
-        format!("{sign}{int}")
-    } else {
-        format!("{sign}{int}.{pad}{frac}")
-    })
+    if digits == 0 {
+        // No digit after the point: the fraction is 0 and there is nothing to pad.
+        return Some(format!("{sign}{int}"));
+    }
+    let frac = frac.to_string();
+    let pad = "0".repeat(digits.saturating_sub(frac.len()));
+    Some(format!("{sign}{int}.{pad}{frac}"))
 }
 
 fn floor_scaled(x: &BigRational, prec: u64) -> BigInt {
@@ -548,6 +673,27 @@ mod tests {
             "1.41421356237309504880168872420969807856967187537694"
         );
         assert_eq!(sqrt2().to_string(), "sqrt(2)");
+    }
+
+    #[test]
+    fn zero_digits_and_long_expansions() {
+        // Issue #20 item 1: no digit after the point is the integer part, not an underflow.
+        assert_eq!(sqrt2().decimal(0), "1");
+        assert_eq!(RealAlgebraic::rational(q(-7, 2)).decimal(0), "-3");
+        // 2,000 digits of √2 against an independent integer square root, floor(√(2·10^4000)):
+        // the Newton refinement must agree with it digit for digit.
+        let ten = num_bigint::BigUint::from(10u32).pow(2000);
+        let isqrt = (num_bigint::BigUint::from(2u32) * &ten * &ten).sqrt();
+        let digits = isqrt.to_string();
+        let want = format!("{}.{}", &digits[..1], &digits[1..]);
+        assert_eq!(sqrt2().decimal(2000), want);
+        // A refined interval is certified: the root stays inside, the width is met.
+        let mut r = sqrt2();
+        let width = q(1, 1) / BigRational::from_integer(BigInt::from(10).pow(500));
+        r.refine_to(&width);
+        let (lo, hi) = r.interval();
+        assert!(hi - lo <= width);
+        assert!(lo * lo < q(2, 1) && hi * hi > q(2, 1));
     }
 
     #[test]

@@ -10,7 +10,6 @@ use crate::topology::limits::Limits;
 use crate::topology::rule::Algorithm;
 use serde::Serialize;
 use std::collections::BTreeMap;
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::time::Instant;
 
@@ -38,7 +37,7 @@ pub struct CensusSpec {
 pub struct CensusFace {
     /// The face, canonical notation.
     pub face: String,
-    /// `closed`, `runaway` or `refused`.
+    /// `closed`, `runaway`, `refused` or `over-limit` (a proved-finite closure above a limit).
     pub verdict: &'static str,
     /// The error code of a refused face (`E0401`: no spoke).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -60,6 +59,10 @@ pub struct CensusReport {
     pub runaway: usize,
     /// Faces refused (for instance no spoke).
     pub refused: usize,
+    /// Faces whose closure is proved finite but meets a configured limit (not a verdict; absent
+    /// from the JSON when zero).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub over_limit: usize,
     /// Number of faces per number of face types in the closure.
     pub distribution: BTreeMap<usize, usize>,
     /// The face with the largest closure, and its number of types.
@@ -73,6 +76,10 @@ pub struct CensusReport {
     /// Wall-clock seconds (not part of any verdict, not in the JSON).
     #[serde(skip)]
     pub elapsed_seconds: f64,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 fn parse_list<T>(text: &str, what: &str, f: impl Fn(&str, usize) -> Result<T>) -> Result<Vec<T>> {
@@ -134,46 +141,112 @@ impl CensusSpec {
         })
     }
 
-    /// Every face of the family: canonical boundaries (one per rotation class) × E × A.
-    pub fn faces(&self) -> Vec<Face> {
-        let mut boundaries: Vec<Vec<EdgeType>> = Vec::new();
-        let k = self.edges.len();
-        for len in 1..=self.max_length {
-            let mut digits = vec![0usize; len];
-            loop {
-                if least_rotation(&digits) == 0 {
-                    boundaries.push(digits.iter().map(|&d| self.edges[d]).collect());
+    /// Every face of the family — canonical boundaries (one per rotation class) × E × A — one at
+    /// a time, in a fixed order: the family is never held in memory (at `--max-length 12` it has
+    /// tens of millions of faces).
+    pub fn faces(&self) -> impl Iterator<Item = Face> + '_ {
+        let combos: Vec<(EdgeType, EdgeType, EdgeType, &Algorithm)> = self
+            .params
+            .iter()
+            .flat_map(|&ea| {
+                self.params.iter().flat_map(move |&el| {
+                    self.params
+                        .iter()
+                        .flat_map(move |&ec| self.algorithms.iter().map(move |a| (ea, el, ec, a)))
+                })
+            })
+            .collect();
+        Necklaces::new(self.edges.len(), self.max_length).flat_map(move |digits| {
+            let boundary: Vec<EdgeType> = digits.iter().map(|&d| self.edges[d]).collect();
+            combos.clone().into_iter().map(move |(ea, el, ec, a)| Face {
+                boundary: boundary.clone(),
+                params: Params { ea, el, ec },
+                algorithm: a.clone(),
+                delay: 1,
+            })
+        })
+    }
+
+    /// The number of faces of the family, from the necklace count
+    /// `N(k, n) = (1/n)·Σ_{d | n} φ(d)·k^(n/d)` (rotation classes of words of length n over k
+    /// letters) summed over the lengths, times |E choices|³ × |algorithms|; saturates at
+    /// `u64::MAX`.
+    pub fn family_size(&self) -> u64 {
+        let k = self.edges.len() as u128;
+        let mut boundaries: u128 = 0;
+        for n in 1..=self.max_length as u32 {
+            let mut sum: u128 = 0;
+            for d in (1..=n).filter(|d| n % d == 0) {
+                let term = k
+                    .checked_pow(n / d)
+                    .and_then(|p| p.checked_mul(u128::from(totient(d))));
+                match term.and_then(|t| sum.checked_add(t)) {
+                    Some(x) => sum = x,
+                    None => return u64::MAX,
                 }
-                // Next word in base k.
-                let mut i = 0;
-                while i < len && digits[i] + 1 == k {
-                    digits[i] = 0;
-                    i += 1;
-                }
-                if i == len {
-                    break;
-                }
-                digits[i] += 1;
+            }
+            boundaries = boundaries.saturating_add(sum / u128::from(n));
+        }
+        let per = (self.params.len() as u128).pow(3) * self.algorithms.len() as u128;
+        u64::try_from(boundaries.saturating_mul(per)).unwrap_or(u64::MAX)
+    }
+}
+
+/// Euler's totient.
+fn totient(n: u32) -> u32 {
+    (1..=n).filter(|&k| num_integer::gcd(k, n) == 1).count() as u32
+}
+
+/// The least rotations of all words of length 1 to `max_len` over `k` letters (as digit
+/// vectors), shortest first, each length in base-k counting order; one word in memory at a time.
+struct Necklaces {
+    k: usize,
+    max_len: usize,
+    digits: Vec<usize>,
+    done: bool,
+}
+
+impl Necklaces {
+    fn new(k: usize, max_len: usize) -> Necklaces {
+        Necklaces {
+            k,
+            max_len,
+            digits: vec![0],
+            done: k == 0 || max_len == 0,
+        }
+    }
+
+    /// Steps to the next word (base-k counting, then one letter longer).
+    fn advance(&mut self) {
+        let len = self.digits.len();
+        let mut i = 0;
+        while i < len && self.digits[i] + 1 == self.k {
+            self.digits[i] = 0;
+            i += 1;
+        }
+        if i < len {
+            self.digits[i] += 1;
+        } else if len < self.max_len {
+            self.digits = vec![0; len + 1];
+        } else {
+            self.done = true;
+        }
+    }
+}
+
+impl Iterator for Necklaces {
+    type Item = Vec<usize>;
+
+    fn next(&mut self) -> Option<Vec<usize>> {
+        while !self.done {
+            let canonical = least_rotation(&self.digits) == 0;
+            let word = canonical.then(|| self.digits.clone());
+            self.advance();
+            if word.is_some() {
+                return word;
             }
         }
-        let mut faces = Vec::new();
-        for b in &boundaries {
-            for &ea in &self.params {
-                for &el in &self.params {
-                    for &ec in &self.params {
-                        for a in &self.algorithms {
-                            faces.push(Face {
-                                boundary: b.clone(),
-                                params: Params { ea, el, ec },
-                                algorithm: a.clone(),
-                                delay: 1,
-                            });
-                        }
-                    }
-                }
-            }
-        }
-        faces
+        None
     }
 }
 
@@ -181,87 +254,153 @@ enum Outcome {
     Closed(usize, Option<String>),
     Runaway,
     Refused(&'static str),
+    OverLimit,
 }
 
-/// Runs the census.
+/// What one worker saw; merged at the end (the merge does not depend on the thread count).
+#[derive(Default)]
+struct Tally {
+    faces: usize,
+    closed: usize,
+    runaway: usize,
+    refused: usize,
+    over_limit: usize,
+    distribution: BTreeMap<usize, usize>,
+    /// Largest closure: (types, index in the family order, face).
+    largest: Option<(usize, usize, Face)>,
+    /// Every face with its index in the family order, when the spec asks for them.
+    per_face: Vec<(usize, CensusFace)>,
+}
+
+impl Tally {
+    fn add(&mut self, index: usize, face: Face, outcome: Outcome, per_face: bool) {
+        self.faces += 1;
+        if per_face {
+            let (verdict, code, types, ratio) = match &outcome {
+                Outcome::Closed(n, ratio) => ("closed", None, Some(*n), ratio.clone()),
+                Outcome::Runaway => ("runaway", None, None, None),
+                Outcome::Refused(code) => ("refused", Some(*code), None, None),
+                Outcome::OverLimit => ("over-limit", Some("E0501"), None, None),
+            };
+            self.per_face.push((
+                index,
+                CensusFace {
+                    face: face.to_string(),
+                    verdict,
+                    code,
+                    types,
+                    ratio,
+                },
+            ));
+        }
+        match outcome {
+            Outcome::Closed(n, _) => {
+                self.closed += 1;
+                *self.distribution.entry(n).or_default() += 1;
+                self.offer_largest(n, index, face);
+            }
+            Outcome::Runaway => self.runaway += 1,
+            Outcome::Refused(_) => self.refused += 1,
+            Outcome::OverLimit => self.over_limit += 1,
+        }
+    }
+
+    /// Keeps the largest closure; ties go to the face first in the family order.
+    fn offer_largest(&mut self, n: usize, index: usize, face: Face) {
+        let better = match &self.largest {
+            None => true,
+            Some((m, i, _)) => n > *m || (n == *m && index < *i),
+        };
+        if better {
+            self.largest = Some((n, index, face));
+        }
+    }
+
+    fn merge(&mut self, other: Tally) {
+        self.faces += other.faces;
+        self.closed += other.closed;
+        self.runaway += other.runaway;
+        self.refused += other.refused;
+        self.over_limit += other.over_limit;
+        for (n, c) in other.distribution {
+            *self.distribution.entry(n).or_default() += c;
+        }
+        if let Some((n, i, f)) = other.largest {
+            self.offer_largest(n, i, f);
+        }
+        self.per_face.extend(other.per_face);
+    }
+}
+
+/// Faces handed to a worker at a time.
+const BATCH: usize = 256;
+
+/// Runs the census. The family is streamed: workers take batches of faces from one shared
+/// enumeration and keep only their tallies, so memory does not grow with the family.
 pub fn census(spec: &CensusSpec, limits: &Limits) -> CensusReport {
-    let faces = spec.faces();
     let start = Instant::now();
-    let next = AtomicUsize::new(0);
-    let results: Mutex<Vec<Option<Outcome>>> = Mutex::new((0..faces.len()).map(|_| None).collect());
+    let family = Mutex::new(spec.faces().enumerate());
+    let total = Mutex::new(Tally::default());
     let bar = Mutex::new(crate::progress::Progress::with_step(
         "census",
-        faces.len() as u64,
+        spec.family_size(),
         16,
     ));
     std::thread::scope(|s| {
         for _ in 0..spec.threads {
-            s.spawn(|| loop {
-                let i = next.fetch_add(1, Ordering::Relaxed);
-                if i >= faces.len() {
-                    break;
-                }
-                let outcome = match Closure::of(std::slice::from_ref(&faces[i]), limits) {
-                    Ok(Closure::Closed(ts)) => {
-                        let c = counts(&ts, spec.levels);
-                        debug_assert_eq!(c.len() as u64, spec.levels + 1);
-                        let ratio = if spec.per_face {
-                            exact_ratio(&ts)
-                        } else {
-                            None
-                        };
-                        Outcome::Closed(ts.types.len(), ratio)
+            s.spawn(|| {
+                let mut tally = Tally::default();
+                loop {
+                    let batch: Vec<(usize, Face)> = family
+                        .lock()
+                        .expect("no worker panics")
+                        .by_ref()
+                        .take(BATCH)
+                        .collect();
+                    if batch.is_empty() {
+                        break;
                     }
-                    Ok(Closure::Runaway(_)) => Outcome::Runaway,
-                    Err(e) => Outcome::Refused(e.code()),
-                };
-                results.lock().expect("no worker panics")[i] = Some(outcome);
-                bar.lock().expect("no worker panics").tick();
+                    let n = batch.len() as u64;
+                    for (i, face) in batch {
+                        let outcome = match Closure::of(std::slice::from_ref(&face), limits) {
+                            Ok(Closure::Closed(ts)) => {
+                                let c = counts(&ts, spec.levels);
+                                debug_assert_eq!(c.len() as u64, spec.levels + 1);
+                                let ratio = if spec.per_face {
+                                    exact_ratio(&ts)
+                                } else {
+                                    None
+                                };
+                                Outcome::Closed(ts.types.len(), ratio)
+                            }
+                            Ok(Closure::Runaway(_)) => Outcome::Runaway,
+                            Err(e) if e.code() == "E0501" => Outcome::OverLimit,
+                            Err(e) => Outcome::Refused(e.code()),
+                        };
+                        tally.add(i, face, outcome, spec.per_face);
+                    }
+                    bar.lock().expect("no worker panics").add(n);
+                }
+                total.lock().expect("no worker panics").merge(tally);
             });
         }
     });
     let elapsed = start.elapsed().as_secs_f64();
-    let results = results.into_inner().expect("no worker panics");
-    let mut report = CensusReport {
-        faces: faces.len(),
-        closed: 0,
-        runaway: 0,
-        refused: 0,
-        distribution: BTreeMap::new(),
-        largest: None,
-        per_face: Vec::new(),
+    let mut t = total.into_inner().expect("no worker panics");
+    // Every face in the family's order, whatever the thread count.
+    t.per_face.sort_by_key(|(i, _)| *i);
+    CensusReport {
+        faces: t.faces,
+        closed: t.closed,
+        runaway: t.runaway,
+        refused: t.refused,
+        over_limit: t.over_limit,
+        distribution: t.distribution,
+        largest: t.largest.map(|(n, _, f)| (f.to_string(), n)),
+        per_face: t.per_face.into_iter().map(|(_, f)| f).collect(),
         threads: spec.threads,
         elapsed_seconds: elapsed,
-    };
-    for (face, r) in faces.iter().zip(results) {
-        let r = r.expect("every face was surveyed");
-        if spec.per_face {
-            let (verdict, code, types, ratio) = match &r {
-                Outcome::Closed(n, ratio) => ("closed", None, Some(*n), ratio.clone()),
-                Outcome::Runaway => ("runaway", None, None, None),
-                Outcome::Refused(code) => ("refused", Some(*code), None, None),
-            };
-            report.per_face.push(CensusFace {
-                face: face.to_string(),
-                verdict,
-                code,
-                types,
-                ratio,
-            });
-        }
-        match r {
-            Outcome::Closed(n, _) => {
-                report.closed += 1;
-                *report.distribution.entry(n).or_default() += 1;
-                if report.largest.as_ref().is_none_or(|(_, m)| n > *m) {
-                    report.largest = Some((face.to_string(), n));
-                }
-            }
-            Outcome::Runaway => report.runaway += 1,
-            Outcome::Refused(_) => report.refused += 1,
-        }
     }
-    report
 }
 
 /// The exact limit ratio of a one-face closure, when it exists (and the analysis succeeds).
@@ -280,15 +419,30 @@ impl CensusReport {
     /// The human-readable table.
     pub fn to_text(&self) -> String {
         let mut o = format!(
-            "census: {} faces — {} closed, {} runaway, {} refused (no spoke)\n",
-            self.faces, self.closed, self.runaway, self.refused
+            "census: {} face{} — {} closed, {} runaway, {} refused (no spoke){}\n",
+            self.faces,
+            if self.faces == 1 { "" } else { "s" },
+            self.closed,
+            self.runaway,
+            self.refused,
+            if self.over_limit > 0 {
+                format!(
+                    ", {} over a limit (raise it to survey them)",
+                    self.over_limit
+                )
+            } else {
+                String::new()
+            }
         );
         o += "types  faces\n";
         for (t, n) in &self.distribution {
             o += &format!("{t:>5}  {n}\n");
         }
         if let Some((f, n)) = &self.largest {
-            o += &format!("largest closure: {n} types, from `{f}`\n");
+            o += &format!(
+                "largest closure: {n} type{}, from `{f}`\n",
+                if *n == 1 { "" } else { "s" }
+            );
         }
         let rate = self.faces as f64 / self.elapsed_seconds.max(1e-9);
         o += &format!(
@@ -311,10 +465,12 @@ mod tests {
     fn family_size_is_the_necklace_count() {
         // Necklaces (rotation classes) over 2 letters: lengths 1..4 give 2, 3, 4, 6 = 15.
         let spec = CensusSpec::parse("B2,C2", "B2", "A1", 4, Some(1)).unwrap();
-        assert_eq!(spec.faces().len(), 15);
+        assert_eq!(spec.faces().count(), 15);
+        assert_eq!(spec.family_size(), 15);
         // Over 4 letters up to length 3: 4 + 10 + 24 = 38; × 2³ E × 2 algorithms.
         let spec = CensusSpec::parse("B2,C2,B3,C3", "B2,C2", "A1,A2", 3, Some(2)).unwrap();
-        assert_eq!(spec.faces().len(), 38 * 8 * 2);
+        assert_eq!(spec.faces().count(), 38 * 8 * 2);
+        assert_eq!(spec.family_size(), 38 * 8 * 2);
         let r = census(&spec, &Limits::default());
         assert_eq!(r.closed + r.runaway + r.refused, r.faces);
         assert_eq!(r.runaway, 0, "built-in algorithms always close");

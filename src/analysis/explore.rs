@@ -443,7 +443,7 @@ fn evaluate(face: &Face, props: &[Property], limits: &Limits, checks: &Checks) -
                 let long = ts
                     .types
                     .iter()
-                    .find(|t| t.face.boundary.len() > b.max_length);
+                    .find(|t| num_bigint::BigUint::from(t.face.boundary.len()) > b.max_length);
                 if let Some(t) = long {
                     Outcome::Fail(Witness {
                         kind: "outside the stated bound".into(),

@@ -43,6 +43,13 @@ pub(crate) struct LimitArgs {
     /// Maximum number of unknowns of a constraint system.
     #[arg(long, help_heading = "Limits", default_value_t = Limits::default().max_unknowns)]
     pub(crate) max_unknowns: usize,
+    /// Maximum estimated memory of a constraint solve, in MiB (checked before the solve).
+    #[arg(long, help_heading = "Limits", default_value_t = Limits::default().max_memory_mb)]
+    pub(crate) max_memory: u64,
+    /// Maximum size n of an n×n matrix for eigen analysis (`operators`; a dense 12×12 takes
+    /// about a minute).
+    #[arg(long, help_heading = "Limits", default_value_t = Limits::default().max_matrix)]
+    pub(crate) max_matrix: usize,
 }
 
 impl LimitArgs {
@@ -56,6 +63,8 @@ impl LimitArgs {
             max_delay: self.max_delay,
             max_digits: self.max_digits,
             max_unknowns: self.max_unknowns,
+            max_memory_mb: self.max_memory,
+            max_matrix: self.max_matrix,
         }
     }
 }

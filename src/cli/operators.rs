@@ -29,13 +29,30 @@ pub(super) fn run(args: OperatorsArgs, limits: &Limits) -> Result<ExitCode, Erro
             }
         },
     };
+    // The eigen analysis of a dense n×n matrix grows steeply with n (a 10×10 of random digits
+    // takes about 14 s): every matrix is checked against --max-matrix before any is analysed.
+    if let Some(a) = &loaded {
+        for op in &a.operators {
+            if op.kind == lacuna::constraint::OpKind::Sub && op.value.is_some() && op.to == op.from
+            {
+                limits.check_matrix(a.states[op.to].dim)?;
+            }
+        }
+    }
+    let parsed = matrix
+        .iter()
+        .map(|m| lacuna::analysis::parse_matrix_arg(m))
+        .collect::<Result<Vec<_>, Error>>()?;
+    for m in &parsed {
+        limits.check_matrix(m.rows.max(m.cols))?;
+    }
     let automaton = loaded
         .as_ref()
         .map(lacuna::analysis::analyse_automaton)
         .transpose()?;
-    let matrices = matrix
+    let matrices = parsed
         .iter()
-        .map(|m| lacuna::analysis::analyse_matrix(&lacuna::analysis::parse_matrix_arg(m)?))
+        .map(lacuna::analysis::analyse_matrix)
         .collect::<Result<Vec<_>, Error>>()?;
     let estimate = match (&curvature, &points, &loaded) {
         (Some(name), Some(pts), Some(a)) => Some(curvature_estimate(a, name, pts, level)?),

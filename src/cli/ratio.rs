@@ -20,7 +20,12 @@ pub(super) fn run(args: RatioArgs, limits: &Limits) -> Result<ExitCode, Error> {
     if json {
         print_json(&r);
     } else {
-        out(&format!("{} ({} face types)\n", input.name, ts.types.len()));
+        out(&format!(
+            "{} ({} face type{})\n",
+            input.name,
+            ts.types.len(),
+            if ts.types.len() == 1 { "" } else { "s" }
+        ));
         out(&lacuna::export::ratio_text(&r));
     }
     Ok(ExitCode::SUCCESS)

@@ -106,9 +106,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             level,
             window: lacuna::geometry::bounds(&inst, segs).size(),
         };
-        outputs.write(p, |w| {
-            lacuna::export::write_density_picture(&map, &pic, w)
-        })?;
+        outputs.write(p, |w| lacuna::export::write_density_picture(&map, &pic, w))?;
         wrote(&outputs, p);
     }
     Ok(ExitCode::SUCCESS)

@@ -47,6 +47,7 @@ pub(super) fn run(args: SolveArgs, limits: &Limits) -> Result<ExitCode, Error> {
         match lacuna::input::load_any(&input)? {
             lacuna::input::Loaded::Automaton { automaton, .. } => {
                 limits.check_unknowns(automaton.unknown_count())?;
+                limits.check_memory(automaton.solve_memory_estimate())?;
                 lacuna::constraint::solve_automaton(&automaton)?.0
             }
             lacuna::input::Loaded::Faces(input) => {

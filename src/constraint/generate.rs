@@ -328,6 +328,7 @@ pub fn solve_closure(
 ) -> crate::error::Result<crate::constraint::automaton::SolveReport> {
     let g = automaton_of(ts, opts);
     limits.check_unknowns(g.automaton.unknown_count())?;
+    limits.check_memory(g.automaton.solve_memory_estimate())?;
     let (mut report, lin, solution) = crate::constraint::automaton::solve_automaton(&g.automaton)?;
     if let crate::constraint::linsys::Solution::Consistent(space) = &solution {
         report.degenerate = degeneracies(ts, &g, &lin.offsets, space);

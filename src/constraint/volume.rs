@@ -297,6 +297,7 @@ pub fn solve_volumes(
 ) -> Result<crate::constraint::automaton::SolveReport> {
     let gv = volume_automaton(set, opts, limits)?;
     limits.check_unknowns(gv.generated.automaton.unknown_count())?;
+    limits.check_memory(gv.generated.automaton.solve_memory_estimate())?;
     let (mut report, lin, solution) =
         crate::constraint::automaton::solve_automaton(&gv.generated.automaton)?;
     if let crate::constraint::linsys::Solution::Consistent(space) = &solution {

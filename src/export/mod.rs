@@ -21,11 +21,11 @@ pub(crate) mod writer;
 pub use automaton_text::automaton_text;
 pub use bitmap::{write_density_picture, write_png_picture, DensityPicture};
 pub use html::{report_html, report_html_unverified};
+pub use moditere::moditere_text;
 pub use palette::{density_colour, hex, lightness, outline_colour, type_colour, Rgb, MUTED};
 pub use picture::{
     legend_entries, outline, stroke_width, write_svg_picture, Background, Frame, PictureOptions,
 };
-pub use moditere::moditere_text;
 pub use report::{
     closure_json, closure_report, counts_json, counts_table, ratio_of, ratio_text, verify_report,
     VerifyReport,

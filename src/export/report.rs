@@ -258,9 +258,11 @@ impl VerifyReport {
         if self.shared_edges > 0 || !self.per_face.is_empty() {
             let _ = writeln!(
                 o,
-                "assembly: {} faces, {} shared edges (types and delays match)",
+                "assembly: {} face{}, {} shared edge{} (types and delays match)",
                 self.per_face.len().max(1),
-                self.shared_edges
+                if self.per_face.len() > 1 { "s" } else { "" },
+                self.shared_edges,
+                if self.shared_edges == 1 { "" } else { "s" }
             );
         }
         o.push('\n');
@@ -401,8 +403,10 @@ impl VerifyReport {
         let _ = writeln!(
             o,
             "\nverdict: {}",
-            if self.verified {
+            if self.verified && self.bound.is_some() {
                 "VERIFIED (closure closed, bound respected, structural identities hold, constraints consistent, no forced collapse)"
+            } else if self.verified {
+                "VERIFIED (closure closed within the configured limits, no bound stated; structural identities hold, constraints consistent, no forced collapse)"
             } else {
                 "NOT VERIFIED"
             }
@@ -469,11 +473,18 @@ pub fn counts_table(levels: &[LevelCount]) -> String {
 pub fn ratio_decimal(r: &BigRational, digits: usize) -> String {
     use num_traits::Signed;
     let scale = num_bigint::BigInt::from(10u32).pow(digits as u32);
-    let scaled = (r.abs() * BigRational::from_integer(scale.clone())).to_integer();
+    // In integers: a rational product would reduce by a gcd of numbers of thousands of digits.
+    let scaled = r.numer().abs() * &scale / r.denom();
     let int = &scaled / &scale;
     let frac = (&scaled % &scale).to_string();
     let sign = if r.is_negative() { "-" } else { "" };
-    format!("{sign}{int}.{}{frac}", "0".repeat(digits - frac.len()))
+    if digits == 0 {
+        return format!("{sign}{int}");
+    }
+    format!(
+        "{sign}{int}.{}{frac}",
+        "0".repeat(digits.saturating_sub(frac.len()))
+    )
 }
 
 /// JSON of `lacuna closure`.

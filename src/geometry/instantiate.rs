@@ -142,6 +142,9 @@ pub fn instantiate(input: &Input, opt: &InstantiateOptions) -> Result<Instance, 
         },
     );
     let a = &generated.automaton;
+    // The solve's size is known from the automaton's shapes: refuse it before the work.
+    opt.limits.check_unknowns(a.unknown_count())?;
+    opt.limits.check_memory(a.solve_memory_estimate())?;
     let lin = a.linearize()?;
     let Solution::Consistent(space) = solve(&lin.system) else {
         return Err(GeometryError::Inconsistent);

@@ -41,7 +41,13 @@ impl FaceType {
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
 pub struct Bound {
     /// Every type's boundary has at most this many edges.
-    pub max_length: usize,
+    #[serde(serialize_with = "ser_display")]
+    pub max_length: BigUint,
+    /// The longest boundary of the start faces and their delayed chains, exact: each of those
+    /// faces is a type of the closure, so a closure with a smaller `--max-boundary` cannot be
+    /// built (refused before the work).
+    #[serde(serialize_with = "ser_display")]
+    pub chain_length: BigUint,
     /// There are at most this many types.
     #[serde(serialize_with = "ser_display")]
     pub max_types: BigUint,
@@ -87,6 +93,11 @@ impl Closure {
             limits.check_face(f)?;
         }
         let bound = Bound::stated(start);
+        if let Some(b) = &bound {
+            if b.chain_length > BigUint::from(limits.max_boundary) {
+                return Err(b.above(limits, None));
+            }
+        }
         let mut types: Vec<FaceType> = Vec::new();
         let mut index: HashMap<Face, usize> = HashMap::new();
         let mut start_idx = Vec::new();
@@ -115,6 +126,12 @@ impl Closure {
                         let id = types.len();
                         let len = s.face.boundary.len();
                         if len > limits.max_boundary || id >= limits.max_types {
+                            // A proved-finite closure that meets a limit is a limit error,
+                            // never a runaway (SPEC §4).
+                            if let Some(b) = &bound {
+                                let met = (len <= limits.max_boundary).then_some(id);
+                                return Err(b.above(limits, met));
+                            }
                             let reason = if len > limits.max_boundary {
                                 format!(
                                     "a sub-face boundary has {len} edges, above the limit {} (--max-boundary)",
@@ -170,7 +187,11 @@ impl Bound {
     ///
     /// Derivation (A1, A2 and A3 all put spokes at every joint and gap):
     /// * Only the start faces and their delayed descendants have delay ≥ 2 (sub-faces of a
-    ///   non-delayed face have delay 1). That chain is computed exactly: `d` faces per start face.
+    ///   non-delayed face have delay 1). That chain is computed exactly, but without building it:
+    ///   a delayed step maps each edge to a fixed word (its pieces, `Ec Ec` at every gap), so the
+    ///   boundary after k steps is the concatenation of the k-step words of its edges, and only
+    ///   their lengths and delayed stretches are needed ([`Shape`]). The chain of a face of delay
+    ///   d has d faces and its boundary lengths never decrease, so the last one is the longest.
     /// * A sub-face of a non-delayed face is a *run* of sub-edges between two spokes plus at most
     ///   five edges (`[Ec] Ea El Ea [Ec]`), and no `Ec Ec` is inserted inside a run because every gap
     ///   is a spoke. So its length is at most `r + 5`, where `r` bounds the run length:
@@ -192,7 +213,7 @@ impl Bound {
         if start.is_empty() || !start.iter().all(|f| f.algorithm.is_builtin()) {
             return None;
         }
-        let mut max_length = 0usize;
+        let mut chain_length = BigUint::from(0u32);
         let mut chain_types = 0usize;
         let mut alphabet: BTreeSet<EdgeType> = BTreeSet::new();
         let mut groups: BTreeSet<String> = BTreeSet::new();
@@ -208,24 +229,22 @@ impl Bound {
                     alphabet.insert(e.delayed(k));
                 }
             }
-            // The delayed chain, computed exactly.
-            let mut cur = f.boundary.clone();
-            max_length = max_length.max(cur.len());
+            // The delayed chain, exactly, from the shapes of its edges' words.
+            let mut shapes = ShapeTable::new(p.ec);
+            let steps = f.delay.saturating_sub(1);
+            let end = f
+                .boundary
+                .iter()
+                .fold(Shape::empty(), |w, e| w.then(&shapes.after(*e, steps)));
             chain_types += f.delay as usize;
-            for _ in 1..f.delay {
-                let mut next = Vec::new();
-                for e in &cur {
-                    for k in 0..e.piece_count() {
-                        next.push(e.piece());
-                        if k + 1 < e.piece_count()
-                            && e.inner_junction() == Some(crate::topology::edge::JunctionKind::Gap)
-                        {
-                            next.extend([p.ec, p.ec]);
-                        }
-                    }
-                }
-                cur = next;
-                max_length = max_length.max(cur.len());
+            // A delayed step never lengthens a delayed stretch beyond max(its old length, 2)
+            // (a non-delayed edge's word starts and ends with a non-delayed piece; only its
+            // `Ec Ec` can be delayed), so D ≤ max(|∂|, 2): the conversion never saturates.
+            let stretch = usize::try_from(end.cyclic_stretch())
+                .unwrap_or(usize::MAX)
+                .min(f.boundary.len().max(2));
+            if end.len > chain_length {
+                chain_length = end.len.clone();
             }
             let r = match &f.algorithm {
                 Algorithm::Spokes(items) if items.contains(&SpokeItem::Corner) => 1,
@@ -236,20 +255,26 @@ impl Bound {
                 Algorithm::Spokes(items) if items.contains(&SpokeItem::DelayedCornerNotB) => 3,
                 _ => {
                     let pattern = [p.ec, p.ea, p.el, p.ea, p.ec];
-                    2 + delayed_stretch(&cur, true).max(delayed_stretch(&pattern, false))
+                    let inside = pattern
+                        .iter()
+                        .fold(Shape::empty(), |w, e| w.then(&Shape::edge(*e)));
+                    let inside = usize::try_from(inside.best).unwrap_or(pattern.len());
+                    2 + stretch.max(inside)
                 }
             };
             max_run = max_run.max(r);
         }
-        max_length = max_length.max(max_run + 5);
+        let max_length = chain_length.clone().max(BigUint::from(max_run + 5));
         let a = BigUint::from(alphabet.len());
-        let mut words = BigUint::from(0u32);
-        for j in 1..=max_run {
-            words += a.pow(j as u32);
+        let (mut words, mut power) = (BigUint::from(0u32), BigUint::from(1u32));
+        for _ in 1..=max_run {
+            power *= &a;
+            words += &power;
         }
         let max_types = BigUint::from(chain_types) + words * 4u32 * BigUint::from(groups.len());
         Some(Bound {
             max_length,
+            chain_length,
             max_types,
             reason: format!(
                 "built-in algorithm: runs of at most {max_run} sub-edges, so sub-faces have at most {} edges; \
@@ -259,25 +284,146 @@ impl Bound {
             ),
         })
     }
-}
 
-/// The longest stretch of consecutive delayed edges (cyclically when `cyclic`).
-fn delayed_stretch(edges: &[EdgeType], cyclic: bool) -> usize {
-    let n = edges.len();
-    if cyclic && edges.iter().all(EdgeType::is_delayed) {
-        return n;
-    }
-    let span = if cyclic { 2 * n } else { n };
-    let (mut best, mut cur) = (0, 0);
-    for i in 0..span {
-        if edges[i % n].is_delayed() {
-            cur += 1;
-            best = best.max(cur.min(n));
-        } else {
-            cur = 0;
+    /// The limit error for a closure this bound proves finite but that meets `limits` (SPEC §4:
+    /// a limit is a resource bound, not a verdict). `types_met` is the number of types built
+    /// when `--max-types` was hit, `None` for `--max-boundary`.
+    fn above(&self, limits: &Limits, types_met: Option<usize>) -> Error {
+        match types_met {
+            None => Error::ProvedAboveLimit {
+                proved: format!("boundary length ≤ {}", self.max_length),
+                flag: "--max-boundary",
+                limit: limits.max_boundary.to_string(),
+                detail: if self.chain_length > BigUint::from(limits.max_boundary) {
+                    format!(
+                        "the delayed chain of a start face reaches {} edges; raise --max-boundary to at least that",
+                        self.chain_length
+                    )
+                } else {
+                    format!("raise --max-boundary to {} to build it", self.max_length)
+                },
+            },
+            Some(met) => Error::ProvedAboveLimit {
+                proved: format!("at most {} types", self.max_types),
+                flag: "--max-types",
+                limit: limits.max_types.to_string(),
+                detail: format!("more than {met} types met; raise --max-types to build it"),
+            },
         }
     }
-    best
+}
+
+/// What the closure needs to know of a boundary word: its length and its stretches of delayed
+/// edges (a stretch is a maximal run of consecutive edges of delay ≥ 2). Exact big integers: a
+/// delayed boundary can double at every step.
+#[derive(Clone, Debug, PartialEq, Eq)]
+struct Shape {
+    /// Number of edges.
+    len: BigUint,
+    /// Delayed edges at the start (`len` when every edge is delayed).
+    prefix: BigUint,
+    /// Delayed edges at the end.
+    suffix: BigUint,
+    /// The longest stretch inside the word.
+    best: BigUint,
+}
+
+impl Shape {
+    fn empty() -> Shape {
+        let z = BigUint::from(0u32);
+        Shape {
+            len: z.clone(),
+            prefix: z.clone(),
+            suffix: z.clone(),
+            best: z,
+        }
+    }
+
+    fn edge(e: EdgeType) -> Shape {
+        let d = BigUint::from(u32::from(e.is_delayed()));
+        Shape {
+            len: BigUint::from(1u32),
+            prefix: d.clone(),
+            suffix: d.clone(),
+            best: d,
+        }
+    }
+
+    /// This word followed by `next`.
+    fn then(&self, next: &Shape) -> Shape {
+        let prefix = if self.prefix == self.len {
+            &self.len + &next.prefix
+        } else {
+            self.prefix.clone()
+        };
+        let suffix = if next.suffix == next.len {
+            &next.len + &self.suffix
+        } else {
+            next.suffix.clone()
+        };
+        let across = &self.suffix + &next.prefix;
+        Shape {
+            len: &self.len + &next.len,
+            prefix,
+            suffix,
+            best: self.best.clone().max(next.best.clone()).max(across),
+        }
+    }
+
+    /// The longest stretch when the word is read cyclically (a boundary).
+    fn cyclic_stretch(&self) -> BigUint {
+        if self.prefix == self.len {
+            return self.len.clone();
+        }
+        self.best.clone().max(&self.suffix + &self.prefix)
+    }
+}
+
+/// The shapes of the words edges become after k delayed steps, memoised by (edge, k): a delayed
+/// step maps `X^d` (d ≥ 2) to `X^(d−1)`, and a non-delayed edge to its n pieces with `Ec Ec` at
+/// every gap (SPEC §3).
+struct ShapeTable {
+    ec: EdgeType,
+    memo: HashMap<(EdgeType, u32), Shape>,
+}
+
+impl ShapeTable {
+    fn new(ec: EdgeType) -> ShapeTable {
+        ShapeTable {
+            ec,
+            memo: HashMap::new(),
+        }
+    }
+
+    fn after(&mut self, e: EdgeType, steps: u32) -> Shape {
+        if steps == 0 {
+            return Shape::edge(e);
+        }
+        if let Some(s) = self.memo.get(&(e, steps)) {
+            return s.clone();
+        }
+        let shape = if e.is_delayed() {
+            self.after(e.piece(), steps - 1)
+        } else {
+            let piece = self.after(e.piece(), steps - 1);
+            let gap = if e.inner_junction() == Some(crate::topology::edge::JunctionKind::Gap) {
+                let ec = self.after(self.ec, steps - 1);
+                Some(ec.then(&ec))
+            } else {
+                None
+            };
+            let mut w = piece.clone();
+            for _ in 1..e.n {
+                if let Some(g) = &gap {
+                    w = w.then(g);
+                }
+                w = w.then(&piece);
+            }
+            w
+        };
+        self.memo.insert((e, steps), shape.clone());
+        shape
+    }
 }
 
 impl TypeSet {
@@ -348,7 +494,7 @@ impl TypeSet {
                 .map(|t| t.face.boundary.len())
                 .max()
                 .unwrap_or(0);
-            if longest > b.max_length {
+            if BigUint::from(longest) > b.max_length {
                 return Err(format!(
                     "a boundary of {longest} edges breaks the stated bound {}",
                     b.max_length
@@ -473,9 +619,56 @@ mod tests {
         assert!(ts
             .types
             .iter()
-            .all(|t| t.face.boundary.len() <= b.max_length));
+            .all(|t| BigUint::from(t.face.boundary.len()) <= b.max_length));
         let ts = closed("B2 C2^3 | C2 B2 B2 | A1 | 3");
         assert_eq!(ts.types[0].face.delay, 3);
         assert_eq!(ts.types[1].face.delay, 2);
+    }
+
+    /// The shapes agree with the delayed chain built step by step (the old way), on faces with
+    /// delayed edges, delayed E and every kind of edge.
+    #[test]
+    fn chain_shapes_match_the_built_chain() {
+        for s in [
+            "B2 C2 | B2 B2 B2 | A1 | 6",
+            "B3 C2^3 B2^2 C3 | C2 B2 C2^2 | A1 | 5",
+            "C2^4 C2^4 B2 | B2^2 C3 C2^3 | A3 | 4",
+            "B2^5 B2^5 | C2 B2 B2 | A1 | 3",
+            "C3 B2^2 B2^2 B2^2 C2 | B2 B2 C2^2 | A1 | 4",
+        ] {
+            let f = Face::parse(s).unwrap();
+            let p = f.params;
+            let mut cur = f.boundary.clone();
+            for _ in 1..f.delay {
+                let mut next = Vec::new();
+                for e in &cur {
+                    for k in 0..e.piece_count() {
+                        next.push(e.piece());
+                        if k + 1 < e.piece_count()
+                            && e.inner_junction() == Some(crate::topology::edge::JunctionKind::Gap)
+                        {
+                            next.extend([p.ec, p.ec]);
+                        }
+                    }
+                }
+                cur = next;
+            }
+            let mut table = ShapeTable::new(p.ec);
+            let shape = f
+                .boundary
+                .iter()
+                .fold(Shape::empty(), |w, e| w.then(&table.after(*e, f.delay - 1)));
+            assert_eq!(shape.len, BigUint::from(cur.len()), "{s}");
+            // The longest cyclic stretch of delayed edges, by a direct scan of two turns.
+            let n = cur.len();
+            let (mut best, mut run) = (0usize, 0usize);
+            for i in 0..2 * n {
+                run = if cur[i % n].is_delayed() { run + 1 } else { 0 };
+                best = best.max(run.min(n));
+            }
+            assert_eq!(shape.cyclic_stretch(), BigUint::from(best), "{s}");
+            let b = Bound::stated(std::slice::from_ref(&f)).unwrap();
+            assert_eq!(b.chain_length, BigUint::from(n), "{s}");
+        }
     }
 }

@@ -39,11 +39,17 @@ pub fn counts_from(ts: &TypeSet, start: &[(usize, u64)], levels: u64) -> Vec<Lev
     for level in 0..=levels {
         let faces: BigUint = v.iter().sum();
         let lacunas = BigRational::new(lacuna_halves.clone().into(), 2.into());
-        let denom = &lacunas + BigRational::from_integer(faces.clone().into());
-        let ratio = if denom.is_zero() {
+        // R_i = (h/2) / (h/2 + f) = h / (h + 2f) with h the lacunas in halves: one gcd,
+        // gcd(h, h + 2f) = gcd(h, 2f), instead of the three of rational arithmetic.
+        let ratio = if lacuna_halves.is_zero() {
             BigRational::zero()
         } else {
-            &lacunas / denom
+            let twice = &faces << 1u32;
+            let g = num_integer::Integer::gcd(&lacuna_halves, &twice);
+            BigRational::new_raw(
+                (&lacuna_halves / &g).into(),
+                ((&lacuna_halves + &twice) / &g).into(),
+            )
         };
         out.push(LevelCount {
             level,

@@ -20,6 +20,10 @@ pub struct Limits {
     pub max_digits: usize,
     /// Maximum number of unknowns of a constraint system (`--max-unknowns`).
     pub max_unknowns: usize,
+    /// Maximum estimated memory of a constraint solve, in MiB (`--max-memory`).
+    pub max_memory_mb: u64,
+    /// Maximum size n of an n×n matrix given to the eigen analysis (`--max-matrix`).
+    pub max_matrix: usize,
 }
 
 impl Default for Limits {
@@ -27,11 +31,13 @@ impl Default for Limits {
         Limits {
             max_boundary: 256,
             max_types: 20_000,
-            max_level: 10_000,
+            max_level: 1_000,
             max_subedges: 64,
             max_delay: 64,
             max_digits: 10_000,
             max_unknowns: 20_000_000,
+            max_memory_mb: 1024,
+            max_matrix: 8,
         }
     }
 }
@@ -85,6 +91,27 @@ impl Limits {
             unknowns,
             self.max_unknowns,
             "--max-unknowns",
+        )
+    }
+
+    /// Checks the estimated memory of a constraint solve (bytes) before it is built.
+    pub fn check_memory(&self, bytes: u128) -> Result<()> {
+        let mb = bytes.div_ceil(1 << 20);
+        at_most(
+            "the estimated memory of the solve in MiB",
+            mb,
+            u128::from(self.max_memory_mb),
+            "--max-memory",
+        )
+    }
+
+    /// Checks the size of a square matrix before its eigen analysis.
+    pub fn check_matrix(&self, n: usize) -> Result<()> {
+        at_most(
+            "the size of a matrix for eigen analysis",
+            n,
+            self.max_matrix,
+            "--max-matrix",
         )
     }
 

@@ -444,9 +444,11 @@ pub fn analyse(
             .collect()
     };
     let mut reasons = vec![format!(
-        "{} face types reached in {} classes; rho = {} from dominant class(es) {}",
+        "{} face type{} reached in {} class{}; rho = {} from dominant class(es) {}",
         reached.len(),
+        if reached.len() == 1 { "" } else { "s" },
         classes.len(),
+        if classes.len() == 1 { "" } else { "es" },
         rho,
         dominant
             .iter()
