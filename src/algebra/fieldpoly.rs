@@ -229,6 +229,72 @@ pub(crate) fn null_space(k: &NumberField, mut a: Vec<Vec<FieldElement>>) -> Vec<
         .collect()
 }
 
+/// An eigenvector of the rational matrix `t` for an eigenvalue `lambda` ∈ K of geometric
+/// multiplicity 1, from a non-zero column of the adjugate `adj(λ·I − T) = Σ_i λ^i·Q_i` with
+/// `Q_{n−1} = I`, `Q_{i−1} = T·Q_i + c_i·I` (`χ = Σ c_i x^i` monic; `(x·I − T)·Σ x^i Q_i = χ(x)·I`
+/// by Cayley–Hamilton). Column j needs only n rational matrix–vector products; the field enters at
+/// the end, in one combination per coordinate. No elimination over K, so no coefficient growth
+/// beyond the size of the answer. `None` when every column vanishes (eigenspace of dimension > 1)
+/// — the caller then uses [`null_space`]. Scaled so that the last non-zero coordinate is 1.
+pub(crate) fn adjugate_eigenvector(
+    k: &NumberField,
+    t: &Matrix,
+    chi: &Poly,
+    lambda: &FieldElement,
+) -> Option<Vec<FieldElement>> {
+    let n = t.rows;
+    let chi = chi.monic();
+    // Powers 1, λ, …, λ^(n−1) in K.
+    let mut pows = vec![k.rational(BigRational::one())];
+    for i in 1..n {
+        pows.push(k.mul(&pows[i - 1], lambda));
+    }
+    for col in 0..n {
+        // w_{n−1} = e_col, w_{i−1} = T·w_i + c_i·e_col.
+        let mut w = vec![BigRational::zero(); n];
+        w[col] = BigRational::one();
+        let mut ws = vec![w.clone()];
+        for i in (1..n).rev() {
+            let mut next: Vec<BigRational> = (0..n)
+                .map(|r| {
+                    w.iter()
+                        .enumerate()
+                        .filter(|(_, x)| !x.is_zero())
+                        .map(|(c, x)| t.get(r, c) * x)
+                        .sum()
+                })
+                .collect();
+            next[col] += chi.coeff(i);
+            ws.push(next.clone());
+            w = next;
+        }
+        ws.reverse(); // ws[i] = w_i
+        let v: Vec<FieldElement> = (0..n)
+            .map(|r| {
+                if is_generator(k, lambda) {
+                    // λ = the generator: the coordinate is the polynomial Σ (w_i)_r x^i mod f.
+                    return k.element(&Poly::new(ws.iter().map(|x| x[r].clone()).collect()));
+                }
+                ws.iter()
+                    .zip(&pows)
+                    .filter(|(x, _)| !x[r].is_zero())
+                    .fold(k.rational(BigRational::zero()), |acc, (x, p)| {
+                        k.add(&acc, &k.scale(p, &x[r]))
+                    })
+            })
+            .collect();
+        if let Some(last) = v.iter().rev().find(|x| !x.is_zero()) {
+            let inv = k.inv(last)?;
+            return Some(v.iter().map(|x| k.mul(x, &inv)).collect());
+        }
+    }
+    None
+}
+
+fn is_generator(k: &NumberField, a: &FieldElement) -> bool {
+    k.degree() > 1 && *a == k.generator_element()
+}
+
 /// `T − λ·I` over K.
 pub(crate) fn shifted(
     k: &NumberField,
