@@ -10,8 +10,9 @@
 //! uses its exact (slower) method instead.
 
 use crate::algebra::poly::Poly;
+use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::{FromPrimitive, Signed, ToPrimitive, Zero};
+use num_traits::{FromPrimitive, One, Signed, ToPrimitive, Zero};
 use std::cmp::Ordering;
 
 /// A closed disk `|w − (re + i·im)| ≤ r` holding exactly one root.
@@ -102,14 +103,20 @@ pub fn approx_roots(f: &Poly) -> Vec<(f64, f64)> {
     z
 }
 
-/// `(Re, Im)` of `p(re + i·im)`, exact.
-fn eval_exact(p: &Poly, re: &BigRational, im: &BigRational) -> (BigRational, BigRational) {
-    p.coeffs()
-        .iter()
-        .rev()
-        .fold((BigRational::zero(), BigRational::zero()), |(a, b), c| {
-            (&a * re - &b * im + c, &a * im + &b * re)
-        })
+/// `(Re, Im)` of `D^n·p((a + b·i)/D)` for the integer polynomial `p` of degree n (lowest
+/// degree first): homogeneous Horner over Z, exact.
+fn eval_homogeneous(p: &[BigInt], a: &BigInt, b: &BigInt, d: &BigInt) -> (BigInt, BigInt) {
+    let n = p.len() - 1;
+    let (mut re, mut im) = (p[n].clone(), BigInt::zero());
+    let mut dpow = d.clone();
+    for c in p[..n].iter().rev() {
+        let nre = &re * a - &im * b + c * &dpow;
+        let nim = &re * b + &im * a;
+        re = nre;
+        im = nim;
+        dpow *= d;
+    }
+    (re, im)
 }
 
 /// A rational `s ≥ √x` (x ≥ 0), close to it.
@@ -135,21 +142,32 @@ pub fn root_disks(f: &Poly) -> Option<Vec<Disk>> {
     if n == 0 {
         return Some(Vec::new());
     }
-    let df = f.derivative();
+    let fi = f.primitive_int();
+    let dfi: Vec<BigInt> = (1..fi.len()).map(|i| &fi[i] * BigInt::from(i)).collect();
     let nn = BigRational::from_integer((n as i64).into());
     let mut disks = Vec::with_capacity(n);
     for (x, y) in approx_roots(f) {
-        let (re, im) = (BigRational::from_f64(x)?, BigRational::from_f64(y)?);
-        let (fa, fb) = eval_exact(f, &re, &im);
-        let (da, db) = eval_exact(&df, &re, &im);
+        if !x.is_finite() || !y.is_finite() {
+            return None;
+        }
+        // Centre (a + b·i)/2^e with |a|, |b| < 2^62.
+        let m = x.abs().max(y.abs()).max(f64::MIN_POSITIVE);
+        let e = (62 - m.log2().ceil() as i64).clamp(0, 2000) as u32;
+        let scale = 2f64.powi(e.min(1000) as i32) * 2f64.powi(e.saturating_sub(1000) as i32);
+        let a = BigInt::from((x * scale).round() as i64);
+        let b = BigInt::from((y * scale).round() as i64);
+        let d = BigInt::one() << e;
+        let (fa, fb) = eval_homogeneous(&fi, &a, &b, &d);
+        let (da, db) = eval_homogeneous(&dfi, &a, &b, &d);
         let den = &da * &da + &db * &db;
         if den.is_zero() {
             return None;
         }
-        let r2 = &nn * &nn * (&fa * &fa + &fb * &fb) / den;
+        // f(z) = F/D^n, f'(z) = F'/D^(n−1): |f/f'|² = |F|² / (|F'|²·D²).
+        let r2 = &nn * &nn * BigRational::new(&fa * &fa + &fb * &fb, den * &d * &d);
         disks.push(Disk {
-            re,
-            im,
+            re: BigRational::new(a, d.clone()),
+            im: BigRational::new(b, d),
             r: sqrt_up(&r2),
         });
     }

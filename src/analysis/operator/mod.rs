@@ -295,7 +295,11 @@ pub fn analyse_matrix(t: &Matrix) -> Result<OperatorReport> {
             Some("1 is not an eigenvalue: no fixed point".to_string()),
         )
     } else {
-        let ns = null_space(&qk, shifted(&qk, t, &qk.rational(BigRational::one())));
+        let one_k = qk.rational(BigRational::one());
+        let ns = match (mult_one, adjugate_eigenvector(&qk, t, &chi, &one_k)) {
+            (1, Some(v)) => vec![v],
+            _ => null_space(&qk, shifted(&qk, t, &one_k)),
+        };
         if ns.len() != 1 {
             (
                 None,
@@ -447,13 +451,12 @@ struct ComplexFactor {
 }
 
 /// Exact eigenvectors of the real eigenvalue `r` (a root of a factor of multiplicity `mult`),
-/// rendered. Rational r: null space over Q. Irrational and simple: a column of the adjugate
-/// ([`adjugate_eigenvector`]), no elimination over Q(r). Irrational and repeated: null space over
-/// Q(r).
+/// rendered. Simple: a column of the adjugate
+/// ([`adjugate_eigenvector`]), no elimination over Q(r). Repeated: null space over Q(r).
 fn real_eigenvectors(t: &Matrix, chi: &Poly, r: &RealAlgebraic, mult: usize) -> Vec<Vec<String>> {
     let k = NumberField::new(r.clone());
     let lam = k.generator_element();
-    let vecs = if r.degree() == 1 || mult > 1 {
+    let vecs = if mult > 1 {
         null_space(&k, shifted(&k, t, &lam))
     } else {
         match adjugate_eigenvector(&k, t, chi, &lam) {
@@ -471,9 +474,6 @@ fn eigenvector_in(
     chi: &Poly,
     lam: &FieldElement,
 ) -> Option<Vec<FieldElement>> {
-    if k.degree() == 1 {
-        return null_space(k, shifted(k, t, lam)).into_iter().next();
-    }
     adjugate_eigenvector(k, t, chi, lam)
         .or_else(|| null_space(k, shifted(k, t, lam)).into_iter().next())
 }
