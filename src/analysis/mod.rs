@@ -7,15 +7,17 @@
 
 pub(crate) mod census;
 pub(crate) mod curve;
+pub(crate) mod dcf;
 pub(crate) mod design;
 pub(crate) mod operator;
 pub(crate) mod ratio;
 
 pub use census::{census, CensusReport, CensusSpec};
 pub use curve::{
-    analyse_automaton, estimate_curvature, AutomatonOperators, CurvatureEstimate, CurveReport,
-    PointBehaviour, Side,
+    analyse_automaton, analyse_automaton_only, estimate_curvature, AutomatonOperators,
+    CurvatureEstimate, CurveReport, PointBehaviour, Side,
 };
+pub use dcf::{curve_curvature, CurveCurvature, Dcf, DcfStart, DyadicPoint, Kappa, SideRange};
 pub use design::{check_design, design_operator, DesignCheck, DesignError};
 pub use operator::{
     analyse_matrix, parse_matrix_arg, parse_rationals_arg, Behaviour, CurvatureClass, Eigenvalue,

@@ -468,7 +468,7 @@ fn real_eigenvectors(t: &Matrix, chi: &Poly, r: &RealAlgebraic, mult: usize) -> 
 }
 
 /// One eigenvector of the simple eigenvalue `lam` ∈ K.
-fn eigenvector_in(
+pub(crate) fn eigenvector_in(
     k: &NumberField,
     t: &Matrix,
     chi: &Poly,
@@ -525,7 +525,11 @@ fn abs_enclosure(r: &mut RealAlgebraic, w: &BigRational) -> (BigRational, BigRat
 /// numbers; equality is recognised exactly — `g(±λ1²) = 0` in Q(λ1) for the minimal polynomial
 /// g of μ, and the enclosure of ±λ1² inside μ's isolating interval (g has one root there).
 /// Returns the ordering and, on equality, the sign of μ.
-fn cmp_abs_with_square(mu: &RealAlgebraic, lambda1: &RealAlgebraic, k: &NumberField) -> Ordering {
+pub(crate) fn cmp_abs_with_square(
+    mu: &RealAlgebraic,
+    lambda1: &RealAlgebraic,
+    k: &NumberField,
+) -> Ordering {
     let mu_neg = mu.cmp_exact(&RealAlgebraic::rational(BigRational::zero())) == Ordering::Less;
     if let Some(l) = lambda1.as_rational() {
         let sq = l * l;
@@ -556,6 +560,9 @@ fn cmp_abs_with_square(mu: &RealAlgebraic, lambda1: &RealAlgebraic, k: &NumberFi
                 &to_k(k, mu.min_poly()),
                 &k.scale(&k.mul(&k.generator_element(), &k.generator_element()), &s),
             );
+            if g.is_zero() && mu.degree() == 1 {
+                return Ordering::Equal;
+            }
             if g.is_zero() {
                 // ±λ1² is a root of g: it is μ iff its enclosure falls in μ's isolating interval.
                 loop {
@@ -863,7 +870,7 @@ fn classify(
 
 /// `−r`: the root of `f(−x)` (f the minimal polynomial of r) mirroring r — real roots come in
 /// opposite order.
-fn negate(r: &RealAlgebraic) -> RealAlgebraic {
+pub(crate) fn negate(r: &RealAlgebraic) -> RealAlgebraic {
     let f = r.min_poly();
     let roots = RealAlgebraic::real_roots(f);
     let i = roots
