@@ -714,8 +714,9 @@ fn classify(
             return (
                 Behaviour::Spiralling {
                     detail: format!(
-                        "a complex pair (roots of {}) has modulus at least {rho}, the largest real modulus",
-                        c.poly
+                        "a complex pair (roots of {}) has modulus at least {}, the largest real modulus",
+                        short_poly(&c.poly),
+                        short_number(&rho)
                     ),
                 },
                 None,
@@ -723,6 +724,7 @@ fn classify(
         }
     }
     if rho_neg {
+        let rho = short_number(&rho);
         let detail = if rho_pos {
             format!("both {rho} and -({rho}) are eigenvalues of largest modulus")
         } else {
@@ -866,6 +868,26 @@ fn classify(
             second,
         }),
     )
+}
+
+/// The polynomial, or `a factor of degree d` when it is long.
+fn short_poly(p: &Poly) -> String {
+    let s = p.to_string();
+    if s.chars().count() <= 60 {
+        s
+    } else {
+        format!("an irreducible factor of degree {}", p.deg())
+    }
+}
+
+/// The exact form, or `≈ decimal (degree d)` when it is long.
+fn short_number(r: &RealAlgebraic) -> String {
+    let s = r.to_string();
+    if s.chars().count() <= 60 {
+        s
+    } else {
+        format!("≈ {} (degree {})", r.decimal(12), r.degree())
+    }
 }
 
 /// `−r`: the root of `f(−x)` (f the minimal polynomial of r) mirroring r — real roots come in
