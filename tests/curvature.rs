@@ -84,6 +84,13 @@ fn quadratic_bezier_curvature_at_the_start_and_the_joint() {
     assert!(close(lo, 1.0) && close(hi, 1.0));
     let [lo, _] = range(&c3, "0", false);
     assert!(close(lo, start));
+    // Pictures: a plane curve is drawn with its osculating circles (κinf and κsup on each side
+    // of each of the four points: 1 + 2 + 2 + 2 + 1 sides, two circles each, plus four dots);
+    // a space curve is not drawn.
+    let svg = c.to_svg().unwrap();
+    assert!(svg.contains("<polyline"));
+    assert_eq!(svg.matches("<circle").count(), 2 * 8 + 4, "{svg}");
+    assert!(c3.to_svg().is_none());
 }
 
 #[test]

@@ -456,6 +456,10 @@ pub struct SideRange {
     pub samples: usize,
     /// `[min β, max β]` over the samples on this side (finite class).
     pub beta_range: Option<[f64; 2]>,
+    /// In the plane: the unit normal towards the centre of the osculating circles of positive
+    /// β (the part of V2 orthogonal to V1), for drawing.
+    #[serde(skip)]
+    pub normal: Option<[f64; 2]>,
 }
 
 fn side_range(
@@ -502,7 +506,16 @@ fn side_range(
             }
         }
     };
+    let (a, b) = d.projected(proj);
+    let normal = (a.len() == 2).then(|| {
+        let n2 = a[0] * a[0] + a[1] * a[1];
+        let k = (b[0] * a[0] + b[1] * a[1]) / n2;
+        let w = [b[0] - k * a[0], b[1] - k * a[1]];
+        let l = w[0].hypot(w[1]);
+        [w[0] / l, w[1] / l]
+    });
     SideRange {
+        normal: normal.filter(|n| n[0].is_finite() && n[1].is_finite()),
         side: side.to_string(),
         through,
         class: class.into(),
@@ -547,6 +560,9 @@ pub struct CurveCurvature {
     pub points: Vec<DyadicPoint>,
     /// Word length of the attractor samples.
     pub level: u32,
+    /// The curve projected by the control points, in parameter order (for drawing).
+    #[serde(skip)]
+    pub polyline: Vec<Vec<f64>>,
     /// What the numbers are.
     pub note: String,
 }
@@ -806,7 +822,32 @@ pub fn curve_curvature(
             right: right.as_ref().and_then(|ds| sr(ds, 0, "right")),
         });
     }
+    // The curve in parameter order: words in lexicographic order applied to c0, then c_last.
+    let mut line: Vec<Vec<f64>> = vec![c0.iter().map(|x| x.to_f64().unwrap_or(f64::NAN)).collect()];
+    while line.len() * base <= 1 << 12 {
+        line = fm
+            .iter()
+            .flat_map(|m| {
+                line.iter().map(move |p| {
+                    m.iter()
+                        .map(|row| row.iter().zip(p).map(|(a, b)| a * b).sum())
+                        .collect::<Vec<f64>>()
+                })
+            })
+            .collect();
+    }
+    line.push(cl.iter().map(|x| x.to_f64().unwrap_or(f64::NAN)).collect());
+    let polyline = line
+        .iter()
+        .map(|p| {
+            proj0
+                .iter()
+                .map(|row| row.iter().zip(p).map(|(a, b)| a * b).sum())
+                .collect()
+        })
+        .collect();
     Ok(CurveCurvature {
+        polyline,
         dcfs,
         fixed_points,
         points: out,
@@ -885,5 +926,87 @@ impl CurveCurvature {
         }
         out += &format!("  ({}; level {})\n", self.note, self.level);
         out
+    }
+}
+
+impl CurveCurvature {
+    /// An SVG picture (plane curves only): the curve, and at every reported point the osculating
+    /// circles of κinf (green) and κsup (orange) on each side, centred on the side of β·V2.
+    /// `None` for a curve in 3D.
+    pub fn to_svg(&self) -> Option<String> {
+        if self.polyline.first().is_none_or(|p| p.len() != 2) {
+            return None;
+        }
+        let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
+        for p in &self.polyline {
+            x0 = x0.min(p[0]);
+            x1 = x1.max(p[0]);
+            y0 = y0.min(p[1]);
+            y1 = y1.max(p[1]);
+        }
+        let span = (x1 - x0).max(y1 - y0).max(1e-9);
+        let (x0, y0, x1, y1) = (
+            x0 - span / 2.0,
+            y0 - span / 2.0,
+            x1 + span / 2.0,
+            y1 + span / 2.0,
+        );
+        let w = 800.0;
+        let sc = w / (x1 - x0).max(y1 - y0);
+        let tx = |x: f64| (x - x0) * sc;
+        let ty = |y: f64| (y1 - y) * sc;
+        let mut s = format!(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{w}\" viewBox=\"0 0 {w} {w}\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+        );
+        let pts: Vec<String> = self
+            .polyline
+            .iter()
+            .map(|p| format!("{:.3},{:.3}", tx(p[0]), ty(p[1])))
+            .collect();
+        s += &format!(
+            "<polyline fill=\"none\" stroke=\"black\" stroke-width=\"1.5\" points=\"{}\"/>\n",
+            pts.join(" ")
+        );
+        for p in &self.points {
+            let (px, py) = (p.position[0], p.position[1]);
+            for side in [&p.left, &p.right].into_iter().flatten() {
+                let (Some(n), Some([blo, bhi])) = (side.normal, side.beta_range) else {
+                    continue;
+                };
+                for (k, b, colour) in [
+                    (
+                        side.kappa_inf.0,
+                        if blo.abs() < bhi.abs() { blo } else { bhi },
+                        "#2a9d2a",
+                    ),
+                    (
+                        side.kappa_sup.0,
+                        if blo.abs() < bhi.abs() { bhi } else { blo },
+                        "#e07b00",
+                    ),
+                ] {
+                    if !(k.is_finite() && k > 0.0) {
+                        continue;
+                    }
+                    let r = 1.0 / k;
+                    let sgn = if b < 0.0 { -1.0 } else { 1.0 };
+                    let (cx, cy) = (px + sgn * n[0] * r, py + sgn * n[1] * r);
+                    s += &format!(
+                        "<circle cx=\"{:.3}\" cy=\"{:.3}\" r=\"{:.3}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1\"/>\n",
+                        tx(cx),
+                        ty(cy),
+                        r * sc
+                    );
+                }
+            }
+            s += &format!(
+                "<circle cx=\"{:.3}\" cy=\"{:.3}\" r=\"3\" fill=\"#c00\"><title>t = {}</title></circle>\n",
+                tx(px),
+                ty(py),
+                p.t
+            );
+        }
+        s += "</svg>\n";
+        Some(s)
     }
 }

@@ -172,6 +172,11 @@ pub(crate) struct OperatorsArgs {
     /// Print every exact form in full (matrix, characteristic polynomial, eigenvectors).
     #[arg(long)]
     pub(crate) exact: bool,
+    /// With --points in the plane: write the curve with the osculating circles of κinf and
+    /// κsup at the reported points to this SVG file (one file per curve: the state's name is
+    /// inserted before the extension when there are several).
+    #[arg(long, value_name = "OUT.svg", requires = "points")]
+    pub(crate) svg: Option<std::path::PathBuf>,
     /// Print JSON.
     #[arg(long)]
     pub(crate) json: bool,

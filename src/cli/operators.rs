@@ -13,6 +13,7 @@ pub(super) fn run(args: OperatorsArgs, limits: &Limits) -> Result<ExitCode, Erro
         op,
         at,
         exact,
+        svg,
         json,
     } = args;
     let loaded = match &input {
@@ -56,6 +57,25 @@ pub(super) fn run(args: OperatorsArgs, limits: &Limits) -> Result<ExitCode, Erro
         }
         _ => Vec::new(),
     };
+    if let Some(path) = &svg {
+        for (state, c) in &ranges {
+            let Some(text) = c.to_svg() else {
+                return Err(Error::Usage(
+                    "--svg draws plane curves: give 2D --points".into(),
+                ));
+            };
+            let file = if ranges.len() == 1 {
+                path.clone()
+            } else {
+                let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("curve");
+                path.with_file_name(format!("{stem}-{state}.svg"))
+            };
+            std::fs::write(&file, text).map_err(|e| Error::Io {
+                path: file.display().to_string(),
+                reason: e.to_string(),
+            })?;
+        }
+    }
     if json {
         let curves: Vec<serde_json::Value> = ranges
             .iter()
