@@ -1,6 +1,8 @@
 //! The differential characteristic function and pseudo-curvature (issue #16; Janbein, Gentil,
 //! Roudet, Poull, GRAPP 2024). Every expected value is derived by hand in the test that checks it.
 
+mod common;
+
 use lacuna::{
     algebra::{bezier_restriction, Matrix},
     analysis::{analyse_matrix, curve_curvature, parse_matrix_arg, CurvatureClass, CurveCurvature},
@@ -85,11 +87,11 @@ fn quadratic_bezier_curvature_at_the_start_and_the_joint() {
     let [lo, _] = range(&c3, "0", false);
     assert!(close(lo, start));
     // Pictures: a plane curve is drawn with its osculating circles (κinf and κsup on each side
-    // of each of the four points: 1 + 2 + 2 + 2 + 1 sides, two circles each, plus four dots);
-    // a space curve is not drawn.
+    // of the points t = 0, 1/2, 1, 3/8: 1 + 2 + 1 + 2 sides, two circles each, plus a dot at
+    // each point); a space curve is not drawn.
     let svg = c.to_svg().unwrap();
     assert!(svg.contains("<polyline"));
-    assert_eq!(svg.matches("<circle").count(), 2 * 8 + 4, "{svg}");
+    assert_eq!(svg.matches("<circle").count(), 2 * 6 + 4);
     assert!(c3.to_svg().is_none());
 }
 
@@ -212,4 +214,51 @@ fn bad_parameters_are_coded_errors() {
     ];
     let e = curve_curvature(&names(2), &ops, &pts, &[], 4).unwrap_err();
     assert!(e.render().contains("E0912"), "{}", e.render());
+}
+
+#[test]
+fn cli_summary_op_at_and_json() {
+    // F0's eleven operators: a summary without long exact forms (the longest exact forms are
+    // thousands of characters: eigenvectors over fields of degree 5).
+    let (code, out, err) = common::lacuna(&["operators", "F0"]);
+    assert_eq!(code, 0, "{err}");
+    let longest = out.lines().map(|l| l.chars().count()).max().unwrap();
+    assert!(longest <= 200, "a line of {longest} characters");
+    assert!(
+        out.contains("T0.T0 (9×9, barycentric, contractive): sharp"),
+        "{out}"
+    );
+    // --op: one operator only.
+    let (code, out, _) = common::lacuna(&["operators", "F0", "--op", "T0.T0"]);
+    assert_eq!(code, 0);
+    assert!(out.starts_with("T0.T0 ") && !out.contains("T0.T1"), "{out}");
+    let (code, _, err) = common::lacuna(&["operators", "F0", "--op", "T9.T9"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("E0910"), "{err}");
+    // --at 1/3 is not dyadic for a curve of two operators.
+    let args = [
+        "operators",
+        "de-casteljau-edge",
+        "--points",
+        "0 0; 1 1; 2 0",
+        "--at",
+    ];
+    let (code, _, err) = common::lacuna(&[&args[..], &["1/3"]].concat());
+    assert_eq!(code, 2);
+    assert!(err.contains("E0911"), "{err}");
+    // JSON: every point carries kappa_inf and kappa_sup per side; 1 at the joint (see above).
+    let (code, out, err) = common::lacuna(&[&args[..], &["1/4", "--json"]].concat());
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let points = v["curves"][0]["curvature"]["points"].as_array().unwrap();
+    let joint = points.iter().find(|p| p["t"] == "1/2").unwrap();
+    for side in ["left", "right"] {
+        for k in ["kappa_inf", "kappa_sup"] {
+            assert!(
+                (joint[side][k].as_f64().unwrap() - 1.0).abs() < 1e-9,
+                "{joint}"
+            );
+        }
+    }
+    assert!(points.iter().any(|p| p["t"] == "1/4"));
 }
