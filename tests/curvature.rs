@@ -5,7 +5,10 @@ mod common;
 
 use lacuna::{
     algebra::{bezier_restriction, Matrix},
-    analysis::{analyse_matrix, curve_curvature, parse_matrix_arg, CurvatureClass, CurveCurvature},
+    analysis::{
+        analyse_matrix, curve_curvature, operator_dcf, parse_matrix_arg, CurvatureClass,
+        CurveCurvature,
+    },
 };
 use num_rational::BigRational;
 
@@ -261,4 +264,36 @@ fn cli_summary_op_at_and_json() {
         }
     }
     assert!(points.iter().any(|p| p["t"] == "1/4"));
+}
+
+#[test]
+fn equal_moduli_are_described_as_the_paper_does() {
+    // [1 1/2 1/2; 0 1/2 0; 0 0 1/2]: 1/2 twice (columns sum to 1): λ1 = λ2, straight lines.
+    let e = operator_dcf("T", &m("[1 1/2 1/2; 0 1/2 0; 0 0 1/2]"), &[]).unwrap_err();
+    assert!(e.starts_with("λ1 = λ2 = 1/2"), "{e}");
+    // [1 3/2 1/2; 0 −1/2 0; 0 0 1/2]: λ1 = −1/2, λ2 = 1/2, α = 1, two lines.
+    let e = operator_dcf("T", &m("[1 3/2 1/2; 0 -1/2 0; 0 0 1/2]"), &[]).unwrap_err();
+    assert!(e.starts_with("λ1 = −λ2") && e.contains("α = 1"), "{e}");
+    // [1 3/2 3/4; 0 −1/2 0; 0 0 1/4]: λ1 = −1/2, λ2 = 1/4 = λ1²: α = 2 exactly; from the
+    // vertex e2 = (0, 0, 1): q − c = (−1, 0, 1); v1 = (−1, 1, 0), v2 = (−1, 0, 1) (row 2 forces
+    // y = 0), so x1 = 0 — no DCF from e2; from e1 = (0, 1, 0): q − c = (−1, 1, 0) = v1: x1 = 1,
+    // x2 = 0, β = 0 (the iterates run along the line c + t·v1, on both sides).
+    let d = operator_dcf(
+        "T",
+        &m("[1 3/2 3/4; 0 -1/2 0; 0 0 1/4]"),
+        &[
+            ("e2".into(), vec![q(0, 1), q(0, 1), q(1, 1)]),
+            ("e1".into(), vec![q(0, 1), q(1, 1), q(0, 1)]),
+        ],
+    )
+    .unwrap();
+    assert_eq!((d.alpha.as_str(), d.class.as_str()), ("2", "finite"));
+    assert_eq!(d.v2, ["-1", "0", "1"]);
+    assert_eq!(d.starts.len(), 1);
+    let s = &d.starts[0];
+    assert_eq!(
+        (s.from.as_str(), s.x1.as_str(), s.x2.as_str()),
+        ("e1", "1", "0")
+    );
+    assert_eq!(s.beta.as_deref(), Some("0"));
 }

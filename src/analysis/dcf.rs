@@ -207,13 +207,17 @@ pub(crate) fn dcf_data(t: &Matrix) -> std::result::Result<DcfData, String> {
     let Some((a1, l1, m1)) = absr.first().cloned() else {
         return Err("no real eigenvalue besides 1 and 0".into());
     };
-    if m1 > 1
-        || absr
-            .get(1)
-            .is_some_and(|x| x.0.cmp_exact(&a1) == Ordering::Equal)
+    if m1 > 1 {
+        return Err(format!(
+            "λ1 = λ2 = {l1} (a repeated eigenvalue): the iterates converge to c along straight lines, one per starting point (no single tangent, no curvature)"
+        ));
+    }
+    if absr
+        .get(1)
+        .is_some_and(|x| x.0.cmp_exact(&a1) == Ordering::Equal)
     {
         return Err(format!(
-            "|λ1| = {a1} is shared by two eigenvalues (λ1 = ±λ2): the iterates converge along a line or oscillate between two directions"
+            "λ1 = −λ2, |λ1| = |λ2| = {a1}: α = 1, the even and odd iterates lie on the lines c + t·v1 + β·t·v2 and c − t·v1 + β·t·v2 (the direction oscillates between two extremes; no curvature)"
         ));
     }
     if a1.cmp_exact(&one) != Ordering::Less {
@@ -316,6 +320,17 @@ pub(crate) fn dcf_data(t: &Matrix) -> std::result::Result<DcfData, String> {
             f2.ln() / f1.ln()
         },
     })
+}
+
+/// The DCF of one operator at its fixed point, for the starting points `starts` (name, point
+/// in barycentric coordinates), or the reason why it has none (the paper's cases λ1 = λ2,
+/// λ1 = −λ2, complex λ2, …).
+pub fn operator_dcf(
+    name: &str,
+    t: &Matrix,
+    starts: &[(String, Vec<BigRational>)],
+) -> std::result::Result<Dcf, String> {
+    dcf_data(t).map(|d| d.report(name, starts))
 }
 
 impl DcfData {

@@ -17,7 +17,9 @@ pub use curve::{
     analyse_automaton, analyse_automaton_only, estimate_curvature, AutomatonOperators,
     CurvatureEstimate, CurveReport, PointBehaviour, Side,
 };
-pub use dcf::{curve_curvature, CurveCurvature, Dcf, DcfStart, DyadicPoint, Kappa, SideRange};
+pub use dcf::{
+    curve_curvature, operator_dcf, CurveCurvature, Dcf, DcfStart, DyadicPoint, Kappa, SideRange,
+};
 pub use design::{check_design, design_operator, DesignCheck, DesignError};
 pub use operator::{
     analyse_matrix, parse_matrix_arg, parse_rationals_arg, Behaviour, CurvatureClass, Eigenvalue,
