@@ -241,7 +241,11 @@ impl OperatorReport {
             );
         }
         if let Some(a) = self.alpha_approx {
-            out += &format!("  α ≈ {a:.6}\n");
+            out += &match self.behaviour.class() {
+                // α = 2 ⇔ the finite class, decided exactly (|λ2| = λ1²).
+                Some(CurvatureClass::Finite) => "  α = 2 (exact: |λ2| = λ1²)\n".to_string(),
+                _ => format!("  α ≈ {a:.6}\n"),
+            };
         }
         out
     }
