@@ -216,14 +216,16 @@ fn hardening_10_solve_memory_estimated_before_solving() {
 
 #[test]
 fn hardening_11_operators_matrix_limit() {
-    // A 15×15 integer matrix (194 s before): refused before the eigen analysis.
+    // A matrix above the default limit (16: the exact analysis of a random 16×16 integer matrix
+    // takes a fraction of a second since the operators work; a 15×15 took 194 s before it):
+    // refused before the eigen analysis.
     let row = |i: usize| {
-        (0..15)
+        (0..20)
             .map(|j| ((i * 7 + j * 3) % 10).to_string())
             .collect::<Vec<_>>()
             .join(" ")
     };
-    let m = (0..15).map(row).collect::<Vec<_>>().join("; ");
+    let m = (0..20).map(row).collect::<Vec<_>>().join("; ");
     let (code, out, err, t) = timed(&["operators", &format!("--matrix={m}")]);
     assert_eq!(code, 2, "{out}{err}");
     assert!(

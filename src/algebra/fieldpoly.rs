@@ -229,6 +229,129 @@ pub(crate) fn null_space(k: &NumberField, mut a: Vec<Vec<FieldElement>>) -> Vec<
         .collect()
 }
 
+/// An eigenvector of the rational matrix `t` for an eigenvalue `lambda` ∈ K of geometric
+/// multiplicity 1, from a non-zero column of the adjugate `adj(λ·I − T) = Σ_i λ^i·Q_i` with
+/// `Q_{n−1} = I`, `Q_{i−1} = T·Q_i + c_i·I` (`χ = Σ c_i x^i` monic; `(x·I − T)·Σ x^i Q_i = χ(x)·I`
+/// by Cayley–Hamilton). Column j needs only n rational matrix–vector products; the field enters at
+/// the end, in one combination per coordinate. No elimination over K, so no coefficient growth
+/// beyond the size of the answer. `None` when every column vanishes (eigenspace of dimension > 1)
+/// — the caller then uses [`null_space`]. Scaled so that the last non-zero coordinate is 1 when
+/// K has degree ≤ 2; in a field of degree ≥ 3, to coprime integer coordinates on the power basis
+/// (normalising would need an inversion in K and make the coordinates much larger).
+pub(crate) fn adjugate_eigenvector(
+    k: &NumberField,
+    t: &Matrix,
+    chi: &Poly,
+    lambda: &FieldElement,
+) -> Option<Vec<FieldElement>> {
+    use num_bigint::BigInt;
+    use num_integer::Integer;
+    let n = t.rows;
+    let chi = chi.monic();
+    // Over Z: A = d·T (d the lcm of the denominators) has the eigenvalue μ = d·λ and the monic
+    // integer characteristic polynomial p(x) = d^n·χ(x/d); adj(μI − A) = d^(n−1)·adj(λI − T).
+    let d = t
+        .data
+        .iter()
+        .fold(BigInt::one(), |acc, x| acc.lcm(x.denom()));
+    let a: Vec<Vec<BigInt>> = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|j| {
+                    let x = t.get(i, j);
+                    x.numer() * (&d / x.denom())
+                })
+                .collect()
+        })
+        .collect();
+    let dq = BigRational::from_integer(d.clone());
+    let p: Vec<BigInt> = (0..=n)
+        .map(|i| (chi.coeff(i) * dq.pow((n - i) as i32)).to_integer())
+        .collect();
+    // Powers 1, μ, …, μ^(n−1) of μ = d·λ in K.
+    let mu = k.scale(lambda, &dq);
+    let mut pows = vec![k.rational(BigRational::one())];
+    for i in 1..n {
+        pows.push(k.mul(&pows[i - 1], &mu));
+    }
+    let gen = is_generator(k, lambda);
+    for col in 0..n {
+        // w_{n−1} = e_col, w_{i−1} = A·w_i + p_i·e_col, all integers.
+        let mut w = vec![BigInt::zero(); n];
+        w[col] = BigInt::one();
+        let mut ws = vec![w.clone()];
+        for i in (1..n).rev() {
+            let mut next: Vec<BigInt> = a
+                .iter()
+                .map(|row| {
+                    row.iter()
+                        .zip(&w)
+                        .filter(|(x, y)| !x.is_zero() && !y.is_zero())
+                        .map(|(x, y)| x * y)
+                        .sum()
+                })
+                .collect();
+            next[col] += &p[i];
+            ws.push(next.clone());
+            w = next;
+        }
+        ws.reverse(); // ws[i] = w_i
+        let v: Vec<FieldElement> = (0..n)
+            .map(|r| {
+                if gen {
+                    // λ the generator: Σ (w_i)_r·d^i·λ^i, reduced modulo the minimal polynomial.
+                    let mut dp = BigInt::one();
+                    let c: Vec<BigRational> = ws
+                        .iter()
+                        .map(|x| {
+                            let c = BigRational::from_integer(&x[r] * &dp);
+                            dp *= &d;
+                            c
+                        })
+                        .collect();
+                    return k.element(&Poly::new(c));
+                }
+                ws.iter().zip(&pows).filter(|(x, _)| !x[r].is_zero()).fold(
+                    k.rational(BigRational::zero()),
+                    |acc, (x, p)| {
+                        k.add(&acc, &k.scale(p, &BigRational::from_integer(x[r].clone())))
+                    },
+                )
+            })
+            .collect();
+        if let Some(last) = v.iter().rev().find(|x| !x.is_zero()) {
+            if k.degree() <= 2 {
+                let inv = k.inv(last)?;
+                return Some(v.iter().map(|x| k.mul(x, &inv)).collect());
+            }
+            return Some(primitive_vector(k, v));
+        }
+    }
+    None
+}
+
+/// `v` scaled by a positive rational so that every coordinate on the power basis is an integer
+/// and the integers have no common factor (an inversion in K would make the vector larger).
+fn primitive_vector(k: &NumberField, v: Vec<FieldElement>) -> Vec<FieldElement> {
+    use num_integer::Integer;
+    let coeffs = v.iter().flat_map(|x| x.coords().iter());
+    let den = coeffs
+        .clone()
+        .fold(num_bigint::BigInt::one(), |acc, c| acc.lcm(c.denom()));
+    let num = coeffs.fold(num_bigint::BigInt::zero(), |acc, c| {
+        acc.gcd(&(c.numer() * (&den / c.denom())))
+    });
+    if num.is_zero() {
+        return v;
+    }
+    let s = BigRational::new(den, num);
+    v.iter().map(|x| k.scale(x, &s)).collect()
+}
+
+fn is_generator(k: &NumberField, a: &FieldElement) -> bool {
+    k.degree() > 1 && *a == k.generator_element()
+}
+
 /// `T − λ·I` over K.
 pub(crate) fn shifted(
     k: &NumberField,

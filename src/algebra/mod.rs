@@ -6,6 +6,7 @@
 //! crate but [`crate::error`] and knows nothing of faces, automata or geometry.
 
 pub(crate) mod algebraic;
+pub(crate) mod disk;
 pub(crate) mod factor;
 pub(crate) mod fieldpoly;
 pub(crate) mod matrix;

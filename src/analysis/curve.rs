@@ -76,9 +76,31 @@ pub struct AutomatonOperators {
 /// Analyses every known `sub` operator that maps a state to itself, and the end and joining
 /// points of every state with at least two such operators (SPEC §8, dyadic points).
 pub fn analyse_automaton(a: &Automaton) -> Result<AutomatonOperators> {
+    analyse_automaton_only(a, None)
+}
+
+/// [`analyse_automaton`] restricted to the operator named `only` (no curves are read then).
+/// Error E0910 when there is no such sub-operator.
+pub fn analyse_automaton_only(a: &Automaton, only: Option<&str>) -> Result<AutomatonOperators> {
+    if let Some(name) = only {
+        if !a
+            .operators
+            .iter()
+            .any(|o| o.kind == OpKind::Sub && o.name == name)
+        {
+            return Err(op_error(
+                "E0910",
+                format!("no subdivision operator `{name}` in the automaton"),
+            ));
+        }
+    }
     let mut operators = Vec::new();
     let mut skipped = Vec::new();
-    for op in a.operators.iter().filter(|o| o.kind == OpKind::Sub) {
+    for op in a
+        .operators
+        .iter()
+        .filter(|o| o.kind == OpKind::Sub && only.is_none_or(|n| o.name == n))
+    {
         match (&op.value, op.to == op.from) {
             (_, false) => skipped.push(format!(
                 "{}: maps {} to {} (not an iterated map of one state)",
@@ -95,7 +117,7 @@ pub fn analyse_automaton(a: &Automaton) -> Result<AutomatonOperators> {
         }
     }
     let mut curves = Vec::new();
-    for (s, state) in a.states.iter().enumerate() {
+    for (s, state) in a.states.iter().enumerate().filter(|_| only.is_none()) {
         let ops: Vec<&Operator> = a
             .operators
             .iter()
@@ -464,11 +486,29 @@ impl CurvatureEstimate {
 }
 
 impl AutomatonOperators {
-    /// A human-readable rendering: every operator, then every curve's points.
+    /// The full rendering: every operator with its exact forms, then every curve's points.
     pub fn to_text(&self) -> String {
+        self.render(true)
+    }
+
+    /// The summary: a few lines per operator (see [`OperatorReport::summary`]), then every
+    /// curve's points with exact forms only when short.
+    pub fn summary(&self) -> String {
+        self.render(false)
+    }
+
+    fn render(&self, exact: bool) -> String {
+        let cut = |v: &[String]| -> String {
+            let s = v.join(", ");
+            if exact || s.chars().count() <= 120 {
+                s
+            } else {
+                format!("{} coordinates; exact form in --exact", v.len())
+            }
+        };
         let mut out = String::new();
         for r in &self.operators {
-            out += &r.to_text();
+            out += &if exact { r.to_text() } else { r.summary() };
             out += "\n";
         }
         for s in &self.skipped {
@@ -480,12 +520,12 @@ impl AutomatonOperators {
                 out += &format!("  not read as a curve: {n}\n");
             }
             for p in &c.points {
-                out += &format!("  {} at ({})\n", p.label, p.point.join(", "));
+                out += &format!("  {} at ({})\n", p.label, cut(&p.point));
                 for (name, s) in [("left", &p.left), ("right", &p.right)] {
                     if let Some(s) = s {
                         out += &format!("    {name}: {} via {}", s.behaviour, s.through);
                         if let Some(t) = &s.tangent {
-                            out += &format!(", tangent ({})", t.join(", "));
+                            out += &format!(", tangent ({})", cut(t));
                         }
                         out += "\n";
                     }

@@ -7,6 +7,7 @@
 
 pub(crate) mod census;
 pub(crate) mod curve;
+pub(crate) mod dcf;
 pub(crate) mod design;
 pub(crate) mod explore;
 pub(crate) mod operator;
@@ -14,8 +15,11 @@ pub(crate) mod ratio;
 
 pub use census::{census, CensusFace, CensusReport, CensusSpec};
 pub use curve::{
-    analyse_automaton, estimate_curvature, AutomatonOperators, CurvatureEstimate, CurveReport,
-    PointBehaviour, Side,
+    analyse_automaton, analyse_automaton_only, estimate_curvature, AutomatonOperators,
+    CurvatureEstimate, CurveReport, PointBehaviour, Side,
+};
+pub use dcf::{
+    curve_curvature, operator_dcf, CurveCurvature, Dcf, DcfStart, DyadicPoint, Kappa, SideRange,
 };
 pub use design::{check_design, design_operator, DesignCheck, DesignError};
 pub use explore::{

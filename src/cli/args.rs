@@ -46,8 +46,7 @@ pub(crate) struct LimitArgs {
     /// Maximum estimated memory of a constraint solve, in MiB (checked before the solve).
     #[arg(long, help_heading = "Limits", default_value_t = Limits::default().max_memory_mb)]
     pub(crate) max_memory: u64,
-    /// Maximum size n of an n×n matrix for eigen analysis (`operators`; a dense 12×12 takes
-    /// about a minute).
+    /// Maximum size n of an n×n matrix for eigen analysis (`operators`).
     #[arg(long, help_heading = "Limits", default_value_t = Limits::default().max_matrix)]
     pub(crate) max_matrix: usize,
 }
@@ -280,12 +279,29 @@ pub(crate) struct OperatorsArgs {
     /// only; floating point, an estimate): needs --points.
     #[arg(long, value_name = "OP", requires = "points")]
     pub(crate) curvature: Option<String>,
-    /// The control points of the operator's state in the plane, `x y; x y; …`.
-    #[arg(long, requires = "curvature")]
+    /// Control points of a curve's state, `x y; x y; …` (2D) or `x y z; …` (3D): adds the
+    /// differential characteristic functions and pseudo-curvature ranges of every curve whose
+    /// state has that many points.
+    #[arg(long)]
     pub(crate) points: Option<String>,
-    /// Word length of the attractor samples for --curvature (at most 16).
+    /// Word length of the attractor samples for --curvature and the curvature ranges.
     #[arg(long, default_value_t = 8)]
     pub(crate) level: u32,
+    /// Analyse only this operator of the automaton or face.
+    #[arg(long, value_name = "NAME")]
+    pub(crate) op: Option<String>,
+    /// A dyadic parameter t of the curve (I-adic for I operators, e.g. 3/8) where the left and
+    /// right pseudo-curvature ranges are also given (repeatable; needs --points).
+    #[arg(long, value_name = "T", requires = "points")]
+    pub(crate) at: Vec<String>,
+    /// Print every exact form in full (matrix, characteristic polynomial, eigenvectors).
+    #[arg(long)]
+    pub(crate) exact: bool,
+    /// With --points in the plane: write the curve with the osculating circles of κinf and
+    /// κsup at the reported points to this SVG file (one file per curve: the state's name is
+    /// inserted before the extension when there are several).
+    #[arg(long, value_name = "OUT.svg", requires = "points")]
+    pub(crate) svg: Option<std::path::PathBuf>,
     /// Print JSON.
     #[arg(long)]
     pub(crate) json: bool,

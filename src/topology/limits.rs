@@ -37,7 +37,7 @@ impl Default for Limits {
             max_digits: 10_000,
             max_unknowns: 20_000_000,
             max_memory_mb: 1024,
-            max_matrix: 8,
+            max_matrix: 16,
         }
     }
 }

@@ -10,10 +10,11 @@
 //! certified by exact evaluation; the numerical value of α) and in [`estimate_curvature`].
 
 use crate::algebra::algebraic::{FieldElement, NumberField, RealAlgebraic};
+use crate::algebra::disk::{approx_roots, root_disks, sqrt_up, Disk};
 use crate::algebra::factor::{charpoly, factor};
 use crate::algebra::fieldpoly::{
-    circle_position, inside_unit_disk, k_divrem, k_eval, k_scale_var, null_space, rationals,
-    shifted, to_k, Position,
+    adjugate_eigenvector, circle_position, inside_unit_disk, k_divrem, k_eval, k_scale_var,
+    null_space, rationals, shifted, to_k, Position,
 };
 use crate::algebra::matrix::Matrix;
 use crate::algebra::poly::Poly;
@@ -21,7 +22,7 @@ use crate::error::{Diagnostic, Error, Result, Source, Span};
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
-use num_traits::{FromPrimitive, One, ToPrimitive, Zero};
+use num_traits::{FromPrimitive, One, Signed, ToPrimitive, Zero};
 use serde::Serialize;
 use std::cmp::Ordering;
 
@@ -204,77 +205,6 @@ pub(crate) fn char_poly(t: &Matrix) -> Poly {
     )
 }
 
-fn cx_mul(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
-    (a.0 * b.0 - a.1 * b.1, a.0 * b.1 + a.1 * b.0)
-}
-
-/// Float approximations of every root of `f` (Durand–Kerner): used only for display.
-fn approx_roots(f: &Poly) -> Vec<(f64, f64)> {
-    let f = f.monic();
-    let c: Vec<f64> = f
-        .coeffs()
-        .iter()
-        .map(|x| x.to_f64().unwrap_or(0.0))
-        .collect();
-    let n = f.deg();
-    let eval = |z: (f64, f64)| {
-        c.iter().rev().fold((0.0, 0.0), |acc, &a| {
-            let m = cx_mul(acc, z);
-            (m.0 + a, m.1)
-        })
-    };
-    let mut z: Vec<(f64, f64)> = (0..n)
-        .map(|i| {
-            let w = cx_mul((0.4, 0.9), (1.0, 0.0));
-            (0..i).fold((1.0, 0.0), |acc, _| cx_mul(acc, w))
-        })
-        .collect();
-    for _ in 0..500 {
-        for i in 0..n {
-            let num = eval(z[i]);
-            let mut den = (1.0, 0.0);
-            for j in 0..n {
-                if i != j {
-                    den = cx_mul(den, (z[i].0 - z[j].0, z[i].1 - z[j].1));
-                }
-            }
-            let d2 = den.0 * den.0 + den.1 * den.1;
-            if d2 > 0.0 {
-                let quo = cx_mul(num, (den.0 / d2, -den.1 / d2));
-                z[i] = (z[i].0 - quo.0, z[i].1 - quo.1);
-            }
-        }
-    }
-    z
-}
-
-/// A rational upper bound on `n·|f(z)/f'(z)|`, evaluated exactly at the rational point z: some
-/// root of f lies within it. `None` when f'(z) = 0 or the point is not finite.
-fn certified_radius(f: &Poly, z: (f64, f64)) -> Option<BigRational> {
-    let (re, im) = (BigRational::from_f64(z.0)?, BigRational::from_f64(z.1)?);
-    let eval = |p: &Poly| {
-        p.coeffs()
-            .iter()
-            .rev()
-            .fold((BigRational::zero(), BigRational::zero()), |(a, b), c| {
-                (&a * &re - &b * &im + c, &a * &im + &b * &re)
-            })
-    };
-    let (fa, fb) = eval(f);
-    let (da, db) = eval(&f.derivative());
-    let den = &da * &da + &db * &db;
-    if den.is_zero() {
-        return None;
-    }
-    let n = q(f.deg() as i64);
-    let r2 = &n * &n * (&fa * &fa + &fb * &fb) / den;
-    let mut up = BigRational::from_f64(r2.to_f64()?.sqrt() * (1.0 + 1e-6) + 1e-300)?;
-    while &up * &up < r2 {
-        up = &up * q(2);
-    }
-    Some(up)
-}
-
 pub(crate) fn render_vec(k: &NumberField, v: &[FieldElement]) -> Vec<String> {
     v.iter().map(|x| k.render(x)).collect()
 }
@@ -311,13 +241,11 @@ pub fn analyse_matrix(t: &Matrix) -> Result<OperatorReport> {
         .map_or(0, |(_, m)| *m);
     let mut eigen = Vec::new();
     let mut reals: Vec<RealRoot> = Vec::new();
-    let mut complex_factors: Vec<&Poly> = Vec::new();
+    let mut complex_disks: Vec<ComplexFactor> = Vec::new();
     for (f, mult) in &factors {
         let roots = RealAlgebraic::real_roots(f);
         for r in &roots {
-            let k = NumberField::new(r.clone());
-            let lam = k.generator_element();
-            let vecs = null_space(&k, shifted(&k, t, &lam));
+            let rendered = real_eigenvectors(t, &chi, r, *mult);
             let approx = r.decimal(12);
             eigen.push(Eigenvalue {
                 min_poly: f.to_string(),
@@ -327,7 +255,7 @@ pub fn analyse_matrix(t: &Matrix) -> Result<OperatorReport> {
                 modulus: approx.parse::<f64>().unwrap_or(f64::NAN).abs(),
                 approx,
                 radius: None,
-                eigenvectors: vecs.iter().map(|v| render_vec(&k, v)).collect(),
+                eigenvectors: rendered,
             });
             reals.push(RealRoot {
                 value: r.clone(),
@@ -335,8 +263,14 @@ pub fn analyse_matrix(t: &Matrix) -> Result<OperatorReport> {
             });
         }
         if roots.len() < f.deg() {
-            complex_factors.push(f);
-            eigen.extend(complex_pairs(f, roots.len(), *mult));
+            let disks = root_disks(f).filter(|d| {
+                d.iter().filter(|x| x.above_axis()).count() * 2 == f.deg() - roots.len()
+            });
+            eigen.extend(complex_pairs(f, roots.len(), *mult, disks.as_deref()));
+            complex_disks.push(ComplexFactor {
+                poly: f.clone(),
+                upper: disks.map(|d| d.into_iter().filter(Disk::above_axis).collect()),
+            });
         }
     }
     // Real eigenvalues in decreasing order, complex pairs after (stable).
@@ -361,7 +295,11 @@ pub fn analyse_matrix(t: &Matrix) -> Result<OperatorReport> {
             Some("1 is not an eigenvalue: no fixed point".to_string()),
         )
     } else {
-        let ns = null_space(&qk, shifted(&qk, t, &qk.rational(BigRational::one())));
+        let one_k = qk.rational(BigRational::one());
+        let ns = match (mult_one, adjugate_eigenvector(&qk, t, &chi, &one_k)) {
+            (1, Some(v)) => vec![v],
+            _ => null_space(&qk, shifted(&qk, t, &one_k)),
+        };
         if ns.len() != 1 {
             (
                 None,
@@ -391,13 +329,9 @@ pub fn analyse_matrix(t: &Matrix) -> Result<OperatorReport> {
     };
 
     // Contraction: 1 simple, every other root of χ in the open unit disk.
-    let rest = chi.exact_div(&one);
-    let contractive = mult_one == 1
-        && rest
-            .as_ref()
-            .is_some_and(|h| inside_unit_disk(&qk, &to_k(&qk, h)));
+    let contractive = mult_one == 1 && contracts(&reals, &complex_disks);
 
-    let (behaviour, exact) = classify(t, &chi, mult_one, &reals, &complex_factors);
+    let (behaviour, exact) = classify(t, &chi, mult_one, &reals, &complex_disks);
     let (lambda1, tangent, alpha_approx) = match &exact {
         Some(d) => {
             let l1 = d.lambda1.decimal(17).parse::<f64>().unwrap_or(f64::NAN);
@@ -447,32 +381,210 @@ pub fn analyse_matrix(t: &Matrix) -> Result<OperatorReport> {
     })
 }
 
-/// The complex pairs of the irreducible `f` (which has `n_real` real roots), approximated in
-/// floats and certified by an enclosing radius; exact `a ± i*sqrt(s)` for quadratics.
-fn complex_pairs(f: &Poly, n_real: usize, mult: usize) -> Vec<Eigenvalue> {
+/// The complex pairs of the irreducible `f` (which has `n_real` real roots): centres of the
+/// certified disks when there are some (else float approximations with a radius certified one by
+/// one); exact `a ± i*sqrt(s)` for quadratics.
+fn complex_pairs(f: &Poly, n_real: usize, mult: usize, disks: Option<&[Disk]>) -> Vec<Eigenvalue> {
     let pairs = (f.deg() - n_real) / 2;
-    let mut z = approx_roots(f);
-    z.sort_by(|a, b| b.1.partial_cmp(&a.1).unwrap_or(Ordering::Equal));
     let exact = (f.deg() == 2).then(|| {
         let f = f.monic();
         let re = -f.coeff(1) / q(2);
         let s = f.coeff(0) - &re * &re;
         format!("{re} ± i*sqrt({s})")
     });
-    z.into_iter()
-        .take(pairs)
-        .map(|(re, im)| Eigenvalue {
+    let found: Vec<((f64, f64), Option<BigRational>)> = match disks {
+        Some(d) => d
+            .iter()
+            .filter(|x| x.above_axis())
+            .map(|x| (x.approx(), Some(x.r.clone())))
+            .collect(),
+        None => {
+            let mut z = approx_roots(f);
+            z.sort_by(|a, b| b.1.partial_cmp(&a.1).unwrap_or(Ordering::Equal));
+            z.into_iter().take(pairs).map(|z| (z, None)).collect()
+        }
+    };
+    found
+        .into_iter()
+        .map(|((re, im), r)| Eigenvalue {
             min_poly: f.to_string(),
             multiplicity: mult,
             real: false,
             exact: exact.clone(),
             approx: format!("{re:.12} ± {:.12} i", im.abs()),
-            radius: certified_radius(f, (re, im))
+            radius: r
+                .or_else(|| certified_radius(f, (re, im)))
                 .map(|r| format!("{:.3e}", r.to_f64().unwrap_or(f64::NAN))),
             eigenvectors: Vec::new(),
             modulus: (re * re + im * im).sqrt(),
         })
         .collect()
+}
+
+/// A rational upper bound on `n·|f(z)/f'(z)|` at the rational point z: some root of f lies
+/// within it. `None` when f'(z) = 0 or the point is not finite.
+fn certified_radius(f: &Poly, z: (f64, f64)) -> Option<BigRational> {
+    let (re, im) = (BigRational::from_f64(z.0)?, BigRational::from_f64(z.1)?);
+    let eval = |p: &Poly| {
+        p.coeffs()
+            .iter()
+            .rev()
+            .fold((BigRational::zero(), BigRational::zero()), |(a, b), c| {
+                (&a * &re - &b * &im + c, &a * &im + &b * &re)
+            })
+    };
+    let (fa, fb) = eval(f);
+    let (da, db) = eval(&f.derivative());
+    let den = &da * &da + &db * &db;
+    if den.is_zero() {
+        return None;
+    }
+    let n = q(f.deg() as i64);
+    Some(sqrt_up(&(&n * &n * (&fa * &fa + &fb * &fb) / den)))
+}
+
+/// An irreducible factor with complex roots and, when the float approximations separate them,
+/// the certified disks of its roots above the real axis (one per conjugate pair).
+struct ComplexFactor {
+    poly: Poly,
+    upper: Option<Vec<Disk>>,
+}
+
+/// Exact eigenvectors of the real eigenvalue `r` (a root of a factor of multiplicity `mult`),
+/// rendered. Simple: a column of the adjugate
+/// ([`adjugate_eigenvector`]), no elimination over Q(r). Repeated: null space over Q(r).
+fn real_eigenvectors(t: &Matrix, chi: &Poly, r: &RealAlgebraic, mult: usize) -> Vec<Vec<String>> {
+    let k = NumberField::new(r.clone());
+    let lam = k.generator_element();
+    let vecs = if mult > 1 {
+        null_space(&k, shifted(&k, t, &lam))
+    } else {
+        match adjugate_eigenvector(&k, t, chi, &lam) {
+            Some(v) => vec![v],
+            None => null_space(&k, shifted(&k, t, &lam)),
+        }
+    };
+    vecs.iter().map(|v| render_vec(&k, v)).collect()
+}
+
+/// One eigenvector of the simple eigenvalue `lam` ∈ K.
+pub(crate) fn eigenvector_in(
+    k: &NumberField,
+    t: &Matrix,
+    chi: &Poly,
+    lam: &FieldElement,
+) -> Option<Vec<FieldElement>> {
+    adjugate_eigenvector(k, t, chi, lam)
+        .or_else(|| null_space(k, shifted(k, t, lam)).into_iter().next())
+}
+
+/// 1 is simple and every other eigenvalue lies in the open unit disk: real ones by exact
+/// comparison, complex ones by their certified disks, Schur–Cohn over Q on the factor when a
+/// disk straddles the unit circle.
+fn contracts(reals: &[RealRoot], complex: &[ComplexFactor]) -> bool {
+    let one = RealAlgebraic::rational(BigRational::one());
+    let minus = RealAlgebraic::rational(-BigRational::one());
+    let reals_ok = reals.iter().all(|r| {
+        r.value.cmp_exact(&one) == Ordering::Equal && r.mult == 1
+            || r.value.cmp_exact(&one) == Ordering::Less
+                && r.value.cmp_exact(&minus) == Ordering::Greater
+    });
+    let qk = rationals();
+    reals_ok
+        && complex.iter().all(|c| {
+            let fast = c.upper.as_ref().and_then(|d| {
+                let mut all = true;
+                for x in d {
+                    match x.cmp_modulus(&BigRational::one(), &BigRational::one()) {
+                        Some(Ordering::Less) => {}
+                        Some(_) => all = false,
+                        None => return None,
+                    }
+                }
+                Some(all)
+            });
+            fast.unwrap_or_else(|| inside_unit_disk(&qk, &to_k(&qk, &c.poly)))
+        })
+}
+
+/// An enclosure `[lo, hi]` of `|r|`, refined to width `w` (`lo ≥ 0`).
+fn abs_enclosure(r: &mut RealAlgebraic, w: &BigRational) -> (BigRational, BigRational) {
+    r.refine_to(w);
+    let (lo, hi) = r.interval();
+    let (lo, hi) = if lo.is_negative() && hi.is_positive() {
+        (BigRational::zero(), lo.abs().max(hi.abs()))
+    } else if hi.is_positive() || hi.is_zero() && lo.is_zero() {
+        (lo.clone(), hi.clone())
+    } else {
+        (hi.abs(), lo.abs())
+    };
+    (lo.max(BigRational::zero()), hi)
+}
+
+/// Exact comparison of `|mu|` with `lambda1²` (λ1 > 0): interval refinement separates distinct
+/// numbers; equality is recognised exactly — `g(±λ1²) = 0` in Q(λ1) for the minimal polynomial
+/// g of μ, and the enclosure of ±λ1² inside μ's isolating interval (g has one root there).
+/// Returns the ordering and, on equality, the sign of μ.
+pub(crate) fn cmp_abs_with_square(
+    mu: &RealAlgebraic,
+    lambda1: &RealAlgebraic,
+    k: &NumberField,
+) -> Ordering {
+    let mu_neg = mu.cmp_exact(&RealAlgebraic::rational(BigRational::zero())) == Ordering::Less;
+    if let Some(l) = lambda1.as_rational() {
+        let sq = l * l;
+        let target = RealAlgebraic::rational(if mu_neg { -sq } else { sq });
+        let c = mu.cmp_exact(&target);
+        return if mu_neg { c.reverse() } else { c };
+    }
+    let (mut m, mut l) = (mu.clone(), lambda1.clone());
+    let mut w = BigRational::new(1.into(), (1u64 << 40).into());
+    let mut equal_checked = false;
+    for round in 0.. {
+        let (mlo, mhi) = abs_enclosure(&mut m, &w);
+        l.refine_to(&w);
+        let (llo, lhi) = l.interval();
+        let (slo, shi) = (llo.max(&BigRational::zero()).clone(), lhi.clone());
+        let (slo, shi) = (&slo * &slo, &shi * &shi);
+        if mhi < slo {
+            return Ordering::Less;
+        }
+        if mlo > shi {
+            return Ordering::Greater;
+        }
+        if round >= 2 && !equal_checked {
+            equal_checked = true;
+            let s = if mu_neg { q(-1) } else { q(1) };
+            let g = k_eval(
+                k,
+                &to_k(k, mu.min_poly()),
+                &k.scale(&k.mul(&k.generator_element(), &k.generator_element()), &s),
+            );
+            if g.is_zero() && mu.degree() == 1 {
+                return Ordering::Equal;
+            }
+            if g.is_zero() {
+                // ±λ1² is a root of g: it is μ iff its enclosure falls in μ's isolating interval.
+                loop {
+                    let (ilo, ihi) = m.interval();
+                    let (ilo, ihi) = (ilo.clone(), ihi.clone());
+                    l.refine_to(&w);
+                    let (llo, lhi) = l.interval();
+                    let (a, b) = (llo * llo * &s, lhi * lhi * &s);
+                    let (a, b) = if a <= b { (a, b) } else { (b, a) };
+                    if ilo < a && b < ihi {
+                        return Ordering::Equal;
+                    }
+                    if b < ilo || ihi < a {
+                        break;
+                    }
+                    w = &w / q(1 << 20);
+                }
+            }
+        }
+        w = &w / q(1 << 20);
+    }
+    unreachable!("the loop returns")
 }
 
 /// `f(−x)`.
@@ -487,12 +599,18 @@ fn reflect(f: &Poly) -> Poly {
 }
 
 /// The §8 case analysis, exact. Returns the behaviour and, in the tangent case, λ1 and v1.
+///
+/// Moduli are compared first by enclosures — isolating intervals of the real eigenvalues and the
+/// certified disks of the complex ones — which decide every strict inequality; equalities of
+/// real eigenvalues (λ2 = ±λ1²) are recognised exactly in Q(λ1). Only when a complex disk cannot
+/// be separated from the circle in question does the analysis fall back to the exact tests over
+/// Q(ρ) (Schur–Cohn, gcd with the reciprocal polynomial).
 fn classify(
     t: &Matrix,
     chi: &Poly,
     mult_one: usize,
     reals: &[RealRoot],
-    complex_factors: &[&Poly],
+    complex: &[ComplexFactor],
 ) -> (Behaviour, Option<TangentData>) {
     let degenerate = |detail: String| (Behaviour::Degenerate { detail }, None);
     if mult_one == 0 {
@@ -536,7 +654,7 @@ fn classify(
     }
     let (rho, rho_pos, rho_neg) = match (&pos, &neg) {
         (None, None) => {
-            return if complex_factors.is_empty() {
+            return if complex.is_empty() {
                 degenerate(
                     "every eigenvalue but 1 is 0: the operator collapses onto its fixed point"
                         .into(),
@@ -558,21 +676,47 @@ fn classify(
             Ordering::Equal => (p.clone(), true, true),
         },
     };
-    // Does a complex pair reach modulus ρ? Test f(ρ·x) with its roots ±1 removed.
     let k = NumberField::new(rho.clone());
     let rho_k = k.generator_element();
-    for f in complex_factors {
-        let mut g = k_scale_var(&k, &to_k(&k, f), &rho_k);
-        for s in [1i64, -1] {
-            if k_eval(&k, &g, &k.rational(q(s))).is_zero() {
-                g = k_divrem(&k, &g, &[k.rational(q(-s)), k.rational(q(1))]).0;
+    // Does a complex pair reach modulus ρ? Disks first; else Schur–Cohn on f(ρ·x) over Q(ρ)
+    // with its roots ±1 removed.
+    for c in complex {
+        let fast = c.upper.as_ref().and_then(|d| {
+            let mut r = rho.clone();
+            let mut reach = false;
+            for x in d {
+                let mut decided = None;
+                for digits in [40u32, 80, 160] {
+                    r.refine_to(&BigRational::new(1.into(), BigInt::from(2).pow(digits)));
+                    let (lo, hi) = r.interval();
+                    if let Some(o) = x.cmp_modulus(lo, hi) {
+                        decided = Some(o);
+                        break;
+                    }
+                }
+                match decided? {
+                    Ordering::Less => {}
+                    _ => reach = true,
+                }
             }
-        }
-        if !inside_unit_disk(&k, &g) {
+            Some(reach)
+        });
+        let reach = fast.unwrap_or_else(|| {
+            let mut g = k_scale_var(&k, &to_k(&k, &c.poly), &rho_k);
+            for s in [1i64, -1] {
+                if k_eval(&k, &g, &k.rational(q(s))).is_zero() {
+                    g = k_divrem(&k, &g, &[k.rational(q(-s)), k.rational(q(1))]).0;
+                }
+            }
+            !inside_unit_disk(&k, &g)
+        });
+        if reach {
             return (
                 Behaviour::Spiralling {
                     detail: format!(
-                        "a complex pair (roots of {f}) has modulus at least {rho}, the largest real modulus"
+                        "a complex pair (roots of {}) has modulus at least {}, the largest real modulus",
+                        short_poly(&c.poly),
+                        short_number(&rho)
                     ),
                 },
                 None,
@@ -580,6 +724,7 @@ fn classify(
         }
     }
     if rho_neg {
+        let rho = short_number(&rho);
         let detail = if rho_pos {
             format!("both {rho} and -({rho}) are eigenvalues of largest modulus")
         } else {
@@ -595,48 +740,114 @@ fn classify(
         return degenerate(format!("λ1 = {rho} is not below 1: not contractive"));
     }
     // Tangent case: λ1 = ρ simple and strictly dominant. v1 over Q(λ1).
-    let v1 = null_space(&k, shifted(&k, t, &rho_k)).remove(0);
-    let h = chi
-        .exact_div(&Poly::from_ints(&[-1, 1]))
-        .expect("1 is a root");
-    let (h2, r) = k_divrem(
-        &k,
-        &to_k(&k, &h),
-        &[
-            k.sub(&k.rational(BigRational::zero()), &rho_k),
-            k.rational(q(1)),
-        ],
-    );
-    debug_assert!(r.is_empty());
+    let v1 = eigenvector_in(&k, t, chi, &rho_k).expect("a simple eigenvalue has an eigenvector");
     let r2 = k.mul(&rho_k, &rho_k);
-    let g = k_scale_var(&k, &h2, &r2);
-    let position = circle_position(&k, &g);
-    let class = match position {
-        Position::Inside => CurvatureClass::Flat,
-        Position::OnCircle => CurvatureClass::Finite,
-        Position::Outside => CurvatureClass::Sharp,
-        Position::Undecided => CurvatureClass::Undecided,
-    };
-    // λ2 = ±λ1² real: keep it and its eigenvector for dyadic points and curvature estimates.
-    let mut second = None;
-    let mut which = Vec::new();
-    for s in [1i64, -1] {
-        let l2 = k.mul(&k.rational(q(s)), &r2);
-        if k_eval(&k, &h2, &l2).is_zero() {
-            which.push(if s == 1 { "λ1²" } else { "-λ1²" });
-            let vs = null_space(&k, shifted(&k, t, &l2));
-            if vs.len() == 1 && second.is_none() {
-                second = Some((l2, vs[0].clone()));
+    // The other eigenvalues against the circle of radius λ1².
+    let mut outside = false;
+    let mut on_circle = false;
+    let mut which: Vec<&str> = Vec::new();
+    let mut others = 0usize;
+    for r in reals {
+        if r.value.cmp_exact(&one) == Ordering::Equal || r.value.cmp_exact(&rho) == Ordering::Equal
+        {
+            continue;
+        }
+        others += 1;
+        match cmp_abs_with_square(&r.value, &rho, &k) {
+            Ordering::Greater => outside = true,
+            Ordering::Equal => {
+                on_circle = true;
+                let neg = r.value.cmp_exact(&zero) == Ordering::Less;
+                let w = if neg { "-λ1²" } else { "λ1²" };
+                if !which.contains(&w) {
+                    which.push(w);
+                }
+            }
+            Ordering::Less => {}
+        }
+    }
+    let mut fallback = false;
+    let mut complex_on_circle = false;
+    if !complex.is_empty() {
+        others += 1;
+        let mut sq = rho.clone();
+        for c in complex {
+            let Some(d) = &c.upper else {
+                fallback = true;
+                break;
+            };
+            for x in d {
+                let mut decided = None;
+                for digits in [40u32, 80, 160] {
+                    sq.refine_to(&BigRational::new(1.into(), BigInt::from(2).pow(digits)));
+                    let (lo, hi) = sq.interval();
+                    let lo = lo.max(&BigRational::zero()).clone();
+                    let (lo, hi) = (&lo * &lo, hi * hi);
+                    if let Some(o) = x.cmp_modulus(&lo, &hi) {
+                        decided = Some(o);
+                        break;
+                    }
+                }
+                match decided {
+                    Some(Ordering::Greater) => outside = true,
+                    Some(_) => {}
+                    None => fallback = true,
+                }
             }
         }
     }
-    let detail = if h2.len() <= 1 {
+    let class = if outside {
+        CurvatureClass::Sharp
+    } else if fallback {
+        // A complex pair too close to the circle |z| = λ1² for the disks: the exact test on
+        // g(x) = h2(λ1²·x), h2 = χ / ((x − 1)(x − λ1)), over Q(λ1).
+        let h = chi
+            .exact_div(&Poly::from_ints(&[-1, 1]))
+            .expect("1 is a root");
+        let (h2, _) = k_divrem(
+            &k,
+            &to_k(&k, &h),
+            &[
+                k.sub(&k.rational(BigRational::zero()), &rho_k),
+                k.rational(q(1)),
+            ],
+        );
+        let g = k_scale_var(&k, &h2, &r2);
+        match circle_position(&k, &g) {
+            Position::Inside => CurvatureClass::Flat,
+            Position::OnCircle => {
+                complex_on_circle = !on_circle;
+                CurvatureClass::Finite
+            }
+            Position::Outside => CurvatureClass::Sharp,
+            Position::Undecided => CurvatureClass::Undecided,
+        }
+    } else if on_circle {
+        CurvatureClass::Finite
+    } else {
+        CurvatureClass::Flat
+    };
+    // λ2 = ±λ1² real: keep it and its eigenvector for dyadic points and curvature.
+    let mut second = None;
+    for w in &which {
+        let s = if *w == "λ1²" { q(1) } else { q(-1) };
+        let l2 = k.scale(&r2, &s);
+        let multiple = reals
+            .iter()
+            .any(|r| r.mult > 1 && cmp_abs_with_square(&r.value, &rho, &k) == Ordering::Equal);
+        if second.is_none() && !multiple {
+            if let Some(v) = eigenvector_in(&k, t, chi, &l2) {
+                second = Some((l2, v));
+            }
+        }
+    }
+    let detail = if others == 0 {
         "no eigenvalue besides 1 and λ1: the curve is straight at its fixed point".to_string()
     } else {
         match class {
             CurvatureClass::Flat => "every other eigenvalue has modulus < λ1² (α > 2)".to_string(),
             CurvatureClass::Sharp => "an eigenvalue has modulus > λ1² (α < 2)".to_string(),
-            CurvatureClass::Finite if which.is_empty() => {
+            CurvatureClass::Finite if which.is_empty() || complex_on_circle && which.is_empty() => {
                 "a complex pair has modulus exactly λ1² and none exceeds it (α = 2)".to_string()
             }
             CurvatureClass::Finite => format!(
@@ -659,9 +870,29 @@ fn classify(
     )
 }
 
+/// The polynomial, or `a factor of degree d` when it is long.
+fn short_poly(p: &Poly) -> String {
+    let s = p.to_string();
+    if s.chars().count() <= 60 {
+        s
+    } else {
+        format!("an irreducible factor of degree {}", p.deg())
+    }
+}
+
+/// The exact form, or `≈ decimal (degree d)` when it is long.
+fn short_number(r: &RealAlgebraic) -> String {
+    let s = r.to_string();
+    if s.chars().count() <= 60 {
+        s
+    } else {
+        format!("≈ {} (degree {})", r.decimal(12), r.degree())
+    }
+}
+
 /// `−r`: the root of `f(−x)` (f the minimal polynomial of r) mirroring r — real roots come in
 /// opposite order.
-fn negate(r: &RealAlgebraic) -> RealAlgebraic {
+pub(crate) fn negate(r: &RealAlgebraic) -> RealAlgebraic {
     let f = r.min_poly();
     let roots = RealAlgebraic::real_roots(f);
     let i = roots

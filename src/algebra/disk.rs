@@ -1,0 +1,245 @@
+//! Certified complex root disks of a square-free polynomial over Q: floating-point approximations
+//! (Durand–Kerner) made rigorous by exact rational evaluation.
+//!
+//! For any z, some root of f lies within `n·|f(z)/f'(z)|` of z (since `f'/f = Σ 1/(z − ζ_k)`).
+//! When the n disks of these radii around n approximations are pairwise disjoint, each holds at
+//! least one root and there are n roots, so each holds exactly one. The radius is evaluated
+//! exactly at the rational (dyadic) point z and rounded upwards; the disjointness test is exact.
+//! A float only proposes the centres; every statement made from a disk is a theorem.
+//! When the approximations are too poor to separate, [`root_disks`] returns `None` and the caller
+//! uses its exact (slower) method instead.
+
+use crate::algebra::poly::Poly;
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{FromPrimitive, One, Signed, ToPrimitive, Zero};
+use std::cmp::Ordering;
+
+/// A closed disk `|w − (re + i·im)| ≤ r` holding exactly one root.
+#[derive(Clone, Debug)]
+pub struct Disk {
+    /// Real part of the centre.
+    pub re: BigRational,
+    /// Imaginary part of the centre.
+    pub im: BigRational,
+    /// Radius (a rational upper bound).
+    pub r: BigRational,
+}
+
+fn cx_mul(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
+    (a.0 * b.0 - a.1 * b.1, a.0 * b.1 + a.1 * b.0)
+}
+
+fn cx_div(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
+    let d = b.0 * b.0 + b.1 * b.1;
+    ((a.0 * b.0 + a.1 * b.1) / d, (a.1 * b.0 - a.0 * b.1) / d)
+}
+
+/// Float approximations of every root of `f` (Durand–Kerner, then Newton polishing).
+pub fn approx_roots(f: &Poly) -> Vec<(f64, f64)> {
+    let f = f.monic();
+    let c: Vec<f64> = f
+        .coeffs()
+        .iter()
+        .map(|x| x.to_f64().unwrap_or(0.0))
+        .collect();
+    let n = f.deg();
+    let eval = |z: (f64, f64)| {
+        c.iter().rev().fold((0.0, 0.0), |acc, &a| {
+            let m = cx_mul(acc, z);
+            (m.0 + a, m.1)
+        })
+    };
+    let dc: Vec<f64> = (1..c.len()).map(|i| c[i] * i as f64).collect();
+    let deval = |z: (f64, f64)| {
+        dc.iter().rev().fold((0.0, 0.0), |acc, &a| {
+            let m = cx_mul(acc, z);
+            (m.0 + a, m.1)
+        })
+    };
+    // Start on a circle of the size of the roots (Fujiwara-like bound).
+    let scale = (0..n)
+        .map(|i| c[i].abs().powf(1.0 / (n - i) as f64))
+        .fold(0.0f64, f64::max)
+        .clamp(1e-12, 1e12);
+    let w = (0.4f64, 0.9f64);
+    let wn = w.0.hypot(w.1);
+    let mut z: Vec<(f64, f64)> = (0..n)
+        .map(|i| {
+            let p = (0..i).fold((1.0, 0.0), |acc, _| cx_mul(acc, (w.0 / wn, w.1 / wn)));
+            (p.0 * scale, p.1 * scale)
+        })
+        .collect();
+    for _ in 0..500 {
+        let mut moved = 0.0f64;
+        for i in 0..n {
+            let num = eval(z[i]);
+            let mut den = (1.0, 0.0);
+            for j in 0..n {
+                if i != j {
+                    den = cx_mul(den, (z[i].0 - z[j].0, z[i].1 - z[j].1));
+                }
+            }
+            if den.0 * den.0 + den.1 * den.1 > 0.0 {
+                let quo = cx_div(num, den);
+                z[i] = (z[i].0 - quo.0, z[i].1 - quo.1);
+                moved = moved.max(quo.0.hypot(quo.1) / z[i].0.hypot(z[i].1).max(1e-300));
+            }
+        }
+        if moved < 1e-17 {
+            break;
+        }
+    }
+    for zi in z.iter_mut() {
+        for _ in 0..3 {
+            let d = deval(*zi);
+            if d.0 == 0.0 && d.1 == 0.0 {
+                break;
+            }
+            let s = cx_div(eval(*zi), d);
+            *zi = (zi.0 - s.0, zi.1 - s.1);
+        }
+    }
+    z
+}
+
+/// `(Re, Im)` of `D^n·p((a + b·i)/D)` for the integer polynomial `p` of degree n (lowest
+/// degree first): homogeneous Horner over Z, exact.
+fn eval_homogeneous(p: &[BigInt], a: &BigInt, b: &BigInt, d: &BigInt) -> (BigInt, BigInt) {
+    let n = p.len() - 1;
+    let (mut re, mut im) = (p[n].clone(), BigInt::zero());
+    let mut dpow = d.clone();
+    for c in p[..n].iter().rev() {
+        let nre = &re * a - &im * b + c * &dpow;
+        let nim = &re * b + &im * a;
+        re = nre;
+        im = nim;
+        dpow *= d;
+    }
+    (re, im)
+}
+
+/// A rational `s ≥ √x` (x ≥ 0), close to it.
+pub fn sqrt_up(x: &BigRational) -> BigRational {
+    if x.is_zero() {
+        return BigRational::zero();
+    }
+    let two = BigRational::from_integer(2.into());
+    let mut up = x
+        .to_f64()
+        .and_then(|v| BigRational::from_f64(v.sqrt() * (1.0 + 1e-12) + f64::MIN_POSITIVE))
+        .unwrap_or_else(|| x + BigRational::from_integer(1.into()));
+    while &up * &up < *x {
+        up = &up * &two;
+    }
+    up
+}
+
+/// The certified disks of the roots of the square-free `f`, one per root, or `None` when the
+/// float approximations do not separate them.
+pub fn root_disks(f: &Poly) -> Option<Vec<Disk>> {
+    let n = f.deg();
+    if n == 0 {
+        return Some(Vec::new());
+    }
+    let fi = f.primitive_int();
+    let dfi: Vec<BigInt> = (1..fi.len()).map(|i| &fi[i] * BigInt::from(i)).collect();
+    let nn = BigRational::from_integer((n as i64).into());
+    let mut disks = Vec::with_capacity(n);
+    for (x, y) in approx_roots(f) {
+        if !x.is_finite() || !y.is_finite() {
+            return None;
+        }
+        // Centre (a + b·i)/2^e with |a|, |b| < 2^62.
+        let m = x.abs().max(y.abs()).max(f64::MIN_POSITIVE);
+        let e = (62 - m.log2().ceil() as i64).clamp(0, 2000) as u32;
+        let scale = 2f64.powi(e.min(1000) as i32) * 2f64.powi(e.saturating_sub(1000) as i32);
+        let a = BigInt::from((x * scale).round() as i64);
+        let b = BigInt::from((y * scale).round() as i64);
+        let d = BigInt::one() << e;
+        let (fa, fb) = eval_homogeneous(&fi, &a, &b, &d);
+        let (da, db) = eval_homogeneous(&dfi, &a, &b, &d);
+        let den = &da * &da + &db * &db;
+        if den.is_zero() {
+            return None;
+        }
+        // f(z) = F/D^n, f'(z) = F'/D^(n−1): |f/f'|² = |F|² / (|F'|²·D²).
+        let r2 = &nn * &nn * BigRational::new(&fa * &fa + &fb * &fb, den * &d * &d);
+        disks.push(Disk {
+            re: BigRational::new(a, d.clone()),
+            im: BigRational::new(b, d),
+            r: sqrt_up(&r2),
+        });
+    }
+    for i in 0..n {
+        for j in i + 1..n {
+            let (a, b) = (&disks[i], &disks[j]);
+            let dre = &a.re - &b.re;
+            let dim = &a.im - &b.im;
+            let s = &a.r + &b.r;
+            if (&dre * &dre + &dim * &dim).cmp(&(&s * &s)) != Ordering::Greater {
+                return None;
+            }
+        }
+    }
+    Some(disks)
+}
+
+impl Disk {
+    /// True when the disk lies strictly above the real axis (its root is not real, and it is
+    /// the one of its conjugate pair with positive imaginary part).
+    pub fn above_axis(&self) -> bool {
+        self.im > self.r
+    }
+
+    /// Compares the modulus of the root in this disk with a number known to lie in
+    /// `[lo, hi]` (`0 ≤ lo ≤ hi`): `Some(Less)` / `Some(Greater)` when decided, `None` otherwise.
+    pub fn cmp_modulus(&self, lo: &BigRational, hi: &BigRational) -> Option<Ordering> {
+        let m2 = &self.re * &self.re + &self.im * &self.im;
+        // |w| ≤ |z| + r < lo  ⇐  |z| < lo − r.
+        let a = lo - &self.r;
+        if a.is_positive() && m2 < &a * &a {
+            return Some(Ordering::Less);
+        }
+        // |w| ≥ |z| − r > hi  ⇐  |z| > hi + r.
+        let b = hi + &self.r;
+        if m2 > &b * &b {
+            return Some(Ordering::Greater);
+        }
+        None
+    }
+
+    /// `(re, im)` of the centre as floats.
+    pub fn approx(&self) -> (f64, f64) {
+        (
+            self.re.to_f64().unwrap_or(f64::NAN),
+            self.im.to_f64().unwrap_or(f64::NAN),
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn disks_of_known_roots() {
+        // x² + 1/4: ±i/2; x³ − 2: one real root 2^(1/3) ≈ 1.26 and a pair of modulus 2^(1/3).
+        let d = root_disks(&Poly::new(vec![
+            BigRational::new(1.into(), 4.into()),
+            BigRational::zero(),
+            BigRational::from_integer(1.into()),
+        ]))
+        .unwrap();
+        assert_eq!(d.iter().filter(|x| x.above_axis()).count(), 1);
+        let half = BigRational::new(1.into(), 2.into());
+        let third = BigRational::new(1.into(), 3.into());
+        assert_eq!(d[0].cmp_modulus(&third, &third), Some(Ordering::Greater));
+        assert_eq!(d[0].cmp_modulus(&half, &half), None);
+        let d = root_disks(&Poly::from_ints(&[-2, 0, 0, 1])).unwrap();
+        assert_eq!(d.iter().filter(|x| x.above_axis()).count(), 1);
+        assert!(d
+            .iter()
+            .all(|x| x.r < BigRational::new(1.into(), 1_000_000.into())));
+    }
+}
