@@ -5,7 +5,7 @@ use crate::constraint::automaton::Automaton;
 use crate::error::{Error, Result, Source};
 use crate::input::assembly::Assembly;
 use crate::input::autofrac::{is_autofrac, parse_autofrac};
-use crate::input::automaton_format::{is_automaton, parse_automaton};
+use crate::input::automaton_model::{is_automaton_model, parse_model, AutomatonModel};
 use crate::topology::face::Face;
 
 /// The named structures: `(name, text)`, each a file of `fixtures/`.
@@ -96,6 +96,8 @@ pub enum Loaded {
         name: String,
         /// The automaton.
         automaton: Automaton,
+        /// The automaton with its modelling lines (field, space, points, primitives).
+        model: Box<AutomatonModel>,
     },
 }
 
@@ -116,9 +118,13 @@ pub fn load_any(arg: &str) -> Result<Loaded> {
         }));
     }
     let (name, src) = read_source(arg)?;
-    if is_automaton(&src.text) {
-        let automaton = parse_automaton(&src)?;
-        return Ok(Loaded::Automaton { name, automaton });
+    if is_automaton_model(&src.text) {
+        let model = parse_model(&src)?;
+        return Ok(Loaded::Automaton {
+            name,
+            automaton: model.automaton.clone(),
+            model: Box::new(model),
+        });
     }
     Ok(Loaded::Faces(Input {
         name,
@@ -132,7 +138,7 @@ pub fn load_input(arg: &str) -> Result<Input> {
         Loaded::Faces(input) => Ok(input),
         Loaded::Automaton { name, .. } => Err(Error::Io {
             path: name,
-            reason: "this is an automaton, not faces: only `lacuna solve` reads automata".into(),
+            reason: "this is an automaton, not faces: `solve`, `operators`, `render`, `measure` and `report` read automata; this command reads faces only".into(),
         }),
     }
 }
