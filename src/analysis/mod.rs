@@ -5,11 +5,14 @@
 //! Architecture invariant: imports the layers below (topology, algebra, constraint, input) and never
 //! geometry or output; floats appear only in labelled estimates, never in a verdict.
 
+pub(crate) mod automaton_resolve;
 pub(crate) mod census;
+pub(crate) mod contraction;
 pub(crate) mod curve;
 pub(crate) mod design;
 pub(crate) mod operator;
 pub(crate) mod ratio;
+pub(crate) mod similarity;
 
 pub use census::{census, CensusReport, CensusSpec};
 pub use curve::{
@@ -22,3 +25,6 @@ pub use operator::{
     OperatorReport,
 };
 pub use ratio::{analyse, ClassReport, LimitPoint, RatioError, RatioReport};
+pub use automaton_resolve::{resolve, ResolveVerdict, Resolved};
+pub use contraction::{check_contraction, ContractionReport, MAX_CYCLES};
+pub use similarity::{default_points, frames, similarity_dimension, SimilarityDimension};

@@ -10,6 +10,10 @@ pub(super) fn run(args: ReportArgs, limits: &Limits) -> Result<ExitCode, Error> 
         raster,
     } = args;
     check_raster("--raster", raster, 8192)?;
+    if let Some((name, model)) = automaton::automaton_input(&geo)? {
+        let p = automaton::prepare(&geo, name, model, limits, 100_000)?;
+        return automaton::report(&geo, p, &path, limits);
+    }
     // The pictures embed every cell of every level as SVG: keep them small.
     let (input, inst) = instance(&geo, limits, 200_000)?;
     // The instance's closure is the one `Closure::of` would compute again.

@@ -4,6 +4,7 @@
 //! Architecture invariant: formats what the layers below computed; decides nothing itself. Only the
 //! command line sits above it.
 
+pub(crate) mod automaton_writer;
 pub(crate) mod html;
 pub(crate) mod report;
 pub(crate) mod writer;
@@ -17,3 +18,4 @@ pub use writer::{
     render_raster, triangulate, write_density_png, write_json, write_obj, write_png, write_stl,
     write_svg,
 };
+pub use automaton_writer::{automaton_raster, automaton_report_html, automaton_svg, write_automaton_json, write_automaton_obj, write_automaton_svg};

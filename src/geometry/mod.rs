@@ -5,6 +5,7 @@
 //! Architecture invariant: floats live here, but never decide a verdict; it imports the exact layers
 //! (topology, algebra, constraint, input) and never measures, exports or the command line.
 
+pub(crate) mod automaton_eval;
 pub(crate) mod choose;
 pub(crate) mod instantiate;
 pub(crate) mod lp;
@@ -29,3 +30,4 @@ pub use template::{control_points, regular_polygon};
 pub use template_file::{
     format_exact, parse_template, write_template, ExactTemplate, TypeTemplate,
 };
+pub use automaton_eval::{exact_points, Evaluator, Shape, ShapeKind};

@@ -4,6 +4,7 @@
 //! Architecture invariant: imports geometry and the exact layers; the one verdict it gives compares
 //! integers. It never imports exports or the command line.
 
+pub(crate) mod automaton_measure;
 pub(crate) mod density;
 pub(crate) mod hole;
 pub(crate) mod measurement;
@@ -14,3 +15,4 @@ pub use measurement::{
     check_cells, exact_components, exact_topology, measure, raster_for_hole, ExactTopology,
     LevelMeasure, MeasureOptions, MeasureReport, MIN_HOLE_WIDTH,
 };
+pub use automaton_measure::{box_dimension, level_measures, shape_measure, AutomatonLevel, AutomatonMeasure, BoxDimension};
