@@ -299,7 +299,7 @@ pub fn similarity_dimension(m: &AutomatonModel, ops: &[KMatrix], digits: usize) 
                 if let Ok(j) = part.binary_search(&w) {
                     let (fq, fw) = (frames[s].as_ref().expect("reachable"), frames[w].as_ref().expect("reachable"));
                     let r2 = squared_ratio(k, fq, fw, &ops[o]).ok_or_else(|| {
-                        format!("operator `{}` does not act as a similitude on the frame of state `{}`", a.operators[o].name, a.states[w].name)
+                        format!("operator `{}` is not a similitude on the frame of state `{}` (or that frame's points are affinely dependent)", a.operators[o].name, a.states[w].name)
                     })?;
                     inside.push((part.binary_search(&s).expect("in part"), j, r2, o));
                 }
