@@ -238,7 +238,12 @@ impl fmt::Display for RealAlgebraic {
 
 /// Truncated decimal of a number known to lie in `[lo, hi]`, when the interval decides every
 /// digit (`exact`: `lo = hi` is the number itself).
-pub(crate) fn decide_digits(lo: &BigRational, hi: &BigRational, digits: usize, exact: bool) -> Option<String> {
+pub(crate) fn decide_digits(
+    lo: &BigRational,
+    hi: &BigRational,
+    digits: usize,
+    exact: bool,
+) -> Option<String> {
     let neg = if exact {
         lo.is_negative()
     } else if lo.is_positive() {

@@ -16,35 +16,40 @@ fn rat(n: i64, d: i64) -> BigRational {
     BigRational::new(n.into(), d.into())
 }
 
-/// `[lo, hi] ∋ atanh(z)` for `0 ≤ z < 1`, of width about `2^-bits`. The partial sum is rounded
-/// down to a dyadic of `bits + 64` bits every 16 terms (keeping it small); what the rounding
-/// removed is added back to the upper bound.
+/// `[lo, hi] ∋ atanh(z)` for `0 ≤ z < 1`, of width about `2^-bits`, in fixed point with
+/// `bits + 32` fractional bits: the lower bound rounds every product and quotient down from
+/// `⌊z⌋`, the upper bound rounds up from `⌈z⌉` and adds the tail bound (rounded up), so both stay
+/// bounds.
 fn atanh_enclosure(z: &BigRational, bits: u32) -> (BigRational, BigRational) {
     if z.is_zero() {
         return (BigRational::zero(), BigRational::zero());
     }
-    let eps = BigRational::new(BigInt::one(), BigInt::one() << bits);
-    let z2 = z * z;
-    let one_minus = BigRational::one() - &z2;
-    let mut pow = z.clone(); // z^(2j+1)
-    let mut sum = BigRational::zero();
-    let mut lost = BigRational::zero();
-    let scale = BigInt::one() << (bits + 64);
-    let mut j: i64 = 0;
+    let p = bits + 32;
+    let one = BigInt::one() << p;
+    let ceil_div = |a: &BigInt, d: &BigInt| -> BigInt { (a + d - BigInt::one()).div_floor(d) };
+    let zl = (z.numer() << p).div_floor(z.denom());
+    let zh = ceil_div(&(z.numer() << p), z.denom());
+    let z2l = (&zl * &zl) >> p;
+    let z2h = ceil_div(&(&zh * &zh), &one);
+    let (mut pl, mut ph) = (zl, zh);
+    let (mut sl, mut sh) = (BigInt::zero(), BigInt::zero());
+    let ulps = BigInt::one() << 32u32;
+    let mut j: u64 = 0;
     loop {
-        sum += &pow / BigRational::from_integer((2 * j + 1).into());
-        pow = &pow * &z2;
-        let tail = &pow / (BigRational::from_integer((2 * j + 3).into()) * &one_minus);
-        if tail <= eps {
-            let hi = &sum + tail + lost;
-            return (sum, hi);
+        let d = BigInt::from(2 * j + 1);
+        sl += pl.div_floor(&d);
+        sh += ceil_div(&ph, &d);
+        pl = (&pl * &z2l) >> p;
+        ph = ceil_div(&(&ph * &z2h), &one);
+        let den = BigInt::from(2 * j + 3) * (&one - &z2h);
+        let tail = ceil_div(&(&ph * &one), &den);
+        if tail <= ulps {
+            return (
+                BigRational::new(sl, one.clone()),
+                BigRational::new(sh + tail, one),
+            );
         }
         j += 1;
-        if j % 16 == 0 {
-            let down = BigRational::new((sum.numer() * &scale).div_floor(sum.denom()), scale.clone());
-            lost += &sum - &down;
-            sum = down;
-        }
     }
 }
 

@@ -54,17 +54,32 @@ fn parse_entry(m: &AutomatonModel, name: &str) -> Option<(usize, usize, usize)> 
     let (op, rest) = name.split_once('[')?;
     let (r, rest) = rest.split_once("][")?;
     let c = rest.strip_suffix(']')?;
-    let o = m.automaton.operators.iter().position(|x| x.name == op.trim())?;
+    let o = m
+        .automaton
+        .operators
+        .iter()
+        .position(|x| x.name == op.trim())?;
     Some((o, r.trim().parse().ok()?, c.trim().parse().ok()?))
 }
 
 /// Makes every operator concrete. `cli` values override the file's `param` lines of the same
 /// name. `max_unknowns` bounds the unknown entries before the solver runs.
-pub fn resolve(m: &AutomatonModel, cli: &[(String, BigRational)], max_unknowns: usize) -> Result<Resolved> {
+pub fn resolve(
+    m: &AutomatonModel,
+    cli: &[(String, BigRational)],
+    max_unknowns: usize,
+) -> Result<Resolved> {
     let a = &m.automaton;
     let k = &m.field;
-    let field = m.field_decl.as_ref().map_or("Q".to_string(), |(_, d)| d.clone());
-    let mut params: Vec<(String, BigRational)> = m.params.iter().map(|(n, v, _)| (n.clone(), v.clone())).collect();
+    let field = m
+        .field_decl
+        .as_ref()
+        .map_or("Q".to_string(), |(_, d)| d.clone());
+    let mut params: Vec<(String, BigRational)> = m
+        .params
+        .iter()
+        .map(|(n, v, _)| (n.clone(), v.clone()))
+        .collect();
     for (n, v) in cli {
         params.retain(|(x, _)| x != n);
         params.push((n.clone(), v.clone()));
@@ -77,18 +92,36 @@ pub fn resolve(m: &AutomatonModel, cli: &[(String, BigRational)], max_unknowns: 
             )));
         }
         if let Some((n, _)) = params.first() {
-            return Err(coded("E0717", format!("parameter `{n}`: every operator of this file is known")));
+            return Err(coded(
+                "E0717",
+                format!("parameter `{n}`: every operator of this file is known"),
+            ));
         }
-        let ops: Vec<KMatrix> = m.kvalues.iter().map(|v| v.clone().expect("all known")).collect();
+        let ops: Vec<KMatrix> = m
+            .kvalues
+            .iter()
+            .map(|v| v.clone().expect("all known"))
+            .collect();
         let failed = check_in_field(m, k, &ops)?;
         return Ok(Resolved {
             ops,
-            verdict: ResolveVerdict { consistent: failed.is_empty(), field, free_left: Vec::new(), applied: Vec::new(), failed },
+            verdict: ResolveVerdict {
+                consistent: failed.is_empty(),
+                field,
+                free_left: Vec::new(),
+                applied: Vec::new(),
+                failed,
+            },
         });
     }
     let unknowns = a.unknown_count();
     if unknowns > max_unknowns {
-        return Err(Error::limit("the unknown operator entries", unknowns, max_unknowns, "--max-unknowns"));
+        return Err(Error::limit(
+            "the unknown operator entries",
+            unknowns,
+            max_unknowns,
+            "--max-unknowns",
+        ));
     }
     let mut lin = a.linearize()?;
     let mut applied = Vec::new();
@@ -99,12 +132,24 @@ pub fn resolve(m: &AutomatonModel, cli: &[(String, BigRational)], max_unknowns: 
         let op = &a.operators[o];
         let (rows, cols) = (a.states[op.to].dim, a.states[op.from].dim);
         let Some(base) = lin.offsets[o] else {
-            return Err(coded("E0717", format!("parameter `{n}`: `{}` is known in the file, not a free operator", op.name)));
+            return Err(coded(
+                "E0717",
+                format!(
+                    "parameter `{n}`: `{}` is known in the file, not a free operator",
+                    op.name
+                ),
+            ));
         };
         if r >= rows || c >= cols {
-            return Err(coded("E0717", format!("parameter `{n}`: `{}` is {rows}×{cols}", op.name)));
+            return Err(coded(
+                "E0717",
+                format!("parameter `{n}`: `{}` is {rows}×{cols}", op.name),
+            ));
         }
-        lin.system.rows.push(Equation { terms: vec![(base + r * cols + c, BigRational::one())], rhs: v.clone() });
+        lin.system.rows.push(Equation {
+            terms: vec![(base + r * cols + c, BigRational::one())],
+            rhs: v.clone(),
+        });
         applied.push(format!("{n} = {v}"));
     }
     let solution = linsys::solve(&lin.system);
@@ -115,13 +160,30 @@ pub fn resolve(m: &AutomatonModel, cli: &[(String, BigRational)], max_unknowns: 
                 let (r, c) = (a.states[op.to].dim, a.states[op.from].dim);
                 let mat = match (&op.value, lin.offsets[o]) {
                     (Some(v), _) => v.clone(),
-                    (None, Some(base)) => Matrix { rows: r, cols: c, data: space.particular[base..base + r * c].to_vec() },
+                    (None, Some(base)) => Matrix {
+                        rows: r,
+                        cols: c,
+                        data: space.particular[base..base + r * c].to_vec(),
+                    },
                     (None, None) => unreachable!("unknown operators have offsets"),
                 };
                 ops.push(KMatrix::from_rational(k, &mat));
             }
-            let free_left = space.free.iter().map(|&f| a.entry_name(lin.unknown_entries[f])).collect();
-            Ok(Resolved { ops, verdict: ResolveVerdict { consistent: true, field, free_left, applied, failed: Vec::new() } })
+            let free_left = space
+                .free
+                .iter()
+                .map(|&f| a.entry_name(lin.unknown_entries[f]))
+                .collect();
+            Ok(Resolved {
+                ops,
+                verdict: ResolveVerdict {
+                    consistent: true,
+                    field,
+                    free_left,
+                    applied,
+                    failed: Vec::new(),
+                },
+            })
         }
         Solution::Inconsistent(conflict) => {
             let failed: Vec<String> = conflict
@@ -139,8 +201,21 @@ pub fn resolve(m: &AutomatonModel, cli: &[(String, BigRational)], max_unknowns: 
                     failed.join("; ")
                 )));
             }
-            let ops = a.operators.iter().map(|op| KMatrix::from_rational(k, op.value.as_ref().expect("known"))).collect();
-            Ok(Resolved { ops, verdict: ResolveVerdict { consistent: false, field, free_left: Vec::new(), applied, failed } })
+            let ops = a
+                .operators
+                .iter()
+                .map(|op| KMatrix::from_rational(k, op.value.as_ref().expect("known")))
+                .collect();
+            Ok(Resolved {
+                ops,
+                verdict: ResolveVerdict {
+                    consistent: false,
+                    field,
+                    free_left: Vec::new(),
+                    applied,
+                    failed,
+                },
+            })
         }
     }
 }
@@ -171,12 +246,24 @@ fn check_in_field(m: &AutomatonModel, k: &NumberField, ops: &[KMatrix]) -> Resul
                     failed.push(format!("{}: {}", c.label, a.constraint_text(i)));
                 }
             }
-            _ => return Err(coded("E0703", format!("{}: the shapes of `{}` do not match", c.label, a.constraint_text(i)))),
+            _ => {
+                return Err(coded(
+                    "E0703",
+                    format!(
+                        "{}: the shapes of `{}` do not match",
+                        c.label,
+                        a.constraint_text(i)
+                    ),
+                ))
+            }
         }
     }
     for &o in &a.barycentric {
         if !ops[o].is_barycentric(k) {
-            failed.push(format!("barycentric: a column of {} does not sum to 1", a.operators[o].name));
+            failed.push(format!(
+                "barycentric: a column of {} does not sum to 1",
+                a.operators[o].name
+            ));
         }
     }
     Ok(failed)

@@ -13,9 +13,9 @@ use crate::algebra::algebraic::FieldElement;
 use crate::algebra::fieldpoly::{inside_unit_disk, k_divrem};
 use crate::algebra::kmatrix::KMatrix;
 use crate::analysis::automaton_resolve::coded;
+use crate::constraint::automaton::OpKind;
 use crate::error::Result;
 use crate::input::automaton_model::AutomatonModel;
-use crate::constraint::automaton::OpKind;
 use num_rational::BigRational;
 use num_traits::One;
 use serde::Serialize;
@@ -116,7 +116,11 @@ pub fn check_contraction(m: &AutomatonModel, ops: &[KMatrix]) -> Result<Contract
     })?;
     let mut names = Vec::new();
     for c in &cycles {
-        let text = c.iter().map(|&o| a.operators[o].name.as_str()).collect::<Vec<_>>().join(" · ");
+        let text = c
+            .iter()
+            .map(|&o| a.operators[o].name.as_str())
+            .collect::<Vec<_>>()
+            .join(" · ");
         for &o in c {
             if !ops[o].is_barycentric(k) {
                 return Err(coded("E0716", format!(
@@ -131,7 +135,10 @@ pub fn check_contraction(m: &AutomatonModel, ops: &[KMatrix]) -> Result<Contract
         }
         let chi = p.charpoly(k);
         let one = k.rational(BigRational::one());
-        let x_minus_1: Vec<FieldElement> = vec![k.sub(&k.rational(BigRational::from_integer(0.into())), &one), one];
+        let x_minus_1: Vec<FieldElement> = vec![
+            k.sub(&k.rational(BigRational::from_integer(0.into())), &one),
+            one,
+        ];
         let (rest, rem) = k_divrem(k, &chi, &x_minus_1);
         if !rem.is_empty() || !inside_unit_disk(k, &rest) {
             return Err(coded("E0715", format!(

@@ -14,7 +14,9 @@ pub(crate) mod operator;
 pub(crate) mod ratio;
 pub(crate) mod similarity;
 
+pub use automaton_resolve::{resolve, ResolveVerdict, Resolved};
 pub use census::{census, CensusReport, CensusSpec};
+pub use contraction::{check_contraction, ContractionReport, MAX_CYCLES};
 pub use curve::{
     analyse_automaton, estimate_curvature, AutomatonOperators, CurvatureEstimate, CurveReport,
     PointBehaviour, Side,
@@ -25,6 +27,4 @@ pub use operator::{
     OperatorReport,
 };
 pub use ratio::{analyse, ClassReport, LimitPoint, RatioError, RatioReport};
-pub use automaton_resolve::{resolve, ResolveVerdict, Resolved};
-pub use contraction::{check_contraction, ContractionReport, MAX_CYCLES};
 pub use similarity::{default_points, frames, similarity_dimension, SimilarityDimension};

@@ -61,7 +61,10 @@ pub fn default_points(m: usize, space: usize, k: &NumberField) -> Vec<Vec<FieldE
 pub fn frames(m: &AutomatonModel, ops: &[KMatrix]) -> Vec<Option<KMatrix>> {
     let a = &m.automaton;
     let k = &m.field;
-    let pts = m.points.clone().unwrap_or_else(|| default_points(a.states[m.start].dim, m.space, k));
+    let pts = m
+        .points
+        .clone()
+        .unwrap_or_else(|| default_points(a.states[m.start].dim, m.space, k));
     let cols = pts.len();
     let mut data = Vec::with_capacity(m.space * cols);
     for d in 0..m.space {
@@ -70,14 +73,22 @@ pub fn frames(m: &AutomatonModel, ops: &[KMatrix]) -> Vec<Option<KMatrix>> {
         }
     }
     let mut frames: Vec<Option<KMatrix>> = vec![None; a.states.len()];
-    frames[m.start] = Some(KMatrix { rows: m.space, cols, data });
+    frames[m.start] = Some(KMatrix {
+        rows: m.space,
+        cols,
+        data,
+    });
     let g = control_graph(m);
     let mut queue = std::collections::VecDeque::from([m.start]);
     while let Some(s) = queue.pop_front() {
         for &o in &g[s] {
             let w = a.operators[o].from;
             if frames[w].is_none() {
-                let f = frames[s].as_ref().expect("visited").mul(k, &ops[o]).expect("shapes chain");
+                let f = frames[s]
+                    .as_ref()
+                    .expect("visited")
+                    .mul(k, &ops[o])
+                    .expect("shapes chain");
                 frames[w] = Some(f);
                 queue.push_back(w);
             }
@@ -158,7 +169,14 @@ fn cyclic_parts(m: &AutomatonModel) -> Vec<Vec<usize>> {
     fn visit(
         v: usize,
         succ: &dyn Fn(usize) -> Vec<usize>,
-        st: &mut (Vec<usize>, Vec<usize>, Vec<bool>, Vec<usize>, Vec<Vec<usize>>, usize),
+        st: &mut (
+            Vec<usize>,
+            Vec<usize>,
+            Vec<bool>,
+            Vec<usize>,
+            Vec<Vec<usize>>,
+            usize,
+        ),
     ) {
         st.0[v] = st.5;
         st.1[v] = st.5;
@@ -198,11 +216,10 @@ fn cyclic_parts(m: &AutomatonModel) -> Vec<Vec<usize>> {
             visit(v, &succ, &mut st);
         }
     }
-    let mut out: Vec<Vec<usize>> = st
-        .4
-        .into_iter()
-        .filter(|c| c.len() > 1 || succ(c[0]).contains(&c[0]))
-        .collect();
+    let mut out: Vec<Vec<usize>> =
+        st.4.into_iter()
+            .filter(|c| c.len() > 1 || succ(c[0]).contains(&c[0]))
+            .collect();
     for c in &mut out {
         c.sort_unstable();
     }
@@ -213,7 +230,13 @@ fn cyclic_parts(m: &AutomatonModel) -> Vec<Vec<usize>> {
 /// `det(I − M(u))` for the part's matrix of `Σ u^k`, as a polynomial (by interpolation at
 /// `u = 0, 1, …, deg`).
 fn part_polynomial(n: usize, entries: &[Vec<Vec<usize>>]) -> Poly {
-    let deg = n * entries.iter().flatten().flatten().copied().max().unwrap_or(0);
+    let deg = n * entries
+        .iter()
+        .flatten()
+        .flatten()
+        .copied()
+        .max()
+        .unwrap_or(0);
     let xs: Vec<BigRational> = (0..=deg).map(|i| q(i as i64)).collect();
     let ys: Vec<BigRational> = xs
         .iter()
@@ -221,7 +244,10 @@ fn part_polynomial(n: usize, entries: &[Vec<Vec<usize>>]) -> Poly {
             let mut m = vec![vec![BigRational::zero(); n]; n];
             for i in 0..n {
                 for j in 0..n {
-                    let s: BigRational = entries[i][j].iter().map(|&e| num_traits::pow(u.clone(), e)).sum();
+                    let s: BigRational = entries[i][j]
+                        .iter()
+                        .map(|&e| num_traits::pow(u.clone(), e))
+                        .sum();
                     m[i][j] = if i == j { q(1) - s } else { -s };
                 }
             }
@@ -279,7 +305,11 @@ struct PartValue {
 }
 
 /// The similarity dimension of the attractor of the start state, or why it does not apply.
-pub fn similarity_dimension(m: &AutomatonModel, ops: &[KMatrix], digits: usize) -> Result<SimilarityDimension, NotApplicable> {
+pub fn similarity_dimension(
+    m: &AutomatonModel,
+    ops: &[KMatrix],
+    digits: usize,
+) -> Result<SimilarityDimension, NotApplicable> {
     let a = &m.automaton;
     let k = &m.field;
     let frames = frames(m, ops);
@@ -297,7 +327,10 @@ pub fn similarity_dimension(m: &AutomatonModel, ops: &[KMatrix], digits: usize) 
             for &o in &g[s] {
                 let w = a.operators[o].from;
                 if let Ok(j) = part.binary_search(&w) {
-                    let (fq, fw) = (frames[s].as_ref().expect("reachable"), frames[w].as_ref().expect("reachable"));
+                    let (fq, fw) = (
+                        frames[s].as_ref().expect("reachable"),
+                        frames[w].as_ref().expect("reachable"),
+                    );
                     let r2 = squared_ratio(k, fq, fw, &ops[o]).ok_or_else(|| {
                         format!("operator `{}` is not a similitude on the frame of state `{}` (or that frame's points are affinely dependent)", a.operators[o].name, a.states[w].name)
                     })?;
@@ -308,11 +341,16 @@ pub fn similarity_dimension(m: &AutomatonModel, ops: &[KMatrix], digits: usize) 
         let one = k.rational(q(1));
         let mut sigma: Option<FieldElement> = None;
         for (_, _, r2, _) in &inside {
-            if k.sign(&k.sub(r2, &one)) == Ordering::Less && sigma.as_ref().is_none_or(|s| k.sign(&k.sub(r2, s)) == Ordering::Less) {
+            if k.sign(&k.sub(r2, &one)) == Ordering::Less
+                && sigma
+                    .as_ref()
+                    .is_none_or(|s| k.sign(&k.sub(r2, s)) == Ordering::Less)
+            {
                 sigma = Some(r2.clone());
             }
         }
-        let sigma = sigma.ok_or_else(|| format!("no operator of the part {{{}}} contracts", names.join(", ")))?;
+        let sigma = sigma
+            .ok_or_else(|| format!("no operator of the part {{{}}} contracts", names.join(", ")))?;
         let n = part.len();
         let mut entries = vec![vec![Vec::new(); n]; n];
         for (i, j, r2, o) in &inside {
@@ -329,20 +367,34 @@ pub fn similarity_dimension(m: &AutomatonModel, ops: &[KMatrix], digits: usize) 
             entries[*i][*j].push(e);
         }
         let p = part_polynomial(n, &entries);
-        let factors = crate::algebra::factor::factor(&p.square_free_part()).map_err(|_| "the part's polynomial could not be factored".to_string())?;
+        let factors = crate::algebra::factor::factor(&p.square_free_part())
+            .map_err(|_| "the part's polynomial could not be factored".to_string())?;
         let zero = RealAlgebraic::rational(q(0));
         let onea = RealAlgebraic::rational(q(1));
         let mut best: Option<RealAlgebraic> = None;
         for (f, _) in factors {
             for r in RealAlgebraic::real_roots(&f) {
-                if r.cmp_exact(&zero) == Ordering::Greater && r.cmp_exact(&onea) != Ordering::Greater && best.as_ref().is_none_or(|b| r.cmp_exact(b) == Ordering::Less) {
+                if r.cmp_exact(&zero) == Ordering::Greater
+                    && r.cmp_exact(&onea) != Ordering::Greater
+                    && best
+                        .as_ref()
+                        .is_none_or(|b| r.cmp_exact(b) == Ordering::Less)
+                {
                     best = Some(r);
                 }
             }
         }
         let u = best.ok_or_else(|| "no root of det(I − M(u)) in (0, 1]".to_string())?;
         let (exact, integer) = exact_text(k, &u, &sigma);
-        values.push((names, PartValue { u, sigma, exact, integer }));
+        values.push((
+            names,
+            PartValue {
+                u,
+                sigma,
+                exact,
+                integer,
+            },
+        ));
     }
     // The largest part's value (certified comparison of enclosures).
     let mut best = 0;
@@ -355,7 +407,10 @@ pub fn similarity_dimension(m: &AutomatonModel, ops: &[KMatrix], digits: usize) 
     Ok(SimilarityDimension {
         exact: values[best].1.exact.clone(),
         decimal,
-        parts: values.iter().map(|(n, v)| (n.clone(), v.exact.clone())).collect(),
+        parts: values
+            .iter()
+            .map(|(n, v)| (n.clone(), v.exact.clone()))
+            .collect(),
     })
 }
 
@@ -380,7 +435,11 @@ fn exact_text(k: &NumberField, u: &RealAlgebraic, sigma: &FieldElement) -> (Stri
         return (format!("2·log {} / log {}", ur.recip(), sr.recip()), None);
     }
     (
-        format!("2·log(u)/log(σ) where u = {} and σ = {}", u, k.render(sigma)),
+        format!(
+            "2·log(u)/log(σ) where u = {} and σ = {}",
+            u,
+            k.render(sigma)
+        ),
         None,
     )
 }
@@ -454,6 +513,7 @@ fn compare(k: &NumberField, a: &PartValue, b: &PartValue) -> Ordering {
 
 /// Certified digits: enclosures refined until the truncated decimal is decided.
 fn certified_decimal(k: &NumberField, v: &PartValue, digits: usize) -> String {
+    let digits = digits.max(1);
     if let Some(j) = v.integer {
         return decide_digits(&q(j), &q(j), digits, true).expect("exact");
     }

@@ -29,7 +29,13 @@ pub(super) fn automaton_input(geo: &GeoArgs) -> Result<Option<(String, Automaton
 }
 
 /// Resolves, checks contraction and counts the pieces of the level before any drawing.
-pub(super) fn prepare(geo: &GeoArgs, name: String, model: AutomatonModel, limits: &Limits, default_cells: u64) -> Result<Prepared, Error> {
+pub(super) fn prepare(
+    geo: &GeoArgs,
+    name: String,
+    model: AutomatonModel,
+    limits: &Limits,
+    default_cells: u64,
+) -> Result<Prepared, Error> {
     limits.check_level(u64::from(geo.level))?;
     if geo.template.is_some() || !geo.goals.is_empty() || geo.corners.is_some() {
         return Err(Error::Usage(
@@ -38,12 +44,21 @@ pub(super) fn prepare(geo: &GeoArgs, name: String, model: AutomatonModel, limits
     }
     let mut values = Vec::new();
     for p in &geo.params {
-        let parsed = p.split_once('=').and_then(|(n, v)| Some((n.trim().to_string(), lacuna::input::parse_rational(v.trim())?)));
+        let parsed = p.split_once('=').and_then(|(n, v)| {
+            Some((
+                n.trim().to_string(),
+                lacuna::input::parse_rational(v.trim())?,
+            ))
+        });
         let Some(pair) = parsed else {
             return Err(Error::syntax(
                 "E1007",
                 format!("--param `{p}`: expected NAME=VALUE with an exact value (1/7, 0.25)"),
-                lacuna::Span { line: 1, col: 1, len: p.chars().count().max(1) },
+                lacuna::Span {
+                    line: 1,
+                    col: 1,
+                    len: p.chars().count().max(1),
+                },
                 Some(&lacuna::Source::command_line(p)),
             ));
         };
@@ -55,19 +70,37 @@ pub(super) fn prepare(geo: &GeoArgs, name: String, model: AutomatonModel, limits
     let max = geo.max_cells.unwrap_or(default_cells);
     let count = ev.count(geo.level);
     if count > u128::from(max) {
-        return Err(Error::limit("the pieces of the level", count, max, "--max-cells"));
+        return Err(Error::limit(
+            "the pieces of the level",
+            count,
+            max,
+            "--max-cells",
+        ));
     }
     let source = match std::fs::read_to_string(&geo.input) {
         Ok(t) => t,
-        Err(_) => lacuna::input::library().iter().find(|(n, _)| *n == geo.input).map_or(String::new(), |(_, t)| t.to_string()),
+        Err(_) => lacuna::input::library()
+            .iter()
+            .find(|(n, _)| *n == geo.input)
+            .map_or(String::new(), |(_, t)| t.to_string()),
     };
-    Ok(Prepared { name, source, model, resolved, contraction, ev })
+    Ok(Prepared {
+        name,
+        source,
+        model,
+        resolved,
+        contraction,
+        ev,
+    })
 }
 
 /// Prints the solver's warnings on standard error.
 fn warn(p: &Prepared) {
     if !p.resolved.verdict.consistent {
-        eprintln!("warning: the constraints of {} do not hold with these values; drawn anyway", p.name);
+        eprintln!(
+            "warning: the constraints of {} do not hold with these values; drawn anyway",
+            p.name
+        );
     }
 }
 
@@ -83,18 +116,24 @@ pub(super) fn render(
     size: usize,
 ) -> Result<ExitCode, Error> {
     warn(&p);
-    let io = |path: &std::path::Path, e: std::io::Error| Error::Io { path: path.display().to_string(), reason: e.to_string() };
+    let io = |path: &std::path::Path, e: std::io::Error| Error::Io {
+        path: path.display().to_string(),
+        reason: e.to_string(),
+    };
     let level = geo.level;
     if let Some(path) = svg {
-        lacuna::export::write_automaton_svg(&p.ev, level, create(path)?).map_err(|e| io(path, e))?;
+        lacuna::export::write_automaton_svg(&p.ev, level, create(path)?)
+            .map_err(|e| io(path, e))?;
         out(&format!("wrote {}\n", path.display()));
     }
     if let Some(path) = json_out {
-        lacuna::export::write_automaton_json(&p.ev, level, create(path)?).map_err(|e| io(path, e))?;
+        lacuna::export::write_automaton_json(&p.ev, level, create(path)?)
+            .map_err(|e| io(path, e))?;
         out(&format!("wrote {}\n", path.display()));
     }
     if let Some(path) = obj {
-        lacuna::export::write_automaton_obj(&p.ev, level, create(path)?).map_err(|e| io(path, e))?;
+        lacuna::export::write_automaton_obj(&p.ev, level, create(path)?)
+            .map_err(|e| io(path, e))?;
         out(&format!("wrote {}\n", path.display()));
     }
     if let Some(path) = png {
@@ -106,19 +145,33 @@ pub(super) fn render(
 }
 
 /// The measures of an automaton (levels, box counting, similarity dimension).
-pub(super) fn measures(geo: &GeoArgs, p: &Prepared, digits: usize, limits: &Limits) -> Result<lacuna::measure::AutomatonMeasure, Error> {
+pub(super) fn measures(
+    geo: &GeoArgs,
+    p: &Prepared,
+    digits: usize,
+    limits: &Limits,
+) -> Result<lacuna::measure::AutomatonMeasure, Error> {
+    if digits == 0 {
+        return Err(Error::OutOfRange {
+            flag: "--digits",
+            value: "0".into(),
+            what: "the certified digits of the similarity dimension",
+            range: format!("from 1 to {}", limits.max_digits),
+        });
+    }
     limits.check_digits(digits)?;
     let levels = lacuna::measure::level_measures(&p.ev, geo.level);
-    // Box counting wants fine pieces: the deepest level with at most 300 000 of them.
+    // Box counting wants fine pieces: the deepest level with at most 100 000 of them.
     let mut box_level = geo.level;
-    while box_level < 40 && p.ev.count(box_level + 1) <= 300_000 {
+    while box_level < 40 && p.ev.count(box_level + 1) <= 100_000 {
         box_level += 1;
     }
     let box_dimension = lacuna::measure::box_dimension(&p.ev, box_level);
-    let (similarity_dimension, similarity_note) = match lacuna::analysis::similarity_dimension(&p.model, &p.resolved.ops, digits) {
-        Ok(s) => (Some(s), None),
-        Err(n) => (None, Some(n)),
-    };
+    let (similarity_dimension, similarity_note) =
+        match lacuna::analysis::similarity_dimension(&p.model, &p.resolved.ops, digits) {
+            Ok(s) => (Some(s), None),
+            Err(n) => (None, Some(n)),
+        };
     Ok(lacuna::measure::AutomatonMeasure {
         input: p.name.clone(),
         space: p.model.space,
@@ -133,7 +186,13 @@ pub(super) fn measures(geo: &GeoArgs, p: &Prepared, digits: usize, limits: &Limi
 }
 
 /// `lacuna measure` on an automaton.
-pub(super) fn measure(geo: &GeoArgs, p: Prepared, digits: usize, json: bool, limits: &Limits) -> Result<ExitCode, Error> {
+pub(super) fn measure(
+    geo: &GeoArgs,
+    p: Prepared,
+    digits: usize,
+    json: bool,
+    limits: &Limits,
+) -> Result<ExitCode, Error> {
     warn(&p);
     let m = measures(geo, &p, digits, limits)?;
     if json {
@@ -141,18 +200,34 @@ pub(super) fn measure(geo: &GeoArgs, p: Prepared, digits: usize, json: bool, lim
     } else {
         out(&m.to_text());
     }
-    Ok(if m.solver.consistent { ExitCode::SUCCESS } else { ExitCode::from(EXIT_FAILED) })
+    Ok(if m.solver.consistent {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(EXIT_FAILED)
+    })
 }
 
 /// `lacuna report` on an automaton.
-pub(super) fn report(geo: &GeoArgs, p: Prepared, path: &std::path::Path, limits: &Limits) -> Result<ExitCode, Error> {
+pub(super) fn report(
+    geo: &GeoArgs,
+    p: Prepared,
+    path: &std::path::Path,
+    limits: &Limits,
+) -> Result<ExitCode, Error> {
     warn(&p);
     let m = measures(geo, &p, 30, limits)?;
     let classes = classes_text(&p);
     let html = lacuna::export::automaton_report_html(&p.ev, &m, &classes, &p.source);
-    std::fs::write(path, html).map_err(|e| Error::Io { path: path.display().to_string(), reason: e.to_string() })?;
+    std::fs::write(path, html).map_err(|e| Error::Io {
+        path: path.display().to_string(),
+        reason: e.to_string(),
+    })?;
     out(&format!("wrote {}\n", path.display()));
-    Ok(if m.solver.consistent { ExitCode::SUCCESS } else { ExitCode::from(EXIT_FAILED) })
+    Ok(if m.solver.consistent {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(EXIT_FAILED)
+    })
 }
 
 /// The operators' eigen analysis (as `lacuna operators` prints it) for rational operators.

@@ -51,8 +51,22 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             ));
         }
         let vector = svg.is_some() || json_out.is_some() || obj.is_some();
-        let p = automaton::prepare(&geo, name, model, limits, if vector { 2_000_000 } else { 20_000_000 })?;
-        return automaton::render(&geo, p, svg.as_deref(), json_out.as_deref(), obj.as_deref(), png.as_deref(), size);
+        let p = automaton::prepare(
+            &geo,
+            name,
+            model,
+            limits,
+            if vector { 2_000_000 } else { 20_000_000 },
+        )?;
+        return automaton::render(
+            &geo,
+            p,
+            svg.as_deref(),
+            json_out.as_deref(),
+            obj.as_deref(),
+            png.as_deref(),
+            size,
+        );
     }
     let vector = svg.is_some() || json_out.is_some() || obj.is_some() || stl.is_some();
     let (_, inst) = instance(&geo, limits, if vector { 2_000_000 } else { 100_000_000 })?;

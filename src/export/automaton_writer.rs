@@ -48,17 +48,26 @@ pub fn automaton_svg(space: usize, shapes: &[Shape], width: f64) -> String {
         let (x, y) = view(space, p);
         ((x - x0) * scale, (y1 - y) * scale)
     };
-    let colours = ["#1f5fa8", "#c0392b", "#27864a", "#8e44ad", "#d35400", "#2c3e50"];
+    let colours = [
+        "#1f5fa8", "#c0392b", "#27864a", "#8e44ad", "#d35400", "#2c3e50",
+    ];
     for sh in shapes {
         let col = colours[sh.state % colours.len()];
-        let pts: Vec<String> = sh.points.iter().map(|p| {
-            let (x, y) = pt(p);
-            format!("{x:.3},{y:.3}")
-        }).collect();
+        let pts: Vec<String> = sh
+            .points
+            .iter()
+            .map(|p| {
+                let (x, y) = pt(p);
+                format!("{x:.3},{y:.3}")
+            })
+            .collect();
         match sh.kind {
             ShapeKind::Point => {
                 let (x, y) = pt(&sh.points[0]);
-                let _ = writeln!(s, "<circle cx=\"{x:.3}\" cy=\"{y:.3}\" r=\"1.2\" fill=\"{col}\"/>");
+                let _ = writeln!(
+                    s,
+                    "<circle cx=\"{x:.3}\" cy=\"{y:.3}\" r=\"1.2\" fill=\"{col}\"/>"
+                );
             }
             ShapeKind::Polyline => {
                 let _ = writeln!(s, "<polyline points=\"{}\" fill=\"none\" stroke=\"{col}\" stroke-width=\"1\" stroke-linejoin=\"round\"/>", pts.join(" "));
@@ -81,7 +90,11 @@ pub fn write_automaton_svg<W: Write>(ev: &Evaluator, level: u32, mut out: W) -> 
 /// Writes the shapes of level n as JSON: `{"space", "level", "shapes": [{"state", "kind",
 /// "points"}]}` (points with `space` coordinates).
 pub fn write_automaton_json<W: Write>(ev: &Evaluator, level: u32, mut out: W) -> io::Result<()> {
-    write!(out, "{{\"space\":{},\"level\":{level},\"shapes\":[", ev.space)?;
+    write!(
+        out,
+        "{{\"space\":{},\"level\":{level},\"shapes\":[",
+        ev.space
+    )?;
     let mut first = true;
     let mut res = Ok(());
     ev.walk(level, &mut |q, _, pts| {
@@ -89,12 +102,26 @@ pub fn write_automaton_json<W: Write>(ev: &Evaluator, level: u32, mut out: W) ->
             return;
         }
         if let Some(s) = ev.shape(q, pts) {
-            let p: Vec<String> = s.points.iter().map(|p| {
-                let c: Vec<String> = p[..ev.space].iter().map(|v| format!("{v}")).collect();
-                format!("[{}]", c.join(","))
-            }).collect();
-            let kind = match s.kind { ShapeKind::Point => "point", ShapeKind::Polyline => "polyline", ShapeKind::Polygon => "polygon" };
-            res = write!(out, "{}{{\"state\":\"{}\",\"kind\":\"{kind}\",\"points\":[{}]}}", if first { "" } else { "," }, ev.names[q], p.join(","));
+            let p: Vec<String> = s
+                .points
+                .iter()
+                .map(|p| {
+                    let c: Vec<String> = p[..ev.space].iter().map(|v| format!("{v}")).collect();
+                    format!("[{}]", c.join(","))
+                })
+                .collect();
+            let kind = match s.kind {
+                ShapeKind::Point => "point",
+                ShapeKind::Polyline => "polyline",
+                ShapeKind::Polygon => "polygon",
+            };
+            res = write!(
+                out,
+                "{}{{\"state\":\"{}\",\"kind\":\"{kind}\",\"points\":[{}]}}",
+                if first { "" } else { "," },
+                ev.names[q],
+                p.join(",")
+            );
             first = false;
         }
     });
@@ -118,9 +145,15 @@ pub fn write_automaton_obj<W: Write>(ev: &Evaluator, level: u32, mut out: W) -> 
             for p in &s.points {
                 let _ = writeln!(text, "v {} {} {}", p[0], p[1], p[2]);
             }
-            let idx: Vec<String> = (next..next + s.points.len()).map(|i| i.to_string()).collect();
+            let idx: Vec<String> = (next..next + s.points.len())
+                .map(|i| i.to_string())
+                .collect();
             next += s.points.len();
-            let tag = match s.kind { ShapeKind::Point => "p", ShapeKind::Polyline => "l", ShapeKind::Polygon => "f" };
+            let tag = match s.kind {
+                ShapeKind::Point => "p",
+                ShapeKind::Polyline => "l",
+                ShapeKind::Polygon => "f",
+            };
             let _ = writeln!(text, "{tag} {}", idx.join(" "));
             res = out.write_all(text.as_bytes());
         }
@@ -149,7 +182,9 @@ pub fn automaton_raster(ev: &Evaluator, level: u32, size: usize) -> Raster {
     for s in &shapes {
         let p: Vec<(f64, f64)> = s.points.iter().map(px).collect();
         let mut line = |a: (f64, f64), b: (f64, f64)| {
-            let n = ((b.0 - a.0).abs().max((b.1 - a.1).abs()) * 2.0).ceil().max(1.0) as usize;
+            let n = ((b.0 - a.0).abs().max((b.1 - a.1).abs()) * 2.0)
+                .ceil()
+                .max(1.0) as usize;
             for i in 0..=n {
                 let t = i as f64 / n as f64;
                 set(a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1));
@@ -162,7 +197,9 @@ pub fn automaton_raster(ev: &Evaluator, level: u32, size: usize) -> Raster {
                 for i in 1..p.len().saturating_sub(1) {
                     // Fill the fan triangle (p0, pi, pi+1) by lines from p0.
                     let (a, b) = (p[i], p[i + 1]);
-                    let n = ((b.0 - a.0).abs().max((b.1 - a.1).abs()) * 2.0).ceil().max(1.0) as usize;
+                    let n = ((b.0 - a.0).abs().max((b.1 - a.1).abs()) * 2.0)
+                        .ceil()
+                        .max(1.0) as usize;
                     for j in 0..=n {
                         let t = j as f64 / n as f64;
                         line(p[0], (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)));
@@ -174,18 +211,30 @@ pub fn automaton_raster(ev: &Evaluator, level: u32, size: usize) -> Raster {
             }
         }
     }
-    Raster { size, counts, origin: [x0, y0], scale }
+    Raster {
+        size,
+        counts,
+        origin: [x0, y0],
+        scale,
+    }
 }
 
 /// Escapes text for HTML.
 fn esc(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
 }
 
 /// The HTML report of an automaton: the solver's verdict, the contraction check, the operators'
 /// classes (text given by the caller), the dimensions, lengths and areas per level, and a picture
 /// of each level 0 to n.
-pub fn automaton_report_html(ev: &Evaluator, m: &AutomatonMeasure, classes: &str, source: &str) -> String {
+pub fn automaton_report_html(
+    ev: &Evaluator,
+    m: &AutomatonMeasure,
+    classes: &str,
+    source: &str,
+) -> String {
     let mut h = format!(
         "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>lacuna report: {}</title>\
          <style>body{{font-family:sans-serif;max-width:1100px;margin:auto}}td,th{{padding:2px 8px;text-align:right}}\
@@ -193,10 +242,23 @@ pub fn automaton_report_html(ev: &Evaluator, m: &AutomatonMeasure, classes: &str
         esc(&m.input)
     );
     let _ = writeln!(h, "<h1>lacuna report: {}</h1>", esc(&m.input));
-    let _ = writeln!(h, "<p>Automaton in space {}, drawn to level {}.</p>", m.space, m.level);
-    let _ = writeln!(h, "<h2>Solver</h2><p>Field {}: {}.</p>", esc(&m.solver.field),
-        if m.solver.consistent { "every constraint holds" } else { "<b>constraints fail</b>" });
-    if !m.solver.failed.is_empty() || !m.solver.applied.is_empty() || !m.solver.free_left.is_empty() {
+    let _ = writeln!(
+        h,
+        "<p>Automaton in space {}, drawn to level {}.</p>",
+        m.space, m.level
+    );
+    let _ = writeln!(
+        h,
+        "<h2>Solver</h2><p>Field {}: {}.</p>",
+        esc(&m.solver.field),
+        if m.solver.consistent {
+            "every constraint holds"
+        } else {
+            "<b>constraints fail</b>"
+        }
+    );
+    if !m.solver.failed.is_empty() || !m.solver.applied.is_empty() || !m.solver.free_left.is_empty()
+    {
         h += "<ul>";
         for f in &m.solver.failed {
             let _ = write!(h, "<li>fails: {}</li>", esc(f));
@@ -205,7 +267,11 @@ pub fn automaton_report_html(ev: &Evaluator, m: &AutomatonMeasure, classes: &str
             let _ = write!(h, "<li>parameter {}</li>", esc(p));
         }
         if !m.solver.free_left.is_empty() {
-            let _ = write!(h, "<li>free parameters left at 0: {}</li>", esc(&m.solver.free_left.join(", ")));
+            let _ = write!(
+                h,
+                "<li>free parameters left at 0: {}</li>",
+                esc(&m.solver.free_left.join(", "))
+            );
         }
         h += "</ul>\n";
     }
@@ -218,27 +284,53 @@ pub fn automaton_report_html(ev: &Evaluator, m: &AutomatonMeasure, classes: &str
     h += "</pre>\n<h2>Dimension</h2>\n<ul>";
     match (&m.similarity_dimension, &m.similarity_note) {
         (Some(s), _) => {
-            let _ = write!(h, "<li>similarity dimension (exact) = {} = {}…</li>", esc(&s.exact), s.decimal);
+            let _ = write!(
+                h,
+                "<li>similarity dimension (exact) = {} = {}…</li>",
+                esc(&s.exact),
+                s.decimal
+            );
         }
         (None, Some(n)) => {
-            let _ = write!(h, "<li>similarity dimension: not applicable ({})</li>", esc(n));
+            let _ = write!(
+                h,
+                "<li>similarity dimension: not applicable ({})</li>",
+                esc(n)
+            );
         }
         _ => {}
     }
     match m.box_dimension.value {
         Some(v) => {
-            let _ = write!(h, "<li>box-counting dimension ≈ {v:.4} (level {}; boxes: {})</li>", m.box_dimension.level,
-                m.box_dimension.counts.iter().map(|(k, n)| format!("2^-{k}: {n}")).collect::<Vec<_>>().join(", "));
+            let _ = write!(
+                h,
+                "<li>box-counting dimension ≈ {v:.4} (level {}; boxes: {})</li>",
+                m.box_dimension.level,
+                m.box_dimension
+                    .counts
+                    .iter()
+                    .map(|(k, n)| format!("2^-{k}: {n}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            );
         }
         None => h += "<li>box-counting dimension: too few scales</li>",
     }
     h += "</ul>\n<h2>Levels</h2>\n<table><tr><th>level</th><th>pieces</th><th>length</th><th>area</th></tr>\n";
     for l in &m.levels {
-        let _ = writeln!(h, "<tr><td>{}</td><td>{}</td><td>{:.6}</td><td>{:.6}</td></tr>", l.level, l.pieces, l.length, l.area);
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td>{:.6}</td><td>{:.6}</td></tr>",
+            l.level, l.pieces, l.length, l.area
+        );
     }
     h += "</table>\n<h2>Pictures</h2>\n<div class=\"pics\">\n";
     for l in 0..=m.level {
-        let _ = writeln!(h, "<figure style=\"display:inline-block\">{}<figcaption>level {l}</figcaption></figure>", automaton_svg(ev.space, &ev.shapes(l), 320.0));
+        let _ = writeln!(
+            h,
+            "<figure style=\"display:inline-block\">{}<figcaption>level {l}</figcaption></figure>",
+            automaton_svg(ev.space, &ev.shapes(l), 320.0)
+        );
     }
     h += "</div>\n<h2>Input</h2>\n<pre>";
     h += &esc(source);

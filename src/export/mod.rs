@@ -9,6 +9,10 @@ pub(crate) mod html;
 pub(crate) mod report;
 pub(crate) mod writer;
 
+pub use automaton_writer::{
+    automaton_raster, automaton_report_html, automaton_svg, write_automaton_json,
+    write_automaton_obj, write_automaton_svg,
+};
 pub use html::report_html;
 pub use report::{
     closure_json, closure_report, counts_json, counts_table, ratio_of, ratio_text, verify_report,
@@ -18,4 +22,3 @@ pub use writer::{
     render_raster, triangulate, write_density_png, write_json, write_obj, write_png, write_stl,
     write_svg,
 };
-pub use automaton_writer::{automaton_raster, automaton_report_html, automaton_svg, write_automaton_json, write_automaton_obj, write_automaton_svg};

@@ -52,7 +52,10 @@ impl Evaluator {
     pub fn new(m: &AutomatonModel, r: &Resolved) -> Self {
         let a = &m.automaton;
         let k = &m.field;
-        let pts = m.points.clone().unwrap_or_else(|| default_points(a.states[m.start].dim, m.space, k));
+        let pts = m
+            .points
+            .clone()
+            .unwrap_or_else(|| default_points(a.states[m.start].dim, m.space, k));
         let start_points = pts
             .iter()
             .map(|p| {
@@ -106,7 +109,8 @@ impl Evaluator {
 
     /// Calls `f(state, depth, points)` for every leaf of the evaluation tree at level n.
     pub fn walk(&self, level: u32, f: &mut dyn FnMut(usize, u32, &[[f64; 3]])) {
-        let mut stack: Vec<(usize, u32, Vec<[f64; 3]>)> = vec![(self.start, 0, self.start_points.clone())];
+        let mut stack: Vec<(usize, u32, Vec<[f64; 3]>)> =
+            vec![(self.start, 0, self.start_points.clone())];
         while let Some((q, d, pts)) = stack.pop() {
             if d == level || self.out[q].is_empty() {
                 f(q, d, &pts);
@@ -138,7 +142,11 @@ impl Evaluator {
             Primitive::Polygon(v) => (ShapeKind::Polygon, pick(v)),
             Primitive::Nothing => return None,
         };
-        Some(Shape { state, kind, points })
+        Some(Shape {
+            state,
+            kind,
+            points,
+        })
     }
 
     /// Every shape at level n, in the order of the walk.
@@ -156,14 +164,23 @@ impl Evaluator {
 /// The exact control points (columns of `space × m`) of the node reached from the start by the
 /// operators `word` (each `T: q ← w` continuing from state q); `None` when the word does not
 /// follow the control graph.
-pub fn exact_points(m: &AutomatonModel, r: &Resolved, word: &[usize]) -> Option<Vec<Vec<FieldElement>>> {
+pub fn exact_points(
+    m: &AutomatonModel,
+    r: &Resolved,
+    word: &[usize],
+) -> Option<Vec<Vec<FieldElement>>> {
     let a = &m.automaton;
     let k = &m.field;
-    let pts = m.points.clone().unwrap_or_else(|| default_points(a.states[m.start].dim, m.space, k));
+    let pts = m
+        .points
+        .clone()
+        .unwrap_or_else(|| default_points(a.states[m.start].dim, m.space, k));
     let mut f = KMatrix {
         rows: m.space,
         cols: pts.len(),
-        data: (0..m.space).flat_map(|d| pts.iter().map(move |p| p[d].clone())).collect(),
+        data: (0..m.space)
+            .flat_map(|d| pts.iter().map(move |p| p[d].clone()))
+            .collect(),
     };
     let mut state = m.start;
     for &o in word {
@@ -174,5 +191,9 @@ pub fn exact_points(m: &AutomatonModel, r: &Resolved, word: &[usize]) -> Option<
         f = f.mul(k, &r.ops[o])?;
         state = op.from;
     }
-    Some((0..f.cols).map(|c| (0..f.rows).map(|d| f.get(d, c).clone()).collect()).collect())
+    Some(
+        (0..f.cols)
+            .map(|c| (0..f.rows).map(|d| f.get(d, c).clone()).collect())
+            .collect(),
+    )
 }

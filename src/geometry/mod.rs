@@ -16,6 +16,7 @@ pub(crate) mod raster;
 pub(crate) mod template;
 pub(crate) mod template_file;
 
+pub use automaton_eval::{exact_points, Evaluator, Shape, ShapeKind};
 pub use choose::{project_exact, Choice, ExactColumn, Projection};
 pub use instantiate::{instantiate, Cell, EdgeSlot, Instance};
 pub use lp::{parse_goal, Goal};
@@ -30,4 +31,3 @@ pub use template::{control_points, regular_polygon};
 pub use template_file::{
     format_exact, parse_template, write_template, ExactTemplate, TypeTemplate,
 };
-pub use automaton_eval::{exact_points, Evaluator, Shape, ShapeKind};

@@ -64,7 +64,14 @@ pub struct AutomatonModel {
     pub params: Vec<(String, BigRational, Span)>,
 }
 
-fn err(code: &'static str, msg: impl Into<String>, ln: usize, col: usize, len: usize, src: &Source) -> Error {
+fn err(
+    code: &'static str,
+    msg: impl Into<String>,
+    ln: usize,
+    col: usize,
+    len: usize,
+    src: &Source,
+) -> Error {
     Error::at(code, msg, ln, col, len.max(1), src)
 }
 
@@ -91,7 +98,8 @@ pub fn parse_field_element(t: &str, k: &NumberField, gen: Option<&str>) -> Optio
         }
         first = false;
         let start = i;
-        while i < bytes.len() && (bytes[i].is_ascii_digit() || bytes[i] == b'/' || bytes[i] == b'.') {
+        while i < bytes.len() && (bytes[i].is_ascii_digit() || bytes[i] == b'/' || bytes[i] == b'.')
+        {
             i += 1;
         }
         let coef = if i > start {
@@ -151,7 +159,8 @@ fn parse_poly(t: &str, var: &str) -> Option<Poly> {
         }
         first = false;
         let start = i;
-        while i < bytes.len() && (bytes[i].is_ascii_digit() || bytes[i] == b'/' || bytes[i] == b'.') {
+        while i < bytes.len() && (bytes[i].is_ascii_digit() || bytes[i] == b'/' || bytes[i] == b'.')
+        {
             i += 1;
         }
         let coef = if i > start {
@@ -196,7 +205,14 @@ fn parse_kmatrix(
 ) -> Result<(Vec<Vec<FieldElement>>, usize)> {
     let col = |b: usize| line[..b].chars().count() + 1;
     let Some(close) = line[start..].find(']').map(|i| start + i) else {
-        return Err(err("E0701", "matrix literal is not closed by `]`", ln, col(start), 1, src));
+        return Err(err(
+            "E0701",
+            "matrix literal is not closed by `]`",
+            ln,
+            col(start),
+            1,
+            src,
+        ));
     };
     let inner = &line[start + 1..close];
     let mut rows = Vec::new();
@@ -249,7 +265,9 @@ pub fn is_automaton_model(text: &str) -> bool {
     text.lines()
         .map(|l| l.split('#').next().unwrap_or("").trim())
         .find(|l| !l.is_empty())
-        .is_some_and(|l| l.starts_with("state ") || l.starts_with("field ") || l.starts_with("space "))
+        .is_some_and(|l| {
+            l.starts_with("state ") || l.starts_with("field ") || l.starts_with("space ")
+        })
 }
 
 /// Parses an automaton file with its modelling lines.
@@ -267,14 +285,35 @@ pub fn parse_model(src: &Source) -> Result<AutomatonModel> {
         let ln = ln0 + 1;
         let line = raw.split('#').next().unwrap_or("");
         let t = line.trim();
-        let col = |s: &str| line[..(s.as_ptr() as usize - line.as_ptr() as usize)].chars().count() + 1;
+        let col = |s: &str| {
+            line[..(s.as_ptr() as usize - line.as_ptr() as usize)]
+                .chars()
+                .count()
+                + 1
+        };
         let first = t.split_whitespace().next().unwrap_or("");
         match first {
             "field" => {
                 if field_decl.is_some() {
-                    return Err(err("E0711", "a second `field` line (one field per file)", ln, col(t), t.len(), src));
+                    return Err(err(
+                        "E0711",
+                        "a second `field` line (one field per file)",
+                        ln,
+                        col(t),
+                        t.len(),
+                        src,
+                    ));
                 }
-                let bad = || err("E0711", "expected `field NAME = root of POLYNOMIAL in [LO, HI]`", ln, col(t), t.chars().count(), src);
+                let bad = || {
+                    err(
+                        "E0711",
+                        "expected `field NAME = root of POLYNOMIAL in [LO, HI]`",
+                        ln,
+                        col(t),
+                        t.chars().count(),
+                        src,
+                    )
+                };
                 let rest = t["field".len()..].trim();
                 let (name, rhs) = rest.split_once('=').ok_or_else(bad)?;
                 let name = name.trim();
@@ -285,11 +324,21 @@ pub fn parse_model(src: &Source) -> Result<AutomatonModel> {
                 let body = rhs.strip_prefix("root of").ok_or_else(bad)?;
                 let (poly_text, interval) = body.rsplit_once(" in ").ok_or_else(bad)?;
                 let interval = interval.trim();
-                let inner = interval.strip_prefix('[').and_then(|s| s.strip_suffix(']')).ok_or_else(bad)?;
+                let inner = interval
+                    .strip_prefix('[')
+                    .and_then(|s| s.strip_suffix(']'))
+                    .ok_or_else(bad)?;
                 let (lo, hi) = inner.split_once(',').ok_or_else(bad)?;
                 let (lo, hi) = (parse_rational(lo.trim()), parse_rational(hi.trim()));
                 let (Some(lo), Some(hi)) = (lo, hi) else {
-                    return Err(err("E0711", "the interval's ends must be exact numbers", ln, col(interval), interval.len(), src));
+                    return Err(err(
+                        "E0711",
+                        "the interval's ends must be exact numbers",
+                        ln,
+                        col(interval),
+                        interval.len(),
+                        src,
+                    ));
                 };
                 let f = parse_poly(poly_text.trim(), "x")
                     .or_else(|| parse_poly(poly_text.trim(), name))
@@ -299,38 +348,78 @@ pub fn parse_model(src: &Source) -> Result<AutomatonModel> {
                     err("E0711", format!("{} has no root or more than one root in [{lo}, {hi}]: give an interval isolating one root", f.render("x")), ln, col(interval), interval.len(), src)
                 })?;
                 field = NumberField::new(gen);
-                field_decl = Some((name.to_string(), format!("{name} = root of {} in [{lo}, {hi}]", f.render("x"))));
+                field_decl = Some((
+                    name.to_string(),
+                    format!("{name} = root of {} in [{lo}, {hi}]", f.render("x")),
+                ));
                 filtered.push(String::new());
             }
             "space" => {
                 let d = t.split_whitespace().nth(1).unwrap_or("");
                 match (d.parse::<usize>(), t.split_whitespace().count()) {
                     (Ok(v @ (2 | 3)), 2) if space.is_none() => space = Some((v, ln)),
-                    _ => return Err(err("E0712", "expected `space 2` or `space 3`, once", ln, col(t), t.len(), src)),
+                    _ => {
+                        return Err(err(
+                            "E0712",
+                            "expected `space 2` or `space 3`, once",
+                            ln,
+                            col(t),
+                            t.len(),
+                            src,
+                        ))
+                    }
                 }
                 filtered.push(String::new());
             }
             "start" => {
                 let ws: Vec<&str> = t.split_whitespace().collect();
                 if ws.len() != 2 || start.is_some() {
-                    return Err(err("E0712", "expected `start STATE`, once", ln, col(t), t.len(), src));
+                    return Err(err(
+                        "E0712",
+                        "expected `start STATE`, once",
+                        ln,
+                        col(t),
+                        t.len(),
+                        src,
+                    ));
                 }
                 start = Some((ws[1].to_string(), ln, col(ws[1])));
                 filtered.push(String::new());
             }
             "points" => {
                 if points.is_some() {
-                    return Err(err("E0712", "a second `points` line", ln, col(t), t.len(), src));
+                    return Err(err(
+                        "E0712",
+                        "a second `points` line",
+                        ln,
+                        col(t),
+                        t.len(),
+                        src,
+                    ));
                 }
                 let rest = &t["points".len()..];
                 let Some(b) = rest.find('[') else {
-                    return Err(err("E0712", "expected `points [X Y; X Y; …]`", ln, col(t), t.len(), src));
+                    return Err(err(
+                        "E0712",
+                        "expected `points [X Y; X Y; …]`",
+                        ln,
+                        col(t),
+                        t.len(),
+                        src,
+                    ));
                 };
                 let bstart = (rest.as_ptr() as usize - line.as_ptr() as usize) + b;
                 let gen = field_decl.as_ref().map(|(n, _)| n.as_str());
                 let (rows, end) = parse_kmatrix(line, bstart, &field, gen, ln, src)?;
                 if !line[end..].trim().is_empty() {
-                    return Err(err("E0701", "unexpected text after the matrix", ln, col(&line[end..]), line[end..].trim_end().len(), src));
+                    return Err(err(
+                        "E0701",
+                        "unexpected text after the matrix",
+                        ln,
+                        col(&line[end..]),
+                        line[end..].trim_end().len(),
+                        src,
+                    ));
                 }
                 points = Some((rows, ln, col(t)));
                 filtered.push(String::new());
@@ -338,13 +427,27 @@ pub fn parse_model(src: &Source) -> Result<AutomatonModel> {
             "primitive" => {
                 let ws: Vec<&str> = t.split_whitespace().collect();
                 if ws.len() < 3 {
-                    return Err(err("E0712", "expected `primitive STATE point|polyline|polygon|none [INDEX …]`", ln, col(t), t.len(), src));
+                    return Err(err(
+                        "E0712",
+                        "expected `primitive STATE point|polyline|polygon|none [INDEX …]`",
+                        ln,
+                        col(t),
+                        t.len(),
+                        src,
+                    ));
                 }
                 let mut idx = Vec::new();
                 let mut spans = Vec::new();
                 for w in &ws[3..] {
                     let Ok(v) = w.parse::<usize>() else {
-                        return Err(err("E0712", format!("`{w}` is not a control-point index (0, 1, …)"), ln, col(w), w.len(), src));
+                        return Err(err(
+                            "E0712",
+                            format!("`{w}` is not a control-point index (0, 1, …)"),
+                            ln,
+                            col(w),
+                            w.len(),
+                            src,
+                        ));
                     };
                     idx.push(v);
                     spans.push((col(w), w.len()));
@@ -361,11 +464,28 @@ pub fn parse_model(src: &Source) -> Result<AutomatonModel> {
             }
             "param" => {
                 let rest = t["param".len()..].trim();
-                let parsed = rest.split_once('=').and_then(|(n, v)| Some((n.trim().to_string(), parse_rational(v.trim())?)));
+                let parsed = rest
+                    .split_once('=')
+                    .and_then(|(n, v)| Some((n.trim().to_string(), parse_rational(v.trim())?)));
                 let Some((name, value)) = parsed else {
-                    return Err(err("E0712", "expected `param OPERATOR[ROW][COL] = VALUE` with an exact value", ln, col(t), t.len(), src));
+                    return Err(err(
+                        "E0712",
+                        "expected `param OPERATOR[ROW][COL] = VALUE` with an exact value",
+                        ln,
+                        col(t),
+                        t.len(),
+                        src,
+                    ));
                 };
-                params.push((name, value, Span { line: ln, col: col(t), len: t.chars().count() }));
+                params.push((
+                    name,
+                    value,
+                    Span {
+                        line: ln,
+                        col: col(t),
+                        len: t.chars().count(),
+                    },
+                ));
                 filtered.push(String::new());
             }
             "sub" | "embed" | "perm" | "op" if field_decl.is_some() && t.contains('=') => {
@@ -390,8 +510,11 @@ pub fn parse_model(src: &Source) -> Result<AutomatonModel> {
         }
     }
     let text = filtered.join("\n");
-    let automaton = parse_automaton(&Source { name: src.name.clone(), text })
-        .map_err(|e| relocate(e, src))?;
+    let automaton = parse_automaton(&Source {
+        name: src.name.clone(),
+        text,
+    })
+    .map_err(|e| relocate(e, src))?;
     let n_ops = automaton.operators.len();
     let mut kvalues: Vec<Option<KMatrix>> = automaton
         .operators
@@ -400,19 +523,49 @@ pub fn parse_model(src: &Source) -> Result<AutomatonModel> {
         .collect();
     let mut field_ops = Vec::new();
     for (name, rows, ln, c) in kops {
-        let o = automaton.operators.iter().position(|x| x.name == name).expect("declared by the parser");
+        let o = automaton
+            .operators
+            .iter()
+            .position(|x| x.name == name)
+            .expect("declared by the parser");
         let op = &automaton.operators[o];
         let want = (automaton.states[op.to].dim, automaton.states[op.from].dim);
         if (rows.len(), rows[0].len()) != want {
-            return Err(err("E0703", format!("`{name}` is {}×{}, but the matrix is {}×{}", want.0, want.1, rows.len(), rows[0].len()), ln, c, 1, src));
+            return Err(err(
+                "E0703",
+                format!(
+                    "`{name}` is {}×{}, but the matrix is {}×{}",
+                    want.0,
+                    want.1,
+                    rows.len(),
+                    rows[0].len()
+                ),
+                ln,
+                c,
+                1,
+                src,
+            ));
         }
-        kvalues[o] = Some(KMatrix { rows: want.0, cols: want.1, data: rows.into_iter().flatten().collect() });
+        kvalues[o] = Some(KMatrix {
+            rows: want.0,
+            cols: want.1,
+            data: rows.into_iter().flatten().collect(),
+        });
         field_ops.push(o);
     }
     debug_assert_eq!(kvalues.len(), n_ops);
     let find = |s: &str| automaton.states.iter().position(|x| x.name == s);
     let start = match start {
-        Some((name, ln, c)) => find(&name).ok_or_else(|| err("E0702", format!("unknown state `{name}`"), ln, c, name.len(), src))?,
+        Some((name, ln, c)) => find(&name).ok_or_else(|| {
+            err(
+                "E0702",
+                format!("unknown state `{name}`"),
+                ln,
+                c,
+                name.len(),
+                src,
+            )
+        })?,
         None => {
             // The first state of largest dimension.
             let mut best = 0;
@@ -435,9 +588,22 @@ pub fn parse_model(src: &Source) -> Result<AutomatonModel> {
             Some(rows)
         }
     };
-    let mut primitives: Vec<Primitive> = automaton.states.iter().map(|s| Primitive::Polyline((0..s.dim).collect())).collect();
+    let mut primitives: Vec<Primitive> = automaton
+        .states
+        .iter()
+        .map(|s| Primitive::Polyline((0..s.dim).collect()))
+        .collect();
     for (name, p, ln, c, spans) in prims {
-        let s = find(&name).ok_or_else(|| err("E0702", format!("unknown state `{name}`"), ln, c, name.len(), src))?;
+        let s = find(&name).ok_or_else(|| {
+            err(
+                "E0702",
+                format!("unknown state `{name}`"),
+                ln,
+                c,
+                name.len(),
+                src,
+            )
+        })?;
         let m = automaton.states[s].dim;
         let p = match p {
             Primitive::Polyline(v) if v.is_empty() => Primitive::Polyline((0..m).collect()),
@@ -451,7 +617,18 @@ pub fn parse_model(src: &Source) -> Result<AutomatonModel> {
         };
         if let Some(pos) = idx.iter().position(|&i| i >= m) {
             let (cc, l) = spans.get(pos).copied().unwrap_or((c, name.len()));
-            return Err(err("E0712", format!("state `{name}` has {m} control points (0 to {}): no point {}", m - 1, idx[pos]), ln, cc, l, src));
+            return Err(err(
+                "E0712",
+                format!(
+                    "state `{name}` has {m} control points (0 to {}): no point {}",
+                    m - 1,
+                    idx[pos]
+                ),
+                ln,
+                cc,
+                l,
+                src,
+            ));
         }
         primitives[s] = p;
     }
@@ -487,7 +664,10 @@ mod tests {
     use super::*;
 
     fn src(t: &str) -> Source {
-        Source { name: "a.aut".into(), text: t.into() }
+        Source {
+            name: "a.aut".into(),
+            text: t.into(),
+        }
     }
 
     #[test]
@@ -504,13 +684,23 @@ mod tests {
     fn model_errors_have_codes_and_columns() {
         let cases = [
             ("state e 2\nspace 4\n", "E0712", 2, 1),
-            ("field s = root of x^2 - 2 in [-2, 2]\nstate e 1\n", "E0711", 1, 30),
+            (
+                "field s = root of x^2 - 2 in [-2, 2]\nstate e 1\n",
+                "E0711",
+                1,
+                30,
+            ),
             ("state e 2\npoints [0 0; 1]\n", "E0703", 2, 8),
             ("state e 2\npoints [0 0 0; 1 1 1]\n", "E0712", 2, 1),
             ("state e 2\nprimitive e polygon 0 2\n", "E0712", 2, 23),
             ("state e 2\nprimitive f point\n", "E0702", 2, 11),
             ("state e 2\nstart q\n", "E0702", 2, 7),
-            ("field s = root of x^2 - 2 in [1, 2]\nstate e 1\nsub t : e <- e = [2q]\n", "E0706", 3, 19),
+            (
+                "field s = root of x^2 - 2 in [1, 2]\nstate e 1\nsub t : e <- e = [2q]\n",
+                "E0706",
+                3,
+                19,
+            ),
         ];
         for (text, code, line, c) in cases {
             let e = parse_model(&src(text)).unwrap_err();

@@ -56,11 +56,26 @@ pub fn library() -> &'static [(&'static str, &'static str)] {
             "chaikin-known",
             include_str!("../../fixtures/chaikin-known.aut"),
         ),
-        ("de-casteljau-cubic", include_str!("../../fixtures/de-casteljau-cubic.aut")),
-        ("bspline-quadratic-4", include_str!("../../fixtures/bspline-quadratic-4.aut")),
-        ("bspline-cubic", include_str!("../../fixtures/bspline-cubic.aut")),
-        ("quad-patch-3d", include_str!("../../fixtures/quad-patch-3d.aut")),
-        ("sierpinski-triangle", include_str!("../../fixtures/sierpinski-triangle.aut")),
+        (
+            "de-casteljau-cubic",
+            include_str!("../../fixtures/de-casteljau-cubic.aut"),
+        ),
+        (
+            "bspline-quadratic-4",
+            include_str!("../../fixtures/bspline-quadratic-4.aut"),
+        ),
+        (
+            "bspline-cubic",
+            include_str!("../../fixtures/bspline-cubic.aut"),
+        ),
+        (
+            "quad-patch-3d",
+            include_str!("../../fixtures/quad-patch-3d.aut"),
+        ),
+        (
+            "sierpinski-triangle",
+            include_str!("../../fixtures/sierpinski-triangle.aut"),
+        ),
         ("cantor-set", include_str!("../../fixtures/cantor-set.aut")),
         ("kite-dart", include_str!("../../fixtures/kite-dart.aut")),
     ]

@@ -68,7 +68,11 @@ fn polygon_area(p: &[[f64; 3]]) -> f64 {
     for i in 1..p.len().saturating_sub(1) {
         let (u, v) = (
             [p[i][0] - p[0][0], p[i][1] - p[0][1], p[i][2] - p[0][2]],
-            [p[i + 1][0] - p[0][0], p[i + 1][1] - p[0][1], p[i + 1][2] - p[0][2]],
+            [
+                p[i + 1][0] - p[0][0],
+                p[i + 1][1] - p[0][1],
+                p[i + 1][2] - p[0][2],
+            ],
         );
         s[0] += u[1] * v[2] - u[2] * v[1];
         s[1] += u[2] * v[0] - u[0] * v[2];
@@ -85,7 +89,11 @@ pub fn shape_measure(s: &Shape) -> (f64, f64) {
         ShapeKind::Polyline => (p.windows(2).map(|w| dist(&w[0], &w[1])).sum(), 0.0),
         ShapeKind::Polygon => {
             let per: f64 = p.windows(2).map(|w| dist(&w[0], &w[1])).sum::<f64>()
-                + if p.len() > 1 { dist(&p[p.len() - 1], &p[0]) } else { 0.0 };
+                + if p.len() > 1 {
+                    dist(&p[p.len() - 1], &p[0])
+                } else {
+                    0.0
+                };
             (per, polygon_area(p))
         }
     }
@@ -103,14 +111,19 @@ pub fn level_measures(ev: &Evaluator, level: u32) -> Vec<AutomatonLevel> {
                     area += b;
                 }
             });
-            AutomatonLevel { level: l, pieces: ev.count(l), length, area }
+            AutomatonLevel {
+                level: l,
+                pieces: ev.count(l),
+                length,
+                area,
+            }
         })
         .collect()
 }
 
 /// The box-counting estimate from the pieces of level `level`: every piece sampled finer than the
 /// finest box (polygons filled), boxes of size `L/2^k` counted for k from 2 up to the finest
-/// scale still coarser than twice the largest piece (at most 10 in the plane, 7 in space).
+/// scale still coarser than twice the largest piece (at most 9 in the plane, 7 in space; at most 4 million samples).
 pub fn box_dimension(ev: &Evaluator, level: u32) -> BoxDimension {
     let shapes = ev.shapes(level);
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
@@ -128,11 +141,15 @@ pub fn box_dimension(ev: &Evaluator, level: u32) -> BoxDimension {
         piece = piece.max(dist(&plo, &phi));
     }
     let side = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
-    let empty = BoxDimension { value: None, level, counts: Vec::new() };
+    let empty = BoxDimension {
+        value: None,
+        level,
+        counts: Vec::new(),
+    };
     if shapes.is_empty() || side <= 0.0 || !side.is_finite() {
         return empty;
     }
-    let kcap = if ev.space == 3 { 7 } else { 10 };
+    let kcap = if ev.space == 3 { 7 } else { 9 };
     let mut kmax = 0u32;
     while kmax < kcap && side / f64::from(1u32 << (kmax + 1)) >= 2.0 * piece {
         kmax += 1;
@@ -147,7 +164,11 @@ pub fn box_dimension(ev: &Evaluator, level: u32) -> BoxDimension {
         let n = (dist(a, b) / step).ceil().max(1.0) as usize;
         for i in 0..=n {
             let t = i as f64 / n as f64;
-            out.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])]);
+            out.push([
+                a[0] + t * (b[0] - a[0]),
+                a[1] + t * (b[1] - a[1]),
+                a[2] + t * (b[2] - a[2]),
+            ]);
         }
     };
     for s in &shapes {
@@ -180,7 +201,7 @@ pub fn box_dimension(ev: &Evaluator, level: u32) -> BoxDimension {
                 }
             }
         }
-        if samples.len() > 40_000_000 {
+        if samples.len() > 4_000_000 {
             break;
         }
     }
@@ -204,20 +225,31 @@ pub fn box_dimension(ev: &Evaluator, level: u32) -> BoxDimension {
     let n = pts.len() as f64;
     let (sx, sy) = pts.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
     let (mx, my) = (sx / n, sy / n);
-    let (num, den) = pts
-        .iter()
-        .fold((0.0, 0.0), |a, p| (a.0 + (p.0 - mx) * (p.1 - my), a.1 + (p.0 - mx).powi(2)));
-    BoxDimension { value: Some(num / den), level, counts }
+    let (num, den) = pts.iter().fold((0.0, 0.0), |a, p| {
+        (a.0 + (p.0 - mx) * (p.1 - my), a.1 + (p.0 - mx).powi(2))
+    });
+    BoxDimension {
+        value: Some(num / den),
+        level,
+        counts,
+    }
 }
 
 impl AutomatonMeasure {
     /// The human-readable report.
     pub fn to_text(&self) -> String {
-        let mut o = format!("{}: automaton in space {}, level {}\n", self.input, self.space, self.level);
+        let mut o = format!(
+            "{}: automaton in space {}, level {}\n",
+            self.input, self.space, self.level
+        );
         o += &format!(
             "solver ({}): {}\n",
             self.solver.field,
-            if self.solver.consistent { "every constraint holds" } else { "CONSTRAINTS FAIL" }
+            if self.solver.consistent {
+                "every constraint holds"
+            } else {
+                "CONSTRAINTS FAIL"
+            }
         );
         for f in &self.solver.failed {
             o += &format!("  fails: {f}\n");
@@ -226,15 +258,30 @@ impl AutomatonMeasure {
             o += &format!("  parameter {p}\n");
         }
         if !self.solver.free_left.is_empty() {
-            o += &format!("  free parameters left at 0: {}\n", self.solver.free_left.join(", "));
+            o += &format!(
+                "  free parameters left at 0: {}\n",
+                self.solver.free_left.join(", ")
+            );
         }
-        o += &format!("contraction: {} elementary cycle(s) contract\n", self.contraction.cycles.len());
+        o += &format!(
+            "contraction: {} elementary cycle(s) contract\n",
+            self.contraction.cycles.len()
+        );
         o += "level  pieces        length           area\n";
         for l in &self.levels {
-            o += &format!("{:>5}  {:>6}  {:>12.6}  {:>13.6}\n", l.level, l.pieces, l.length, l.area);
+            o += &format!(
+                "{:>5}  {:>6}  {:>12.6}  {:>13.6}\n",
+                l.level, l.pieces, l.length, l.area
+            );
         }
         match self.box_dimension.value {
-            Some(v) => o += &format!("box-counting dimension ≈ {v:.4} (level {}, {} scales)\n", self.box_dimension.level, self.box_dimension.counts.len()),
+            Some(v) => {
+                o += &format!(
+                    "box-counting dimension ≈ {v:.4} (level {}, {} scales)\n",
+                    self.box_dimension.level,
+                    self.box_dimension.counts.len()
+                )
+            }
             None => o += "box-counting dimension: too few scales (raise --level)\n",
         }
         match (&self.similarity_dimension, &self.similarity_note) {

@@ -9,10 +9,12 @@ pub(crate) mod density;
 pub(crate) mod hole;
 pub(crate) mod measurement;
 
+pub use automaton_measure::{
+    box_dimension, level_measures, shape_measure, AutomatonLevel, AutomatonMeasure, BoxDimension,
+};
 pub use density::{density_map, density_raster, DensityMap, DensitySummary};
 pub use hole::{polygon_size, smallest_holes};
 pub use measurement::{
     check_cells, exact_components, exact_topology, measure, raster_for_hole, ExactTopology,
     LevelMeasure, MeasureOptions, MeasureReport, MIN_HOLE_WIDTH,
 };
-pub use automaton_measure::{box_dimension, level_measures, shape_measure, AutomatonLevel, AutomatonMeasure, BoxDimension};
