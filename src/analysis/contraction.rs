@@ -23,6 +23,14 @@ use serde::Serialize;
 /// The most elementary cycles examined (refused beyond, before the products are formed).
 pub const MAX_CYCLES: usize = 4096;
 
+/// The most steps of the depth-first search for cycles (the simple paths can outnumber the
+/// cycles exponentially).
+pub const MAX_SEARCH_STEPS: usize = 2_000_000;
+
+/// The most control points of a state on a cycle (the characteristic polynomial of the
+/// cycle's product is exact, O(m⁴) field operations).
+pub const MAX_CYCLE_DIM: usize = 64;
+
 /// The contraction check's result.
 #[derive(Clone, Debug, Serialize)]
 pub struct ContractionReport {
@@ -63,12 +71,14 @@ pub fn reachable(m: &AutomatonModel) -> Vec<bool> {
 }
 
 /// The elementary cycles among reachable states, each a list of operators, rooted at its
-/// smallest state; `None` when there are more than [`MAX_CYCLES`].
+/// smallest state; `None` when there are more than [`MAX_CYCLES`], or the search takes more than
+/// [`MAX_SEARCH_STEPS`] steps.
 pub fn elementary_cycles(m: &AutomatonModel) -> Option<Vec<Vec<usize>>> {
     let a = &m.automaton;
     let g = control_graph(m);
     let reach = reachable(m);
     let mut cycles = Vec::new();
+    let mut steps = 0usize;
     for s in 0..a.states.len() {
         if !reach[s] {
             continue;
@@ -79,6 +89,10 @@ pub fn elementary_cycles(m: &AutomatonModel) -> Option<Vec<Vec<usize>>> {
         let mut stack: Vec<(usize, usize)> = vec![(s, 0)];
         on[s] = true;
         while let Some(&mut (q, ref mut i)) = stack.last_mut() {
+            steps += 1;
+            if steps > MAX_SEARCH_STEPS {
+                return None;
+            }
             if *i < g[q].len() {
                 let o = g[q][*i];
                 *i += 1;
@@ -107,13 +121,22 @@ pub fn elementary_cycles(m: &AutomatonModel) -> Option<Vec<Vec<usize>>> {
 
 /// Checks every elementary cycle; refuses (E0715) with the first cycle that does not contract,
 /// E0716 for a subdivision operator on a cycle that is not barycentric, E0718 beyond
-/// [`MAX_CYCLES`].
+/// [`MAX_CYCLES`] or [`MAX_CYCLE_DIM`].
 pub fn check_contraction(m: &AutomatonModel, ops: &[KMatrix]) -> Result<ContractionReport> {
     let a = &m.automaton;
     let k = &m.field;
     let cycles = elementary_cycles(m).ok_or_else(|| {
-        coded("E0718", format!("the control graph has more than {MAX_CYCLES} elementary cycles: too many to check for contraction"))
+        coded("E0718", format!("the control graph has more than {MAX_CYCLES} elementary cycles (or more paths than the search allows): too many to check for contraction"))
     })?;
+    for c in &cycles {
+        let s = &a.states[a.operators[c[0]].to];
+        if s.dim > MAX_CYCLE_DIM {
+            return Err(coded("E0718", format!(
+                "state `{}` lies on a cycle with {} control points: the contraction check handles at most {MAX_CYCLE_DIM}",
+                s.name, s.dim
+            )));
+        }
+    }
     let mut names = Vec::new();
     for c in &cycles {
         let text = c

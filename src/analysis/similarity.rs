@@ -153,73 +153,76 @@ fn squared_ratio(k: &NumberField, fq: &KMatrix, fw: &KMatrix, t: &KMatrix) -> Op
     (scaled == h.data && k.sign(&r2) == Ordering::Greater).then_some(r2)
 }
 
-/// Strongly connected parts of the reachable control graph that hold a cycle (Tarjan).
-fn cyclic_parts(m: &AutomatonModel) -> Vec<Vec<usize>> {
-    let a = &m.automaton;
-    let g = control_graph(m);
-    let reach = reachable(m);
-    let n = a.states.len();
-    let succ = |v: usize| -> Vec<usize> { g[v].iter().map(|&o| a.operators[o].from).collect() };
-    let mut index = vec![usize::MAX; n];
-    let mut low = vec![0; n];
-    let mut on = vec![false; n];
-    let mut stack = Vec::new();
-    let mut parts = Vec::new();
-    let mut counter = 0;
-    fn visit(
-        v: usize,
-        succ: &dyn Fn(usize) -> Vec<usize>,
-        st: &mut (
-            Vec<usize>,
-            Vec<usize>,
-            Vec<bool>,
-            Vec<usize>,
-            Vec<Vec<usize>>,
-            usize,
-        ),
-    ) {
-        st.0[v] = st.5;
-        st.1[v] = st.5;
-        st.5 += 1;
-        st.3.push(v);
-        st.2[v] = true;
-        for w in succ(v) {
-            if st.0[w] == usize::MAX {
-                visit(w, succ, st);
-                st.1[v] = st.1[v].min(st.1[w]);
-            } else if st.2[w] {
-                st.1[v] = st.1[v].min(st.0[w]);
+/// Tarjan's state while finding strongly connected parts.
+struct Tarjan {
+    succ: Vec<Vec<usize>>,
+    index: Vec<usize>,
+    low: Vec<usize>,
+    on: Vec<bool>,
+    stack: Vec<usize>,
+    parts: Vec<Vec<usize>>,
+    counter: usize,
+}
+
+impl Tarjan {
+    fn visit(&mut self, v: usize) {
+        self.index[v] = self.counter;
+        self.low[v] = self.counter;
+        self.counter += 1;
+        self.stack.push(v);
+        self.on[v] = true;
+        for w in self.succ[v].clone() {
+            if self.index[w] == usize::MAX {
+                self.visit(w);
+                self.low[v] = self.low[v].min(self.low[w]);
+            } else if self.on[w] {
+                self.low[v] = self.low[v].min(self.index[w]);
             }
         }
-        if st.1[v] == st.0[v] {
+        if self.low[v] == self.index[v] {
             let mut comp = Vec::new();
-            while let Some(w) = st.3.pop() {
-                st.2[w] = false;
+            while let Some(w) = self.stack.pop() {
+                self.on[w] = false;
                 comp.push(w);
                 if w == v {
                     break;
                 }
             }
-            st.4.push(comp);
+            self.parts.push(comp);
         }
     }
-    let mut st = (
-        std::mem::take(&mut index),
-        std::mem::take(&mut low),
-        std::mem::take(&mut on),
-        std::mem::take(&mut stack),
-        std::mem::take(&mut parts),
-        std::mem::take(&mut counter),
-    );
-    for v in 0..n {
-        if reach[v] && st.0[v] == usize::MAX {
-            visit(v, &succ, &mut st);
+}
+
+/// Strongly connected parts of the reachable control graph that hold a cycle (Tarjan; the
+/// recursion is as deep as the number of states, at most 4096: checked by the caller).
+fn cyclic_parts(m: &AutomatonModel) -> Vec<Vec<usize>> {
+    let a = &m.automaton;
+    let g = control_graph(m);
+    let reach = reachable(m);
+    let n = a.states.len();
+    let succ: Vec<Vec<usize>> = (0..n)
+        .map(|v| g[v].iter().map(|&o| a.operators[o].from).collect())
+        .collect();
+    let mut t = Tarjan {
+        succ,
+        index: vec![usize::MAX; n],
+        low: vec![0; n],
+        on: vec![false; n],
+        stack: Vec::new(),
+        parts: Vec::new(),
+        counter: 0,
+    };
+    for (v, &r) in reach.iter().enumerate() {
+        if r && t.index[v] == usize::MAX {
+            t.visit(v);
         }
     }
-    let mut out: Vec<Vec<usize>> =
-        st.4.into_iter()
-            .filter(|c| c.len() > 1 || succ(c[0]).contains(&c[0]))
-            .collect();
+    let succ = std::mem::take(&mut t.succ);
+    let mut out: Vec<Vec<usize>> = t
+        .parts
+        .into_iter()
+        .filter(|c| c.len() > 1 || succ[c[0]].contains(&c[0]))
+        .collect();
     for c in &mut out {
         c.sort_unstable();
     }
@@ -281,14 +284,14 @@ fn rat_det(mut m: Vec<Vec<BigRational>>) -> BigRational {
         }
         let piv = m[c][c].clone();
         det *= &piv;
-        for r in c + 1..n {
-            let f = &m[r][c] / &piv;
+        let pivot_row = m[c].clone();
+        for row in m.iter_mut().skip(c + 1) {
+            let f = &row[c] / &piv;
             if f.is_zero() {
                 continue;
             }
-            for j in c..n {
-                let v = &m[r][j] - &f * &m[c][j];
-                m[r][j] = v;
+            for (x, p) in row.iter_mut().zip(&pivot_row).skip(c) {
+                *x -= &f * p;
             }
         }
     }
@@ -312,6 +315,9 @@ pub fn similarity_dimension(
 ) -> Result<SimilarityDimension, NotApplicable> {
     let a = &m.automaton;
     let k = &m.field;
+    if a.states.len() > 4096 {
+        return Err("more than 4096 states".into());
+    }
     let frames = frames(m, ops);
     let parts = cyclic_parts(m);
     if parts.is_empty() {

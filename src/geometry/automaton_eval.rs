@@ -33,6 +33,9 @@ pub struct Shape {
     pub points: Vec<[f64; 3]>,
 }
 
+/// A subdivision operator out of a state: its value row-major, rows, columns, target state.
+type Edge = (Vec<f64>, usize, usize, usize);
+
 /// The automaton ready to draw: float operators, the start points, primitives.
 #[derive(Clone, Debug)]
 pub struct Evaluator {
@@ -43,7 +46,7 @@ pub struct Evaluator {
     start: usize,
     start_points: Vec<[f64; 3]>,
     /// `out[q]`: (operator value row-major, rows, cols, target state w) of each `T: q ← w`.
-    out: Vec<Vec<(Vec<f64>, usize, usize, usize)>>,
+    out: Vec<Vec<Edge>>,
     primitives: Vec<Primitive>,
 }
 
@@ -91,15 +94,15 @@ impl Evaluator {
         let mut leaves = 0u128;
         for _ in 0..level {
             let mut next = vec![0u128; n];
-            for q in 0..n {
-                if v[q] == 0 {
+            for (q, &c) in v.iter().enumerate() {
+                if c == 0 {
                     continue;
                 }
                 if self.out[q].is_empty() {
-                    leaves = leaves.saturating_add(v[q]);
+                    leaves = leaves.saturating_add(c);
                 }
                 for (_, _, _, w) in &self.out[q] {
-                    next[*w] = next[*w].saturating_add(v[q]);
+                    next[*w] = next[*w].saturating_add(c);
                 }
             }
             v = next;
@@ -108,7 +111,7 @@ impl Evaluator {
     }
 
     /// Calls `f(state, depth, points)` for every leaf of the evaluation tree at level n.
-    pub fn walk(&self, level: u32, f: &mut dyn FnMut(usize, u32, &[[f64; 3]])) {
+    pub fn walk<F: FnMut(usize, u32, &[[f64; 3]])>(&self, level: u32, f: &mut F) {
         let mut stack: Vec<(usize, u32, Vec<[f64; 3]>)> =
             vec![(self.start, 0, self.start_points.clone())];
         while let Some((q, d, pts)) = stack.pop() {

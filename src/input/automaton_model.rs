@@ -259,6 +259,9 @@ fn parse_kmatrix(
     Ok((rows, close + 1))
 }
 
+/// A `primitive` line: state name, primitive, line, column, and the span of each index.
+type PrimitiveLine = (String, Primitive, usize, usize, Vec<(usize, usize)>);
+
 /// True when the first meaningful line of a text starts an automaton file (`state`, `field` or
 /// `space`).
 pub fn is_automaton_model(text: &str) -> bool {
@@ -278,7 +281,7 @@ pub fn parse_model(src: &Source) -> Result<AutomatonModel> {
     let mut space: Option<(usize, usize)> = None;
     let mut start: Option<(String, usize, usize)> = None;
     let mut points: Option<(Vec<Vec<FieldElement>>, usize, usize)> = None;
-    let mut prims: Vec<(String, Primitive, usize, usize, Vec<(usize, usize)>)> = Vec::new();
+    let mut prims: Vec<PrimitiveLine> = Vec::new();
     let mut params: Vec<(String, BigRational, Span)> = Vec::new();
     let mut kops: Vec<(String, Vec<Vec<FieldElement>>, usize, usize)> = Vec::new();
     for (ln0, raw) in src.text.lines().enumerate() {
