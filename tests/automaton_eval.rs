@@ -392,3 +392,66 @@ fn face_options_are_refused_on_automata() {
     assert_eq!(code, 2);
     assert!(err.contains("render") && err.contains("E0601"), "{err}");
 }
+
+#[test]
+fn rational_dimensions_are_exact() {
+    // Two halves of a segment: 2 maps of ratio 1/2, s = log 2 / log 2 = 1 exactly (u = 1/2,
+    // σ = 1/4, u² = σ). Eight maps of ratio 1/4 on a triangle (its corner quarters and more):
+    // s = log 8 / log 4 = 3/2 exactly (u = 1/8, σ = 1/16, u⁴ = σ³).
+    let halves = "state c 2\nsub c.T0 : c <- c = [1 1/2; 0 1/2]\nsub c.T1 : c <- c = [1/2 0; 1/2 1]\nspace 2\npoints [0 0; 1 0]\n";
+    let m = parse_model(&Source {
+        name: "h.aut".into(),
+        text: halves.into(),
+    })
+    .unwrap();
+    let r = resolve(&m, &[], 100).unwrap();
+    let d = similarity_dimension(&m, &r.ops, 10).unwrap();
+    assert_eq!(
+        (d.exact.as_str(), d.decimal.as_str()),
+        ("1", "1.0000000000")
+    );
+    // T_(a,b): x ↦ x/4 + (a/4, b/4) in the frame (0,0), (1,0), (0,1): column j is the image of
+    // corner j, in barycentric coordinates (1 − x − y, x, y).
+    let mut text = String::from("state t 3\n");
+    let offsets = [
+        (0, 0),
+        (1, 0),
+        (2, 0),
+        (3, 0),
+        (0, 1),
+        (1, 1),
+        (2, 1),
+        (0, 2),
+    ];
+    for (i, (a, b)) in offsets.iter().enumerate() {
+        let img = [(a, b), (&(a + 1), b), (a, &(b + 1))];
+        let cols: Vec<[BigRational; 3]> = img
+            .iter()
+            .map(|(x, y)| {
+                let (x, y) = (q(**x, 4), q(**y, 4));
+                [BigRational::one() - &x - &y, x, y]
+            })
+            .collect();
+        let rows: Vec<String> = (0..3)
+            .map(|r| {
+                cols.iter()
+                    .map(|c| c[r].to_string())
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            })
+            .collect();
+        text += &format!("sub t.T{i} : t <- t = [{}]\n", rows.join("; "));
+    }
+    text += "space 2\npoints [0 0; 1 0; 0 1]\n";
+    let m = parse_model(&Source {
+        name: "e.aut".into(),
+        text,
+    })
+    .unwrap();
+    let r = resolve(&m, &[], 100).unwrap();
+    let d = similarity_dimension(&m, &r.ops, 12).unwrap();
+    assert_eq!(
+        (d.exact.as_str(), d.decimal.as_str()),
+        ("3/2", "1.500000000000")
+    );
+}

@@ -126,24 +126,6 @@ impl KMatrix {
         }
         c
     }
-
-    /// Approximate entries as `f64` (for drawing only).
-    pub fn to_f64(&self, k: &NumberField) -> Vec<f64> {
-        self.data.iter().map(|v| approx(k, v)).collect()
-    }
-}
-
-/// A float approximation of a field element (for drawing only: never for a verdict).
-pub fn approx(k: &NumberField, v: &FieldElement) -> f64 {
-    use num_traits::ToPrimitive;
-    if let Some(q) = v.as_rational() {
-        return q.to_f64().unwrap_or(f64::NAN);
-    }
-    let width = BigRational::new(1.into(), num_bigint::BigInt::one() << 64u32);
-    let (lo, hi) = k.enclosure(v, &width);
-    ((lo + hi) / BigRational::from_integer(2.into()))
-        .to_f64()
-        .unwrap_or(f64::NAN)
 }
 
 #[cfg(test)]

@@ -303,8 +303,8 @@ struct PartValue {
     u: RealAlgebraic,
     sigma: FieldElement,
     exact: String,
-    /// `Some(j)` when the dimension is the integer j.
-    integer: Option<i64>,
+    /// The dimension when it is rational (found exactly).
+    rational: Option<BigRational>,
 }
 
 /// The similarity dimension of the attractor of the start state, or why it does not apply.
@@ -391,14 +391,14 @@ pub fn similarity_dimension(
             }
         }
         let u = best.ok_or_else(|| "no root of det(I − M(u)) in (0, 1]".to_string())?;
-        let (exact, integer) = exact_text(k, &u, &sigma);
+        let (exact, rational) = exact_text(k, &u, &sigma);
         values.push((
             names,
             PartValue {
                 u,
                 sigma,
                 exact,
-                integer,
+                rational,
             },
         ));
     }
@@ -420,20 +420,39 @@ pub fn similarity_dimension(
     })
 }
 
-/// An exact text for `s = 2·ln u/ln σ`, and the integer when s is one.
-fn exact_text(k: &NumberField, u: &RealAlgebraic, sigma: &FieldElement) -> (String, Option<i64>) {
+/// An exact text for `s = 2·ln u/ln σ`, and its value when it is rational (`u^(2b) = σ^a`
+/// for small a, b when u and σ are rational; `u = σ^j` otherwise).
+fn exact_text(
+    k: &NumberField,
+    u: &RealAlgebraic,
+    sigma: &FieldElement,
+) -> (String, Option<BigRational>) {
     if u.as_rational().is_some_and(|x| x.is_one()) {
-        return ("0".into(), Some(0));
+        return ("0".into(), Some(q(0)));
     }
     // s = 2j: u = σ^j.
     let mut pow = sigma.clone();
     for j in 1..=16i64 {
         if equals(k, u, &pow) {
-            return ((2 * j).to_string(), Some(2 * j));
+            return ((2 * j).to_string(), Some(q(2 * j)));
         }
         pow = k.mul(&pow, sigma);
     }
     if let (Some(ur), Some(sr)) = (u.as_rational(), sigma.as_rational()) {
+        // s = a/b exactly when u^(2b) = σ^a.
+        for b in 1..=12u32 {
+            let lhs = num_traits::pow(ur.clone(), 2 * b as usize);
+            for a in 1..=48 * b {
+                let rhs = num_traits::pow(sr.clone(), a as usize);
+                if rhs < lhs {
+                    break;
+                }
+                if rhs == lhs {
+                    let v = BigRational::new(a.into(), b.into());
+                    return (v.to_string(), Some(v));
+                }
+            }
+        }
         // σ = r0² with r0 rational: s = ln(1/u)/ln(1/r0).
         if let Some(r0) = rational_sqrt(&sr) {
             return (format!("log {} / log {}", ur.recip(), r0.recip()), None);
@@ -477,8 +496,8 @@ fn equals(k: &NumberField, u: &RealAlgebraic, x: &FieldElement) -> bool {
 
 /// An enclosure of a part's dimension at `bits` bits of working precision.
 fn bounds(k: &NumberField, v: &PartValue, bits: u32) -> Option<(BigRational, BigRational)> {
-    if let Some(j) = v.integer {
-        return Some((q(j), q(j)));
+    if let Some(r) = &v.rational {
+        return Some((r.clone(), r.clone()));
     }
     let w = BigRational::new(BigInt::one(), BigInt::one() << (bits + 8));
     let mut u = v.u.clone();
@@ -520,10 +539,10 @@ fn compare(k: &NumberField, a: &PartValue, b: &PartValue) -> Ordering {
 /// Certified digits: enclosures refined until the truncated decimal is decided.
 fn certified_decimal(k: &NumberField, v: &PartValue, digits: usize) -> String {
     let digits = digits.max(1);
-    if let Some(j) = v.integer {
-        return decide_digits(&q(j), &q(j), digits, true).expect("exact");
+    if let Some(r) = &v.rational {
+        return decide_digits(r, r, digits, true).expect("exact");
     }
-    let mut bits = (digits as f64 * 3.33) as u32 + 32;
+    let mut bits = u32::try_from(digits * 10 / 3 + 32).unwrap_or(u32::MAX / 4);
     loop {
         if let Some((lo, hi)) = bounds(k, v, bits) {
             if let Some(s) = decide_digits(&lo, &hi, digits, false) {
@@ -531,11 +550,17 @@ fn certified_decimal(k: &NumberField, v: &PartValue, digits: usize) -> String {
             }
         }
         bits += bits / 2;
-        if bits > 1 << 20 {
-            // A dimension whose digits never separate would be a rational with a finite
-            // decimal expansion; print the lower bound's digits.
-            let (lo, _) = bounds(k, v, bits).expect("bounds");
-            return decide_digits(&lo, &lo, digits, true).expect("exact");
+        if bits > 40_000 {
+            // Digits that do not separate (a rational dimension not recognised, with a finite
+            // decimal expansion): print only the digits that are decided.
+            if let Some((lo, hi)) = bounds(k, v, bits) {
+                for d in (1..digits).rev() {
+                    if let Some(s) = decide_digits(&lo, &hi, d, false) {
+                        return s;
+                    }
+                }
+            }
+            return "undecided".into();
         }
     }
 }

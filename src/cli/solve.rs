@@ -31,6 +31,34 @@ pub(super) fn run(args: SolveArgs, limits: &Limits) -> Result<ExitCode, Error> {
         return Err(Error::limit("the Bézier degree", degree, 8, "--degree"));
     }
     let report = match lacuna::input::load_any(&input)? {
+        lacuna::input::Loaded::Automaton { model, .. } if !model.field_ops.is_empty() => {
+            // Entries outside Q: every operator is given; check the constraints in the field.
+            let r = lacuna::analysis::resolve(&model, &[], limits.max_unknowns)?;
+            let v = r.verdict;
+            if json {
+                print_json(&v);
+            } else {
+                let mut o = format!(
+                    "field {}: every operator is given; {} constraint(s) and the barycentric conditions checked exactly in the field\n",
+                    v.field,
+                    model.automaton.constraints.len()
+                );
+                if v.consistent {
+                    o += "consistent: every constraint holds\n";
+                } else {
+                    o += "INCONSISTENT: these fail:\n";
+                    for f in &v.failed {
+                        o += &format!("  {f}\n");
+                    }
+                }
+                out(&o);
+            }
+            return Ok(if v.consistent {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(EXIT_FAILED)
+            });
+        }
         lacuna::input::Loaded::Automaton { automaton, .. } => {
             limits.check_unknowns(automaton.unknown_count())?;
             lacuna::constraint::solve_automaton(&automaton)?.0

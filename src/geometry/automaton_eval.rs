@@ -4,7 +4,8 @@
 //! [`exact_points`] gives the exact points of one word, in the field, for checks.
 
 use crate::algebra::algebraic::FieldElement;
-use crate::algebra::kmatrix::{approx, KMatrix};
+use crate::algebra::algebraic::NumberField;
+use crate::algebra::kmatrix::KMatrix;
 use crate::analysis::{default_points, Resolved};
 use crate::constraint::automaton::OpKind;
 use crate::input::automaton_model::{AutomatonModel, Primitive};
@@ -31,6 +32,19 @@ pub struct Shape {
     pub kind: ShapeKind,
     /// Its points.
     pub points: Vec<[f64; 3]>,
+}
+
+/// A float approximation of a field element (for drawing only: never for a verdict).
+fn approx(k: &NumberField, v: &FieldElement) -> f64 {
+    use num_traits::ToPrimitive;
+    if let Some(q) = v.as_rational() {
+        return q.to_f64().unwrap_or(f64::NAN);
+    }
+    let width = num_rational::BigRational::new(1.into(), num_bigint::BigInt::from(1u8) << 64u32);
+    let (lo, hi) = k.enclosure(v, &width);
+    ((lo + hi) / num_rational::BigRational::from_integer(2.into()))
+        .to_f64()
+        .unwrap_or(f64::NAN)
 }
 
 /// A subdivision operator out of a state: its value row-major, rows, columns, target state.
@@ -72,7 +86,12 @@ impl Evaluator {
         let mut out = vec![Vec::new(); a.states.len()];
         for (o, op) in a.operators.iter().enumerate() {
             if op.kind == OpKind::Sub {
-                out[op.to].push((r.ops[o].to_f64(k), r.ops[o].rows, r.ops[o].cols, op.from));
+                out[op.to].push((
+                    r.ops[o].data.iter().map(|v| approx(k, v)).collect(),
+                    r.ops[o].rows,
+                    r.ops[o].cols,
+                    op.from,
+                ));
             }
         }
         Evaluator {
