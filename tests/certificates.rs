@@ -30,7 +30,7 @@ const FACE_FIXTURES: [&str; 8] = [
     "two-quads",
     "autofrac-two-quads",
 ];
-const AUTOMATON_FIXTURES: [&str; 7] = [
+const AUTOMATON_FIXTURES: [&str; 14] = [
     "de-casteljau-edge",
     "chaikin-known",
     "spec-edge",
@@ -38,6 +38,13 @@ const AUTOMATON_FIXTURES: [&str; 7] = [
     "half-tangent-edge",
     "bspline-quadratic",
     "quad-patch",
+    "de-casteljau-cubic",
+    "bspline-quadratic-4",
+    "bspline-cubic",
+    "quad-patch-3d",
+    "sierpinski-triangle",
+    "cantor-set",
+    "kite-dart",
 ];
 
 /// Volumes (THEORY §10) have no certificate step yet: the checker re-derives face closures and

@@ -98,6 +98,39 @@ impl RealAlgebraic {
         out
     }
 
+    /// The only root of `f` in the closed interval `[lo, hi]` (`lo < hi` rationals), with its
+    /// minimal polynomial (the irreducible factor of `f` vanishing there). `None` when `f` has no
+    /// root or more than one distinct root in `[lo, hi]`, or cannot be factored.
+    pub fn root_in(f: &Poly, lo: &BigRational, hi: &BigRational) -> Option<Self> {
+        if f.is_zero() || lo >= hi {
+            return None;
+        }
+        let factors = crate::algebra::factor::factor(&f.square_free_part()).ok()?;
+        let mut found = Vec::new();
+        for (g, _) in factors {
+            for mut r in RealAlgebraic::real_roots(&g) {
+                if let Some(q) = r.as_rational() {
+                    if q >= lo && q <= hi {
+                        found.push(r.clone());
+                    }
+                    continue;
+                }
+                // No rational root: refine until the isolating interval is inside or outside.
+                loop {
+                    if &r.lo >= lo && &r.hi <= hi {
+                        found.push(r.clone());
+                        break;
+                    }
+                    if &r.hi <= lo || &r.lo >= hi {
+                        break;
+                    }
+                    r.refine();
+                }
+            }
+        }
+        (found.len() == 1).then(|| found.pop().expect("one root"))
+    }
+
     /// The monic minimal polynomial over Q.
     pub fn min_poly(&self) -> &Poly {
         &self.min_poly
@@ -328,7 +361,12 @@ fn newton_interval(
 
 /// Truncated decimal of a number known to lie in `[lo, hi]`, when the interval decides every
 /// digit (`exact`: `lo = hi` is the number itself).
-fn decide_digits(lo: &BigRational, hi: &BigRational, digits: usize, exact: bool) -> Option<String> {
+pub(crate) fn decide_digits(
+    lo: &BigRational,
+    hi: &BigRational,
+    digits: usize,
+    exact: bool,
+) -> Option<String> {
     let neg = if exact {
         lo.is_negative()
     } else if lo.is_positive() {

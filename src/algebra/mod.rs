@@ -9,9 +9,12 @@ pub(crate) mod algebraic;
 pub(crate) mod disk;
 pub(crate) mod factor;
 pub(crate) mod fieldpoly;
+pub(crate) mod kmatrix;
 pub(crate) mod matrix;
 pub(crate) mod poly;
+pub(crate) mod reallog;
 
 pub use algebraic::{FieldElement, NumberField, RealAlgebraic};
+pub use kmatrix::KMatrix;
 pub use matrix::{bezier_restriction, Matrix};
 pub use poly::Poly;

@@ -5,15 +5,20 @@
 //! Architecture invariant: imports the layers below (topology, algebra, constraint, input) and never
 //! geometry or output; floats appear only in labelled estimates, never in a verdict.
 
+pub(crate) mod automaton_resolve;
 pub(crate) mod census;
+pub(crate) mod contraction;
 pub(crate) mod curve;
 pub(crate) mod dcf;
 pub(crate) mod design;
 pub(crate) mod explore;
 pub(crate) mod operator;
 pub(crate) mod ratio;
+pub(crate) mod similarity;
 
+pub use automaton_resolve::{resolve, ResolveVerdict, Resolved};
 pub use census::{census, CensusFace, CensusReport, CensusSpec};
+pub use contraction::{check_contraction, ContractionReport, MAX_CYCLES};
 pub use curve::{
     analyse_automaton, analyse_automaton_only, estimate_curvature, AutomatonOperators,
     CurvatureEstimate, CurveReport, PointBehaviour, Side,
@@ -31,3 +36,4 @@ pub use operator::{
     OperatorReport,
 };
 pub use ratio::{analyse, ClassReport, LimitPoint, RatioError, RatioReport};
+pub use similarity::{default_points, frames, similarity_dimension, SimilarityDimension};

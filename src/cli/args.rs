@@ -399,6 +399,9 @@ pub(crate) struct MeasureArgs {
     /// Print JSON.
     #[arg(long)]
     pub(crate) json: bool,
+    /// Certified digits of the similarity dimension of an automaton.
+    #[arg(long, default_value_t = 30)]
+    pub(crate) digits: usize,
 }
 
 /// The arguments of `lacuna report`.

@@ -51,7 +51,9 @@ pub(super) fn run(args: ExportArgs, limits: &Limits) -> Result<ExitCode, Error> 
         cantor_gap: gap.clone(),
     };
     let text = match lacuna::input::load_any(&input)? {
-        lacuna::input::Loaded::Automaton { name, automaton } => {
+        lacuna::input::Loaded::Automaton {
+            name, automaton, ..
+        } => {
             if format == ExportFormat::Moditere {
                 return Err(Error::Usage(format!(
                     "`{name}` is an automaton file: the MODITERE export needs faces (a face, an assembly or an AutoFrac2D file)"

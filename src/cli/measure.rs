@@ -10,6 +10,7 @@ pub(super) fn run(args: MeasureArgs, limits: &Limits) -> Result<ExitCode, Error>
         max_raster,
         density_grid,
         json,
+        digits,
     } = args;
     check_raster("--raster", raster, lacuna::measure::LARGEST_RASTER)?;
     check_raster("--max-raster", max_raster, lacuna::measure::LARGEST_RASTER)?;
@@ -22,6 +23,10 @@ pub(super) fn run(args: MeasureArgs, limits: &Limits) -> Result<ExitCode, Error>
         });
     }
     check_density_grid(density_grid, 0)?;
+    if let Some((name, model)) = automaton::automaton_input(&geo)? {
+        let p = automaton::prepare(&geo, name, model, limits, 2_000_000)?;
+        return automaton::measure(&geo, p, digits, json, limits);
+    }
     let (_, inst) = instance(&geo, limits, 20_000_000)?;
     let opts = lacuna::measure::MeasureOptions {
         level: geo.level,

@@ -3,6 +3,7 @@
 //! an exceeded limit). Part of the binary, not of the library; it may import every layer.
 
 mod args;
+mod automaton;
 mod geo;
 mod output;
 

@@ -48,6 +48,31 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
     }
     let thickness = positive_number("--thickness", &thickness)?;
     let mut outputs = Outputs::check(&geo.inputs(), &wanted)?;
+    if let Some((name, model)) = automaton::automaton_input(&geo)? {
+        if stl.is_some() || density.is_some() || write_template.is_some() {
+            return Err(Error::Usage(
+                "--stl, --density and --write-template apply to faces; an automaton is written with --svg, --png, --json-out or --obj".into(),
+            ));
+        }
+        let vector = svg.is_some() || json_out.is_some() || obj.is_some();
+        let p = automaton::prepare(
+            &geo,
+            name,
+            model,
+            limits,
+            if vector { 2_000_000 } else { 20_000_000 },
+        )?;
+        return automaton::render(
+            &geo,
+            p,
+            &mut outputs,
+            svg.as_deref(),
+            json_out.as_deref(),
+            obj.as_deref(),
+            png.as_deref(),
+            size,
+        );
+    }
     let vector = svg.is_some() || json_out.is_some() || obj.is_some() || stl.is_some();
     let (_, inst) = instance(&geo, limits, if vector { 2_000_000 } else { 100_000_000 })?;
     let (level, segs) = (geo.level, geo.segments);

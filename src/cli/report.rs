@@ -11,6 +11,10 @@ pub(super) fn run(args: ReportArgs, limits: &Limits) -> Result<ExitCode, Error> 
     } = args;
     check_raster("--raster", raster, 8192)?;
     let mut outputs = Outputs::check(&geo.inputs(), &[("--out", &path)])?;
+    if let Some((name, model)) = automaton::automaton_input(&geo)? {
+        let p = automaton::prepare(&geo, name, model, limits, 100_000)?;
+        return automaton::report(&geo, p, &path, &mut outputs, limits);
+    }
     // The pictures embed every cell of every level as SVG: keep them small.
     let (input, inst) = match instance(&geo, limits, 200_000) {
         // A closure that does not close is a negative verdict, as in `lacuna verify` (exit 1):

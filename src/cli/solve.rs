@@ -45,6 +45,34 @@ pub(super) fn run(args: SolveArgs, limits: &Limits) -> Result<ExitCode, Error> {
         lacuna::constraint::solve_volumes(&set, opts, limits)?
     } else {
         match lacuna::input::load_any(&input)? {
+            lacuna::input::Loaded::Automaton { model, .. } if !model.field_ops.is_empty() => {
+                // Entries outside Q: every operator is given; check the constraints in the field.
+                let r = lacuna::analysis::resolve(&model, &[], limits.max_unknowns)?;
+                let v = r.verdict;
+                if json {
+                    print_json(&v);
+                } else {
+                    let mut o = format!(
+                        "field {}: every operator is given; {} constraint(s) and the barycentric conditions checked exactly in the field\n",
+                        v.field,
+                        model.automaton.constraints.len()
+                    );
+                    if v.consistent {
+                        o += "consistent: every constraint holds\n";
+                    } else {
+                        o += "INCONSISTENT: these fail:\n";
+                        for f in &v.failed {
+                            o += &format!("  {f}\n");
+                        }
+                    }
+                    out(&o);
+                }
+                return Ok(if v.consistent {
+                    ExitCode::SUCCESS
+                } else {
+                    ExitCode::from(EXIT_FAILED)
+                });
+            }
             lacuna::input::Loaded::Automaton { automaton, .. } => {
                 limits.check_unknowns(automaton.unknown_count())?;
                 limits.check_memory(automaton.solve_memory_estimate())?;

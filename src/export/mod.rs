@@ -7,6 +7,7 @@
 //! command line sits above it.
 
 pub(crate) mod automaton_text;
+pub(crate) mod automaton_writer;
 pub(crate) mod bitmap;
 pub(crate) mod graph;
 pub(crate) mod html;
@@ -19,6 +20,10 @@ pub(crate) mod volume_report;
 pub(crate) mod writer;
 
 pub use automaton_text::automaton_text;
+pub use automaton_writer::{
+    automaton_raster, automaton_report_html, automaton_svg, write_automaton_json,
+    write_automaton_obj, write_automaton_svg,
+};
 pub use bitmap::{write_density_picture, write_png_picture, DensityPicture};
 pub use html::{report_html, report_html_unverified};
 pub use moditere::moditere_text;

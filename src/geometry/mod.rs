@@ -5,6 +5,7 @@
 //! Architecture invariant: floats live here, but never decide a verdict; it imports the exact layers
 //! (topology, algebra, constraint, input) and never measures, exports or the command line.
 
+pub(crate) mod automaton_eval;
 pub(crate) mod choose;
 pub(crate) mod flatten;
 pub(crate) mod instantiate;
@@ -16,6 +17,7 @@ pub(crate) mod raster;
 pub(crate) mod template;
 pub(crate) mod template_file;
 
+pub use automaton_eval::{exact_points, Evaluator, Shape, ShapeKind};
 pub use choose::{project_exact, Choice, ExactColumn, Projection};
 pub use flatten::flatten_bezier;
 pub use instantiate::{instantiate, Cell, EdgeSlot, Instance};

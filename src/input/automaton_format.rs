@@ -20,14 +20,6 @@ use crate::error::{Error, Result, Source, Span};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 
-/// True when a text looks like an automaton file (its first meaningful line declares a state).
-pub fn is_automaton(text: &str) -> bool {
-    text.lines()
-        .map(|l| l.split('#').next().unwrap_or("").trim())
-        .find(|l| !l.is_empty())
-        .is_some_and(|l| l.starts_with("state "))
-}
-
 fn valid_name(n: &str) -> bool {
     let mut cs = n.chars();
     cs.next()

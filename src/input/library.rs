@@ -5,7 +5,7 @@ use crate::constraint::automaton::Automaton;
 use crate::error::{Error, Result, Source};
 use crate::input::assembly::Assembly;
 use crate::input::autofrac::{is_autofrac, parse_autofrac};
-use crate::input::automaton_format::{is_automaton, parse_automaton};
+use crate::input::automaton_model::{is_automaton_model, parse_model, AutomatonModel};
 use crate::topology::face::Face;
 
 /// The named structures: `(name, text)`, each a file of `fixtures/`.
@@ -61,6 +61,28 @@ pub fn library() -> &'static [(&'static str, &'static str)] {
             "tetrahedron-B2",
             include_str!("../../fixtures/tetrahedron-B2.txt"),
         ),
+        (
+            "de-casteljau-cubic",
+            include_str!("../../fixtures/de-casteljau-cubic.aut"),
+        ),
+        (
+            "bspline-quadratic-4",
+            include_str!("../../fixtures/bspline-quadratic-4.aut"),
+        ),
+        (
+            "bspline-cubic",
+            include_str!("../../fixtures/bspline-cubic.aut"),
+        ),
+        (
+            "quad-patch-3d",
+            include_str!("../../fixtures/quad-patch-3d.aut"),
+        ),
+        (
+            "sierpinski-triangle",
+            include_str!("../../fixtures/sierpinski-triangle.aut"),
+        ),
+        ("cantor-set", include_str!("../../fixtures/cantor-set.aut")),
+        ("kite-dart", include_str!("../../fixtures/kite-dart.aut")),
     ]
 }
 
@@ -101,6 +123,8 @@ pub enum Loaded {
         name: String,
         /// The automaton.
         automaton: Automaton,
+        /// The automaton with its modelling lines (field, space, points, primitives).
+        model: Box<AutomatonModel>,
     },
 }
 
@@ -128,9 +152,13 @@ pub fn load_any(arg: &str) -> Result<Loaded> {
                 .into(),
         });
     }
-    if is_automaton(&src.text) {
-        let automaton = parse_automaton(&src)?;
-        return Ok(Loaded::Automaton { name, automaton });
+    if is_automaton_model(&src.text) {
+        let model = parse_model(&src)?;
+        return Ok(Loaded::Automaton {
+            name,
+            automaton: model.automaton.clone(),
+            model: Box::new(model),
+        });
     }
     Ok(Loaded::Faces(Input {
         name,
@@ -144,7 +172,7 @@ pub fn load_input(arg: &str) -> Result<Input> {
         Loaded::Faces(input) => Ok(input),
         Loaded::Automaton { name, .. } => Err(Error::Io {
             path: name,
-            reason: "this is an automaton, not faces: only `lacuna solve` reads automata".into(),
+            reason: "this is an automaton, not faces: `solve`, `operators`, `render`, `measure` and `report` read automata; this command reads faces only".into(),
         }),
     }
 }

@@ -7,12 +7,14 @@
 pub(crate) mod assembly;
 pub(crate) mod autofrac;
 pub(crate) mod automaton_format;
+pub(crate) mod automaton_model;
 pub(crate) mod coords;
 pub(crate) mod library;
 pub(crate) mod volume_file;
 
 pub use assembly::{set_corners, vertices, Assembly, SharedEdge};
 pub use automaton_format::{parse_automaton, parse_rational};
+pub use automaton_model::{parse_field_element, parse_model, AutomatonModel, Primitive};
 pub use coords::{control_count, CoordKind, ExactPoint, FaceCoords, UserCoords};
 pub use library::{
     library, load_any, load_input, load_volume, parse_text, read_text, Input, Loaded,

@@ -4,10 +4,14 @@
 //! Architecture invariant: imports geometry and the exact layers; the one verdict it gives compares
 //! integers. It never imports exports or the command line.
 
+pub(crate) mod automaton_measure;
 pub(crate) mod density;
 pub(crate) mod hole;
 pub(crate) mod measurement;
 
+pub use automaton_measure::{
+    box_dimension, level_measures, shape_measure, AutomatonLevel, AutomatonMeasure, BoxDimension,
+};
 pub use density::{density_map, density_raster, DensityMap, DensitySummary};
 pub use hole::{polygon_size, smallest_holes};
 pub use measurement::{

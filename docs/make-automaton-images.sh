@@ -1,0 +1,13 @@
+#!/bin/sh
+# Writes the pictures of the automaton library entries in docs/images/ (issue #14), with the
+# release binary (or $LACUNA). Run from the repository's root.
+set -e
+L=${LACUNA:-target/release/lacuna}
+$L render sierpinski-triangle --level 6 --svg docs/images/sierpinski-triangle.svg
+$L render cantor-set --level 6 --svg docs/images/cantor-set.svg
+$L render kite-dart --level 9 --svg docs/images/kite-dart.svg
+$L render de-casteljau-cubic --level 3 --svg docs/images/de-casteljau-cubic.svg
+$L render bspline-quadratic-4 --level 3 --svg docs/images/bspline-quadratic-4.svg
+$L render bspline-cubic --level 3 --svg docs/images/bspline-cubic.svg
+$L render half-tangent-edge --level 4 --svg docs/images/half-tangent-edge.svg
+$L render quad-patch-3d --level 3 --svg docs/images/quad-patch-3d.svg

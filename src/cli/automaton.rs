@@ -1,0 +1,247 @@
+//! `render`, `measure` and `report` on an automaton file: resolve the operators (exact values,
+//! `param` lines and `--param`), refuse a cycle that does not contract, then draw and measure the
+//! attractor to the level asked.
+
+use super::*;
+use lacuna::analysis::{ContractionReport, Resolved};
+use lacuna::geometry::Evaluator;
+use lacuna::input::AutomatonModel;
+
+/// A loaded automaton ready to draw.
+pub(super) struct Prepared {
+    name: String,
+    source: String,
+    model: AutomatonModel,
+    resolved: Resolved,
+    contraction: ContractionReport,
+    ev: Evaluator,
+}
+
+/// The automaton named by the input, when it is one (else `None`: faces).
+pub(super) fn automaton_input(geo: &GeoArgs) -> Result<Option<(String, AutomatonModel)>, Error> {
+    if geo.input.contains('|') || geo.input.trim().is_empty() {
+        return Ok(None);
+    }
+    match lacuna::input::load_any(&geo.input)? {
+        lacuna::input::Loaded::Automaton { name, model, .. } => Ok(Some((name, *model))),
+        lacuna::input::Loaded::Faces(_) => Ok(None),
+    }
+}
+
+/// Resolves, checks contraction and counts the pieces of the level before any drawing.
+pub(super) fn prepare(
+    geo: &GeoArgs,
+    name: String,
+    model: AutomatonModel,
+    limits: &Limits,
+    default_cells: u64,
+) -> Result<Prepared, Error> {
+    limits.check_level(u64::from(geo.level))?;
+    if geo.template.is_some() || !geo.goals.is_empty() || geo.corners.is_some() {
+        return Err(Error::Usage(
+            "--template, --goal and --corners apply to faces; an automaton takes its control points from its `points` line and its parameters from `param` lines and --param".into(),
+        ));
+    }
+    let mut values = Vec::new();
+    for p in &geo.params {
+        let parsed = p.split_once('=').and_then(|(n, v)| {
+            Some((
+                n.trim().to_string(),
+                lacuna::input::parse_rational(v.trim())?,
+            ))
+        });
+        let Some(pair) = parsed else {
+            return Err(Error::syntax(
+                "E1007",
+                format!("--param `{p}`: expected NAME=VALUE with an exact value (1/7, 0.25)"),
+                lacuna::Span {
+                    line: 1,
+                    col: 1,
+                    len: p.chars().count().max(1),
+                },
+                Some(&lacuna::Source::command_line(p)),
+            ));
+        };
+        values.push(pair);
+    }
+    let resolved = lacuna::analysis::resolve(&model, &values, limits.max_unknowns)?;
+    let contraction = lacuna::analysis::check_contraction(&model, &resolved.ops)?;
+    let ev = Evaluator::new(&model, &resolved);
+    let max = geo.max_cells.unwrap_or(default_cells);
+    let count = ev.count(geo.level);
+    if count > u128::from(max) {
+        return Err(Error::limit(
+            "the pieces of the level",
+            count,
+            max,
+            "--max-cells",
+        ));
+    }
+    let source = match std::fs::read_to_string(&geo.input) {
+        Ok(t) => t,
+        Err(_) => lacuna::input::library()
+            .iter()
+            .find(|(n, _)| *n == geo.input)
+            .map_or(String::new(), |(_, t)| t.to_string()),
+    };
+    Ok(Prepared {
+        name,
+        source,
+        model,
+        resolved,
+        contraction,
+        ev,
+    })
+}
+
+/// Prints the solver's warnings on standard error.
+fn warn(p: &Prepared) {
+    if !p.resolved.verdict.consistent {
+        eprintln!(
+            "warning: the constraints of {} do not hold with these values; drawn anyway",
+            p.name
+        );
+    }
+}
+
+/// `lacuna render` on an automaton.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn render(
+    geo: &GeoArgs,
+    p: Prepared,
+    outputs: &mut Outputs,
+    svg: Option<&std::path::Path>,
+    json_out: Option<&std::path::Path>,
+    obj: Option<&std::path::Path>,
+    png: Option<&std::path::Path>,
+    size: usize,
+) -> Result<ExitCode, Error> {
+    warn(&p);
+    let level = geo.level;
+    let wrote = |o: &Outputs, path: &std::path::Path| o.say(&format!("wrote {}\n", path.display()));
+    if let Some(path) = svg {
+        outputs.write(path, |w| {
+            lacuna::export::write_automaton_svg(&p.ev, level, w)
+        })?;
+        wrote(outputs, path);
+    }
+    if let Some(path) = json_out {
+        outputs.write(path, |w| {
+            lacuna::export::write_automaton_json(&p.ev, level, w)
+        })?;
+        wrote(outputs, path);
+    }
+    if let Some(path) = obj {
+        outputs.write(path, |w| {
+            lacuna::export::write_automaton_obj(&p.ev, level, w)
+        })?;
+        wrote(outputs, path);
+    }
+    if let Some(path) = png {
+        let raster = lacuna::export::automaton_raster(&p.ev, level, size);
+        outputs.write(path, |w| lacuna::export::write_png(&raster, w))?;
+        wrote(outputs, path);
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The measures of an automaton (levels, box counting, similarity dimension).
+pub(super) fn measures(
+    geo: &GeoArgs,
+    p: &Prepared,
+    digits: usize,
+    limits: &Limits,
+) -> Result<lacuna::measure::AutomatonMeasure, Error> {
+    if digits == 0 {
+        return Err(Error::OutOfRange {
+            flag: "--digits",
+            value: "0".into(),
+            what: "the certified digits of the similarity dimension",
+            range: format!("from 1 to {}", limits.max_digits),
+        });
+    }
+    limits.check_digits(digits)?;
+    let levels = lacuna::measure::level_measures(&p.ev, geo.level);
+    // Box counting wants fine pieces: the deepest level with at most 100 000 of them.
+    let mut box_level = geo.level;
+    while box_level < 40 && p.ev.count(box_level + 1) <= 100_000 {
+        box_level += 1;
+    }
+    let box_dimension = lacuna::measure::box_dimension(&p.ev, box_level);
+    let (similarity_dimension, similarity_note) =
+        match lacuna::analysis::similarity_dimension(&p.model, &p.resolved.ops, digits) {
+            Ok(s) => (Some(s), None),
+            Err(n) => (None, Some(n)),
+        };
+    Ok(lacuna::measure::AutomatonMeasure {
+        input: p.name.clone(),
+        space: p.model.space,
+        level: geo.level,
+        solver: p.resolved.verdict.clone(),
+        contraction: p.contraction.clone(),
+        levels,
+        box_dimension,
+        similarity_dimension,
+        similarity_note,
+    })
+}
+
+/// `lacuna measure` on an automaton.
+pub(super) fn measure(
+    geo: &GeoArgs,
+    p: Prepared,
+    digits: usize,
+    json: bool,
+    limits: &Limits,
+) -> Result<ExitCode, Error> {
+    warn(&p);
+    let m = measures(geo, &p, digits, limits)?;
+    if json {
+        print_json(&m);
+    } else {
+        out(&m.to_text());
+    }
+    Ok(if m.solver.consistent {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(EXIT_FAILED)
+    })
+}
+
+/// `lacuna report` on an automaton.
+pub(super) fn report(
+    geo: &GeoArgs,
+    p: Prepared,
+    path: &std::path::Path,
+    outputs: &mut Outputs,
+    limits: &Limits,
+) -> Result<ExitCode, Error> {
+    warn(&p);
+    let m = measures(geo, &p, 30, limits)?;
+    let classes = classes_text(&p);
+    let html = lacuna::export::automaton_report_html(&p.ev, &m, &classes, &p.source);
+    outputs.write(path, |w| w.write_all(html.as_bytes()))?;
+    outputs.say(&format!("wrote {}\n", path.display()));
+    Ok(if m.solver.consistent {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(EXIT_FAILED)
+    })
+}
+
+/// The operators' eigen analysis (as `lacuna operators` prints it) for rational operators.
+fn classes_text(p: &Prepared) -> String {
+    let mut a = p.model.automaton.clone();
+    for (o, op) in a.operators.iter_mut().enumerate() {
+        let k = &p.resolved.ops[o];
+        let data: Option<Vec<_>> = k.data.iter().map(|v| v.as_rational()).collect();
+        match data {
+            Some(d) => op.value = Some(lacuna::algebra::Matrix { rows: k.rows, cols: k.cols, data: d }),
+            None => return format!("operators with entries in {}: the eigen analysis of `lacuna operators` works over Q only", p.resolved.verdict.field),
+        }
+    }
+    match lacuna::analysis::analyse_automaton(&a) {
+        Ok(r) => r.to_text(),
+        Err(e) => format!("not analysed: {e}"),
+    }
+}

@@ -1,0 +1,339 @@
+//! Pictures and files of an automaton's attractor: SVG, PNG (1-bit), JSON and OBJ of the shapes of
+//! level n ([`crate::geometry::Evaluator`]), and the HTML report of an automaton. In space 3 the
+//! SVG and PNG show an axonometric view; OBJ keeps the coordinates.
+
+use crate::geometry::point::Raster;
+use crate::geometry::{Evaluator, Shape, ShapeKind};
+use crate::measure::AutomatonMeasure;
+use std::fmt::Write as _;
+use std::io::{self, Write};
+
+/// The plane picture of a point: itself in space 2, an axonometric view in space 3.
+fn view(space: usize, p: &[f64; 3]) -> (f64, f64) {
+    if space == 3 {
+        let (c, s) = (0.866_025_403_784_438_6, 0.5);
+        ((p[0] - p[1]) * c, p[2] + (p[0] + p[1]) * s)
+    } else {
+        (p[0], p[1])
+    }
+}
+
+fn bounds2(space: usize, shapes: &[Shape]) -> (f64, f64, f64, f64) {
+    let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
+    for s in shapes {
+        for p in &s.points {
+            let (x, y) = view(space, p);
+            x0 = x0.min(x);
+            y0 = y0.min(y);
+            x1 = x1.max(x);
+            y1 = y1.max(y);
+        }
+    }
+    if x0 > x1 {
+        return (0.0, 0.0, 1.0, 1.0);
+    }
+    let pad = ((x1 - x0).max(y1 - y0) * 0.03).max(1e-9);
+    (x0 - pad, y0 - pad, x1 + pad, y1 + pad)
+}
+
+/// The SVG text of shapes (y upwards), `width` pixels wide.
+pub fn automaton_svg(space: usize, shapes: &[Shape], width: f64) -> String {
+    let (x0, y0, x1, y1) = bounds2(space, shapes);
+    let scale = width / (x1 - x0);
+    let h = (y1 - y0) * scale;
+    let mut s = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width:.0}\" height=\"{h:.0}\" viewBox=\"0 0 {width:.3} {h:.3}\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+    );
+    let pt = |p: &[f64; 3]| {
+        let (x, y) = view(space, p);
+        ((x - x0) * scale, (y1 - y) * scale)
+    };
+    let colours = [
+        "#1f5fa8", "#c0392b", "#27864a", "#8e44ad", "#d35400", "#2c3e50",
+    ];
+    for sh in shapes {
+        let col = colours[sh.state % colours.len()];
+        let pts: Vec<String> = sh
+            .points
+            .iter()
+            .map(|p| {
+                let (x, y) = pt(p);
+                format!("{x:.3},{y:.3}")
+            })
+            .collect();
+        match sh.kind {
+            ShapeKind::Point => {
+                let (x, y) = pt(&sh.points[0]);
+                let _ = writeln!(
+                    s,
+                    "<circle cx=\"{x:.3}\" cy=\"{y:.3}\" r=\"1.2\" fill=\"{col}\"/>"
+                );
+            }
+            ShapeKind::Polyline => {
+                let _ = writeln!(s, "<polyline points=\"{}\" fill=\"none\" stroke=\"{col}\" stroke-width=\"1\" stroke-linejoin=\"round\"/>", pts.join(" "));
+            }
+            ShapeKind::Polygon => {
+                let _ = writeln!(s, "<polygon points=\"{}\" fill=\"{col}\" fill-opacity=\"0.35\" stroke=\"{col}\" stroke-width=\"0.5\"/>", pts.join(" "));
+            }
+        }
+    }
+    s += "</svg>\n";
+    s
+}
+
+/// Writes the SVG of level n.
+pub fn write_automaton_svg<W: Write>(ev: &Evaluator, level: u32, mut out: W) -> io::Result<()> {
+    out.write_all(automaton_svg(ev.space, &ev.shapes(level), 800.0).as_bytes())?;
+    out.flush()
+}
+
+/// Writes the shapes of level n as JSON: `{"space", "level", "shapes": [{"state", "kind",
+/// "points"}]}` (points with `space` coordinates).
+pub fn write_automaton_json<W: Write>(ev: &Evaluator, level: u32, mut out: W) -> io::Result<()> {
+    write!(
+        out,
+        "{{\"space\":{},\"level\":{level},\"shapes\":[",
+        ev.space
+    )?;
+    let mut first = true;
+    let mut res = Ok(());
+    ev.walk(level, &mut |q, _, pts| {
+        if res.is_err() {
+            return;
+        }
+        if let Some(s) = ev.shape(q, pts) {
+            let p: Vec<String> = s
+                .points
+                .iter()
+                .map(|p| {
+                    let c: Vec<String> = p[..ev.space].iter().map(|v| format!("{v}")).collect();
+                    format!("[{}]", c.join(","))
+                })
+                .collect();
+            let kind = match s.kind {
+                ShapeKind::Point => "point",
+                ShapeKind::Polyline => "polyline",
+                ShapeKind::Polygon => "polygon",
+            };
+            res = write!(
+                out,
+                "{}{{\"state\":\"{}\",\"kind\":\"{kind}\",\"points\":[{}]}}",
+                if first { "" } else { "," },
+                ev.names[q],
+                p.join(",")
+            );
+            first = false;
+        }
+    });
+    res?;
+    writeln!(out, "]}}")?;
+    out.flush()
+}
+
+/// Writes level n as Wavefront OBJ: a vertex per point, `p` for points, `l` for polylines, `f`
+/// for polygons.
+pub fn write_automaton_obj<W: Write>(ev: &Evaluator, level: u32, mut out: W) -> io::Result<()> {
+    writeln!(out, "# lacuna: automaton attractor, level {level}")?;
+    let mut next = 1usize;
+    let mut res = Ok(());
+    ev.walk(level, &mut |q, _, pts| {
+        if res.is_err() {
+            return;
+        }
+        if let Some(s) = ev.shape(q, pts) {
+            let mut text = String::new();
+            for p in &s.points {
+                let _ = writeln!(text, "v {} {} {}", p[0], p[1], p[2]);
+            }
+            let idx: Vec<String> = (next..next + s.points.len())
+                .map(|i| i.to_string())
+                .collect();
+            next += s.points.len();
+            let tag = match s.kind {
+                ShapeKind::Point => "p",
+                ShapeKind::Polyline => "l",
+                ShapeKind::Polygon => "f",
+            };
+            let _ = writeln!(text, "{tag} {}", idx.join(" "));
+            res = out.write_all(text.as_bytes());
+        }
+    });
+    res?;
+    out.flush()
+}
+
+/// Rasterises level n into a `size × size` 1-bit raster (lines one pixel wide, polygons filled).
+pub fn automaton_raster(ev: &Evaluator, level: u32, size: usize) -> Raster {
+    let shapes = ev.shapes(level);
+    let (x0, y0, x1, y1) = bounds2(ev.space, &shapes);
+    let side = (x1 - x0).max(y1 - y0);
+    let scale = (size as f64 - 1.0) / side;
+    let mut counts = vec![0u8; size * size];
+    let mut set = |x: f64, y: f64| {
+        let (c, r) = (x.floor(), (size as f64 - 1.0 - y).floor());
+        if c >= 0.0 && r >= 0.0 && (c as usize) < size && (r as usize) < size {
+            counts[r as usize * size + c as usize] = 1;
+        }
+    };
+    let px = |p: &[f64; 3]| {
+        let (x, y) = view(ev.space, p);
+        ((x - x0) * scale, (y - y0) * scale)
+    };
+    for s in &shapes {
+        let p: Vec<(f64, f64)> = s.points.iter().map(px).collect();
+        let mut line = |a: (f64, f64), b: (f64, f64)| {
+            let n = ((b.0 - a.0).abs().max((b.1 - a.1).abs()) * 2.0)
+                .ceil()
+                .max(1.0) as usize;
+            for i in 0..=n {
+                let t = i as f64 / n as f64;
+                set(a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1));
+            }
+        };
+        match s.kind {
+            ShapeKind::Point => line(p[0], p[0]),
+            ShapeKind::Polyline => p.windows(2).for_each(|w| line(w[0], w[1])),
+            ShapeKind::Polygon => {
+                for i in 1..p.len().saturating_sub(1) {
+                    // Fill the fan triangle (p0, pi, pi+1) by lines from p0.
+                    let (a, b) = (p[i], p[i + 1]);
+                    let n = ((b.0 - a.0).abs().max((b.1 - a.1).abs()) * 2.0)
+                        .ceil()
+                        .max(1.0) as usize;
+                    for j in 0..=n {
+                        let t = j as f64 / n as f64;
+                        line(p[0], (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)));
+                    }
+                }
+                for w in p.windows(2) {
+                    line(w[0], w[1]);
+                }
+            }
+        }
+    }
+    Raster {
+        size,
+        counts,
+        origin: [x0, y0],
+        scale,
+    }
+}
+
+/// Escapes text for HTML.
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+/// The HTML report of an automaton: the solver's verdict, the contraction check, the operators'
+/// classes (text given by the caller), the dimensions, lengths and areas per level, and a picture
+/// of each level 0 to n.
+pub fn automaton_report_html(
+    ev: &Evaluator,
+    m: &AutomatonMeasure,
+    classes: &str,
+    source: &str,
+) -> String {
+    let mut h = format!(
+        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>lacuna report: {}</title>\
+         <style>body{{font-family:sans-serif;max-width:1100px;margin:auto}}td,th{{padding:2px 8px;text-align:right}}\
+         pre{{background:#f6f6f6;padding:6px}} .pics svg{{border:1px solid #ccc;margin:4px}}</style></head><body>\n",
+        esc(&m.input)
+    );
+    let _ = writeln!(h, "<h1>lacuna report: {}</h1>", esc(&m.input));
+    let _ = writeln!(
+        h,
+        "<p>Automaton in space {}, drawn to level {}.</p>",
+        m.space, m.level
+    );
+    let _ = writeln!(
+        h,
+        "<h2>Solver</h2><p>Field {}: {}.</p>",
+        esc(&m.solver.field),
+        if m.solver.consistent {
+            "every constraint holds"
+        } else {
+            "<b>constraints fail</b>"
+        }
+    );
+    if !m.solver.failed.is_empty() || !m.solver.applied.is_empty() || !m.solver.free_left.is_empty()
+    {
+        h += "<ul>";
+        for f in &m.solver.failed {
+            let _ = write!(h, "<li>fails: {}</li>", esc(f));
+        }
+        for p in &m.solver.applied {
+            let _ = write!(h, "<li>parameter {}</li>", esc(p));
+        }
+        if !m.solver.free_left.is_empty() {
+            let _ = write!(
+                h,
+                "<li>free parameters left at 0: {}</li>",
+                esc(&m.solver.free_left.join(", "))
+            );
+        }
+        h += "</ul>\n";
+    }
+    let _ = writeln!(h, "<h2>Contraction</h2><p>Every elementary cycle of the control graph contracts (its product's eigenvalues other than the barycentric 1 lie in the open unit disk, decided exactly):</p><ul>");
+    for c in &m.contraction.cycles {
+        let _ = write!(h, "<li>{}</li>", esc(c));
+    }
+    h += "</ul>\n<h2>Operators</h2>\n<pre>";
+    h += &esc(classes);
+    h += "</pre>\n<h2>Dimension</h2>\n<ul>";
+    match (&m.similarity_dimension, &m.similarity_note) {
+        (Some(s), _) => {
+            let _ = write!(
+                h,
+                "<li>similarity dimension (exact) = {} = {}…</li>",
+                esc(&s.exact),
+                s.decimal
+            );
+        }
+        (None, Some(n)) => {
+            let _ = write!(
+                h,
+                "<li>similarity dimension: not applicable ({})</li>",
+                esc(n)
+            );
+        }
+        _ => {}
+    }
+    match m.box_dimension.value {
+        Some(v) => {
+            let _ = write!(
+                h,
+                "<li>box-counting dimension ≈ {v:.4} (level {}; boxes: {})</li>",
+                m.box_dimension.level,
+                m.box_dimension
+                    .counts
+                    .iter()
+                    .map(|(k, n)| format!("2^-{k}: {n}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            );
+        }
+        None => h += "<li>box-counting dimension: too few scales</li>",
+    }
+    h += "</ul>\n<h2>Levels</h2>\n<table><tr><th>level</th><th>pieces</th><th>length</th><th>area</th></tr>\n";
+    for l in &m.levels {
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td>{:.6}</td><td>{:.6}</td></tr>",
+            l.level, l.pieces, l.length, l.area
+        );
+    }
+    h += "</table>\n<h2>Pictures</h2>\n<div class=\"pics\">\n";
+    for l in 0..=m.level {
+        let _ = writeln!(
+            h,
+            "<figure style=\"display:inline-block\">{}<figcaption>level {l}</figcaption></figure>",
+            automaton_svg(ev.space, &ev.shapes(l), 320.0)
+        );
+    }
+    h += "</div>\n<h2>Input</h2>\n<pre>";
+    h += &esc(source);
+    h += "</pre>\n</body></html>\n";
+    h
+}

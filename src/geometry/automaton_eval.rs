@@ -1,0 +1,221 @@
+//! The attractor of an automaton, drawn: the evaluation tree of the BC-IFS paper walked to level n
+//! from the start state's control points, each node's points `F · T_(w1) ⋯ T_(wn)`, each leaf drawn
+//! as its state's primitive. Streamed depth-first in `f64` (floats draw, they never decide);
+//! [`exact_points`] gives the exact points of one word, in the field, for checks.
+
+use crate::algebra::algebraic::FieldElement;
+use crate::algebra::algebraic::NumberField;
+use crate::algebra::kmatrix::KMatrix;
+use crate::analysis::{default_points, Resolved};
+use crate::constraint::automaton::OpKind;
+use crate::input::automaton_model::{AutomatonModel, Primitive};
+use serde::Serialize;
+
+/// What a drawn piece is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ShapeKind {
+    /// A point.
+    Point,
+    /// An open polyline.
+    Polyline,
+    /// A closed polygon.
+    Polygon,
+}
+
+/// One drawn piece: its state, kind and points (`[x, y, z]`, z = 0 in the plane).
+#[derive(Clone, Debug, Serialize)]
+pub struct Shape {
+    /// The state's index.
+    pub state: usize,
+    /// Its kind.
+    pub kind: ShapeKind,
+    /// Its points.
+    pub points: Vec<[f64; 3]>,
+}
+
+/// A float approximation of a field element (for drawing only: never for a verdict).
+fn approx(k: &NumberField, v: &FieldElement) -> f64 {
+    use num_traits::ToPrimitive;
+    if let Some(q) = v.as_rational() {
+        return q.to_f64().unwrap_or(f64::NAN);
+    }
+    let width = num_rational::BigRational::new(1.into(), num_bigint::BigInt::from(1u8) << 64u32);
+    let (lo, hi) = k.enclosure(v, &width);
+    ((lo + hi) / num_rational::BigRational::from_integer(2.into()))
+        .to_f64()
+        .unwrap_or(f64::NAN)
+}
+
+/// A subdivision operator out of a state: its value row-major, rows, columns, target state.
+type Edge = (Vec<f64>, usize, usize, usize);
+
+/// The automaton ready to draw: float operators, the start points, primitives.
+#[derive(Clone, Debug)]
+pub struct Evaluator {
+    /// The modelling space's dimension (2 or 3).
+    pub space: usize,
+    /// State names.
+    pub names: Vec<String>,
+    start: usize,
+    start_points: Vec<[f64; 3]>,
+    /// `out[q]`: (operator value row-major, rows, cols, target state w) of each `T: q ← w`.
+    out: Vec<Vec<Edge>>,
+    primitives: Vec<Primitive>,
+}
+
+impl Evaluator {
+    /// Prepares the drawing of a model whose operators were resolved.
+    pub fn new(m: &AutomatonModel, r: &Resolved) -> Self {
+        let a = &m.automaton;
+        let k = &m.field;
+        let pts = m
+            .points
+            .clone()
+            .unwrap_or_else(|| default_points(a.states[m.start].dim, m.space, k));
+        let start_points = pts
+            .iter()
+            .map(|p| {
+                let mut x = [0.0; 3];
+                for (d, v) in p.iter().enumerate() {
+                    x[d] = approx(k, v);
+                }
+                x
+            })
+            .collect();
+        let mut out = vec![Vec::new(); a.states.len()];
+        for (o, op) in a.operators.iter().enumerate() {
+            if op.kind == OpKind::Sub {
+                out[op.to].push((
+                    r.ops[o].data.iter().map(|v| approx(k, v)).collect(),
+                    r.ops[o].rows,
+                    r.ops[o].cols,
+                    op.from,
+                ));
+            }
+        }
+        Evaluator {
+            space: m.space,
+            names: a.states.iter().map(|s| s.name.clone()).collect(),
+            start: m.start,
+            start_points,
+            out,
+            primitives: m.primitives.clone(),
+        }
+    }
+
+    /// The number of leaves at level n (a state without subdivision operators is a leaf where it
+    /// is reached), saturating; computed before any walk.
+    pub fn count(&self, level: u32) -> u128 {
+        let n = self.out.len();
+        let mut v = vec![0u128; n];
+        v[self.start] = 1;
+        let mut leaves = 0u128;
+        for _ in 0..level {
+            let mut next = vec![0u128; n];
+            for (q, &c) in v.iter().enumerate() {
+                if c == 0 {
+                    continue;
+                }
+                if self.out[q].is_empty() {
+                    leaves = leaves.saturating_add(c);
+                }
+                for (_, _, _, w) in &self.out[q] {
+                    next[*w] = next[*w].saturating_add(c);
+                }
+            }
+            v = next;
+        }
+        v.iter().fold(leaves, |acc, x| acc.saturating_add(*x))
+    }
+
+    /// Calls `f(state, depth, points)` for every leaf of the evaluation tree at level n.
+    pub fn walk<F: FnMut(usize, u32, &[[f64; 3]])>(&self, level: u32, f: &mut F) {
+        let mut stack: Vec<(usize, u32, Vec<[f64; 3]>)> =
+            vec![(self.start, 0, self.start_points.clone())];
+        while let Some((q, d, pts)) = stack.pop() {
+            if d == level || self.out[q].is_empty() {
+                f(q, d, &pts);
+                continue;
+            }
+            for (t, rows, cols, w) in self.out[q].iter().rev() {
+                let mut child = vec![[0.0; 3]; *cols];
+                for (j, c) in child.iter_mut().enumerate() {
+                    for i in 0..*rows {
+                        let a = t[i * cols + j];
+                        if a != 0.0 {
+                            for x in 0..3 {
+                                c[x] += a * pts[i][x];
+                            }
+                        }
+                    }
+                }
+                stack.push((*w, d + 1, child));
+            }
+        }
+    }
+
+    /// The primitive of a leaf as a shape (`None` for `none`).
+    pub fn shape(&self, state: usize, pts: &[[f64; 3]]) -> Option<Shape> {
+        let pick = |idx: &[usize]| idx.iter().map(|&i| pts[i]).collect::<Vec<_>>();
+        let (kind, points) = match &self.primitives[state] {
+            Primitive::Point(i) => (ShapeKind::Point, vec![pts[*i]]),
+            Primitive::Polyline(v) => (ShapeKind::Polyline, pick(v)),
+            Primitive::Polygon(v) => (ShapeKind::Polygon, pick(v)),
+            Primitive::Nothing => return None,
+        };
+        Some(Shape {
+            state,
+            kind,
+            points,
+        })
+    }
+
+    /// Every shape at level n, in the order of the walk.
+    pub fn shapes(&self, level: u32) -> Vec<Shape> {
+        let mut v = Vec::new();
+        self.walk(level, &mut |q, _, pts| {
+            if let Some(s) = self.shape(q, pts) {
+                v.push(s);
+            }
+        });
+        v
+    }
+}
+
+/// The exact control points (columns of `space × m`) of the node reached from the start by the
+/// operators `word` (each `T: q ← w` continuing from state q); `None` when the word does not
+/// follow the control graph.
+pub fn exact_points(
+    m: &AutomatonModel,
+    r: &Resolved,
+    word: &[usize],
+) -> Option<Vec<Vec<FieldElement>>> {
+    let a = &m.automaton;
+    let k = &m.field;
+    let pts = m
+        .points
+        .clone()
+        .unwrap_or_else(|| default_points(a.states[m.start].dim, m.space, k));
+    let mut f = KMatrix {
+        rows: m.space,
+        cols: pts.len(),
+        data: (0..m.space)
+            .flat_map(|d| pts.iter().map(move |p| p[d].clone()))
+            .collect(),
+    };
+    let mut state = m.start;
+    for &o in word {
+        let op = a.operators.get(o)?;
+        if op.to != state || op.kind != OpKind::Sub {
+            return None;
+        }
+        f = f.mul(k, &r.ops[o])?;
+        state = op.from;
+    }
+    Some(
+        (0..f.cols)
+            .map(|c| (0..f.rows).map(|d| f.get(d, c).clone()).collect())
+            .collect(),
+    )
+}

@@ -1,0 +1,294 @@
+//! Measures of an automaton's attractor, drawn to level n: the total length (polylines and polygon
+//! boundaries) and area (polygons) per level, and a box-counting dimension estimate, with the exact
+//! similarity dimension where it applies ([`crate::analysis::similarity_dimension`]). Floats
+//! measure; they decide nothing.
+
+use crate::analysis::{ContractionReport, ResolveVerdict, SimilarityDimension};
+use crate::geometry::{Evaluator, Shape, ShapeKind};
+use serde::Serialize;
+use std::collections::HashSet;
+
+/// Length and area of one level.
+#[derive(Clone, Debug, Serialize)]
+pub struct AutomatonLevel {
+    /// The level.
+    pub level: u32,
+    /// Pieces drawn.
+    pub pieces: u128,
+    /// Total length of polylines and polygon boundaries.
+    pub length: f64,
+    /// Total area of polygons (each counted once, overlaps included).
+    pub area: f64,
+}
+
+/// A box-counting estimate: the least-squares slope of `log N(ε)` against `log 1/ε`.
+#[derive(Clone, Debug, Serialize)]
+pub struct BoxDimension {
+    /// The slope, `None` when too few scales are finer than the bounding box and coarser than
+    /// the pieces.
+    pub value: Option<f64>,
+    /// The level whose pieces were counted.
+    pub level: u32,
+    /// The box sizes `ε = L/2^k` used (k) and the boxes met at each.
+    pub counts: Vec<(u32, u64)>,
+}
+
+/// Everything `measure` reports for an automaton.
+#[derive(Clone, Debug, Serialize)]
+pub struct AutomatonMeasure {
+    /// The input's name.
+    pub input: String,
+    /// The modelling space's dimension.
+    pub space: usize,
+    /// The level asked for.
+    pub level: u32,
+    /// The solver's verdict with the values chosen.
+    pub solver: ResolveVerdict,
+    /// The elementary cycles checked for contraction.
+    pub contraction: ContractionReport,
+    /// Per level, 0 to n.
+    pub levels: Vec<AutomatonLevel>,
+    /// The box-counting estimate.
+    pub box_dimension: BoxDimension,
+    /// The exact similarity dimension, where the operators act as similitudes.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub similarity_dimension: Option<SimilarityDimension>,
+    /// Why there is no similarity dimension.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub similarity_note: Option<String>,
+}
+
+fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+/// The area of a polygon in space (half the norm of the sum of fan cross products).
+fn polygon_area(p: &[[f64; 3]]) -> f64 {
+    let mut s = [0.0; 3];
+    for i in 1..p.len().saturating_sub(1) {
+        let (u, v) = (
+            [p[i][0] - p[0][0], p[i][1] - p[0][1], p[i][2] - p[0][2]],
+            [
+                p[i + 1][0] - p[0][0],
+                p[i + 1][1] - p[0][1],
+                p[i + 1][2] - p[0][2],
+            ],
+        );
+        s[0] += u[1] * v[2] - u[2] * v[1];
+        s[1] += u[2] * v[0] - u[0] * v[2];
+        s[2] += u[0] * v[1] - u[1] * v[0];
+    }
+    0.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt()
+}
+
+/// Length and area of one shape.
+pub fn shape_measure(s: &Shape) -> (f64, f64) {
+    let p = &s.points;
+    match s.kind {
+        ShapeKind::Point => (0.0, 0.0),
+        ShapeKind::Polyline => (p.windows(2).map(|w| dist(&w[0], &w[1])).sum(), 0.0),
+        ShapeKind::Polygon => {
+            let per: f64 = p.windows(2).map(|w| dist(&w[0], &w[1])).sum::<f64>()
+                + if p.len() > 1 {
+                    dist(&p[p.len() - 1], &p[0])
+                } else {
+                    0.0
+                };
+            (per, polygon_area(p))
+        }
+    }
+}
+
+/// Length and area of levels 0 to n.
+pub fn level_measures(ev: &Evaluator, level: u32) -> Vec<AutomatonLevel> {
+    (0..=level)
+        .map(|l| {
+            let (mut length, mut area) = (0.0, 0.0);
+            ev.walk(l, &mut |q, _, pts| {
+                if let Some(s) = ev.shape(q, pts) {
+                    let (a, b) = shape_measure(&s);
+                    length += a;
+                    area += b;
+                }
+            });
+            AutomatonLevel {
+                level: l,
+                pieces: ev.count(l),
+                length,
+                area,
+            }
+        })
+        .collect()
+}
+
+/// The box-counting estimate from the pieces of level `level`: every piece sampled finer than the
+/// finest box (polygons filled), boxes of size `L/2^k` counted for k from 2 up to the finest
+/// scale still coarser than twice the largest piece (at most 9 in the plane, 7 in space; at most 4 million samples).
+pub fn box_dimension(ev: &Evaluator, level: u32) -> BoxDimension {
+    let shapes = ev.shapes(level);
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    let mut piece = 0.0f64;
+    for s in &shapes {
+        let (mut plo, mut phi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for p in &s.points {
+            for d in 0..3 {
+                lo[d] = lo[d].min(p[d]);
+                hi[d] = hi[d].max(p[d]);
+                plo[d] = plo[d].min(p[d]);
+                phi[d] = phi[d].max(p[d]);
+            }
+        }
+        piece = piece.max(dist(&plo, &phi));
+    }
+    let side = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
+    let empty = BoxDimension {
+        value: None,
+        level,
+        counts: Vec::new(),
+    };
+    if shapes.is_empty() || side <= 0.0 || !side.is_finite() {
+        return empty;
+    }
+    let kcap = if ev.space == 3 { 7 } else { 9 };
+    let mut kmax = 0u32;
+    while kmax < kcap && side / f64::from(1u32 << (kmax + 1)) >= 2.0 * piece {
+        kmax += 1;
+    }
+    if kmax < 4 {
+        return empty;
+    }
+    let step = side / f64::from(1u32 << kmax) / 3.0;
+    // Sample points of every piece at spacing ≤ step.
+    let mut samples: Vec<[f64; 3]> = Vec::new();
+    let seg = |a: &[f64; 3], b: &[f64; 3], out: &mut Vec<[f64; 3]>| {
+        let n = (dist(a, b) / step).ceil().max(1.0) as usize;
+        for i in 0..=n {
+            let t = i as f64 / n as f64;
+            out.push([
+                a[0] + t * (b[0] - a[0]),
+                a[1] + t * (b[1] - a[1]),
+                a[2] + t * (b[2] - a[2]),
+            ]);
+        }
+    };
+    for s in &shapes {
+        let p = &s.points;
+        match s.kind {
+            ShapeKind::Point => samples.push(p[0]),
+            ShapeKind::Polyline => {
+                p.windows(2).for_each(|w| seg(&w[0], &w[1], &mut samples));
+                if p.len() == 1 {
+                    samples.push(p[0]);
+                }
+            }
+            ShapeKind::Polygon => {
+                // Fill: segments from the first point to points along each far edge.
+                for i in 1..p.len().saturating_sub(1) {
+                    let n = (dist(&p[i], &p[i + 1]) / step).ceil().max(1.0) as usize;
+                    for j in 0..=n {
+                        let t = j as f64 / n as f64;
+                        let e = [
+                            p[i][0] + t * (p[i + 1][0] - p[i][0]),
+                            p[i][1] + t * (p[i + 1][1] - p[i][1]),
+                            p[i][2] + t * (p[i + 1][2] - p[i][2]),
+                        ];
+                        seg(&p[0], &e, &mut samples);
+                    }
+                }
+                p.windows(2).for_each(|w| seg(&w[0], &w[1], &mut samples));
+                if p.len() == 1 {
+                    samples.push(p[0]);
+                }
+            }
+        }
+        if samples.len() > 4_000_000 {
+            break;
+        }
+    }
+    let mut counts = Vec::new();
+    for k in 2..=kmax {
+        let eps = side / f64::from(1u32 << k);
+        let mut set: HashSet<(i64, i64, i64)> = HashSet::new();
+        for p in &samples {
+            set.insert((
+                ((p[0] - lo[0]) / eps).floor() as i64,
+                ((p[1] - lo[1]) / eps).floor() as i64,
+                ((p[2] - lo[2]) / eps).floor() as i64,
+            ));
+        }
+        counts.push((k, set.len() as u64));
+    }
+    let pts: Vec<(f64, f64)> = counts
+        .iter()
+        .map(|&(k, n)| (f64::from(k) * std::f64::consts::LN_2, (n as f64).ln()))
+        .collect();
+    let n = pts.len() as f64;
+    let (sx, sy) = pts.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
+    let (mx, my) = (sx / n, sy / n);
+    let (num, den) = pts.iter().fold((0.0, 0.0), |a, p| {
+        (a.0 + (p.0 - mx) * (p.1 - my), a.1 + (p.0 - mx).powi(2))
+    });
+    BoxDimension {
+        value: Some(num / den),
+        level,
+        counts,
+    }
+}
+
+impl AutomatonMeasure {
+    /// The human-readable report.
+    pub fn to_text(&self) -> String {
+        let mut o = format!(
+            "{}: automaton in space {}, level {}\n",
+            self.input, self.space, self.level
+        );
+        o += &format!(
+            "solver ({}): {}\n",
+            self.solver.field,
+            if self.solver.consistent {
+                "every constraint holds"
+            } else {
+                "CONSTRAINTS FAIL"
+            }
+        );
+        for f in &self.solver.failed {
+            o += &format!("  fails: {f}\n");
+        }
+        for p in &self.solver.applied {
+            o += &format!("  parameter {p}\n");
+        }
+        if !self.solver.free_left.is_empty() {
+            o += &format!(
+                "  free parameters left at 0: {}\n",
+                self.solver.free_left.join(", ")
+            );
+        }
+        o += &format!(
+            "contraction: {} elementary cycle(s) contract\n",
+            self.contraction.cycles.len()
+        );
+        o += "level  pieces        length           area\n";
+        for l in &self.levels {
+            o += &format!(
+                "{:>5}  {:>6}  {:>12.6}  {:>13.6}\n",
+                l.level, l.pieces, l.length, l.area
+            );
+        }
+        match self.box_dimension.value {
+            Some(v) => {
+                o += &format!(
+                    "box-counting dimension ≈ {v:.4} (level {}, {} scales)\n",
+                    self.box_dimension.level,
+                    self.box_dimension.counts.len()
+                )
+            }
+            None => o += "box-counting dimension: too few scales (raise --level)\n",
+        }
+        match (&self.similarity_dimension, &self.similarity_note) {
+            (Some(s), _) => o += &format!("similarity dimension = {} = {}…\n", s.exact, s.decimal),
+            (None, Some(n)) => o += &format!("similarity dimension: not applicable ({n})\n"),
+            _ => {}
+        }
+        o
+    }
+}

@@ -1,0 +1,457 @@
+//! Automata drawn and measured (issue #14): exact points of the evaluation tree against closed
+//! forms, the exact similarity dimension against independent series, box counting, the refusal of
+//! a cycle that does not contract, and every new library entry rendered by the binary.
+
+use lacuna::analysis::{check_contraction, resolve, similarity_dimension};
+use lacuna::geometry::exact_points;
+use lacuna::input::{load_any, parse_model, AutomatonModel, Loaded};
+use lacuna::Source;
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{One, Zero};
+
+mod common;
+use common::lacuna;
+
+fn q(n: i64, d: i64) -> BigRational {
+    BigRational::new(n.into(), d.into())
+}
+
+fn model(name: &str) -> AutomatonModel {
+    match load_any(name).unwrap_or_else(|e| panic!("{name}: {}", e.render())) {
+        Loaded::Automaton { model, .. } => *model,
+        Loaded::Faces(_) => panic!("{name} is not an automaton"),
+    }
+}
+
+fn op(m: &AutomatonModel, name: &str) -> usize {
+    m.automaton
+        .operators
+        .iter()
+        .position(|o| o.name == name)
+        .expect("operator")
+}
+
+/// Every word of length n over the given operators.
+fn words(ops: &[usize], n: usize) -> Vec<Vec<usize>> {
+    let mut out = vec![Vec::new()];
+    for _ in 0..n {
+        out = out
+            .into_iter()
+            .flat_map(|w| ops.iter().map(move |&o| [w.clone(), vec![o]].concat()))
+            .collect();
+    }
+    out
+}
+
+/// The exact rational coordinates of the node's control points.
+fn rational_points(
+    m: &AutomatonModel,
+    r: &lacuna::analysis::Resolved,
+    w: &[usize],
+) -> Vec<Vec<BigRational>> {
+    exact_points(m, r, w)
+        .expect("the word follows the control graph")
+        .into_iter()
+        .map(|p| {
+            p.into_iter()
+                .map(|v| v.as_rational().expect("rational"))
+                .collect()
+        })
+        .collect()
+}
+
+fn comb(pts: &[Vec<BigRational>], w: &[BigRational]) -> Vec<BigRational> {
+    (0..2)
+        .map(|d| pts.iter().zip(w).map(|(p, c)| &p[d] * c).sum())
+        .collect()
+}
+
+/// The parameter of a dyadic word: t = Σ w_k 2^-k (w_k = 0 or 1).
+fn param(bits: &[usize]) -> BigRational {
+    bits.iter()
+        .enumerate()
+        .map(|(k, &b)| q(b as i64, 1) / BigRational::from_integer(BigInt::one() << (k + 1)))
+        .sum()
+}
+
+#[test]
+fn bspline_points_at_dyadic_parameters_are_the_closed_form() {
+    // Hand derivation: a node of state b with control points N_0, N_1, N_2 is the Chaikin
+    // refinement of its parent's half, so its curve starts at (N_0 + N_1)/2 and ends at
+    // (N_1 + N_2)/2. The uniform quadratic B-spline of Q_0, Q_1, Q_2 is
+    // S(t) = (1−t)²/2 Q_0 + (−2t² + 2t + 1)/2 Q_1 + t²/2 Q_2; segment i of the projection state
+    // takes Q = (P_i, P_(i+1), P_(i+2)).
+    let m = model("bspline-quadratic-4");
+    let r = resolve(&m, &[], 10_000).unwrap();
+    let p: Vec<Vec<BigRational>> = [(0, 0), (1, 2), (3, 2), (4, 0)]
+        .iter()
+        .map(|&(x, y)| vec![q(x, 1), q(y, 1)])
+        .collect();
+    let s = |qs: &[Vec<BigRational>], t: &BigRational| {
+        let one = BigRational::one();
+        let two = q(2, 1);
+        comb(
+            qs,
+            &[
+                (&one - t) * (&one - t) / &two,
+                (-&two * t * t + &two * t + &one) / &two,
+                t * t / &two,
+            ],
+        )
+    };
+    let (b0, b1) = (op(&m, "b.T0"), op(&m, "b.T1"));
+    let mut checked = 0;
+    for (i, top) in ["a.T0", "a.T1"].iter().enumerate() {
+        for n in 0..=5 {
+            for w in words(&[b0, b1], n) {
+                let bits: Vec<usize> = w.iter().map(|&o| usize::from(o == b1)).collect();
+                let t = param(&bits);
+                let end = &t + BigRational::new(BigInt::one(), BigInt::one() << n);
+                let word = [vec![op(&m, top)], w].concat();
+                let nodes = rational_points(&m, &r, &word);
+                let half = q(1, 2);
+                let start = comb(&nodes[..2], &[half.clone(), half.clone()]);
+                let stop = comb(&nodes[1..], &[half.clone(), half]);
+                assert_eq!(start, s(&p[i..i + 3], &t), "segment {i}, word {bits:?}");
+                assert_eq!(stop, s(&p[i..i + 3], &end), "segment {i}, word {bits:?}");
+                checked += 1;
+            }
+        }
+    }
+    assert_eq!(checked, 2 * 63);
+}
+
+#[test]
+fn de_casteljau_points_are_bezier_points() {
+    // Hand derivation: T_0, T_1 are the de Casteljau halves at 1/2, so the node of the word
+    // w_1 … w_n holds the control points of B restricted to [t, t + 2^-n], t = Σ w_k 2^-k: its
+    // first point is B(t), its last B(t + 2^-n), with B(t) = Σ C(3,i) t^i (1−t)^(3−i) P_i.
+    let m = model("de-casteljau-cubic");
+    let r = resolve(&m, &[], 10_000).unwrap();
+    let p: Vec<Vec<BigRational>> = [(0, 0), (1, 2), (2, 0), (3, 1)]
+        .iter()
+        .map(|&(x, y)| vec![q(x, 1), q(y, 1)])
+        .collect();
+    let b = |t: &BigRational| {
+        let u = BigRational::one() - t;
+        let c = [q(1, 1), q(3, 1), q(3, 1), q(1, 1)];
+        let w: Vec<BigRational> = (0..4)
+            .map(|i| &c[i] * num_traits::pow(t.clone(), i) * num_traits::pow(u.clone(), 3 - i))
+            .collect();
+        comb(&p, &w)
+    };
+    let (t0, t1) = (op(&m, "c.T0"), op(&m, "c.T1"));
+    for n in 0..=6 {
+        for w in words(&[t0, t1], n) {
+            let bits: Vec<usize> = w.iter().map(|&o| usize::from(o == t1)).collect();
+            let t = param(&bits);
+            let end = &t + BigRational::new(BigInt::one(), BigInt::one() << n);
+            let nodes = rational_points(&m, &r, &w);
+            assert_eq!(nodes[0], b(&t), "{bits:?}");
+            assert_eq!(nodes[3], b(&end), "{bits:?}");
+        }
+    }
+}
+
+/// ln 2 by Σ 1/(k·2^k) and ln 3 = ln 2 + ln(3/2), ln(3/2) = Σ (1/3)^k/k (both series of
+/// ln 1/(1−x)), with the tail of Σ x^k/k after K terms below x^(K+1)/((K+1)(1−x)): an
+/// enclosure independent of the library's atanh series.
+fn ln_1_over_1_minus(x: &BigRational, terms: u32) -> (BigRational, BigRational) {
+    let mut sum = BigRational::zero();
+    let mut pow = x.clone();
+    for k in 1..=terms {
+        sum += &pow / BigRational::from_integer(k.into());
+        pow = &pow * x;
+    }
+    let tail = &pow / (BigRational::from_integer((terms + 1).into()) * (BigRational::one() - x));
+    (sum.clone(), sum + tail)
+}
+
+fn digits_of(lo: &BigRational, hi: &BigRational, digits: u32) -> String {
+    let scale = BigRational::from_integer(BigInt::from(10).pow(digits));
+    let (a, b) = (
+        (lo * &scale).floor().to_integer(),
+        (hi * &scale).floor().to_integer(),
+    );
+    assert_eq!(a, b, "the independent enclosure is too wide");
+    let ten = BigInt::from(10).pow(digits);
+    let (int, frac) = (&a / &ten, &a % &ten);
+    format!(
+        "{int}.{:0>width$}",
+        frac.to_string(),
+        width = digits as usize
+    )
+}
+
+#[test]
+fn sierpinski_and_cantor_dimensions_to_50_digits() {
+    let (l2lo, l2hi) = ln_1_over_1_minus(&q(1, 2), 400);
+    let (l32lo, l32hi) = ln_1_over_1_minus(&q(1, 3), 260);
+    let (l3lo, l3hi) = (&l2lo + &l32lo, &l2hi + &l32hi);
+    // log 3 / log 2 and log 2 / log 3.
+    let sier = digits_of(&(&l3lo / &l2hi), &(&l3hi / &l2lo), 50);
+    let cantor = digits_of(&(&l2lo / &l3hi), &(&l2hi / &l3lo), 50);
+    assert!(sier.starts_with("1.584962500721156"));
+    assert!(cantor.starts_with("0.630929753571457"));
+    for (name, exact, want) in [
+        ("sierpinski-triangle", "log 3 / log 2", sier),
+        ("cantor-set", "log 2 / log 3", cantor),
+    ] {
+        let m = model(name);
+        let r = resolve(&m, &[], 10_000).unwrap();
+        let d = similarity_dimension(&m, &r.ops, 50).unwrap();
+        assert_eq!(d.exact, exact, "{name}");
+        assert_eq!(d.decimal, want, "{name}");
+    }
+}
+
+#[test]
+fn kite_and_dart_have_dimension_two_in_the_field() {
+    // Hand derivation (fixtures/kite-dart.aut): squared ratios 1 and r² = σ, det(I − M(u)) =
+    // (1 − u)² − u = u² − 3u + 1, smallest root u = (3 − √5)/2 = σ, so s = 2·ln σ/ln σ = 2.
+    let m = model("kite-dart");
+    assert_eq!(m.field.degree(), 4);
+    let r = resolve(&m, &[], 10_000).unwrap();
+    assert!(r.verdict.consistent, "{:?}", r.verdict.failed);
+    check_contraction(&m, &r.ops).unwrap();
+    let d = similarity_dimension(&m, &r.ops, 20).unwrap();
+    assert_eq!(
+        (d.exact.as_str(), d.decimal.as_str()),
+        ("2", "2.00000000000000000000")
+    );
+}
+
+#[test]
+fn box_counting_is_within_0_05_of_the_similarity_dimension() {
+    for (name, want) in [
+        ("sierpinski-triangle", 1.584_962_5),
+        ("cantor-set", 0.630_929_75),
+    ] {
+        let (code, out, err) = lacuna(&["measure", name, "--level", "2", "--json"]);
+        assert_eq!(code, 0, "{err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        let b = v["box_dimension"]["value"]
+            .as_f64()
+            .expect("a box dimension");
+        assert!((b - want).abs() < 0.05, "{name}: {b} against {want}");
+        assert!(v["similarity_dimension"]["decimal"].as_str().is_some());
+        assert!(v["similarity_dimension"]["exact"].as_str().is_some());
+    }
+    // A smooth curve: no similarity dimension, box counting near 1.
+    let (code, out, _) = lacuna(&["measure", "bspline-cubic", "--json"]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert!(v.get("similarity_dimension").is_none());
+    let b = v["box_dimension"]["value"].as_f64().unwrap();
+    assert!((b - 1.0).abs() < 0.05, "{b}");
+}
+
+const NOT_CONTRACTIVE: &str = "state p 2\nstate q 2\nsub p.T : p <- q = [1 0; 0 1]\nsub q.T : q <- p = [0 1; 1 0]\nsub q.U : q <- q = [1 1/2; 0 1/2]\nbarycentric\nspace 2\nstart p\npoints [0 0; 1 0]\n";
+
+#[test]
+fn a_cycle_that_does_not_contract_is_refused_by_name() {
+    // p.T · q.T is the swap [0 1; 1 0]: eigenvalues 1 and −1, so the difference P_1 − P_0 is
+    // reversed, never shrunk. q.U alone contracts (eigenvalues 1, 1/2).
+    let m = parse_model(&Source {
+        name: "t.aut".into(),
+        text: NOT_CONTRACTIVE.into(),
+    })
+    .unwrap();
+    let r = resolve(&m, &[], 100).unwrap();
+    let e = check_contraction(&m, &r.ops).unwrap_err();
+    assert_eq!(e.code(), "E0715");
+    assert!(e.to_string().contains("p.T · q.T"), "{e}");
+    let dir = std::env::temp_dir().join(format!("lacuna-auto-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let f = dir.join("swap.aut");
+    std::fs::write(&f, NOT_CONTRACTIVE).unwrap();
+    let svg = dir.join("swap.svg");
+    let (code, _, err) = lacuna(&[
+        "render",
+        f.to_str().unwrap(),
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("E0715") && err.contains("p.T · q.T"), "{err}");
+    assert!(!svg.exists());
+}
+
+#[test]
+fn parameters_fix_unknown_entries_exactly() {
+    // half-tangent-edge: a = 1/5, b = 1/2 give T_0 = [1 2a a; 0 1−2a b; 0 0 1−a−b].
+    let m = model("half-tangent-edge");
+    let r = resolve(&m, &[], 10_000).unwrap();
+    let t0 = &r.ops[op(&m, "e.T0")];
+    let got: Vec<BigRational> = t0.data.iter().map(|v| v.as_rational().unwrap()).collect();
+    let want = [
+        q(1, 1),
+        q(2, 5),
+        q(1, 5),
+        q(0, 1),
+        q(3, 5),
+        q(1, 2),
+        q(0, 1),
+        q(0, 1),
+        q(3, 10),
+    ];
+    assert_eq!(got, want);
+    assert!(r.verdict.free_left.is_empty());
+    // --param overrides the file; an entry that is not there is a coded error.
+    let r = resolve(&m, &[("e.T0[0][2]".into(), q(1, 6))], 10_000).unwrap();
+    assert_eq!(
+        r.ops[op(&m, "e.T0")].get(0, 1).as_rational().unwrap(),
+        q(1, 3)
+    );
+    let e = resolve(&m, &[("e.T9[0][0]".into(), q(1, 6))], 10_000).unwrap_err();
+    assert_eq!(e.code(), "E0717");
+}
+
+const NEW_ENTRIES: [&str; 8] = [
+    "de-casteljau-cubic",
+    "bspline-quadratic-4",
+    "bspline-cubic",
+    "quad-patch-3d",
+    "half-tangent-edge",
+    "sierpinski-triangle",
+    "cantor-set",
+    "kite-dart",
+];
+
+#[test]
+fn every_new_library_entry_renders_and_measures() {
+    let dir = std::env::temp_dir().join(format!("lacuna-render-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for name in NEW_ENTRIES {
+        let p = |ext: &str| {
+            dir.join(format!("{name}.{ext}"))
+                .to_str()
+                .unwrap()
+                .to_string()
+        };
+        let (code, out, err) = lacuna(&[
+            "render",
+            name,
+            "--level",
+            "4",
+            "--svg",
+            &p("svg"),
+            "--png",
+            &p("png"),
+            "--size",
+            "128",
+            "--json-out",
+            &p("json"),
+            "--obj",
+            &p("obj"),
+        ]);
+        assert_eq!(code, 0, "{name}: {err}");
+        assert_eq!(out.matches("wrote").count(), 4, "{name}: {out}");
+        let svg = std::fs::read_to_string(p("svg")).unwrap();
+        assert!(
+            svg.starts_with("<svg") && (svg.contains("<poly") || svg.contains("<circle")),
+            "{name}"
+        );
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(p("json")).unwrap()).unwrap();
+        assert!(!json["shapes"].as_array().unwrap().is_empty(), "{name}");
+        let obj = std::fs::read_to_string(p("obj")).unwrap();
+        assert!(obj.lines().any(|l| l.starts_with("v ")), "{name}");
+        let png = std::fs::read(p("png")).unwrap();
+        assert_eq!(&png[1..4], b"PNG", "{name}");
+        let (code, out, err) = lacuna(&["measure", name, "--level", "3"]);
+        assert_eq!(code, 0, "{name}: {err}");
+        assert!(out.contains("box-counting dimension"), "{name}: {out}");
+        let html = p("html");
+        let (code, _, err) = lacuna(&["report", name, "--level", "3", "--out", &html]);
+        assert_eq!(code, 0, "{name}: {err}");
+        let page = std::fs::read_to_string(&html).unwrap();
+        assert!(
+            page.contains("Contraction") && page.contains("level 3"),
+            "{name}"
+        );
+    }
+}
+
+#[test]
+fn face_options_are_refused_on_automata() {
+    let (code, _, err) = lacuna(&[
+        "render",
+        "cantor-set",
+        "--svg",
+        "/dev/null",
+        "--template",
+        "x.txt",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    let (code, _, err) = lacuna(&["render", "cantor-set", "--stl", "/dev/null"]);
+    assert_eq!(code, 2, "{err}");
+    // `verify` reads faces only, and says which commands read automata.
+    let (code, _, err) = lacuna(&["verify", "cantor-set"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("render") && err.contains("E0601"), "{err}");
+}
+
+#[test]
+fn rational_dimensions_are_exact() {
+    // Two halves of a segment: 2 maps of ratio 1/2, s = log 2 / log 2 = 1 exactly (u = 1/2,
+    // σ = 1/4, u² = σ). Eight maps of ratio 1/4 on a triangle (its corner quarters and more):
+    // s = log 8 / log 4 = 3/2 exactly (u = 1/8, σ = 1/16, u⁴ = σ³).
+    let halves = "state c 2\nsub c.T0 : c <- c = [1 1/2; 0 1/2]\nsub c.T1 : c <- c = [1/2 0; 1/2 1]\nspace 2\npoints [0 0; 1 0]\n";
+    let m = parse_model(&Source {
+        name: "h.aut".into(),
+        text: halves.into(),
+    })
+    .unwrap();
+    let r = resolve(&m, &[], 100).unwrap();
+    let d = similarity_dimension(&m, &r.ops, 10).unwrap();
+    assert_eq!(
+        (d.exact.as_str(), d.decimal.as_str()),
+        ("1", "1.0000000000")
+    );
+    // T_(a,b): x ↦ x/4 + (a/4, b/4) in the frame (0,0), (1,0), (0,1): column j is the image of
+    // corner j, in barycentric coordinates (1 − x − y, x, y).
+    let mut text = String::from("state t 3\n");
+    let offsets = [
+        (0, 0),
+        (1, 0),
+        (2, 0),
+        (3, 0),
+        (0, 1),
+        (1, 1),
+        (2, 1),
+        (0, 2),
+    ];
+    for (i, (a, b)) in offsets.iter().enumerate() {
+        let img = [(a, b), (&(a + 1), b), (a, &(b + 1))];
+        let cols: Vec<[BigRational; 3]> = img
+            .iter()
+            .map(|(x, y)| {
+                let (x, y) = (q(**x, 4), q(**y, 4));
+                [BigRational::one() - &x - &y, x, y]
+            })
+            .collect();
+        let rows: Vec<String> = (0..3)
+            .map(|r| {
+                cols.iter()
+                    .map(|c| c[r].to_string())
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            })
+            .collect();
+        text += &format!("sub t.T{i} : t <- t = [{}]\n", rows.join("; "));
+    }
+    text += "space 2\npoints [0 0; 1 0; 0 1]\n";
+    let m = parse_model(&Source {
+        name: "e.aut".into(),
+        text,
+    })
+    .unwrap();
+    let r = resolve(&m, &[], 100).unwrap();
+    let d = similarity_dimension(&m, &r.ops, 12).unwrap();
+    assert_eq!(
+        (d.exact.as_str(), d.decimal.as_str()),
+        ("3/2", "1.500000000000")
+    );
+}
