@@ -141,7 +141,8 @@ pub(crate) enum Command {
         json: bool,
     },
     /// Instantiate the verified model (default parameters: a template fit rounded to an exact point
-    /// of the solution space) and export level N: SVG, JSON polygons, OBJ and STL prisms, PNG.
+    /// of the solution space) and export level N: SVG, JSON polygons, PNG, and printable solids (STL,
+    /// 3MF, OBJ) checked against the exact topology.
     Render {
         #[command(flatten)]
         geo: GeoArgs,
@@ -151,15 +152,24 @@ pub(crate) enum Command {
         /// Write the level-N cells as JSON polygons.
         #[arg(long, value_name = "OUT.json")]
         json_out: Option<std::path::PathBuf>,
-        /// Write an OBJ mesh: every cell a closed prism of this thickness (printable).
+        /// Write the solid as a Wavefront OBJ mesh (triangles, one object per component, mm).
         #[arg(long, value_name = "OUT.obj")]
         obj: Option<std::path::PathBuf>,
-        /// Write an ASCII STL mesh: every cell a closed, triangulated prism (printable).
+        /// Write the solid as STL (binary; --stl-ascii for ASCII), mm: one closed manifold per
+        /// component, checked against the exact topology before writing.
         #[arg(long, value_name = "OUT.stl")]
         stl: Option<std::path::PathBuf>,
-        /// Prism thickness for --obj and --stl.
-        #[arg(long, default_value_t = 0.05)]
+        /// Write --stl as ASCII instead of binary.
+        #[arg(long, requires = "stl")]
+        stl_ascii: bool,
+        /// Write the solid as 3MF (core specification, unit millimetre, one object per component).
+        #[arg(long = "3mf", value_name = "OUT.3mf")]
+        threemf: Option<std::path::PathBuf>,
+        /// Thickness of the solid in mm (--stl, --3mf, --obj).
+        #[arg(long, default_value_t = lacuna::mesh::DEFAULT_THICKNESS, value_name = "MM")]
         thickness: f64,
+        #[command(flatten)]
+        print: PrintArgs,
         /// Write a PNG raster (black cells on white).
         #[arg(long, value_name = "OUT.png")]
         png: Option<std::path::PathBuf>,
@@ -192,6 +202,8 @@ pub(crate) enum Command {
         /// Blocks per side of the relative-density map of level N (0: none).
         #[arg(long, default_value_t = 64)]
         density_grid: usize,
+        #[command(flatten)]
+        print: PrintArgs,
         /// Print JSON.
         #[arg(long)]
         json: bool,
@@ -269,6 +281,20 @@ pub(crate) struct GeoArgs {
     /// (repeatable; docs/GEOMETRY.md).
     #[arg(long = "goal", value_name = "GOAL")]
     pub(crate) goals: Vec<String>,
+}
+
+/// Sizes for printing (SPEC §11), shared by `render` and `measure`.
+#[derive(Args)]
+pub(crate) struct PrintArgs {
+    /// Width in mm of the level-0 faces (x extent): the structure is scaled to it.
+    #[arg(long, default_value_t = lacuna::mesh::DEFAULT_WIDTH, value_name = "MM")]
+    pub(crate) width: f64,
+    /// The printer's smallest feature in mm: smaller holes and ligaments get a warning.
+    #[arg(long, default_value_t = lacuna::mesh::DEFAULT_RESOLUTION, value_name = "MM")]
+    pub(crate) resolution: f64,
+    /// A hole or ligament below --resolution is a failure (E1042, exit 1), not a warning.
+    #[arg(long)]
+    pub(crate) strict: bool,
 }
 
 #[derive(Args)]

@@ -40,6 +40,7 @@ mod linsys;
 mod lp;
 mod matrix;
 mod measure;
+pub mod mesh;
 mod operator;
 mod placement;
 mod poly;

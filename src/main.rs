@@ -37,11 +37,13 @@ fn main() -> ExitCode {
             }
             eprint!("{}", e.render());
             // Goals that no parameters meet are a negative answer, not bad input.
-            ExitCode::from(if e.code() == "E1031" {
-                EXIT_FAILED
-            } else {
-                EXIT_BAD_INPUT
-            })
+            ExitCode::from(
+                if e.code() == "E1031" || lacuna::mesh::is_failure_code(e.code()) {
+                    EXIT_FAILED
+                } else {
+                    EXIT_BAD_INPUT
+                },
+            )
         }
     }
 }
@@ -118,6 +120,16 @@ fn geo_error(e: lacuna::GeometryError) -> Error {
             source: None,
         })),
     }
+}
+
+/// A mesh-layer error as a lacuna error (same code and message).
+fn mesh_error(e: lacuna::mesh::MeshError) -> Error {
+    Error::Syntax(Box::new(lacuna::Diagnostic {
+        code: e.code(),
+        message: e.to_string(),
+        span: None,
+        source: None,
+    }))
 }
 
 /// The input (with `--corners` applied) and its instance with the parameters given, after
@@ -521,7 +533,10 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             json_out,
             obj,
             stl,
+            stl_ascii,
+            threemf,
             thickness,
+            print,
             png,
             size,
             density,
@@ -532,12 +547,13 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 && json_out.is_none()
                 && obj.is_none()
                 && stl.is_none()
+                && threemf.is_none()
                 && png.is_none()
                 && density.is_none()
                 && write_template.is_none()
             {
                 return Err(Error::Usage(
-                    "nothing to write: give --svg, --json-out, --obj, --stl, --png, --density or --write-template"
+                    "nothing to write: give --svg, --json-out, --obj, --stl, --3mf, --png, --density or --write-template"
                         .into(),
                 ));
             }
@@ -550,12 +566,22 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                     range: "from 1 to 16384".into(),
                 });
             }
-            if !(thickness.is_finite() && thickness > 0.0) {
-                return Err(Error::Usage(format!(
-                    "--thickness {thickness} must be a positive number"
-                )));
+            let mesh = lacuna::mesh::Targets {
+                stl,
+                stl_ascii,
+                threemf,
+                obj,
+            };
+            let solid_size = lacuna::mesh::Size {
+                width: print.width,
+                thickness,
+            };
+            if mesh.any() {
+                lacuna::mesh::check_size("--thickness", thickness).map_err(mesh_error)?;
+                lacuna::mesh::check_size("--width", print.width).map_err(mesh_error)?;
+                lacuna::mesh::check_size("--resolution", print.resolution).map_err(mesh_error)?;
             }
-            let vector = svg.is_some() || json_out.is_some() || obj.is_some() || stl.is_some();
+            let vector = svg.is_some() || json_out.is_some() || mesh.any();
             let (_, inst) = instance(&geo, &limits, if vector { 2_000_000 } else { 100_000_000 })?;
             let io = |path: &std::path::Path, e: std::io::Error| Error::Io {
                 path: path.display().to_string(),
@@ -576,15 +602,15 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 lacuna::write_json(&inst, level, segs, create(p)?).map_err(|e| io(p, e))?;
                 out(&format!("wrote {}\n", p.display()));
             }
-            if let Some(p) = &obj {
-                lacuna::write_obj(&inst, level, segs, thickness, create(p)?)
-                    .map_err(|e| io(p, e))?;
-                out(&format!("wrote {}\n", p.display()));
-            }
-            if let Some(p) = &stl {
-                lacuna::write_stl(&inst, level, segs, thickness, create(p)?)
-                    .map_err(|e| io(p, e))?;
-                out(&format!("wrote {}\n", p.display()));
+            if mesh.any() {
+                let p =
+                    lacuna::mesh::printability(&inst, level, segs, solid_size, print.resolution)
+                        .map_err(mesh_error)?;
+                out(&p.text());
+                p.enforce(print.strict).map_err(mesh_error)?;
+                let text = lacuna::mesh::write_targets(&inst, level, segs, solid_size, &mesh)
+                    .map_err(mesh_error)?;
+                out(&text);
             }
             if let Some(p) = &png {
                 let raster = lacuna::render_raster(&inst, level, size, segs);
@@ -634,6 +660,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             raster,
             max_raster,
             density_grid,
+            print,
             json,
         } => {
             check_raster("--raster", raster, 16_384)?;
@@ -657,16 +684,30 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 ..Default::default()
             };
             let r = lacuna::measure(&inst, &opts).map_err(geo_error)?;
+            let size = lacuna::mesh::Size {
+                width: print.width,
+                ..Default::default()
+            };
+            let p =
+                lacuna::mesh::printability(&inst, geo.level, geo.segments, size, print.resolution)
+                    .map_err(mesh_error)?;
             eprint!("{}", choice_text(&geo, &inst));
             for f in &r.failures {
                 eprintln!("verification failed: {f}");
             }
+            let strict_failures = if print.strict { p.below() } else { Vec::new() };
+            for f in &strict_failures {
+                eprintln!("verification failed: {f}");
+            }
             if json {
-                print_json(&r);
+                let mut v = serde_json::to_value(&r).expect("reports serialise");
+                v["printability"] = serde_json::to_value(&p).expect("reports serialise");
+                print_json(&v);
             } else {
                 out(&r.to_text());
+                out(&p.text());
             }
-            Ok(if r.verified {
+            Ok(if r.verified && strict_failures.is_empty() {
                 ExitCode::SUCCESS
             } else {
                 ExitCode::from(EXIT_FAILED)
