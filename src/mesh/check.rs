@@ -63,7 +63,7 @@ pub fn check_part(part: &Part) -> Result<PartCheck, String> {
         ));
     }
     for &e in &directed {
-        let rev = (e << 32) | (e >> 32);
+        let rev = e.rotate_right(32);
         if directed.binary_search(&rev).is_err() {
             return Err(format!(
                 "edge {}–{} is in one triangle only (the surface is open there)",

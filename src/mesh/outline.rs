@@ -241,7 +241,8 @@ pub fn outline(
     // Pass 1: keys, corner identities, positions, cell adjacency.
     let mut corners = Dsu::default();
     let mut corner_pos: Vec<[f64; 2]> = Vec::new();
-    let mut sample_at: Vec<u32> = Vec::new();
+    // Per key: (first, count) of its inner points in `samples`, in the reference direction.
+    let mut sample_at: Vec<(u32, u32)> = Vec::new();
     let mut samples: Vec<[f64; 2]> = Vec::new();
     let mut holders: Vec<Option<Holder>> = Vec::new();
     let mut cells = Dsu::default();
@@ -256,24 +257,28 @@ pub fn outline(
         cells.grow(me as usize + 1);
         let n = keys.len();
         for (e, k) in keys.iter().enumerate() {
-            let pl = inst.edge_polyline(c.ty, e, c.points, segments);
+            let ctrl = inst.edge_controls(c.ty, e, c.points);
             let (s, t) = (2 * k.id + k.reversed as u32, 2 * k.id + !k.reversed as u32);
             corners.grow(2 * k.id as usize + 2);
             let p = slot(&mut corner_pos, s as usize, [f64::NAN; 2]);
             if p[0].is_nan() {
-                *p = to_mm(pl[0]);
+                *p = to_mm(ctrl[0]);
             }
             let q = slot(&mut corner_pos, t as usize, [f64::NAN; 2]);
             if q[0].is_nan() {
-                *q = to_mm(pl[pl.len() - 1]);
+                *q = to_mm(ctrl[ctrl.len() - 1]);
             }
             let next = keys[(e + 1) % n];
             let next_start = 2 * next.id + next.reversed as u32;
             corners.grow(2 * next.id as usize + 2);
             corners.union(t, next_start);
-            if pl.len() > 2 && *slot(&mut sample_at, k.id as usize, NONE) == NONE {
-                sample_at[k.id as usize] = samples.len() as u32;
+            if inst.slots[c.ty][e].bezier
+                && slot(&mut sample_at, k.id as usize, (NONE, 0)).0 == NONE
+            {
+                // The first cell to meet the key flattens it, for both sides.
+                let pl = flatten(&ctrl, segments, FLATTENING_TOLERANCE_MM / scale);
                 let inner = &pl[1..pl.len() - 1];
+                sample_at[k.id as usize] = (samples.len() as u32, inner.len() as u32);
                 if k.reversed {
                     samples.extend(inner.iter().rev().map(|&p| to_mm(p)));
                 } else {
@@ -369,14 +374,9 @@ pub fn outline(
             first_of_edge.push(poly.len());
             let s = corners.find(2 * k.id + k.reversed as u32);
             poly.push(class_pos[s as usize]);
-            let at = sample_at.get(k.id as usize).copied().unwrap_or(NONE);
+            let (at, m) = sample_at.get(k.id as usize).copied().unwrap_or((NONE, 0));
             if at != NONE {
-                let m = if inst.slots[c.ty][e].bezier && segments > 1 {
-                    segments - 1
-                } else {
-                    0
-                };
-                let inner = &samples[at as usize..at as usize + m];
+                let inner = &samples[at as usize..(at + m) as usize];
                 if k.reversed {
                     poly.extend(inner.iter().rev());
                 } else {
@@ -433,6 +433,37 @@ pub fn outline(
     Ok(out)
 }
 
+/// The largest distance in millimetres between a Bézier edge and its flattened polyline: far
+/// below any printer's resolution, and it keeps the deep levels (cells of hundredths of a
+/// millimetre) from carrying `--segments` points per edge that no printer can show.
+pub const FLATTENING_TOLERANCE_MM: f64 = 0.005;
+
+/// A Bézier edge flattened to at most `segments` segments (both ends included), as few as keep
+/// the polyline within `tol` of the curve: a chord over a parameter interval h is within
+/// h²/8 · max|B''| of the curve, and |B''| ≤ q(q − 1)·max|Δ²P| for degree q.
+pub fn flatten(ctrl: &[Point], segments: usize, tol: f64) -> Vec<Point> {
+    let q = ctrl.len().saturating_sub(1);
+    let d2 = ctrl
+        .windows(3)
+        .map(|w| {
+            crate::geometry::distance(
+                [w[0][0] - w[1][0], w[0][1] - w[1][1]],
+                [w[1][0] - w[2][0], w[1][1] - w[2][1]],
+            )
+        })
+        .fold(0.0f64, f64::max);
+    let bound = (q * q.saturating_sub(1)) as f64 * d2;
+    let needed = (bound / (8.0 * tol)).sqrt().ceil();
+    let n = if needed.is_finite() {
+        (needed as usize).clamp(1, segments.max(1))
+    } else {
+        segments.max(1)
+    };
+    (0..=n)
+        .map(|i| crate::geometry::bezier_point(ctrl, i as f64 / n as f64))
+        .collect()
+}
+
 /// Whether a closed polygon is simple and counter-clockwise, by exact orientation predicates on
 /// its coordinates (`Err` says why not).
 pub fn simple_ccw(poly: &[[f64; 2]]) -> Result<(), String> {
@@ -455,7 +486,7 @@ pub fn simple_ccw(poly: &[[f64; 2]]) -> Result<(), String> {
             a[0] * b[1] - a[1] * b[0]
         })
         .sum();
-    if !(area2 > 0.0) {
+    if area2.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return Err("is clockwise or flat".into());
     }
     // No two edges meet except consecutive ones at their common end.
