@@ -72,14 +72,16 @@ fn main() {
             threemf::write(&s, create(&mf)).expect("3mf");
         }),
     ];
-    println!("F0 level {level}: {} cells, --segments {segments}", 6u64.pow(level));
+    println!(
+        "F0 level {level}: {} cells, --segments {segments}",
+        6u64.pow(level)
+    );
     for p in &phases {
         println!(
             "  {:<32} {:>7.3} s  peak {:>9}  file {:>8.1} MB",
             p.name,
             p.seconds,
-            p.peak
-                .map_or("n/a".to_string(), |m| format!("{m:.1} MB")),
+            p.peak.map_or("n/a".to_string(), |m| format!("{m:.1} MB")),
             p.bytes as f64 / 1e6
         );
     }

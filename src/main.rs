@@ -700,9 +700,10 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
                 eprintln!("verification failed: {f}");
             }
             if json {
-                let mut v = serde_json::to_value(&r).expect("reports serialise");
-                v["printability"] = serde_json::to_value(&p).expect("reports serialise");
-                print_json(&v);
+                print_json(&lacuna::mesh::printability::WithPrintability {
+                    report: &r,
+                    printability: &p,
+                });
             } else {
                 out(&r.to_text());
                 out(&p.text());

@@ -104,3 +104,14 @@ impl Printability {
         Ok(())
     }
 }
+
+/// A report with the printability added as one more field (`measure --json`), keeping the
+/// report's own fields first and in their order.
+#[derive(Serialize)]
+pub struct WithPrintability<'a, T: Serialize> {
+    /// The report.
+    #[serde(flatten)]
+    pub report: &'a T,
+    /// The printability at its level.
+    pub printability: &'a Printability,
+}
