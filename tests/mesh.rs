@@ -480,3 +480,67 @@ mod random {
         }
     }
 }
+
+/// Debian's admesh, an independent STL checker, on written files: one part, nothing to repair
+/// (no disconnected edge, degenerate facet, reversed facet, backwards edge or wrong normal).
+/// Ignored by a plain `cargo test` (it needs admesh); `.ci/run` installs admesh and runs it.
+#[test]
+#[ignore]
+fn admesh_finds_one_part_and_nothing_to_repair() {
+    let dir = std::env::temp_dir().join(format!("lacuna-admesh-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, level, ascii) in [
+        ("F0", 4u32, false),
+        ("F0", 3, true),
+        ("triangle-C2", 3, false),
+        ("delayed-B2-C2", 3, false),
+        ("two-quads", 3, false),
+    ] {
+        let s = solid(&inst(name), level);
+        let path = dir.join(format!("{name}-{level}.stl"));
+        let mut f = std::io::BufWriter::new(std::fs::File::create(&path).unwrap());
+        if ascii {
+            lacuna::mesh::stl::write_ascii(&s, &mut f).unwrap();
+        } else {
+            lacuna::mesh::stl::write_binary(&s, &mut f).unwrap();
+        }
+        drop(f);
+        let out = std::process::Command::new("admesh")
+            .arg(&path)
+            .output()
+            .expect("admesh is installed (.ci/run installs it)");
+        let text = String::from_utf8_lossy(&out.stdout);
+        let what = format!("{name} level {level}{}", if ascii { " ASCII" } else { "" });
+        let field = |label: &str| -> Vec<String> {
+            let line = text
+                .lines()
+                .find(|l| l.starts_with(label))
+                .unwrap_or_else(|| panic!("{what}: no `{label}` in admesh's output:\n{text}"));
+            line[line.find(':').unwrap() + 1..]
+                .split_whitespace()
+                .map(str::to_string)
+                .collect()
+        };
+        assert_eq!(field("Number of parts")[0], "1", "{what}:\n{text}");
+        for label in [
+            "Facets with 1 disconnected edge",
+            "Facets with 2 disconnected edges",
+            "Facets with 3 disconnected edges",
+            "Degenerate facets",
+            "Edges fixed",
+            "Facets removed",
+            "Facets added",
+            "Facets reversed",
+            "Backwards edges",
+            "Normals fixed",
+        ] {
+            assert!(
+                field(label).iter().all(|v| v == "0"),
+                "{what}: admesh reports {label}:\n{text}"
+            );
+        }
+        let facets = field("Number of facets");
+        assert_eq!(facets[0], s.triangle_count().to_string(), "{what}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
