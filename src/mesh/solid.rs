@@ -261,7 +261,29 @@ pub fn build(inst: &Instance, level: u32, segments: usize, size: Size) -> Result
             holes: None,
         });
     }
-    // The check, against the exact topology.
+    let checks = verdict(level, &mut parts, &expected, &o.component_start)?;
+    Ok(Solid {
+        name: inst.name.clone(),
+        level,
+        size,
+        parts,
+        checks,
+        expected,
+        cells: o.cells,
+    })
+}
+
+/// Checks every part ([`check_part`]) and compares it with the exact topology: one connected
+/// surface per component, Euler characteristic `2 − 2·holes` per component when the holes of each
+/// are known (`component_start[c]` is the start face of component `c`), and in any case
+/// `Σ χ = 2·components − 2·holes`. Records each part's holes.
+pub fn verdict(
+    level: u32,
+    parts: &mut [Part],
+    expected: &Expected,
+    component_start: &[usize],
+) -> Result<Vec<PartCheck>, MeshError> {
+    let failed = |reason: String| MeshError::Check { level, reason };
     let mut checks = Vec::with_capacity(parts.len());
     let mut euler_sum = 0i64;
     for (c, part) in parts.iter_mut().enumerate() {
@@ -273,7 +295,7 @@ pub fn build(inst: &Instance, level: u32, segments: usize, size: Size) -> Result
             )));
         }
         if let Some((of, holes)) = &expected.per_start {
-            let h = &holes[of[o.component_start[c]]];
+            let h = &holes[of[component_start[c]]];
             let want = Expected::euler(h)
                 .ok_or_else(|| failed(format!("component {c}: {h} holes is too many")))?;
             if ck.euler != want {
@@ -298,13 +320,40 @@ pub fn build(inst: &Instance, level: u32, segments: usize, size: Size) -> Result
             want.map_or("an overflow".to_string(), |w| w.to_string())
         )));
     }
-    Ok(Solid {
-        name: inst.name.clone(),
-        level,
-        size,
-        parts,
-        checks,
-        expected,
-        cells: o.cells,
-    })
+    Ok(checks)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_bigint::BigUint;
+
+    fn tetra() -> Part {
+        Part {
+            vertices: vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            triangles: vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]],
+            holes: None,
+        }
+    }
+
+    fn expected(holes: u32, per_start: bool) -> Expected {
+        Expected {
+            components: 1,
+            holes: BigUint::from(holes),
+            per_start: per_start.then(|| (vec![0], vec![BigUint::from(holes)])),
+        }
+    }
+
+    #[test]
+    fn a_sphere_passes_for_no_hole_and_fails_for_one() {
+        let mut parts = vec![tetra()];
+        let c = verdict(0, &mut parts, &expected(0, true), &[0]).unwrap();
+        assert_eq!(c[0].euler, 2);
+        assert_eq!(parts[0].holes, Some(0));
+        for per_start in [true, false] {
+            let e = verdict(3, &mut parts, &expected(1, per_start), &[0]).unwrap_err();
+            assert_eq!(e.code(), "E1040", "{e}");
+            assert!(e.is_failure());
+        }
+    }
 }
