@@ -10,9 +10,7 @@
 //! gives the holes of each component. Otherwise only the totals are known exactly (`per_start` is
 //! `None`) and the mesh is checked against them.
 
-use crate::component::{components_by_induction, start_components};
-use crate::instantiate::Instance;
-use crate::measure::exact_topology;
+use super::below::{components_by_induction, exact_topology, start_components, Instance};
 use lacuna::EdgeKind;
 use num_bigint::BigUint;
 use num_traits::{ToPrimitive, Zero};

@@ -32,6 +32,16 @@ pub mod stl;
 pub mod threemf;
 
 pub use check::{check_part, PartCheck};
+
+/// The layers below as the mesh layer uses them, named once here: when a module of those layers
+/// moves, these lines are the only ones to change.
+mod below {
+    pub(crate) use crate::component::{components_by_induction, start_components};
+    pub(crate) use crate::geometry::{bezier_point, distance, Point};
+    pub(crate) use crate::hole::{polygon_size, smallest_holes};
+    pub(crate) use crate::instantiate::{Cell, Instance};
+    pub(crate) use crate::measure::{bounds, exact_topology};
+}
 pub use printability::{printability, Printability};
 pub use solid::{build, Part, Solid};
 
@@ -166,7 +176,7 @@ impl Targets {
 /// Builds and checks the solid of `level`, then writes every target. Returns one line per file
 /// written and a summary of the check; nothing is written when the check fails.
 pub fn write_targets(
-    inst: &crate::instantiate::Instance,
+    inst: &below::Instance,
     level: u32,
     segments: usize,
     size: Size,

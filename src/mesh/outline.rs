@@ -23,9 +23,8 @@
 //! boundary (shared edges cancel), each cell's is 0 or 1, so where the boundary's is at most 1
 //! no two cells overlap.
 
+use super::below::{bezier_point, bounds, distance, Cell, Instance, Point};
 use super::{MeshError, Size};
-use crate::geometry::Point;
-use crate::instantiate::{Cell, Instance};
 use lacuna::Origin;
 use std::collections::HashMap;
 
@@ -227,7 +226,7 @@ pub fn outline(
     segments: usize,
     size: Size,
 ) -> Result<Outline, MeshError> {
-    let bb = crate::measure::bounds(inst, segments);
+    let bb = bounds(inst, segments);
     let extent = bb.max[0] - bb.min[0];
     let scale = size.width / if extent > 0.0 { extent } else { 1.0 };
     let to_mm = |p: Point| -> [f64; 2] {
@@ -446,7 +445,7 @@ pub fn flatten(ctrl: &[Point], segments: usize, tol: f64) -> Vec<Point> {
     let d2 = ctrl
         .windows(3)
         .map(|w| {
-            crate::geometry::distance(
+            distance(
                 [w[0][0] - w[1][0], w[0][1] - w[1][1]],
                 [w[1][0] - w[2][0], w[1][1] - w[2][1]],
             )
@@ -460,7 +459,7 @@ pub fn flatten(ctrl: &[Point], segments: usize, tol: f64) -> Vec<Point> {
         segments.max(1)
     };
     (0..=n)
-        .map(|i| crate::geometry::bezier_point(ctrl, i as f64 / n as f64))
+        .map(|i| bezier_point(ctrl, i as f64 / n as f64))
         .collect()
 }
 

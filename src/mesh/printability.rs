@@ -8,10 +8,8 @@
 //! only wider). Both are floating-point estimates that decide a warning, or with `--strict` a
 //! failure (E1042), never a topological verdict.
 
+use super::below::{bounds, polygon_size, smallest_holes, Instance, Point};
 use super::{MeshError, Size};
-use crate::geometry::Point;
-use crate::hole::{polygon_size, smallest_holes};
-use crate::instantiate::Instance;
 use serde::Serialize;
 
 /// The smallest features of a level, in millimetres.
@@ -39,7 +37,7 @@ pub fn printability(
 ) -> Result<Printability, MeshError> {
     super::check_size("--width", size.width)?;
     super::check_size("--resolution", resolution)?;
-    let bb = crate::measure::bounds(inst, segments);
+    let bb = bounds(inst, segments);
     let extent = bb.max[0] - bb.min[0];
     let scale = size.width / if extent > 0.0 { extent } else { 1.0 };
     let hole = smallest_holes(inst, level, segments)[level as usize];

@@ -16,11 +16,11 @@
 //! a bottom one (reversed); each boundary segment `a → b` (material on its left) gives a wall of
 //! two triangles facing outwards. Nothing else: shared cell edges leave no wall.
 
+use super::below::Instance;
 use super::check::{check_part, PartCheck};
 use super::expect::{expected, Expected};
 use super::outline::{outline, Outline};
 use super::{MeshError, Size};
-use crate::instantiate::Instance;
 use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 use std::collections::{HashMap, HashSet, VecDeque};
 
