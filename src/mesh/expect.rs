@@ -2,11 +2,11 @@
 //! components and the number of holes of each, hence the Euler characteristic `2 − 2·holes` of
 //! each component's surface (SPEC §11).
 //!
-//! The holes are counted as in [`crate::measure::exact_topology`] — a central lacuna per
+//! The holes are counted as in `crate::measure::exact_topology` — a central lacuna per
 //! non-delayed cell subdivided, a hole per two halves of a gap on a shared `Cn` edge, a gap on a
 //! free edge being a notch — but separately for the start faces of each component of the start
 //! assembly. When the sub-faces of every type are connected through their spokes, the components
-//! of every level are in bijection with those of the assembly ([`crate::component`]), and this
+//! of every level are in bijection with those of the assembly (`crate::component`), and this
 //! gives the holes of each component. Otherwise only the totals are known exactly (`per_start` is
 //! `None`) and the mesh is checked against them.
 
@@ -93,7 +93,7 @@ fn holes_of(inst: &Instance, faces: &[usize], level: u32) -> BigUint {
 }
 
 /// The exact components and holes at `level`, per start component when the induction of
-/// [`crate::component`] holds. The per-component holes are checked to add up to the holes of
+/// `crate::component` holds. The per-component holes are checked to add up to the holes of
 /// [`exact_topology`].
 pub fn expected(inst: &Instance, level: u32) -> Result<Expected, String> {
     let topo = exact_topology(inst, level)?;

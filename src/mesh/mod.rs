@@ -8,7 +8,7 @@
 //! STL, 3MF (core specification, millimetres) or Wavefront OBJ.
 //!
 //! **Architecture invariant.** This layer sits on top of the geometry layer: it may import
-//! [`crate::geometry`], [`crate::instantiate`], [`crate::measure`] and [`crate::hole`] (and the
+//! `crate::geometry`, `crate::instantiate`, `crate::measure` and `crate::hole` (and the
 //! exact types of the layers below), never the command line. The 3D volumes of SPEC §10 will use
 //! the same [`Part`], [`check`] and writers.
 //!

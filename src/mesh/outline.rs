@@ -2,7 +2,7 @@
 //! directed boundary segments (material on the left), with the component of each point.
 //!
 //! **How shared points are identified.** Every cell edge gets an exact *key*, the identity it
-//! shares with the cell across it (the scheme of [`crate::component::components_by_cells`], here
+//! shares with the cell across it (the scheme of `crate::component::components_by_cells`, here
 //! computed while streaming the depth-first walk): an edge of a start face has its own key, or the
 //! key of the edge the assembly glues it to (the second side reversed); a spoke `Ea` gets a key
 //! per (parent cell, spoke), traversed `inward` or not; piece `j` of a parent edge gets the key
@@ -18,7 +18,7 @@
 //! **What is checked here.** Every cell of level n, on the identified positions, is a simple
 //! polygon, counter-clockwise (exact orientation predicates on the `f32` coordinates); a key is
 //! held by at most two cells, in opposite directions, and by one exactly when the topology says
-//! the edge is free. Together with the winding numbers of [`crate::mesh::solid`] this proves the
+//! the edge is free. Together with the winding numbers of `crate::mesh::solid` this proves the
 //! cells do not overlap: the sum of the cells' winding numbers is the winding number of the
 //! boundary (shared edges cancel), each cell's is 0 or 1, so where the boundary's is at most 1
 //! no two cells overlap.

@@ -1,9 +1,9 @@
 //! The printability report (SPEC §11): the smallest hole and the thinnest ligament at level n, in
 //! millimetres, against a printer resolution (the smallest feature it prints).
 //!
-//! Both are sizes in the sense of [`crate::hole::polygon_size`], `2·area / perimeter` (the inradius
+//! Both are sizes in the sense of `crate::hole::polygon_size`, `2·area / perimeter` (the inradius
 //! of a triangle or a regular polygon, the width of a thin strip): the smallest hole is the one of
-//! [`crate::hole::smallest_holes`] at the level; the thinnest ligament is the smallest size of a
+//! `crate::hole::smallest_holes` at the level; the thinnest ligament is the smallest size of a
 //! level-n cell (every piece of material is made of cells, and a cell joined to its neighbours is
 //! only wider). Both are floating-point estimates that decide a warning, or with `--strict` a
 //! failure (E1042), never a topological verdict.

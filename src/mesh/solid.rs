@@ -8,7 +8,7 @@
 //! boundary around it, by walking from the outer face across the triangulation: crossing a
 //! boundary segment that has the triangle on its left adds 1, on its right subtracts 1. Triangles
 //! of winding 1 are the material; any other value than 0 or 1 means overlapping cells (E1041).
-//! With [`crate::mesh::outline`]'s check that every cell is simple and counter-clockwise, this is
+//! With `crate::mesh::outline`'s check that every cell is simple and counter-clockwise, this is
 //! a proof that no two cells overlap.
 //!
 //! **Extrusion.** Each boundary point gives a bottom vertex (z = 0) and a top vertex (z = the
@@ -209,7 +209,7 @@ fn material(o: &Outline, level: u32) -> Result<Vec<Vec<[u32; 3]>>, MeshError> {
 }
 
 /// Builds the solid of the level-`level` cells and checks it (see the module documentation and
-/// [`crate::mesh::check`]). Fails with E1041 when cells overlap, E1040 when the mesh is not a
+/// `crate::mesh::check`). Fails with E1041 when cells overlap, E1040 when the mesh is not a
 /// closed oriented manifold with the exact topology.
 pub fn build(inst: &Instance, level: u32, segments: usize, size: Size) -> Result<Solid, MeshError> {
     let expected = expected(inst, level).map_err(MeshError::Topology)?;
