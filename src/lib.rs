@@ -13,6 +13,7 @@
 //! | [`certificate`] | the certificate format and its producer; [`checker`] re-verifies it alone |
 //! | [`geometry`] | templates, parameter choice, placement, instantiation (floats from here on) |
 //! | [`measure`] | areas, perimeters, dimensions, holes and components against the exact counts |
+//! | [`mesh`] | printable solids: one checked watertight mesh per component, STL, 3MF, OBJ |
 //! | [`export`] | SVG, PNG, OBJ, STL, JSON, the text reports and the HTML report |
 //!
 //! [`error`] and [`progress`] sit under every layer. The [`prelude`] holds the common path: parse a
@@ -39,6 +40,8 @@ pub mod checker;
 pub mod geometry;
 
 pub mod measure;
+
+pub mod mesh;
 
 pub mod export;
 

@@ -95,7 +95,8 @@ pub(crate) enum Command {
     /// Inverse design: T = V·D·V⁻¹ from eigenvalues and eigenvectors (one per row), exact.
     Design(DesignArgs),
     /// Instantiate the verified model (default parameters: a template fit rounded to an exact point
-    /// of the solution space) and export level N: SVG, JSON polygons, OBJ and STL prisms, PNG.
+    /// of the solution space) and export level N: SVG, JSON polygons, PNG, and printable solids (STL,
+    /// 3MF, OBJ) checked against the exact topology.
     Render(Limited<RenderArgs>),
     /// Measure the instantiated structure per level: area, perimeter and their factors, box-counting
     /// dimension, holes and components compared with the exact counts (a mismatch fails, exit 1).
@@ -339,15 +340,24 @@ pub(crate) struct RenderArgs {
     /// Write the level-N cells as JSON polygons.
     #[arg(long, value_name = "OUT.json")]
     pub(crate) json_out: Option<std::path::PathBuf>,
-    /// Write an OBJ mesh: every cell a closed prism of this thickness (printable).
+    /// Write the solid as a Wavefront OBJ mesh (triangles, one object per component, mm).
     #[arg(long, value_name = "OUT.obj")]
     pub(crate) obj: Option<std::path::PathBuf>,
-    /// Write an ASCII STL mesh: every cell a closed, triangulated prism (printable).
+    /// Write the solid as STL (binary; --stl-ascii for ASCII), mm: one closed manifold per
+    /// component, checked against the exact topology before writing.
     #[arg(long, value_name = "OUT.stl")]
     pub(crate) stl: Option<std::path::PathBuf>,
-    /// Prism thickness for --obj and --stl (exact: 0.05, 1/20).
-    #[arg(long, default_value = "0.05")]
+    /// Write --stl as ASCII instead of binary.
+    #[arg(long, requires = "stl")]
+    pub(crate) stl_ascii: bool,
+    /// Write the solid as 3MF (core specification, unit millimetre, one object per component).
+    #[arg(long = "3mf", value_name = "OUT.3mf")]
+    pub(crate) threemf: Option<std::path::PathBuf>,
+    /// Thickness of the solid in mm for --stl, --3mf and --obj (exact: 2, 1/2, 0.8).
+    #[arg(long, default_value = "2", value_name = "MM")]
     pub(crate) thickness: String,
+    #[command(flatten)]
+    pub(crate) print: PrintArgs,
     /// Write a colour PNG: anti-aliased cells filled by type (the SVG's palette), with a legend.
     #[arg(long, value_name = "OUT.png")]
     pub(crate) png: Option<std::path::PathBuf>,
@@ -370,6 +380,20 @@ pub(crate) struct RenderArgs {
     /// Write the default template (the targets to edit for --template) to this file.
     #[arg(long, value_name = "FILE")]
     pub(crate) write_template: Option<std::path::PathBuf>,
+}
+
+/// Sizes for printing (THEORY §11), shared by `render` and `measure`.
+#[derive(Args)]
+pub(crate) struct PrintArgs {
+    /// Width in mm of the level-0 faces (x extent): the structure is scaled to it.
+    #[arg(long, default_value_t = lacuna::mesh::DEFAULT_WIDTH, value_name = "MM")]
+    pub(crate) width: f64,
+    /// The printer's smallest feature in mm: smaller holes and ligaments get a warning.
+    #[arg(long, default_value_t = lacuna::mesh::DEFAULT_RESOLUTION, value_name = "MM")]
+    pub(crate) resolution: f64,
+    /// A hole or ligament below --resolution is a failure (E1042, exit 1), not a warning.
+    #[arg(long)]
+    pub(crate) strict: bool,
 }
 
 /// The background of a picture.
@@ -396,6 +420,8 @@ pub(crate) struct MeasureArgs {
     /// Blocks per side of the relative-density map of level N (0: none).
     #[arg(long, default_value_t = 64)]
     pub(crate) density_grid: usize,
+    #[command(flatten)]
+    pub(crate) print: PrintArgs,
     /// Print JSON.
     #[arg(long)]
     pub(crate) json: bool,

@@ -172,3 +172,13 @@ pub(super) fn check_density_grid(grid: usize, min: usize) -> Result<(), Error> {
     }
     Ok(())
 }
+
+/// A mesh-layer error as a lacuna error (same code and message).
+pub(super) fn mesh_error(e: lacuna::mesh::MeshError) -> Error {
+    Error::Syntax(Box::new(lacuna::Diagnostic {
+        code: e.code(),
+        message: e.to_string(),
+        span: None,
+        source: None,
+    }))
+}

@@ -9,6 +9,7 @@ pub(super) fn run(args: MeasureArgs, limits: &Limits) -> Result<ExitCode, Error>
         raster,
         max_raster,
         density_grid,
+        print,
         json,
         digits,
     } = args;
@@ -37,16 +38,33 @@ pub(super) fn run(args: MeasureArgs, limits: &Limits) -> Result<ExitCode, Error>
         ..Default::default()
     };
     let r = lacuna::measure::measure(&inst, &opts).map_err(geo_error)?;
+    // Printability at the level: the smallest hole and thinnest ligament in mm (THEORY §11).
+    let size = lacuna::mesh::Size {
+        width: print.width,
+        ..Default::default()
+    };
+    lacuna::mesh::check_size("--width", print.width).map_err(mesh_error)?;
+    lacuna::mesh::check_size("--resolution", print.resolution).map_err(mesh_error)?;
+    let p = lacuna::mesh::printability(&inst, geo.level, geo.segments, size, print.resolution)
+        .map_err(mesh_error)?;
     eprint!("{}", choice_text(&geo, &inst));
     for f in &r.failures {
         eprintln!("verification failed: {f}");
     }
+    let strict_failures = if print.strict { p.below() } else { Vec::new() };
+    for f in &strict_failures {
+        eprintln!("verification failed: {f}");
+    }
     if json {
-        print_json(&r);
+        print_json(&lacuna::mesh::printability::WithPrintability {
+            report: &r,
+            printability: &p,
+        });
     } else {
         out(&r.to_text());
+        out(&p.text());
     }
-    Ok(if r.verified {
+    Ok(if r.verified && strict_failures.is_empty() {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(EXIT_FAILED)

@@ -70,11 +70,13 @@ pub(crate) fn main() -> ExitCode {
             }
             eprint!("{}", e.render());
             // Goals that no parameters meet are a negative answer, not bad input.
-            ExitCode::from(if e.code() == "E1031" {
-                EXIT_FAILED
-            } else {
-                EXIT_BAD_INPUT
-            })
+            ExitCode::from(
+                if e.code() == "E1031" || lacuna::mesh::is_failure_code(e.code()) {
+                    EXIT_FAILED
+                } else {
+                    EXIT_BAD_INPUT
+                },
+            )
         }
     }
 }

@@ -10,7 +10,10 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         json_out,
         obj,
         stl,
+        stl_ascii,
+        threemf,
         thickness,
+        print,
         png,
         size,
         background,
@@ -25,6 +28,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         ("--json-out", &json_out),
         ("--obj", &obj),
         ("--stl", &stl),
+        ("--3mf", &threemf),
         ("--png", &png),
         ("--density", &density),
     ]
@@ -33,7 +37,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
     .collect();
     if wanted.is_empty() {
         return Err(Error::Usage(
-            "nothing to write: give --svg, --json-out, --obj, --stl, --png, --density or --write-template"
+            "nothing to write: give --svg, --json-out, --obj, --stl, --3mf, --png, --density or --write-template"
                 .into(),
         ));
     }
@@ -47,11 +51,26 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         });
     }
     let thickness = positive_number("--thickness", &thickness)?;
+    let mesh = lacuna::mesh::Targets {
+        stl: stl.clone(),
+        stl_ascii,
+        threemf: threemf.clone(),
+        obj: obj.clone(),
+    };
+    let solid_size = lacuna::mesh::Size {
+        width: print.width,
+        thickness,
+    };
+    if mesh.any() {
+        lacuna::mesh::check_size("--thickness", thickness).map_err(mesh_error)?;
+        lacuna::mesh::check_size("--width", print.width).map_err(mesh_error)?;
+        lacuna::mesh::check_size("--resolution", print.resolution).map_err(mesh_error)?;
+    }
     let mut outputs = Outputs::check(&geo.inputs(), &wanted)?;
     if let Some((name, model)) = automaton::automaton_input(&geo)? {
-        if stl.is_some() || density.is_some() || write_template.is_some() {
+        if stl.is_some() || threemf.is_some() || density.is_some() || write_template.is_some() {
             return Err(Error::Usage(
-                "--stl, --density and --write-template apply to faces; an automaton is written with --svg, --png, --json-out or --obj".into(),
+                "--stl, --3mf, --density and --write-template apply to faces; an automaton is written with --svg, --png, --json-out or --obj".into(),
             ));
         }
         let vector = svg.is_some() || json_out.is_some() || obj.is_some();
@@ -73,7 +92,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             size,
         );
     }
-    let vector = svg.is_some() || json_out.is_some() || obj.is_some() || stl.is_some();
+    let vector = svg.is_some() || json_out.is_some() || mesh.any();
     let (_, inst) = instance(&geo, limits, if vector { 2_000_000 } else { 100_000_000 })?;
     let (level, segs) = (geo.level, geo.segments);
     outputs.say(&choice_text(&geo, &inst));
@@ -106,17 +125,35 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         outputs.write(p, |w| lacuna::export::write_json(&inst, level, segs, w))?;
         wrote(&outputs, p);
     }
-    if let Some(p) = &obj {
-        outputs.write(p, |w| {
-            lacuna::export::write_obj(&inst, level, segs, thickness, w)
-        })?;
-        wrote(&outputs, p);
-    }
-    if let Some(p) = &stl {
-        outputs.write(p, |w| {
-            lacuna::export::write_stl(&inst, level, segs, thickness, w)
-        })?;
-        wrote(&outputs, p);
+    if mesh.any() {
+        // The solid is built and checked once, before any mesh file is written (THEORY §11).
+        let pr = lacuna::mesh::printability(&inst, level, segs, solid_size, print.resolution)
+            .map_err(mesh_error)?;
+        outputs.say(&pr.text());
+        pr.enforce(print.strict).map_err(mesh_error)?;
+        let solid = lacuna::mesh::build(&inst, level, segs, solid_size).map_err(mesh_error)?;
+        outputs.say(&solid.summary());
+        if let Some(p) = &stl {
+            outputs.write(p, |w| match stl_ascii {
+                true => lacuna::mesh::stl::write_ascii(&solid, w),
+                false => lacuna::mesh::stl::write_binary(&solid, w),
+            })?;
+            wrote(&outputs, p);
+        }
+        if let Some(p) = &threemf {
+            // A ZIP package is written with seeks: build it in memory, then write it out.
+            let mut zip = std::io::Cursor::new(Vec::new());
+            lacuna::mesh::threemf::write(&solid, &mut zip).map_err(|e| Error::Write {
+                path: p.display().to_string(),
+                reason: e.to_string(),
+            })?;
+            outputs.write(p, |w| w.write_all(zip.get_ref()))?;
+            wrote(&outputs, p);
+        }
+        if let Some(p) = &obj {
+            outputs.write(p, |w| lacuna::mesh::obj::write(&solid, w))?;
+            wrote(&outputs, p);
+        }
     }
     if let Some(p) = &png {
         outputs.write(p, |w| {

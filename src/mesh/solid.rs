@@ -1,0 +1,359 @@
+//! The solid: the outline triangulated and extruded, one [`Part`] per component, checked against
+//! the exact topology before it is handed to a writer.
+//!
+//! **Top and bottom.** The boundary points go into one constrained Delaunay triangulation
+//! (`spade`, bulk loaded) with every boundary segment as a constraint. Two boundary points at the
+//! same position (the boundary touching itself, or two components touching) and two boundary
+//! segments that cross are refused (E1041). Every triangle then gets the winding number of the
+//! boundary around it, by walking from the outer face across the triangulation: crossing a
+//! boundary segment that has the triangle on its left adds 1, on its right subtracts 1. Triangles
+//! of winding 1 are the material; any other value than 0 or 1 means overlapping cells (E1041).
+//! With `crate::mesh::outline`'s check that every cell is simple and counter-clockwise, this is
+//! a proof that no two cells overlap.
+//!
+//! **Extrusion.** Each boundary point gives a bottom vertex (z = 0) and a top vertex (z = the
+//! thickness); a material triangle gives a top triangle (counter-clockwise seen from above) and
+//! a bottom one (reversed); each boundary segment `a → b` (material on its left) gives a wall of
+//! two triangles facing outwards. Nothing else: shared cell edges leave no wall.
+
+use super::below::Instance;
+use super::check::{check_part, PartCheck};
+use super::expect::{expected, Expected};
+use super::outline::{outline, Outline};
+use super::{MeshError, Size};
+use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
+use std::collections::{HashMap, HashSet, VecDeque};
+
+/// One connected component of a solid: an indexed triangle mesh in millimetres.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Part {
+    /// Vertex positions.
+    pub vertices: Vec<[f32; 3]>,
+    /// Triangles, counter-clockwise seen from outside.
+    pub triangles: Vec<[u32; 3]>,
+    /// The holes the exact topology gives this component (when known per component).
+    pub holes: Option<u64>,
+}
+
+/// A checked solid: its parts and what was checked.
+#[derive(Clone, Debug)]
+pub struct Solid {
+    /// The structure's name.
+    pub name: String,
+    /// The level.
+    pub level: u32,
+    /// The sizes in mm.
+    pub size: Size,
+    /// One part per component.
+    pub parts: Vec<Part>,
+    /// The check of each part.
+    pub checks: Vec<PartCheck>,
+    /// The exact expectations it was checked against.
+    pub expected: Expected,
+    /// The number of level-n cells.
+    pub cells: u64,
+}
+
+impl Solid {
+    /// The number of triangles of all parts.
+    pub fn triangle_count(&self) -> usize {
+        self.parts.iter().map(|p| p.triangles.len()).sum()
+    }
+
+    /// A few lines saying what was built and checked.
+    pub fn summary(&self) -> String {
+        let v: usize = self.parts.iter().map(|p| p.vertices.len()).sum();
+        let euler: Vec<String> = self.checks.iter().map(|c| c.euler.to_string()).collect();
+        format!(
+            "mesh: {} level {}, {} cells, width {} mm, thickness {} mm: {} part(s), {v} vertices, {} triangles; closed oriented manifold, Euler characteristic {} (exact: {} component(s), {} hole(s))\n",
+            self.name,
+            self.level,
+            self.cells,
+            self.size.width,
+            self.size.thickness,
+            self.parts.len(),
+            self.triangle_count(),
+            euler.join(", "),
+            self.expected.components,
+            self.expected.holes
+        )
+    }
+}
+
+/// The material triangles of an outline by component (indices into the outline's points).
+fn material(o: &Outline, level: u32) -> Result<Vec<Vec<[u32; 3]>>, MeshError> {
+    let overlap = |reason: String| MeshError::Overlap { level, reason };
+    // Distinct positions: a boundary touching itself is not a manifold.
+    let mut seen: HashMap<(u64, u64), u32> = HashMap::with_capacity(o.points.len());
+    for (i, p) in o.points.iter().enumerate() {
+        if let Some(j) = seen.insert((p[0].to_bits(), p[1].to_bits()), i as u32) {
+            return Err(overlap(format!(
+                "the boundary touches itself at ({}, {}) mm (boundary points {j} and {i}{})",
+                p[0],
+                p[1],
+                if o.component[j as usize] != o.component[i] {
+                    ", of two components"
+                } else {
+                    ""
+                }
+            )));
+        }
+    }
+    drop(seen);
+    // Every boundary point starts one segment and ends one.
+    let mut degree = vec![[0u8; 2]; o.points.len()];
+    for s in &o.segments {
+        degree[s[0] as usize][0] += 1;
+        degree[s[1] as usize][1] += 1;
+    }
+    if let Some(i) = degree.iter().position(|d| *d != [1, 1]) {
+        let p = o.points[i];
+        return Err(overlap(format!(
+            "the boundary passes {} times through ({}, {}) mm",
+            degree[i][0].max(degree[i][1]),
+            p[0],
+            p[1]
+        )));
+    }
+    let pts: Vec<Point2<f64>> = o.points.iter().map(|p| Point2::new(p[0], p[1])).collect();
+    let edges: Vec<[usize; 2]> = o
+        .segments
+        .iter()
+        .map(|s| [s[0] as usize, s[1] as usize])
+        .collect();
+    let mut conflict: Option<[usize; 2]> = None;
+    let cdt = ConstrainedDelaunayTriangulation::<Point2<f64>>::try_bulk_load_cdt(
+        pts,
+        edges.clone(),
+        |e| {
+            conflict.get_or_insert(e);
+        },
+    )
+    .map_err(|e| overlap(format!("the boundary cannot be triangulated: {e:?}")))?;
+    if let Some(e) = conflict {
+        let p = o.points[e[0]];
+        return Err(overlap(format!(
+            "the boundary crosses itself near ({}, {}) mm",
+            p[0], p[1]
+        )));
+    }
+    if cdt.num_vertices() != o.points.len() {
+        return Err(overlap("boundary points were merged".into()));
+    }
+    // Winding numbers from the outer face.
+    let directed: HashSet<(u32, u32)> = o.segments.iter().map(|s| (s[0], s[1])).collect();
+    let faces = cdt.num_all_faces();
+    let mut adj: Vec<Vec<(usize, i32)>> = vec![Vec::new(); faces];
+    for e in cdt.directed_edges() {
+        let (a, b) = (e.from().fix().index() as u32, e.to().fix().index() as u32);
+        let (f, g) = (e.face().fix().index(), e.rev().face().fix().index());
+        // Crossing from g into f (f lies on the left of a → b).
+        let step = if directed.contains(&(a, b)) {
+            1
+        } else if directed.contains(&(b, a)) {
+            -1
+        } else {
+            0
+        };
+        adj[g].push((f, step));
+    }
+    let outer = cdt.outer_face().fix().index();
+    let mut winding: Vec<Option<i32>> = vec![None; faces];
+    winding[outer] = Some(0);
+    let mut queue = VecDeque::from([outer]);
+    while let Some(g) = queue.pop_front() {
+        let w = winding[g].expect("set when queued");
+        for &(f, step) in &adj[g] {
+            match winding[f] {
+                None => {
+                    winding[f] = Some(w + step);
+                    queue.push_back(f);
+                }
+                Some(x) if x != w + step => {
+                    return Err(overlap("the boundary is not a set of closed curves".into()));
+                }
+                Some(_) => {}
+            }
+        }
+    }
+    let mut parts: Vec<Vec<[u32; 3]>> = vec![Vec::new(); o.components];
+    for f in cdt.inner_faces() {
+        let w = winding[f.fix().index()].unwrap_or(0);
+        match w {
+            0 => {}
+            1 => {
+                let v = f.vertices().map(|v| v.fix().index() as u32);
+                let c = o.component[v[0] as usize];
+                if v.iter().any(|&x| o.component[x as usize] != c) {
+                    return Err(overlap(format!(
+                        "components {} and {} overlap",
+                        c,
+                        v.iter()
+                            .map(|&x| o.component[x as usize])
+                            .find(|&x| x != c)
+                            .unwrap_or(c)
+                    )));
+                }
+                parts[c as usize].push(v);
+            }
+            _ => {
+                let p = f.center();
+                return Err(overlap(format!(
+                    "{w} layers of cells cover ({:.4}, {:.4}) mm: cells overlap",
+                    p.x, p.y
+                )));
+            }
+        }
+    }
+    Ok(parts)
+}
+
+/// Builds the solid of the level-`level` cells and checks it (see the module documentation and
+/// `crate::mesh::check`). Fails with E1041 when cells overlap, E1040 when the mesh is not a
+/// closed oriented manifold with the exact topology.
+pub fn build(inst: &Instance, level: u32, segments: usize, size: Size) -> Result<Solid, MeshError> {
+    let expected = expected(inst, level).map_err(MeshError::Topology)?;
+    let o = outline(inst, level, segments, size)?;
+    let failed = |reason: String| MeshError::Check { level, reason };
+    if o.components as u64 != expected.components {
+        return Err(failed(format!(
+            "{} components of cells, the exact topology says {}",
+            o.components, expected.components
+        )));
+    }
+    let tops = material(&o, level)?;
+    // Local vertex numbers per component.
+    let mut local = vec![u32::MAX; o.points.len()];
+    let mut members: Vec<Vec<u32>> = vec![Vec::new(); o.components];
+    for (i, &c) in o.component.iter().enumerate() {
+        local[i] = members[c as usize].len() as u32;
+        members[c as usize].push(i as u32);
+    }
+    let mut walls: Vec<Vec<[u32; 2]>> = vec![Vec::new(); o.components];
+    for s in &o.segments {
+        walls[o.component[s[0] as usize] as usize]
+            .push([local[s[0] as usize], local[s[1] as usize]]);
+    }
+    let z = size.thickness as f32;
+    let mut parts = Vec::with_capacity(o.components);
+    for (c, top) in tops.into_iter().enumerate() {
+        let n = members[c].len() as u32;
+        let mut vertices: Vec<[f32; 3]> = Vec::with_capacity(2 * n as usize);
+        for h in [0.0f32, z] {
+            vertices.extend(members[c].iter().map(|&i| {
+                let p = o.points[i as usize];
+                [p[0] as f32, p[1] as f32, h]
+            }));
+        }
+        let mut triangles = Vec::with_capacity(2 * top.len() + 2 * walls[c].len());
+        for t in &top {
+            let [a, b, d] = t.map(|i| local[i as usize]);
+            triangles.push([a + n, b + n, d + n]);
+            triangles.push([a, d, b]);
+        }
+        for &[a, b] in &walls[c] {
+            triangles.push([a, b, b + n]);
+            triangles.push([a, b + n, a + n]);
+        }
+        parts.push(Part {
+            vertices,
+            triangles,
+            holes: None,
+        });
+    }
+    let checks = verdict(level, &mut parts, &expected, &o.component_start)?;
+    Ok(Solid {
+        name: inst.name.clone(),
+        level,
+        size,
+        parts,
+        checks,
+        expected,
+        cells: o.cells,
+    })
+}
+
+/// Checks every part ([`check_part`]) and compares it with the exact topology: one connected
+/// surface per component, Euler characteristic `2 − 2·holes` per component when the holes of each
+/// are known (`component_start[c]` is the start face of component `c`), and in any case
+/// `Σ χ = 2·components − 2·holes`. Records each part's holes.
+pub fn verdict(
+    level: u32,
+    parts: &mut [Part],
+    expected: &Expected,
+    component_start: &[usize],
+) -> Result<Vec<PartCheck>, MeshError> {
+    let failed = |reason: String| MeshError::Check { level, reason };
+    let mut checks = Vec::with_capacity(parts.len());
+    let mut euler_sum = 0i64;
+    for (c, part) in parts.iter_mut().enumerate() {
+        let ck = check_part(part).map_err(|e| failed(format!("component {c}: {e}")))?;
+        if ck.components != 1 {
+            return Err(failed(format!(
+                "component {c} of cells gives {} connected surfaces",
+                ck.components
+            )));
+        }
+        if let Some((of, holes)) = &expected.per_start {
+            let h = &holes[of[component_start[c]]];
+            let want = Expected::euler(h)
+                .ok_or_else(|| failed(format!("component {c}: {h} holes is too many")))?;
+            if ck.euler != want {
+                return Err(failed(format!(
+                    "component {c}: Euler characteristic {}, the exact topology gives {h} holes: 2 − 2·{h} = {want}",
+                    ck.euler
+                )));
+            }
+            part.holes = h.try_into().ok();
+        }
+        euler_sum += ck.euler;
+        checks.push(ck);
+    }
+    // Σ (2 − 2·h_c) = 2·components − 2·holes.
+    let want = num_traits::ToPrimitive::to_i64(&expected.holes)
+        .and_then(|h| (expected.components as i64).checked_sub(h)?.checked_mul(2));
+    if want != Some(euler_sum) {
+        return Err(failed(format!(
+            "the Euler characteristics add up to {euler_sum}, the exact topology ({} components, {} holes) gives {}",
+            expected.components,
+            expected.holes,
+            want.map_or("an overflow".to_string(), |w| w.to_string())
+        )));
+    }
+    Ok(checks)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_bigint::BigUint;
+
+    fn tetra() -> Part {
+        Part {
+            vertices: vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            triangles: vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]],
+            holes: None,
+        }
+    }
+
+    fn expected(holes: u32, per_start: bool) -> Expected {
+        Expected {
+            components: 1,
+            holes: BigUint::from(holes),
+            per_start: per_start.then(|| (vec![0], vec![BigUint::from(holes)])),
+        }
+    }
+
+    #[test]
+    fn a_sphere_passes_for_no_hole_and_fails_for_one() {
+        let mut parts = vec![tetra()];
+        let c = verdict(0, &mut parts, &expected(0, true), &[0]).unwrap();
+        assert_eq!(c[0].euler, 2);
+        assert_eq!(parts[0].holes, Some(0));
+        for per_start in [true, false] {
+            let e = verdict(3, &mut parts, &expected(1, per_start), &[0]).unwrap_err();
+            assert_eq!(e.code(), "E1040", "{e}");
+            assert!(e.is_failure());
+        }
+    }
+}
