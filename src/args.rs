@@ -61,7 +61,8 @@ pub(crate) enum Command {
         #[arg(long, value_name = "OUT.json")]
         certificate: Option<std::path::PathBuf>,
     },
-    /// Run only the independent checker on a certificate; exit 0 when every step is proved.
+    /// Run only the independent checker on a certificate: prints its claim, then every step; exit
+    /// 0 when every step the claim needs is proved, 1 when one fails, 3 when steps are missing.
     Check {
         /// The certificate file (JSON).
         certificate: std::path::PathBuf,

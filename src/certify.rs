@@ -8,9 +8,10 @@
 //! other classes, and the minimal polynomial of each limit point.
 
 use crate::certificate::{
-    Adjacency, Algebraic, Certificate, ClassClaim, ClosureStep, ConflictStep, Edge, Face, Kind,
-    Origin, Params, Pattern, PointClaim, RadiusWitness, RatioStep, Recipe, Row, SolutionStep,
-    SpokeItem, Step, SubFace, System, TypeRule,
+    Adjacency, Algebraic, AutomatonClaim, AutomatonOperator, AutomatonState, Certificate, Claim,
+    ClassClaim, ClosureStep, ConflictStep, Edge, Face, FacesClaim, Kind, Origin, Params, Pattern,
+    PointClaim, RadiusWitness, RatioStep, Recipe, Row, SolutionStep, SpokeItem, Step, SubFace,
+    SubstitutionClaim, System, TypeRule, WordEquation, WordFactor,
 };
 use num_rational::BigRational;
 use num_traits::{One, Zero};
@@ -38,24 +39,31 @@ pub enum CertifyError {
     Witness(String),
 }
 
-/// The full certificate of a closed type set: the closure, the solution space (or conflict) of
-/// the generated constraint system, and the limit ratio.
+/// The full certificate of a closed type set: the claim (its start faces and the options of
+/// SPEC §6), the closure, the solution space (or conflict) of the generated constraint system,
+/// and the limit ratio. `input` is a label for people.
 pub fn certificate_for(
     input: &str,
     ts: &lacuna::TypeSet,
     opts: lacuna::GenOptions,
 ) -> Result<Certificate, CertifyError> {
-    let mut cert = Certificate::new(input);
-    cert.steps.push(Step::Closure(closure_step(ts)?));
+    let closure = closure_step(ts)?;
+    let faces = ts
+        .start
+        .iter()
+        .map(|&t| closure.types[t].face.clone())
+        .collect();
+    let claim = Claim::Faces(FacesClaim {
+        faces,
+        degree: opts.degree.max(1),
+        cantor_gap: opts.cantor_gap.to_string(),
+    });
+    let mut cert = Certificate::new(input, claim);
+    cert.steps.push(Step::Closure(closure));
     let source = format!(
         "the constraints of the automaton generated from the closure (SPEC §6, Bézier degree {}, Cantor gap/piece ratio {})",
         opts.degree, opts.cantor_gap
     );
-    let recipe = Recipe {
-        degree: opts.degree.max(1),
-        cantor_gap: opts.cantor_gap.to_string(),
-        unknowns: Vec::new(),
-    };
     let generated = lacuna::automaton_of(ts, opts);
     let (_, lin, solution) = lacuna::solve_automaton(&generated.automaton)?;
     let recipe = Recipe {
@@ -64,12 +72,20 @@ pub fn certificate_for(
             .iter()
             .map(|&e| generated.automaton.entry_name(e))
             .collect(),
-        ..recipe
     };
     cert.steps.push(step_of_system(
         system(&source, &lin.system, Some(recipe)),
         &solution,
     ));
+    let (matrix, c, start) = substitution_of(ts);
+    cert.steps
+        .push(Step::LimitRatio(ratio_step(&matrix, &c, &start)?));
+    Ok(cert)
+}
+
+/// The substitution of a closed type set: matrix rows, contributions in halves, start
+/// `(type, multiplicity)` sorted by type.
+pub fn substitution_of(ts: &lacuna::TypeSet) -> SubstitutionParts {
     let matrix = ts.matrix();
     let c: Vec<u64> = ts.types.iter().map(|t| t.contribution_halves()).collect();
     let mut start: Vec<(usize, u64)> = Vec::new();
@@ -80,34 +96,107 @@ pub fn certificate_for(
         }
     }
     start.sort_unstable();
-    cert.steps
-        .push(Step::LimitRatio(ratio_step(&matrix, &c, &start)?));
+    (matrix, c, start)
+}
+
+/// A substitution: matrix rows `(type, count)`, contributions in halves, start
+/// `(type, multiplicity)`.
+pub type SubstitutionParts = (Vec<Vec<(usize, u64)>>, Vec<u64>, Vec<(usize, u64)>);
+
+/// The certificate of a substitution given as a matrix: the claim is the matrix, contributions
+/// and start, the one step its limit ratio.
+pub fn certificate_for_substitution(
+    name: &str,
+    matrix: &[Vec<(usize, u64)>],
+    contribution_halves: &[u64],
+    start: &[(usize, u64)],
+) -> Result<Certificate, CertifyError> {
+    let claim = Claim::Substitution(SubstitutionClaim {
+        matrix: matrix.to_vec(),
+        contribution_halves: contribution_halves.to_vec(),
+        start: start.to_vec(),
+    });
+    let mut cert = Certificate::new(name, claim);
+    cert.steps.push(Step::LimitRatio(ratio_step(
+        matrix,
+        contribution_halves,
+        start,
+    )?));
     Ok(cert)
 }
 
-/// The certificate of a hand-written automaton's constraint system.
+/// The certificate of a hand-written automaton: the claim is the automaton itself (states,
+/// operators, words), the one step the solution space or conflict of its system.
 pub fn certificate_for_automaton(
     name: &str,
     automaton: &lacuna::Automaton,
 ) -> Result<Certificate, CertifyError> {
     let (_, lin, solution) = lacuna::solve_automaton(automaton)?;
     let source = format!("the constraints of the automaton `{name}`");
-    Ok(certificate_for_system(
-        name,
-        &source,
-        &lin.system,
+    let mut cert = Certificate::new(name, Claim::Automaton(automaton_claim(automaton)));
+    cert.steps.push(step_of_system(
+        system(&source, &lin.system, None),
         &solution,
-    ))
+    ));
+    Ok(cert)
 }
 
-/// The certificate of an explicit linear system and lacuna's solution of it.
+fn matrix_strings(m: &lacuna::Matrix) -> Vec<Vec<String>> {
+    (0..m.rows)
+        .map(|r| (0..m.cols).map(|c| m.get(r, c).to_string()).collect())
+        .collect()
+}
+
+/// The automaton as certificate data.
+pub fn automaton_claim(a: &lacuna::Automaton) -> AutomatonClaim {
+    let word = |w: &[lacuna::Factor]| -> Vec<WordFactor> {
+        w.iter()
+            .map(|f| match f {
+                lacuna::Factor::Op(o) => WordFactor::Op(*o),
+                lacuna::Factor::Literal(m) => WordFactor::Literal(matrix_strings(m)),
+            })
+            .collect()
+    };
+    AutomatonClaim {
+        states: a
+            .states
+            .iter()
+            .map(|s| AutomatonState {
+                name: s.name.clone(),
+                dim: s.dim,
+            })
+            .collect(),
+        operators: a
+            .operators
+            .iter()
+            .map(|o| AutomatonOperator {
+                name: o.name.clone(),
+                to: o.to,
+                from: o.from,
+                value: o.value.as_ref().map(matrix_strings),
+            })
+            .collect(),
+        constraints: a
+            .constraints
+            .iter()
+            .map(|c| WordEquation {
+                lhs: word(&c.lhs),
+                rhs: word(&c.rhs),
+            })
+            .collect(),
+        barycentric: a.barycentric.clone(),
+    }
+}
+
+/// The certificate of an explicit linear system and lacuna's solution of it: the claim is the
+/// system.
 pub fn certificate_for_system(
     name: &str,
     source: &str,
     sys: &lacuna::LinearSystem,
     solution: &lacuna::Solution,
 ) -> Certificate {
-    let mut cert = Certificate::new(name);
+    let mut cert = Certificate::new(name, Claim::System(system(source, sys, None)));
     cert.steps.push(solution_step(source, sys, solution));
     cert
 }
@@ -208,10 +297,7 @@ pub fn closure_step(ts: &lacuna::TypeSet) -> Result<ClosureStep, CertifyError> {
             })
         })
         .collect::<Result<_, CertifyError>>()?;
-    Ok(ClosureStep {
-        types,
-        start: ts.start.clone(),
-    })
+    Ok(ClosureStep { types })
 }
 
 fn terms(v: &[(usize, BigRational)]) -> Vec<(usize, String)> {
@@ -307,7 +393,7 @@ pub fn ratio_step(
             })
         })
         .collect::<Result<_, CertifyError>>()?;
-    let points = report
+    let points: Vec<PointClaim> = report
         .limit_points
         .iter()
         .map(|p| {
@@ -321,14 +407,15 @@ pub fn ratio_step(
             })
         })
         .collect::<Result<_, CertifyError>>()?;
+    let digits = points
+        .first()
+        .map_or(0, |p| p.decimal.split_once('.').map_or(0, |(_, f)| f.len()));
     Ok(RatioStep {
-        matrix: matrix.to_vec(),
-        contribution_halves: contribution_halves.to_vec(),
-        start: start.to_vec(),
         classes,
         rho: algebraic(&rho),
         period: report.period,
         exists: report.exists,
+        digits,
         points,
     })
 }

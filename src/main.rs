@@ -9,6 +9,9 @@ use std::process::ExitCode;
 const EXIT_FAILED: u8 = 1;
 /// Exit code: bad input or an exceeded limit.
 const EXIT_BAD_INPUT: u8 = 2;
+/// Exit code of `lacuna check`: every step present is proved, but the certificate lacks steps
+/// its claim needs (a partial certificate proves part of its claim only).
+const EXIT_PARTIAL: u8 = 3;
 
 mod args;
 use args::{Cli, Command, GeoArgs};
@@ -344,6 +347,8 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             }
             Ok(if report.all_proved() {
                 ExitCode::SUCCESS
+            } else if report.partial() {
+                ExitCode::from(EXIT_PARTIAL)
             } else {
                 ExitCode::from(EXIT_FAILED)
             })

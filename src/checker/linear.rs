@@ -1,15 +1,15 @@
 //! The linear-system steps: a solution space (particular solution, kernel basis, a pivot minor
 //! shown nonsingular modulo a prime) and an inconsistency (a combination giving `0 = c ≠ 0`).
 
-use super::system::tie;
+use super::system::{tie, Tie};
 use super::{rat, Checked, Equation, Q};
-use crate::certificate::{ClosureStep, ConflictStep, Row, SolutionStep};
+use crate::certificate::{ConflictStep, Row, SolutionStep};
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_traits::{One, ToPrimitive, Zero};
 use std::collections::{BTreeMap, BTreeSet};
 
-fn parse_rows(rows: &[Row], unknowns: usize) -> Result<Vec<Equation>, String> {
+pub(super) fn parse_rows(rows: &[Row], unknowns: usize) -> Result<Vec<Equation>, String> {
     rows.iter()
         .enumerate()
         .map(|(i, r)| {
@@ -41,11 +41,23 @@ fn dot(terms: &[(usize, Q)], x: &BTreeMap<usize, Q>) -> Q {
         .sum()
 }
 
-/// A solution space; with a recipe, of the system rebuilt from the proved closure step.
-pub(super) fn check_solution(s: &SolutionStep, closure: Option<&ClosureStep>) -> Checked {
+/// A solution space of the system tied to the claim (rebuilt from the closure or the automaton,
+/// or the claim's own system).
+pub(super) fn check_solution(s: &SolutionStep, to: Tie) -> Checked {
     let n = s.system.unknowns;
+    // rank + dof = unknowns with rank = |pivots| and dof = |free|, first: `n` then bounds the
+    // allocations below by the certificate's own size.
+    let dof = s.free.len();
+    if s.rank != s.pivots.len() || s.dof != dof || s.rank.checked_add(dof) != Some(n) {
+        return Err(format!(
+            "rank {} (|pivots| = {}) + dof {} (|free| = {dof}) ≠ {n} unknowns",
+            s.rank,
+            s.pivots.len(),
+            s.dof
+        ));
+    }
     let rows = parse_rows(&s.system.rows, n)?;
-    let system = tie(&s.system, &rows, closure)?;
+    let system = tie(&s.system, &rows, to)?;
     let part = sparse(&s.particular, n, "particular solution")?;
     if let Some(i) = rows.iter().position(|(t, rhs)| dot(t, &part) != *rhs) {
         return Err(format!("the particular solution fails row {i}"));
@@ -82,20 +94,17 @@ pub(super) fn check_solution(s: &SolutionStep, closure: Option<&ClosureStep>) ->
             return Err(format!("basis vector {k} fails homogeneous row {i}"));
         }
     }
-    let dof = s.free.len();
-    if s.rank != s.pivots.len() || s.dof != dof || s.rank + dof != n {
-        return Err(format!(
-            "rank {} (|pivots| = {}) + dof {} (|free| = {dof}) ≠ {n} unknowns",
-            s.rank,
-            s.pivots.len(),
-            s.dof
-        ));
-    }
     let p = nonsingular_minor(&rows, &s.pivots, n)?;
-    Ok(format!(
-        "{system}; rank {} (pivot minor nonsingular mod {p}), {dof} degrees of freedom; the \
-         solution set is exactly particular + span(basis)",
-        s.rank
+    Ok((
+        format!(
+            "{system}; rank {} (pivot minor nonsingular mod {p}), {dof} degrees of freedom; the \
+             solution set is exactly particular + span(basis)",
+            s.rank
+        ),
+        format!(
+            "constraint system: consistent, rank {}, {dof} degrees of freedom",
+            s.rank
+        ),
     ))
 }
 
@@ -167,10 +176,10 @@ fn nonsingular_minor(
     Err(format!("the pivot minor is not shown nonsingular: {why}"))
 }
 
-/// An inconsistency; with a recipe, of the system rebuilt from the proved closure step.
-pub(super) fn check_conflict(c: &ConflictStep, closure: Option<&ClosureStep>) -> Checked {
+/// An inconsistency of the system tied to the claim.
+pub(super) fn check_conflict(c: &ConflictStep, to: Tie) -> Checked {
     let rows = parse_rows(&c.system.rows, c.system.unknowns)?;
-    let system = tie(&c.system, &rows, closure)?;
+    let system = tie(&c.system, &rows, to)?;
     let mut sum: BTreeMap<usize, Q> = BTreeMap::new();
     let mut rhs = Q::zero();
     let mut used = BTreeSet::new();
@@ -193,8 +202,11 @@ pub(super) fn check_conflict(c: &ConflictStep, closure: Option<&ClosureStep>) ->
             c.constant
         ));
     }
-    Ok(format!(
-        "{system}; {} of them combine to 0 = {rhs}: no solution",
-        c.multipliers.len()
+    Ok((
+        format!(
+            "{system}; {} of them combine to 0 = {rhs}: no solution",
+            c.multipliers.len()
+        ),
+        "constraint system: inconsistent (no solution)".into(),
     ))
 }
