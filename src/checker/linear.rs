@@ -76,15 +76,26 @@ pub(super) fn check_solution(s: &SolutionStep, to: Tie) -> Checked {
     for (i, (t, _)) in rows.iter().enumerate() {
         t.iter().for_each(|(v, _)| rows_of[*v].push(i));
     }
+    // Which unknown is free, and the index of its basis vector: one pass over each vector's
+    // own entries instead of a scan of every free unknown per vector.
+    let mut free_at: Vec<Option<usize>> = vec![None; n];
+    s.free
+        .iter()
+        .enumerate()
+        .for_each(|(j, &f)| free_at[f] = Some(j));
     for (k, b) in s.basis.iter().enumerate() {
         let b = sparse(b, n, &format!("basis vector {k}"))?;
-        for (j, f) in s.free.iter().enumerate() {
-            let want = if j == k { Q::one() } else { Q::zero() };
-            if b.get(f).cloned().unwrap_or_else(Q::zero) != want {
-                return Err(format!(
-                    "basis vector {k} is not {want} at free unknown {f}"
-                ));
-            }
+        if b.get(&s.free[k]).is_none_or(|x| !x.is_one()) {
+            return Err(format!(
+                "basis vector {k} is not 1 at free unknown {}",
+                s.free[k]
+            ));
+        }
+        if let Some((f, _)) = b
+            .iter()
+            .find(|(v, x)| free_at[**v].is_some_and(|j| j != k) && !x.is_zero())
+        {
+            return Err(format!("basis vector {k} is not 0 at free unknown {f}"));
         }
         let touched: BTreeSet<usize> = b.keys().flat_map(|v| rows_of[*v].iter().copied()).collect();
         if let Some(i) = touched
