@@ -455,3 +455,40 @@ fn identities(c: &ClosureStep, t: usize) -> Result<(), String> {
         )),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn repeated_pairs_add_up_exactly() {
+        // (0, 2^64 − 1) twice and (0, 7): 2^65 + 5, not the wrapped 5.
+        let got = merge_pairs(&[(0, u64::MAX), (0, u64::MAX), (0, 7)], 1, "row").unwrap();
+        let want = (BigUint::one() << 65u32) + BigUint::from(5u32);
+        assert_eq!(got[&0], want);
+        assert!(merge_pairs(&[(1, 1)], 1, "row").is_err());
+        // A multiplicity of 2^64 + 6 written as (0, 2^64 − 1), (0, 7) is not 6.
+        let got = merge_pairs(&[(0, u64::MAX), (0, 7)], 1, "start").unwrap();
+        assert_eq!(got[&0], (BigUint::one() << 64u32) + BigUint::from(6u32));
+    }
+
+    #[test]
+    fn least_rotation_is_the_smallest_start_of_the_least_rotation() {
+        // Against the quadratic definition on every word of length ≤ 7 over {0, 1, 2}.
+        let slow = |b: &[u8]| -> usize {
+            let rot = |r: usize| -> Vec<u8> { b[r..].iter().chain(&b[..r]).copied().collect() };
+            (0..b.len()).min_by_key(|&r| (rot(r), r)).unwrap_or(0)
+        };
+        for len in 1..=7u32 {
+            for code in 0..3usize.pow(len) {
+                let w: Vec<u8> = (0..len)
+                    .map(|i| ((code / 3usize.pow(i)) % 3) as u8)
+                    .collect();
+                assert_eq!(least_rotation(&w), slow(&w), "{w:?}");
+            }
+        }
+        // Linear: a million equal edges take a moment, not 10^12 comparisons.
+        let long = vec![0u8; 1_000_000];
+        assert_eq!(least_rotation(&long), 0);
+    }
+}

@@ -530,17 +530,6 @@ mod tests {
     }
 
     #[test]
-    fn repeated_pairs_add_up_exactly() {
-        // (0, 2^64 − 1) twice and (0, 7): 2^65 + 5, not the wrapped 5.
-        let got =
-            super::super::closure::merge_pairs(&[(0, u64::MAX), (0, u64::MAX), (0, 7)], 1, "row")
-                .unwrap();
-        let want = (BigUint::one() << 65u32) + BigUint::from(5u32);
-        assert_eq!(got[&0], want);
-        assert!(super::super::closure::merge_pairs(&[(1, 1)], 1, "row").is_err());
-    }
-
-    #[test]
     fn classes_and_periods_by_hand() {
         // 0 → 1, 1 → 2, 2 → 0 (a 3-cycle), 2 → 3, 3 → 3 (a loop), 4 unreached.
         let e = |pairs: &[usize]| -> BTreeMap<usize, BigUint> {
