@@ -633,3 +633,138 @@ fn kernel_vector(
     }
     Ok(y)
 }
+
+fn lacuna_edge(e: &Edge) -> lacuna::EdgeType {
+    let kind = match e.kind {
+        Kind::B => lacuna::EdgeKind::B,
+        Kind::C => lacuna::EdgeKind::C,
+    };
+    lacuna::EdgeType::new(kind, e.n).delayed(e.delay)
+}
+
+fn lacuna_pattern(p: &Pattern) -> lacuna::EdgePattern {
+    match p {
+        Pattern::Any => lacuna::EdgePattern::Any,
+        Pattern::Kind(Kind::B) => lacuna::EdgePattern::Kind(lacuna::EdgeKind::B),
+        Pattern::Kind(Kind::C) => lacuna::EdgePattern::Kind(lacuna::EdgeKind::C),
+        Pattern::Exact(e) => lacuna::EdgePattern::Exact(lacuna_edge(e)),
+    }
+}
+
+/// A certificate face as lacuna's face.
+pub fn lacuna_face(f: &Face) -> lacuna::Face {
+    let items = f
+        .algorithm
+        .iter()
+        .map(|i| match i {
+            SpokeItem::Joint => lacuna::SpokeItem::Joint,
+            SpokeItem::Gap => lacuna::SpokeItem::Gap,
+            SpokeItem::Corner => lacuna::SpokeItem::Corner,
+            SpokeItem::DelayedCorner => lacuna::SpokeItem::DelayedCorner,
+            SpokeItem::CornerBetween(p, q) => {
+                lacuna::SpokeItem::CornerBetween(lacuna_pattern(p), lacuna_pattern(q))
+            }
+        })
+        .collect();
+    lacuna::Face {
+        boundary: f.boundary.iter().map(lacuna_edge).collect(),
+        params: lacuna::Params {
+            ea: lacuna_edge(&f.params.ea),
+            el: lacuna_edge(&f.params.el),
+            ec: lacuna_edge(&f.params.ec),
+        },
+        algorithm: lacuna::Algorithm::Spokes(items),
+        delay: f.delay,
+    }
+}
+
+fn rational(s: &str) -> Result<BigRational, CertifyError> {
+    s.parse()
+        .map_err(|_| CertifyError::Witness(format!("`{s}` is not a rational")))
+}
+
+fn lacuna_matrix(m: &[Vec<String>]) -> Result<lacuna::Matrix, CertifyError> {
+    let rows = m
+        .iter()
+        .map(|r| r.iter().map(|x| rational(x)).collect())
+        .collect::<Result<_, _>>()?;
+    Ok(lacuna::Matrix::from_rows(rows))
+}
+
+/// A claimed automaton as lacuna's automaton (operator kinds are `Other`: only the explicit
+/// barycentric list matters to the system).
+pub fn lacuna_automaton(a: &AutomatonClaim) -> Result<lacuna::Automaton, CertifyError> {
+    let mut out = lacuna::Automaton::default();
+    for s in &a.states {
+        out.add_state(s.name.clone(), s.dim);
+    }
+    for o in &a.operators {
+        let value = o.value.as_deref().map(lacuna_matrix).transpose()?;
+        out.add_op(o.name.clone(), lacuna::OpKind::Other, o.to, o.from, value);
+    }
+    let word = |w: &[WordFactor]| -> Result<Vec<lacuna::Factor>, CertifyError> {
+        w.iter()
+            .map(|f| match f {
+                WordFactor::Op(o) => Ok(lacuna::Factor::Op(*o)),
+                WordFactor::Literal(m) => Ok(lacuna::Factor::Literal(lacuna_matrix(m)?)),
+            })
+            .collect()
+    };
+    for (k, c) in a.constraints.iter().enumerate() {
+        out.constraints.push(lacuna::Constraint {
+            label: format!("constraint {k}"),
+            span: None,
+            kind: lacuna::ConstraintKind::Word,
+            lhs: word(&c.lhs)?,
+            rhs: word(&c.rhs)?,
+        });
+    }
+    out.barycentric = a.barycentric.clone();
+    Ok(out)
+}
+
+/// The certificate lacuna itself produces for a claim: the independent recomputation of
+/// everything a checked certificate states (used by the forgery fuzz target and tests: a
+/// certificate the checker accepts must state what this one states).
+pub fn recertify(
+    label: &str,
+    claim: &Claim,
+    limits: &lacuna::Limits,
+) -> Result<Certificate, CertifyError> {
+    match claim {
+        Claim::Faces(f) => {
+            let faces: Vec<lacuna::Face> = f.faces.iter().map(lacuna_face).collect();
+            let ts = lacuna::close_or_error(&faces, limits)?;
+            let opts = lacuna::GenOptions {
+                degree: f.degree,
+                cantor_gap: rational(&f.cantor_gap)?,
+            };
+            certificate_for(label, &ts, opts)
+        }
+        Claim::Automaton(a) => certificate_for_automaton(label, &lacuna_automaton(a)?),
+        Claim::Substitution(s) => {
+            certificate_for_substitution(label, &s.matrix, &s.contribution_halves, &s.start)
+        }
+        Claim::System(s) => {
+            let sys = lacuna::LinearSystem {
+                unknowns: s.unknowns,
+                rows: s
+                    .rows
+                    .iter()
+                    .map(|r| {
+                        Ok(lacuna::Equation {
+                            terms: r
+                                .terms
+                                .iter()
+                                .map(|(v, c)| Ok((*v, rational(c)?)))
+                                .collect::<Result<_, CertifyError>>()?,
+                            rhs: rational(&r.rhs)?,
+                        })
+                    })
+                    .collect::<Result<_, CertifyError>>()?,
+            };
+            let solution = lacuna::solve(&sys);
+            Ok(certificate_for_system(label, &s.source, &sys, &solution))
+        }
+    }
+}

@@ -40,9 +40,10 @@ const MAX_CLASS: usize = 1_000;
 
 /// The most big-integer word operations the checker spends on one phase of a ratio step
 /// (Faddeev–LeVerrier on a class: `size²·arcs` products of numbers of about
-/// `size·log₂(max entry)` bits; the counts: `levels²·arcs·log₂(max row sum)` bits). About a
-/// second of work; honest certificates need a few thousandths of it.
-const MAX_WORK: u128 = 400_000_000;
+/// `size·log₂(max entry)` bits; the counts: `levels²·arcs·log₂(max row sum)` bits). Well under
+/// a second of work in a release build; the honest certificates of the library need a
+/// thousandth of it. A sparse class of about 100 types is the largest this allows.
+const MAX_WORK: u128 = 100_000_000;
 
 /// The lcm of the periods, exactly (a big integer: the lcm of 115 small periods can exceed
 /// 2^64, and a wrapped value must never be compared with the claim).
@@ -335,20 +336,18 @@ pub(super) fn check_ratio(r: &RatioStep, sub: &Substitution, tied: &str) -> Chec
             r.rho.poly.len().saturating_sub(1)
         ));
     }
-    let root = Root::isolate(&r.rho.poly, &r.rho.lo, &r.rho.hi, "ρ")?;
-    if root.sign(&[-Q::one(), Q::one()]).is_none_or(|s| s < 0) {
-        return Err("ρ ≥ 1 is not shown".into());
-    }
-    let mut dominant_periods = Vec::new();
-    for (k, class) in r.classes.iter().enumerate() {
-        if check_radius(m, &root, (k, class))? {
-            dominant_periods.push(class.period.expect("a Perron class has a cycle"));
-        }
-    }
-    if dominant_periods.is_empty() {
+    // The period the witnesses claim (the lcm of the periods of the classes with a Perron
+    // vector) and every cost, before any arithmetic: a wrong or costly claim is refused at once.
+    let claimed_dominant: Vec<u64> = r
+        .classes
+        .iter()
+        .filter(|c| matches!(c.radius, RadiusWitness::Perron(_)))
+        .filter_map(|c| c.period)
+        .collect();
+    if claimed_dominant.is_empty() {
         return Err("no class has radius ρ (no Perron vector)".into());
     }
-    let period = lcm_of(dominant_periods);
+    let period = lcm_of(claimed_dominant);
     if period != BigUint::from(r.period) || BigUint::from(r.points.len()) != period {
         return Err(format!(
             "the period is P = {period} (lcm of the dominant periods); the certificate claims {} \
@@ -357,9 +356,6 @@ pub(super) fn check_ratio(r: &RatioStep, sub: &Substitution, tied: &str) -> Chec
             r.points.len()
         ));
     }
-    // det(x·I − A) for the augmented matrix A = [[M, c], [0, 1]] on the reached types: ordered
-    // by the class DAG, A is block triangular, so it is the product of the class blocks'
-    // characteristic polynomials and (x − 1) for the lacuna type.
     let d = cls.iter().map(|(ms, _)| ms.len()).sum::<usize>() + 1;
     let levels = &period * BigUint::from(d);
     if levels > BigUint::from(MAX_LEVELS) {
@@ -369,7 +365,7 @@ pub(super) fn check_ratio(r: &RatioStep, sub: &Substitution, tied: &str) -> Chec
     }
     let big_p = period.to_usize().expect("P ≤ MAX_LEVELS");
     let levels = big_p * d;
-    // The counts: levels² · arcs · log₂(largest row sum + contribution) bits of work.
+    // The counts: levels · arcs products of numbers of up to levels·log₂(growth) bits.
     let arcs: usize = cls
         .iter()
         .flat_map(|(ms, _)| ms.iter())
@@ -385,9 +381,9 @@ pub(super) fn check_ratio(r: &RatioStep, sub: &Substitution, tied: &str) -> Chec
     let count_bits = (levels as u128) * bits(&growth) + start_bits;
     within_budget(
         "iterating the substitution",
-        (levels as u128) * (arcs as u128) * count_bits.div_ceil(64),
+        (levels as u128) * (arcs as u128) * (count_bits.div_ceil(64) + 1),
     )?;
-    let mut chi = vec![-BigInt::one(), BigInt::one()];
+    let mut blocks = Vec::with_capacity(cls.len());
     for (members, _) in &cls {
         if members.len() > MAX_CLASS {
             return Err(format!(
@@ -405,6 +401,8 @@ pub(super) fn check_ratio(r: &RatioStep, sub: &Substitution, tied: &str) -> Chec
                 inside.collect()
             })
             .collect();
+        // Faddeev–LeVerrier: size steps of (arcs × size) products with entries of about
+        // size·(log₂(max entry) + log₂ size) bits.
         let size = members.len() as u128;
         let class_arcs: u128 = block.iter().map(|r| r.len() as u128).sum::<u128>() + 1;
         let entry_bits = block
@@ -415,9 +413,23 @@ pub(super) fn check_ratio(r: &RatioStep, sub: &Substitution, tied: &str) -> Chec
             .unwrap_or(1);
         within_budget(
             "the characteristic polynomial of a class (Faddeev–LeVerrier)",
-            size * size * class_arcs * (size * (entry_bits + 10)).div_ceil(64),
+            size * size * class_arcs * ((size * (entry_bits + 10)).div_ceil(64) + 1),
         )?;
-        chi = times(&chi, &charpoly(&block)?);
+        blocks.push(block);
+    }
+    let root = Root::isolate(&r.rho.poly, &r.rho.lo, &r.rho.hi, "ρ")?;
+    if root.sign(&[-Q::one(), Q::one()]).is_none_or(|s| s < 0) {
+        return Err("ρ ≥ 1 is not shown".into());
+    }
+    for (k, class) in r.classes.iter().enumerate() {
+        check_radius(m, &root, (k, class))?;
+    }
+    // det(x·I − A) for the augmented matrix A = [[M, c], [0, 1]] on the reached types: ordered
+    // by the class DAG, A is block triangular, so it is the product of the class blocks'
+    // characteristic polynomials and (x − 1) for the lacuna type.
+    let mut chi = vec![-BigInt::one(), BigInt::one()];
+    for block in &blocks {
+        chi = times(&chi, &charpoly(block)?);
     }
     let q = power_charpoly(&chi, big_p)?;
     let (faces, lacunas) = counts(m, &sub.contributions, &sub.start, levels);
