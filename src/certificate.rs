@@ -1,6 +1,8 @@
 //! Certificates: plain data that the independent checker (`checker/`) re-verifies.
 //!
-//! A [`Certificate`] is a versioned list of [`Step`]s. Every number is exact: integers as JSON
+//! A [`Certificate`] is a versioned [`Claim`] (the input in canonical form, which `lacuna check`
+//! prints first) and the list of [`Step`]s that prove every verdict about it, in the fixed order
+//! the claim demands. Every number is exact: integers as JSON
 //! numbers when they are small counts or indices, rationals and big integers as strings
 //! (`"3"`, `"-1/2"`). Only `Vec` and ordered structures are used, so the same certificate always
 //! serialises to the same bytes. The format, with the justification of every step, is documented
@@ -39,9 +41,11 @@ pub struct Certificate {
 /// The claim of a certificate: the input, in canonical form. It fixes which steps a complete
 /// certificate has, in this order:
 ///
-/// - [`Claim::Faces`]: `closure`, then `solution-space` or `inconsistent`, then `limit-ratio`;
-/// - [`Claim::Automaton`] and [`Claim::System`]: `solution-space` or `inconsistent`;
-/// - [`Claim::Substitution`]: `limit-ratio`.
+/// - faces ([`Claim::Faces`]) need `closure`, then `solution-space` or `inconsistent`, then
+///   `limit-ratio`;
+/// - an automaton ([`Claim::Automaton`]) or a system ([`Claim::System`]) needs
+///   `solution-space` or `inconsistent`;
+/// - a substitution ([`Claim::Substitution`]) needs `limit-ratio`.
 ///
 /// A certificate whose steps are a proper part of that sequence (in order, the closure present
 /// for faces) is *partial*: what it has is checked, but it proves less than the claim.
@@ -161,9 +165,10 @@ pub enum Step {
     /// once, each spoke once inward and once outward and paired by an adjacency, one lacuna side
     /// per sub-face) and the contribution of SPEC §5.
     Closure(ClosureStep),
-    /// **A consistent linear system and its solution space.** With a recipe, the checker first
-    /// rebuilds the system of SPEC §6 from the proved closure step and requires the rows to be
-    /// exactly the rebuilt ones (unknowns matched by name); without one, the system as given.
+    /// **A consistent linear system and its solution space.** The checker first rebuilds the
+    /// system from the claim — SPEC §6 from the proved closure step (unknowns matched by the
+    /// recipe's names), or the claimed automaton's words, or the claimed system — and requires
+    /// the rows to be exactly the rebuilt ones.
     /// Justification: the particular
     /// solution satisfies every row; every basis vector satisfies the homogeneous rows and is 1 at
     /// its own free unknown and 0 at the others (so the basis is independent: nullity ≥ dof); the
@@ -171,12 +176,12 @@ pub enum Step {
     /// nonzero over Q: rank ≥ |pivots|); and |pivots| + dof = unknowns. Hence rank = |pivots| and
     /// the basis spans the kernel: the solution set is exactly `particular + span(basis)`.
     SolutionSpace(SolutionStep),
-    /// **An inconsistent linear system** (tied to the closure by its recipe, as above).
+    /// **An inconsistent linear system** (tied to the claim, as above).
     /// Justification: `Σ m_i·row_i` has every coefficient 0
     /// and right-hand side `c ≠ 0`; any solution would satisfy `0 = c`.
     Inconsistent(ConflictStep),
-    /// **The limit ratio R** (every case: shared radii, periodic classes, ρ = 1). Justification:
-    /// the checker recomputes the classes reached from the start and their periods, isolates ρ
+    /// **The limit ratio R** (every case: shared radii, periodic classes, ρ = 1) of the closure's
+    /// substitution or the claimed matrix. Justification: the checker recomputes the classes reached from the start and their periods, isolates ρ
     /// (Sturm), and checks per class a positive Perron eigenvector for ρ or a Collatz–Wielandt
     /// bound below ρ. By Perron–Frobenius the eigenvalues of the augmented matrix
     /// `A = [[M, c], [0, 1]]` of modulus `σ = max(ρ, 1)` are `σ·ω`, `ω^P = 1`, with `P` the lcm
