@@ -55,7 +55,12 @@ fn seeds() -> &'static [Value] {
 }
 
 /// Every node of a JSON value, by path: leaves and arrays.
-fn nodes(v: &Value, path: &mut Vec<Value>, leaves: &mut Vec<Vec<Value>>, arrays: &mut Vec<Vec<Value>>) {
+fn nodes(
+    v: &Value,
+    path: &mut Vec<Value>,
+    leaves: &mut Vec<Vec<Value>>,
+    arrays: &mut Vec<Vec<Value>>,
+) {
     match v {
         Value::Array(a) => {
             arrays.push(path.clone());
@@ -175,7 +180,9 @@ fn mutate(json: &mut Value, ops: &mut impl Iterator<Item = u8>) {
         _ => {
             let other = &seeds()[next() % seeds().len()];
             let (i, j) = (next(), next());
-            if let (Value::Array(mine), Value::Array(theirs)) = (&mut json["steps"], &other["steps"]) {
+            if let (Value::Array(mine), Value::Array(theirs)) =
+                (&mut json["steps"], &other["steps"])
+            {
                 if !mine.is_empty() && !theirs.is_empty() {
                     let (i, j) = (i % mine.len(), j % theirs.len());
                     mine[i] = theirs[j].clone();
@@ -203,10 +210,15 @@ fuzz_target!(|data: &[u8]| {
         max_types: 2_000,
         ..lacuna::Limits::default()
     };
-    let again = lacuna::certify::recertify("fuzz", &cert.claim, &limits)
-        .unwrap_or_else(|e| panic!("the checker accepted a claim the producer fails on: {e}\n{text}"));
+    let again = lacuna::certify::recertify("fuzz", &cert.claim, &limits).unwrap_or_else(|e| {
+        panic!("the checker accepted a claim the producer fails on: {e}\n{text}")
+    });
     let want = check(&again);
-    assert!(want.all_proved(), "the producer's certificate fails:\n{}", want.to_text());
+    assert!(
+        want.all_proved(),
+        "the producer's certificate fails:\n{}",
+        want.to_text()
+    );
     assert_eq!(
         report.claims(),
         want.claims(),
