@@ -7,7 +7,9 @@
 // writing 5 to /proc/self/clear_refs (Linux); where that is refused the column says so.
 
 use lacuna::mesh::{build, stl, threemf, Size};
-use lacuna::{geometry::instantiate, input::load_input, export::write_stl, geometry::InstantiateOptions};
+use lacuna::{
+    export::write_stl, geometry::instantiate, geometry::InstantiateOptions, input::load_input,
+};
 use std::io::BufWriter;
 use std::time::Instant;
 

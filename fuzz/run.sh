@@ -2,23 +2,26 @@
 # Runs every fuzz target on the stable toolchain (no sanitizer) from a fresh copy of its seeds
 # (fuzz/seeds/<target>), with a fixed libFuzzer seed so that a run is reproducible, bounded by a
 # number of executions and a time cap, and prints the executions of each target.
-# Usage: fuzz/run.sh [MAX_SECONDS_PER_TARGET] [MAX_RUNS_PER_TARGET] [LIBFUZZER_SEED]
+# Every input has a time limit (libFuzzer's -timeout, default 10 s): a slow input is reported
+# as a failure with the input saved, like a crash.
+# Usage: fuzz/run.sh [MAX_SECONDS_PER_TARGET] [MAX_RUNS_PER_TARGET] [LIBFUZZER_SEED] [SECONDS_PER_INPUT]
 # (needs `cargo install cargo-fuzz`)
 set -euo pipefail
 cd "$(dirname "$0")"
 secs=${1:-30}
 runs=${2:-1000000000}
 seed=${3:-1}
+per_input=${4:-10}
 total=0
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cargo fuzz build --sanitizer none >/dev/null 2>&1 || cargo fuzz build --sanitizer none
-for t in face_notation input_files automaton_file certificate pipeline; do
+for t in face_notation input_files automaton_file certificate certificate_forgery pipeline; do
   mkdir -p "$work/$t"
   cp seeds/"$t"/* "$work/$t/"
   log="$work/$t.log"
   if ! cargo fuzz run --sanitizer none "$t" "$work/$t" -- -seed="$seed" -runs="$runs" \
-      -max_total_time="$secs" -max_len=8192 >"$log" 2>&1; then
+      -max_total_time="$secs" -timeout="$per_input" -max_len=8192 >"$log" 2>&1; then
     tail -40 "$log"
     echo "fuzz target $t FAILED (crash input saved under fuzz/artifacts/$t)"
     exit 1

@@ -382,14 +382,23 @@ fn systems_that_are_not_the_closures_are_rejected() {
     forged.system.recipe = s.system.recipe.clone();
     *s = forged;
     assert_not_the_closures("add a row that is not implied", &c);
-    let mut alone = c.clone();
-    alone.steps.retain(|s| s.name() == "solution-space");
-    solution_of(&mut alone).system.recipe = None;
+    // As the claim of its own certificate (a system claim), the forged system is proved.
+    let mut forged = solution_of(&mut c).clone();
+    forged.system.recipe = None;
+    let mut alone = Certificate::new(
+        "forged",
+        lacuna::certificate::Claim::System(forged.system.clone()),
+    );
+    alone.steps.push(Step::SolutionSpace(forged));
     let report = check(&alone);
     assert!(report.all_proved(), "{}", report.to_text());
-    assert!(report.to_text().contains("system as given"));
-    // A wrong recipe: another Bézier degree, another Cantor ratio, permuted unknown names.
-    let c = edit(&|s| s.system.recipe.as_mut().expect("a recipe").degree = 3);
+    assert!(report.to_text().contains("the claim's system"));
+    // Another claim (Bézier degree, Cantor ratio) for the same system, or permuted unknown
+    // names.
+    let mut c = base.clone();
+    if let lacuna::certificate::Claim::Faces(f) = &mut c.claim {
+        f.degree = 3;
+    }
     assert_not_the_closures("degree 3", &c);
     let c = edit(&|s| {
         s.system
@@ -410,12 +419,9 @@ fn systems_that_are_not_the_closures_are_rejected() {
     });
     assert_not_the_closures("unknown names reversed", &c);
     let mut c = face_certificate("triangle-C2");
-    solution_of(&mut c)
-        .system
-        .recipe
-        .as_mut()
-        .expect("a recipe")
-        .cantor_gap = "1/2".into();
+    if let lacuna::certificate::Claim::Faces(f) = &mut c.claim {
+        f.cantor_gap = "1/2".into();
+    }
     assert_not_the_closures("Cantor gap 1/2 instead of 1", &c);
     // A face certificate whose system has no recipe is not tied to its closure: rejected.
     let c = edit(&|s| s.system.recipe = None);
@@ -465,11 +471,11 @@ fn wrong_versions_are_rejected() {
     cert.version = 99;
     assert_rejected("version 99", &cert, "header");
     assert!(check_json("{").failed());
-    // Files of versions 1 and 2 (other step forms: version 2 had no recipe) are refused by their
-    // version, not by a parse error.
-    for old in ["1", "2"] {
+    // Files of versions 1 to 3 (other step forms: version 2 had no recipe, version 3 no claim)
+    // are refused by their version, not by a parse error.
+    for old in ["1", "2", "3"] {
         let json = face_certificate("F0").to_json().replacen(
-            "\"version\":3",
+            "\"version\":4",
             &format!("\"version\":{old}"),
             1,
         );
@@ -538,7 +544,7 @@ fn mutate(cert: &mut Certificate, which: usize) -> &'static str {
             "solution-space"
         }
         (2 | 3, Step::LimitRatio(r)) => {
-            r.contribution_halves[0] += 1;
+            r.exists = !r.exists;
             "limit-ratio"
         }
         _ => "none",

@@ -330,7 +330,8 @@ fn hardening_12_messages_name_ranges_and_resolution_truthfully() {
 #[test]
 fn hardening_14_fractions_sample_levels_and_byte_order_marks() {
     let d = folder("14");
-    // --thickness accepts a fraction like every other number: prisms of height 1/2.
+    // --thickness accepts a fraction like every other number: a solid 1/2 mm thick (the OBJ
+    // writes the shortest decimal of each f32 coordinate).
     let obj = s(&d.join("t.obj"));
     let (code, _, err) = lacuna(&[
         "render",
@@ -345,8 +346,11 @@ fn hardening_14_fractions_sample_levels_and_byte_order_marks() {
     assert_eq!(code, 0, "{err}");
     let text = std::fs::read_to_string(&obj).unwrap();
     assert!(
-        text.lines()
-            .any(|l| l.starts_with("v ") && l.ends_with(" 0.500000")),
+        text.lines().any(|l| l.starts_with("v ")
+            && l.split_whitespace()
+                .last()
+                .and_then(|z| z.parse::<f64>().ok())
+                == Some(0.5)),
         "{text}"
     );
     // A curvature sample level above 16 is refused, not lowered to 16 in silence.

@@ -7,7 +7,9 @@
 
 mod common;
 use lacuna::mesh::{build, Size, Solid};
-use lacuna::{geometry::instantiate, input::load_input, geometry::Instance, geometry::InstantiateOptions};
+use lacuna::{
+    geometry::instantiate, geometry::Instance, geometry::InstantiateOptions, input::load_input,
+};
 use std::collections::HashMap;
 use std::io::{Cursor, Read};
 
@@ -406,11 +408,24 @@ fn strict_resolution_is_a_failure_and_bad_sizes_are_refused() {
         "1",
         "--stl",
         "/dev/null",
-        "--thickness",
+        "--width",
         "0",
     ]);
     assert_eq!(code, 2);
     assert!(err.contains("E1043"), "{err}");
+    // --thickness is read as an exact positive number first (E0503, as every number flag).
+    let (code, _, err) = common::lacuna(&[
+        "render",
+        "F0",
+        "--level",
+        "1",
+        "--stl",
+        "/dev/null",
+        "--thickness",
+        "0",
+    ]);
+    assert_eq!(code, 2);
+    assert!(err.contains("E0503"), "{err}");
 }
 
 mod random {

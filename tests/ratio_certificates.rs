@@ -5,33 +5,50 @@
 mod common;
 use common::{assert_proved, assert_rejected, face_certificate, steps_named};
 use lacuna::certificate::ratio_step;
-use lacuna::certificate::{Certificate, RadiusWitness, RatioStep, Step};
+use lacuna::certificate::{Certificate, Claim, RadiusWitness, RatioStep, Step, SubstitutionClaim};
 use lacuna::checker::check;
 use num_rational::BigRational;
 
-/// A golden-ratio substitution: a transient start type 0 → 1; the class {1, 2} with
+/// The golden-ratio substitution: a transient start type 0 → 1; the class {1, 2} with
 /// 1 → 1 + 2, 2 → 1 (ρ = (1 + √5)/2); a downstream class {3} (3 → 3) reached from 2.
-fn golden() -> RatioStep {
+fn golden_matrix() -> (Vec<Vec<(usize, u64)>>, Vec<u64>) {
     let m = vec![
         vec![(1, 1)],
         vec![(1, 1), (2, 1)],
         vec![(1, 1), (3, 1)],
         vec![(3, 1)],
     ];
-    ratio_step(&m, &[2, 1, 3, 0], &[(0, 1)]).expect("analyses")
+    (m, vec![2, 1, 3, 0])
 }
 
-fn ratio_certificate(step: RatioStep) -> Certificate {
-    let mut cert = Certificate::new("matrix");
+fn golden() -> RatioStep {
+    let (m, h) = golden_matrix();
+    ratio_step(&m, &h, &[(0, 1)]).expect("analyses")
+}
+
+/// The certificate claiming the substitution `(matrix, halves)` from one face of type 0, with
+/// `step` as its limit ratio.
+fn ratio_certificate(matrix: &[Vec<(usize, u64)>], halves: &[u64], step: RatioStep) -> Certificate {
+    let claim = Claim::Substitution(SubstitutionClaim {
+        matrix: matrix.to_vec(),
+        contribution_halves: halves.to_vec(),
+        start: vec![(0, 1)],
+    });
+    let mut cert = Certificate::new("matrix", claim);
     cert.steps.push(Step::LimitRatio(step));
     cert
+}
+
+fn golden_certificate(step: RatioStep) -> Certificate {
+    let (m, h) = golden_matrix();
+    ratio_certificate(&m, &h, step)
 }
 
 /// The ratio step of `matrix` (rows `(sub-face type, count)`), contributions in halves, one
 /// start face of type 0; asserts that it checks.
 fn proved_step(what: &str, matrix: &[Vec<(usize, u64)>], halves: &[u64]) -> RatioStep {
     let step = ratio_step(matrix, halves, &[(0, 1)]).expect("analyses");
-    assert_proved(what, &ratio_certificate(step.clone()));
+    assert_proved(what, &ratio_certificate(matrix, halves, step.clone()));
     step
 }
 
@@ -49,13 +66,13 @@ fn irrational_perron_roots_are_certified() {
     assert_eq!(step.rho.poly, ["-1", "-1", "1"]);
     assert_eq!(step.points[0].value.len(), 2, "R is irrational here");
     assert_eq!(step.points[0].real.poly.len(), 3, "R is quadratic");
-    let cert = ratio_certificate(step.clone());
+    let cert = golden_certificate(step.clone());
     assert_proved("golden", &cert);
     // Nudge the interval past ρ ≈ 1.618: it no longer isolates the root.
     let nudge = |lo: &str, hi: &str| {
         let mut s = step.clone();
         (s.rho.lo, s.rho.hi) = (lo.into(), hi.into());
-        ratio_certificate(s)
+        golden_certificate(s)
     };
     assert_rejected("interval beyond ρ", &nudge("13/8", "2"), "limit-ratio");
     assert_rejected(
@@ -68,36 +85,41 @@ fn irrational_perron_roots_are_certified() {
         "{}",
         s.points[0].value[1].parse::<BigRational>().unwrap() * BigRational::from_integer(2.into())
     );
-    assert_rejected("wrong limit", &ratio_certificate(s), "limit-ratio");
+    assert_rejected("wrong limit", &golden_certificate(s), "limit-ratio");
     let mut s = step.clone();
     if let RadiusWitness::Perron(y) = &mut s.classes[1].radius {
         y[1][0] = "7".into();
     }
-    assert_rejected("wrong eigenvector", &ratio_certificate(s), "limit-ratio");
+    assert_rejected("wrong eigenvector", &golden_certificate(s), "limit-ratio");
     // R's own interval: moved off R (it still isolates a root of nothing there).
     let mut s = step.clone();
     s.points[0].real.lo = s.points[0].real.hi.clone();
     bump(&mut s.points[0].real.hi);
-    assert_rejected("interval of R moved", &ratio_certificate(s), "limit-ratio");
+    assert_rejected("interval of R moved", &golden_certificate(s), "limit-ratio");
     let mut s = step.clone();
     s.points[0].real.poly[0] = "5".into();
     assert_rejected(
         "wrong polynomial of R",
-        &ratio_certificate(s),
+        &golden_certificate(s),
         "limit-ratio",
     );
-    let mut s = step;
-    s.matrix[2][0].1 = 2;
-    assert_rejected("flip a matrix entry", &ratio_certificate(s), "limit-ratio");
+    // A matrix entry of the claim changed: the step no longer fits it.
+    let mut cert = golden_certificate(step);
+    if let Claim::Substitution(sub) = &mut cert.claim {
+        sub.matrix[2][0].1 = 2;
+    }
+    assert_rejected("flip a matrix entry", &cert, "limit-ratio");
 }
 
 #[test]
 fn flipped_matrix_entries_are_rejected_against_the_closure() {
+    // The ratio step carries no matrix: it is about the closure's substitution. A class witness
+    // of another substitution is rejected.
     let mut cert = face_certificate("triangle-C2");
     if let [Step::LimitRatio(r)] = &mut steps_named(&mut cert, "limit-ratio")[..] {
-        r.matrix[1][0].1 += 1;
+        r.classes[0].members.push(99);
     }
-    assert_rejected("flip a matrix entry", &cert, "limit-ratio");
+    assert_rejected("a class of another matrix", &cert, "limit-ratio");
 }
 
 #[test]
@@ -191,13 +213,22 @@ fn radius_one_is_certified() {
 #[test]
 fn mutated_limit_claims_are_rejected() {
     let m = vec![vec![(1, 2)], vec![(0, 8)]];
-    let oscillating = ratio_step(&m, &[2, 0], &[(0, 1)]).expect("analyses");
-    let converging = ratio_step(&m, &[1, 7], &[(0, 1)]).expect("analyses");
-    let rejected = |what: &str, step: &RatioStep, edit: &dyn Fn(&mut RatioStep)| {
+    let oscillating = (
+        m.clone(),
+        vec![2, 0],
+        ratio_step(&m, &[2, 0], &[(0, 1)]).expect("analyses"),
+    );
+    let converging = (
+        m.clone(),
+        vec![1, 7],
+        ratio_step(&m, &[1, 7], &[(0, 1)]).expect("analyses"),
+    );
+    type Case = (Vec<Vec<(usize, u64)>>, Vec<u64>, RatioStep);
+    let rejected = |what: &str, (m, h, step): &Case, edit: &dyn Fn(&mut RatioStep)| {
         let mut s = step.clone();
         edit(&mut s);
         assert_ne!(&s, step, "{what}: the mutation changed nothing");
-        assert_rejected(what, &ratio_certificate(s), "limit-ratio");
+        assert_rejected(what, &ratio_certificate(m, h, s), "limit-ratio");
     };
     rejected("claim a limit that does not exist", &oscillating, &|s| {
         s.exists = true
@@ -239,8 +270,12 @@ fn mutated_limit_claims_are_rejected() {
         &|s| s.classes[0].radius = RadiusWitness::Below(vec!["1".into(), "1".into()]),
     );
     // A smaller class's bound is not a Perron vector, nor the other way round.
-    let feeding =
-        ratio_step(&[vec![(0, 1), (1, 1)], vec![(1, 2)]], &[14, 1], &[(0, 1)]).expect("analyses");
+    let fm = vec![vec![(0, 1), (1, 1)], vec![(1, 2)]];
+    let feeding = (
+        fm.clone(),
+        vec![14, 1],
+        ratio_step(&fm, &[14, 1], &[(0, 1)]).expect("analyses"),
+    );
     rejected("a smaller class passed off as dominant", &feeding, &|s| {
         s.classes[0].radius = RadiusWitness::Perron(vec![vec!["1".into()]])
     });

@@ -1,6 +1,8 @@
 //! Certificates: plain data that the independent checker (`checker/`) re-verifies.
 //!
-//! A [`Certificate`] is a versioned list of [`Step`]s. Every number is exact: integers as JSON
+//! A [`Certificate`] is a versioned [`Claim`] (the input in canonical form, which `lacuna check`
+//! prints first) and the list of [`Step`]s that prove every verdict about it, in the fixed order
+//! the claim demands. Every number is exact: integers as JSON
 //! numbers when they are small counts or indices, rationals and big integers as strings
 //! (`"3"`, `"-1/2"`). Only `Vec` and ordered structures are used, so the same certificate always
 //! serialises to the same bytes. The format, with the justification of every step, is documented
@@ -15,26 +17,144 @@ use serde::{Deserialize, Serialize};
 pub const FORMAT: &str = "lacuna-certificate";
 
 /// The format version this code writes and checks.
-pub const VERSION: u32 = 3;
+pub const VERSION: u32 = 4;
 
-/// A certificate: what was given and the steps that prove the verdicts.
+/// A certificate: the claim (what was given, in canonical form) and the steps that prove every
+/// verdict about it.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Certificate {
     /// Always [`FORMAT`].
     pub format: String,
     /// Always [`VERSION`] for this code.
     pub version: u32,
-    /// The input the certificate is about (library name, file or face notation).
+    /// A label for people (the library name, file or notation the user typed). Not checked and
+    /// not part of the claim: what is certified is [`Certificate::claim`].
     pub input: String,
-    /// The steps, checked in order; a later step may refer to an earlier one (the limit ratio
-    /// is tied to the closure when both are present).
+    /// What the certificate is about, in canonical form; `lacuna check` prints it first.
+    pub claim: Claim,
+    /// The steps, in the fixed order the claim demands (see [`Claim`]); each is tied to the
+    /// claim or to the closure step.
     pub steps: Vec<Step>,
+}
+
+/// The claim of a certificate: the input, in canonical form. It fixes which steps a complete
+/// certificate has, in this order:
+///
+/// - faces ([`Claim::Faces`]) need `closure`, then `solution-space` or `inconsistent`, then
+///   `limit-ratio`;
+/// - an automaton ([`Claim::Automaton`]) or a system ([`Claim::System`]) needs
+///   `solution-space` or `inconsistent`;
+/// - a substitution ([`Claim::Substitution`]) needs `limit-ratio`.
+///
+/// A certificate whose steps are a proper part of that sequence (in order, the closure present
+/// for faces) is *partial*: what it has is checked, but it proves less than the claim.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", deny_unknown_fields)]
+pub enum Claim {
+    /// Start faces and the options of SPEC §6: the closure's start types are these faces, the
+    /// system is the one SPEC §6 generates with this degree and Cantor ratio.
+    Faces(FacesClaim),
+    /// A hand-written automaton: the checker rebuilds its linear system from the states,
+    /// operators and words.
+    Automaton(AutomatonClaim),
+    /// A substitution given as a matrix (no faces): only its limit ratio is certified.
+    Substitution(SubstitutionClaim),
+    /// An explicit linear system: its solution space or inconsistency is certified.
+    System(System),
+}
+
+/// The claim about faces: the start faces (canonical form, one per start face, repeated for
+/// equal faces) and how the constraint system is generated (SPEC §6).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FacesClaim {
+    /// The start faces, each in canonical rotation.
+    pub faces: Vec<Face>,
+    /// Bézier degree q of the `Bn` edges (m = q + 1 control points).
+    pub degree: usize,
+    /// Cantor layout: the length of a gap relative to the length of a piece (a rational > 0).
+    pub cantor_gap: String,
+}
+
+/// A substitution: `matrix[t]` lists `(s, k)`, a face of type `t` has `k` sub-faces of type
+/// `s` (repeated pairs add up); lacunas of one step of each type in halves; start faces
+/// `(type, multiplicity)` (repeated types add up).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SubstitutionClaim {
+    /// The rows of the substitution matrix.
+    pub matrix: Vec<Vec<(usize, u64)>>,
+    /// Lacunas contributed by one step of each type, in halves.
+    pub contribution_halves: Vec<u64>,
+    /// Start faces `(type, multiplicity)`.
+    pub start: Vec<(usize, u64)>,
+}
+
+/// A hand-written automaton (SPEC §6): states, operators (known matrices or unknown),
+/// constraints (equalities of words) and the operators whose columns sum to 1.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AutomatonClaim {
+    /// The states: name and dimension (number of control points).
+    pub states: Vec<AutomatonState>,
+    /// The operators, in order; the unknown entries are numbered operator by operator, row by
+    /// row.
+    pub operators: Vec<AutomatonOperator>,
+    /// The constraints `lhs = rhs`.
+    pub constraints: Vec<WordEquation>,
+    /// Operators whose every column sums to 1.
+    pub barycentric: Vec<usize>,
+}
+
+/// A state of an automaton.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AutomatonState {
+    /// Name.
+    pub name: String,
+    /// Dimension m.
+    pub dim: usize,
+}
+
+/// An operator from state `from` (columns) into state `to` (rows).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AutomatonOperator {
+    /// Name.
+    pub name: String,
+    /// Row state.
+    pub to: usize,
+    /// Column state.
+    pub from: usize,
+    /// The matrix (rows of rationals), or `None` when unknown.
+    pub value: Option<Vec<Vec<String>>>,
+}
+
+/// A factor of a word.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", deny_unknown_fields)]
+pub enum WordFactor {
+    /// An operator, by index.
+    Op(usize),
+    /// A literal matrix (rows of rationals).
+    Literal(Vec<Vec<String>>),
+}
+
+/// A constraint `lhs = rhs` between two words (products of factors, left to right).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WordEquation {
+    /// Left word.
+    pub lhs: Vec<WordFactor>,
+    /// Right word.
+    pub rhs: Vec<WordFactor>,
 }
 
 /// One step of a certificate. Each variant says what the checker re-derives and why that proves
 /// the claim; consumers match it exhaustively.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(tag = "step", rename_all = "kebab-case")]
+#[serde(tag = "step", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum Step {
     /// **The closure.** Justification: the checker re-derives the subdivision of every listed face
     /// type with its own implementation of SPEC §3 (sub-edges, junctions, the spoke predicate,
@@ -45,9 +165,10 @@ pub enum Step {
     /// once, each spoke once inward and once outward and paired by an adjacency, one lacuna side
     /// per sub-face) and the contribution of SPEC §5.
     Closure(ClosureStep),
-    /// **A consistent linear system and its solution space.** With a recipe, the checker first
-    /// rebuilds the system of SPEC §6 from the proved closure step and requires the rows to be
-    /// exactly the rebuilt ones (unknowns matched by name); without one, the system as given.
+    /// **A consistent linear system and its solution space.** The checker first rebuilds the
+    /// system from the claim — SPEC §6 from the proved closure step (unknowns matched by the
+    /// recipe's names), or the claimed automaton's words, or the claimed system — and requires
+    /// the rows to be exactly the rebuilt ones.
     /// Justification: the particular
     /// solution satisfies every row; every basis vector satisfies the homogeneous rows and is 1 at
     /// its own free unknown and 0 at the others (so the basis is independent: nullity ≥ dof); the
@@ -55,12 +176,12 @@ pub enum Step {
     /// nonzero over Q: rank ≥ |pivots|); and |pivots| + dof = unknowns. Hence rank = |pivots| and
     /// the basis spans the kernel: the solution set is exactly `particular + span(basis)`.
     SolutionSpace(SolutionStep),
-    /// **An inconsistent linear system** (tied to the closure by its recipe, as above).
+    /// **An inconsistent linear system** (tied to the claim, as above).
     /// Justification: `Σ m_i·row_i` has every coefficient 0
     /// and right-hand side `c ≠ 0`; any solution would satisfy `0 = c`.
     Inconsistent(ConflictStep),
-    /// **The limit ratio R** (every case: shared radii, periodic classes, ρ = 1). Justification:
-    /// the checker recomputes the classes reached from the start and their periods, isolates ρ
+    /// **The limit ratio R** (every case: shared radii, periodic classes, ρ = 1) of the closure's
+    /// substitution or the claimed matrix. Justification: the checker recomputes the classes reached from the start and their periods, isolates ρ
     /// (Sturm), and checks per class a positive Perron eigenvector for ρ or a Collatz–Wielandt
     /// bound below ρ. By Perron–Frobenius the eigenvalues of the augmented matrix
     /// `A = [[M, c], [0, 1]]` of modulus `σ = max(ρ, 1)` are `σ·ω`, `ω^P = 1`, with `P` the lcm
@@ -83,6 +204,7 @@ pub enum Kind {
 
 /// An edge type `Kn^delay`. The derived order (kind, n, delay) is the canonical order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Edge {
     /// `B` or `C`.
     pub kind: Kind,
@@ -93,7 +215,8 @@ pub struct Edge {
 }
 
 /// `E = (Ea, El, Ec)`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Params {
     /// Adjacency edge.
     pub ea: Edge,
@@ -104,8 +227,8 @@ pub struct Params {
 }
 
 /// A pattern on an edge in a `corner(P,Q)` item.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", deny_unknown_fields)]
 pub enum Pattern {
     /// `*`.
     Any,
@@ -116,7 +239,7 @@ pub enum Pattern {
 }
 
 /// One item of a spoke set (the algorithm).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum SpokeItem {
     /// Every joint.
@@ -136,6 +259,7 @@ pub enum SpokeItem {
 
 /// A face `F^d(∂, E, A)` with the algorithm as its spoke items.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Face {
     /// Boundary, counter-clockwise.
     pub boundary: Vec<Edge>,
@@ -183,6 +307,7 @@ pub enum Origin {
 
 /// A sub-face: its type and, aligned with that type's boundary, the origin of each edge.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct SubFace {
     /// Index into [`ClosureStep::types`].
     pub type_index: usize,
@@ -192,6 +317,7 @@ pub struct SubFace {
 
 /// Two sub-faces sharing an Ea edge: `(sub-face, boundary position)` of each side.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Adjacency {
     /// The side traversed inward.
     pub first: (usize, usize),
@@ -201,6 +327,7 @@ pub struct Adjacency {
 
 /// One face type with its subdivision rule.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct TypeRule {
     /// The face, in canonical form.
     pub face: Face,
@@ -214,15 +341,15 @@ pub struct TypeRule {
 
 /// The closure: every face type with its rule, and the start types.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct ClosureStep {
-    /// The face types.
+    /// The face types. The start types are not listed: they are the claim's faces.
     pub types: Vec<TypeRule>,
-    /// The type of each start face (repeated for an assembly of equal faces).
-    pub start: Vec<usize>,
 }
 
 /// A sparse linear equation `Σ coef·x[var] = rhs`, rationals as strings.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Row {
     /// `(unknown, coefficient)`; an unknown may repeat (coefficients add up).
     pub terms: Vec<(usize, String)>,
@@ -232,6 +359,7 @@ pub struct Row {
 
 /// An explicit linear system over Q.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct System {
     /// Where the system comes from, for people (not checked).
     pub source: String,
@@ -245,13 +373,11 @@ pub struct System {
     pub recipe: Option<Recipe>,
 }
 
-/// The recipe of a system generated from a closure (SPEC §6).
+/// The recipe of a system generated from a closure (SPEC §6): the degree and Cantor ratio are
+/// the claim's, the recipe names the columns.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Recipe {
-    /// Bézier degree q of the `Bn` edges (m = q + 1 control points).
-    pub degree: usize,
-    /// Cantor layout: the length of a gap relative to the length of a piece (a rational > 0).
-    pub cantor_gap: String,
     /// The name of every unknown, in column order: entry `[r][c]` of the sub-face operator `k`
     /// of face type `t` is `T<t>.T<k>[r][c]`.
     pub unknowns: Vec<String>,
@@ -259,6 +385,7 @@ pub struct Recipe {
 
 /// The solution space of a consistent system.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct SolutionStep {
     /// The system.
     pub system: System,
@@ -279,6 +406,7 @@ pub struct SolutionStep {
 
 /// The proof that a system has no solution.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct ConflictStep {
     /// The system.
     pub system: System,
@@ -291,6 +419,7 @@ pub struct ConflictStep {
 /// A strongly connected class of the types reached from the start, with the witness of its
 /// spectral radius.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct ClassClaim {
     /// Members, ascending.
     pub members: Vec<usize>,
@@ -316,6 +445,7 @@ pub enum RadiusWitness {
 
 /// A real algebraic number: the only root of `poly` in `[lo, hi]`.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Algebraic {
     /// Integer coefficients, constant term first.
     pub poly: Vec<String>,
@@ -330,6 +460,7 @@ pub type FieldCoords = Vec<String>;
 
 /// The claimed limit of `R_(P·n + r)` for one residue `r`.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct PointClaim {
     /// The value in Q(ρ).
     pub value: FieldCoords,
@@ -340,15 +471,10 @@ pub struct PointClaim {
     pub decimal: String,
 }
 
-/// The limit ratio of a substitution.
+/// The limit ratio of the substitution: the closure's (faces) or the claim's (a matrix).
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct RatioStep {
-    /// `matrix[t]` lists `(s, k)`: a face of type `t` has `k` sub-faces of type `s`.
-    pub matrix: Vec<Vec<(usize, u64)>>,
-    /// Lacunas contributed by one step of each type, in halves.
-    pub contribution_halves: Vec<u64>,
-    /// Start faces `(type, multiplicity)`.
-    pub start: Vec<(usize, u64)>,
     /// The classes reached from the start, ordered by smallest member, with radius witnesses.
     pub classes: Vec<ClassClaim>,
     /// ρ, the largest class radius (at least 1).
@@ -357,17 +483,20 @@ pub struct RatioStep {
     pub period: u64,
     /// Whether `R_i` converges (all points equal).
     pub exists: bool,
+    /// The number of decimals of every point (each `decimal` has exactly this many).
+    pub digits: usize,
     /// `lim R_(P·n + r)` for `r = 0 … P − 1`.
     pub points: Vec<PointClaim>,
 }
 
 impl Certificate {
-    /// An empty certificate of the current format and version.
-    pub fn new(input: impl Into<String>) -> Self {
+    /// A certificate of the current format and version with no step yet.
+    pub fn new(input: impl Into<String>, claim: Claim) -> Self {
         Certificate {
             format: FORMAT.to_string(),
             version: VERSION,
             input: input.into(),
+            claim,
             steps: Vec::new(),
         }
     }

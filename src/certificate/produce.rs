@@ -8,9 +8,10 @@
 //! other classes, and the minimal polynomial of each limit point.
 
 use crate::certificate::format::{
-    Adjacency, Algebraic, Certificate, ClassClaim, ClosureStep, ConflictStep, Edge, Face, Kind,
-    Origin, Params, Pattern, PointClaim, RadiusWitness, RatioStep, Recipe, Row, SolutionStep,
-    SpokeItem, Step, SubFace, System, TypeRule,
+    Adjacency, Algebraic, AutomatonClaim, AutomatonOperator, AutomatonState, Certificate, Claim,
+    ClassClaim, ClosureStep, ConflictStep, Edge, Face, FacesClaim, Kind, Origin, Params, Pattern,
+    PointClaim, RadiusWitness, RatioStep, Recipe, Row, SolutionStep, SpokeItem, Step, SubFace,
+    SubstitutionClaim, System, TypeRule, WordEquation, WordFactor,
 };
 use num_rational::BigRational;
 use num_traits::{One, Zero};
@@ -38,24 +39,31 @@ pub enum CertifyError {
     Witness(String),
 }
 
-/// The full certificate of a closed type set: the closure, the solution space (or conflict) of
-/// the generated constraint system, and the limit ratio.
+/// The full certificate of a closed type set: the claim (its start faces and the options of
+/// SPEC §6), the closure, the solution space (or conflict) of the generated constraint system,
+/// and the limit ratio. `input` is a label for people.
 pub fn certificate_for(
     input: &str,
     ts: &crate::topology::TypeSet,
     opts: crate::constraint::GenOptions,
 ) -> Result<Certificate, CertifyError> {
-    let mut cert = Certificate::new(input);
-    cert.steps.push(Step::Closure(closure_step(ts)?));
+    let closure = closure_step(ts)?;
+    let faces = ts
+        .start
+        .iter()
+        .map(|&t| closure.types[t].face.clone())
+        .collect();
+    let claim = Claim::Faces(FacesClaim {
+        faces,
+        degree: opts.degree.max(1),
+        cantor_gap: opts.cantor_gap.to_string(),
+    });
+    let mut cert = Certificate::new(input, claim);
+    cert.steps.push(Step::Closure(closure));
     let source = format!(
         "the constraints of the automaton generated from the closure (SPEC §6, Bézier degree {}, Cantor gap/piece ratio {})",
         opts.degree, opts.cantor_gap
     );
-    let recipe = Recipe {
-        degree: opts.degree.max(1),
-        cantor_gap: opts.cantor_gap.to_string(),
-        unknowns: Vec::new(),
-    };
     let generated = crate::constraint::automaton_of(ts, opts);
     let (_, lin, solution) = crate::constraint::solve_automaton(&generated.automaton)?;
     let recipe = Recipe {
@@ -64,12 +72,20 @@ pub fn certificate_for(
             .iter()
             .map(|&e| generated.automaton.entry_name(e))
             .collect(),
-        ..recipe
     };
     cert.steps.push(step_of_system(
         system(&source, &lin.system, Some(recipe)),
         &solution,
     ));
+    let (matrix, c, start) = substitution_of(ts);
+    cert.steps
+        .push(Step::LimitRatio(ratio_step(&matrix, &c, &start)?));
+    Ok(cert)
+}
+
+/// The substitution of a closed type set: matrix rows, contributions in halves, start
+/// `(type, multiplicity)` sorted by type.
+pub fn substitution_of(ts: &crate::topology::TypeSet) -> SubstitutionParts {
     let matrix = ts.matrix();
     let c: Vec<u64> = ts.types.iter().map(|t| t.contribution_halves()).collect();
     let mut start: Vec<(usize, u64)> = Vec::new();
@@ -80,34 +96,107 @@ pub fn certificate_for(
         }
     }
     start.sort_unstable();
-    cert.steps
-        .push(Step::LimitRatio(ratio_step(&matrix, &c, &start)?));
+    (matrix, c, start)
+}
+
+/// A substitution: matrix rows `(type, count)`, contributions in halves, start
+/// `(type, multiplicity)`.
+pub type SubstitutionParts = (Vec<Vec<(usize, u64)>>, Vec<u64>, Vec<(usize, u64)>);
+
+/// The certificate of a substitution given as a matrix: the claim is the matrix, contributions
+/// and start, the one step its limit ratio.
+pub fn certificate_for_substitution(
+    name: &str,
+    matrix: &[Vec<(usize, u64)>],
+    contribution_halves: &[u64],
+    start: &[(usize, u64)],
+) -> Result<Certificate, CertifyError> {
+    let claim = Claim::Substitution(SubstitutionClaim {
+        matrix: matrix.to_vec(),
+        contribution_halves: contribution_halves.to_vec(),
+        start: start.to_vec(),
+    });
+    let mut cert = Certificate::new(name, claim);
+    cert.steps.push(Step::LimitRatio(ratio_step(
+        matrix,
+        contribution_halves,
+        start,
+    )?));
     Ok(cert)
 }
 
-/// The certificate of a hand-written automaton's constraint system.
+/// The certificate of a hand-written automaton: the claim is the automaton itself (states,
+/// operators, words), the one step the solution space or conflict of its system.
 pub fn certificate_for_automaton(
     name: &str,
     automaton: &crate::constraint::Automaton,
 ) -> Result<Certificate, CertifyError> {
     let (_, lin, solution) = crate::constraint::solve_automaton(automaton)?;
     let source = format!("the constraints of the automaton `{name}`");
-    Ok(certificate_for_system(
-        name,
-        &source,
-        &lin.system,
+    let mut cert = Certificate::new(name, Claim::Automaton(automaton_claim(automaton)));
+    cert.steps.push(step_of_system(
+        system(&source, &lin.system, None),
         &solution,
-    ))
+    ));
+    Ok(cert)
 }
 
-/// The certificate of an explicit linear system and lacuna's solution of it.
+fn matrix_strings(m: &crate::algebra::Matrix) -> Vec<Vec<String>> {
+    (0..m.rows)
+        .map(|r| (0..m.cols).map(|c| m.get(r, c).to_string()).collect())
+        .collect()
+}
+
+/// The automaton as certificate data.
+pub fn automaton_claim(a: &crate::constraint::Automaton) -> AutomatonClaim {
+    let word = |w: &[crate::constraint::Factor]| -> Vec<WordFactor> {
+        w.iter()
+            .map(|f| match f {
+                crate::constraint::Factor::Op(o) => WordFactor::Op(*o),
+                crate::constraint::Factor::Literal(m) => WordFactor::Literal(matrix_strings(m)),
+            })
+            .collect()
+    };
+    AutomatonClaim {
+        states: a
+            .states
+            .iter()
+            .map(|s| AutomatonState {
+                name: s.name.clone(),
+                dim: s.dim,
+            })
+            .collect(),
+        operators: a
+            .operators
+            .iter()
+            .map(|o| AutomatonOperator {
+                name: o.name.clone(),
+                to: o.to,
+                from: o.from,
+                value: o.value.as_ref().map(matrix_strings),
+            })
+            .collect(),
+        constraints: a
+            .constraints
+            .iter()
+            .map(|c| WordEquation {
+                lhs: word(&c.lhs),
+                rhs: word(&c.rhs),
+            })
+            .collect(),
+        barycentric: a.barycentric.clone(),
+    }
+}
+
+/// The certificate of an explicit linear system and lacuna's solution of it: the claim is the
+/// system.
 pub fn certificate_for_system(
     name: &str,
     source: &str,
     sys: &crate::constraint::LinearSystem,
     solution: &crate::constraint::Solution,
 ) -> Certificate {
-    let mut cert = Certificate::new(name);
+    let mut cert = Certificate::new(name, Claim::System(system(source, sys, None)));
     cert.steps.push(solution_step(source, sys, solution));
     cert
 }
@@ -211,10 +300,7 @@ pub fn closure_step(ts: &crate::topology::TypeSet) -> Result<ClosureStep, Certif
             })
         })
         .collect::<Result<_, CertifyError>>()?;
-    Ok(ClosureStep {
-        types,
-        start: ts.start.clone(),
-    })
+    Ok(ClosureStep { types })
 }
 
 fn terms(v: &[(usize, BigRational)]) -> Vec<(usize, String)> {
@@ -310,7 +396,7 @@ pub fn ratio_step(
             })
         })
         .collect::<Result<_, CertifyError>>()?;
-    let points = report
+    let points: Vec<PointClaim> = report
         .limit_points
         .iter()
         .map(|p| {
@@ -324,14 +410,15 @@ pub fn ratio_step(
             })
         })
         .collect::<Result<_, CertifyError>>()?;
+    let digits = points
+        .first()
+        .map_or(0, |p| p.decimal.split_once('.').map_or(0, |(_, f)| f.len()));
     Ok(RatioStep {
-        matrix: matrix.to_vec(),
-        contribution_halves: contribution_halves.to_vec(),
-        start: start.to_vec(),
         classes,
         rho: algebraic(&rho),
         period: report.period,
         exists: report.exists,
+        digits,
         points,
     })
 }
@@ -554,4 +641,146 @@ fn kernel_vector(
         y[p] = f.sub(&f.rational(BigRational::zero()), &red[i][free[0]]);
     }
     Ok(y)
+}
+
+fn lacuna_edge(e: &Edge) -> crate::topology::EdgeType {
+    let kind = match e.kind {
+        Kind::B => crate::topology::EdgeKind::B,
+        Kind::C => crate::topology::EdgeKind::C,
+    };
+    crate::topology::EdgeType::new(kind, e.n).delayed(e.delay)
+}
+
+fn lacuna_pattern(p: &Pattern) -> crate::topology::EdgePattern {
+    match p {
+        Pattern::Any => crate::topology::EdgePattern::Any,
+        Pattern::Kind(Kind::B) => crate::topology::EdgePattern::Kind(crate::topology::EdgeKind::B),
+        Pattern::Kind(Kind::C) => crate::topology::EdgePattern::Kind(crate::topology::EdgeKind::C),
+        Pattern::Exact(e) => crate::topology::EdgePattern::Exact(lacuna_edge(e)),
+    }
+}
+
+/// A certificate face as lacuna's face.
+pub fn lacuna_face(f: &Face) -> crate::topology::Face {
+    let items = f
+        .algorithm
+        .iter()
+        .map(|i| match i {
+            SpokeItem::Joint => crate::topology::SpokeItem::Joint,
+            SpokeItem::Gap => crate::topology::SpokeItem::Gap,
+            SpokeItem::Corner => crate::topology::SpokeItem::Corner,
+            SpokeItem::DelayedCorner => crate::topology::SpokeItem::DelayedCorner,
+            SpokeItem::DelayedCornerNotB => crate::topology::SpokeItem::DelayedCornerNotB,
+            SpokeItem::CornerBetween(p, q) => {
+                crate::topology::SpokeItem::CornerBetween(lacuna_pattern(p), lacuna_pattern(q))
+            }
+        })
+        .collect();
+    crate::topology::Face {
+        boundary: f.boundary.iter().map(lacuna_edge).collect(),
+        params: crate::topology::Params {
+            ea: lacuna_edge(&f.params.ea),
+            el: lacuna_edge(&f.params.el),
+            ec: lacuna_edge(&f.params.ec),
+        },
+        algorithm: crate::topology::Algorithm::Spokes(items),
+        delay: f.delay,
+    }
+}
+
+fn rational(s: &str) -> Result<BigRational, CertifyError> {
+    s.parse()
+        .map_err(|_| CertifyError::Witness(format!("`{s}` is not a rational")))
+}
+
+fn lacuna_matrix(m: &[Vec<String>]) -> Result<crate::algebra::Matrix, CertifyError> {
+    let rows = m
+        .iter()
+        .map(|r| r.iter().map(|x| rational(x)).collect())
+        .collect::<Result<_, _>>()?;
+    Ok(crate::algebra::Matrix::from_rows(rows))
+}
+
+/// A claimed automaton as lacuna's automaton (operator kinds are `Other`: only the explicit
+/// barycentric list matters to the system).
+pub fn lacuna_automaton(a: &AutomatonClaim) -> Result<crate::constraint::Automaton, CertifyError> {
+    let mut out = crate::constraint::Automaton::default();
+    for s in &a.states {
+        out.add_state(s.name.clone(), s.dim);
+    }
+    for o in &a.operators {
+        let value = o.value.as_deref().map(lacuna_matrix).transpose()?;
+        out.add_op(
+            o.name.clone(),
+            crate::constraint::OpKind::Other,
+            o.to,
+            o.from,
+            value,
+        );
+    }
+    let word = |w: &[WordFactor]| -> Result<Vec<crate::constraint::Factor>, CertifyError> {
+        w.iter()
+            .map(|f| match f {
+                WordFactor::Op(o) => Ok(crate::constraint::Factor::Op(*o)),
+                WordFactor::Literal(m) => Ok(crate::constraint::Factor::Literal(lacuna_matrix(m)?)),
+            })
+            .collect()
+    };
+    for (k, c) in a.constraints.iter().enumerate() {
+        out.constraints.push(crate::constraint::Constraint {
+            label: format!("constraint {k}"),
+            span: None,
+            kind: crate::constraint::ConstraintKind::Word,
+            lhs: word(&c.lhs)?,
+            rhs: word(&c.rhs)?,
+        });
+    }
+    out.barycentric = a.barycentric.clone();
+    Ok(out)
+}
+
+/// The certificate lacuna itself produces for a claim: the independent recomputation of
+/// everything a checked certificate states (used by the forgery fuzz target and tests: a
+/// certificate the checker accepts must state what this one states).
+pub fn recertify(
+    label: &str,
+    claim: &Claim,
+    limits: &crate::topology::Limits,
+) -> Result<Certificate, CertifyError> {
+    match claim {
+        Claim::Faces(f) => {
+            let faces: Vec<crate::topology::Face> = f.faces.iter().map(lacuna_face).collect();
+            let ts = crate::topology::close_or_error(&faces, limits)?;
+            let opts = crate::constraint::GenOptions {
+                degree: f.degree,
+                cantor_gap: rational(&f.cantor_gap)?,
+            };
+            certificate_for(label, &ts, opts)
+        }
+        Claim::Automaton(a) => certificate_for_automaton(label, &lacuna_automaton(a)?),
+        Claim::Substitution(s) => {
+            certificate_for_substitution(label, &s.matrix, &s.contribution_halves, &s.start)
+        }
+        Claim::System(s) => {
+            let sys = crate::constraint::LinearSystem {
+                unknowns: s.unknowns,
+                rows: s
+                    .rows
+                    .iter()
+                    .map(|r| {
+                        Ok(crate::constraint::Equation {
+                            terms: r
+                                .terms
+                                .iter()
+                                .map(|(v, c)| Ok((*v, rational(c)?)))
+                                .collect::<Result<_, CertifyError>>()?,
+                            rhs: rational(&r.rhs)?,
+                        })
+                    })
+                    .collect::<Result<_, CertifyError>>()?,
+            };
+            let solution = crate::constraint::solve(&sys);
+            Ok(certificate_for_system(label, &s.source, &sys, &solution))
+        }
+    }
 }

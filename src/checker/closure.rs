@@ -1,14 +1,66 @@
 //! The closure step: re-derives every listed type's subdivision (SPEC §3) with the checker's own
 //! code and checks the incidence identities and contributions (see `docs/CERTIFICATES.md`).
 
-use crate::certificate::{Adjacency, ClosureStep, Edge, Face, Kind, Origin, Pattern, SpokeItem};
-use std::collections::{BTreeMap, BTreeSet};
+use crate::certificate::{
+    Adjacency, ClosureStep, Edge, Face, Kind, Origin, Params, Pattern, SpokeItem, SubstitutionClaim,
+};
+use num_bigint::BigUint;
+use num_traits::{One, Zero};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 
-/// The substitution read off a checked closure: matrix rows, contributions, start counts.
+/// The substitution read off a checked closure, or given by the claim: matrix rows,
+/// contributions (halves), start counts. Every count is a big integer: repeated pairs add up
+/// exactly, however large.
 pub(super) struct Substitution {
-    pub(super) matrix: Vec<BTreeMap<usize, u64>>,
-    pub(super) contributions: Vec<u64>,
-    pub(super) start: BTreeMap<usize, u64>,
+    pub(super) matrix: Vec<BTreeMap<usize, BigUint>>,
+    pub(super) contributions: Vec<BigUint>,
+    pub(super) start: BTreeMap<usize, BigUint>,
+}
+
+/// `Σ k` of the pairs `(index, k)` with equal index, exactly (big integers), zeros dropped;
+/// every index must be below `n`.
+pub(super) fn merge_pairs(
+    pairs: &[(usize, u64)],
+    n: usize,
+    what: &str,
+) -> Result<BTreeMap<usize, BigUint>, String> {
+    let mut out: BTreeMap<usize, BigUint> = BTreeMap::new();
+    for &(s, k) in pairs {
+        if s >= n {
+            return Err(format!("{what}: type {s} out of range (0..{n})"));
+        }
+        *out.entry(s).or_insert_with(BigUint::zero) += BigUint::from(k);
+    }
+    out.retain(|_, k| !k.is_zero());
+    Ok(out)
+}
+
+impl Substitution {
+    /// The substitution a claim gives as a matrix.
+    pub(super) fn of_claim(s: &SubstitutionClaim) -> Result<Substitution, String> {
+        let n = s.matrix.len();
+        if s.contribution_halves.len() != n {
+            return Err(format!(
+                "{} contributions for {n} types",
+                s.contribution_halves.len()
+            ));
+        }
+        let matrix = s
+            .matrix
+            .iter()
+            .enumerate()
+            .map(|(t, row)| merge_pairs(row, n, &format!("matrix row {t}")))
+            .collect::<Result<_, _>>()?;
+        let start = merge_pairs(&s.start, n, "start")?;
+        if start.is_empty() {
+            return Err("no start face".into());
+        }
+        Ok(Substitution {
+            matrix,
+            contributions: s.contribution_halves.iter().map(|&h| h.into()).collect(),
+            start,
+        })
+    }
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -79,10 +131,29 @@ fn is_spoke(items: &[SpokeItem], (kind, before, after): (JKind, Edge, Edge)) -> 
 }
 
 /// The start of the lexicographically least rotation (order B < C, then n, then delay); ties go
-/// to the smallest start. Quadratic and plain on purpose.
-fn least_rotation(b: &[Edge]) -> usize {
-    let rot = |r: usize| b.iter().cycle().skip(r).take(b.len());
-    (1..b.len()).fold(0, |best, r| if rot(r).lt(rot(best)) { r } else { best })
+/// to the smallest start. Linear time (the two-candidate minimum-rotation scan: candidates `i`
+/// and `j` are compared over `k` common elements; the loser cannot start a least rotation
+/// anywhere in the `k + 1` positions it just passed, so it jumps past them; `i + j + k` grows by
+/// at least 1 per step and stays below `3n`).
+pub(super) fn least_rotation<T: Ord>(b: &[T]) -> usize {
+    let n = b.len();
+    let (mut i, mut j, mut k) = (0, 1, 0);
+    while i < n && j < n && k < n {
+        let (x, y) = (&b[(i + k) % n], &b[(j + k) % n]);
+        match x.cmp(y) {
+            std::cmp::Ordering::Equal => {
+                k += 1;
+                continue;
+            }
+            std::cmp::Ordering::Greater => i += k + 1,
+            std::cmp::Ordering::Less => j += k + 1,
+        }
+        if i == j {
+            j += 1;
+        }
+        k = 0;
+    }
+    i.min(j).min(n.saturating_sub(1))
 }
 
 fn canonical(raw: Vec<(Edge, Origin)>, delay: u32) -> Derived {
@@ -164,26 +235,42 @@ fn subdivide(face: &Face) -> Result<(Vec<Derived>, Vec<Adjacency>), String> {
     Ok((subs, adj))
 }
 
-fn same_face(a: &Face, b: &Face) -> bool {
-    let set =
-        |f: &Face| -> BTreeSet<String> { f.algorithm.iter().map(|i| format!("{i:?}")).collect() };
-    a.boundary == b.boundary && a.params == b.params && a.delay == b.delay && set(a) == set(b)
+/// What identifies a face type: boundary, E, delay and the algorithm as a set of items.
+type FaceKey = (Vec<Edge>, Params, u32, BTreeSet<SpokeItem>);
+
+fn key(f: &Face) -> FaceKey {
+    let items = f.algorithm.iter().copied().collect();
+    (f.boundary.clone(), f.params, f.delay, items)
 }
 
-/// Lacunas of one step in halves (SPEC §5): 2 for the centre (d = 1), n−1 per non-delayed `Cn`.
-fn contribution(f: &Face) -> u64 {
+/// Lacunas of one step in halves (SPEC §5): 2 for the centre (d = 1), n−1 per non-delayed `Cn`
+/// (a big integer: the sum cannot wrap).
+fn contribution(f: &Face) -> BigUint {
     let gaps = f
         .boundary
         .iter()
         .filter(|e| e.kind == Kind::C && e.delay == 1);
-    2 * u64::from(f.delay == 1) + gaps.map(|e| u64::from(e.n) - 1).sum::<u64>()
+    let centre = BigUint::from(2u32 * u32::from(f.delay == 1));
+    gaps.fold(centre, |acc, e| acc + BigUint::from(e.n) - BigUint::one())
 }
 
-pub(super) fn check_closure(c: &ClosureStep) -> Result<(String, Substitution), String> {
+/// The number of sub-edges of a face (`n` per non-delayed edge, 1 per delayed edge), in u128:
+/// a boundary has fewer than 2^64 edges of fewer than 2^32 pieces each, so the sum fits.
+fn piece_count(f: &Face) -> u128 {
+    f.boundary
+        .iter()
+        .map(|e| u128::try_from(piece_type(e).0).unwrap_or(u128::MAX))
+        .fold(0u128, u128::saturating_add)
+}
+
+/// Checks the closure step against the claim's start faces; returns the report, the verdict
+/// and the substitution read off it.
+pub(super) fn check_closure(
+    c: &ClosureStep,
+    faces: &[Face],
+) -> Result<(String, String, Substitution), String> {
     let nt = c.types.len();
-    if c.start.is_empty() || c.start.iter().any(|&s| s >= nt) {
-        return Err("the start types are missing or out of range".into());
-    }
+    let mut index: HashMap<FaceKey, usize> = HashMap::with_capacity(nt);
     for (t, rule) in c.types.iter().enumerate() {
         let (f, p) = (&rule.face, rule.face.params);
         let edges_ok = f
@@ -201,8 +288,34 @@ pub(super) fn check_closure(c: &ClosureStep) -> Result<(String, Substitution), S
                 "type {t}: the boundary is not in canonical rotation"
             ));
         }
-        if let Some(u) = (0..t).find(|&u| same_face(&c.types[u].face, f)) {
+        // The derived sub-faces list every sub-edge once as an origin: a face with more
+        // sub-edges than the certificate lists origins cannot match, and is refused before
+        // anything of its size is built.
+        let listed: u128 = rule.subfaces.iter().map(|s| s.origins.len() as u128).sum();
+        if piece_count(f) > listed {
+            return Err(format!(
+                "type {t}: its edges have {} sub-edges, more than the {listed} origins listed",
+                piece_count(f)
+            ));
+        }
+        if let Some(u) = index.insert(key(f), t) {
             return Err(format!("types {u} and {t} are the same face type"));
+        }
+    }
+    if faces.is_empty() {
+        return Err("the claim has no start face".into());
+    }
+    let mut start: BTreeMap<usize, BigUint> = BTreeMap::new();
+    for (i, f) in faces.iter().enumerate() {
+        match index.get(&key(f)) {
+            Some(&t) if c.types[t].face == *f => {
+                *start.entry(t).or_insert_with(BigUint::zero) += 1u32;
+            }
+            _ => {
+                return Err(format!(
+                    "start face {i} of the claim is not a listed type (in canonical form)"
+                ))
+            }
         }
     }
     let mut matrix = Vec::with_capacity(nt);
@@ -215,7 +328,7 @@ pub(super) fn check_closure(c: &ClosureStep) -> Result<(String, Substitution), S
                 subs.len()
             ));
         }
-        let mut row = BTreeMap::new();
+        let mut row: BTreeMap<usize, BigUint> = BTreeMap::new();
         for (k, ((boundary, origins, delay), sf)) in
             subs.into_iter().zip(&rule.subfaces).enumerate()
         {
@@ -225,7 +338,7 @@ pub(super) fn check_closure(c: &ClosureStep) -> Result<(String, Substitution), S
                 ..rule.face.clone()
             };
             match c.types.get(sf.type_index) {
-                Some(target) if same_face(&target.face, &want) => {}
+                Some(target) if key(&target.face) == key(&want) => {}
                 _ => {
                     return Err(format!(
                         "type {t} sub-face {k}: type {} is not the derived face",
@@ -238,31 +351,34 @@ pub(super) fn check_closure(c: &ClosureStep) -> Result<(String, Substitution), S
                     "type {t} sub-face {k}: origins differ from the derived ones"
                 ));
             }
-            *row.entry(sf.type_index).or_insert(0) += 1;
+            *row.entry(sf.type_index).or_insert_with(BigUint::zero) += 1u32;
         }
         if adj != rule.adjacencies {
             return Err(format!(
                 "type {t}: adjacencies differ from the derived ones"
             ));
         }
-        if contribution(&rule.face) != rule.contribution_halves {
+        if contribution(&rule.face) != BigUint::from(rule.contribution_halves) {
             return Err(format!("type {t}: contribution is not the one of SPEC §5"));
         }
         identities(c, t).map_err(|e| format!("type {t}: {e}"))?;
         matrix.push(row);
     }
-    let mut start = BTreeMap::new();
-    c.start
-        .iter()
-        .for_each(|&s| *start.entry(s).or_insert(0) += 1);
     let subs: usize = c.types.iter().map(|r| r.subfaces.len()).sum();
     let msg = format!(
-        "{nt} face type(s) closed under subdivision: {subs} sub-faces re-derived (SPEC §3), \
-         every incidence identity and contribution holds"
+        "{nt} face type(s) closed under subdivision, the claim's {} start face(s) among them: \
+         {subs} sub-faces re-derived (SPEC §3), every incidence identity and contribution holds",
+        faces.len()
     );
-    let contributions = c.types.iter().map(|r| r.contribution_halves).collect();
+    let verdict = format!("closure: {nt} face types, closed under subdivision");
+    let contributions = c
+        .types
+        .iter()
+        .map(|r| BigUint::from(r.contribution_halves))
+        .collect();
     Ok((
         msg,
+        verdict,
         Substitution {
             matrix,
             contributions,
@@ -347,5 +463,42 @@ fn identities(c: &ClosureStep, t: usize) -> Result<(), String> {
             "{} of {s} spokes paired by adjacencies",
             paired.len()
         )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn repeated_pairs_add_up_exactly() {
+        // (0, 2^64 − 1) twice and (0, 7): 2^65 + 5, not the wrapped 5.
+        let got = merge_pairs(&[(0, u64::MAX), (0, u64::MAX), (0, 7)], 1, "row").unwrap();
+        let want = (BigUint::one() << 65u32) + BigUint::from(5u32);
+        assert_eq!(got[&0], want);
+        assert!(merge_pairs(&[(1, 1)], 1, "row").is_err());
+        // A multiplicity of 2^64 + 6 written as (0, 2^64 − 1), (0, 7) is not 6.
+        let got = merge_pairs(&[(0, u64::MAX), (0, 7)], 1, "start").unwrap();
+        assert_eq!(got[&0], (BigUint::one() << 64u32) + BigUint::from(6u32));
+    }
+
+    #[test]
+    fn least_rotation_is_the_smallest_start_of_the_least_rotation() {
+        // Against the quadratic definition on every word of length ≤ 7 over {0, 1, 2}.
+        let slow = |b: &[u8]| -> usize {
+            let rot = |r: usize| -> Vec<u8> { b[r..].iter().chain(&b[..r]).copied().collect() };
+            (0..b.len()).min_by_key(|&r| (rot(r), r)).unwrap_or(0)
+        };
+        for len in 1..=7u32 {
+            for code in 0..3usize.pow(len) {
+                let w: Vec<u8> = (0..len)
+                    .map(|i| ((code / 3usize.pow(i)) % 3) as u8)
+                    .collect();
+                assert_eq!(least_rotation(&w), slow(&w), "{w:?}");
+            }
+        }
+        // Linear: a million equal edges take a moment, not 10^12 comparisons.
+        let long = vec![0u8; 1_000_000];
+        assert_eq!(least_rotation(&long), 0);
     }
 }

@@ -89,6 +89,8 @@ pub(super) struct Root {
     pub(super) p: P,
     pub(super) lo: Q,
     pub(super) hi: Q,
+    /// The Sturm chain of `p` (empty for a rational root, `lo = hi`).
+    chain: Vec<P>,
 }
 
 impl Root {
@@ -97,9 +99,9 @@ impl Root {
     pub(super) fn isolate(poly: &[String], lo: &str, hi: &str, what: &str) -> Result<Root, String> {
         let p = trim(
             poly.iter()
-                .map(|c| c.parse::<BigInt>().map(Q::from_integer))
-                .collect::<Result<_, _>>()
-                .map_err(|_| format!("{what}'s polynomial has a non-integer coefficient"))?,
+                .map(|c| rat(c).ok().filter(Q::is_integer))
+                .collect::<Option<_>>()
+                .ok_or_else(|| format!("{what}'s polynomial has a non-integer coefficient"))?,
         );
         let (lo, hi) = (rat(lo)?, rat(hi)?);
         if p.len() < 2 {
@@ -108,7 +110,12 @@ impl Root {
         if p.len() == 2 {
             let root = -&p[0] / &p[1];
             return match lo == root && hi == root {
-                true => Ok(Root { p, lo, hi }),
+                true => Ok(Root {
+                    p,
+                    lo,
+                    hi,
+                    chain: Vec::new(),
+                }),
                 false => Err(format!(
                     "{what}: the interval [{lo}, {hi}] is not the rational root {root}"
                 )),
@@ -126,11 +133,34 @@ impl Root {
             }
             chain.push(r.into_iter().map(|c| -c).collect());
         }
-        match sign_changes(&chain, &lo) - sign_changes(&chain, &hi) {
-            1 => Ok(Root { p, lo, hi }),
-            k => Err(format!(
-                "{what}: [{lo}, {hi}] holds {k} roots of its polynomial, not 1"
+        match sign_changes(&chain, &lo).checked_sub(sign_changes(&chain, &hi)) {
+            Some(1) => Ok(Root { p, lo, hi, chain }),
+            _ => Err(format!(
+                "{what}: [{lo}, {hi}] does not hold exactly one root of its polynomial"
             )),
+        }
+    }
+
+    /// The root compared with a rational `x`, exactly: outside `[lo, hi]` by the interval; inside,
+    /// `p(x) = 0` means `x` is the root (the only one there), otherwise the Sturm count on
+    /// `(lo, x]` says whether the root lies below `x`.
+    pub(super) fn cmp_rational(&self, x: &Q) -> std::cmp::Ordering {
+        use std::cmp::Ordering::{Equal, Greater, Less};
+        if self.chain.is_empty() {
+            return self.lo.cmp(x);
+        }
+        if x < &self.lo {
+            return Greater;
+        }
+        if x > &self.hi {
+            return Less;
+        }
+        if eval(&self.p, x).is_zero() {
+            return Equal;
+        }
+        match sign_changes(&self.chain, &self.lo) > sign_changes(&self.chain, x) {
+            true => Less,
+            false => Greater,
         }
     }
 

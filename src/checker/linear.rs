@@ -1,15 +1,15 @@
 //! The linear-system steps: a solution space (particular solution, kernel basis, a pivot minor
 //! shown nonsingular modulo a prime) and an inconsistency (a combination giving `0 = c ≠ 0`).
 
-use super::system::tie;
+use super::system::{tie, Tie};
 use super::{rat, Checked, Equation, Q};
-use crate::certificate::{ClosureStep, ConflictStep, Row, SolutionStep};
+use crate::certificate::{ConflictStep, Row, SolutionStep};
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_traits::{One, ToPrimitive, Zero};
 use std::collections::{BTreeMap, BTreeSet};
 
-fn parse_rows(rows: &[Row], unknowns: usize) -> Result<Vec<Equation>, String> {
+pub(super) fn parse_rows(rows: &[Row], unknowns: usize) -> Result<Vec<Equation>, String> {
     rows.iter()
         .enumerate()
         .map(|(i, r)| {
@@ -41,11 +41,23 @@ fn dot(terms: &[(usize, Q)], x: &BTreeMap<usize, Q>) -> Q {
         .sum()
 }
 
-/// A solution space; with a recipe, of the system rebuilt from the proved closure step.
-pub(super) fn check_solution(s: &SolutionStep, closure: Option<&ClosureStep>) -> Checked {
+/// A solution space of the system tied to the claim (rebuilt from the closure or the automaton,
+/// or the claim's own system).
+pub(super) fn check_solution(s: &SolutionStep, to: Tie) -> Checked {
     let n = s.system.unknowns;
+    // rank + dof = unknowns with rank = |pivots| and dof = |free|, first: `n` then bounds the
+    // allocations below by the certificate's own size.
+    let dof = s.free.len();
+    if s.rank != s.pivots.len() || s.dof != dof || s.rank.checked_add(dof) != Some(n) {
+        return Err(format!(
+            "rank {} (|pivots| = {}) + dof {} (|free| = {dof}) ≠ {n} unknowns",
+            s.rank,
+            s.pivots.len(),
+            s.dof
+        ));
+    }
     let rows = parse_rows(&s.system.rows, n)?;
-    let system = tie(&s.system, &rows, closure)?;
+    let system = tie(&s.system, &rows, to)?;
     let part = sparse(&s.particular, n, "particular solution")?;
     if let Some(i) = rows.iter().position(|(t, rhs)| dot(t, &part) != *rhs) {
         return Err(format!("the particular solution fails row {i}"));
@@ -64,15 +76,26 @@ pub(super) fn check_solution(s: &SolutionStep, closure: Option<&ClosureStep>) ->
     for (i, (t, _)) in rows.iter().enumerate() {
         t.iter().for_each(|(v, _)| rows_of[*v].push(i));
     }
+    // Which unknown is free, and the index of its basis vector: one pass over each vector's
+    // own entries instead of a scan of every free unknown per vector.
+    let mut free_at: Vec<Option<usize>> = vec![None; n];
+    s.free
+        .iter()
+        .enumerate()
+        .for_each(|(j, &f)| free_at[f] = Some(j));
     for (k, b) in s.basis.iter().enumerate() {
         let b = sparse(b, n, &format!("basis vector {k}"))?;
-        for (j, f) in s.free.iter().enumerate() {
-            let want = if j == k { Q::one() } else { Q::zero() };
-            if b.get(f).cloned().unwrap_or_else(Q::zero) != want {
-                return Err(format!(
-                    "basis vector {k} is not {want} at free unknown {f}"
-                ));
-            }
+        if b.get(&s.free[k]).is_none_or(|x| !x.is_one()) {
+            return Err(format!(
+                "basis vector {k} is not 1 at free unknown {}",
+                s.free[k]
+            ));
+        }
+        if let Some((f, _)) = b
+            .iter()
+            .find(|(v, x)| free_at[**v].is_some_and(|j| j != k) && !x.is_zero())
+        {
+            return Err(format!("basis vector {k} is not 0 at free unknown {f}"));
         }
         let touched: BTreeSet<usize> = b.keys().flat_map(|v| rows_of[*v].iter().copied()).collect();
         if let Some(i) = touched
@@ -82,20 +105,17 @@ pub(super) fn check_solution(s: &SolutionStep, closure: Option<&ClosureStep>) ->
             return Err(format!("basis vector {k} fails homogeneous row {i}"));
         }
     }
-    let dof = s.free.len();
-    if s.rank != s.pivots.len() || s.dof != dof || s.rank + dof != n {
-        return Err(format!(
-            "rank {} (|pivots| = {}) + dof {} (|free| = {dof}) ≠ {n} unknowns",
-            s.rank,
-            s.pivots.len(),
-            s.dof
-        ));
-    }
     let p = nonsingular_minor(&rows, &s.pivots, n)?;
-    Ok(format!(
-        "{system}; rank {} (pivot minor nonsingular mod {p}), {dof} degrees of freedom; the \
-         solution set is exactly particular + span(basis)",
-        s.rank
+    Ok((
+        format!(
+            "{system}; rank {} (pivot minor nonsingular mod {p}), {dof} degrees of freedom; the \
+             solution set is exactly particular + span(basis)",
+            s.rank
+        ),
+        format!(
+            "constraint system: consistent, rank {}, {dof} degrees of freedom",
+            s.rank
+        ),
     ))
 }
 
@@ -167,10 +187,10 @@ fn nonsingular_minor(
     Err(format!("the pivot minor is not shown nonsingular: {why}"))
 }
 
-/// An inconsistency; with a recipe, of the system rebuilt from the proved closure step.
-pub(super) fn check_conflict(c: &ConflictStep, closure: Option<&ClosureStep>) -> Checked {
+/// An inconsistency of the system tied to the claim.
+pub(super) fn check_conflict(c: &ConflictStep, to: Tie) -> Checked {
     let rows = parse_rows(&c.system.rows, c.system.unknowns)?;
-    let system = tie(&c.system, &rows, closure)?;
+    let system = tie(&c.system, &rows, to)?;
     let mut sum: BTreeMap<usize, Q> = BTreeMap::new();
     let mut rhs = Q::zero();
     let mut used = BTreeSet::new();
@@ -193,8 +213,11 @@ pub(super) fn check_conflict(c: &ConflictStep, closure: Option<&ClosureStep>) ->
             c.constant
         ));
     }
-    Ok(format!(
-        "{system}; {} of them combine to 0 = {rhs}: no solution",
-        c.multipliers.len()
+    Ok((
+        format!(
+            "{system}; {} of them combine to 0 = {rhs}: no solution",
+            c.multipliers.len()
+        ),
+        "constraint system: inconsistent (no solution)".into(),
     ))
 }

@@ -4,7 +4,9 @@
 //! (`tests/certificates.rs`) reads every file of this directory and fails on any other path into
 //! lacuna. Everything it needs is re-implemented here, small, one file per concern:
 //!
+//! - `claim.rs`: the claim printed first, the fixed structure of the steps, strict numbers;
 //! - `closure.rs`: the subdivision of a face (SPEC §3), incidence identities, contributions;
+//! - `automaton.rs`: the linear system of a hand-written automaton, rebuilt from its words;
 //! - `system.rs`: the constraint system of a closure (SPEC §6) rebuilt from the closure step;
 //! - `linear.rs`: exact linear checks and elimination modulo primes;
 //! - `field.rs`: polynomials over Q, Sturm isolation, exact zero and sign tests in Q[x]/(p);
@@ -12,8 +14,15 @@
 //! - `series.rs`: the counts, the characteristic polynomial of `A^P` (Faddeev–LeVerrier, Newton)
 //!   and the pole of the generating functions at `ρ^(−P)`.
 //!
-//! What each step proves is documented on [`Step`] and in `docs/CERTIFICATES.md`.
+//! What each step proves is documented on [`Step`] and in `docs/CERTIFICATES.md`. No value read
+//! from a certificate, or derived from one, is held in a fixed-width integer that could wrap:
+//! counts, multiplicities, periods and their lcm are big integers, indices are compared with the
+//! length they index before use, and sizes are multiplied with checked arithmetic.
+//!
+//! [`Step`]: crate::certificate::Step
 
+mod automaton;
+mod claim;
 mod closure;
 mod field;
 mod linear;
@@ -21,11 +30,15 @@ mod ratio;
 mod series;
 mod system;
 
+use self::claim::{claim_lines, structure};
 use self::closure::{check_closure, Substitution};
 use self::linear::{check_conflict, check_solution};
 use self::ratio::check_ratio;
-use crate::certificate::{Certificate, Step, FORMAT, VERSION};
+use self::system::Tie;
+use crate::certificate::{Certificate, Claim, Step, FORMAT, VERSION};
 use num_rational::BigRational;
+
+pub use self::claim::{parse_decimal, parse_rational};
 
 /// The verdict on one step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -39,30 +52,44 @@ pub enum Outcome {
 /// What the checker concluded about one step.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct StepReport {
-    /// The step's name (`closure`, `solution-space`, `inconsistent`, `limit-ratio`, or `header`).
+    /// The step's name (`closure`, `solution-space`, `inconsistent`, `limit-ratio`, or `header`
+    /// and `structure` for a certificate refused as a whole).
     pub step: String,
     /// The verdict.
     pub outcome: Outcome,
     /// What was proved, or why it failed, naming the step.
     pub message: String,
+    /// The short statement the step proves about the claim (`None` when it failed).
+    pub verdict: Option<String>,
 }
 
-/// The checker's report: one entry per step.
+/// The checker's report: the claim, then one entry per step.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct CheckReport {
+    /// The claim, as printed first (one line per item); empty when the header was refused.
+    pub claim: Vec<String>,
     /// The steps, in certificate order.
     pub steps: Vec<StepReport>,
+    /// The steps the claim needs that the certificate does not have (a *partial* certificate).
+    pub missing: Vec<String>,
 }
 
 impl CheckReport {
-    /// True when every step is proved (the only outcome `lacuna check` accepts).
+    /// True when every step is proved and none is missing: the only outcome `lacuna check`
+    /// accepts (exit 0).
     pub fn all_proved(&self) -> bool {
-        !self.steps.is_empty() && self.steps.iter().all(|s| s.outcome == Outcome::Proved)
+        !self.steps.is_empty() && !self.failed() && self.missing.is_empty()
     }
 
-    /// True when some step failed.
+    /// True when some step failed (exit 1).
     pub fn failed(&self) -> bool {
         self.steps.iter().any(|s| s.outcome == Outcome::Failed)
+    }
+
+    /// True when nothing failed but steps the claim needs are missing: the certificate proves
+    /// part of its claim only (`lacuna check` exits 3).
+    pub fn partial(&self) -> bool {
+        !self.failed() && !self.missing.is_empty()
     }
 
     /// The report for one step name (the first with that name).
@@ -70,15 +97,32 @@ impl CheckReport {
         self.steps.iter().find(|s| s.step == name)
     }
 
-    /// One line per step.
+    /// What `check` states about the input: the claim lines and the verdict of every proved
+    /// step. Two certificates that both check state the same thing iff these are equal.
+    pub fn claims(&self) -> Vec<String> {
+        let verdicts = self.steps.iter().filter_map(|s| s.verdict.clone());
+        self.claim.iter().cloned().chain(verdicts).collect()
+    }
+
+    /// The claim, then one line per step, then the partial notice if any.
     pub fn to_text(&self) -> String {
         let mut o = String::new();
+        for c in &self.claim {
+            o += &format!("{:>13}  {c}\n", "claim");
+        }
         for s in &self.steps {
             let v = match s.outcome {
                 Outcome::Proved => "proved",
                 Outcome::Failed => "FAILED",
             };
             o += &format!("{v:>13}  {}\n", s.message);
+        }
+        if self.partial() {
+            o += &format!(
+                "{:>13}  the certificate proves only part of its claim: no {} step\n",
+                "PARTIAL",
+                self.missing.join(", no ")
+            );
         }
         o
     }
@@ -93,46 +137,58 @@ impl CheckReport {
                     Outcome::Proved => "proved",
                     Outcome::Failed => "failed",
                 };
-                serde_json::json!({"step": s.step, "outcome": outcome, "message": s.message})
+                serde_json::json!({"step": s.step, "outcome": outcome, "message": s.message,
+                                   "verdict": s.verdict})
             })
             .collect();
-        serde_json::json!({"all_proved": self.all_proved(), "steps": steps})
+        serde_json::json!({"all_proved": self.all_proved(), "partial": self.partial(),
+                           "claim": self.claim, "missing": self.missing, "steps": steps})
     }
 }
 
 type Q = BigRational;
-type Checked = Result<String, String>;
+/// A step's result: `(report message, verdict)` or why it failed.
+type Checked = Result<(String, String), String>;
 /// A parsed row: `(unknown, coefficient)` terms and the right-hand side.
 type Equation = (Vec<(usize, Q)>, Q);
 
-fn header_fail(m: String) -> CheckReport {
+fn refused(step: &str, claim: Vec<String>, m: String) -> CheckReport {
     CheckReport {
+        claim,
         steps: vec![StepReport {
-            step: "header".into(),
+            step: step.into(),
             outcome: Outcome::Failed,
-            message: format!("header: {m}"),
+            message: format!("{step}: {m}"),
+            verdict: None,
         }],
+        missing: Vec::new(),
     }
 }
 
 /// The refusal of a certificate of another format or version.
 fn wrong_version(format: &str, version: &str) -> Option<CheckReport> {
     if format != FORMAT {
-        return Some(header_fail(format!(
-            "format `{format}` is not `{FORMAT}`: not a lacuna certificate"
-        )));
+        return Some(refused(
+            "header",
+            Vec::new(),
+            format!("format `{format}` is not `{FORMAT}`: not a lacuna certificate"),
+        ));
     }
     (version != VERSION.to_string()).then(|| {
-        header_fail(format!(
-            "unknown certificate version {version}: this checker reads version {VERSION} only \
-             (regenerate the certificate with `lacuna verify --certificate`)"
-        ))
+        refused(
+            "header",
+            Vec::new(),
+            format!(
+                "unknown certificate version {version}: this checker reads version {VERSION} \
+                 only (regenerate the certificate with `lacuna verify --certificate`)"
+            ),
+        )
     })
 }
 
-/// Checks a certificate given as JSON text (a parse error is a failed `header`). The format and
-/// version are read first, so a certificate of another version is refused by name rather than
-/// by a parse error in a step whose form changed.
+/// Checks a certificate given as JSON text (a parse error, an unknown field included, is a
+/// failed `header`). The format and version are read first, so a certificate of another version
+/// is refused by name rather than by a parse error in a step whose form changed.
 pub fn check_json(text: &str) -> CheckReport {
     if let Ok(v) = serde_json::from_str::<serde_json::Value>(text) {
         let field = |k: &str| {
@@ -147,50 +203,77 @@ pub fn check_json(text: &str) -> CheckReport {
     }
     match Certificate::from_json(text) {
         Ok(c) => check(&c),
-        Err(e) => header_fail(format!("not a certificate: {e}")),
+        Err(e) => refused("header", Vec::new(), format!("not a certificate: {e}")),
     }
 }
 
-/// Checks every step of a certificate.
+/// Checks a certificate: prints its claim, checks that its steps have the structure the claim
+/// demands (else it is refused as a whole), then checks every step, each tied to the claim or
+/// to the closure step.
 pub fn check(cert: &Certificate) -> CheckReport {
     if let Some(report) = wrong_version(&cert.format, &cert.version.to_string()) {
         return report;
     }
-    if cert.steps.is_empty() {
-        return header_fail("the certificate has no step".into());
-    }
+    let claim = claim_lines(&cert.claim);
+    let missing = match structure(&cert.claim, &cert.steps) {
+        Ok(m) => m,
+        Err(e) => return refused("structure", claim, e),
+    };
     let mut steps = Vec::new();
-    let mut closure: Option<Substitution> = None;
-    let mut proved_closure = None;
+    let mut closure: Option<(Substitution, &crate::certificate::ClosureStep)> = None;
+    let given = match &cert.claim {
+        Claim::Substitution(s) => Some(Substitution::of_claim(s)),
+        Claim::Faces(_) | Claim::Automaton(_) | Claim::System(_) => None,
+    };
     for (i, step) in cert.steps.iter().enumerate() {
         let name = step.name();
-        let (outcome, result) = match step {
-            Step::Closure(c) => match check_closure(c) {
-                Ok((msg, sub)) => {
-                    closure = Some(sub);
-                    proved_closure = Some(c);
-                    (Outcome::Proved, Ok(msg))
-                }
-                Err(e) => (Outcome::Failed, Err(e)),
+        let tie = match (&cert.claim, &closure) {
+            (Claim::Faces(f), Some((_, c))) => Tie::Closure {
+                closure: c,
+                degree: f.degree,
+                gap: &f.cantor_gap,
             },
-            Step::SolutionSpace(s) => (Outcome::Proved, check_solution(s, proved_closure)),
-            Step::Inconsistent(c) => (Outcome::Proved, check_conflict(c, proved_closure)),
-            Step::LimitRatio(r) => (Outcome::Proved, check_ratio(r, closure.as_ref())),
+            (Claim::Faces(_), None) => Tie::Missing,
+            (Claim::Automaton(a), _) => Tie::Automaton(a),
+            (Claim::System(s), _) => Tie::Given(s),
+            (Claim::Substitution(_), _) => Tie::Missing,
         };
-        let (outcome, detail) = match result {
-            Ok(m) => (outcome, m),
-            Err(m) => (Outcome::Failed, m),
+        let result = match step {
+            Step::Closure(c) => match &cert.claim {
+                Claim::Faces(f) => check_closure(c, &f.faces).map(|(msg, verdict, sub)| {
+                    closure = Some((sub, c));
+                    (msg, verdict)
+                }),
+                _ => Err("a closure step in a certificate whose claim has no faces".into()),
+            },
+            Step::SolutionSpace(s) => check_solution(s, tie),
+            Step::Inconsistent(c) => check_conflict(c, tie),
+            Step::LimitRatio(r) => match (&given, &closure) {
+                (Some(Ok(sub)), _) => check_ratio(r, sub, "the claim's substitution"),
+                (Some(Err(e)), _) => Err(format!("the claim's substitution: {e}")),
+                (None, Some((sub, _))) => check_ratio(r, sub, "the closure's substitution"),
+                (None, None) => Err("no proved closure step to take the substitution from".into()),
+            },
+        };
+        let (outcome, message, verdict) = match result {
+            Ok((m, v)) => (Outcome::Proved, m, Some(v)),
+            Err(m) => (Outcome::Failed, m, None),
         };
         steps.push(StepReport {
             step: name.into(),
             outcome,
-            message: format!("step {i} ({name}): {detail}"),
+            message: format!("step {i} ({name}): {message}"),
+            verdict,
         });
     }
-    CheckReport { steps }
+    CheckReport {
+        claim,
+        steps,
+        missing,
+    }
 }
 
+/// A rational in the certificate's strict form (see [`parse_rational`]).
 fn rat(s: &str) -> Result<Q, String> {
-    s.parse::<Q>()
-        .map_err(|_| format!("`{s}` is not a rational"))
+    parse_rational(s)
 }

@@ -19,24 +19,54 @@
 //!    `x_n ~ C·n^(m−j−1)·ρ^(P·n)` with `C` proportional to `Ñ^(j)(y₀)`, the factor being common to
 //!    faces and lacunas: `R_r` is 1, 0, or `a_L / (a_L + 2·a_C)` (lacunas counted in halves).
 
+use super::claim::parse_decimal;
 use super::closure::Substitution;
 use super::field::{add, scale, Root, P};
 use super::series::{charpoly, counts, power_charpoly, residue, Residue};
-use super::{rat, Q};
+use super::{rat, Checked, Q};
 use crate::certificate::{ClassClaim, PointClaim, RadiusWitness, RatioStep};
-use num_bigint::BigInt;
+use num_bigint::{BigInt, BigUint};
 use num_integer::Integer;
-use num_traits::{One, Signed, Zero};
+use num_traits::{One, Signed, ToPrimitive, Zero};
 use std::collections::{BTreeMap, VecDeque};
 
 /// The most levels of counts (`P·d`) the checker computes: the counts grow like `ρ^(P·d)`, so
 /// a hostile period must not make it hang. Closures met in practice need `P·d` below a few
 /// hundred.
-const MAX_LEVELS: usize = 20_000;
+const MAX_LEVELS: u64 = 20_000;
 
-/// The largest class whose characteristic polynomial the checker computes (Faddeev–LeVerrier
-/// costs about `size²·arcs` big-integer operations).
+/// The largest class whose characteristic polynomial the checker computes.
 const MAX_CLASS: usize = 1_000;
+
+/// The most big-integer word operations the checker spends on one phase of a ratio step
+/// (Faddeev–LeVerrier on a class: `size²·arcs` products of numbers of about
+/// `size·log₂(max entry)` bits; the counts: `levels²·arcs·log₂(max row sum)` bits). Well under
+/// a second of work in a release build; the honest certificates of the library need a
+/// thousandth of it. A sparse class of about 100 types is the largest this allows.
+const MAX_WORK: u128 = 100_000_000;
+
+/// The lcm of the periods, exactly (a big integer: the lcm of 115 small periods can exceed
+/// 2^64, and a wrapped value must never be compared with the claim).
+pub(super) fn lcm_of(periods: impl IntoIterator<Item = u64>) -> BigUint {
+    periods
+        .into_iter()
+        .fold(BigUint::one(), |acc, p| acc.lcm(&BigUint::from(p)))
+}
+
+/// The bits of a big integer (at least 1), as a u128 for work estimates.
+fn bits(x: &BigUint) -> u128 {
+    u128::from(x.bits().max(1))
+}
+
+/// Refuses a phase whose estimated work exceeds [`MAX_WORK`].
+fn within_budget(what: &str, work: u128) -> Result<(), String> {
+    match work <= MAX_WORK {
+        true => Ok(()),
+        false => Err(format!(
+            "{what} needs about {work} word operations, beyond the checker's limit of {MAX_WORK}"
+        )),
+    }
+}
 
 /// The product of two integer polynomials (ascending coefficients).
 fn times(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
@@ -52,95 +82,141 @@ fn times(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
 /// A recomputed class: members ascending and period (`None` for a transient type).
 type Class = (Vec<usize>, Option<u64>);
 
-/// Classes reached from `start` (members ascending, ordered by smallest member) with periods.
-fn classes(m: &[BTreeMap<usize, u64>], start: &[usize]) -> Vec<Class> {
+/// The types reached from `start`, in a breadth-first order.
+fn reached(m: &[BTreeMap<usize, BigUint>], start: &[usize]) -> Vec<bool> {
+    let mut seen = vec![false; m.len()];
+    let mut queue: VecDeque<usize> = start.iter().copied().collect();
+    start.iter().for_each(|&s| seen[s] = true);
+    while let Some(t) = queue.pop_front() {
+        for &s in m[t].keys() {
+            if !std::mem::replace(&mut seen[s], true) {
+                queue.push_back(s);
+            }
+        }
+    }
+    seen
+}
+
+/// Classes reached from `start` (members ascending, ordered by smallest member) with periods,
+/// in linear time: Kosaraju (an iterative depth-first search for the finishing order, then the
+/// reversed graph), and per class the gcd of `level(u) + 1 − level(v)` over its arcs (BFS
+/// levels, which are below the number of types).
+fn classes(m: &[BTreeMap<usize, BigUint>], start: &[usize]) -> Vec<Class> {
     let n = m.len();
-    let reach = |from: usize| {
-        let mut seen = vec![false; n];
-        let mut queue = VecDeque::from([from]);
-        seen[from] = true;
-        while let Some(t) = queue.pop_front() {
-            for &s in m[t].keys() {
-                if !std::mem::replace(&mut seen[s], true) {
-                    queue.push_back(s);
+    let inside = reached(m, start);
+    let mut order = Vec::new();
+    let mut done = vec![false; n];
+    for root in (0..n).filter(|&t| inside[t]) {
+        if done[root] {
+            continue;
+        }
+        done[root] = true;
+        let mut stack: Vec<(usize, std::collections::btree_map::Keys<usize, BigUint>)> =
+            vec![(root, m[root].keys())];
+        while let Some((t, next)) = stack.last_mut() {
+            match next.next() {
+                Some(&s) if !done[s] => {
+                    done[s] = true;
+                    stack.push((s, m[s].keys()));
+                }
+                Some(_) => {}
+                None => {
+                    order.push(*t);
+                    stack.pop();
                 }
             }
         }
-        seen
-    };
-    let mut reached = vec![false; n];
-    start.iter().for_each(|&s| {
-        reach(s)
-            .iter()
-            .enumerate()
-            .for_each(|(t, &r)| reached[t] |= r)
-    });
-    let from: Vec<Vec<bool>> = (0..n)
-        .map(|t| if reached[t] { reach(t) } else { vec![] })
-        .collect();
-    let mut out = Vec::new();
-    let mut placed = vec![false; n];
-    for t in (0..n).filter(|&t| reached[t]) {
-        if placed[t] {
+    }
+    let mut back: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for t in (0..n).filter(|&t| inside[t]) {
+        m[t].keys().for_each(|&s| back[s].push(t));
+    }
+    let mut class_of = vec![usize::MAX; n];
+    let mut found: Vec<Vec<usize>> = Vec::new();
+    for &root in order.iter().rev() {
+        if class_of[root] != usize::MAX {
             continue;
         }
-        let members: Vec<usize> = (t..n)
-            .filter(|&s| reached[s] && from[t][s] && from[s][t])
-            .collect();
-        members.iter().for_each(|&s| placed[s] = true);
-        // Period: gcd of level(u) + 1 − level(v) over arcs inside the class (BFS levels).
-        let inside = |s: &usize| members.binary_search(s).is_ok();
-        let mut level: BTreeMap<usize, i64> = BTreeMap::from([(t, 0)]);
-        let mut queue = VecDeque::from([t]);
-        let mut g: i64 = 0;
-        while let Some(u) = queue.pop_front() {
-            for v in m[u].keys().filter(|v| inside(v)) {
+        let id = found.len();
+        let mut members = vec![root];
+        class_of[root] = id;
+        let mut k = 0;
+        while k < members.len() {
+            let t = members[k];
+            k += 1;
+            for &s in &back[t] {
+                if class_of[s] == usize::MAX {
+                    class_of[s] = id;
+                    members.push(s);
+                }
+            }
+        }
+        members.sort_unstable();
+        found.push(members);
+    }
+    found.sort_unstable_by_key(|c| c[0]);
+    found
+        .into_iter()
+        .map(|members| {
+            let t = members[0];
+            let id = class_of[t];
+            let mut level: BTreeMap<usize, u64> = BTreeMap::from([(t, 0)]);
+            let mut queue = VecDeque::from([t]);
+            let mut g: u64 = 0;
+            while let Some(u) = queue.pop_front() {
                 let lu = level[&u];
-                match level.get(v) {
-                    Some(&lv) => g = g.gcd(&(lu + 1 - lv)),
-                    None => {
-                        level.insert(*v, lu + 1);
-                        queue.push_back(*v);
+                for v in m[u].keys().filter(|v| class_of[**v] == id) {
+                    match level.get(v) {
+                        // level(v) ≤ level(u) + 1 for a BFS arc, so this is ≥ 0.
+                        Some(&lv) => g = g.gcd(&(lu + 1 - lv)),
+                        None => {
+                            level.insert(*v, lu + 1);
+                            queue.push_back(*v);
+                        }
                     }
                 }
             }
-        }
-        let cyclic = members.len() > 1 || m[t].contains_key(&t);
-        out.push((members, cyclic.then_some(g.unsigned_abs())));
-    }
-    out
+            let cyclic = members.len() > 1 || m[t].contains_key(&t);
+            (members, cyclic.then_some(g))
+        })
+        .collect()
 }
 
-fn int(k: u64) -> Q {
-    Q::from_integer(k.into())
+fn int(k: &BigUint) -> Q {
+    Q::from_integer(BigInt::from(k.clone()))
 }
 
-/// Checks the radius witness of one class; returns whether the class is dominant.
+/// Checks the radius witness of one class; returns whether the class is dominant. Linear in
+/// the class's arcs (field operations).
 fn check_radius(
-    m: &[BTreeMap<usize, u64>],
+    m: &[BTreeMap<usize, BigUint>],
     root: &Root,
     (k, class): (usize, &ClassClaim),
 ) -> Result<bool, String> {
     let members = &class.members;
-    let entry = |t: usize, s: usize| int(m[t].get(&s).copied().unwrap_or(0));
+    let at = |s: &usize| members.binary_search(s).ok();
     match (&class.radius, class.period) {
         (RadiusWitness::Transient, None) => Ok(false),
         (RadiusWitness::Perron(y), Some(_)) => {
+            if y.len() != members.len() {
+                return Err(format!("class {k}: the Perron vector has the wrong length"));
+            }
             let y: Vec<P> = y
                 .iter()
                 .map(|v| root.element(v))
                 .collect::<Result<_, _>>()?;
-            if y.len() != members.len() {
-                return Err(format!("class {k}: the Perron vector has the wrong length"));
+            // (y·B)_s = Σ_t y_t·B[t][s], over the arcs inside the class.
+            let mut yb: Vec<P> = vec![P::new(); members.len()];
+            for (i, t) in members.iter().enumerate() {
+                for (s, e) in &m[*t] {
+                    if let Some(j) = at(s) {
+                        yb[j] = add(&yb[j], &scale(&y[i], &int(e)));
+                    }
+                }
             }
             for (i, &s) in members.iter().enumerate() {
-                let yb = members.iter().zip(&y).fold(P::new(), |acc, (&t, yt)| {
-                    add(&acc, &scale(yt, &entry(t, s)))
-                });
-                if !root.is_zero(&add(
-                    &yb,
-                    &scale(&root.mul(&y[i], &[Q::zero(), Q::one()]), &-Q::one()),
-                )) {
+                let rho_y = root.mul(&y[i], &[Q::zero(), Q::one()]);
+                if !root.is_zero(&add(&yb[i], &scale(&rho_y, &-Q::one()))) {
                     return Err(format!("class {k}: y·B ≠ ρ·y at type {s}"));
                 }
             }
@@ -153,14 +229,20 @@ fn check_radius(
             }
         }
         (RadiusWitness::Below(x), Some(_)) => {
+            if x.len() != members.len() {
+                return Err(format!("class {k}: the bound has the wrong length"));
+            }
             let x: Vec<Q> = x.iter().map(|s| rat(s)).collect::<Result<_, _>>()?;
-            if x.len() != members.len() || x.iter().any(|v| !v.is_positive()) {
+            if x.iter().any(|v| !v.is_positive()) {
                 return Err(format!(
                     "class {k}: the bound is not a positive vector on its members"
                 ));
             }
             for (i, &t) in members.iter().enumerate() {
-                let bx: Q = members.iter().zip(&x).map(|(&s, v)| v * entry(t, s)).sum();
+                let bx: Q = m[t]
+                    .iter()
+                    .filter_map(|(s, e)| Some(&x[at(s)?] * int(e)))
+                    .sum();
                 if bx >= &root.lo * &x[i] {
                     return Err(format!(
                         "class {k}: (B·x)_{t} ≥ lo·x_{t}, no Collatz–Wielandt bound"
@@ -173,61 +255,16 @@ fn check_radius(
     }
 }
 
-/// The parsed substitution of a ratio step: matrix rows and start counts.
-type Parsed = (Vec<BTreeMap<usize, u64>>, BTreeMap<usize, u64>);
-
-fn parse(r: &RatioStep) -> Result<Parsed, String> {
-    let n = r.matrix.len();
-    if r.contribution_halves.len() != n {
-        return Err(format!(
-            "{} contributions for {n} types",
-            r.contribution_halves.len()
-        ));
-    }
-    let mut m: Vec<BTreeMap<usize, u64>> = vec![BTreeMap::new(); n];
-    for (t, row) in r.matrix.iter().enumerate() {
-        for &(s, k) in row {
-            if s >= n {
-                return Err(format!("matrix row {t}: type {s} out of range"));
-            }
-            if k > 0 {
-                *m[t].entry(s).or_insert(0) += k;
-            }
-        }
-    }
-    let mut start: BTreeMap<usize, u64> = BTreeMap::new();
-    for &(t, k) in &r.start {
-        if t >= n || k == 0 {
-            return Err(format!("start ({t}, {k}) is out of range or empty"));
-        }
-        *start.entry(t).or_insert(0) += k;
-    }
-    if start.is_empty() {
-        return Err("no start type".into());
-    }
-    Ok((m, start))
-}
-
-/// The claimed decimal `d` with `k` digits: `0 ≤ v − d < 10^(−k)`.
-fn check_decimal(root: &Root, v: &[Q], text: &str) -> bool {
-    let (int, frac) = text.split_once('.').unwrap_or((text, ""));
-    if frac.len() > 10_000 {
-        return false; // beyond any certified precision lacuna writes (and costly to check)
-    }
-    let digits = u32::try_from(frac.len()).unwrap_or(u32::MAX);
-    let ulp = Q::new(BigInt::one(), BigInt::from(10).pow(digits));
-    let Ok(d) = format!("{int}{frac}").parse::<BigInt>() else {
-        return false;
-    };
-    let d = Q::from_integer(d) * &ulp;
-    let minus = |x: &Q| add(v, &[-x]);
-    int.chars().all(|c| c.is_ascii_digit())
-        && root.sign(&minus(&d)).is_some_and(|s| s >= 0)
-        && root.sign(&minus(&(d + ulp))) == Some(-1)
-}
-
-/// Checks one claimed limit point against the recomputed `R_r`.
-fn check_point(root: &Root, r: usize, got: &Residue, claim: &PointClaim) -> Result<P, String> {
+/// Checks one claimed limit point against the recomputed `R_r`. The decimal is compared
+/// with `R_r` exactly through the point's own isolating polynomial (Sturm counts at the decimal
+/// and one unit above it), with no bisection, so its cost does not depend on how close the
+/// truncation is.
+fn check_point(
+    root: &Root,
+    (r, digits): (usize, usize),
+    got: &Residue,
+    claim: &PointClaim,
+) -> Result<P, String> {
     let v = root.element(&claim.value)?;
     if !got.is(root, &v) {
         return Err(format!(
@@ -236,6 +273,12 @@ fn check_point(root: &Root, r: usize, got: &Residue, claim: &PointClaim) -> Resu
         ));
     }
     let what = format!("R_{r}");
+    if claim.real.poly.len() > root.p.len() {
+        return Err(format!(
+            "residue {r}: the polynomial of R_{r} has a higher degree than ρ's, which R_{r} \
+             cannot need (R_{r} lies in Q(ρ))"
+        ));
+    }
     let real = Root::isolate(&claim.real.poly, &claim.real.lo, &claim.real.hi, &what)?;
     let ints: Vec<BigInt> = real.p.iter().map(|c| c.to_integer()).collect();
     let at_least = |x: &[Q], y: &Q| root.sign(&add(x, &[-y.clone()])).is_some_and(|s| s >= 0);
@@ -248,75 +291,99 @@ fn check_point(root: &Root, r: usize, got: &Residue, claim: &PointClaim) -> Resu
             "residue {r}: the claimed polynomial and interval do not isolate R_{r}"
         ));
     }
-    if !check_decimal(root, &v, &claim.decimal) {
+    // R_r is now the only root of `real` in [lo, hi]: compare it with d and d + 10^(−k).
+    let d = parse_decimal(&claim.decimal, digits).map_err(|e| format!("residue {r}: {e}"))?;
+    let ulp = Q::new(BigInt::one(), BigInt::from(10u32).pow(digits as u32));
+    let d = Q::from_integer(d) * &ulp;
+    let above = &d + &ulp;
+    if real.cmp_rational(&d) == std::cmp::Ordering::Less
+        || real.cmp_rational(&above) != std::cmp::Ordering::Less
+    {
         return Err(format!(
             "residue {r}: the decimal {} is not a truncation of R_{r}",
-            claim.decimal
+            super::claim::shorten(&claim.decimal)
         ));
     }
     Ok(v)
 }
 
-pub(super) fn check_ratio(r: &RatioStep, closure: Option<&Substitution>) -> Result<String, String> {
-    let (m, start) = parse(r)?;
-    let tied = match closure {
-        Some(c)
-            if c.matrix == m && c.contributions == r.contribution_halves && c.start == start =>
-        {
-            "the closure's substitution"
-        }
-        Some(_) => {
-            return Err("matrix, contributions or start differ from the closure step".into())
-        }
-        None => "the given substitution (no closure step to tie it to)",
-    };
-    let start_types: Vec<usize> = start.keys().copied().collect();
-    let cls = classes(&m, &start_types);
-    let claimed: Vec<Class> = r
-        .classes
-        .iter()
-        .map(|c| (c.members.clone(), c.period))
-        .collect();
-    if cls != claimed {
+/// Checks a limit-ratio step about `sub` (`tied` says where the substitution comes from).
+pub(super) fn check_ratio(r: &RatioStep, sub: &Substitution, tied: &str) -> Checked {
+    let m = &sub.matrix;
+    let start_types: Vec<usize> = sub.start.keys().copied().collect();
+    let cls = classes(m, &start_types);
+    if cls.len() != r.classes.len()
+        || cls
+            .iter()
+            .zip(&r.classes)
+            .any(|((ms, p), c)| *ms != c.members || *p != c.period)
+    {
         return Err(
-            "the classes or periods differ from the checker's own (BFS, gcd of levels)".into(),
+            "the classes or periods differ from the checker's own (Kosaraju, gcd of levels)".into(),
         );
     }
-    let root = Root::isolate(&r.rho.poly, &r.rho.lo, &r.rho.hi, "ρ")?;
-    if root.sign(&[-Q::one(), Q::one()]).is_none_or(|s| s < 0) {
-        return Err("ρ ≥ 1 is not shown".into());
+    // ρ is an eigenvalue of a cyclic class block, so a polynomial of higher degree than the
+    // largest class is refused before any arithmetic on it.
+    let largest = cls
+        .iter()
+        .filter(|(_, p)| p.is_some())
+        .map(|(ms, _)| ms.len())
+        .max()
+        .unwrap_or(0);
+    if r.rho.poly.len() > largest + 1 {
+        return Err(format!(
+            "ρ's polynomial has degree {}, more than the largest class ({largest} types) allows",
+            r.rho.poly.len().saturating_sub(1)
+        ));
     }
-    let mut period = 1u64;
-    for (k, class) in r.classes.iter().enumerate() {
-        if check_radius(&m, &root, (k, class))? {
-            period = period.lcm(&class.period.expect("a Perron class has a cycle"));
-        }
-    }
-    if !r
+    // The period the witnesses claim (the lcm of the periods of the classes with a Perron
+    // vector) and every cost, before any arithmetic: a wrong or costly claim is refused at once.
+    let claimed_dominant: Vec<u64> = r
         .classes
         .iter()
-        .any(|c| matches!(c.radius, RadiusWitness::Perron(_)))
-    {
+        .filter(|c| matches!(c.radius, RadiusWitness::Perron(_)))
+        .filter_map(|c| c.period)
+        .collect();
+    if claimed_dominant.is_empty() {
         return Err("no class has radius ρ (no Perron vector)".into());
     }
-    if period != r.period || r.points.len() as u64 != period {
+    let period = lcm_of(claimed_dominant);
+    if period != BigUint::from(r.period) || BigUint::from(r.points.len()) != period {
         return Err(format!(
-            "the period is P = {period} (lcm of the dominant periods); the certificate claims {} with {} point(s)",
+            "the period is P = {period} (lcm of the dominant periods); the certificate claims {} \
+             with {} point(s)",
             r.period,
             r.points.len()
         ));
     }
-    // det(x·I − A) for the augmented matrix A = [[M, c], [0, 1]] on the reached types: ordered
-    // by the class DAG, A is block triangular, so it is the product of the class blocks'
-    // characteristic polynomials and (x − 1) for the lacuna type.
     let d = cls.iter().map(|(ms, _)| ms.len()).sum::<usize>() + 1;
-    let big_p = usize::try_from(period).map_err(|_| "the period is too large")?;
-    if big_p.saturating_mul(d) > MAX_LEVELS {
+    let levels = &period * BigUint::from(d);
+    if levels > BigUint::from(MAX_LEVELS) {
         return Err(format!(
             "P·d = {period}·{d} levels of counts exceed the checker's limit of {MAX_LEVELS}"
         ));
     }
-    let mut chi = vec![-BigInt::one(), BigInt::one()];
+    let big_p = period.to_usize().expect("P ≤ MAX_LEVELS");
+    let levels = big_p * d;
+    // The counts: levels · arcs products of numbers of up to levels·log₂(growth) bits.
+    let arcs: usize = cls
+        .iter()
+        .flat_map(|(ms, _)| ms.iter())
+        .map(|&t| m[t].len() + 1)
+        .sum();
+    let growth = cls
+        .iter()
+        .flat_map(|(ms, _)| ms.iter())
+        .map(|&t| m[t].values().sum::<BigUint>() + &sub.contributions[t])
+        .max()
+        .unwrap_or_default();
+    let start_bits = sub.start.values().map(bits).max().unwrap_or(1);
+    let count_bits = (levels as u128) * bits(&growth) + start_bits;
+    within_budget(
+        "iterating the substitution",
+        (levels as u128) * (arcs as u128) * (count_bits.div_ceil(64) + 1),
+    )?;
+    let mut blocks = Vec::with_capacity(cls.len());
     for (members, _) in &cls {
         if members.len() > MAX_CLASS {
             return Err(format!(
@@ -330,14 +397,42 @@ pub(super) fn check_ratio(r: &RatioStep, closure: Option<&Substitution>) -> Resu
             .map(|t| {
                 let inside = m[*t]
                     .iter()
-                    .filter_map(|(s, k)| Some((at(s)?, BigInt::from(*k))));
+                    .filter_map(|(s, k)| Some((at(s)?, BigInt::from(k.clone()))));
                 inside.collect()
             })
             .collect();
-        chi = times(&chi, &charpoly(&block)?);
+        // Faddeev–LeVerrier: size steps of (arcs × size) products with entries of about
+        // size·(log₂(max entry) + log₂ size) bits.
+        let size = members.len() as u128;
+        let class_arcs: u128 = block.iter().map(|r| r.len() as u128).sum::<u128>() + 1;
+        let entry_bits = block
+            .iter()
+            .flatten()
+            .map(|(_, k)| u128::from(k.bits().max(1)))
+            .max()
+            .unwrap_or(1);
+        within_budget(
+            "the characteristic polynomial of a class (Faddeev–LeVerrier)",
+            size * size * class_arcs * ((size * (entry_bits + 10)).div_ceil(64) + 1),
+        )?;
+        blocks.push(block);
+    }
+    let root = Root::isolate(&r.rho.poly, &r.rho.lo, &r.rho.hi, "ρ")?;
+    if root.sign(&[-Q::one(), Q::one()]).is_none_or(|s| s < 0) {
+        return Err("ρ ≥ 1 is not shown".into());
+    }
+    for (k, class) in r.classes.iter().enumerate() {
+        check_radius(m, &root, (k, class))?;
+    }
+    // det(x·I − A) for the augmented matrix A = [[M, c], [0, 1]] on the reached types: ordered
+    // by the class DAG, A is block triangular, so it is the product of the class blocks'
+    // characteristic polynomials and (x − 1) for the lacuna type.
+    let mut chi = vec![-BigInt::one(), BigInt::one()];
+    for block in &blocks {
+        chi = times(&chi, &charpoly(block)?);
     }
     let q = power_charpoly(&chi, big_p)?;
-    let (faces, lacunas) = counts(&m, &r.contribution_halves, &start, big_p * d);
+    let (faces, lacunas) = counts(m, &sub.contributions, &sub.start, levels);
     let y0 = root.reduce(&[vec![Q::zero(); big_p], vec![Q::one()]].concat());
     // Q(w) = Σ b_i w^i with b_i = q_(d−i); N_j = Σ_(i ≤ j) b_i·x_(j−i); Ñ reverses N.
     let reflected = |seq: &[BigInt], res: usize| -> Vec<BigInt> {
@@ -362,8 +457,8 @@ pub(super) fn check_ratio(r: &RatioStep, closure: Option<&Substitution>) -> Resu
             &y0,
         )
         .map_err(|e| format!("residue {res}: {e}"))?;
-        values.push(check_point(&root, res, &got, claim)?);
-        whys.push(match period {
+        values.push(check_point(&root, (res, r.digits), &got, claim)?);
+        whys.push(match big_p {
             1 => got.why,
             _ => format!("r = {res}: {}", got.why),
         });
@@ -402,11 +497,14 @@ pub(super) fn check_ratio(r: &RatioStep, closure: Option<&Substitution>) -> Resu
                 .join(", ")
         ),
     };
-    Ok(format!(
-        "{} class(es) re-derived for {tied}; {rho}, {dominant} dominant class(es) (Perron vectors, \
-         Collatz–Wielandt bounds), P = {period}; {}; {verdict}",
-        cls.len(),
-        whys.join("; ")
+    Ok((
+        format!(
+            "{} class(es) re-derived for {tied}; {rho}, {dominant} dominant class(es) (Perron \
+             vectors, Collatz–Wielandt bounds), P = {period}; {}; {verdict}",
+            cls.len(),
+            whys.join("; ")
+        ),
+        format!("limit ratio: {verdict}"),
     ))
 }
 
@@ -415,5 +513,47 @@ fn shown(v: &[String]) -> String {
         0 => "0".into(),
         1 => v[0].clone(),
         _ => format!("({}) on 1, ρ, …", v.join(", ")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_lcm_of_periods_does_not_wrap() {
+        // 115 classes: the primes below 640 and 3 (for period 3). Their lcm, the product of the
+        // primes, is far beyond 2^64; any u64 fold of it is wrong.
+        let primes: Vec<u64> = (2u64..640)
+            .filter(|p| (2..*p).take_while(|d| d * d <= *p).all(|d| p % d != 0))
+            .take(115)
+            .collect();
+        assert_eq!(primes.len(), 115);
+        let exact = lcm_of(primes.iter().copied());
+        let product = primes.iter().fold(BigUint::one(), |a, &p| a * p);
+        assert_eq!(exact, product);
+        assert!(exact.bits() > 64);
+        // Periods whose lcm is ≡ 1 mod 2^64: 3 and p = 3^(−1) mod 2^64 = (2^65 + 1)/3 (odd,
+        // and coprime to 3 since 2^65 + 1 = 3·p is not divisible by 9: 2^65 ≡ 2^5 = 32 ≡ 5
+        // mod 9, so 2^65 + 1 ≡ 6). A u64 fold multiplies them to 2^65 + 1 ≡ 1.
+        let p = 12_297_829_382_473_034_411u64;
+        assert_eq!(3u64.wrapping_mul(p), 1);
+        assert_eq!(lcm_of([3, p]), (BigUint::one() << 65u32) + BigUint::one());
+    }
+
+    #[test]
+    fn classes_and_periods_by_hand() {
+        // 0 → 1, 1 → 2, 2 → 0 (a 3-cycle), 2 → 3, 3 → 3 (a loop), 4 unreached.
+        let e = |pairs: &[usize]| -> BTreeMap<usize, BigUint> {
+            pairs.iter().map(|&s| (s, BigUint::one())).collect()
+        };
+        let m = vec![e(&[1]), e(&[2]), e(&[0, 3]), e(&[3]), e(&[0])];
+        assert_eq!(
+            classes(&m, &[0]),
+            vec![(vec![0, 1, 2], Some(3)), (vec![3], Some(1))]
+        );
+        // A transient type: 0 → 1 → 1.
+        let m = vec![e(&[1]), e(&[1])];
+        assert_eq!(classes(&m, &[0]), vec![(vec![0], None), (vec![1], Some(1))]);
     }
 }

@@ -3,12 +3,12 @@
 
 use super::field::{add, scale, Root, P};
 use super::Q;
-use num_bigint::BigInt;
+use num_bigint::{BigInt, BigUint};
 use num_integer::Integer;
 use num_traits::{One, Zero};
 use std::collections::BTreeMap;
 
-fn int(k: u64) -> Q {
+fn int(k: u32) -> Q {
     Q::from_integer(k.into())
 }
 
@@ -163,26 +163,26 @@ pub(super) fn residue(
     })
 }
 
-/// The counts `X_i` for `i < len` on the reached types: faces, and lacunas in halves.
+/// The counts `X_i` for `i < len` on the reached types: faces, and lacunas in halves (big
+/// integers throughout).
 pub(super) fn counts(
-    m: &[BTreeMap<usize, u64>],
-    c: &[u64],
-    start: &BTreeMap<usize, u64>,
+    m: &[BTreeMap<usize, BigUint>],
+    c: &[BigUint],
+    start: &BTreeMap<usize, BigUint>,
     len: usize,
 ) -> (Vec<BigInt>, Vec<BigInt>) {
-    let mut v: BTreeMap<usize, BigInt> =
-        start.iter().map(|(&t, &k)| (t, BigInt::from(k))).collect();
-    let mut lac = BigInt::zero();
+    let mut v: BTreeMap<usize, BigUint> = start.clone();
+    let mut lac = BigUint::zero();
     let (mut faces, mut lacunas) = (Vec::with_capacity(len), Vec::with_capacity(len));
     for _ in 0..len {
-        faces.push(v.values().sum());
-        lacunas.push(lac.clone());
-        let mut next: BTreeMap<usize, BigInt> = BTreeMap::new();
+        faces.push(BigInt::from(v.values().sum::<BigUint>()));
+        lacunas.push(BigInt::from(lac.clone()));
+        let mut next: BTreeMap<usize, BigUint> = BTreeMap::new();
         for (t, x) in &v {
             for (s, k) in &m[*t] {
-                *next.entry(*s).or_default() += x * BigInt::from(*k);
+                *next.entry(*s).or_default() += x * k;
             }
-            lac += x * BigInt::from(c[*t]);
+            lac += x * &c[*t];
         }
         v = next;
     }

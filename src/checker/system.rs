@@ -19,10 +19,11 @@
 //! edge `l` of sub-face `k`: `B_i · e.T_j = T_k · B_l`) and adjacency (the shared `Ea` edge:
 //! `T_a · B_l · J = T_b · B_m`).
 
+use super::automaton::rebuild_automaton;
 use super::{rat, Equation, Q};
-use crate::certificate::{ClosureStep, Edge, Kind, Origin, Recipe, System};
+use crate::certificate::{AutomatonClaim, ClosureStep, Edge, Kind, Origin, Recipe, System};
 use num_traits::{One, Zero};
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::{BTreeSet, HashMap};
 
 /// The largest Bézier degree the checker rebuilds (lacuna accepts 1 to 8).
 const MAX_DEGREE: usize = 32;
@@ -212,23 +213,53 @@ impl Builder {
 }
 
 /// The rebuilt rows with unknowns renumbered to the certificate's columns (matched by name).
-pub(super) fn rebuild(c: &ClosureStep, recipe: &Recipe) -> Result<Vec<Equation>, String> {
-    if !(1..=MAX_DEGREE).contains(&recipe.degree) {
-        return Err(format!(
-            "recipe: Bézier degree {} is not in 1..={MAX_DEGREE}",
-            recipe.degree
-        ));
+/// `given_rows` is the number of rows the certificate lists: every edge state yields at least
+/// one row per piece, so edges with more pieces (or delays) than that cannot match and are
+/// refused before anything of their size is built; likewise the unknowns are counted (checked
+/// arithmetic) and compared with the recipe before a name is built.
+pub(super) fn rebuild(
+    c: &ClosureStep,
+    (degree, cantor_gap): (usize, &str),
+    recipe: &Recipe,
+    given_rows: usize,
+) -> Result<Vec<Equation>, String> {
+    if !(1..=MAX_DEGREE).contains(&degree) {
+        return Err(format!("Bézier degree {degree} is not in 1..={MAX_DEGREE}"));
     }
-    let gap = rat(&recipe.cantor_gap)?;
+    let gap = rat(cantor_gap)?;
     if gap <= Q::zero() {
-        return Err(format!("recipe: Cantor gap ratio {gap} is not positive"));
+        return Err(format!("Cantor gap ratio {gap} is not positive"));
     }
-    let q = recipe.degree;
+    let q = degree;
     let mut b = Builder {
         q,
         gap,
         rows: Vec::new(),
     };
+    // The edge states: every edge occurring, with all lower delays; bounded by the rows first.
+    // Per base edge (kind, n), the largest delay: its states X^1 … X^D give at least n rows
+    // (the pieces of X^1) and one per state.
+    let mut deepest: std::collections::BTreeMap<(Kind, u32), u32> = Default::default();
+    for rule in &c.types {
+        let p = rule.face.params;
+        for e in rule.face.boundary.iter().chain([&p.ea, &p.el, &p.ec]) {
+            let d = deepest.entry((e.kind, e.n)).or_insert(0);
+            *d = (*d).max(e.delay);
+        }
+    }
+    let states = deepest.iter().fold(0u128, |acc, ((_, n), d)| {
+        acc.saturating_add(u128::from(*n))
+            .saturating_add(u128::from(*d))
+    });
+    if states > given_rows as u128 {
+        return Err(format!(
+            "the edge types need more than the {given_rows} rows the certificate lists"
+        ));
+    }
+    let edges: BTreeSet<Edge> = deepest
+        .iter()
+        .flat_map(|(&(kind, n), &d)| (1..=d).map(move |delay| Edge { kind, n, delay }))
+        .collect();
     // Face states: dimension, and the offset of each boundary edge's first point.
     let mut dims = Vec::new();
     let mut offsets = Vec::new();
@@ -247,15 +278,31 @@ pub(super) fn rebuild(c: &ClosureStep, recipe: &Recipe) -> Result<Vec<Equation>,
         let pick: Vec<usize> = (0..dim(q, e)).map(|x| (o + x) % dims[t]).collect();
         Some(select(dims[t], &pick))
     };
-    // The unknowns: sub-face operator k of type t, entries in row-major order.
-    let mut names = Vec::new();
+    // The unknowns: sub-face operator k of type t, entries in row-major order. Counted first.
+    let mut count: usize = 0;
+    for (t, rule) in c.types.iter().enumerate() {
+        for sf in &rule.subfaces {
+            let w = *dims
+                .get(sf.type_index)
+                .ok_or("a sub-face type is out of range")?;
+            count = dims[t]
+                .checked_mul(w)
+                .and_then(|x| count.checked_add(x))
+                .ok_or("the number of unknowns overflows")?;
+        }
+    }
+    if count != recipe.unknowns.len() {
+        return Err(format!(
+            "the recipe names {} unknowns, the closure has {count}",
+            recipe.unknowns.len()
+        ));
+    }
+    let mut names = Vec::with_capacity(count);
     let mut base = Vec::new();
     for (t, rule) in c.types.iter().enumerate() {
         let mut bs = Vec::new();
         for (k, sf) in rule.subfaces.iter().enumerate() {
-            let w = *dims
-                .get(sf.type_index)
-                .ok_or("a sub-face type is out of range")?;
+            let w = dims[sf.type_index];
             bs.push(names.len());
             for (r, col) in (0..dims[t]).flat_map(|r| (0..w).map(move |col| (r, col))) {
                 names.push(format!("T{t}.T{k}[{r}][{col}]"));
@@ -266,13 +313,6 @@ pub(super) fn rebuild(c: &ClosureStep, recipe: &Recipe) -> Result<Vec<Equation>,
     let column = columns(&names, &recipe.unknowns)?;
     // The vertex and every edge type, with all lower delays.
     b.barycentric(&identity(1));
-    let mut edges = BTreeSet::new();
-    for rule in &c.types {
-        let p = rule.face.params;
-        for e in rule.face.boundary.iter().chain([&p.ea, &p.el, &p.ec]) {
-            edges.extend((1..=e.delay).map(|delay| Edge { delay, ..*e }));
-        }
-    }
     for e in &edges {
         let m = b.dim(e);
         b.barycentric(&select(m, &[0]));
@@ -335,7 +375,7 @@ fn columns(rebuilt: &[String], given: &[String]) -> Result<Vec<usize>, String> {
             rebuilt.len()
         ));
     }
-    let mut at: BTreeMap<&str, usize> = BTreeMap::new();
+    let mut at: HashMap<&str, usize> = HashMap::with_capacity(given.len());
     for (j, name) in given.iter().enumerate() {
         if at.insert(name, j).is_some() {
             return Err(format!("the recipe names unknown `{name}` twice"));
@@ -353,18 +393,31 @@ fn columns(rebuilt: &[String], given: &[String]) -> Result<Vec<usize>, String> {
 
 /// A row in canonical form: terms merged by unknown, zeros dropped, sorted.
 fn canonical((terms, rhs): &Equation) -> (Vec<(usize, Q)>, Q) {
-    let mut merged: BTreeMap<usize, Q> = BTreeMap::new();
-    for (v, a) in terms {
-        *merged.entry(*v).or_insert_with(Q::zero) += a;
+    let mut merged: Vec<(usize, Q)> = terms.clone();
+    merged.sort_unstable_by_key(|(v, _)| *v);
+    let mut out: Vec<(usize, Q)> = Vec::with_capacity(merged.len());
+    for (v, a) in merged {
+        match out.last_mut() {
+            Some((w, b)) if *w == v => *b += a,
+            _ => out.push((v, a)),
+        }
     }
-    merged.retain(|_, a| !a.is_zero());
-    (merged.into_iter().collect(), rhs.clone())
+    out.retain(|(_, a)| !a.is_zero());
+    (out, rhs.clone())
 }
 
 /// Checks that the certificate's rows are exactly the rebuilt rows (as a multiset, each in
-/// canonical form). Returns a description of the first difference.
+/// canonical form), with a hash map: linear in the rows' total size. Returns a description of
+/// the first difference.
 pub(super) fn same_rows(given: &[Equation], rebuilt: &[Equation]) -> Result<(), String> {
-    let mut count: BTreeMap<(Vec<(usize, Q)>, Q), i64> = BTreeMap::new();
+    if given.len() != rebuilt.len() {
+        return Err(format!(
+            "the certificate lists {} rows, the rebuilt system has {}",
+            given.len(),
+            rebuilt.len()
+        ));
+    }
+    let mut count: HashMap<(Vec<(usize, Q)>, Q), usize> = HashMap::with_capacity(rebuilt.len());
     rebuilt
         .iter()
         .for_each(|r| *count.entry(canonical(r)).or_insert(0) += 1);
@@ -374,48 +427,87 @@ pub(super) fn same_rows(given: &[Equation], rebuilt: &[Equation]) -> Result<(), 
             _ => return Err(format!("row {i} of the certificate is not a rebuilt row")),
         }
     }
-    match count.values().sum::<i64>() {
-        0 => Ok(()),
-        k => Err(format!(
-            "{k} rebuilt row(s) are missing from the certificate"
-        )),
-    }
+    Ok(())
 }
 
-/// Ties a system to the closure: with a recipe, the rows must be exactly the ones rebuilt from
-/// the proved closure step; without one, the system is taken as given (hand-written automata).
-/// Returns the first words of the step's report.
-pub(super) fn tie(
-    system: &System,
-    rows: &[Equation],
-    closure: Option<&ClosureStep>,
-) -> Result<String, String> {
+/// What a system step is tied to.
+pub(super) enum Tie<'a> {
+    /// The proved closure step of a faces claim, with the claim's degree and Cantor ratio.
+    Closure {
+        /// The closure step.
+        closure: &'a ClosureStep,
+        /// Bézier degree.
+        degree: usize,
+        /// Cantor gap/piece ratio (a rational, as written).
+        gap: &'a str,
+    },
+    /// The claim's automaton.
+    Automaton(&'a AutomatonClaim),
+    /// The claim's system, as given.
+    Given(&'a System),
+    /// Nothing: a faces claim whose closure step failed, or a claim without systems.
+    Missing,
+}
+
+/// Ties a system to the claim: its rows must be exactly the ones rebuilt from the proved
+/// closure step, from the claim's automaton, or the claim's system. Returns the first words of
+/// the step's report.
+pub(super) fn tie(system: &System, rows: &[Equation], tie: Tie) -> Result<String, String> {
     let n = system.unknowns;
-    match (&system.recipe, closure) {
-        (None, None) => Ok(format!(
-            "system as given: {} rows over {n} unknowns",
-            rows.len()
-        )),
-        (None, Some(_)) => {
-            Err("the system has no recipe, so it is not tied to the closure step before it".into())
+    let mismatch = |e: String| format!("the system does not match the claim: {e}");
+    match (tie, &system.recipe) {
+        (Tie::Missing, _) => Err("no proved closure step to tie the system to".into()),
+        (Tie::Closure { .. }, None) => {
+            Err("the system has no recipe, so it is not tied to the closure step".into())
         }
-        (Some(_), None) => Err("the system has a recipe but no proved closure step".into()),
-        (Some(recipe), Some(c)) => {
-            let mismatch = |e: String| format!("the system does not match the closure: {e}");
+        (Tie::Automaton(_) | Tie::Given(_), Some(_)) => Err(mismatch(
+            "a recipe, but the claim is not about faces".into(),
+        )),
+        (
+            Tie::Closure {
+                closure,
+                degree,
+                gap,
+            },
+            Some(recipe),
+        ) => {
             if recipe.unknowns.len() != n {
                 return Err(mismatch(format!(
                     "{} unknown names for {n} unknowns",
                     recipe.unknowns.len()
                 )));
             }
-            let rebuilt = rebuild(c, recipe).map_err(mismatch)?;
-            same_rows(rows, &rebuilt).map_err(mismatch)?;
+            let rebuilt = rebuild(closure, (degree, gap), recipe, rows.len())
+                .map_err(|e| format!("the system does not match the closure: {e}"))?;
+            same_rows(rows, &rebuilt)
+                .map_err(|e| format!("the system does not match the closure: {e}"))?;
             Ok(format!(
                 "system rebuilt from the closure: {} rows over {n} unknowns (SPEC §6, Bézier \
-                 degree {}, Cantor gap/piece {}), the certificate's rows exactly",
+                 degree {degree}, Cantor gap/piece {gap}), the certificate's rows exactly",
                 rebuilt.len(),
-                recipe.degree,
-                recipe.cantor_gap
+            ))
+        }
+        (Tie::Automaton(a), None) => {
+            let rebuilt = rebuild_automaton(a, n, rows).map_err(mismatch)?;
+            same_rows(rows, &rebuilt).map_err(mismatch)?;
+            Ok(format!(
+                "system rebuilt from the claim's automaton: {} rows over {n} unknowns, the \
+                 certificate's rows exactly",
+                rebuilt.len()
+            ))
+        }
+        (Tie::Given(s), None) => {
+            if s.unknowns != n {
+                return Err(mismatch(format!(
+                    "{n} unknowns, the claim has {}",
+                    s.unknowns
+                )));
+            }
+            let claimed = super::linear::parse_rows(&s.rows, s.unknowns)?;
+            same_rows(rows, &claimed).map_err(mismatch)?;
+            Ok(format!(
+                "the claim's system: {} rows over {n} unknowns",
+                rows.len()
             ))
         }
     }

@@ -81,7 +81,8 @@ pub(crate) struct Limited<T: Args> {
 pub(crate) enum Command {
     /// Verify a face, an assembly file or a library entry (default: the built-in F0).
     Verify(Limited<VerifyArgs>),
-    /// Run only the independent checker on a certificate; exit 0 when every step is proved.
+    /// Run only the independent checker on a certificate: prints its claim, then every step; exit
+    /// 0 when every step the claim needs is proved, 1 when one fails, 3 when steps are missing.
     Check(CheckArgs),
     /// The closure: every face type with its sub-faces and contribution.
     Closure(Limited<ClosureArgs>),

@@ -14,6 +14,8 @@ pub(super) fn run(args: CheckArgs) -> Result<ExitCode, Error> {
     }
     Ok(if report.all_proved() {
         ExitCode::SUCCESS
+    } else if report.partial() {
+        ExitCode::from(EXIT_PARTIAL)
     } else {
         ExitCode::from(EXIT_FAILED)
     })

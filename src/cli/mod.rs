@@ -38,6 +38,9 @@ use std::process::ExitCode;
 const EXIT_FAILED: u8 = 1;
 /// Exit code: bad input or an exceeded limit.
 const EXIT_BAD_INPUT: u8 = 2;
+/// Exit code of `lacuna check`: every step present is proved, but the certificate lacks steps
+/// its claim needs (a partial certificate proves part of its claim only).
+const EXIT_PARTIAL: u8 = 3;
 
 /// Parses the command line, runs the command and maps an error to its exit code (with the error
 /// object on standard output under `--json`).

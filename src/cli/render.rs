@@ -184,8 +184,8 @@ fn positive_number(flag: &'static str, text: &str) -> Result<f64, Error> {
         _ => Err(Error::OutOfRange {
             flag,
             value: text.to_string(),
-            what: "the prism thickness",
-            range: "a positive number: an integer, a decimal or a fraction (0.05, 1/20)".into(),
+            what: "the thickness of the solid in mm",
+            range: "a positive number: an integer, a decimal or a fraction (2, 0.8, 1/2)".into(),
         }),
     }
 }
