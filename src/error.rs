@@ -94,7 +94,7 @@ pub enum Error {
         /// The command-line flag that sets it.
         flag: &'static str,
     },
-    /// The stated bound proves a closure finite, but larger than a configured limit (SPEC §4):
+    /// The stated bound proves a closure finite, but larger than a configured limit (THEORY §4):
     /// a resource bound, not a verdict, so never reported as a runaway.
     #[error("closes: {proved} proved, above {flag} {limit} ({detail})")]
     ProvedAboveLimit {

@@ -211,7 +211,7 @@ fn f0_ratio_is_one_third() {
     let Some(Step::LimitRatio(r)) = cert.steps.last() else {
         panic!("no ratio step")
     };
-    // SPEC §5: one type, 6 copies, contribution 5/2: R = (5/2)/(5/2 + 5) = 1/3.
+    // THEORY §5: one type, 6 copies, contribution 5/2: R = (5/2)/(5/2 + 5) = 1/3.
     assert!(r.exists);
     assert_eq!(r.points.len(), 1);
     assert_eq!(r.points[0].value, ["1/3"]);

@@ -1,4 +1,4 @@
-//! `lacuna explore` (issue #23, SPEC §14): it finds the runaway of the spoke rule `{gap}` and the
+//! `lacuna explore` (issue #23, THEORY §14): it finds the runaway of the spoke rule `{gap}` and the
 //! forced collapse of `C2 | B2 B2 B2 | A1`, shrinks every failure to them, and sharded runs merge
 //! to the unsharded result.
 
@@ -240,7 +240,7 @@ fn census_json_lists_every_face() {
     // B2 | B2 B2 B2 | A1: one spoke (the joint), one sub-face `B2 B2 B2 B2 B2` (both pieces, then
     // Ea El Ea). That face has 5 joint spokes and 5 sub-faces, each the last piece of one edge,
     // the first of the next and Ea El Ea: itself again. So 2 types; a step adds the central
-    // lacuna only (no Cn), l = 1, k = 5, and R = l / (l + k − 1) = 1/5 (SPEC §5).
+    // lacuna only (no Cn), l = 1, k = 5, and R = l / (l + k − 1) = 1/5 (THEORY §5).
     assert_eq!(find("B2 | B2 B2 B2 | A1")["types"], 2);
     assert_eq!(find("B2 | B2 B2 B2 | A1")["ratio"], "1/5");
     assert_eq!(find("B2 | B2 B2 B2 | A1")["verdict"], "closed");

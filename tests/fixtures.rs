@@ -57,14 +57,18 @@ fn f0_spec_worked_example() {
     assert_eq!(
         strings(c.iter().map(|l| &l.lacunas)),
         ["0", "5/2", "35/2", "215/2", "1295/2", "7775/2"],
-        "fixture F0 (SPEC §5)"
+        "fixture F0 (THEORY §5)"
     );
     assert_eq!(
         strings(c.iter().map(|l| &l.faces)),
         ["1", "6", "36", "216", "1296", "7776"],
-        "fixture F0 (SPEC §5)"
+        "fixture F0 (THEORY §5)"
     );
-    assert_eq!(c[1].ratio.to_string(), "5/17", "fixture F0: R_1 (SPEC §5)");
+    assert_eq!(
+        c[1].ratio.to_string(),
+        "5/17",
+        "fixture F0: R_1 (THEORY §5)"
+    );
 }
 
 #[test]

@@ -389,7 +389,7 @@ fn last_digit_changed(decimal: &str) -> String {
 
 #[test]
 fn the_spec_edge_with_the_incidence_only_system_is_rejected() {
-    // SPEC §6 worked example: barycentric + incidence leave 8 degrees of freedom, the
+    // THEORY §6 worked example: barycentric + incidence leave 8 degrees of freedom, the
     // adjacency T0·B1 = T1·B0 leaves 6. The certificate of spec-edge proves 6.
     let honest = automaton_certificate("spec-edge");
     let report = check(&honest);

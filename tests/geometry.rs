@@ -396,7 +396,7 @@ fn f0_area_and_perimeter_factors_are_stable_across_levels() {
             mean.exp()
         );
     }
-    // The area shrinks and the perimeter grows (SPEC §7: lacunas remove area, add boundary).
+    // The area shrinks and the perimeter grows (THEORY §7: lacunas remove area, add boundary).
     assert!(r.area_factor < 1.0 && r.perimeter_factor > 1.0);
 }
 

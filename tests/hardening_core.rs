@@ -40,7 +40,7 @@ fn approx_line(out: &str) -> String {
 
 #[test]
 fn hardening_01_ratio_digits_zero() {
-    // F0: R = 1/3 (SPEC §5: one self-similar type with k = 6, l = 5/2: R = l/(l + k − 1) =
+    // F0: R = 1/3 (THEORY §5: one self-similar type with k = 6, l = 5/2: R = l/(l + k − 1) =
     // (5/2)/(15/2) = 1/3); truncated to no digit after the point: 0.
     let (code, out, err) = lacuna(&["ratio", "F0", "--digits", "0"]);
     assert_eq!(code, 0, "{err}");
@@ -250,7 +250,7 @@ fn hardening_11_counts_default_level_limit() {
         "{err}"
     );
     assert!(t < BEFORE_THE_WORK, "{t:?}");
-    // The default limit itself is reachable in seconds: N^C_L = 6^L for F0 (SPEC §5).
+    // The default limit itself is reachable in seconds: N^C_L = 6^L for F0 (THEORY §5).
     let max = lacuna::topology::Limits::default().max_level;
     let (code, out, err, t) = timed(&["counts", "F0", "--levels", &max.to_string(), "--json"]);
     assert_eq!(code, 0, "{err}");

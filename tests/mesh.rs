@@ -1,4 +1,4 @@
-// Printable solids (issue #13, SPEC §11): the written STL (binary and ASCII) and 3MF are read back
+// Printable solids (issue #13, THEORY §11): the written STL (binary and ASCII) and 3MF are read back
 // with readers that are not the writers (the `stl_io` crate; the `zip` crate and a minimal XML
 // scan written here) and checked here, independently of `lacuna::mesh::check`: one part per
 // component, every edge in exactly two triangles with opposite orientations, no facet wound

@@ -1,4 +1,4 @@
-//! Operator eigen analysis and inverse design (SPEC §8, issue #7). Every expected value is derived
+//! Operator eigen analysis and inverse design (THEORY §8, issue #7). Every expected value is derived
 //! by hand in the test that checks it.
 
 mod common;

@@ -26,7 +26,7 @@ fn dec(s: &str) -> BigRational {
 
 #[test]
 fn f0_is_one_third() {
-    // SPEC §5: R = l/(l + k − 1) = (5/2)/(5/2 + 5) = 1/3.
+    // THEORY §5: R = l/(l + k − 1) = (5/2)/(5/2 + 5) = 1/3.
     let r = ratio_of(&closed("F0"), 30).unwrap();
     assert!(r.exists);
     assert_eq!(r.exact.as_deref(), Some("1/3"), "fixture F0");
@@ -91,7 +91,7 @@ mod self_similar {
     use lacuna::{analysis::CensusSpec, topology::close, topology::Closure, topology::Face};
     use proptest::prelude::*;
 
-    /// R of a closure that is a single self-similar type must be l/(l + k − 1) (SPEC §5), with
+    /// R of a closure that is a single self-similar type must be l/(l + k − 1) (THEORY §5), with
     /// k its number of sub-faces and l its contribution.
     fn check_single_type(ts: &TypeSet) {
         let k = ts.types[0].children.len() as i64;

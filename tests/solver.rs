@@ -61,7 +61,7 @@ fn space(a: &Automaton) -> (lacuna::constraint::SolveReport, Linearized, Solutio
 
 #[test]
 fn spec_edge_has_8_then_6_degrees_of_freedom() {
-    // SPEC §6: barycentric + incidence leave 8; the adjacency leaves 6.
+    // THEORY §6: barycentric + incidence leave 8; the adjacency leaves 6.
     let (r, _, _) = space(&automaton("spec-edge-incidence"));
     assert!(r.consistent);
     assert_eq!(r.dof, 8, "fixture spec-edge-incidence");

@@ -174,7 +174,7 @@ mod tests {
 
     #[test]
     fn de_casteljau_halves_match_the_spec() {
-        // SPEC §6: T_0 = [[1,1/2,1/4],[0,1/2,1/2],[0,0,1/4]], T_1 = [[1/4,0,0],[1/2,1/2,0],[1/4,1/2,1]].
+        // THEORY §6: T_0 = [[1,1/2,1/4],[0,1/2,1/2],[0,0,1/4]], T_1 = [[1/4,0,0],[1/2,1/2,0],[1/4,1/2,1]].
         let t0 = bezier_restriction(2, &q(0, 1), &q(1, 2));
         let t1 = bezier_restriction(2, &q(1, 2), &q(1, 1));
         assert_eq!(t0.to_string(), "[1 1/2 1/4; 0 1/2 1/2; 0 0 1/4]");

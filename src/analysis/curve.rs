@@ -1,4 +1,4 @@
-//! Operators of an automaton read as curves (SPEC §8, dyadic points): every known
+//! Operators of an automaton read as curves (THEORY §8, dyadic points): every known
 //! self-mapping sub-operator analysed by [`crate::analysis::operator`], the end points and joining points
 //! of each curve with their one-sided behaviour, and a float estimate of the curvature range in
 //! the finite class (geometry: never a verdict).
@@ -74,7 +74,7 @@ pub struct AutomatonOperators {
 }
 
 /// Analyses every known `sub` operator that maps a state to itself, and the end and joining
-/// points of every state with at least two such operators (SPEC §8, dyadic points).
+/// points of every state with at least two such operators (THEORY §8, dyadic points).
 pub fn analyse_automaton(a: &Automaton) -> Result<AutomatonOperators> {
     analyse_automaton_only(a, None)
 }

@@ -1,4 +1,4 @@
-//! Inverse design (SPEC §8): an operator `T = V·D·V⁻¹` built exactly over Q from chosen
+//! Inverse design (THEORY §8): an operator `T = V·D·V⁻¹` built exactly over Q from chosen
 //! eigenvalues and eigenvectors, and checked against the constraints of an automaton.
 //!
 //! A designer picks λ0 = 1 with the fixed point, λ1 with the tangent v1 and λ2 with v2 — the

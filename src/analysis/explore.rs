@@ -1,4 +1,4 @@
-//! Property-based exploration of a subdivision rule over a family of boundaries (SPEC §14), for
+//! Property-based exploration of a subdivision rule over a family of boundaries (THEORY §14), for
 //! `lacuna explore`.
 //!
 //! A family is every boundary up to a length over given edge types (one per rotation class), or a

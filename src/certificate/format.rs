@@ -52,8 +52,8 @@ pub struct Certificate {
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case", deny_unknown_fields)]
 pub enum Claim {
-    /// Start faces and the options of SPEC §6: the closure's start types are these faces, the
-    /// system is the one SPEC §6 generates with this degree and Cantor ratio.
+    /// Start faces and the options of THEORY §6: the closure's start types are these faces, the
+    /// system is the one THEORY §6 generates with this degree and Cantor ratio.
     Faces(FacesClaim),
     /// A hand-written automaton: the checker rebuilds its linear system from the states,
     /// operators and words.
@@ -65,7 +65,7 @@ pub enum Claim {
 }
 
 /// The claim about faces: the start faces (canonical form, one per start face, repeated for
-/// equal faces) and how the constraint system is generated (SPEC §6).
+/// equal faces) and how the constraint system is generated (THEORY §6).
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FacesClaim {
@@ -91,7 +91,7 @@ pub struct SubstitutionClaim {
     pub start: Vec<(usize, u64)>,
 }
 
-/// A hand-written automaton (SPEC §6): states, operators (known matrices or unknown),
+/// A hand-written automaton (THEORY §6): states, operators (known matrices or unknown),
 /// constraints (equalities of words) and the operators whose columns sum to 1.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -157,16 +157,16 @@ pub struct WordEquation {
 #[serde(tag = "step", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum Step {
     /// **The closure.** Justification: the checker re-derives the subdivision of every listed face
-    /// type with its own implementation of SPEC §3 (sub-edges, junctions, the spoke predicate,
+    /// type with its own implementation of THEORY §3 (sub-edges, junctions, the spoke predicate,
     /// runs between spokes, `Ec Ec` inside runs, `[Ec] Ea El Ea [Ec]`, delayed faces, canonical
     /// rotation) and compares sub-faces, origins and adjacencies with the certificate; every
     /// referenced type must be listed, so the listed set is closed under subdivision. It checks
     /// the incidence identities on the certificate's own data (each sub-edge once, each gap side
     /// once, each spoke once inward and once outward and paired by an adjacency, one lacuna side
-    /// per sub-face) and the contribution of SPEC §5.
+    /// per sub-face) and the contribution of THEORY §5.
     Closure(ClosureStep),
     /// **A consistent linear system and its solution space.** The checker first rebuilds the
-    /// system from the claim — SPEC §6 from the proved closure step (unknowns matched by the
+    /// system from the claim — THEORY §6 from the proved closure step (unknowns matched by the
     /// recipe's names), or the claimed automaton's words, or the claimed system — and requires
     /// the rows to be exactly the rebuilt ones.
     /// Justification: the particular
@@ -335,7 +335,7 @@ pub struct TypeRule {
     pub subfaces: Vec<SubFace>,
     /// Adjacency `k` pairs the two sides of spoke `k + 1` (none for a delayed face).
     pub adjacencies: Vec<Adjacency>,
-    /// Lacunas added by one subdivision step, in halves (SPEC §5).
+    /// Lacunas added by one subdivision step, in halves (THEORY §5).
     pub contribution_halves: u64,
 }
 
@@ -367,13 +367,13 @@ pub struct System {
     pub unknowns: usize,
     /// The equations.
     pub rows: Vec<Row>,
-    /// How the system is generated from the closure step (SPEC §6), for systems of face
+    /// How the system is generated from the closure step (THEORY §6), for systems of face
     /// closures; the checker rebuilds the system from the closure and requires the rows above to
     /// be exactly the rebuilt ones. `None` for a hand-written automaton: the system as given.
     pub recipe: Option<Recipe>,
 }
 
-/// The recipe of a system generated from a closure (SPEC §6): the degree and Cantor ratio are
+/// The recipe of a system generated from a closure (THEORY §6): the degree and Cantor ratio are
 /// the claim's, the recipe names the columns.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

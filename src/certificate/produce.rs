@@ -40,7 +40,7 @@ pub enum CertifyError {
 }
 
 /// The full certificate of a closed type set: the claim (its start faces and the options of
-/// SPEC §6), the closure, the solution space (or conflict) of the generated constraint system,
+/// THEORY §6), the closure, the solution space (or conflict) of the generated constraint system,
 /// and the limit ratio. `input` is a label for people.
 pub fn certificate_for(
     input: &str,
@@ -61,7 +61,7 @@ pub fn certificate_for(
     let mut cert = Certificate::new(input, claim);
     cert.steps.push(Step::Closure(closure));
     let source = format!(
-        "the constraints of the automaton generated from the closure (SPEC §6, Bézier degree {}, Cantor gap/piece ratio {})",
+        "the constraints of the automaton generated from the closure (THEORY §6, Bézier degree {}, Cantor gap/piece ratio {})",
         opts.degree, opts.cantor_gap
     );
     let generated = crate::constraint::automaton_of(ts, opts);

@@ -1,4 +1,4 @@
-//! The linear system of a hand-written automaton (SPEC §6), rebuilt by the checker from the
+//! The linear system of a hand-written automaton (THEORY §6), rebuilt by the checker from the
 //! claim's states, operators and words, so that a solution-space or inconsistency step is about
 //! the claimed automaton and not about some other system.
 //!

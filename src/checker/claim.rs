@@ -255,7 +255,7 @@ pub(super) fn claim_lines(c: &Claim) -> Vec<String> {
                 .map(|x| format!("start face {}", face_text(x)))
                 .collect();
             o.push(format!(
-                "constraint system of SPEC §6 with Bézier degree {} and Cantor gap/piece {}",
+                "constraint system of THEORY §6 with Bézier degree {} and Cantor gap/piece {}",
                 f.degree, f.cantor_gap
             ));
             o

@@ -1,4 +1,4 @@
-//! The closure step: re-derives every listed type's subdivision (SPEC §3) with the checker's own
+//! The closure step: re-derives every listed type's subdivision (THEORY §3) with the checker's own
 //! code and checks the incidence identities and contributions (see `docs/CERTIFICATES.md`).
 
 use crate::certificate::{
@@ -164,7 +164,7 @@ fn canonical(raw: Vec<(Edge, Origin)>, delay: u32) -> Derived {
     (boundary, origins, delay)
 }
 
-/// One subdivision step of `face` (SPEC §3), with lacuna's origin conventions.
+/// One subdivision step of `face` (THEORY §3), with lacuna's origin conventions.
 fn subdivide(face: &Face) -> Result<(Vec<Derived>, Vec<Adjacency>), String> {
     let len = face.boundary.len();
     // Sub-edge m: its type, (edge, piece), and the junction after it.
@@ -243,7 +243,7 @@ fn key(f: &Face) -> FaceKey {
     (f.boundary.clone(), f.params, f.delay, items)
 }
 
-/// Lacunas of one step in halves (SPEC §5): 2 for the centre (d = 1), n−1 per non-delayed `Cn`
+/// Lacunas of one step in halves (THEORY §5): 2 for the centre (d = 1), n−1 per non-delayed `Cn`
 /// (a big integer: the sum cannot wrap).
 fn contribution(f: &Face) -> BigUint {
     let gaps = f
@@ -359,7 +359,9 @@ pub(super) fn check_closure(
             ));
         }
         if contribution(&rule.face) != BigUint::from(rule.contribution_halves) {
-            return Err(format!("type {t}: contribution is not the one of SPEC §5"));
+            return Err(format!(
+                "type {t}: contribution is not the one of THEORY §5"
+            ));
         }
         identities(c, t).map_err(|e| format!("type {t}: {e}"))?;
         matrix.push(row);
@@ -367,7 +369,7 @@ pub(super) fn check_closure(
     let subs: usize = c.types.iter().map(|r| r.subfaces.len()).sum();
     let msg = format!(
         "{nt} face type(s) closed under subdivision, the claim's {} start face(s) among them: \
-         {subs} sub-faces re-derived (SPEC §3), every incidence identity and contribution holds",
+         {subs} sub-faces re-derived (THEORY §3), every incidence identity and contribution holds",
         faces.len()
     );
     let verdict = format!("closure: {nt} face types, closed under subdivision");

@@ -5,9 +5,9 @@
 //! lacuna. Everything it needs is re-implemented here, small, one file per concern:
 //!
 //! - `claim.rs`: the claim printed first, the fixed structure of the steps, strict numbers;
-//! - `closure.rs`: the subdivision of a face (SPEC §3), incidence identities, contributions;
+//! - `closure.rs`: the subdivision of a face (THEORY §3), incidence identities, contributions;
 //! - `automaton.rs`: the linear system of a hand-written automaton, rebuilt from its words;
-//! - `system.rs`: the constraint system of a closure (SPEC §6) rebuilt from the closure step;
+//! - `system.rs`: the constraint system of a closure (THEORY §6) rebuilt from the closure step;
 //! - `linear.rs`: exact linear checks and elimination modulo primes;
 //! - `field.rs`: polynomials over Q, Sturm isolation, exact zero and sign tests in Q[x]/(p);
 //! - `ratio.rs`: strongly connected classes and periods, Perron–Frobenius witnesses, the verdict;

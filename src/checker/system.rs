@@ -1,8 +1,8 @@
-//! The constraint system of a closure (SPEC §6), rebuilt by the checker from the closure step
+//! The constraint system of a closure (THEORY §6), rebuilt by the checker from the closure step
 //! and the recipe (Bézier degree, Cantor gap ratio, unknown names), so that a solution-space or
 //! inconsistency step is tied to the closure it claims to be about.
 //!
-//! The automaton, as SPEC §6 defines it:
+//! The automaton, as THEORY §6 defines it:
 //! - a vertex state `v` (m = 1, `v.T0 = [1]`);
 //! - one state per edge type occurring (boundaries and `E`, with every lower delay): `Bn` has
 //!   m = q + 1 control points and de Casteljau operators `T_k` restricting to `[k/n, (k+1)/n]`;
@@ -482,7 +482,7 @@ pub(super) fn tie(system: &System, rows: &[Equation], tie: Tie) -> Result<String
             same_rows(rows, &rebuilt)
                 .map_err(|e| format!("the system does not match the closure: {e}"))?;
             Ok(format!(
-                "system rebuilt from the closure: {} rows over {n} unknowns (SPEC §6, Bézier \
+                "system rebuilt from the closure: {} rows over {n} unknowns (THEORY §6, Bézier \
                  degree {degree}, Cantor gap/piece {gap}), the certificate's rows exactly",
                 rebuilt.len(),
             ))

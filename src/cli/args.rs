@@ -90,7 +90,7 @@ pub(crate) enum Command {
     Counts(Limited<CountsArgs>),
     /// The exact limit ratio R of lacunas against sub-faces, by eigen analysis.
     Ratio(Limited<RatioArgs>),
-    /// Eigen analysis of subdivision operators (SPEC §8): eigenvalues, fixed point, contraction,
+    /// Eigen analysis of subdivision operators (THEORY §8): eigenvalues, fixed point, contraction,
     /// tangent and pseudo-curvature class, end and joining points of curves.
     Operators(Limited<OperatorsArgs>),
     /// Inverse design: T = V·D·V⁻¹ from eigenvalues and eigenvectors (one per row), exact.

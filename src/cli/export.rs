@@ -85,7 +85,7 @@ pub(super) fn run(args: ExportArgs, limits: &Limits) -> Result<ExitCode, Error> 
                                 input.name.replace('\n', " "),
                                 ts.types.len()
                             ),
-                            format!("Bézier degree {degree}, Cantor gap/piece ratio {gap} (SPEC §6)."),
+                            format!("Bézier degree {degree}, Cantor gap/piece ratio {gap} (THEORY §6)."),
                             "`lacuna solve` of this file gives the unknowns, equations, rank and degrees of freedom".into(),
                             "of `lacuna solve` on the input; the degeneracy check needs the faces, so only the input has it.".into(),
                         ],

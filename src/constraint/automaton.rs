@@ -1,4 +1,4 @@
-//! The BC-IFS automaton and its constraint system (SPEC §6).
+//! The BC-IFS automaton and its constraint system (THEORY §6).
 //!
 //! States carry a barycentric space of dimension m; operators (subdivision `T`, embedding `B`,
 //! permutation `J`, or any other) are given exact matrices or are unknown; constraints are

@@ -1,4 +1,4 @@
-//! The automaton of a face closure, with the defaults of SPEC §6, and the degeneracy check.
+//! The automaton of a face closure, with the defaults of THEORY §6, and the degeneracy check.
 //!
 //! * a vertex state `v` (m = 1, `v.T0 = [1]`);
 //! * one state per edge type: `Bn` has m = q + 1 control points (Bézier degree q, default 2) and
@@ -269,7 +269,7 @@ pub fn automaton_of(ts: &TypeSet, opts: GenOptions) -> Generated {
 /// An unknown as an affine function of the free parameters (see `Parametrization::expression`).
 type Expression<'a> = (&'a BigRational, &'a [(usize, BigRational)]);
 
-/// The degeneracy check (SPEC §6): for every face type, the corner points of its level-1
+/// The degeneracy check (THEORY §6): for every face type, the corner points of its level-1
 /// complex that are combinatorially distinct must not be forced to coincide by the constraints.
 /// Returns one message per forced collapse.
 pub fn degeneracies(

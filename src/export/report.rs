@@ -23,7 +23,7 @@ pub struct TypeRow {
     pub children: Vec<String>,
     /// Lacunas contributed per step, exact.
     pub contribution: String,
-    /// The level-1 complex: vertices, edges, sub-faces, holes and valences (SPEC §9).
+    /// The level-1 complex: vertices, edges, sub-faces, holes and valences (THEORY §9).
     pub complex: crate::topology::subdivision::Complex,
 }
 
@@ -61,13 +61,13 @@ pub struct VerifyReport {
     pub per_face: Vec<FaceCounts>,
     /// The number of shared edges of the assembly.
     pub shared_edges: usize,
-    /// The constraint solver's verdict on the generated automaton (SPEC §6).
+    /// The constraint solver's verdict on the generated automaton (THEORY §6).
     pub solver: Option<crate::constraint::automaton::SolveReport>,
-    /// The exact limit ratio (SPEC §5).
+    /// The exact limit ratio (THEORY §5).
     pub ratio: Option<crate::analysis::ratio::RatioReport>,
 }
 
-/// The exact limit ratio of the start faces of a closed type set (SPEC §5), with `digits`
+/// The exact limit ratio of the start faces of a closed type set (THEORY §5), with `digits`
 /// certified decimals.
 pub fn ratio_of(
     ts: &TypeSet,

@@ -1,4 +1,4 @@
-//! Exports of the level-n cells (SPEC §7): SVG, JSON, Wavefront OBJ prisms and PNG.
+//! Exports of the level-n cells (THEORY §7): SVG, JSON, Wavefront OBJ prisms and PNG.
 //!
 //! JSON, OBJ and STL are written as text by hand, streaming: the formats are small (a JSON array,
 //! OBJ `v`/`f` lines), and the output is deterministic (fixed number formatting, depth-first

@@ -1,4 +1,4 @@
-//! Choosing the free parameters t of the exact solution space `x = particular + B·t` (SPEC §7):
+//! Choosing the free parameters t of the exact solution space `x = particular + B·t` (THEORY §7):
 //! the default least-squares fit to the template in floating point (rounded to dyadic
 //! rationals), and the **exact** least-squares projection of a template with rational positions.
 //!

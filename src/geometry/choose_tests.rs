@@ -1,4 +1,4 @@
-//! Tests of the exact projection on the SPEC §6 edge, where every answer is derived by hand.
+//! Tests of the exact projection on the THEORY §6 edge, where every answer is derived by hand.
 //!
 //! The edge automaton (fixtures/spec-edge.aut): state `e` of 3 control points, sub-operators
 //! `e.T0`, `e.T1` (3 × 3, barycentric columns), incidences `T0·B0 = B0` (column 0 of T0 is

@@ -1,4 +1,4 @@
-//! Instantiation of a verified structure (SPEC §7): values for the free parameters of the exact
+//! Instantiation of a verified structure (THEORY §7): values for the free parameters of the exact
 //! solution space, control points in the plane, and the depth-first evaluation of the attractor.
 //!
 //! **Choosing the parameters.** Every face type gets a *template*: its control points on a regular

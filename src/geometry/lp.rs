@@ -1,4 +1,4 @@
-//! Inequality goals on the free parameters through a linear program (SPEC §7): `good_lp` with
+//! Inequality goals on the free parameters through a linear program (THEORY §7): `good_lp` with
 //! the pure-Rust simplex `microlp` (f64), its answer snapped to dyadic rationals and re-checked
 //! exactly over Q.
 //!

@@ -1,4 +1,4 @@
-//! Placement of the start faces in the plane (SPEC §7, issue #6): the user's coordinates where
+//! Placement of the start faces in the plane (THEORY §7, issue #6): the user's coordinates where
 //! given, regular polygons elsewhere, with every shared edge drawn once.
 //!
 //! 1. Corners are identified into *vertices* through the shared edges ([`crate::input::vertices`]). A

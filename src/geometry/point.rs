@@ -1,5 +1,5 @@
 //! Planar geometry in floating point: polygons, Bézier evaluation, a coverage raster, connected
-//! components and box counting (SPEC §7).
+//! components and box counting (THEORY §7).
 //!
 //! This is the only layer of lacuna that computes with `f64`. Nothing here decides a verdict on
 //! its own: the one comparison that can fail a verification (observed holes and components against

@@ -1,7 +1,7 @@
 //! The plain-text format for hand-written automata (documented in `docs/FORMATS.md`).
 //!
 //! ```text
-//! # SPEC §6 worked example
+//! # THEORY §6 worked example
 //! state v 1
 //! state e 3
 //! sub   v.sub0  : v <- v = [1]

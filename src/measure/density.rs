@@ -1,4 +1,4 @@
-//! Relative-density maps (SPEC §7): the fraction of each block of a `grid × grid` partition of the
+//! Relative-density maps (THEORY §7): the fraction of each block of a `grid × grid` partition of the
 //! window that the level-n cells cover.
 //!
 //! The window is the square of side `s` = the larger side of the level-0 bounding box, centred on

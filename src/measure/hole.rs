@@ -1,5 +1,5 @@
 //! The size of the smallest hole at each level, computed from the cells, so that the raster that
-//! counts holes can be chosen fine enough to see every one of them (SPEC §7).
+//! counts holes can be chosen fine enough to see every one of them (THEORY §7).
 //!
 //! A hole opened by subdividing a level-i cell is its central lacuna, bounded by the `El` edges of
 //! its sub-faces, or a gap of a shared `Cn` edge, made of two halves, each bounded by the two `Ec`

@@ -1,4 +1,4 @@
-//! Measures of an instantiated structure per level (SPEC §7): area, perimeter of the union, their
+//! Measures of an instantiated structure per level (THEORY §7): area, perimeter of the union, their
 //! factors, the box-counting dimension, and the observed holes and components compared with the
 //! exact topology.
 //!
@@ -10,7 +10,7 @@
 //! central lacuna (one hole, if the cell is not delayed) and `n − 1` gaps on each non-delayed `Cn`
 //! edge. A gap on a shared edge is seen from both cells: the two halves make one hole. A gap on a
 //! free edge opens into the outside or into an existing hole: it is a notch, not a hole. So
-//! `holes_i = Σ central lacunas + (interior gap halves)/2`, and since SPEC §5 counts every gap as
+//! `holes_i = Σ central lacunas + (interior gap halves)/2`, and since THEORY §5 counts every gap as
 //! a half from each side, `N^L_i = holes_i + (free gaps)/2` — both are computed with big integers
 //! over the multiset of (type, flags) and checked against each other. The number of components
 //! is derived exactly in [`crate::topology::component`] (by induction on the levels, or by union-find over
@@ -43,7 +43,7 @@ pub struct ExactTopology {
     /// N^C_i.
     #[serde(serialize_with = "crate::topology::closure::ser_display")]
     pub faces: BigUint,
-    /// N^L_i of SPEC §5.
+    /// N^L_i of THEORY §5.
     #[serde(serialize_with = "crate::topology::closure::ser_display")]
     pub lacunas: BigRational,
     /// Holes of the union of the level-i cells (bounded components of its complement).

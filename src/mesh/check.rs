@@ -1,4 +1,4 @@
-//! The check of a triangle mesh before it is written (SPEC §11), independent of how it was built:
+//! The check of a triangle mesh before it is written (THEORY §11), independent of how it was built:
 //! it sees only vertex positions and index triples.
 //!
 //! Integer checks of the combinatorics: every triangle has three distinct vertices; every directed

@@ -1,6 +1,6 @@
 //! What the mesh must be, from the exact topology alone (no coordinates): the number of
 //! components and the number of holes of each, hence the Euler characteristic `2 − 2·holes` of
-//! each component's surface (SPEC §11).
+//! each component's surface (THEORY §11).
 //!
 //! The holes are counted as in `crate::measure::exact_topology` — a central lacuna per
 //! non-delayed cell subdivided, a hole per two halves of a gap on a shared `Cn` edge, a gap on a

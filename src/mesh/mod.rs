@@ -1,4 +1,4 @@
-//! The mesh layer (SPEC §11): printable solids of verified structures.
+//! The mesh layer (THEORY §11): printable solids of verified structures.
 //!
 //! **What it is for.** A planar structure at level n is turned into one closed, oriented,
 //! triangulated 2-manifold per connected component: the union of the level-n cells extruded to a
@@ -9,7 +9,7 @@
 //!
 //! **Architecture invariant.** This layer sits on top of the geometry layer: it may import
 //! `crate::geometry`, `crate::instantiate`, `crate::measure` and `crate::hole` (and the
-//! exact types of the layers below), never the command line. The 3D volumes of SPEC §10 will use
+//! exact types of the layers below), never the command line. The 3D volumes of THEORY §10 will use
 //! the same [`Part`], [`check`] and writers.
 //!
 //! **What is exact and what is not.** Which points of the level-n complex are one vertex is decided

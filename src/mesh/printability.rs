@@ -1,4 +1,4 @@
-//! The printability report (SPEC §11): the smallest hole and the thinnest ligament at level n, in
+//! The printability report (THEORY §11): the smallest hole and the thinnest ligament at level n, in
 //! millimetres, against a printer resolution (the smallest feature it prints).
 //!
 //! Both are sizes in the sense of `crate::hole::polygon_size`, `2·area / perimeter` (the inradius

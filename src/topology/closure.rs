@@ -1,4 +1,4 @@
-//! The closure: every face type the recursion produces, with the type graph (SPEC §4).
+//! The closure: every face type the recursion produces, with the type graph (THEORY §4).
 //!
 //! Breadth-first from the start faces, identifying types by canonical face. "Did not close" is a
 //! result ([`Closure::Runaway`], with the chain of growing types), not an error. For the built-in
@@ -31,7 +31,7 @@ pub struct FaceType {
 }
 
 impl FaceType {
-    /// Lacunas contributed by one subdivision step, in halves (SPEC §5).
+    /// Lacunas contributed by one subdivision step, in halves (THEORY §5).
     pub fn contribution_halves(&self) -> u64 {
         self.face.contribution_halves()
     }
@@ -127,7 +127,7 @@ impl Closure {
                         let len = s.face.boundary.len();
                         if len > limits.max_boundary || id >= limits.max_types {
                             // A proved-finite closure that meets a limit is a limit error,
-                            // never a runaway (SPEC §4).
+                            // never a runaway (THEORY §4).
                             if let Some(b) = &bound {
                                 let met = (len <= limits.max_boundary).then_some(id);
                                 return Err(b.above(limits, met));
@@ -285,7 +285,7 @@ impl Bound {
         })
     }
 
-    /// The limit error for a closure this bound proves finite but that meets `limits` (SPEC §4:
+    /// The limit error for a closure this bound proves finite but that meets `limits` (THEORY §4:
     /// a limit is a resource bound, not a verdict). `types_met` is the number of types built
     /// when `--max-types` was hit, `None` for `--max-boundary`.
     fn above(&self, limits: &Limits, types_met: Option<usize>) -> Error {
@@ -381,7 +381,7 @@ impl Shape {
 
 /// The shapes of the words edges become after k delayed steps, memoised by (edge, k): a delayed
 /// step maps `X^d` (d ≥ 2) to `X^(d−1)`, and a non-delayed edge to its n pieces with `Ec Ec` at
-/// every gap (SPEC §3).
+/// every gap (THEORY §3).
 struct ShapeTable {
     ec: EdgeType,
     memo: HashMap<(EdgeType, u32), Shape>,

@@ -1,4 +1,4 @@
-//! Exact counts per level: faces N^C_i, lacunas N^L_i and R_i (SPEC §5).
+//! Exact counts per level: faces N^C_i, lacunas N^L_i and R_i (THEORY §5).
 //!
 //! Iterates on the vector of type multiplicities (never on individual faces), with big integers;
 //! lacunas are kept in halves so every operation is an integer one.
@@ -97,7 +97,7 @@ mod tests {
 
     #[test]
     fn f0_counts_match_the_spec() {
-        // SPEC §5: N^L = 0, 5/2, 35/2, 215/2, 1295/2, 7775/2; N^C = 6^i; R_1 = 5/17.
+        // THEORY §5: N^L = 0, 5/2, 35/2, 215/2, 1295/2, 7775/2; N^C = 6^i; R_1 = 5/17.
         let c = counts(&ts("C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1"), 5);
         let lac: Vec<String> = c.iter().map(|l| l.lacunas.to_string()).collect();
         assert_eq!(lac, ["0", "5/2", "35/2", "215/2", "1295/2", "7775/2"]);

@@ -1,4 +1,4 @@
-//! Edge types: Bézier-like `Bn`, Cantor-like `Cn`, optionally delayed `X^d` (SPEC §2).
+//! Edge types: Bézier-like `Bn`, Cantor-like `Cn`, optionally delayed `X^d` (THEORY §2).
 
 use crate::error::{Error, Result, Span};
 use serde::Serialize;

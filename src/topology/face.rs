@@ -1,4 +1,4 @@
-//! Faces `F^d(∂, E, A)` and their notation `C2 B2 C2 B2 | C2 B2 B2 | A1 | 2` (SPEC §2).
+//! Faces `F^d(∂, E, A)` and their notation `C2 B2 C2 B2 | C2 B2 B2 | A1 | 2` (THEORY §2).
 
 use crate::error::{Error, Result, Source, Span};
 use crate::topology::edge::EdgeType;
@@ -79,7 +79,7 @@ impl Face {
     }
 
     /// Lacunas one subdivision step of this face contributes, in halves: 2 for the central lacuna
-    /// (d = 1 only) plus n−1 for every non-delayed `Cn` of the boundary (SPEC §5).
+    /// (d = 1 only) plus n−1 for every non-delayed `Cn` of the boundary (THEORY §5).
     pub fn contribution_halves(&self) -> u64 {
         let centre = if self.delay == 1 { 2 } else { 0 };
         centre + self.boundary.iter().map(EdgeType::gap_halves).sum::<u64>()
@@ -187,7 +187,7 @@ impl Face {
             el: e[1],
             ec: e[2],
         };
-        // Algorithm, with an optional `^d` (SPEC) ...
+        // Algorithm, with an optional `^d` (THEORY §2) ...
         let (aoff, afield) = fields[2];
         let lead = afield.len() - afield.trim_start().len();
         let atext = afield.trim();

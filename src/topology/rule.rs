@@ -1,4 +1,4 @@
-//! Subdivision algorithms as spoke rules (SPEC §3).
+//! Subdivision algorithms as spoke rules (THEORY §3).
 //!
 //! A spoke rule is a predicate on a junction: its kind and the two boundary edges around it. The
 //! built-ins `A1`, `A2`, `A3` are spoke sets; a user writes any other set inline as

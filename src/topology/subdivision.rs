@@ -1,9 +1,9 @@
-//! One subdivision step of a face, with its full incidence map (SPEC §3).
+//! One subdivision step of a face, with its full incidence map (THEORY §3).
 //!
 //! Every edge of every sub-face records where it comes from ([`Origin`]): a piece of a boundary
 //! edge of the parent, one side of an adjacency edge (spoke), a side of the central lacuna, or one
 //! side of a gap. Adjacencies pair the two Ea edges of consecutive sub-faces. The constraint
-//! generator (SPEC §6) reads incidence and adjacency constraints off this map.
+//! generator (THEORY §6) reads incidence and adjacency constraints off this map.
 
 use crate::error::{Error, Result};
 use crate::topology::edge::{EdgeType, JunctionKind};
@@ -77,7 +77,7 @@ pub struct Subdivision {
     pub adjacencies: Vec<Adjacency>,
 }
 
-/// The level-1 complex of one subdivision step (SPEC §9).
+/// The level-1 complex of one subdivision step (THEORY §9).
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
 pub struct Complex {
     /// Distinct points (corners of sub-faces after identification).
@@ -134,7 +134,7 @@ struct Piece {
     ty: EdgeType,
 }
 
-/// Subdivides a face (SPEC §3). The face should be canonical: edge indices in the origins refer
+/// Subdivides a face (THEORY §3). The face should be canonical: edge indices in the origins refer
 /// to its boundary as given.
 pub fn subdivide(face: &Face) -> Result<Subdivision> {
     let mut pieces: Vec<Piece> = Vec::new();
@@ -569,7 +569,7 @@ mod tests {
 
     #[test]
     fn f0_subdivides_into_six_copies_of_itself() {
-        // SPEC §3 worked example.
+        // THEORY §3 worked example.
         let f0 = face("C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1");
         let sub = subdivide(&f0).unwrap();
         sub.sanity_check(&f0);

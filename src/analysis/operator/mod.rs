@@ -1,4 +1,4 @@
-//! Differential behaviour of subdivision operators (SPEC §8): eigenvalues, fixed point,
+//! Differential behaviour of subdivision operators (THEORY §8): eigenvalues, fixed point,
 //! contraction on the barycentric hyperplane, and the pseudo-tangent / pseudo-curvature case.
 //!
 //! Every verdict is exact. The characteristic polynomial is computed and factored over Q

@@ -1,4 +1,4 @@
-//! The exact limit ratio `R = lim N^L_i / (N^L_i + N^C_i)` (SPEC §5), by eigen analysis with
+//! The exact limit ratio `R = lim N^L_i / (N^L_i + N^C_i)` (THEORY §5), by eigen analysis with
 //! algebraic numbers.
 //!
 //! # The argument

@@ -56,7 +56,7 @@ fn f0_single_type() {
     assert_eq!(rep.perron_root, "6");
     assert_eq!(rep.classes[0].spectral_radius, "6");
     assert_eq!(rep.classes[0].period, Some(1));
-    // SPEC: R_1 = 5/17.
+    // THEORY §5: R_1 = 5/17.
     assert_eq!(
         ratios(&[vec![(0, 6)]], &[q(5, 2)], &[(0, 1)], 1)[1],
         q(5, 17)

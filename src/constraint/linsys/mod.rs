@@ -1,4 +1,4 @@
-//! The exact sparse linear system of the BC-IFS constraints (SPEC §6): solve over Q, report rank,
+//! The exact sparse linear system of the BC-IFS constraints (THEORY §6): solve over Q, report rank,
 //! degrees of freedom, a particular solution and a basis of directions, or a small conflicting
 //! set of equations with the rational combination that proves `0 = c ≠ 0`.
 //!

@@ -42,7 +42,7 @@ fn contains(s: &SolutionSpace, x: &[BigRational]) -> bool {
     y == x
 }
 
-/// SPEC §6 worked example: unknown `T_k[row][col]` is `k*9 + row*3 + col`.
+/// THEORY §6 worked example: unknown `T_k[row][col]` is `k*9 + row*3 + col`.
 fn spec_example(adjacency: bool) -> LinearSystem {
     let t = |k: usize, row: usize, col: usize| k * 9 + row * 3 + col;
     let mut rows = vec![];
