@@ -446,24 +446,30 @@ pub fn counts_table(levels: &[LevelCount]) -> String {
             ]
         })
         .collect();
-    let heads = ["level", "faces N^C", "lacunas N^L", "R_i", "R_i ≈"];
+    aligned_table(
+        &["level", "faces N^C", "lacunas N^L", "R_i", "R_i ≈"],
+        &rows,
+    )
+}
+
+/// A table of right-aligned columns under their headings, one space of margin and one between
+/// columns (the counts tables of faces and volumes, the solid's table).
+pub(crate) fn aligned_table<const N: usize>(heads: &[&str; N], rows: &[[String; N]]) -> String {
     let mut w = heads.map(|h| h.chars().count());
-    for r in &rows {
+    for r in rows {
         for (k, c) in r.iter().enumerate() {
             w[k] = w[k].max(c.chars().count());
         }
     }
-    let mut o = String::new();
     let line = |cells: &[String]| {
         let mut s = String::from(" ");
         for (k, c) in cells.iter().enumerate() {
-            let pad = w[k] - c.chars().count();
-            s += &format!(" {}{}", " ".repeat(pad), c);
+            s += &format!(" {}{}", " ".repeat(w[k] - c.chars().count()), c);
         }
         s + "\n"
     };
-    o += &line(&heads.map(String::from));
-    for r in &rows {
+    let mut o = line(&heads.map(String::from));
+    for r in rows {
         o += &line(r);
     }
     o

@@ -3,7 +3,7 @@
 
 use crate::analysis::ratio::{analyse, RatioReport};
 use crate::error::{Error, Result};
-use crate::export::report::ratio_decimal;
+use crate::export::report::{aligned_table, ratio_decimal};
 use crate::topology::volume::{SolidLevel, Volume, VolumeClosure, VolumeLevelCount, VolumeTypeSet};
 use num_rational::BigRational;
 use serde_json::{json, Value};
@@ -143,25 +143,10 @@ pub fn volume_counts_table(levels: &[VolumeLevelCount]) -> String {
             ]
         })
         .collect();
-    let heads = ["level", "cells N^C", "lacunas N^L", "R_i", "R_i ≈"];
-    let mut w = heads.map(|h| h.chars().count());
-    for r in &rows {
-        for (k, c) in r.iter().enumerate() {
-            w[k] = w[k].max(c.chars().count());
-        }
-    }
-    let line = |cells: &[String]| {
-        let mut s = String::from(" ");
-        for (k, c) in cells.iter().enumerate() {
-            s += &format!(" {}{}", " ".repeat(w[k] - c.chars().count()), c);
-        }
-        s + "\n"
-    };
-    let mut o = line(&heads.map(String::from));
-    for r in &rows {
-        o += &line(r);
-    }
-    o
+    aligned_table(
+        &["level", "cells N^C", "lacunas N^L", "R_i", "R_i ≈"],
+        &rows,
+    )
 }
 
 /// The exact topology of the solid per level as an aligned table (`–` where not derived).
@@ -183,33 +168,18 @@ pub fn solid_table(levels: &[SolidLevel]) -> String {
             ]
         })
         .collect();
-    let heads = [
-        "level",
-        "volumes",
-        "faces",
-        "edges",
-        "corners",
-        "χ",
-        "components",
-        "voids",
-        "tunnels",
-    ];
-    let mut w = heads.map(|h| h.chars().count());
-    for r in &rows {
-        for (k, c) in r.iter().enumerate() {
-            w[k] = w[k].max(c.chars().count());
-        }
-    }
-    let line = |cells: &[String]| {
-        let mut s = String::from(" ");
-        for (k, c) in cells.iter().enumerate() {
-            s += &format!(" {}{}", " ".repeat(w[k] - c.chars().count()), c);
-        }
-        s + "\n"
-    };
-    let mut o = line(&heads.map(String::from));
-    for r in &rows {
-        o += &line(r);
-    }
-    o
+    aligned_table(
+        &[
+            "level",
+            "volumes",
+            "faces",
+            "edges",
+            "corners",
+            "χ",
+            "components",
+            "voids",
+            "tunnels",
+        ],
+        &rows,
+    )
 }
