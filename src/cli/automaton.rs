@@ -42,28 +42,7 @@ pub(super) fn prepare(
             "--template, --goal and --corners apply to faces; an automaton takes its control points from its `points` line and its parameters from `param` lines and --param".into(),
         ));
     }
-    let mut values = Vec::new();
-    for p in &geo.params {
-        let parsed = p.split_once('=').and_then(|(n, v)| {
-            Some((
-                n.trim().to_string(),
-                lacuna::input::parse_rational(v.trim())?,
-            ))
-        });
-        let Some(pair) = parsed else {
-            return Err(Error::syntax(
-                "E1007",
-                format!("--param `{p}`: expected NAME=VALUE with an exact value (1/7, 0.25)"),
-                lacuna::Span {
-                    line: 1,
-                    col: 1,
-                    len: p.chars().count().max(1),
-                },
-                Some(&lacuna::Source::command_line(p)),
-            ));
-        };
-        values.push(pair);
-    }
+    let values = param_values(&geo.params)?;
     let resolved = lacuna::analysis::resolve(&model, &values, limits.max_unknowns)?;
     let contraction = lacuna::analysis::check_contraction(&model, &resolved.ops)?;
     let ev = Evaluator::new(&model, &resolved);

@@ -52,27 +52,7 @@ pub(super) fn instance(
     };
     // User control points fix the Bézier degree.
     opts.degree = input.assembly.coords.degree().unwrap_or(opts.degree);
-    for p in &geo.params {
-        let parsed = p.split_once('=').and_then(|(n, v)| {
-            Some((
-                n.trim().to_string(),
-                lacuna::input::parse_rational(v.trim())?,
-            ))
-        });
-        let Some(pair) = parsed else {
-            return Err(Error::syntax(
-                "E1007",
-                format!("--param `{p}`: expected NAME=VALUE with an exact value (1/7, 0.25)"),
-                lacuna::Span {
-                    line: 1,
-                    col: 1,
-                    len: p.chars().count().max(1),
-                },
-                Some(&lacuna::Source::command_line(p)),
-            ));
-        };
-        opts.values.push(pair);
-    }
+    opts.values = param_values(&geo.params)?;
     parameter_choice(geo, &mut opts)?;
     let inst = lacuna::geometry::instantiate(&input, &opts).map_err(geo_error)?;
     lacuna::measure::check_cells(&inst, geo.level, geo.max_cells.unwrap_or(default_cells))
@@ -181,4 +161,37 @@ pub(super) fn mesh_error(e: lacuna::mesh::MeshError) -> Error {
         span: None,
         source: None,
     }))
+}
+
+/// The `--param NAME=VALUE` flags as exact values (E1007 for one that is not NAME=VALUE with an
+/// exact value); faces and automata read them alike.
+pub(super) fn param_values(
+    params: &[String],
+) -> Result<Vec<(String, num_rational::BigRational)>, Error> {
+    params
+        .iter()
+        .map(|p| {
+            p.split_once('=')
+                .and_then(|(n, v)| {
+                    Some((
+                        n.trim().to_string(),
+                        lacuna::input::parse_rational(v.trim())?,
+                    ))
+                })
+                .ok_or_else(|| {
+                    Error::syntax(
+                        "E1007",
+                        format!(
+                            "--param `{p}`: expected NAME=VALUE with an exact value (1/7, 0.25)"
+                        ),
+                        lacuna::Span {
+                            line: 1,
+                            col: 1,
+                            len: p.chars().count().max(1),
+                        },
+                        Some(&lacuna::Source::command_line(p)),
+                    )
+                })
+        })
+        .collect()
 }
