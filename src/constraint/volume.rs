@@ -18,6 +18,7 @@ use crate::constraint::automaton::{Constraint, ConstraintKind, Factor, OpKind};
 use crate::constraint::generate::{automaton_of, GenOptions, Generated};
 use crate::error::{Error, Result};
 use crate::topology::closure::{close_or_error, TypeSet};
+use crate::topology::component::Dsu;
 use crate::topology::edge::{EdgeKind, EdgeType};
 use crate::topology::face::Face;
 use crate::topology::limits::Limits;
@@ -101,14 +102,7 @@ pub fn volume_automaton(
             })
             .collect();
         let total: usize = fr.iter().map(|&(t, _)| face_dim(t)).sum();
-        let mut uf: Vec<usize> = (0..total).collect();
-        fn find(uf: &mut [usize], mut x: usize) -> usize {
-            while uf[x] != x {
-                uf[x] = uf[uf[x]];
-                x = uf[x];
-            }
-            x
-        }
+        let mut uf = Dsu::new(total);
         // Point `c` of surface edge `i` of face `f`, in the face state's numbering.
         let edge_point = |f: usize, i: usize, c: usize| {
             let (t, r) = fr[f];
@@ -120,18 +114,14 @@ pub fn volume_automaton(
             for (i, &(h, j)) in row.iter().enumerate() {
                 let d = dim(&s.faces[f].boundary[i], q);
                 for c in 0..d {
-                    let (x, y) = (
-                        find(&mut uf, edge_point(f, i, c)),
-                        find(&mut uf, edge_point(h, j, d - 1 - c)),
-                    );
-                    uf[x] = y;
+                    uf.union(edge_point(f, i, c), edge_point(h, j, d - 1 - c));
                 }
             }
         }
         let mut class: HashMap<usize, usize> = HashMap::new();
         let ids: Vec<usize> = (0..total)
             .map(|x| {
-                let r = find(&mut uf, x);
+                let r = uf.find(x);
                 let next = class.len();
                 *class.entry(r).or_insert(next)
             })

@@ -34,27 +34,31 @@ use std::collections::HashMap;
 /// A shared edge of the start assembly: two (start face, canonical edge index) pairs.
 pub type Glue = [(usize, usize); 2];
 
-/// Union-find with path halving.
-struct Dsu(Vec<usize>);
+/// Union-find with path halving (also used by the volume step and the volume constraints).
+pub(crate) struct Dsu(Vec<usize>);
 
 impl Dsu {
-    fn new(n: usize) -> Dsu {
+    /// `n` singletons.
+    pub(crate) fn new(n: usize) -> Dsu {
         Dsu((0..n).collect())
     }
-    fn find(&mut self, mut x: usize) -> usize {
+    /// The root of `x`'s class.
+    pub(crate) fn find(&mut self, mut x: usize) -> usize {
         while self.0[x] != x {
             self.0[x] = self.0[self.0[x]];
             x = self.0[x];
         }
         x
     }
-    fn union(&mut self, a: usize, b: usize) {
+    /// Joins the classes of `a` and `b`.
+    pub(crate) fn union(&mut self, a: usize, b: usize) {
         let (ra, rb) = (self.find(a), self.find(b));
         if ra != rb {
             self.0[ra] = rb;
         }
     }
-    fn classes(&mut self) -> usize {
+    /// The number of classes.
+    pub(crate) fn classes(&mut self) -> usize {
         (0..self.0.len()).filter(|&x| self.find(x) == x).count()
     }
 }

@@ -10,6 +10,7 @@
 //! whole level-1 surface and caps every hole with a face of the hole's edge types.
 
 use crate::error::{Error, Result};
+use crate::topology::component::Dsu;
 use crate::topology::subdivision::{subdivide, Origin, Subdivision};
 use crate::topology::volume::surface::Surface;
 use crate::topology::volume::Volume;
@@ -210,27 +211,16 @@ pub fn subdivide_volume(v: &Volume) -> Result<VolumeSubdivision> {
     let index: HashMap<(usize, usize), usize> =
         all.iter().enumerate().map(|(i, &s)| (s, i)).collect();
     // Patches: sub-faces joined across paired sides that are not spoke edges.
-    let mut uf: Vec<usize> = (0..all.len()).collect();
-    fn find(uf: &mut [usize], mut x: usize) -> usize {
-        while uf[x] != x {
-            uf[x] = uf[uf[x]];
-            x = uf[x];
-        }
-        x
-    }
+    let mut uf = Dsu::new(all.len());
     for (&a, &b) in &l1.partner {
         if !v.rule.is_spoke(&l1.origin(a)) {
-            let (ra, rb) = (
-                find(&mut uf, index[&(a.0, a.1)]),
-                find(&mut uf, index[&(b.0, b.1)]),
-            );
-            uf[ra] = rb;
+            uf.union(index[&(a.0, a.1)], index[&(b.0, b.1)]);
         }
     }
     let mut groups: Vec<Vec<(usize, usize)>> = Vec::new();
     let mut group_of: HashMap<usize, usize> = HashMap::new();
     for (i, &s) in all.iter().enumerate() {
-        let r = find(&mut uf, i);
+        let r = uf.find(i);
         let g = *group_of.entry(r).or_insert_with(|| {
             groups.push(Vec::new());
             groups.len() - 1
@@ -274,25 +264,17 @@ fn raise(v: &Volume, l1: &Level1, n: usize, patch: &[(usize, usize)]) -> Result<
     let loops = l1.loops(&rim, &interior);
     // The patch's Euler characteristic: corners identified across interior sides.
     let corner: HashMap<Side, usize> = sides.iter().enumerate().map(|(i, &s)| (s, i)).collect();
-    let mut uf: Vec<usize> = (0..sides.len()).collect();
-    fn find(uf: &mut [usize], mut x: usize) -> usize {
-        while uf[x] != x {
-            uf[x] = uf[uf[x]];
-            x = uf[x];
-        }
-        x
-    }
+    let mut uf = Dsu::new(sides.len());
     let mut interior_sides = 0usize;
     for &s in &sides {
         if interior(s) {
             interior_sides += 1;
             let t = l1.partner[&s];
             let after = (t.0, t.1, (t.2 + 1) % l1.len(t.0, t.1));
-            let (a, b) = (find(&mut uf, corner[&s]), find(&mut uf, corner[&after]));
-            uf[a] = b;
+            uf.union(corner[&s], corner[&after]);
         }
     }
-    let vertices = (0..sides.len()).filter(|&i| find(&mut uf, i) == i).count();
+    let vertices = uf.classes();
     let edges = interior_sides / 2 + rim.len();
     let chi = vertices as i64 - edges as i64 + patch.len() as i64;
     if loops.len() != 1 || chi != 1 {
@@ -577,22 +559,11 @@ pub fn interior(v: &Volume) -> Result<Interior> {
                 .unwrap_or_default()
         })
         .collect();
-    let mut uf: Vec<usize> = (0..sub.subvolumes.len()).collect();
-    fn find(uf: &mut [usize], mut x: usize) -> usize {
-        while uf[x] != x {
-            uf[x] = uf[uf[x]];
-            x = uf[x];
-        }
-        x
-    }
+    let mut uf = Dsu::new(sub.subvolumes.len());
     for (&a, &b) in &l1.partner {
-        let (ra, rb) = (
-            find(&mut uf, index[&(a.0, a.1)]),
-            find(&mut uf, index[&(b.0, b.1)]),
-        );
-        uf[ra] = rb;
+        uf.union(index[&(a.0, a.1)], index[&(b.0, b.1)]);
     }
-    let children_connected = (0..uf.len()).filter(|&i| find(&mut uf, i) == i).count() == 1;
+    let children_connected = uf.classes() == 1;
     Ok(Interior {
         faces,
         radial_edges,
