@@ -163,9 +163,12 @@ pub fn solid_topology(set: &VolumeTypeSet, levels: u64) -> Result<Vec<SolidLevel
     let mut births: Vec<Birth> = Vec::with_capacity(set.types.len());
     let mut all_connected = true;
     let mut any_delayed = false;
+    // Whether each type's level-1 surface has a hole (its cavity opens).
+    let mut opens = Vec::with_capacity(set.types.len());
     for t in &set.types {
         let int = interior(&t.volume)?;
         all_connected &= int.children_connected;
+        opens.push(int.opens);
         any_delayed |= t.volume.delay >= 2;
         let mut edges = vec![t.volume.radial; int.radial_edges];
         edges.extend(vec![t.volume.inner; int.inner_edges]);
@@ -223,10 +226,7 @@ pub fn solid_topology(set: &VolumeTypeSet, levels: u64) -> Result<Vec<SolidLevel
     let level1_voids: u64 = set
         .start
         .iter()
-        .map(|&s| {
-            let v = &set.types[s].volume;
-            u64::from(v.delay == 1 && !interior(v).map(|i| i.opens).unwrap_or(true))
-        })
+        .map(|&s| u64::from(set.types[s].volume.delay == 1 && !opens[s]))
         .sum();
     let mut out = Vec::new();
     for level in 0..=levels {
