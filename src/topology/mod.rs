@@ -26,4 +26,6 @@ pub use face::{least_rotation, Face, Params};
 pub use limits::Limits;
 pub use rule::{Algorithm, EdgePattern, Junction, SpokeChooser, SpokeItem};
 pub use subdivision::{subdivide, Adjacency, Complex, Origin, SubFace, Subdivision};
-pub use vertex::{multiplicity, Item, LevelComplex, Multiplicity};
+pub use vertex::{
+    multiplicity, GrowthWitness, Item, LevelComplex, LimitValence, Multiplicity, SectorName,
+};

@@ -318,6 +318,11 @@ pub struct Multiplicity {
     pub vertex_types: usize,
     /// The valences of the limit: bounded with the values, or unbounded with a witness.
     pub limit: LimitValence,
+    /// When the valences are bounded: a bound on the order of the linear recurrences that every
+    /// count of the complex (vertices of each valence, edges, faces, lacunas) satisfies — the
+    /// closed vertex types, the edge cells, the face types and one for the lacunas. Two such
+    /// sequences that agree on their first `order_a + order_b` levels agree at every level.
+    pub order: Option<usize>,
 }
 
 /// The exact complex of the start faces of `ts` (glued by `glue`) from level 0 to `levels`.
@@ -494,10 +499,45 @@ pub fn multiplicity(
         born.extend(l.births.iter().cloned());
     }
     let limit = limit_valence(ts, &locals, &born)?;
+    // With bounded valences the vertex types close (finitely many links of bounded length over
+    // finitely many sectors): the state of a level — vertex types, edge cells, face types and the
+    // lacunas so far — then steps linearly, so every count of the complex is a linear recurrence
+    // of order at most its dimension.
+    let order = match limit {
+        LimitValence::Unbounded { .. } => None,
+        LimitValence::Bounded { .. } => {
+            let mut closed: Vec<Vec<Item>> = Vec::new();
+            let mut seen: HashSet<Vec<Item>> = HashSet::new();
+            for l in born.iter().chain(vtypes.iter()) {
+                let l = canonical(l.clone());
+                if seen.insert(l.clone()) {
+                    closed.push(l);
+                }
+            }
+            let mut i = 0;
+            while i < closed.len() {
+                if closed.len() > max_types {
+                    return Err(Error::limit(
+                        "the number of vertex types",
+                        closed.len(),
+                        max_types,
+                        "--max-types",
+                    ));
+                }
+                let l = canonical(evolve(&locals, &closed[i]));
+                if seen.insert(l.clone()) {
+                    closed.push(l);
+                }
+                i += 1;
+            }
+            Some(closed.len() + cells.len() + ts.types.len() + 1)
+        }
+    };
     Ok(Multiplicity {
         levels: out,
         vertex_types: vtypes.len(),
         limit,
+        order,
     })
 }
 
