@@ -490,4 +490,45 @@ mod tests {
         assert_eq!(c.differs, None);
         assert!(c.same_class && c.every_level);
     }
+
+    fn automaton(text: &str) -> Invariants {
+        let model = crate::input::parse_model(&crate::Source {
+            name: "test".into(),
+            text: text.into(),
+        })
+        .unwrap();
+        let resolved = crate::analysis::resolve(&model, &[], 1_000_000).unwrap();
+        automaton_invariants("test", &model, &resolved, 2).unwrap()
+    }
+
+    #[test]
+    fn automaton_contacts_at_level_1() {
+        // Sierpinski: T_i fixes corner i, and each T_i maps the three corners to its own corner
+        // and two midpoints: T0 → (1,0,0), (1/2,1/2,0), (1/2,0,1/2); T1 → (1/2,1/2,0), (0,1,0),
+        // (0,1/2,1/2); T2 → (1/2,0,1/2), (0,1/2,1/2), (0,0,1). Six points: the three midpoints
+        // where two pieces meet, the three corners with one. Pieces per level: 3^k.
+        let s = automaton(include_str!("../../fixtures/sierpinski-triangle.aut"));
+        assert_eq!(
+            s.cardinality[2],
+            vec![("pieces".to_string(), "9".to_string())]
+        );
+        assert_eq!(
+            s.multiplicity[1],
+            vec![
+                ("fixed-corner images".to_string(), "6".to_string()),
+                ("points where 1 pieces meet".to_string(), "3".to_string()),
+                ("points where 2 pieces meet".to_string(), "3".to_string()),
+            ]
+        );
+        // Cantor: T0 fixes end 0, T1 end 1; images (1,0), (2/3,1/3), (1/3,2/3), (0,1): four
+        // points, no two pieces meet.
+        let c = automaton(include_str!("../../fixtures/cantor-set.aut"));
+        assert_eq!(
+            c.multiplicity[1],
+            vec![
+                ("fixed-corner images".to_string(), "4".to_string()),
+                ("points where 1 pieces meet".to_string(), "4".to_string()),
+            ]
+        );
+    }
 }

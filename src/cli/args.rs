@@ -119,6 +119,14 @@ pub(crate) enum Command {
     /// forced collapse, R exists, the certificate checks; each failure shrunk to a minimal
     /// counterexample (exit 1 when a property fails).
     Explore(Limited<ExploreArgs>),
+    /// Topological class (THEORY §13): cardinality (cells per level) and multiplicity (valences of
+    /// the level-k complex and of the limit) of two inputs; exit 0 same class, 1 different, with
+    /// the first invariant that differs.
+    Classify(Limited<ClassifyArgs>),
+    /// Metamorphosis (THEORY §13): frames along the segment between two parameter choices of one
+    /// structure, each verified (no forced collapse, observed holes and components equal to the
+    /// exact counts); an animated SVG and PNG frames; exit 1 with the first failing frame.
+    Morph(Limited<MorphArgs>),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell) on standard output.
     Completions(CompletionsArgs),
     /// Print the manual page (roff, for `man -l -`) on standard output.
@@ -250,6 +258,58 @@ pub(crate) struct CountsArgs {
     /// The last level.
     #[arg(long)]
     pub(crate) levels: u64,
+    /// Print JSON.
+    #[arg(long)]
+    pub(crate) json: bool,
+}
+
+/// The arguments of `lacuna classify`.
+#[derive(Args)]
+pub(crate) struct ClassifyArgs {
+    /// The first input: face notation in quotes, a file, or a library name (faces, assemblies,
+    /// volumes, automata).
+    pub(crate) a: String,
+    /// The second input.
+    pub(crate) b: String,
+    /// Compare levels 0 to this at least (more when the recurrence orders of faces need more to
+    /// decide every level).
+    #[arg(long, default_value_t = 4)]
+    pub(crate) levels: u64,
+    /// Print JSON: `{"same_class", "differs", …}`.
+    #[arg(long)]
+    pub(crate) json: bool,
+}
+
+/// The arguments of `lacuna morph`.
+#[derive(Args)]
+pub(crate) struct MorphArgs {
+    /// The first parameter choice: a template file, `NAME=VALUE,…` (exact `--param` values),
+    /// or `default` (the default fit) — of the structure given by --on; or an automaton file.
+    pub(crate) a: String,
+    /// The second parameter choice (same form as A; an automaton of A's shape when A is one).
+    pub(crate) b: String,
+    /// The structure the two choices parametrize: face notation in quotes, a file, or a library
+    /// name (not needed for two automata).
+    #[arg(long, value_name = "INPUT")]
+    pub(crate) on: Option<String>,
+    /// Number of frames, both ends included (at least 2).
+    #[arg(long, default_value_t = 9)]
+    pub(crate) frames: u32,
+    /// The level drawn and checked in every frame.
+    #[arg(long, default_value_t = 2)]
+    pub(crate) level: u32,
+    /// The animated SVG to write.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) svg: Option<std::path::PathBuf>,
+    /// Write frame k as PNG to this pattern, `{}` replaced by k (`frame-{}.png`).
+    #[arg(long, value_name = "PATTERN")]
+    pub(crate) png: Option<String>,
+    /// Side of the PNG frames and of the raster that counts holes, in pixels.
+    #[arg(long, default_value_t = 512)]
+    pub(crate) size: u32,
+    /// Seconds per frame in the animation.
+    #[arg(long, default_value_t = 0.5)]
+    pub(crate) seconds: f64,
     /// Print JSON.
     #[arg(long)]
     pub(crate) json: bool,
