@@ -85,7 +85,7 @@ pub fn write_morph_svg<W: Write>(
                 hex(type_colour(*ty))
             )?;
         }
-        let label = if frame.verified {
+        let mut label = if frame.verified {
             format!("frame {k}, t = {}: verified", frame.t)
         } else {
             format!(
@@ -94,6 +94,11 @@ pub fn write_morph_svg<W: Write>(
                 frame.failures.first().map_or("", String::as_str)
             )
         };
+        // About 7 pixels a character at 13 pixels: cut what would not fit.
+        let fit = (width.saturating_sub(16) / 7).max(8) as usize;
+        if label.chars().count() > fit {
+            label = label.chars().take(fit - 1).collect::<String>() + "…";
+        }
         writeln!(
             out,
             "<text x=\"8\" y=\"{}\" font-family=\"sans-serif\" font-size=\"13\" fill=\"{}\">{}</text>\n</g>",
