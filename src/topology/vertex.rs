@@ -95,8 +95,8 @@ fn fans(
     };
     let mut seen = std::collections::HashSet::new();
     let mut out = Vec::new();
-    for k in 0..lens.len() {
-        for p in 0..lens[k] {
+    for (k, &len) in lens.iter().enumerate() {
+        for p in 0..len {
             if seen.contains(&(k, p)) {
                 continue;
             }
