@@ -318,3 +318,60 @@ fn morph_refuses_bad_arguments_with_codes() {
     let (code, _, _) = lacuna(&["morph", "default", "default", "--on", "F0", "--frames", "1"]);
     assert_eq!(code, 2);
 }
+
+#[test]
+fn morph_between_two_automata_of_one_shape() {
+    // The degree-2 de Casteljau edge split at t = 1/2 (fixture) and at t = 1/3: T0 restricts the
+    // parabola to [0, 1/3], columns P0, (2/3)P0 + (1/3)P1, B(1/3) = (4/9, 4/9, 1/9); T1 to
+    // [1/3, 1], columns B(1/3), (2/3)P1 + (1/3)P2, P2. The constraints are linear in the
+    // operators (T0·B1 = T1·B0 holds at both ends), so every frame satisfies them; each frame's
+    // cycles are triangular with diagonals in (0, 1], so they contract.
+    let dir = scratch("automata");
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/de-casteljau-edge.aut"),
+    )
+    .unwrap();
+    let third: String = text
+        .lines()
+        .map(|l| {
+            if l.starts_with("sub   e.T0") {
+                "sub   e.T0 : e <- e = [1 2/3 4/9; 0 1/3 4/9; 0 0 1/9]".to_string()
+            } else if l.starts_with("sub   e.T1") {
+                "sub   e.T1 : e <- e = [4/9 0 0; 4/9 2/3 0; 1/9 1/3 1]".to_string()
+            } else {
+                l.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    let b = dir.join("third.aut");
+    std::fs::write(&b, third + "\n").unwrap();
+    let svg = dir.join("a.svg");
+    let v = json(
+        &[
+            "morph",
+            "de-casteljau-edge",
+            b.to_str().unwrap(),
+            "--frames",
+            "3",
+            "--level",
+            "3",
+            "--svg",
+            svg.to_str().unwrap(),
+            "--json",
+        ],
+        0,
+    );
+    assert_eq!(v["verified"], true);
+    assert_eq!(
+        v["changing"], 2,
+        "T0 and T1 change, the vertex operator and embeddings do not"
+    );
+    assert_eq!(v["frames"][1]["t"], "1/2");
+    assert!(std::fs::read_to_string(&svg).unwrap().contains("<animate"));
+    // Not one shape: refused with its code.
+    let (code, _, err) = lacuna(&["morph", "de-casteljau-edge", "sierpinski-triangle"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("E1403"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

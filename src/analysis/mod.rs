@@ -17,7 +17,7 @@ pub(crate) mod operator;
 pub(crate) mod ratio;
 pub(crate) mod similarity;
 
-pub use automaton_resolve::{resolve, ResolveVerdict, Resolved};
+pub use automaton_resolve::{constraints_failing, resolve, ResolveVerdict, Resolved};
 pub use census::{census, CensusFace, CensusReport, CensusSpec};
 pub use classes::{
     automaton_invariants, classify, face_invariants, levels_for, levels_needed, volume_invariants,

@@ -9,8 +9,9 @@ use crate::geometry::Point;
 use crate::measure::MorphFrame;
 use std::io::{self, Write};
 
-/// The cells of one frame: face type and polygon (plane coordinates).
-pub type FrameCells = Vec<(usize, Vec<Point>)>;
+/// The cells of one frame: face type (or automaton state), points in the plane, and whether the
+/// points close a polygon (filled) or form an open polyline (stroked only).
+pub type FrameCells = Vec<(usize, Vec<Point>, bool)>;
 
 /// Writes the animated SVG of `frames` (cells and verdict per frame), `width` pixels wide,
 /// `seconds` per frame.
@@ -23,7 +24,7 @@ pub fn write_morph_svg<W: Write>(
 ) -> io::Result<()> {
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for (cells, _) in frames {
-        for (_, poly) in cells {
+        for (_, poly, _) in cells {
             for p in poly {
                 for i in 0..2 {
                     lo[i] = lo[i].min(p[i]);
@@ -67,22 +68,27 @@ pub fn write_morph_svg<W: Write>(
             out,
             "<animate attributeName=\"visibility\" values=\"{values}\" keyTimes=\"{times}\" calcMode=\"discrete\" dur=\"{total}s\" repeatCount=\"indefinite\"/>"
         )?;
-        for (ty, poly) in cells {
+        for (ty, poly, closed) in cells {
             let mut d = String::new();
             for (i, p) in poly.iter().enumerate() {
                 let (x, y) = px(p);
                 d.push_str(&format!("{}{x:.2} {y:.2}", if i == 0 { "M" } else { " L" }));
             }
-            d.push_str(" Z");
             let stroke = if frame.verified {
                 hex(outline_colour(*ty))
             } else {
                 "#d00".to_string()
             };
+            let fill = if *closed {
+                d.push_str(" Z");
+                hex(type_colour(*ty))
+            } else {
+                "none".to_string()
+            };
             writeln!(
                 out,
-                "<path d=\"{d}\" fill=\"{}\" stroke=\"{stroke}\" stroke-width=\"0.8\" stroke-linejoin=\"round\"/>",
-                hex(type_colour(*ty))
+                "<path d=\"{d}\" fill=\"{fill}\" stroke=\"{stroke}\" stroke-width=\"{}\" stroke-linejoin=\"round\"/>",
+                if *closed { 0.8 } else { 1.5 }
             )?;
         }
         let mut label = if frame.verified {

@@ -19,4 +19,6 @@ pub use measurement::{
     check_cells, exact_components, exact_topology, measure, raster_for_hole, ExactTopology,
     LevelMeasure, MeasureOptions, MeasureReport, LARGEST_RASTER, MIN_HOLE_WIDTH,
 };
-pub use morph::{frame_parameters, morph, MorphFrame, MorphReport};
+pub use morph::{
+    frame_parameters, morph, morph_automata, shape_difference, MorphFrame, MorphReport,
+};

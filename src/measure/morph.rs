@@ -8,10 +8,17 @@
 //! p_t ([`crate::constraint::collapses_at`]); and by measurement, the observed holes and
 //! components of every level equal the exact counts ([`crate::measure::measure`]). A frame that
 //! fails is reported with its index and reasons, never skipped.
+//!
+//! Two automata of one shape morph the same way, operator by operator: each frame's operators are
+//! the exact convex combination of the two ends, checked exactly (every constraint holds, every
+//! cycle of the control graph contracts); an automaton has no exact hole count to measure against.
 
+use crate::algebra::KMatrix;
+use crate::analysis::{check_contraction, constraints_failing, ResolveVerdict, Resolved};
 use crate::constraint::collapses_at;
-use crate::geometry::{instantiate, GeometryError, Instance, InstantiateOptions};
-use crate::input::Input;
+use crate::error::{Error, Result};
+use crate::geometry::{instantiate, Evaluator, GeometryError, Instance, InstantiateOptions};
+use crate::input::{AutomatonModel, Input};
 use crate::measure::measurement::{measure, MeasureOptions};
 use num_rational::BigRational;
 use num_traits::{One, Zero};
@@ -28,10 +35,10 @@ pub struct MorphFrame {
     pub verified: bool,
     /// What failed (exact collapses first, then the measurement's failures).
     pub failures: Vec<String>,
-    /// Observed holes and components at the deepest level.
-    pub holes: u64,
-    /// Observed components at the deepest level.
-    pub components: u64,
+    /// Observed holes at the deepest level (faces; `None` for automata, not measured).
+    pub holes: Option<u64>,
+    /// Observed components at the deepest level (faces; `None` for automata).
+    pub components: Option<u64>,
 }
 
 /// A morph's report.
@@ -41,9 +48,9 @@ pub struct MorphReport {
     pub name: String,
     /// The level drawn and checked.
     pub level: u32,
-    /// The free parameters that change between the two ends.
+    /// The free parameters (operators, for automata) that change between the two ends.
     pub changing: usize,
-    /// The free parameters in all.
+    /// The free parameters (operators, for automata) in all.
     pub parameters: usize,
     /// The frames.
     pub frames: Vec<MorphFrame>,
@@ -68,6 +75,125 @@ pub fn frame_parameters(
         .collect()
 }
 
+/// Position k of n frames as exact text (`0`, `1/4`, `1`).
+fn t_text(k: u32, n: u32) -> String {
+    let t = BigRational::new(k.into(), (n - 1).max(1).into());
+    if t.is_zero() {
+        "0".into()
+    } else {
+        t.to_string()
+    }
+}
+
+/// Why two automata are not of one shape, or `None` when they are: the same states (names and
+/// dimensions), start, operators (names, kinds, source and target states), constraints and field.
+pub fn shape_difference(a: &AutomatonModel, b: &AutomatonModel) -> Option<String> {
+    let (x, y) = (&a.automaton, &b.automaton);
+    if x.states != y.states {
+        return Some("their states differ (names or numbers of control points)".into());
+    }
+    if a.start != b.start {
+        return Some("their start states differ".into());
+    }
+    if x.operators.len() != y.operators.len()
+        || x.operators
+            .iter()
+            .zip(&y.operators)
+            .any(|(p, q)| (&p.name, p.kind, p.to, p.from) != (&q.name, q.kind, q.to, q.from))
+    {
+        return Some("their operators differ (names, kinds or states)".into());
+    }
+    if x.constraints.len() != y.constraints.len()
+        || (0..x.constraints.len()).any(|i| x.constraint_text(i) != y.constraint_text(i))
+    {
+        return Some("their constraints differ".into());
+    }
+    if a.field_decl != b.field_decl {
+        return Some("their number fields differ".into());
+    }
+    None
+}
+
+/// Morphs between two automata of one shape (`a`, `b` with their resolved operators): frame k
+/// has every operator equal to (1 − t)·A + t·B entry by entry, exactly in the field, and is
+/// checked exactly — every constraint holds and every cycle of the control graph contracts —
+/// then handed to `draw` with its evaluator. Automata have no exact hole count, so frames are not
+/// measured.
+pub fn morph_automata(
+    a: &AutomatonModel,
+    ra: &Resolved,
+    b: &AutomatonModel,
+    rb: &Resolved,
+    frames: u32,
+    level: u32,
+    mut draw: impl FnMut(u32, &Evaluator, &MorphFrame) -> Result<()>,
+) -> Result<MorphReport> {
+    if let Some(why) = shape_difference(a, b) {
+        return Err(Error::Syntax(Box::new(crate::Diagnostic {
+            code: "E1403",
+            message: format!("morph: the two automata are not of one shape: {why}"),
+            span: None,
+            source: None,
+        })));
+    }
+    let k = &a.field;
+    let changing = ra.ops.iter().zip(&rb.ops).filter(|(x, y)| x != y).count();
+    let mut out = Vec::new();
+    for f in 0..frames {
+        let t = BigRational::new(f.into(), (frames - 1).max(1).into());
+        let s = BigRational::one() - &t;
+        let ops: Vec<KMatrix> = ra
+            .ops
+            .iter()
+            .zip(&rb.ops)
+            .map(|(x, y)| KMatrix {
+                rows: x.rows,
+                cols: x.cols,
+                data: x
+                    .data
+                    .iter()
+                    .zip(&y.data)
+                    .map(|(p, q)| k.add(&k.scale(p, &s), &k.scale(q, &t)))
+                    .collect(),
+            })
+            .collect();
+        let mut failures: Vec<String> = constraints_failing(a, &ops)?
+            .into_iter()
+            .map(|c| format!("constraint fails: {c}"))
+            .collect();
+        if let Err(e) = check_contraction(a, &ops) {
+            failures.push(format!("{}: {e}", e.code()));
+        }
+        let resolved = Resolved {
+            ops,
+            verdict: ResolveVerdict {
+                consistent: failures.is_empty(),
+                ..ra.verdict.clone()
+            },
+        };
+        let frame = MorphFrame {
+            index: f,
+            t: t_text(f, frames),
+            verified: failures.is_empty(),
+            failures,
+            holes: None,
+            components: None,
+        };
+        draw(f, &Evaluator::new(a, &resolved), &frame)?;
+        out.push(frame);
+    }
+    let first_failure = out.iter().find(|f| !f.verified).map(|f| f.index);
+    Ok(MorphReport {
+        name: "automaton".into(),
+        level,
+        changing,
+        parameters: ra.ops.len(),
+        verified: first_failure.is_none(),
+        first_failure,
+        frames: out,
+    })
+}
+
 /// Morphs `input` from the parameter choice `a` to `b` in `frames` frames (at least 2), checking
 /// each; `draw(k, instance, frame)` is called for every frame after its checks.
 pub fn morph(
@@ -76,8 +202,8 @@ pub fn morph(
     b: &InstantiateOptions,
     frames: u32,
     mopts: &MeasureOptions,
-    mut draw: impl FnMut(u32, &Instance, &MorphFrame) -> Result<(), GeometryError>,
-) -> Result<MorphReport, GeometryError> {
+    mut draw: impl FnMut(u32, &Instance, &MorphFrame) -> std::result::Result<(), GeometryError>,
+) -> std::result::Result<MorphReport, GeometryError> {
     let ia = instantiate(input, a)?;
     let ib = instantiate(input, b)?;
     let pa = ia.parameters.clone();
@@ -103,21 +229,16 @@ pub fn morph(
         let (holes, components) = match measure(&inst, mopts) {
             Ok(r) => {
                 failures.extend(r.failures);
-                (r.holes as u64, r.components as u64)
+                (Some(r.holes as u64), Some(r.components as u64))
             }
             Err(e) => {
                 failures.push(format!("{}: {e}", e.code()));
-                (0, 0)
+                (None, None)
             }
         };
-        let t = BigRational::new(k.into(), (frames - 1).max(1).into());
         let frame = MorphFrame {
             index: k,
-            t: if t.is_zero() {
-                "0".into()
-            } else {
-                t.to_string()
-            },
+            t: t_text(k, frames),
             verified: failures.is_empty(),
             failures,
             holes,
