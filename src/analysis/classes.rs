@@ -307,7 +307,9 @@ pub fn classify(a: &Invariants, b: &Invariants) -> Classification {
         }
     }
     let every_level = needed.is_some_and(|n| n <= levels);
-    if !every_level {
+    let differs = first_difference(a, b, levels);
+    // A difference found is a difference at every level count; only an equality is partial.
+    if !every_level && differs.is_none() {
         notes.push(format!(
             "the per-level invariants were compared at levels 0 to {levels} only{}",
             match needed {
@@ -318,7 +320,6 @@ pub fn classify(a: &Invariants, b: &Invariants) -> Classification {
             }
         ));
     }
-    let differs = first_difference(a, b, levels);
     Classification {
         same_class: differs.is_none(),
         differs,

@@ -72,15 +72,20 @@ pub(super) fn run(args: ClassifyArgs, limits: &Limits) -> Result<ExitCode, Error
     limits.check_level(args.levels)?;
     let a = load(&args.a, limits)?;
     let b = load(&args.b, limits)?;
-    let levels = lacuna::analysis::levels_for(
-        args.levels,
-        order(&a, limits)?,
-        order(&b, limits)?,
-        limits.max_level,
-    )?;
-    let (ia, la) = invariants(&a, levels, limits)?;
-    let (ib, lb) = invariants(&b, levels, limits)?;
-    let c = lacuna::analysis::classify(&ia, &ib);
+    // The levels asked first: a difference there is a difference. Only when they agree and the
+    // order bounds say that more levels decide every level are those compared too.
+    let (mut ia, mut la) = invariants(&a, args.levels, limits)?;
+    let (mut ib, mut lb) = invariants(&b, args.levels, limits)?;
+    let mut c = lacuna::analysis::classify(&ia, &ib);
+    if c.same_class && !c.every_level {
+        let (oa, ob) = (order(&a, limits)?, order(&b, limits)?);
+        if lacuna::analysis::levels_needed(oa, ob).is_some() {
+            let levels = lacuna::analysis::levels_for(args.levels, oa, ob, limits.max_level)?;
+            (ia, la) = invariants(&a, levels, limits)?;
+            (ib, lb) = invariants(&b, levels, limits)?;
+            c = lacuna::analysis::classify(&ia, &ib);
+        }
+    }
     if args.json {
         print_json(&serde_json::json!({
             "same_class": c.same_class,
