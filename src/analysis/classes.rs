@@ -469,6 +469,37 @@ mod tests {
     }
 
     #[test]
+    fn equal_counts_at_every_level_different_multiplicity() {
+        // Q = `B2 B2 B2 C2 | B2 B2 B2 | {joint}` and T = `B2 B2 C2 | B2 B2 B2 | A1`. Level 1 by
+        // hand: Q has spokes at its 3 joints (none at the C2 gap), T at its 2 joints and its gap:
+        // 3 sub-faces each, and 1 + 1/2 = 3/2 lacunas each. Neither puts a spoke at a corner, so
+        // both have bounded valences and order bounds: their cardinality agrees on the levels that
+        // decide every level. But Q has 4 corners and T 3: level 0 has 4 vertices of valence 2
+        // against 3.
+        let q = inv("B2 B2 B2 C2 | B2 B2 B2 | {joint}", 1);
+        let t = inv("B2 B2 C2 | B2 B2 B2 | A1", 1);
+        assert_eq!(q.cardinality[1][0].1, "3");
+        assert_eq!(q.cardinality[1][1].1, "3/2");
+        let l = levels_for(1, q.order, t.order, 1000).unwrap();
+        let q = inv("B2 B2 B2 C2 | B2 B2 B2 | {joint}", l);
+        let t = inv("B2 B2 C2 | B2 B2 B2 | A1", l);
+        assert_eq!(q.cardinality, t.cardinality, "equal counts at every level");
+        let c = classify(&q, &t);
+        assert!(c.every_level);
+        let d = c.differs.unwrap();
+        assert_eq!(
+            (
+                d.group,
+                d.invariant.as_str(),
+                d.level,
+                d.a.as_str(),
+                d.b.as_str()
+            ),
+            ("multiplicity", "vertices of valence 2", Some(0), "4", "3")
+        );
+    }
+
+    #[test]
     fn different_faces_with_equal_invariants_are_one_class() {
         // `B2 C2 B2 C2 | C2 B2 B2 | A1` and `B2 B2 C2 C2 | C2 B2 B2 | A1`: A1 puts no spoke at a
         // corner, so each face has 2 joints and 2 gaps: 4 spokes, 4 sub-faces, and contributes

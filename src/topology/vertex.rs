@@ -28,6 +28,9 @@ use petgraph::graph::{DiGraph, NodeIndex};
 use serde::Serialize;
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 
+/// The link items allowed per vertex type of `max_types`, summed over the vertex types of a level.
+pub const LINK_ITEMS_PER_TYPE: usize = 64;
+
 /// An item of a link.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Item {
@@ -422,6 +425,18 @@ pub fn multiplicity(
                 vtypes.len(),
                 max_types,
                 "--max-types",
+            ));
+        }
+        // Under an unbounded valence links grow with the level (doubling under A2): their total
+        // length is bounded too, before the next step is built.
+        let total: usize = vcount.keys().map(|&v| vtypes[v].len()).sum();
+        let budget = max_types.saturating_mul(LINK_ITEMS_PER_TYPE);
+        if level < levels && total > budget {
+            return Err(Error::limit(
+                "the total length of the vertex links of a level",
+                total,
+                budget,
+                "--max-types (64 link items per type)",
             ));
         }
         if level == levels {
@@ -859,6 +874,15 @@ mod tests {
             assert_eq!(l.faces, six, "level {k}");
             assert_eq!(l.max_valence, if k == 0 { 2 } else { 3 }, "level {k}");
         }
+    }
+
+    #[test]
+    fn growing_links_meet_a_limit_not_a_hang() {
+        // Under A2 a corner's link doubles every level: level 40 would need links of 2^40 items.
+        let f = Face::parse("B2 B2 B2 B2 | B2 B2 B2 | A2").unwrap();
+        let ts = close_or_error(&[f], &Limits::default()).unwrap();
+        let e = multiplicity(&ts, &[], 40, 100).unwrap_err();
+        assert!(e.to_string().contains("--max-types"), "{e}");
     }
 
     #[test]
