@@ -354,9 +354,11 @@ pub(crate) struct RenderArgs {
     /// Write the solid as 3MF (core specification, unit millimetre, one object per component).
     #[arg(long = "3mf", value_name = "OUT.3mf")]
     pub(crate) threemf: Option<std::path::PathBuf>,
-    /// Thickness of the solid in mm for --stl, --3mf and --obj (exact: 2, 1/2, 0.8).
-    #[arg(long, default_value = "2", value_name = "MM")]
-    pub(crate) thickness: String,
+    /// Thickness of the solid in mm for --stl, --3mf and --obj (exact: 2, 1/2, 0.8; default 2).
+    /// For an automaton's surface: thicken it into a closed shell (without it, --stl and --3mf
+    /// write the open surface).
+    #[arg(long, value_name = "MM")]
+    pub(crate) thickness: Option<String>,
     #[command(flatten)]
     pub(crate) print: PrintArgs,
     /// Write a colour PNG: anti-aliased cells filled by type (the SVG's palette), with a legend.

@@ -83,6 +83,81 @@ fn warn(p: &Prepared) {
     }
 }
 
+/// The mesh files asked of `render` on an automaton.
+pub(super) struct MeshOut {
+    /// The paths (STL, 3MF, OBJ).
+    pub(super) targets: lacuna::mesh::Targets,
+    /// Width and thickness in mm.
+    pub(super) size: lacuna::mesh::Size,
+    /// Whether `--thickness` was given: a closed shell instead of the open surface.
+    pub(super) thick: bool,
+}
+
+/// Writes the STL, 3MF and (with a thickness) OBJ meshes of the level's polygon leaves: the
+/// open surface, or the closed shell checked before anything is written.
+fn write_meshes(p: &Prepared, level: u32, m: &MeshOut, outputs: &mut Outputs) -> Result<(), Error> {
+    let t = &m.targets;
+    let raw_obj = !m.thick && t.obj.is_some();
+    if t.stl.is_none() && t.threemf.is_none() && (t.obj.is_none() || raw_obj) {
+        return Ok(());
+    }
+    let solid = lacuna::mesh::automaton_mesh(&p.ev, level, &p.name, m.size, m.thick)
+        .map_err(mesh_error)?
+        .ok_or_else(|| {
+            Error::Syntax(Box::new(lacuna::Diagnostic {
+                code: "E0720",
+                message: format!(
+                    "{} has no polygon at level {level}: --stl, --3mf and a thickened --obj mesh the polygon primitives (`primitive STATE polygon`)",
+                    p.name
+                ),
+                span: None,
+                source: None,
+            }))
+        })?;
+    let part = &solid.parts[0];
+    match solid.checks.first() {
+        Some(c) => outputs.say(&format!(
+            "mesh: {} level {level}, width {} mm, shell {} mm thick: {} vertices, {} triangles; closed oriented manifold, Euler characteristic {}\n",
+            p.name, m.size.width, m.size.thickness, c.vertices, c.triangles, c.euler
+        )),
+        None => {
+            outputs.say(&format!(
+                "mesh: {} level {level}, width {} mm: the open surface, {} vertices, {} triangles\n",
+                p.name,
+                m.size.width,
+                part.vertices.len(),
+                part.triangles.len()
+            ));
+            eprintln!(
+                "warning: the surface of {} is open, not a solid: slicers will not print it; give --thickness T (mm) for a closed shell",
+                p.name
+            );
+        }
+    }
+    let wrote = |o: &Outputs, path: &std::path::Path| o.say(&format!("wrote {}\n", path.display()));
+    if let Some(path) = &t.stl {
+        outputs.write(path, |w| match t.stl_ascii {
+            true => lacuna::mesh::stl::write_ascii(&solid, w),
+            false => lacuna::mesh::stl::write_binary(&solid, w),
+        })?;
+        wrote(outputs, path);
+    }
+    if let Some(path) = &t.threemf {
+        let mut zip = std::io::Cursor::new(Vec::new());
+        lacuna::mesh::threemf::write(&solid, &mut zip).map_err(|e| Error::Write {
+            path: path.display().to_string(),
+            reason: e.to_string(),
+        })?;
+        outputs.write(path, |w| w.write_all(zip.get_ref()))?;
+        wrote(outputs, path);
+    }
+    if let (Some(path), true) = (&t.obj, m.thick) {
+        outputs.write(path, |w| lacuna::mesh::obj::write(&solid, w))?;
+        wrote(outputs, path);
+    }
+    Ok(())
+}
+
 /// `lacuna render` on an automaton.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn render(
@@ -91,8 +166,8 @@ pub(super) fn render(
     outputs: &mut Outputs,
     svg: Option<&std::path::Path>,
     json_out: Option<&std::path::Path>,
-    obj: Option<&std::path::Path>,
     png: Option<&std::path::Path>,
+    meshes: &MeshOut,
     size: usize,
 ) -> Result<ExitCode, Error> {
     warn(&p);
@@ -110,7 +185,8 @@ pub(super) fn render(
         })?;
         wrote(outputs, path);
     }
-    if let Some(path) = obj {
+    write_meshes(&p, level, meshes, outputs)?;
+    if let (Some(path), false) = (meshes.targets.obj.as_deref(), meshes.thick) {
         outputs.write(path, |w| {
             lacuna::export::write_automaton_obj(&p.ev, level, w)
         })?;

@@ -29,6 +29,7 @@ pub mod outline;
 pub mod printability;
 pub mod solid;
 pub mod stl;
+pub mod surface;
 pub mod threemf;
 
 pub use check::{check_part, PartCheck};
@@ -45,6 +46,7 @@ mod below {
 }
 pub use printability::{printability, Printability};
 pub use solid::{build, Part, Solid};
+pub use surface::{automaton_mesh, automaton_surface, thicken, Surface};
 
 /// Sizes of a printed solid, in millimetres.
 #[derive(Clone, Copy, Debug, PartialEq)]
