@@ -18,7 +18,10 @@ pub(crate) mod similarity;
 
 pub use automaton_resolve::{resolve, ResolveVerdict, Resolved};
 pub use census::{census, CensusFace, CensusReport, CensusSpec};
-pub use contraction::{check_contraction, ContractionReport, MAX_CYCLES};
+pub use contraction::{
+    check_contraction, check_contraction_within, difference_restriction, ContractionReport,
+    DEFAULT_MAX_PRODUCTS, MAX_CYCLES,
+};
 pub use curve::{
     analyse_automaton, analyse_automaton_only, estimate_curvature, AutomatonOperators,
     CurvatureEstimate, CurveReport, PointBehaviour, Side,

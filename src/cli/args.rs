@@ -49,6 +49,9 @@ pub(crate) struct LimitArgs {
     /// Maximum size n of an n×n matrix for eigen analysis (`operators`).
     #[arg(long, help_heading = "Limits", default_value_t = Limits::default().max_matrix)]
     pub(crate) max_matrix: usize,
+    /// Maximum number of operator products formed to prove that an automaton contracts.
+    #[arg(long, help_heading = "Limits", default_value_t = Limits::default().max_products)]
+    pub(crate) max_products: usize,
 }
 
 impl LimitArgs {
@@ -64,6 +67,7 @@ impl LimitArgs {
             max_unknowns: self.max_unknowns,
             max_memory_mb: self.max_memory,
             max_matrix: self.max_matrix,
+            max_products: self.max_products,
         }
     }
 }

@@ -44,7 +44,8 @@ pub(super) fn prepare(
     }
     let values = param_values(&geo.params)?;
     let resolved = lacuna::analysis::resolve(&model, &values, limits.max_unknowns)?;
-    let contraction = lacuna::analysis::check_contraction(&model, &resolved.ops)?;
+    let contraction =
+        lacuna::analysis::check_contraction_within(&model, &resolved.ops, limits.max_products)?;
     let ev = Evaluator::new(&model, &resolved);
     let max = geo.max_cells.unwrap_or(default_cells);
     let count = ev.count(geo.level);

@@ -275,7 +275,7 @@ pub fn automaton_report_html(
         }
         h += "</ul>\n";
     }
-    let _ = writeln!(h, "<h2>Contraction</h2><p>Every elementary cycle of the control graph contracts (its product's eigenvalues other than the barycentric 1 lie in the open unit disk, decided exactly):</p><ul>");
+    let _ = writeln!(h, "<h2>Contraction</h2><p>{}.</p><p>Every elementary cycle of the control graph contracts (its product's eigenvalues other than the barycentric 1 lie in the open unit disk, decided exactly):</p><ul>", esc(&m.contraction.text()));
     for c in &m.contraction.cycles {
         let _ = write!(h, "<li>{}</li>", esc(c));
     }

@@ -263,10 +263,8 @@ impl AutomatonMeasure {
                 self.solver.free_left.join(", ")
             );
         }
-        o += &format!(
-            "contraction: {} elementary cycle(s) contract\n",
-            self.contraction.cycles.len()
-        );
+        o += &self.contraction.text();
+        o += "\n";
         o += "level  pieces        length           area\n";
         for l in &self.levels {
             o += &format!(
