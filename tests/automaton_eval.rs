@@ -554,3 +554,31 @@ fn kite_and_dart_pieces_tile_their_parents_exactly() {
         }
     }
 }
+
+#[test]
+fn the_chaikin_particular_solution_is_refused_on_a_mixed_cycle() {
+    // `lacuna solve bspline-quadratic` leaves its 4 free parameters at 0: e.T0 = [0 0 0; 0 1 1;
+    // 1 0 0], e.T1 = [0 0 1; 1 1 0; 0 0 0]. On the differences of points (A[i][j] = T[i][j] −
+    // T[i][2]): A0 = [0 0; −1 0], A1 = [−1 −1; 1 1], both nilpotent (trace 0, determinant 0), so
+    // each elementary cycle contracts; A0·A1 = [0 0; 1 1] has eigenvalue 1: refused, named.
+    let (code, _, err) = lacuna(&["render", "bspline-quadratic", "--svg", "-"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("E0715") && err.contains("e.T0 · e.T1"), "{err}");
+    // With Chaikin's values (the header's solution) it is proven.
+    let (code, out, err) = lacuna(&[
+        "measure",
+        "bspline-quadratic",
+        "--level",
+        "1",
+        "--param",
+        "e.T0[0][0]=3/4",
+        "--param",
+        "e.T0[0][1]=1/4",
+        "--param",
+        "e.T0[1][0]=1/4",
+        "--param",
+        "e.T0[2][2]=1/4",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("contraction: proven"), "{out}");
+}
