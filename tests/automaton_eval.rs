@@ -563,7 +563,10 @@ fn the_chaikin_particular_solution_is_refused_on_a_mixed_cycle() {
     // each elementary cycle contracts; A0·A1 = [0 0; 1 1] has eigenvalue 1: refused, named.
     let (code, _, err) = lacuna(&["render", "bspline-quadratic", "--svg", "-"]);
     assert_eq!(code, 2, "{err}");
-    assert!(err.contains("E0715") && err.contains("e.T0 · e.T1"), "{err}");
+    assert!(
+        err.contains("E0715") && err.contains("e.T0 · e.T1"),
+        "{err}"
+    );
     // With Chaikin's values (the header's solution) it is proven.
     let (code, out, err) = lacuna(&[
         "measure",
@@ -581,4 +584,59 @@ fn the_chaikin_particular_solution_is_refused_on_a_mixed_cycle() {
     ]);
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("contraction: proven"), "{out}");
+}
+
+#[test]
+fn the_report_plots_the_curvature_ranges_of_the_quadratic_bezier() {
+    // de-casteljau-edge: the quadratic de Casteljau halves with the default control points
+    // (j, j mod 2) = (0,0), (1,1), (2,0), the Bézier B(t) = (2t, 2t(1 − t)) of issue #16:
+    // B' = (2, 2 − 4t), B'' = (0, −4), κ(t) = |B' × B''| / |B'|³ = 8 / (4 + (2 − 4t)²)^(3/2):
+    // 1/(2√2) at t = 0 and t = 1, 1 at the joint t = 1/2; the curve is smooth, so κinf = κsup
+    // on both sides of every dyadic point. The report's table lists each side once.
+    let dir = std::env::temp_dir().join(format!("lacuna-autrep-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let page = dir.join("edge.html");
+    let (code, _, err) = lacuna(&[
+        "report",
+        "de-casteljau-edge",
+        "--level",
+        "2",
+        "--out",
+        page.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let html = std::fs::read_to_string(&page).unwrap();
+    assert!(html.contains("class=\"plot curvature-plot\""));
+    assert!(html.contains("class=\"box-fit\""));
+    let table = &html[html.find("<table class=\"kappa\">").expect("the κ table")..];
+    let table = &table[..table.find("</table>").unwrap()];
+    let cell = |row: &str, i: usize| -> String {
+        row.split("<td>")
+            .nth(i + 1)
+            .unwrap()
+            .split("</td>")
+            .next()
+            .unwrap()
+            .to_string()
+    };
+    let mut sides = (0, 0);
+    for row in table.split("<tr>").filter(|r| r.starts_with("<td>")) {
+        let t = cell(row, 0);
+        let t: f64 = match t.split_once('/') {
+            Some((a, b)) => a.parse::<f64>().unwrap() / b.parse::<f64>().unwrap(),
+            None => t.parse().unwrap(),
+        };
+        let want = 8.0 / (4.0 + (2.0 - 4.0 * t).powi(2)).powf(1.5);
+        match cell(row, 1).as_str() {
+            "left" => sides.0 += 1,
+            _ => sides.1 += 1,
+        }
+        for i in [3, 4] {
+            let k: f64 = cell(row, i).parse().unwrap();
+            assert!((k - want).abs() < 2e-6, "t = {t}: κ {k} against {want}");
+        }
+    }
+    // Parameters 0, 1/2, 1 and j/8 (j = 1, 2, 3, 5, 6, 7): 8 left sides, 8 right sides.
+    assert_eq!(sides, (8, 8));
+    let _ = std::fs::remove_dir_all(&dir);
 }
