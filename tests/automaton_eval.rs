@@ -640,3 +640,29 @@ fn the_report_plots_the_curvature_ranges_of_the_quadratic_bezier() {
     assert_eq!(sides, (8, 8));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn an_undecided_contraction_is_its_own_error_and_a_larger_limit_proves_it() {
+    // T's action on the differences of points is A = [1/2 4; 0 1/2] (A[i][j] = T[i][j] −
+    // T[i][2]); ‖A^n‖∞ = 2^-n (1 + 8n) is 41/32 at n = 5 and 49/64 at n = 6, so six products prove
+    // contraction and five leave it undecided (E0721, exit 2: a limit, not a verdict).
+    let dir = std::env::temp_dir().join(format!("lacuna-undecided-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("slow.aut");
+    std::fs::write(
+        &file,
+        "state e 3\nsub e.T : e <- e = [1/2 4 0; 0 1/2 0; 1/2 -7/2 1]\nbarycentric\nspace 2\nprimitive e polygon\n",
+    )
+    .unwrap();
+    let f = file.to_str().unwrap();
+    let (code, _, err) = lacuna(&["measure", f, "--level", "1", "--max-products", "5"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("E0721") && err.contains("--max-products"),
+        "{err}"
+    );
+    let (code, out, err) = lacuna(&["measure", f, "--level", "1"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("within 6 operator(s)"), "{out}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

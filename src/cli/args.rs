@@ -49,7 +49,8 @@ pub(crate) struct LimitArgs {
     /// Maximum size n of an n×n matrix for eigen analysis (`operators`).
     #[arg(long, help_heading = "Limits", default_value_t = Limits::default().max_matrix)]
     pub(crate) max_matrix: usize,
-    /// Maximum number of operator products formed to prove that an automaton contracts.
+    /// Maximum number of operator products formed to prove that an automaton contracts (one of
+    /// more than 1000 scalar multiplications counts as that many thousands).
     #[arg(long, help_heading = "Limits", default_value_t = Limits::default().max_products)]
     pub(crate) max_products: usize,
 }
