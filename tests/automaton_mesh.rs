@@ -245,3 +245,21 @@ fn admesh_finds_the_shell_closed() {
     }
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn exact_and_tolerance_identities_agree_on_the_patch() {
+    // The two ways of identifying corners (exact coordinates in the field; floats within 10⁻⁹ of
+    // the size) give the same surface at level 3: 81 vertices, 128 triangles (hand count above).
+    let m = match lacuna::input::load_any("quad-patch-3d").unwrap() {
+        lacuna::input::Loaded::Automaton { model, .. } => *model,
+        lacuna::input::Loaded::Faces(_) => unreachable!(),
+    };
+    let r = lacuna::analysis::resolve(&m, &[], 10_000).unwrap();
+    let ev = lacuna::geometry::Evaluator::new(&m, &r);
+    let exact = lacuna::mesh::exact_automaton_surface(&m, &r, 3).expect("64 leaves");
+    let floats = lacuna::mesh::automaton_surface(&ev, 3).expect("polygons");
+    for s in [&exact, &floats] {
+        assert_eq!((s.vertices.len(), s.triangles.len()), (81, 128));
+        assert_eq!(s.boundary_edges().len(), 32);
+    }
+}

@@ -77,7 +77,7 @@ proptest! {
         let src = text(&e);
         let m = parse_model(&Source::command_line(&src)).expect("a model");
         let r = resolve(&m, &[], 10_000).expect("resolved");
-        match check_contraction_within(&m, &r.ops, 2_000) {
+        match check_contraction_within(&m, &r.ops, 300) {
             Ok(_) => {
                 let mut words: Vec<Vec<usize>> = vec![Vec::new()];
                 for _ in 0..6 {

@@ -19,9 +19,10 @@
 //! c < 1 (the largest of them), so every product tends to 0 at least like `c^(n/k)`, k the
 //! deepest block: the attractor is defined (proven). The same search is run with the induced
 //! 1-norm (max column sum) when the ∞-norm does not close. A walk that comes back to its first
-//! state without closing is a cycle: its product's eigenvalues on `D` are tested as above, and one
-//! of modulus ≥ 1 refuses the automaton (E0715) naming that cycle — this finds products mixing
-//! several elementary cycles that do not contract (the joint spectral radius ≥ 1). When the search
+//! state without closing is a cycle: when the budget runs out, the first 256 such cycles
+//! (shortest first) have their product's eigenvalues on `D` tested as above, and one of modulus
+//! ≥ 1 refuses the automaton (E0715) naming that cycle — this finds products mixing several
+//! elementary cycles that do not contract (the joint spectral radius ≥ 1). When the search
 //! has formed `max_products` products without a proof or a refusal (a product of more than 1000
 //! scalar multiplications counting as that many thousands), the answer is *undecided*:
 //! error E0721 (a limit is not a verdict: the attractor is not said to be undefined, and nothing
@@ -307,6 +308,30 @@ fn norm_below_one(k: &crate::algebra::algebraic::NumberField, a: &KMatrix, norm:
     })
 }
 
+/// The most open cycles kept for the refusal test when the budget runs out.
+const MAX_REFUTATIONS: usize = 256;
+
+/// When the budget runs out: the kept cycles, shortest first, tested for an eigenvalue of
+/// modulus ≥ 1 on the differences of points (E0715 naming the first); else still open.
+fn refute(m: &AutomatonModel, returns: &[(Vec<usize>, usize, KMatrix)]) -> Result<Proof> {
+    let a = &m.automaton;
+    let k = &m.field;
+    for (w, root, prod) in returns {
+        if !inside_unit_disk(k, &prod.charpoly(k)) {
+            let text = w
+                .iter()
+                .map(|&o| a.operators[o].name.as_str())
+                .collect::<Vec<_>>()
+                .join(" · ");
+            return Err(coded("E0715", format!(
+                "the cycle {text} does not contract: its product has an eigenvalue of modulus ≥ 1 besides the barycentric 1 (every elementary cycle contracts, but this product of them does not), so the attractor is not defined (state `{}`)",
+                a.states[*root].name
+            )));
+        }
+    }
+    Ok(Proof::Open)
+}
+
 /// The breadth-first search of the module doc for one norm; `budget` counts down the products.
 fn prove(m: &AutomatonModel, ops: &[KMatrix], norm: Norm, budget: &mut usize) -> Result<Proof> {
     let a = &m.automaton;
@@ -319,6 +344,9 @@ fn prove(m: &AutomatonModel, ops: &[KMatrix], norm: Norm, budget: &mut usize) ->
         .map(|(o, t)| (a.operators[o].kind == OpKind::Sub).then(|| difference_restriction(k, t)))
         .collect();
     let mut deepest = 0usize;
+    // Walks back to their first state that did not close: tested for a refusal only when the
+    // budget runs out (the test, a characteristic polynomial, costs more than the products).
+    let mut returns: Vec<(Vec<usize>, usize, KMatrix)> = Vec::new();
     for (root, _) in reach.iter().enumerate().filter(|(_, &r)| r) {
         // Open walks of the current length: (their operators, the state they end in, product).
         let mut open: Vec<(Vec<usize>, usize, KMatrix)> = vec![(
@@ -338,7 +366,7 @@ fn prove(m: &AutomatonModel, ops: &[KMatrix], norm: Norm, budget: &mut usize) ->
                     let cost = (p.rows * p.cols * r.cols).div_ceil(1000).max(1);
                     if *budget < cost {
                         *budget = 0;
-                        return Ok(Proof::Open);
+                        return refute(m, &returns);
                     }
                     *budget -= cost;
                     let prod = p.mul(k, r).expect("a walk's shapes chain");
@@ -349,16 +377,8 @@ fn prove(m: &AutomatonModel, ops: &[KMatrix], norm: Norm, budget: &mut usize) ->
                     let mut w = walk.clone();
                     w.push(o);
                     let end = a.operators[o].from;
-                    if end == root && !inside_unit_disk(k, &prod.charpoly(k)) {
-                        let text = w
-                            .iter()
-                            .map(|&o| a.operators[o].name.as_str())
-                            .collect::<Vec<_>>()
-                            .join(" · ");
-                        return Err(coded("E0715", format!(
-                            "the cycle {text} does not contract: its product has an eigenvalue of modulus ≥ 1 besides the barycentric 1 (every elementary cycle contracts, but this product of them does not), so the attractor is not defined (state `{}`)",
-                            a.states[root].name
-                        )));
+                    if end == root && returns.len() < MAX_REFUTATIONS {
+                        returns.push((w.clone(), root, prod.clone()));
                     }
                     next.push((w, end, prod));
                 }

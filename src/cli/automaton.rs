@@ -102,8 +102,15 @@ fn write_meshes(p: &Prepared, level: u32, m: &MeshOut, outputs: &mut Outputs) ->
     if t.stl.is_none() && t.threemf.is_none() && (t.obj.is_none() || raw_obj) {
         return Ok(());
     }
-    let solid = lacuna::mesh::automaton_mesh(&p.ev, level, &p.name, m.size, m.thick)
-        .map_err(mesh_error)?
+    let built = lacuna::mesh::automaton_mesh(
+        &p.ev,
+        Some((&p.model, &p.resolved)),
+        level,
+        &p.name,
+        m.size,
+        m.thick,
+    )
+    .map_err(mesh_error)?
         .ok_or_else(|| {
             Error::Syntax(Box::new(lacuna::Diagnostic {
                 code: "E0720",
@@ -115,15 +122,21 @@ fn write_meshes(p: &Prepared, level: u32, m: &MeshOut, outputs: &mut Outputs) ->
                 source: None,
             }))
         })?;
+    let solid = &built.solid;
+    let how = if built.exact_vertices {
+        "vertices identified exactly"
+    } else {
+        "vertices welded within 1e-9 of the size"
+    };
     let part = &solid.parts[0];
     match solid.checks.first() {
         Some(c) => outputs.say(&format!(
-            "mesh: {} level {level}, width {} mm, shell {} mm thick: {} vertices, {} triangles; closed oriented manifold, Euler characteristic {}\n",
+            "mesh: {} level {level}, width {} mm, shell {} mm thick: {} vertices, {} triangles ({how}); closed oriented manifold, Euler characteristic {}\n",
             p.name, m.size.width, m.size.thickness, c.vertices, c.triangles, c.euler
         )),
         None => {
             outputs.say(&format!(
-                "mesh: {} level {level}, width {} mm: the open surface, {} vertices, {} triangles\n",
+                "mesh: {} level {level}, width {} mm: the open surface, {} vertices, {} triangles ({how})\n",
                 p.name,
                 m.size.width,
                 part.vertices.len(),
@@ -138,14 +151,14 @@ fn write_meshes(p: &Prepared, level: u32, m: &MeshOut, outputs: &mut Outputs) ->
     let wrote = |o: &Outputs, path: &std::path::Path| o.say(&format!("wrote {}\n", path.display()));
     if let Some(path) = &t.stl {
         outputs.write(path, |w| match t.stl_ascii {
-            true => lacuna::mesh::stl::write_ascii(&solid, w),
-            false => lacuna::mesh::stl::write_binary(&solid, w),
+            true => lacuna::mesh::stl::write_ascii(solid, w),
+            false => lacuna::mesh::stl::write_binary(solid, w),
         })?;
         wrote(outputs, path);
     }
     if let Some(path) = &t.threemf {
         let mut zip = std::io::Cursor::new(Vec::new());
-        lacuna::mesh::threemf::write(&solid, &mut zip).map_err(|e| Error::Write {
+        lacuna::mesh::threemf::write(solid, &mut zip).map_err(|e| Error::Write {
             path: path.display().to_string(),
             reason: e.to_string(),
         })?;
@@ -153,7 +166,7 @@ fn write_meshes(p: &Prepared, level: u32, m: &MeshOut, outputs: &mut Outputs) ->
         wrote(outputs, path);
     }
     if let (Some(path), true) = (&t.obj, m.thick) {
-        outputs.write(path, |w| lacuna::mesh::obj::write(&solid, w))?;
+        outputs.write(path, |w| lacuna::mesh::obj::write(solid, w))?;
         wrote(outputs, path);
     }
     Ok(())

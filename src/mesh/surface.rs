@@ -1,12 +1,14 @@
 //! Meshes of an automaton's attractor (issue #14): the polygon leaves of level n as one triangle
 //! surface, and that surface thickened into a closed shell to print.
 //!
-//! **Vertex identities.** Leaves are evaluated in `f64` along different products, so a corner
-//! shared by two leaves comes out as two nearly equal points. Points closer than a tolerance
-//! (10⁻⁹ of the bounding box) are welded into one vertex. This is a float decision, but not a
-//! verdict: whatever the welding gives is then checked by [`check_part`] (every edge in two
-//! triangles with opposite orientations, every vertex link one cycle, Euler characteristic), and a
-//! mesh that fails is refused, never written.
+//! **Vertex identities.** Up to [`EXACT_LEAVES`] leaves, the corners of the polygon leaves are
+//! computed exactly (in the automaton's field, [`exact_polygons`]) and two corners are one vertex
+//! exactly when their exact coordinates are equal. Beyond, leaves are evaluated in `f64` along
+//! different products, so a shared corner comes out as nearly equal points: points closer than
+//! 10⁻⁹ of the bounding box are welded. That is a float decision, but not a verdict: whatever the
+//! welding gives is then checked by [`check_part`] (every edge in two triangles with opposite
+//! orientations, every vertex link one cycle, Euler characteristic), and a mesh that fails is
+//! refused, never written.
 //!
 //! **The shell.** Every vertex of the welded surface is moved by ±T/2 along its normal (the
 //! area-weighted mean of the normals of its triangles): the side along +n keeps the surface's
@@ -15,12 +17,45 @@
 //! The offset is not checked for self-intersection where the surface bends more sharply than
 //! T/2 (a known limit: the combinatorial check cannot see it).
 
+use super::below::{approx, exact_polygons, AutomatonModel, Evaluator, Resolved, ShapeKind};
 use super::check::{check_part, PartCheck};
 use super::expect::Expected;
 use super::solid::{Part, Solid};
 use super::{MeshError, Size};
-use crate::geometry::automaton_eval::{Evaluator, ShapeKind};
 use std::collections::HashMap;
+
+/// The most leaves whose corners are computed exactly for the vertex identities.
+pub const EXACT_LEAVES: u128 = 1 << 16;
+
+/// The polygon leaves of level `level` as one triangle surface whose vertices are identified
+/// exactly (equal exact coordinates); `None` beyond [`EXACT_LEAVES`] leaves or without polygons.
+pub fn exact_automaton_surface(m: &AutomatonModel, r: &Resolved, level: u32) -> Option<Surface> {
+    let polys = exact_polygons(m, r, level, EXACT_LEAVES)?;
+    let mut s = Surface::default();
+    let mut ids = HashMap::new();
+    for poly in polys.iter().filter(|p| p.len() >= 3) {
+        let v: Vec<u32> = poly
+            .iter()
+            .map(|p| {
+                *ids.entry(p.clone()).or_insert_with(|| {
+                    let mut x = [0.0; 3];
+                    for (d, c) in p.iter().enumerate() {
+                        x[d] = approx(&m.field, c);
+                    }
+                    s.vertices.push(x);
+                    (s.vertices.len() - 1) as u32
+                })
+            })
+            .collect();
+        for k in 1..v.len() - 1 {
+            let t = [v[0], v[k], v[k + 1]];
+            if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
+                s.triangles.push(t);
+            }
+        }
+    }
+    (!s.triangles.is_empty()).then_some(s)
+}
 
 /// A triangle surface before any check: welded vertices (model units) and triangles.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -162,18 +197,32 @@ pub fn thicken(s: &Surface, t: f64) -> Surface {
     out
 }
 
+/// The mesh of an automaton's level, with how its vertices were identified.
+#[derive(Clone, Debug)]
+pub struct AutomatonSolid {
+    /// The mesh (one part; its check when it is a shell).
+    pub solid: Solid,
+    /// Whether the vertices were identified exactly (else by the float tolerance).
+    pub exact_vertices: bool,
+}
+
 /// The mesh of an automaton's level: a closed shell `size.thickness` mm thick when `thick`, else
-/// the open surface. The model is scaled so that the surface's x extent is `size.width` mm and
-/// moved to the positive octant; coordinates are rounded once to `f32`. A shell is checked
-/// ([`check_part`]: closed, oriented, manifold, outward, χ = 2 for a disc) before it is returned.
+/// the open surface. Vertices are identified exactly when `exact` gives the model and its
+/// operators and the level has at most [`EXACT_LEAVES`] leaves. The model is scaled so that the
+/// surface's x extent is `size.width` mm and moved to the positive octant; coordinates are rounded
+/// once to `f32`. A shell is checked ([`check_part`]: closed, oriented, manifold, outward, χ = 2
+/// for a disc) before it is returned.
 pub fn automaton_mesh(
     ev: &Evaluator,
+    exact: Option<(&AutomatonModel, &Resolved)>,
     level: u32,
     name: &str,
     size: Size,
     thick: bool,
-) -> Result<Option<Solid>, MeshError> {
-    let Some(surface) = automaton_surface(ev, level) else {
+) -> Result<Option<AutomatonSolid>, MeshError> {
+    let exact_surface = exact.and_then(|(m, r)| exact_automaton_surface(m, r, level));
+    let exact_vertices = exact_surface.is_some();
+    let Some(surface) = exact_surface.or_else(|| automaton_surface(ev, level)) else {
         return Ok(None);
     };
     let (lo, hi) = bounds(&surface.vertices);
@@ -203,18 +252,21 @@ pub fn automaton_mesh(
         let c = check_part(&part).map_err(|reason| MeshError::Check { level, reason })?;
         checks.push(c);
     }
-    Ok(Some(Solid {
-        name: name.to_string(),
-        level,
-        size,
-        parts: vec![part],
-        checks,
-        expected: Expected {
-            components: 1,
-            holes: 0u32.into(),
-            per_start: None,
+    Ok(Some(AutomatonSolid {
+        solid: Solid {
+            name: name.to_string(),
+            level,
+            size,
+            parts: vec![part],
+            checks,
+            expected: Expected {
+                components: 1,
+                holes: 0u32.into(),
+                per_start: None,
+            },
+            cells: ev.count(level).try_into().unwrap_or(u64::MAX),
         },
-        cells: ev.count(level).try_into().unwrap_or(u64::MAX),
+        exact_vertices,
     }))
 }
 
