@@ -236,8 +236,8 @@ type RangeSeries<'a> = (&'a str, &'a str, Vec<(f64, f64, f64)>);
 /// the top of the axis, a range with no sample is left out. Classes for the browser tests:
 /// `curvature-plot`, `kappa-left`, `kappa-right`, `kappa-inf-marker`.
 pub(crate) fn curvature_range_svg(title: &str, subtitle: &str, series: &[RangeSeries]) -> String {
-    let (w, h) = (520.0, 320.0);
-    let (left, right, top, bottom) = (62.0, 18.0, 66.0, 46.0);
+    let (w, h) = (520.0, 340.0);
+    let (left, right, top, bottom) = (62.0, 18.0, 86.0, 46.0);
     let finite_max = series
         .iter()
         .flat_map(|(_, _, v)| v.iter())
@@ -293,8 +293,13 @@ pub(crate) fn curvature_range_svg(title: &str, subtitle: &str, series: &[RangeSe
     let mid = (top + h - bottom) / 2.0;
     let _ = write!(
         s,
-        "<line x1=\"{left}\" y1=\"{top}\" x2=\"{left}\" y2=\"{}\" stroke=\"#333\"/><text x=\"14\" y=\"{mid}\" transform=\"rotate(-90 14 {mid})\" text-anchor=\"middle\">pseudo-curvature κ</text></g>",
-        h - bottom
+        "<line x1=\"{left}\" y1=\"{top}\" x2=\"{left}\" y2=\"{}\" stroke=\"#333\"/><text x=\"14\" y=\"{mid}\" transform=\"rotate(-90 14 {mid})\" text-anchor=\"middle\">pseudo-curvature κ</text><text class=\"tick\" x=\"{}\" y=\"{}\" text-anchor=\"end\">+∞</text><line x1=\"{left}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#ddd\" stroke-dasharray=\"3,3\"/></g>",
+        h - bottom,
+        left - 8.0,
+        top - 12.0,
+        top - 16.0,
+        w - right,
+        top - 16.0
     );
     for (i, (name, colour, v)) in series.iter().enumerate() {
         let off = if i == 0 { -3.0 } else { 3.0 };
@@ -302,9 +307,9 @@ pub(crate) fn curvature_range_svg(title: &str, subtitle: &str, series: &[RangeSe
             s,
             "<g class=\"kappa-{name}\"><rect x=\"{}\" y=\"{}\" width=\"10\" height=\"10\" fill=\"{colour}\"/><text x=\"{}\" y=\"{}\" font-size=\"11\">{} side (t {} 0)</text>",
             left + 10.0 + 150.0 * i as f64,
-            top - 22.0,
+            top - 44.0,
             left + 24.0 + 150.0 * i as f64,
-            top - 13.0,
+            top - 35.0,
             name,
             if i == 0 { "−" } else { "+" }
         );
@@ -315,7 +320,7 @@ pub(crate) fn curvature_range_svg(title: &str, subtitle: &str, series: &[RangeSe
                     s,
                     "<path class=\"kappa-inf-marker\" d=\"M{:.1},{:.1} l-4,8 h8 z\" fill=\"{colour}\"><title>t = {t}: +∞ (sharp)</title></path>",
                     x,
-                    top - 6.0
+                    top - 20.0
                 );
                 continue;
             }
@@ -390,7 +395,7 @@ fn curvature_section(h: &mut String, curves: &[(String, Result<CurveCurvature, S
                     c.level,
                     curvature_range_svg(
                         &format!("κinf and κsup against t, state {state}"),
-                        "bars from κinf to κsup; ▲ at the top: +∞ (sharp)",
+                        "bars from κinf to κsup; ▲ on the +∞ row: a sharp side",
                         &[("left", "#1f5fa8", l), ("right", "#e07b00", r)],
                     )
                 );
