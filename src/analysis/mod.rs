@@ -23,7 +23,10 @@ pub use classes::{
     automaton_invariants, classify, face_invariants, levels_for, levels_needed, volume_invariants,
     Classification, Difference, Invariants, Named,
 };
-pub use contraction::{check_contraction, ContractionReport, MAX_CYCLES};
+pub use contraction::{
+    check_contraction, check_contraction_within, difference_restriction, ContractionReport,
+    DEFAULT_MAX_PRODUCTS, MAX_CYCLES,
+};
 pub use curve::{
     analyse_automaton, analyse_automaton_only, estimate_curvature, AutomatonOperators,
     CurvatureEstimate, CurveReport, PointBehaviour, Side,

@@ -49,6 +49,10 @@ pub(crate) struct LimitArgs {
     /// Maximum size n of an n×n matrix for eigen analysis (`operators`).
     #[arg(long, help_heading = "Limits", default_value_t = Limits::default().max_matrix)]
     pub(crate) max_matrix: usize,
+    /// Maximum number of operator products formed to prove that an automaton contracts (one of
+    /// more than 1000 scalar multiplications counts as that many thousands).
+    #[arg(long, help_heading = "Limits", default_value_t = Limits::default().max_products)]
+    pub(crate) max_products: usize,
 }
 
 impl LimitArgs {
@@ -64,6 +68,7 @@ impl LimitArgs {
             max_unknowns: self.max_unknowns,
             max_memory_mb: self.max_memory,
             max_matrix: self.max_matrix,
+            max_products: self.max_products,
         }
     }
 }
@@ -414,9 +419,11 @@ pub(crate) struct RenderArgs {
     /// Write the solid as 3MF (core specification, unit millimetre, one object per component).
     #[arg(long = "3mf", value_name = "OUT.3mf")]
     pub(crate) threemf: Option<std::path::PathBuf>,
-    /// Thickness of the solid in mm for --stl, --3mf and --obj (exact: 2, 1/2, 0.8).
-    #[arg(long, default_value = "2", value_name = "MM")]
-    pub(crate) thickness: String,
+    /// Thickness of the solid in mm for --stl, --3mf and --obj (exact: 2, 1/2, 0.8; default 2).
+    /// For an automaton's surface: thicken it into a closed shell (without it, --stl and --3mf
+    /// write the open surface).
+    #[arg(long, value_name = "MM")]
+    pub(crate) thickness: Option<String>,
     #[command(flatten)]
     pub(crate) print: PrintArgs,
     /// Write a colour PNG: anti-aliased cells filled by type (the SVG's palette), with a legend.
