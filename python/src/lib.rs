@@ -164,7 +164,7 @@ fn kind(py: Python<'_>, input: String) -> PyResult<(String, String)> {
 #[pyfunction]
 fn canonical(py: Python<'_>, notation: String) -> PyResult<String> {
     run(py, || {
-        Ok(lacuna::topology::Face::parse(&notation)?.to_string())
+        Ok(lacuna::topology::Face::parse(&notation)?.canonical().0.to_string())
     })
 }
 
