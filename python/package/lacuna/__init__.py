@@ -475,8 +475,8 @@ class Rendering:
 
 @dataclass
 class Shapes:
-    """The pieces of an automaton's attractor at a level: each an (n, 3) NumPy array of points
-    (z = 0 in the plane), its state's name and kind (``point``, ``polyline``, ``polygon``)."""
+    """The pieces of an automaton's attractor at a level: each an (n, space) NumPy array of points
+    (space 2 or 3), its state's name and kind (``point``, ``polyline``, ``polygon``)."""
 
     points: List[Any]
     states: List[str]
@@ -813,6 +813,7 @@ class Automaton:
         text, _names, consistent = _lacuna.automaton_shapes(self.source, int(level), p, max_cells, lim)
         d = json.loads(text)
         shapes = d.get("shapes", [])
+        space = int(d.get("space", 2))
         written: List[Path] = []
         if svg is not None or png is not None:
             written = [
@@ -823,10 +824,10 @@ class Automaton:
                 )
             ]
         return Shapes(
-            points=[np.asarray(s["points"], dtype=float).reshape(-1, 3) if s["points"] else np.zeros((0, 3)) for s in shapes],
+            points=[np.asarray(s["points"], dtype=float).reshape(-1, space) for s in shapes],
             states=[s["state"] for s in shapes],
             kinds=[s["kind"] for s in shapes],
-            space=int(d.get("space", 2)),
+            space=space,
             consistent=bool(consistent),
             written=written,
         )
