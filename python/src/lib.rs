@@ -63,7 +63,12 @@ fn mesh_error(e: lacuna::mesh::MeshError) -> Error {
 }
 
 /// A value outside the range a keyword accepts (E0503, as the command line's flags).
-fn out_of_range(flag: &'static str, value: impl ToString, what: &'static str, range: &str) -> Error {
+fn out_of_range(
+    flag: &'static str,
+    value: impl ToString,
+    what: &'static str,
+    range: &str,
+) -> Error {
     Error::OutOfRange {
         flag,
         value: value.to_string(),
@@ -83,7 +88,12 @@ fn limits(overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Limits> {
         let key: String = k.extract()?;
         let value: u64 = v.extract()?;
         let small = |v: u64| -> PyResult<usize> {
-            usize::try_from(v).map_err(|_| py_err(k.py(), Error::Usage(format!("limit {key} = {v} is too large"))))
+            usize::try_from(v).map_err(|_| {
+                py_err(
+                    k.py(),
+                    Error::Usage(format!("limit {key} = {v} is too large")),
+                )
+            })
         };
         match key.as_str() {
             "max_boundary" => l.max_boundary = small(value)?,
@@ -164,7 +174,10 @@ fn kind(py: Python<'_>, input: String) -> PyResult<(String, String)> {
 #[pyfunction]
 fn canonical(py: Python<'_>, notation: String) -> PyResult<String> {
     run(py, || {
-        Ok(lacuna::topology::Face::parse(&notation)?.canonical().0.to_string())
+        Ok(lacuna::topology::Face::parse(&notation)?
+            .canonical()
+            .0
+            .to_string())
     })
 }
 
@@ -244,7 +257,9 @@ fn solve(
             .ok_or_else(|| {
                 Error::syntax(
                     "E0113",
-                    format!("cantor_gap `{cantor_gap}` must be an exact positive number (1, 1/2, 0.25)"),
+                    format!(
+                        "cantor_gap `{cantor_gap}` must be an exact positive number (1, 1/2, 0.25)"
+                    ),
                     lacuna::Span {
                         line: 1,
                         col: 1,
@@ -254,7 +269,12 @@ fn solve(
                 )
             })?;
         if !(1..=8).contains(&degree) {
-            return Err(out_of_range("degree", degree, "the Bézier degree", "from 1 to 8"));
+            return Err(out_of_range(
+                "degree",
+                degree,
+                "the Bézier degree",
+                "from 1 to 8",
+            ));
         }
         let opts = lacuna::constraint::GenOptions {
             degree,
@@ -293,7 +313,9 @@ fn verify(
         l.check_level(levels)?;
         let input = load_input(&input)?;
         let c = Closure::of(&input.faces(), &l)?;
-        Ok(json(&lacuna::export::verify_report(&input, &c, levels, &l)?))
+        Ok(json(&lacuna::export::verify_report(
+            &input, &c, levels, &l,
+        )?))
     })
 }
 
@@ -393,7 +415,10 @@ impl Geo {
         let (name, model) = match load_any(&self.input)? {
             Loaded::Automaton { name, model, .. } => (name, *model),
             Loaded::Faces(_) => {
-                return Err(Error::Usage(format!("`{}` is faces, not an automaton", self.input)))
+                return Err(Error::Usage(format!(
+                    "`{}` is faces, not an automaton",
+                    self.input
+                )))
             }
         };
         let values = param_values(&self.params)?;
@@ -403,7 +428,12 @@ impl Geo {
         let max = self.max_cells.unwrap_or(default_cells);
         let count = ev.count(self.level);
         if count > u128::from(max) {
-            return Err(Error::limit("the pieces of the level", count, max, "--max-cells"));
+            return Err(Error::limit(
+                "the pieces of the level",
+                count,
+                max,
+                "--max-cells",
+            ));
         }
         Ok((model, resolved, contraction, ev, name))
     }
@@ -502,10 +532,9 @@ fn write_file(
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => PathBuf::from("."),
     };
-    let name = path.file_name().map_or_else(
-        || "out".into(),
-        |n| n.to_string_lossy().into_owned(),
-    );
+    let name = path
+        .file_name()
+        .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
     let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
     let result = (|| {
         let mut f = std::io::BufWriter::new(std::fs::File::create(&tmp)?);
@@ -552,7 +581,12 @@ fn render(
             ));
         }
         if !(1..=8192).contains(&size) {
-            return Err(out_of_range("size", size, "the PNG size in pixels", "from 1 to 8192"));
+            return Err(out_of_range(
+                "size",
+                size,
+                "the PNG size in pixels",
+                "from 1 to 8192",
+            ));
         }
         let mut wrote = Vec::new();
         if let Loaded::Automaton { .. } = load_any(&g.input)? {
@@ -591,7 +625,9 @@ fn render(
                 width: 512,
                 ..picture.clone()
             };
-            write_file(p, |w| lacuna::export::write_svg_picture(&inst, g.level, &opts, w))?;
+            write_file(p, |w| {
+                lacuna::export::write_svg_picture(&inst, g.level, &opts, w)
+            })?;
             wrote.push(p.clone());
         }
         if let Some(p) = &stl {
