@@ -145,3 +145,25 @@ def test_verify_matches_the_command_line(cli):
     rep = lacuna.load("F0").verify(levels=4)
     assert rep.verified is True
     assert rep.data == data
+
+
+def test_sympy_conversion_of_a_cubic_ratio():
+    # The conversion on data in the layout of `lacuna ratio --json` (no face of the fixtures has a
+    # cubic ρ): ρ the real root of x³ − 2 = ∛2, R = 1/2 − ρ/4 + ρ²/8 on the power basis.
+    rho = sympy.cbrt(2)
+    data = {
+        "exists": True,
+        "exact": "1/2 - 1/4*rho + 1/8*rho^2 where rho = root of x^3 - 2 in [1, 2]",
+        "decimal": None,
+        "coordinates": ["1/2", "-1/4", "1/8"],
+        "perron_root": "root of x^3 - 2 in [1, 2]",
+        "perron_decimal": "1.25992104989487316476",
+        "perron_min_poly": "x^3 - 2",
+        "period": 1,
+        "limit_points": [],
+        "reasons": [],
+    }
+    r = lacuna._ratio(data)
+    assert r.degree == 3 and not r.quadratic and not r.rational
+    assert sympy.simplify(r.rho() - rho) == 0
+    assert sympy.simplify(r.sympy() - (sympy.Rational(1, 2) - rho / 4 + rho**2 / 8)) == 0

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
@@ -300,7 +301,8 @@ class Ratio:
     @property
     def degree(self) -> int:
         """The degree of ρ over Q (1: R is rational; 2: quadratic)."""
-        return len(self.data.get("coordinates") or [None])
+        powers = [int(e) for e in re.findall(r"x\^(\d+)", self.perron_min_poly)]
+        return max(powers, default=1 if "x" in self.perron_min_poly else 0)
 
     @property
     def rational(self) -> bool:
@@ -327,8 +329,7 @@ class Ratio:
             return None
         if self.quadratic:
             return sympy.sympify(self.exact)
-        x = sympy.Symbol("x")
-        rho = sympy.Poly(sympy.sympify(self.perron_min_poly.replace("^", "**")), x).real_roots()[-1]
+        rho = self.rho()
         return sum(sympy.Rational(c.numerator, c.denominator) * rho**i for i, c in enumerate(self.coordinates))
 
     def rho(self):
