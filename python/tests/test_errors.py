@@ -130,3 +130,19 @@ def test_automaton_errors(tmp_path):
     with pytest.raises(InputError) as e:
         lacuna.Automaton.from_file(bad)
     assert e.value.code == "E0701" and e.value.span.line == 2
+
+
+def test_every_documented_code_has_its_own_class():
+    # docs/ERRORS.md lists every code; each maps to a subclass that names its kind.
+    import re
+
+    from conftest import REPO
+    from lacuna._errors import error_class
+
+    codes = re.findall(r"^\| (E\d{4}) \|", (REPO / "docs" / "ERRORS.md").read_text(), re.M)
+    assert len(codes) > 60
+    for code in codes:
+        cls = error_class(code)
+        assert cls is not LacunaError and issubclass(cls, LacunaError), code
+    assert error_class("E0103") is InputError and error_class("E0601") is FileError
+    assert error_class("E1041") is GeometryError and error_class("E0502") is RunawayError
