@@ -48,3 +48,10 @@ def test_files_and_library_names_give_the_same_results():
     f0 = lacuna.Face("C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1")
     assert f0.counts(8) == lacuna.load("F0").counts(8)
     assert f0.ratio().exact == lacuna.load("F0").ratio().exact
+
+
+def test_the_module_docstring_examples_run():
+    import doctest
+
+    result = doctest.testmod(lacuna)
+    assert result.attempted >= 4 and result.failed == 0

@@ -6,6 +6,7 @@ numbers in them are strings. Errors are raised as `lacuna.LacunaError` subclasse
 """
 
 from os import PathLike
+from pathlib import Path
 from typing import Dict, List, Optional, Sequence, Tuple, Union
 
 __version__: str
@@ -82,7 +83,7 @@ def render(
     segments: int = 4,
     max_cells: Optional[int] = None,
     limits: _Limits = None,
-) -> List[str]:
+) -> List[Path]:
     """Writes the files asked for; returns their paths."""
 
 def measure(
