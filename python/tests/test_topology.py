@@ -67,6 +67,7 @@ def test_runaway_is_a_result_not_an_error(cli):
     c = lacuna.Face(src).closure()
     assert not c.closed and c.runaway is not None
     assert c.data == data
+    assert c.runaway.data == data["runaway"] and "reason" in c.runaway
 
 
 def test_f0_counts_are_powers_of_six_at_level_200():

@@ -546,7 +546,7 @@ def _closure(d: Dict[str, Any]) -> Closure:
         start=tuple(d.get("start", [])),
         classes=Record(d["classes"]) if d.get("classes") else None,
         bound=Record(d["bound"]) if d.get("bound") else None,
-        runaway=None if closed else Record({k: v for k, v in d.items() if k not in ("types", "start", "closed")}),
+        runaway=None if closed else Record(d.get("runaway") or {}),
         data=d,
     )
 
