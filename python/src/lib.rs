@@ -549,6 +549,45 @@ fn write_file(
     result.map_err(failed)
 }
 
+/// Refuses (E0504, as the command line) an output that is the input file, or two outputs to one
+/// file.
+fn refuse_clobbering(input: &str, outputs: &[&Option<PathBuf>]) -> Result<(), Error> {
+    // A path names the same file as another when both resolve to it (an output that does not
+    // exist yet resolves through its folder).
+    let resolve = |p: &Path| -> PathBuf {
+        if let Ok(c) = p.canonicalize() {
+            return c;
+        }
+        match (p.parent(), p.file_name()) {
+            (Some(d), Some(n)) if !d.as_os_str().is_empty() => d
+                .canonicalize()
+                .map_or_else(|_| p.to_path_buf(), |d| d.join(n)),
+            (_, Some(n)) => std::env::current_dir().map_or_else(|_| p.to_path_buf(), |d| d.join(n)),
+            _ => p.to_path_buf(),
+        }
+    };
+    let input = Path::new(input);
+    let input = input.is_file().then(|| resolve(input));
+    let mut seen: Vec<PathBuf> = Vec::new();
+    for p in outputs.iter().filter_map(|p| p.as_deref()) {
+        let r = resolve(p);
+        if input.as_ref() == Some(&r) {
+            return Err(Error::Usage(format!(
+                "`{}` is the input: an output never overwrites it",
+                p.display()
+            )));
+        }
+        if seen.contains(&r) {
+            return Err(Error::Usage(format!(
+                "two outputs would write `{}`",
+                p.display()
+            )));
+        }
+        seen.push(r);
+    }
+    Ok(())
+}
+
 /// Writes the pictures and solids of the level of faces or of an automaton: SVG, PNG (`size`
 /// pixels wide), binary or ASCII STL (faces only; the solid is built and checked against the
 /// exact topology first). Returns the paths written.
@@ -588,6 +627,7 @@ fn render(
                 "from 1 to 8192",
             ));
         }
+        refuse_clobbering(&g.input, &[&svg, &png, &stl])?;
         let mut wrote = Vec::new();
         if let Loaded::Automaton { .. } = load_any(&g.input)? {
             if stl.is_some() {

@@ -146,3 +146,14 @@ def test_every_documented_code_has_its_own_class():
         assert cls is not LacunaError and issubclass(cls, LacunaError), code
     assert error_class("E0103") is InputError and error_class("E0601") is FileError
     assert error_class("E1041") is GeometryError and error_class("E0502") is RunawayError
+
+
+def test_an_output_never_overwrites_the_input(tmp_path):
+    # As on the command line (E0504): the input file is left as it was.
+    src = tmp_path / "f0.txt"
+    src.write_text(lacuna.library_text("F0"))
+    with pytest.raises(UsageError) as e:
+        lacuna.Assembly.from_file(src).render(1, svg=src)
+    assert e.value.code == "E0504" and src.read_text() == lacuna.library_text("F0")
+    with pytest.raises(UsageError):
+        lacuna.load("F0").render(1, svg=tmp_path / "x", png=tmp_path / "x")
