@@ -315,6 +315,9 @@ pub(crate) struct MorphArgs {
     /// Seconds per frame in the animation.
     #[arg(long, default_value_t = 0.5)]
     pub(crate) seconds: f64,
+    /// Refuse before the work when one frame has more cells than this.
+    #[arg(long, default_value_t = 200_000)]
+    pub(crate) max_cells: u64,
     /// Print JSON.
     #[arg(long)]
     pub(crate) json: bool,

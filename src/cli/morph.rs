@@ -262,13 +262,13 @@ pub(super) fn run(args: MorphArgs, limits: &Limits) -> Result<ExitCode, Error> {
     // The level's cells are counted exactly before any frame is built.
     let ts = lacuna::topology::close_or_error(&input.faces(), limits)?;
     let cells = &lacuna::topology::counts(&ts, u64::from(args.level))[args.level as usize].faces;
-    let max_cells = 200_000u32;
+    let max_cells = args.max_cells;
     if cells > &num_bigint::BigUint::from(max_cells) {
         return Err(Error::limit(
             "the cells of one frame",
             cells,
             max_cells,
-            "--level (lower it)",
+            "--max-cells",
         ));
     }
     let mopts = lacuna::measure::MeasureOptions {
