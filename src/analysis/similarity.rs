@@ -34,6 +34,12 @@ pub struct SimilarityDimension {
     pub decimal: String,
     /// The strongly connected parts (their states) and each part's exact value.
     pub parts: Vec<(Vec<String>, String)>,
+    /// True unless the open-set condition is proved for every part
+    /// ([`crate::analysis::open_set`]): the value is then only an upper bound of the Hausdorff
+    /// dimension, never the dimension.
+    pub upper_bound: bool,
+    /// What the open-set check found (the criterion that decided, or why none did).
+    pub open_set: String,
 }
 
 /// Why there is no similarity dimension.
@@ -195,7 +201,7 @@ impl Tarjan {
 
 /// Strongly connected parts of the reachable control graph that hold a cycle (Tarjan; the
 /// recursion is as deep as the number of states, at most 4096: checked by the caller).
-fn cyclic_parts(m: &AutomatonModel) -> Vec<Vec<usize>> {
+pub(crate) fn cyclic_parts(m: &AutomatonModel) -> Vec<Vec<usize>> {
     let a = &m.automaton;
     let g = control_graph(m);
     let reach = reachable(m);
@@ -410,7 +416,24 @@ pub fn similarity_dimension(
         }
     }
     let decimal = certified_decimal(k, &values[best].1, digits);
+    let verdicts: Vec<_> = parts
+        .iter()
+        .map(|p| crate::analysis::open_set::part_verdict(m, ops, p))
+        .collect();
+    let upper_bound = verdicts.iter().any(|v| v.holds != Some(true));
+    let open_set = if verdicts.len() == 1 {
+        verdicts[0].reason.clone()
+    } else {
+        verdicts
+            .iter()
+            .zip(&values)
+            .map(|(v, (n, _))| format!("part {{{}}}: {}", n.join(", "), v.reason))
+            .collect::<Vec<_>>()
+            .join("; ")
+    };
     Ok(SimilarityDimension {
+        upper_bound,
+        open_set,
         exact: values[best].1.exact.clone(),
         decimal,
         parts: values

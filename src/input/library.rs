@@ -111,6 +111,27 @@ pub fn parse_text(src: &Source) -> Result<Assembly> {
     }
 }
 
+/// What a library entry (or any input text) is: `volume`, `rule`, `automaton`, `assembly` (faces
+/// with shared edges, or several faces) or `face` (one face).
+pub fn kind_of(text: &str) -> &'static str {
+    if crate::input::volume_file::is_volume_text(text) {
+        "volume"
+    } else if crate::input::rule::is_rule(text) {
+        "rule"
+    } else if is_automaton_model(text) {
+        "automaton"
+    } else {
+        let src = Source {
+            name: String::new(),
+            text: text.to_string(),
+        };
+        match parse_text(&src) {
+            Ok(a) if a.faces.len() == 1 && a.shared.is_empty() => "face",
+            _ => "assembly",
+        }
+    }
+}
+
 /// What a command-line argument names: faces (a face, an assembly) or a hand-written automaton.
 #[derive(Clone, Debug)]
 #[allow(clippy::large_enum_variant)]
@@ -150,6 +171,14 @@ pub fn load_any(arg: &str) -> Result<Loaded> {
             path: name,
             reason: "this is a volume: `closure`, `counts`, `ratio` and `verify` read volumes"
                 .into(),
+        });
+    }
+    if crate::input::rule::is_rule(&src.text) {
+        let (_, model) = crate::input::rule::compile_rule(&src)?;
+        return Ok(Loaded::Automaton {
+            name,
+            automaton: model.automaton.clone(),
+            model: Box::new(model),
         });
     }
     if is_automaton_model(&src.text) {

@@ -285,7 +285,18 @@ impl AutomatonMeasure {
             None => o += "box-counting dimension: too few scales (raise --level)\n",
         }
         match (&self.similarity_dimension, &self.similarity_note) {
-            (Some(s), _) => o += &format!("similarity dimension = {} = {}…\n", s.exact, s.decimal),
+            (Some(s), _) if s.upper_bound => {
+                o += &format!(
+                    "similarity dimension = {} = {}… — an upper bound of the dimension only; open-set condition {}\n",
+                    s.exact, s.decimal, s.open_set
+                )
+            }
+            (Some(s), _) => {
+                o += &format!(
+                    "similarity dimension = {} = {}… (the Hausdorff dimension: open-set condition {})\n",
+                    s.exact, s.decimal, s.open_set
+                )
+            }
             (None, Some(n)) => o += &format!("similarity dimension: not applicable ({n})\n"),
             _ => {}
         }
