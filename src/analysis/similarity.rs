@@ -364,18 +364,54 @@ pub fn similarity_dimension(
         let sigma = sigma
             .ok_or_else(|| format!("no operator of the part {{{}}} contracts", names.join(", ")))?;
         let n = part.len();
-        let mut entries = vec![vec![Vec::new(); n]; n];
-        for (i, j, r2, o) in &inside {
-            let mut pow = one.clone();
-            let mut e = None;
-            for kk in 0..=16usize {
-                if &pow == r2 {
-                    e = Some(kk);
-                    break;
+        // Exponents of every squared ratio over a common base: σ itself, or else (σ rational) a
+        // rational root τ = σ^(1/d), d ≤ 6, so that ratios 1/3 and 1/(3√3) (σ = 1/27) share
+        // τ = 1/3 with exponents 2 and 3.
+        let exponents = |base: &FieldElement, max: usize| -> Option<Vec<usize>> {
+            inside
+                .iter()
+                .map(|(_, _, r2, _)| {
+                    let mut pow = one.clone();
+                    for kk in 0..=max {
+                        if &pow == r2 {
+                            return Some(kk);
+                        }
+                        pow = k.mul(&pow, base);
+                    }
+                    None
+                })
+                .collect()
+        };
+        let mut found = exponents(&sigma, 16).map(|e| (sigma.clone(), e));
+        if found.is_none() {
+            if let Some(sr) = sigma.as_rational() {
+                for d in 2..=6u32 {
+                    if let Some(t) = rational_root(&sr, d) {
+                        let tau = k.rational(t);
+                        if let Some(e) = exponents(&tau, 16 * d as usize) {
+                            found = Some((tau, e));
+                            break;
+                        }
+                    }
                 }
-                pow = k.mul(&pow, &sigma);
             }
-            let e = e.ok_or_else(|| format!("the squared ratio of `{}` is not a power σ^k (k ≤ 16) of the smallest one σ = {}", a.operators[*o].name, k.render(&sigma)))?;
+        }
+        let Some((sigma, exps)) = found else {
+            let o = inside
+                .iter()
+                .find(|(_, _, r2, _)| {
+                    let mut pow = one.clone();
+                    !(0..=16).any(|_| {
+                        let hit = &pow == r2;
+                        pow = k.mul(&pow, &sigma);
+                        hit
+                    })
+                })
+                .map_or(0, |x| x.3);
+            return Err(format!("the squared ratio of `{}` is not a power σ^k (k ≤ 16) of the smallest one σ = {}, nor of a rational root of it", a.operators[o].name, k.render(&sigma)));
+        };
+        let mut entries = vec![vec![Vec::new(); n]; n];
+        for ((i, j, _, _), e) in inside.iter().zip(exps) {
             entries[*i][*j].push(e);
         }
         let p = part_polynomial(n, &entries);
@@ -490,6 +526,14 @@ fn exact_text(
         ),
         None,
     )
+}
+
+/// The rational d-th root of a positive rational, when it exists.
+fn rational_root(x: &BigRational, d: u32) -> Option<BigRational> {
+    let (n, m) = (x.numer().nth_root(d), x.denom().nth_root(d));
+    (num_traits::pow(n.clone(), d as usize) == *x.numer()
+        && num_traits::pow(m.clone(), d as usize) == *x.denom())
+    .then(|| BigRational::new(n, m))
 }
 
 fn rational_sqrt(x: &BigRational) -> Option<BigRational> {

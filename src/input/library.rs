@@ -83,6 +83,32 @@ pub fn library() -> &'static [(&'static str, &'static str)] {
         ),
         ("cantor-set", include_str!("../../fixtures/cantor-set.aut")),
         ("kite-dart", include_str!("../../fixtures/kite-dart.aut")),
+        (
+            "quadric-koch",
+            include_str!("../../fixtures/quadric-koch.rule"),
+        ),
+        ("koch", include_str!("../../fixtures/koch.rule")),
+        (
+            "sierpinski-arrowhead",
+            include_str!("../../fixtures/sierpinski-arrowhead.rule"),
+        ),
+        (
+            "heighway-dragon",
+            include_str!("../../fixtures/heighway-dragon.rule"),
+        ),
+        (
+            "monkeys-tree",
+            include_str!("../../fixtures/monkeys-tree.rule"),
+        ),
+        (
+            "pythagoras-tree",
+            include_str!("../../fixtures/pythagoras-tree.rule"),
+        ),
+        (
+            "self-seeding-square",
+            include_str!("../../fixtures/self-seeding-square.rule"),
+        ),
+        ("vegetation", include_str!("../../fixtures/vegetation.rule")),
     ]
 }
 

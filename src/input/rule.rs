@@ -362,16 +362,18 @@ pub fn parse_rule(src: &Source) -> Result<Rule> {
                         .collect(),
                 ));
             }
-            other => return Err(Error::at(
-                "E1308",
-                format!(
+            other => {
+                return Err(Error::at(
+                    "E1308",
+                    format!(
                     "`{other}`: a rule file has `field`, `initiator`, `generator` and `age` lines"
                 ),
-                ln,
-                c0,
-                other.chars().count(),
-                src,
-            )),
+                    ln,
+                    c0,
+                    other.chars().count(),
+                    src,
+                ))
+            }
         }
     }
     let Some(init) = initiator else {
