@@ -34,9 +34,9 @@ use serde::Serialize;
 use std::cmp::Ordering;
 
 /// The most rounds of the hull iteration.
-pub const MAX_ROUNDS: usize = 24;
+pub const MAX_ROUNDS: usize = 6;
 /// The most vertices of one hull (beyond it the hull criterion gives up).
-const MAX_VERTICES: usize = 256;
+const MAX_VERTICES: usize = 48;
 /// The most states of a part for the hull criterion.
 const MAX_PART: usize = 64;
 
