@@ -8,8 +8,7 @@ use lacuna::algebra::{FieldElement, NumberField};
 use lacuna::analysis::{resolve, similarity_dimension};
 use lacuna::geometry::exact_points;
 use lacuna::input::{
-    library, load_any, parse_rule, AutomatonModel, Flip, Loaded, Primitive, Rule, Segment,
-    Target,
+    library, load_any, parse_rule, AutomatonModel, Flip, Loaded, Primitive, Rule, Segment, Target,
 };
 use lacuna::Source;
 use num_bigint::BigInt;
@@ -107,9 +106,21 @@ fn dimensions_by_hand_to_50_digits_against_a_series() {
     // [r^s, r^s]], spectral radius 2·r^s = 1, 2^(s/2) = 2, s = 2 exactly.
     let zeros = "0".repeat(50);
     let cases = [
-        ("koch", "log 4 / log 3".to_string(), decimal50(&(&ln2 * 2), &ln3)),
-        ("sierpinski-arrowhead", "log 3 / log 2".to_string(), decimal50(&ln3, &ln2)),
-        ("quadric-koch", "3/2".to_string(), format!("1.5{}", &zeros[..49])),
+        (
+            "koch",
+            "log 4 / log 3".to_string(),
+            decimal50(&(&ln2 * 2), &ln3),
+        ),
+        (
+            "sierpinski-arrowhead",
+            "log 3 / log 2".to_string(),
+            decimal50(&ln3, &ln2),
+        ),
+        (
+            "quadric-koch",
+            "3/2".to_string(),
+            format!("1.5{}", &zeros[..49]),
+        ),
         ("heighway-dragon", "2".to_string(), format!("2.{zeros}")),
     ];
     for (name, exact, decimal) in cases {
@@ -133,7 +144,11 @@ fn monkeys_tree_and_vegetation_dimensions_are_exact_roots() {
     let m = model("monkeys-tree");
     let r = resolve(&m, &[], 64).unwrap();
     let d = similarity_dimension(&m, &r.ops, 12).unwrap();
-    assert!(d.exact.contains("sqrt(21)") && d.exact.contains("1/3"), "{}", d.exact);
+    assert!(
+        d.exact.contains("sqrt(21)") && d.exact.contains("1/3"),
+        "{}",
+        d.exact
+    );
     // Independently, in floating point from the closed form (12 digits are plenty here).
     let u = (21f64.sqrt() - 1.0) / 10.0;
     assert!((5.0 * u * u * u + 6.0 * u * u - 1.0).abs() < 1e-12);
@@ -188,7 +203,11 @@ fn the_open_set_condition_is_proved_only_where_it_is_decided() {
     .unwrap();
     let res = resolve(&m, &[], 64).unwrap();
     let d = similarity_dimension(&m, &res.ops, 10).unwrap();
-    assert!(d.upper_bound && d.open_set.starts_with("fails"), "{}", d.open_set);
+    assert!(
+        d.upper_bound && d.open_set.starts_with("fails"),
+        "{}",
+        d.open_set
+    );
 }
 
 #[test]
@@ -203,7 +222,9 @@ fn box_counting_agrees_where_the_dimension_is_proved_and_stays_below_the_bounds(
             .parse()
             .unwrap();
         let bound = v["similarity_dimension"]["upper_bound"].as_bool().unwrap();
-        let b = v["box_dimension"]["value"].as_f64().expect("a box dimension");
+        let b = v["box_dimension"]["value"]
+            .as_f64()
+            .expect("a box dimension");
         if bound {
             assert!(b < s + 0.05, "{name}: box {b} above the bound {s}");
         } else {
@@ -478,10 +499,23 @@ fn every_rule_goes_through_the_commands() {
         ]);
         assert_eq!(code, 0, "{name}: {err}");
         let text = std::fs::read_to_string(&svg).unwrap();
-        assert!(text.starts_with("<?xml") || text.starts_with("<svg"), "{name}");
-        assert!(text.contains("<polyline") || text.contains("<path"), "{name}");
+        assert!(
+            text.starts_with("<?xml") || text.starts_with("<svg"),
+            "{name}"
+        );
+        assert!(
+            text.contains("<polyline") || text.contains("<path"),
+            "{name}"
+        );
         assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
-        let (code, _, err) = lacuna(&["report", name, "--level", "2", "--out", html.to_str().unwrap()]);
+        let (code, _, err) = lacuna(&[
+            "report",
+            name,
+            "--level",
+            "2",
+            "--out",
+            html.to_str().unwrap(),
+        ]);
         assert_eq!(code, 0, "{name}: {err}");
         let page = std::fs::read_to_string(&html).unwrap();
         assert!(page.contains("open-set condition"), "{name}");
@@ -530,9 +564,21 @@ fn bad_rule_files_exit_2_with_code_line_and_column() {
     let dir = std::env::temp_dir().join(format!("lacuna-bad-rules-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let cases = [
-        ("initiator 0,0 g 1,0\ngenerator g 0,0 g 1/2,x g 1,0\n", "E1302", "2:19"),
-        ("initiator 0,0 h 1,0\ngenerator g 0,0 g 1,0\n", "E1304", "1:15"),
-        ("# c\ninitiator 0,0 g 1,0\ngenerator g 0,0 g 1,0\nstep 3\n", "E1308", "4:1"),
+        (
+            "initiator 0,0 g 1,0\ngenerator g 0,0 g 1/2,x g 1,0\n",
+            "E1302",
+            "2:19",
+        ),
+        (
+            "initiator 0,0 h 1,0\ngenerator g 0,0 g 1,0\n",
+            "E1304",
+            "1:15",
+        ),
+        (
+            "# c\ninitiator 0,0 g 1,0\ngenerator g 0,0 g 1,0\nstep 3\n",
+            "E1308",
+            "4:1",
+        ),
     ];
     for (i, (text, code, at)) in cases.iter().enumerate() {
         let f = dir.join(format!("bad{i}.rule"));

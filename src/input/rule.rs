@@ -1,4 +1,4 @@
-//! Kaandorp's production rules (SPEC §12): an initiator and generators, written as point lists
+//! Kaandorp's production rules: an initiator and generators, written as point lists
 //! whose segments carry flags, read from a `.rule` file and compiled to an automaton
 //! (documented in `docs/FORMATS.md`, "Rule files").
 //!
@@ -237,13 +237,16 @@ fn words(line: &str) -> Vec<(usize, &str)> {
     out
 }
 
+/// A name as written, with its line and column.
+type NamedAt = (String, usize, usize);
+
 /// Parses a rule file.
 pub fn parse_rule(src: &Source) -> Result<Rule> {
     let mut field = NumberField::new(RealAlgebraic::rational(BigRational::zero()));
     let mut field_decl: Option<(String, String)> = None;
     let mut initiator: Option<RawPath> = None;
     let mut gens: Vec<(String, RawPath)> = Vec::new();
-    let mut ages: Vec<(String, Vec<(String, usize, usize)>)> = Vec::new();
+    let mut ages: Vec<(String, Vec<NamedAt>)> = Vec::new();
     let mut names: HashMap<String, (usize, usize)> = HashMap::new();
     for (ln0, raw) in src.text.lines().enumerate() {
         let ln = ln0 + 1;
@@ -618,8 +621,8 @@ impl Rule {
         let mut keys: Vec<Key> = Vec::new();
         let mut index: HashMap<Key, usize> = HashMap::new();
         let mut push = |key: Key, keys: &mut Vec<Key>| {
-            if !index.contains_key(&key) {
-                index.insert(key, keys.len());
+            if let std::collections::hash_map::Entry::Vacant(e) = index.entry(key) {
+                e.insert(keys.len());
                 keys.push(key);
             }
         };
@@ -744,79 +747,6 @@ impl Rule {
         }
         t += "primitive segment polyline 0 1\n";
         t
-    }
-
-    /// The rule's n-th replacement drawn directly (no automaton): the segments of the level,
-    /// exact, in the order of the paths. For tests and checks; the count grows as the level.
-    pub fn replace(&self, level: u32) -> Vec<([FieldElement; 2], [FieldElement; 2])> {
-        let k = &self.field;
-        let mut out = Vec::new();
-        let mut stack: Vec<(Affine, Key, u32)> = Vec::new();
-        if level == 0 {
-            for (i, s) in self.initiator.segments.iter().enumerate() {
-                if *s != Segment::Gap {
-                    out.push((
-                        self.initiator.points[i].clone(),
-                        self.initiator.points[i + 1].clone(),
-                    ));
-                }
-            }
-            return out;
-        }
-        for (i, s) in self.initiator.segments.iter().enumerate() {
-            let (p, q) = (&self.initiator.points[i], &self.initiator.points[i + 1]);
-            match s {
-                Segment::Gap => {}
-                Segment::Drawn => out.push((p.clone(), q.clone())),
-                Segment::Fertile { target, flip } => {
-                    let key = self.start_key(*target);
-                    stack.push((Affine::onto(k, p, q, *flip), key, 1));
-                    self.expand(&mut stack, &mut out, level);
-                }
-            }
-        }
-        out
-    }
-
-    fn expand(
-        &self,
-        stack: &mut Vec<(Affine, Key, u32)>,
-        out: &mut Vec<([FieldElement; 2], [FieldElement; 2])>,
-        level: u32,
-    ) {
-        let k = &self.field;
-        let e0 = [
-            k.rational(BigRational::zero()),
-            k.rational(BigRational::zero()),
-        ];
-        let e1 = [
-            k.rational(BigRational::one()),
-            k.rational(BigRational::zero()),
-        ];
-        while let Some((map, key, depth)) = stack.pop() {
-            // The node stands for generator `key` laid by `map`, at replacement `depth`.
-            let path = &self.generators[key.0].1;
-            let mut children = Vec::new();
-            for (i, s) in path.segments.iter().enumerate() {
-                let (p, q) = (&path.points[i], &path.points[i + 1]);
-                match s {
-                    Segment::Gap => {}
-                    Segment::Drawn => out.push((map.apply(k, p), map.apply(k, q))),
-                    Segment::Fertile { target, flip } => {
-                        let m = map.then(k, &Affine::onto(k, p, q, *flip));
-                        if depth == level {
-                            out.push((m.apply(k, &e0), m.apply(k, &e1)));
-                        } else {
-                            children.push((m, self.target(*target, key.1), depth + 1));
-                        }
-                    }
-                }
-            }
-            // Depth first, in path order.
-            for c in children.into_iter().rev() {
-                stack.push(c);
-            }
-        }
     }
 }
 
