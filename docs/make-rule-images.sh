@@ -11,3 +11,4 @@ $L render monkeys-tree --level 3 --svg docs/images/monkeys-tree.svg
 $L render pythagoras-tree --level 8 --svg docs/images/pythagoras-tree.svg
 $L render self-seeding-square --level 3 --svg docs/images/self-seeding-square.svg
 $L render vegetation --level 8 --svg docs/images/vegetation.svg
+$L render random-tree --level 8 --svg docs/images/random-tree.svg

@@ -30,7 +30,7 @@ const FACE_FIXTURES: [&str; 8] = [
     "two-quads",
     "autofrac-two-quads",
 ];
-const AUTOMATON_FIXTURES: [&str; 22] = [
+const AUTOMATON_FIXTURES: [&str; 23] = [
     "de-casteljau-edge",
     "chaikin-known",
     "spec-edge",
@@ -54,6 +54,7 @@ const AUTOMATON_FIXTURES: [&str; 22] = [
     "pythagoras-tree",
     "self-seeding-square",
     "vegetation",
+    "random-tree",
 ];
 
 /// Volumes (THEORY §10) have no certificate step yet: the checker re-derives face closures and

@@ -19,7 +19,7 @@ use proptest::prelude::*;
 mod common;
 use common::lacuna;
 
-const RULES: [&str; 8] = [
+const RULES: [&str; 9] = [
     "quadric-koch",
     "koch",
     "sierpinski-arrowhead",
@@ -28,6 +28,7 @@ const RULES: [&str; 8] = [
     "pythagoras-tree",
     "self-seeding-square",
     "vegetation",
+    "random-tree",
 ];
 
 fn model(name: &str) -> AutomatonModel {
@@ -187,6 +188,7 @@ fn the_open_set_condition_is_proved_only_where_it_is_decided() {
         "pythagoras-tree",
         "self-seeding-square",
         "vegetation",
+        "random-tree",
     ] {
         let m = model(name);
         let r = resolve(&m, &[], 64).unwrap();
@@ -248,7 +250,7 @@ struct Place {
     mirror: bool,
 }
 
-fn place(k: &NumberField, ph: &Place, z: &P) -> P {
+fn place_point(k: &NumberField, ph: &Place, z: &P) -> P {
     let y = if ph.mirror {
         k.sub(&k.rational(BigRational::zero()), &z[1])
     } else {
@@ -270,14 +272,32 @@ fn lay(k: &NumberField, ph: &Place, p: &P, q: &P, f: Flip) -> Place {
         Flip::XY => (q, p, false),
     };
     Place {
-        a: place(k, ph, s),
-        b: place(k, ph, e),
+        a: place_point(k, ph, s),
+        b: place_point(k, ph, e),
         mirror: m != ph.mirror,
     }
 }
 
-/// Which generator a fertile segment uses, and the age context its own segments see.
-fn pick(r: &Rule, t: Target, ctx: Option<(usize, usize)>) -> (usize, Option<(usize, usize)>) {
+/// SplitMix64's finaliser, written from its published constants (docs/FORMATS.md names it as
+/// the hash of random choices).
+fn mix(mut z: u64) -> u64 {
+    z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// Which generator a fertile segment uses, and the age context its own segments see. `place`:
+/// the segment indices from the initiator down to this segment, while they are tracked
+/// (`None` below the depth); `parent`: the generator holding the segment (`None`: initiator).
+fn pick(
+    r: &Rule,
+    t: Target,
+    ctx: Option<(usize, usize)>,
+    place: Option<&[u32]>,
+    parent: Option<usize>,
+    j: usize,
+) -> (usize, Option<(usize, usize)>) {
     match t {
         Target::Generator(g) => (g, None),
         Target::Age { choice, restart } => {
@@ -288,6 +308,20 @@ fn pick(r: &Rule, t: Target, ctx: Option<(usize, usize)>) -> (usize, Option<(usi
             };
             (seq[age], Some((choice, age)))
         }
+        Target::Random(choice) => {
+            let frozen = [
+                u32::MAX,
+                parent.map_or(u32::MAX - 1, |g| g as u32),
+                j as u32,
+            ];
+            let key: &[u32] = match place {
+                Some(p) if p.len() <= r.depth => p,
+                _ => &frozen,
+            };
+            let h = key.iter().fold(r.seed, |h, &x| mix(h ^ u64::from(x)));
+            let seq = &r.randoms[choice].1;
+            (seq[(h % seq.len() as u64) as usize], None)
+        }
     }
 }
 
@@ -296,6 +330,7 @@ fn draw(
     r: &Rule,
     g: usize,
     ctx: Option<(usize, usize)>,
+    place: Option<Vec<u32>>,
     ph: &Place,
     depth: u32,
     level: u32,
@@ -307,14 +342,16 @@ fn draw(
         let (p, q) = (&path.points[i], &path.points[i + 1]);
         match *s {
             Segment::Gap => {}
-            Segment::Drawn => out.push((place(k, ph, p), place(k, ph, q))),
+            Segment::Drawn => out.push((place_point(k, ph, p), place_point(k, ph, q))),
             Segment::Fertile { target, flip } => {
                 let child = lay(k, ph, p, q, flip);
                 if depth == level {
                     out.push((child.a, child.b));
                 } else {
-                    let (g2, c2) = pick(r, target, ctx);
-                    draw(r, g2, c2, &child, depth + 1, level, out);
+                    let cp = place.as_ref().map(|p| [p.as_slice(), &[i as u32]].concat());
+                    let (g2, c2) = pick(r, target, ctx, cp.as_deref(), Some(g), i);
+                    let keep = cp.filter(|p| p.len() < r.depth);
+                    draw(r, g2, c2, keep, &child, depth + 1, level, out);
                 }
             }
         }
@@ -339,8 +376,10 @@ fn replacement(r: &Rule, level: u32) -> Vec<(P, P)> {
         match *s {
             Segment::Gap => {}
             Segment::Fertile { target, flip } if level > 0 => {
-                let (g, c) = pick(r, target, None);
-                draw(r, g, c, &lay(k, &id, p, q, flip), 1, level, &mut out);
+                let cp = vec![i as u32];
+                let (g, c) = pick(r, target, None, Some(&cp), None, i);
+                let keep = Some(cp).filter(|p| p.len() < r.depth);
+                draw(r, g, c, keep, &lay(k, &id, p, q, flip), 1, level, &mut out);
             }
             _ => out.push((p.clone(), q.clone())),
         }
@@ -413,6 +452,36 @@ fn each_rules_automaton_draws_the_replacement_exactly() {
             assert_eq!(keys(&auto), keys(&direct), "{name} at level {level}");
         }
     }
+}
+
+#[test]
+fn random_choices_are_reproducible_per_occurrence_and_frozen_below_the_depth() {
+    // depth 2: the initiator's segment (place [0]) and its children (places [0, j]) draw on their
+    // own; deeper segments draw once per (generator, segment). Levels 3 and 4 reach the frozen
+    // part: the automaton must still be the direct replacement.
+    let text = |seed: u64| {
+        format!("random b s t\nseed {seed}\ndepth 2\ninitiator 0,0 b 0,1\ngenerator s 0,0 - 1/2,0 b 1,1/2 . 1/2,0 b 1,-1/2\ngenerator t 0,0 - 1/2,0 b 1/2,1/2 . 1/2,0 b 1,0\n")
+    };
+    let mut drawings = Vec::new();
+    for seed in [1u64, 2, 3, 4, 5] {
+        let r = rule(&text(seed));
+        let m = lacuna::input::parse_model(&Source {
+            name: "c".into(),
+            text: r.automaton_text(),
+        })
+        .unwrap();
+        for level in 0..=4 {
+            assert_eq!(
+                keys(&automaton_segments(&m, level)),
+                keys(&replacement(&r, level)),
+                "seed {seed}, level {level}"
+            );
+        }
+        drawings.push(keys(&replacement(&r, 4)));
+    }
+    // The same seed draws the same; among five seeds the draws differ.
+    assert_eq!(drawings[0], keys(&replacement(&rule(&text(1)), 4)));
+    assert!(drawings.iter().any(|d| d != &drawings[0]));
 }
 
 #[test]

@@ -109,6 +109,10 @@ pub fn library() -> &'static [(&'static str, &'static str)] {
             include_str!("../../fixtures/self-seeding-square.rule"),
         ),
         ("vegetation", include_str!("../../fixtures/vegetation.rule")),
+        (
+            "random-tree",
+            include_str!("../../fixtures/random-tree.rule"),
+        ),
     ]
 }
 

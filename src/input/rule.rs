@@ -13,7 +13,9 @@
 //! segment is fertile and replaced by that generator), optionally followed by `/y` (mirrored
 //! across the segment), `/x` (run backwards) or `/xy` (both); `-` (infertile: the segment stays
 //! as drawn); `.` (no segment: the pen jumps, for generators of several parts). The `age`
-//! extension chooses the generator by the age of the fractal a segment belongs to.
+//! extension chooses the generator by the age of the fractal a segment belongs to; the `random`
+//! extension draws it from a seed and the segment's place (reproducible), per occurrence down to
+//! a depth and once per generator segment below it.
 //!
 //! ## The compiled automaton
 //! The representation is the affine frame of the plane: every generator state has the three
@@ -25,7 +27,8 @@
 //! translation and the reflection; two control points (the segment's ends) reach only their line
 //! and could not place a generator's bend, nor tell a mirrored copy from the plain one. Because
 //! the reflection is composed into the operator, a generator drawn mirrored needs no state of
-//! its own: the states are one per generator (per generator and age with the `age` extension),
+//! its own: the states are one per generator (per generator and age with `age`, per occurrence
+//! above the depth with `random`),
 //! plus `initiator` (the start) and `segment` (a two-point leaf drawn as a line, reached through
 //! one operator per infertile segment). The initiator's operators are the generators already
 //! placed on its segments, so the automaton's level n is the rule's n-th replacement exactly:
@@ -66,6 +69,9 @@ pub enum Target {
         /// True (`NAME!`): the segment starts a new fractal, of age 0.
         restart: bool,
     },
+    /// A random choice, by index: the generator is drawn from the seed and the segment's place
+    /// (see [`Rule::random_pick`]).
+    Random(usize),
 }
 
 /// A segment between two consecutive points of a path.
@@ -106,6 +112,24 @@ pub struct Rule {
     pub generators: Vec<(String, RulePath)>,
     /// Age choices: name and the generator of each age (the age runs modulo the length).
     pub ages: Vec<(String, Vec<usize>)>,
+    /// Random choices: name and the generators drawn from.
+    pub randoms: Vec<(String, Vec<usize>)>,
+    /// The seed of the random choices (`seed N`, default 0).
+    pub seed: u64,
+    /// The depth down to which random choices are drawn per occurrence (`depth D`, default 4).
+    pub depth: usize,
+}
+
+/// The most states a rule with random choices may unroll to (checked before compiling).
+pub const MAX_RANDOM_STATES: u64 = 4096;
+
+/// SplitMix64's finaliser: the hash of the random choices (documented in docs/FORMATS.md so
+/// that the drawing is reproducible by any implementation).
+pub fn splitmix64(mut z: u64) -> u64 {
+    z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
 }
 
 /// True when a text is a rule file: one of its lines starts with `initiator` (automaton files
@@ -247,6 +271,9 @@ pub fn parse_rule(src: &Source) -> Result<Rule> {
     let mut initiator: Option<RawPath> = None;
     let mut gens: Vec<(String, RawPath)> = Vec::new();
     let mut ages: Vec<(String, Vec<NamedAt>)> = Vec::new();
+    let mut randoms: Vec<(String, Vec<NamedAt>)> = Vec::new();
+    let mut seed: Option<u64> = None;
+    let mut depth: Option<(usize, usize, usize)> = None;
     let mut names: HashMap<String, (usize, usize)> = HashMap::new();
     for (ln0, raw) in src.text.lines().enumerate() {
         let ln = ln0 + 1;
@@ -335,11 +362,33 @@ pub fn parse_rule(src: &Source) -> Result<Rule> {
                 let p = read_path(&ws[2..], &field, gen.as_deref(), ln, len, src)?;
                 gens.push((name.to_string(), p));
             }
-            "age" => {
+            "seed" | "depth" => {
+                let v = ws.get(1).map(|(_, t)| *t).unwrap_or("");
+                let ok = ws.len() == 2
+                    && match first {
+                        "seed" => seed.is_none(),
+                        _ => depth.is_none(),
+                    };
+                match (first, v.parse::<u64>()) {
+                    ("seed", Ok(n)) if ok => seed = Some(n),
+                    ("depth", Ok(d @ 1..=12)) if ok => depth = Some((d as usize, ln, c0)),
+                    _ => {
+                        return Err(Error::at(
+                            "E1311",
+                            "expected `seed N` (0 to 2^64 − 1) or `depth D` (1 to 12), once",
+                            ln,
+                            c0,
+                            len + 1 - c0,
+                            src,
+                        ))
+                    }
+                }
+            }
+            "age" | "random" => {
                 let Some(&(c, name)) = ws.get(1) else {
                     return Err(Error::at(
                         "E1309",
-                        "expected `age NAME GENERATOR …` (the generator of each age)",
+                        "expected `age NAME GENERATOR …` or `random NAME GENERATOR …`",
                         ln,
                         c0,
                         len + 1 - c0,
@@ -350,26 +399,31 @@ pub fn parse_rule(src: &Source) -> Result<Rule> {
                 if ws.len() < 3 {
                     return Err(Error::at(
                         "E1309",
-                        "an age choice names at least one generator",
+                        "a choice names at least one generator",
                         ln,
                         c,
                         name.chars().count(),
                         src,
                     ));
                 }
-                ages.push((
+                let entry = (
                     name.to_string(),
                     ws[2..]
                         .iter()
                         .map(|(c, t)| (t.to_string(), ln, *c))
                         .collect(),
-                ));
+                );
+                if first == "age" {
+                    ages.push(entry);
+                } else {
+                    randoms.push(entry);
+                }
             }
             other => {
                 return Err(Error::at(
                     "E1308",
                     format!(
-                    "`{other}`: a rule file has `field`, `initiator`, `generator` and `age` lines"
+                    "`{other}`: a rule file has `field`, `initiator`, `generator`, `age`, `random`, `seed` and `depth` lines"
                 ),
                     ln,
                     c0,
@@ -399,14 +453,24 @@ pub fn parse_rule(src: &Source) -> Result<Rule> {
         .enumerate()
         .map(|(i, (n, _))| (n.clone(), i))
         .collect();
+    let random_index: HashMap<String, usize> = randoms
+        .iter()
+        .enumerate()
+        .map(|(i, (n, _))| (n.clone(), i))
+        .collect();
     let mut resolved_ages = Vec::new();
-    for (name, entries) in &ages {
+    let mut resolved_randoms = Vec::new();
+    for (is_age, (name, entries)) in ages
+        .iter()
+        .map(|x| (true, x))
+        .chain(randoms.iter().map(|x| (false, x)))
+    {
         let mut seq = Vec::new();
         for (g, l, c) in entries {
             let Some(&i) = gen_index.get(g) else {
                 return Err(Error::at(
                     "E1304",
-                    format!("`{g}` is not a generator (an age choice lists generators)"),
+                    format!("`{g}` is not a generator (a choice lists generators)"),
                     *l,
                     *c,
                     g.chars().count(),
@@ -415,7 +479,11 @@ pub fn parse_rule(src: &Source) -> Result<Rule> {
             };
             seq.push(i);
         }
-        resolved_ages.push((name.clone(), seq));
+        if is_age {
+            resolved_ages.push((name.clone(), seq));
+        } else {
+            resolved_randoms.push((name.clone(), seq));
+        }
     }
     let resolve = |p: RawPath| -> Result<RulePath> {
         let mut segments = Vec::new();
@@ -427,10 +495,13 @@ pub fn parse_rule(src: &Source) -> Result<Rule> {
                     let target = match (gen_index.get(&name), age_index.get(&name)) {
                         (Some(&g), _) if !restart => Target::Generator(g),
                         (_, Some(&a)) => Target::Age { choice: a, restart },
-                        (Some(_), _) => {
+                        _ if random_index.contains_key(&name) && !restart => {
+                            Target::Random(random_index[&name])
+                        }
+                        _ if gen_index.contains_key(&name) || random_index.contains_key(&name) => {
                             return Err(Error::at(
                                 "E1303",
-                                format!("`{name}!`: `!` (a new fractal of age 0) applies to age choices, and `{name}` is a generator"),
+                                format!("`{name}!`: `!` (a new fractal of age 0) applies to age choices, and `{name}` is not one"),
                                 l,
                                 c,
                                 n,
@@ -440,7 +511,7 @@ pub fn parse_rule(src: &Source) -> Result<Rule> {
                         _ => {
                             return Err(Error::at(
                                 "E1304",
-                                format!("no generator or age choice `{name}`"),
+                                format!("no generator, age or random choice `{name}`"),
                                 l,
                                 c,
                                 n,
@@ -473,13 +544,52 @@ pub fn parse_rule(src: &Source) -> Result<Rule> {
     for (n, p) in gens {
         generators.push((n, resolve(p)?));
     }
-    Ok(Rule {
+    let depth_at = depth;
+    let rule = Rule {
         field,
         field_decl,
         initiator,
         generators,
         ages: resolved_ages,
-    })
+        randoms: resolved_randoms,
+        seed: seed.unwrap_or(0),
+        depth: depth.map_or(4, |d| d.0),
+    };
+    // With random choices every occurrence above the depth is a state of its own: bound their
+    // number before compiling (initiator segments × Σ F^d, F the most fertile segments of a
+    // generator).
+    if !rule.randoms.is_empty() {
+        let fertile = |p: &RulePath| {
+            p.segments
+                .iter()
+                .filter(|s| matches!(s, Segment::Fertile { .. }))
+                .count() as u64
+        };
+        let f = rule
+            .generators
+            .iter()
+            .map(|(_, p)| fertile(p))
+            .max()
+            .unwrap_or(0);
+        let mut level = fertile(&rule.initiator);
+        let mut total = 0u64;
+        for _ in 1..rule.depth {
+            total = total.saturating_add(level);
+            level = level.saturating_mul(f);
+        }
+        if total > MAX_RANDOM_STATES {
+            let (ln, c) = depth_at.map_or((1, 1), |d| (d.1, d.2));
+            return Err(Error::at(
+                "E1311",
+                format!("random choices drawn per occurrence down to depth {} make up to {total} states (at most {MAX_RANDOM_STATES}): lower `depth`", rule.depth),
+                ln,
+                c,
+                1,
+                src,
+            ));
+        }
+    }
+    Ok(rule)
 }
 
 /// An affine map of the plane, `(x, y) ↦ (a·x + b·y + e, c·x + d·y + f)`, exact.
@@ -550,7 +660,7 @@ impl Affine {
 }
 
 /// A state of the compiled automaton: a generator and, with an age choice, (choice, age).
-type Key = (usize, Option<(usize, usize)>);
+type Key = (usize, Option<(usize, usize)>, Option<Vec<u32>>);
 
 /// One operator out of a state: a fertile piece (map, target state) or a drawn segment (its two
 /// ends, in the state's coordinates).
@@ -560,23 +670,63 @@ enum Piece {
 }
 
 impl Rule {
-    /// The state a fertile segment leads to from a state of context `ctx`.
-    fn target(&self, t: Target, ctx: Option<(usize, usize)>) -> Key {
-        match t {
-            Target::Generator(g) => (g, None),
+    /// The generator a random choice draws for the segment at `place`: `place` is the list of
+    /// segment indices from the initiator down to the segment (per occurrence, down to the
+    /// depth), or `[u32::MAX, generator, index]` below the depth (once per generator segment).
+    /// The draw is `h mod n` with `h = seed`, then `h = splitmix64(h ^ x)` for each x of
+    /// `place`.
+    pub fn random_pick(&self, choice: usize, place: &[u32]) -> usize {
+        let mut h = self.seed;
+        for &x in place {
+            h = splitmix64(h ^ u64::from(x));
+        }
+        let seq = &self.randoms[choice].1;
+        seq[(h % seq.len() as u64) as usize]
+    }
+
+    /// The state the fertile segment `j` of a state `parent` leads to (`parent` is `None` for the
+    /// initiator).
+    fn target(&self, t: Target, parent: Option<&Key>, j: usize) -> Key {
+        let j = j as u32;
+        let ctx = parent.and_then(|k| k.1);
+        // The segment's place: per occurrence while the parent knows its own.
+        let place: Option<Vec<u32>> = match parent {
+            None => Some(vec![j]),
+            Some(k) => k.2.as_ref().map(|p| [p.as_slice(), &[j]].concat()),
+        };
+        let gen = match t {
+            Target::Generator(g) => return (g, None, self.keep(place)),
             Target::Age { choice, restart } => {
                 let n = self.ages[choice].1.len();
                 let age = match ctx {
                     Some((c, a)) if c == choice && !restart => (a + 1) % n,
                     _ => 0,
                 };
-                (self.ages[choice].1[age], Some((choice, age)))
+                return (
+                    self.ages[choice].1[age],
+                    Some((choice, age)),
+                    self.keep(place),
+                );
             }
-        }
+            Target::Random(choice) => match &place {
+                Some(p) if p.len() <= self.depth => self.random_pick(choice, p),
+                _ => {
+                    let g = parent.map_or(u32::MAX - 1, |k| k.0 as u32);
+                    self.random_pick(choice, &[u32::MAX, g, j])
+                }
+            },
+        };
+        (gen, None, self.keep(place))
     }
 
-    /// The pieces of a path laid by `map`, for a state of context `ctx`.
-    fn pieces(&self, path: &RulePath, map: &Affine, ctx: Option<(usize, usize)>) -> Vec<Piece> {
+    /// A place is kept in the state (one state per occurrence) only for rules with random
+    /// choices, above the depth.
+    fn keep(&self, place: Option<Vec<u32>>) -> Option<Vec<u32>> {
+        place.filter(|p| !self.randoms.is_empty() && p.len() < self.depth)
+    }
+
+    /// The pieces of a path laid by `map`, for the state `key` (`None`: the initiator's place).
+    fn pieces(&self, path: &RulePath, map: &Affine, key: &Key) -> Vec<Piece> {
         let k = &self.field;
         let mut out = Vec::new();
         for (i, s) in path.segments.iter().enumerate() {
@@ -586,16 +736,11 @@ impl Rule {
                 Segment::Drawn => out.push(Piece::Drawn(map.apply(k, p), map.apply(k, q))),
                 Segment::Fertile { target, flip } => out.push(Piece::Fertile(
                     map.then(k, &Affine::onto(k, p, q, *flip)),
-                    self.target(*target, ctx),
+                    self.target(*target, Some(key), i),
                 )),
             }
         }
         out
-    }
-
-    /// The state of the generator that replaces an initiator segment.
-    fn start_key(&self, t: Target) -> Key {
-        self.target(t, None)
     }
 
     /// The automaton file this rule compiles to (see the module documentation).
@@ -611,9 +756,9 @@ impl Rule {
                 Segment::Gap => {}
                 Segment::Drawn => init_pieces.push(Piece::Drawn(p.clone(), q.clone())),
                 Segment::Fertile { target, flip } => {
-                    let key = self.start_key(*target);
+                    let key = self.target(*target, None, i);
                     let map = Affine::onto(k, p, q, *flip);
-                    init_pieces.extend(self.pieces(&self.generators[key.0].1, &map, key.1));
+                    init_pieces.extend(self.pieces(&self.generators[key.0].1, &map, &key));
                 }
             }
         }
@@ -621,25 +766,25 @@ impl Rule {
         let mut keys: Vec<Key> = Vec::new();
         let mut index: HashMap<Key, usize> = HashMap::new();
         let mut push = |key: Key, keys: &mut Vec<Key>| {
-            if let std::collections::hash_map::Entry::Vacant(e) = index.entry(key) {
+            if let std::collections::hash_map::Entry::Vacant(e) = index.entry(key.clone()) {
                 e.insert(keys.len());
                 keys.push(key);
             }
         };
         for p in &init_pieces {
             if let Piece::Fertile(_, key) = p {
-                push(*key, &mut keys);
+                push(key.clone(), &mut keys);
             }
         }
         let mut all_pieces: Vec<Vec<Piece>> = Vec::new();
         let id = Affine::identity(k);
         let mut i = 0;
         while i < keys.len() {
-            let (g, ctx) = keys[i];
-            let ps = self.pieces(&self.generators[g].1, &id, ctx);
+            let key = keys[i].clone();
+            let ps = self.pieces(&self.generators[key.0].1, &id, &key);
             for p in &ps {
                 if let Piece::Fertile(_, key) = p {
-                    push(*key, &mut keys);
+                    push(key.clone(), &mut keys);
                 }
             }
             all_pieces.push(ps);
@@ -647,10 +792,15 @@ impl Rule {
         }
         let state_name = |key: &Key| -> String {
             let g = &self.generators[key.0].0;
-            match key.1 {
+            let mut n = match key.1 {
                 None => g.clone(),
                 Some((c, a)) => format!("{g}.{}{a}", self.ages[c].0),
+            };
+            if let Some(p) = &key.2 {
+                let p: Vec<String> = p.iter().map(u32::to_string).collect();
+                n += &format!(".at{}", p.join("_"));
             }
+            n
         };
         let n0 = self.initiator.points.len();
         let mut t =
@@ -904,6 +1054,11 @@ mod tests {
                 2,
                 17,
             ),
+            ("initiator 0,0 g 1,0\ngenerator g 0,0 g 1,0\nseed x\n", "E1311", 3, 1),
+            ("initiator 0,0 g 1,0\ngenerator g 0,0 g 1,0\ndepth 13\n", "E1311", 3, 1),
+            // Above depth 12: 1 + 4 + 16 + … + 4^10 = (4^11 − 1)/3 states > 4096.
+            ("random r g\ndepth 12\ninitiator 0,0 r 1,0\ngenerator g 0,0 r 1/4,0 r 1/2,0 r 3/4,0 r 1,0\n", "E1311", 2, 1),
+            ("random r g\ninitiator 0,0 r! 1,0\ngenerator g 0,0 g 1,0\n", "E1303", 2, 15),
         ];
         for (text, code, line, c) in cases {
             let e = parse_rule(&src(text)).unwrap_err();
