@@ -37,6 +37,8 @@ use std::cmp::Ordering;
 pub const MAX_ROUNDS: usize = 6;
 /// The most vertices of one hull (beyond it the hull criterion gives up).
 const MAX_VERTICES: usize = 48;
+/// The most operators of a part for any criterion (the checks are quadratic in their number).
+const MAX_EDGES: usize = 256;
 /// The most states of a part for the hull criterion.
 const MAX_PART: usize = 64;
 
@@ -357,6 +359,11 @@ pub(crate) fn part_verdict(m: &AutomatonModel, ops: &[KMatrix], part: &[usize]) 
                 raw.push((q, w, o));
             }
         }
+    }
+    if raw.len() > MAX_EDGES {
+        return undecided(format!(
+            "undecided: more than {MAX_EDGES} operators in the part (the exact check is not attempted)"
+        ));
     }
     // Equal operators out of one state into one state: the same piece twice.
     for (i, x) in raw.iter().enumerate() {
