@@ -659,3 +659,33 @@ fn bad_rule_files_exit_2_with_code_line_and_column() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+    /// Any text with an `initiator` line is a rule file: it parses and compiles, or it is an
+    /// error with a code and a span; never a panic.
+    #[test]
+    fn hostile_rule_texts_are_errors_not_panics(
+        lines in proptest::collection::vec(
+            prop_oneof![
+                "[ -~]{0,30}",
+                Just("field s = root of x^2 - 3 in [1, 2]".to_string()),
+                Just("generator g 0,0 g 1/2,1/2s g/xy 1,0".to_string()),
+                Just("age a g g h".to_string()),
+                Just("random r g".to_string()),
+                "generator [a-h] ([-0-9/,.s ]{1,8} [gh.\\-!/xy]{1,3} ){1,4}1,0",
+            ],
+            0..6,
+        ),
+        init in "initiator( [-0-9/,s]{1,6} [gra!/xy.\\-]{1,3}){0,3} [0-9],[0-9]",
+    ) {
+        let mut text = lines.join("\n");
+        text += "\n";
+        text += &init;
+        let src = Source { name: "h.rule".into(), text };
+        match lacuna::input::compile_rule(&src) {
+            Ok(_) => {}
+            Err(e) => prop_assert!(e.code().starts_with('E'), "{}", e.render()),
+        }
+    }
+}
