@@ -631,3 +631,29 @@ fn certified_decimal(k: &NumberField, v: &PartValue, digits: usize) -> String {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rational_roots_exist_only_when_exact() {
+        // (1/3)^3 = 1/27; (4/9)^2 = 16/81; 1/2 has no rational square root.
+        assert_eq!(
+            rational_root(&BigRational::new(1.into(), 27.into()), 3),
+            Some(BigRational::new(1.into(), 3.into()))
+        );
+        assert_eq!(
+            rational_root(&BigRational::new(16.into(), 81.into()), 2),
+            Some(BigRational::new(4.into(), 9.into()))
+        );
+        assert_eq!(
+            rational_root(&BigRational::new(1.into(), 2.into()), 2),
+            None
+        );
+        assert_eq!(
+            rational_root(&BigRational::new(1.into(), 27.into()), 2),
+            None
+        );
+    }
+}

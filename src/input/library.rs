@@ -331,6 +331,24 @@ mod tests {
     use super::*;
 
     #[test]
+    fn kinds_by_content() {
+        assert_eq!(kind_of("face 0: B2 B2 B2 B2 | B2 B2 B2 | A1\n"), "face");
+        assert_eq!(kind_of("state e 2\n"), "automaton");
+        assert_eq!(
+            kind_of("# x\ninitiator 0,0 g 1,0\ngenerator g 0,0 g 1,0\n"),
+            "rule"
+        );
+        assert_eq!(
+            kind_of(include_str!("../../fixtures/two-quads.txt")),
+            "assembly"
+        );
+        assert_eq!(
+            kind_of(include_str!("../../fixtures/cube-B2.txt")),
+            "volume"
+        );
+    }
+
+    #[test]
     fn every_library_entry_loads() {
         for (name, text) in library() {
             if crate::input::volume_file::is_volume_text(text) {
