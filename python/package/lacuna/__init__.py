@@ -1,0 +1,881 @@
+"""lacuna from Python: the exact verifier and solver of BC-IFS fractal topology.
+
+>>> import lacuna
+>>> f0 = lacuna.Face("C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1")
+>>> len(f0.closure().types)
+1
+>>> f0.counts(2)[2].faces
+36
+>>> f0.ratio().value
+Fraction(1, 3)
+
+Exact results are Python objects: integers as ``int`` (of any size), rationals as
+``fractions.Fraction``, algebraic numbers as exact strings with a SymPy conversion
+(:meth:`Ratio.sympy`). Floats appear only in geometry (polygons, measures). Errors are
+:class:`LacunaError` exceptions (or a subclass) carrying ``code``, ``message`` and ``span``.
+
+Inputs are what the command line reads: face notation (:class:`Face`), assembly and AutoFrac2D
+files (:class:`Assembly`), automaton files (:class:`Automaton`), and the names of the library
+(:func:`library`, :func:`load`).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+from dataclasses import dataclass, field
+from fractions import Fraction
+from pathlib import Path
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+
+from . import _lacuna
+from ._errors import (
+    AnalysisError,
+    FileError,
+    GeometryError,
+    InputError,
+    LacunaError,
+    LimitError,
+    RunawayError,
+    Span,
+    UsageError,
+)
+
+__version__ = _lacuna.__version__
+
+__all__ = [
+    "Face",
+    "Assembly",
+    "Automaton",
+    "Structure",
+    "Closure",
+    "FaceType",
+    "LevelCount",
+    "Ratio",
+    "LimitPoint",
+    "Solution",
+    "FieldVerdict",
+    "Certificate",
+    "CheckReport",
+    "Rendering",
+    "Shapes",
+    "Record",
+    "library",
+    "load",
+    "check",
+    "LacunaError",
+    "InputError",
+    "FileError",
+    "LimitError",
+    "RunawayError",
+    "UsageError",
+    "AnalysisError",
+    "GeometryError",
+    "Span",
+]
+
+PathLike = Union[str, "os.PathLike[str]"]
+Limits = Optional[Mapping[str, int]]
+Params = Optional[Mapping[str, Union[str, int, Fraction]]]
+
+
+# ---------------------------------------------------------------------------------------------
+# Exact values
+
+
+def _q(text: Optional[str]) -> Optional[Fraction]:
+    """An exact rational written by lacuna (``5/2``, ``-1``) as a Fraction."""
+    return None if text is None else Fraction(text)
+
+
+def _matrix(text: str) -> List[List[Fraction]]:
+    """A matrix written ``[a b; c d]`` as rows of Fractions."""
+    body = text.strip()
+    if body.startswith("[") and body.endswith("]"):
+        body = body[1:-1]
+    if not body.strip():
+        return []
+    return [[Fraction(x) for x in row.split()] for row in body.split(";")]
+
+
+def _params(params: Params) -> List[Tuple[str, str]]:
+    """Parameter values as exact text for the native module."""
+    if not params:
+        return []
+    out = []
+    for k, v in params.items():
+        if isinstance(v, float):
+            raise UsageError(
+                "E0504",
+                f"parameter {k} = {v!r}: give an exact value (a Fraction, an int or a string such as '1/7')",
+            )
+        out.append((str(k), str(v)))
+    return out
+
+
+def _limits(limits: Limits) -> Optional[Dict[str, int]]:
+    return None if limits is None else {str(k): int(v) for k, v in limits.items()}
+
+
+class Record:
+    """A report of lacuna as attributes (nested objects are Records too, lists stay lists).
+
+    ``record.data`` is the plain JSON-like data, the same as the command line's ``--json`` output.
+    """
+
+    def __init__(self, data: Mapping[str, Any]):
+        object.__setattr__(self, "data", dict(data))
+
+    def __getattr__(self, name: str) -> Any:
+        try:
+            return _wrap(self.data[name])
+        except KeyError:
+            raise AttributeError(name) from None
+
+    def __getitem__(self, name: str) -> Any:
+        return _wrap(self.data[name])
+
+    def __contains__(self, name: str) -> bool:
+        return name in self.data
+
+    def keys(self):
+        """The field names."""
+        return self.data.keys()
+
+    def __dir__(self):
+        return list(self.data.keys()) + ["data", "keys"]
+
+    def __repr__(self) -> str:
+        inner = ", ".join(f"{k}={_short(v)}" for k, v in self.data.items())
+        return f"Record({inner})"
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Record) and other.data == self.data
+
+
+def _short(v: Any) -> str:
+    r = repr(v)
+    return r if len(r) < 60 else r[:57] + "..."
+
+
+def _wrap(v: Any) -> Any:
+    if isinstance(v, dict):
+        return Record(v)
+    if isinstance(v, list):
+        return [_wrap(x) for x in v]
+    return v
+
+
+# ---------------------------------------------------------------------------------------------
+# Results
+
+
+@dataclass(frozen=True)
+class FaceType:
+    """One face type of a closure.
+
+    Attributes:
+        id: ``"T0"``, ``"T1"``, … (start types first).
+        face: its canonical notation.
+        children: the type of each sub-face, in order.
+        subfaces: the notation of each sub-face.
+        contribution: the lacunas it contributes per subdivision (halves: a lacuna on a shared
+            edge counts half on each side).
+        complex: the exact level-1 complex (vertices, edges, faces, holes, valences), when given.
+    """
+
+    id: str
+    face: str
+    children: Tuple[str, ...]
+    subfaces: Tuple[str, ...]
+    contribution: Fraction
+    complex: Optional[Record] = None
+
+
+@dataclass(frozen=True)
+class Closure:
+    """The closure of the start faces under subdivision.
+
+    Attributes:
+        closed: True when the recursion closes; False for a runaway (see ``runaway``).
+        types: the face types.
+        start: the type of each start face.
+        classes: strongly connected classes with their periods (when closed).
+        bound: the stated bound that proves the closure finite (a Record), when closed.
+        runaway: the witness chain and the limit hit, when it did not close.
+        data: the whole report as ``lacuna closure --json`` prints it.
+    """
+
+    closed: bool
+    types: Tuple[FaceType, ...]
+    start: Tuple[str, ...]
+    classes: Optional[Record]
+    bound: Optional[Record]
+    runaway: Optional[Record]
+    data: Dict[str, Any] = field(repr=False, compare=False)
+
+    @property
+    def edges(self) -> List[Tuple[str, str, Dict[str, int]]]:
+        """The type graph as a networkx-compatible edge list: ``(T_i, T_j, {"count": k})`` when
+        k sub-faces of T_i are of type T_j (``networkx.DiGraph(closure.edges)``)."""
+        out = []
+        for t in self.types:
+            seen: Dict[str, int] = {}
+            for c in t.children:
+                seen[c] = seen.get(c, 0) + 1
+            out.extend((t.id, c, {"count": k}) for c, k in seen.items())
+        return out
+
+    def graph(self):
+        """The type graph as a ``networkx.DiGraph`` (nodes carry ``face`` and ``contribution``;
+        edges ``count``). Needs networkx."""
+        import networkx as nx
+
+        g = nx.DiGraph()
+        for t in self.types:
+            g.add_node(t.id, face=t.face, contribution=t.contribution)
+        g.add_edges_from(self.edges)
+        return g
+
+    def matrix(self) -> List[List[int]]:
+        """The substitution matrix: ``M[i][j]`` sub-faces of type j in type i."""
+        index = {t.id: i for i, t in enumerate(self.types)}
+        m = [[0] * len(self.types) for _ in self.types]
+        for i, t in enumerate(self.types):
+            for c in t.children:
+                m[i][index[c]] += 1
+        return m
+
+
+@dataclass(frozen=True)
+class LevelCount:
+    """Exact counts at one level: ``faces`` = N^C_i (an int), ``lacunas`` = N^L_i (a Fraction:
+    lacunas on shared edges count half) and ``ratio`` = R_i (a Fraction)."""
+
+    level: int
+    faces: int
+    lacunas: Fraction
+    ratio: Fraction
+
+
+@dataclass(frozen=True)
+class LimitPoint:
+    """``lim R_{Pn+r}`` for the residue r (exact text and certified decimals)."""
+
+    residue: int
+    exact: str
+    decimal: str
+
+
+@dataclass(frozen=True)
+class Ratio:
+    """The limit ratio R of lacunas against sub-faces, exact.
+
+    Attributes:
+        exists: whether R_i converges.
+        exact: the limit as exact text: ``1/3``, ``(-3 + sqrt(17))/4`` when ρ is quadratic, or a
+            polynomial in ρ with ρ the root of its minimal polynomial in an interval; None when
+            the limit does not exist (see ``limit_points``).
+        decimal: certified decimals (truncated), when it exists.
+        coordinates: the limit on the power basis 1, ρ, …, ρ^(d−1) of Q(ρ), as Fractions.
+        perron_root, perron_decimal, perron_min_poly: ρ, its decimals, its minimal polynomial
+            in x.
+        period: P, the lcm of the dominant periods.
+        limit_points: the limits of R_{Pn+r}, one per residue r.
+        reasons: how the decision was reached.
+    """
+
+    exists: bool
+    exact: Optional[str]
+    decimal: Optional[str]
+    coordinates: Optional[Tuple[Fraction, ...]]
+    perron_root: str
+    perron_decimal: str
+    perron_min_poly: str
+    period: int
+    limit_points: Tuple[LimitPoint, ...]
+    reasons: Tuple[str, ...]
+    data: Dict[str, Any] = field(repr=False, compare=False)
+
+    @property
+    def degree(self) -> int:
+        """The degree of ρ over Q (1: R is rational; 2: quadratic)."""
+        powers = [int(e) for e in re.findall(r"x\^(\d+)", self.perron_min_poly)]
+        return max(powers, default=1 if "x" in self.perron_min_poly else 0)
+
+    @property
+    def rational(self) -> bool:
+        """Whether R exists and is rational."""
+        return self.exists and self.coordinates is not None and all(c == 0 for c in self.coordinates[1:])
+
+    @property
+    def value(self) -> Optional[Fraction]:
+        """R as a Fraction when it is rational, else None."""
+        return self.coordinates[0] if self.rational else None
+
+    @property
+    def quadratic(self) -> bool:
+        """Whether R exists and its exact text is a SymPy expression in a square root."""
+        return self.exists and self.degree <= 2
+
+    def sympy(self):
+        """R as an exact SymPy number: ``sympify(exact)`` when rational or quadratic, else the
+        polynomial in ρ on ``coordinates`` with ρ the largest real root of its minimal polynomial
+        (a ``CRootOf``). Needs SymPy; None when the limit does not exist."""
+        import sympy
+
+        if not self.exists:
+            return None
+        if self.quadratic:
+            return sympy.sympify(self.exact)
+        rho = self.rho()
+        return sum(sympy.Rational(c.numerator, c.denominator) * rho**i for i, c in enumerate(self.coordinates))
+
+    def rho(self):
+        """ρ as an exact SymPy number (the largest real root of its minimal polynomial)."""
+        import sympy
+
+        x = sympy.Symbol("x")
+        return sympy.Poly(sympy.sympify(self.perron_min_poly.replace("^", "**")), x).real_roots()[-1]
+
+
+@dataclass(frozen=True)
+class Solution:
+    """The exact solution of the BC-IFS constraint system.
+
+    Attributes:
+        consistent: whether a solution exists.
+        unknowns, equations: the size of the system.
+        rank: its rank (None when inconsistent).
+        dof: the degrees of freedom; ``dof_by_state`` and ``dof_by_operator`` split them.
+        parameters: the free parameters, named after the entry each controls (``T0.T1[2][4]``).
+        particular: one solution: each unknown operator's matrix, rows of Fractions.
+        basis: for each parameter, the entries it moves and by how much (Fractions).
+        conflicts: when inconsistent, the constraints with the multipliers that sum them to
+            ``0 = conflict_constant``.
+        degenerate: forced collapses found by the degeneracy check.
+    """
+
+    consistent: bool
+    unknowns: int
+    equations: int
+    rank: Optional[int]
+    dof: int
+    dof_by_state: Dict[str, int]
+    dof_by_operator: Dict[str, int]
+    parameters: Tuple[str, ...]
+    particular: Dict[str, List[List[Fraction]]]
+    basis: Tuple[Dict[str, Fraction], ...]
+    conflicts: Tuple[Tuple[str, Fraction], ...]
+    conflict_constant: Optional[Fraction]
+    degenerate: Tuple[str, ...]
+    degeneracy_checked: bool
+    data: Dict[str, Any] = field(repr=False, compare=False)
+
+    @property
+    def ok(self) -> bool:
+        """Consistent and without forced collapse."""
+        return self.consistent and not self.degenerate
+
+
+@dataclass(frozen=True)
+class FieldVerdict:
+    """The verdict on an automaton whose entries lie in a real number field (every operator given):
+    whether every constraint holds exactly in the field, and which fail."""
+
+    field: str
+    consistent: bool
+    failed: Tuple[str, ...]
+    data: Dict[str, Any] = field(repr=False, compare=False)
+
+    @property
+    def ok(self) -> bool:
+        """Whether every constraint holds."""
+        return self.consistent
+
+
+@dataclass(frozen=True)
+class CheckReport:
+    """What the independent checker says of a certificate.
+
+    Attributes:
+        all_proved: every step the claim needs is proved (the command line's exit 0).
+        partial: every step present is proved but some the claim needs are missing (exit 3).
+        claim: the claim, in words.
+        steps: each step's outcome, verdict and message (Records).
+        missing: the steps the claim needs that the certificate lacks.
+    """
+
+    all_proved: bool
+    partial: bool
+    claim: Tuple[str, ...]
+    steps: Tuple[Record, ...]
+    missing: Tuple[str, ...]
+    data: Dict[str, Any] = field(repr=False, compare=False)
+
+
+class Certificate:
+    """A certificate of every verdict on faces (closure, solution space, limit ratio): the JSON
+    file ``lacuna verify --certificate`` writes. The checker re-verifies it alone."""
+
+    def __init__(self, text: str):
+        self.text = text
+
+    @property
+    def data(self) -> Dict[str, Any]:
+        """The certificate as JSON data."""
+        return json.loads(self.text)
+
+    def write(self, path: PathLike) -> Path:
+        """Writes the certificate to a file."""
+        p = Path(path)
+        p.write_text(self.text, encoding="utf-8")
+        return p
+
+    def check(self) -> CheckReport:
+        """Runs the independent checker on this certificate."""
+        return _check_report(*_lacuna.check_text(self.text))
+
+    def __repr__(self) -> str:
+        d = self.data
+        return f"Certificate(input={d.get('input')!r}, steps={len(d.get('steps', []))})"
+
+
+@dataclass
+class Rendering:
+    """The cells of a level of faces: one float polygon per cell (an (n, 2) NumPy array, counter-
+    clockwise), its face type, and the files written."""
+
+    polygons: List[Any]
+    types: Any
+    written: List[Path]
+
+    def __len__(self) -> int:
+        return len(self.polygons)
+
+    def plot(self, ax=None, cmap: str = "tab10", edgecolor: str = "black", linewidth: float = 0.3):
+        """Draws the cells on a matplotlib axis (filled by type); returns the axis."""
+        import matplotlib.pyplot as plt
+        from matplotlib.collections import PolyCollection
+
+        if ax is None:
+            _, ax = plt.subplots()
+        colours = plt.get_cmap(cmap)
+        coll = PolyCollection(
+            self.polygons,
+            facecolors=[colours(int(t) % colours.N) for t in self.types],
+            edgecolors=edgecolor,
+            linewidths=linewidth,
+        )
+        ax.add_collection(coll)
+        ax.autoscale_view()
+        ax.set_aspect("equal")
+        return ax
+
+
+@dataclass
+class Shapes:
+    """The pieces of an automaton's attractor at a level: each an (n, space) NumPy array of points
+    (space 2 or 3), its state's name and kind (``point``, ``polyline``, ``polygon``)."""
+
+    points: List[Any]
+    states: List[str]
+    kinds: List[str]
+    space: int
+    consistent: bool
+    written: List[Path]
+
+    def __len__(self) -> int:
+        return len(self.points)
+
+    def plot(self, ax=None, cmap: str = "tab10", linewidth: float = 0.5):
+        """Draws the pieces on a matplotlib axis (x, y); returns the axis."""
+        import matplotlib.pyplot as plt
+        from matplotlib.collections import LineCollection, PolyCollection
+
+        if ax is None:
+            _, ax = plt.subplots()
+        colours = plt.get_cmap(cmap)
+        names = sorted(set(self.states))
+        colour = {n: colours(i % colours.N) for i, n in enumerate(names)}
+        polys = [(p[:, :2], colour[s]) for p, s, k in zip(self.points, self.states, self.kinds) if k == "polygon"]
+        lines = [(p[:, :2], colour[s]) for p, s, k in zip(self.points, self.states, self.kinds) if k == "polyline"]
+        dots = [(p[:, :2], colour[s]) for p, s, k in zip(self.points, self.states, self.kinds) if k == "point"]
+        if polys:
+            ax.add_collection(
+                PolyCollection([p for p, _ in polys], facecolors=[c for _, c in polys], edgecolors="black", linewidths=linewidth)
+            )
+        if lines:
+            ax.add_collection(LineCollection([p for p, _ in lines], colors=[c for _, c in lines], linewidths=linewidth * 2))
+        for p, c in dots:
+            ax.plot(p[:, 0], p[:, 1], ".", color=c, markersize=2)
+        ax.autoscale_view()
+        ax.set_aspect("equal")
+        return ax
+
+
+def _check_report(text: str, all_proved: bool, partial: bool) -> CheckReport:
+    d = json.loads(text)
+    return CheckReport(
+        all_proved=all_proved,
+        partial=partial,
+        claim=tuple(d.get("claim", [])),
+        steps=tuple(Record(s) for s in d.get("steps", [])),
+        missing=tuple(d.get("missing", [])),
+        data=d,
+    )
+
+
+def _closure(d: Dict[str, Any]) -> Closure:
+    types = tuple(
+        FaceType(
+            id=t["id"],
+            face=t["face"],
+            children=tuple(t.get("children", [])),
+            subfaces=tuple(t.get("subfaces", [])),
+            contribution=Fraction(t["contribution"]),
+            complex=Record(t["complex"]) if t.get("complex") else None,
+        )
+        for t in d.get("types", [])
+    )
+    closed = bool(d.get("closed"))
+    return Closure(
+        closed=closed,
+        types=types,
+        start=tuple(d.get("start", [])),
+        classes=Record(d["classes"]) if d.get("classes") else None,
+        bound=Record(d["bound"]) if d.get("bound") else None,
+        runaway=None if closed else Record(d.get("runaway") or {}),
+        data=d,
+    )
+
+
+def _ratio(d: Dict[str, Any]) -> Ratio:
+    coords = d.get("coordinates")
+    return Ratio(
+        exists=bool(d["exists"]),
+        exact=d.get("exact"),
+        decimal=d.get("decimal"),
+        coordinates=None if coords is None else tuple(Fraction(c) for c in coords),
+        perron_root=d["perron_root"],
+        perron_decimal=d["perron_decimal"],
+        perron_min_poly=d["perron_min_poly"],
+        period=int(d["period"]),
+        limit_points=tuple(LimitPoint(int(p["residue"]), p["exact"], p["decimal"]) for p in d.get("limit_points", [])),
+        reasons=tuple(d.get("reasons", [])),
+        data=d,
+    )
+
+
+def _solution(d: Dict[str, Any]) -> Union[Solution, FieldVerdict]:
+    if "field" in d and "unknowns" not in d:
+        return FieldVerdict(field=d["field"], consistent=bool(d["consistent"]), failed=tuple(d.get("failed", [])), data=d)
+    return Solution(
+        consistent=bool(d["consistent"]),
+        unknowns=int(d["unknowns"]),
+        equations=int(d["equations"]),
+        rank=d.get("rank"),
+        dof=int(d["dof"]),
+        dof_by_state=dict(d.get("dof_by_state", {})),
+        dof_by_operator=dict(d.get("dof_by_operator", {})),
+        parameters=tuple(d.get("parameters", [])),
+        particular={k: _matrix(v) for k, v in d.get("particular", {}).items()},
+        basis=tuple({k: Fraction(v) for k, v in b.items()} for b in d.get("basis", [])),
+        conflicts=tuple((c["constraint"], Fraction(c["multiplier"])) for c in (d.get("conflict") or [])),
+        conflict_constant=_q(d.get("conflict_constant")),
+        degenerate=tuple(d.get("degenerate", [])),
+        degeneracy_checked=bool(d.get("degeneracy_checked")),
+        data=d,
+    )
+
+
+# ---------------------------------------------------------------------------------------------
+# Inputs
+
+
+class Structure:
+    """What the faces' methods share: a face, an assembly of faces (with shared edges) or a face
+    structure of the library. ``source`` is what the command line would be given (notation, a
+    path or a library name)."""
+
+    source: str
+    name: str
+
+    def __init__(self, source: str):
+        kind, name = _lacuna.kind(source)
+        if kind != "faces":
+            raise UsageError("E0504", f"`{source}` is a {kind}, not faces: use lacuna.load()")
+        self.source = source
+        self.name = name
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}({self.name!r})"
+
+    def closure(self, *, limits: Limits = None) -> Closure:
+        """Every face type the recursion produces, with sub-faces, contributions, classes and the
+        stated bound; a runaway is a result (``closed`` False), not an error."""
+        return _closure(json.loads(_lacuna.closure(self.source, _limits(limits))))
+
+    def counts(self, levels: int, *, limits: Limits = None) -> List[LevelCount]:
+        """Exact counts for levels 0..levels: N^C_i (int), N^L_i and R_i (Fractions)."""
+        d = json.loads(_lacuna.counts(self.source, int(levels), _limits(limits)))
+        return [
+            LevelCount(int(r["level"]), int(r["faces"]), Fraction(r["lacunas"]), Fraction(r["ratio"]))
+            for r in d["levels"]
+        ]
+
+    def ratio(self, digits: int = 30, *, limits: Limits = None) -> Ratio:
+        """The exact limit ratio R by eigen analysis, with ``digits`` certified decimals."""
+        return _ratio(json.loads(_lacuna.ratio(self.source, int(digits), _limits(limits))))
+
+    def solve(self, degree: int = 2, cantor_gap: Union[str, int, Fraction] = 1, *, limits: Limits = None) -> Solution:
+        """The exact BC-IFS constraint system of the closure with Bézier degree ``degree`` and
+        Cantor gap/piece ``cantor_gap``: rank, degrees of freedom, particular solution and basis,
+        or the conflicting constraints."""
+        d = json.loads(_lacuna.solve(self.source, int(degree), str(cantor_gap), _limits(limits)))
+        return _solution(d)  # type: ignore[return-value]
+
+    def verify(self, levels: int = 5, *, limits: Limits = None) -> Record:
+        """The whole verification (closure, bound, identities, classes, counts, R, solver) as
+        ``lacuna verify --json`` reports it; ``.verified`` is the verdict."""
+        return Record(json.loads(_lacuna.verify(self.source, int(levels), _limits(limits))))
+
+    def certificate(self, path: Optional[PathLike] = None, *, limits: Limits = None) -> Certificate:
+        """The certificate of every verdict; written to ``path`` when given."""
+        c = Certificate(_lacuna.certificate(self.source, _limits(limits)))
+        if path is not None:
+            c.write(path)
+        return c
+
+    def render(
+        self,
+        level: int,
+        *,
+        svg: Optional[PathLike] = None,
+        png: Optional[PathLike] = None,
+        stl: Optional[PathLike] = None,
+        stl_ascii: bool = False,
+        size: int = 1024,
+        legend: bool = True,
+        transparent: bool = False,
+        width: Optional[float] = None,
+        thickness: Optional[float] = None,
+        params: Params = None,
+        segments: int = 4,
+        max_cells: Optional[int] = None,
+        limits: Limits = None,
+    ) -> Rendering:
+        """Instantiates the verified model (default parameters, or ``params`` {name: exact value})
+        and returns the polygons of level ``level`` as NumPy arrays; writes an SVG, a PNG (``size``
+        pixels wide) and a printable STL (``width``/``thickness`` in mm; checked against the exact
+        topology before writing) when their paths are given."""
+        import numpy as np
+
+        p = _params(params)
+        lim = _limits(limits)
+        types, offsets, xy = _lacuna.polygons(self.source, int(level), p, int(segments), max_cells, lim)
+        pts = np.asarray(xy, dtype=float).reshape(-1, 2)
+        polygons = [pts[offsets[i] : offsets[i + 1]] for i in range(len(types))]
+        written: List[Path] = []
+        if svg is not None or png is not None or stl is not None:
+            written = [
+                Path(w)
+                for w in _lacuna.render(
+                    self.source,
+                    int(level),
+                    p,
+                    _path(svg),
+                    _path(png),
+                    _path(stl),
+                    bool(stl_ascii),
+                    int(size),
+                    bool(legend),
+                    bool(transparent),
+                    width,
+                    thickness,
+                    int(segments),
+                    max_cells,
+                    lim,
+                )
+            ]
+        return Rendering(polygons=polygons, types=np.asarray(types, dtype=int), written=written)
+
+    def measure(
+        self,
+        level: int,
+        *,
+        params: Params = None,
+        raster: int = 2048,
+        max_raster: int = 8192,
+        width: Optional[float] = None,
+        resolution: Optional[float] = None,
+        segments: int = 4,
+        max_cells: Optional[int] = None,
+        limits: Limits = None,
+    ) -> Record:
+        """Area, perimeter, F_A, F_P, box-counting dimension, density, holes and components per
+        level against the exact counts (``.verified``), and the printability at the level, as
+        ``lacuna measure --json`` reports them."""
+        return Record(
+            json.loads(
+                _lacuna.measure(
+                    self.source,
+                    int(level),
+                    _params(params),
+                    int(raster),
+                    int(max_raster),
+                    30,
+                    width,
+                    resolution,
+                    int(segments),
+                    max_cells,
+                    _limits(limits),
+                )
+            )
+        )
+
+
+def _path(p: Optional[PathLike]) -> Optional[str]:
+    return None if p is None else os.fspath(p)
+
+
+class Face(Structure):
+    """One face in lacuna's notation: ``Face("C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1")`` (boundary |
+    Ea El Ec | algorithm [| delay]). Raises :class:`InputError` with the span of a bad token.
+
+    ``notation`` is the canonical form (the least rotation of the boundary)."""
+
+    def __init__(self, notation: str):
+        self.notation = _lacuna.canonical(notation)
+        super().__init__(notation)
+
+    def __repr__(self) -> str:
+        return f"Face({self.notation!r})"
+
+
+class Assembly(Structure):
+    """Faces with shared edges: an assembly file in lacuna's format, an AutoFrac2D input file, or a
+    library entry of faces."""
+
+    @classmethod
+    def from_file(cls, path: PathLike) -> "Assembly":
+        """Reads an assembly or AutoFrac2D file."""
+        p = os.fspath(path)
+        if not os.path.isfile(p):
+            _lacuna.read_text(p)  # raises FileError (E0601) with lacuna's message
+        return cls(p)
+
+
+class Automaton:
+    """A hand-written automaton (lacuna's automaton format): states, operators, constraints, and
+    optionally a field, points and primitives to draw its attractor."""
+
+    def __init__(self, source: str):
+        kind, name = _lacuna.kind(source)
+        if kind != "automaton":
+            raise UsageError("E0504", f"`{source}` is {kind}, not an automaton")
+        self.source = source
+        self.name = name
+
+    @classmethod
+    def from_file(cls, path: PathLike) -> "Automaton":
+        """Reads an automaton file."""
+        p = os.fspath(path)
+        if not os.path.isfile(p):
+            _lacuna.read_text(p)
+        return cls(p)
+
+    def __repr__(self) -> str:
+        return f"Automaton({self.name!r})"
+
+    def solve(self, *, limits: Limits = None) -> Union[Solution, FieldVerdict]:
+        """The exact solution of its constraint system (a :class:`FieldVerdict` when its entries lie
+        in a number field and every operator is given)."""
+        return _solution(json.loads(_lacuna.solve(self.source, 2, "1", _limits(limits))))
+
+    def render(
+        self,
+        level: int,
+        *,
+        svg: Optional[PathLike] = None,
+        png: Optional[PathLike] = None,
+        size: int = 1024,
+        params: Params = None,
+        max_cells: Optional[int] = None,
+        limits: Limits = None,
+    ) -> Shapes:
+        """The attractor at ``level`` (operators resolved with ``params``, every cycle checked to
+        contract): its pieces as NumPy arrays; writes an SVG and a PNG when their paths are given."""
+        import numpy as np
+
+        p = _params(params)
+        lim = _limits(limits)
+        text, _names, consistent = _lacuna.automaton_shapes(self.source, int(level), p, max_cells, lim)
+        d = json.loads(text)
+        shapes = d.get("shapes", [])
+        space = int(d.get("space", 2))
+        written: List[Path] = []
+        if svg is not None or png is not None:
+            written = [
+                Path(w)
+                for w in _lacuna.render(
+                    self.source, int(level), p, _path(svg), _path(png), None, False, int(size), True, False,
+                    None, None, 4, max_cells, lim,
+                )
+            ]
+        return Shapes(
+            points=[np.asarray(s["points"], dtype=float).reshape(-1, space) for s in shapes],
+            states=[s["state"] for s in shapes],
+            kinds=[s["kind"] for s in shapes],
+            space=space,
+            consistent=bool(consistent),
+            written=written,
+        )
+
+    def measure(self, level: int, *, digits: int = 30, params: Params = None, max_cells: Optional[int] = None, limits: Limits = None) -> Record:
+        """Lengths and areas per level, a box-counting estimate and the exact similarity dimension
+        with ``digits`` certified digits, as ``lacuna measure --json`` reports them."""
+        return Record(
+            json.loads(
+                _lacuna.measure(self.source, int(level), _params(params), 2048, 8192, int(digits), None, None, 4, max_cells, _limits(limits))
+            )
+        )
+
+
+# ---------------------------------------------------------------------------------------------
+# The library
+
+
+def library() -> Dict[str, str]:
+    """The named structures shipped with lacuna: {name: the first line of its description}."""
+    return {n: t.splitlines()[0].lstrip("#").strip() if t else "" for n, t in _lacuna.library()}
+
+
+def library_text(name: str) -> str:
+    """The text of a library entry (its file as shipped)."""
+    for n, t in _lacuna.library():
+        if n == name:
+            return t
+    raise FileError("E0601", f"cannot read `{name}`: no such library entry")
+
+
+def load(source: PathLike) -> Union[Face, Assembly, Automaton]:
+    """What ``source`` names, as the command line reads it: face notation (a :class:`Face`), a file
+    or a library name of faces (an :class:`Assembly`, whatever the number of its faces) or of an
+    automaton (an :class:`Automaton`). Volumes are not wrapped yet."""
+    s = os.fspath(source)
+    kind, _ = _lacuna.kind(s)
+    if kind == "automaton":
+        return Automaton(s)
+    if kind == "volume":
+        raise UsageError("E0504", f"`{s}` is a volume: the Python package reads faces and automata")
+    if "|" in s:
+        return Face(s)
+    return Assembly(s)
+
+
+def check(path: PathLike) -> CheckReport:
+    """Runs the independent checker on a certificate file (``lacuna check``)."""
+    text = _lacuna.read_text(os.fspath(path))
+    return _check_report(*_lacuna.check_text(text))

@@ -1,0 +1,818 @@
+//! `lacuna._lacuna`: the native half of the Python package `lacuna`.
+//!
+//! Every function takes an input as the command line names it (face notation, a file path or a
+//! library name), calls the public API of the lacuna library, and returns what the library
+//! computed: its serde reports as JSON text (exact numbers stay strings: the Python half turns them
+//! into `int` and `fractions.Fraction`), polygons as flat float arrays, files written to disk. A
+//! lacuna [`Error`] becomes the Python exception `lacuna.LacunaError` (or the subclass its code
+//! belongs to) with the same code, message and span. The heavy work runs with the Python thread
+//! detached, so other Python threads go on meanwhile.
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+use lacuna::input::{load_any, load_input, Loaded};
+use lacuna::topology::{Closure, Limits};
+use lacuna::{Diagnostic, Error};
+use num_rational::BigRational;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// A lacuna error as the Python exception the package defines (`lacuna._errors.from_native`
+/// chooses the class from the code).
+fn py_err(py: Python<'_>, e: Error) -> PyErr {
+    let span = e.span().map(|s| (s.line, s.col, s.len));
+    let made = py
+        .import("lacuna._errors")
+        .and_then(|m| m.getattr("from_native"))
+        .and_then(|f| f.call1((e.code(), e.to_string(), span, e.render())));
+    match made {
+        Ok(exc) => PyErr::from_value(exc),
+        Err(err) => err,
+    }
+}
+
+/// Runs `work` with the Python thread detached and maps its error to a Python exception.
+fn run<T: Send>(py: Python<'_>, work: impl FnOnce() -> Result<T, Error> + Send) -> PyResult<T> {
+    py.detach(work).map_err(|e| py_err(py, e))
+}
+
+/// A coded error without a source span (the library's geometry and mesh errors carry a code and a
+/// message of their own).
+fn coded(code: &'static str, message: String) -> Error {
+    Error::Syntax(Box::new(Diagnostic {
+        code,
+        message,
+        span: None,
+        source: None,
+    }))
+}
+
+/// A geometry error as a lacuna error (same code and message).
+fn geo_error(e: lacuna::geometry::GeometryError) -> Error {
+    match e {
+        lacuna::geometry::GeometryError::Lacuna(e) => e,
+        other => coded(other.code(), other.to_string()),
+    }
+}
+
+/// A mesh error as a lacuna error (same code and message).
+fn mesh_error(e: lacuna::mesh::MeshError) -> Error {
+    coded(e.code(), e.to_string())
+}
+
+/// A value outside the range a keyword accepts (E0503, as the command line's flags).
+fn out_of_range(
+    flag: &'static str,
+    value: impl ToString,
+    what: &'static str,
+    range: &str,
+) -> Error {
+    Error::OutOfRange {
+        flag,
+        value: value.to_string(),
+        what,
+        range: range.into(),
+    }
+}
+
+/// The limits: the library's defaults with the entries of `overrides` (the command line's flag
+/// names without `--max-` and with `_`: `boundary`, `types`, `level`, …) set.
+fn limits(overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Limits> {
+    let mut l = Limits::default();
+    let Some(d) = overrides else {
+        return Ok(l);
+    };
+    for (k, v) in d.iter() {
+        let key: String = k.extract()?;
+        let value: u64 = v.extract()?;
+        let small = |v: u64| -> PyResult<usize> {
+            usize::try_from(v).map_err(|_| {
+                py_err(
+                    k.py(),
+                    Error::Usage(format!("limit {key} = {v} is too large")),
+                )
+            })
+        };
+        match key.as_str() {
+            "max_boundary" => l.max_boundary = small(value)?,
+            "max_types" => l.max_types = small(value)?,
+            "max_level" => l.max_level = value,
+            "max_subedges" | "max_delay" => {
+                let v = u32::try_from(value).map_err(|_| {
+                    py_err(k.py(), Error::Usage(format!("limit {key} = {value} is too large")))
+                })?;
+                if key == "max_subedges" {
+                    l.max_subedges = v
+                } else {
+                    l.max_delay = v
+                }
+            }
+            "max_digits" => l.max_digits = small(value)?,
+            "max_unknowns" => l.max_unknowns = small(value)?,
+            "max_memory" => l.max_memory_mb = value,
+            "max_matrix" => l.max_matrix = small(value)?,
+            _ => {
+                return Err(py_err(
+                    k.py(),
+                    Error::Usage(format!(
+                        "unknown limit `{key}`: the limits are max_boundary, max_types, max_level, max_subedges, max_delay, max_digits, max_unknowns, max_memory, max_matrix"
+                    )),
+                ))
+            }
+        }
+    }
+    Ok(l)
+}
+
+/// `NAME=VALUE` pairs as exact values (E1007 for a value that is not an exact number).
+fn param_values(params: &[(String, String)]) -> Result<Vec<(String, BigRational)>, Error> {
+    params
+        .iter()
+        .map(|(n, v)| {
+            lacuna::input::parse_rational(v.trim())
+                .map(|q| (n.trim().to_string(), q))
+                .ok_or_else(|| {
+                    let text = format!("{n}={v}");
+                    Error::syntax(
+                        "E1007",
+                        format!("parameter `{text}`: expected NAME=VALUE with an exact value (1/7, 0.25)"),
+                        lacuna::Span {
+                            line: 1,
+                            col: 1,
+                            len: text.chars().count().max(1),
+                        },
+                        Some(&lacuna::Source::command_line(&text)),
+                    )
+                })
+        })
+        .collect()
+}
+
+/// Pretty JSON of a report (the layout of the command line's `--json`).
+fn json(v: &impl serde::Serialize) -> String {
+    serde_json::to_string_pretty(v).expect("reports serialise")
+}
+
+/// What an input names, and its name: `("faces", name)`, `("automaton", name)` or
+/// `("volume", name)`. Parses it completely, so a bad input raises here.
+#[pyfunction]
+fn kind(py: Python<'_>, input: String) -> PyResult<(String, String)> {
+    run(py, || {
+        if let Some((name, _)) = lacuna::input::load_volume(&input)? {
+            return Ok(("volume".to_string(), name));
+        }
+        Ok(match load_any(&input)? {
+            Loaded::Faces(i) => ("faces".to_string(), i.name),
+            Loaded::Automaton { name, .. } => ("automaton".to_string(), name),
+        })
+    })
+}
+
+/// The canonical notation of one face (the least rotation of its boundary).
+#[pyfunction]
+fn canonical(py: Python<'_>, notation: String) -> PyResult<String> {
+    run(py, || {
+        Ok(lacuna::topology::Face::parse(&notation)?
+            .canonical()
+            .0
+            .to_string())
+    })
+}
+
+/// The library: `(name, text)` of every named structure.
+#[pyfunction]
+fn library() -> Vec<(String, String)> {
+    lacuna::input::library()
+        .iter()
+        .map(|(n, t)| (n.to_string(), t.to_string()))
+        .collect()
+}
+
+/// The closure as `lacuna closure --json` prints it (closed or runaway).
+#[pyfunction]
+#[pyo3(signature = (input, limits=None))]
+fn closure(py: Python<'_>, input: String, limits: Option<&Bound<'_, PyDict>>) -> PyResult<String> {
+    let l = self::limits(limits)?;
+    run(py, move || {
+        let input = load_input(&input)?;
+        let c = Closure::of(&input.faces(), &l)?;
+        Ok(json(&lacuna::export::closure_json(&c)))
+    })
+}
+
+/// Exact counts per level as `lacuna counts --json` prints them.
+#[pyfunction]
+#[pyo3(signature = (input, levels, limits=None))]
+fn counts(
+    py: Python<'_>,
+    input: String,
+    levels: u64,
+    limits: Option<&Bound<'_, PyDict>>,
+) -> PyResult<String> {
+    let l = self::limits(limits)?;
+    run(py, move || {
+        l.check_level(levels)?;
+        let input = load_input(&input)?;
+        let ts = lacuna::topology::close_or_error(&input.faces(), &l)?;
+        Ok(json(&lacuna::export::counts_json(&ts, &input, levels)))
+    })
+}
+
+/// The limit ratio as `lacuna ratio --json` prints it.
+#[pyfunction]
+#[pyo3(signature = (input, digits, limits=None))]
+fn ratio(
+    py: Python<'_>,
+    input: String,
+    digits: usize,
+    limits: Option<&Bound<'_, PyDict>>,
+) -> PyResult<String> {
+    let l = self::limits(limits)?;
+    run(py, move || {
+        l.check_digits(digits)?;
+        let input = load_input(&input)?;
+        let ts = lacuna::topology::close_or_error(&input.faces(), &l)?;
+        Ok(json(&lacuna::export::ratio_of(&ts, digits)?))
+    })
+}
+
+/// The exact constraint system's solution as `lacuna solve --json` prints it: of the closure of
+/// faces, or of an automaton file (for an automaton whose entries lie in a number field, the
+/// field verdict, with a `field` key).
+#[pyfunction]
+#[pyo3(signature = (input, degree=2, cantor_gap="1".to_string(), limits=None))]
+fn solve(
+    py: Python<'_>,
+    input: String,
+    degree: usize,
+    cantor_gap: String,
+    limits: Option<&Bound<'_, PyDict>>,
+) -> PyResult<String> {
+    let l = self::limits(limits)?;
+    run(py, move || {
+        let gap = lacuna::input::parse_rational(cantor_gap.trim())
+            .filter(|g| *g > BigRational::from_integer(0.into()))
+            .ok_or_else(|| {
+                Error::syntax(
+                    "E0113",
+                    format!(
+                        "cantor_gap `{cantor_gap}` must be an exact positive number (1, 1/2, 0.25)"
+                    ),
+                    lacuna::Span {
+                        line: 1,
+                        col: 1,
+                        len: cantor_gap.chars().count().max(1),
+                    },
+                    Some(&lacuna::Source::command_line(&cantor_gap)),
+                )
+            })?;
+        if !(1..=8).contains(&degree) {
+            return Err(out_of_range(
+                "degree",
+                degree,
+                "the Bézier degree",
+                "from 1 to 8",
+            ));
+        }
+        let opts = lacuna::constraint::GenOptions {
+            degree,
+            cantor_gap: gap,
+        };
+        let report = match load_any(&input)? {
+            Loaded::Automaton { model, .. } if !model.field_ops.is_empty() => {
+                let r = lacuna::analysis::resolve(&model, &[], l.max_unknowns)?;
+                return Ok(json(&r.verdict));
+            }
+            Loaded::Automaton { automaton, .. } => {
+                l.check_unknowns(automaton.unknown_count())?;
+                l.check_memory(automaton.solve_memory_estimate())?;
+                lacuna::constraint::solve_automaton(&automaton)?.0
+            }
+            Loaded::Faces(input) => {
+                let ts = lacuna::topology::close_or_error(&input.faces(), &l)?;
+                lacuna::constraint::solve_closure(&ts, opts, &l)?
+            }
+        };
+        Ok(json(&report))
+    })
+}
+
+/// The whole verification as `lacuna verify --json` prints it.
+#[pyfunction]
+#[pyo3(signature = (input, levels=5, limits=None))]
+fn verify(
+    py: Python<'_>,
+    input: String,
+    levels: u64,
+    limits: Option<&Bound<'_, PyDict>>,
+) -> PyResult<String> {
+    let l = self::limits(limits)?;
+    run(py, move || {
+        l.check_level(levels)?;
+        let input = load_input(&input)?;
+        let c = Closure::of(&input.faces(), &l)?;
+        Ok(json(&lacuna::export::verify_report(
+            &input, &c, levels, &l,
+        )?))
+    })
+}
+
+/// The certificate of every verdict (closure, solution space, limit ratio) as JSON text, the file
+/// `lacuna verify --certificate` writes.
+#[pyfunction]
+#[pyo3(signature = (input, limits=None))]
+fn certificate(
+    py: Python<'_>,
+    input: String,
+    limits: Option<&Bound<'_, PyDict>>,
+) -> PyResult<String> {
+    let l = self::limits(limits)?;
+    run(py, move || {
+        use lacuna::certificate::CertifyError;
+        let input = load_input(&input)?;
+        let ts = lacuna::topology::close_or_error(&input.faces(), &l)?;
+        let cert = lacuna::certificate::certificate_for(
+            &input.name,
+            &ts,
+            lacuna::constraint::GenOptions::default(),
+        )
+        .map_err(|e| match e {
+            CertifyError::Lacuna(e) => e,
+            e @ CertifyError::CustomAlgorithm { .. } => Error::Usage(format!("certificate: {e}")),
+            e => Error::Analysis(e.to_string()),
+        })?;
+        Ok(cert.to_json())
+    })
+}
+
+/// The independent checker on a certificate's text: `(report JSON, all proved, partial)`.
+#[pyfunction]
+fn check_text(py: Python<'_>, text: String) -> (String, bool, bool) {
+    py.detach(move || {
+        let r = lacuna::checker::check_json(&text);
+        (json(&r.to_json()), r.all_proved(), r.partial())
+    })
+}
+
+/// Reads a text file as lacuna reads its inputs (UTF-8, a byte-order mark skipped; E0601, E0602).
+#[pyfunction]
+fn read_text(py: Python<'_>, path: String) -> PyResult<String> {
+    run(py, move || lacuna::input::read_text(&path))
+}
+
+/// Geometry options shared by `polygons`, `render` and `measure`.
+struct Geo {
+    input: String,
+    level: u32,
+    params: Vec<(String, String)>,
+    segments: usize,
+    max_cells: Option<u64>,
+    limits: Limits,
+}
+
+impl Geo {
+    /// The instance of the faces with the parameters given (the command line's `instance`).
+    fn instance(&self, default_cells: u64) -> Result<lacuna::geometry::Instance, Error> {
+        self.limits.check_level(u64::from(self.level))?;
+        if !(1..=64).contains(&self.segments) {
+            return Err(out_of_range(
+                "segments",
+                self.segments,
+                "the segments per Bézier edge",
+                "from 1 to 64",
+            ));
+        }
+        let input = load_input(&self.input)?;
+        let mut opts = lacuna::geometry::InstantiateOptions {
+            limits: self.limits.clone(),
+            ..Default::default()
+        };
+        opts.degree = input.assembly.coords.degree().unwrap_or(opts.degree);
+        opts.values = param_values(&self.params)?;
+        let inst = lacuna::geometry::instantiate(&input, &opts).map_err(geo_error)?;
+        lacuna::measure::check_cells(&inst, self.level, self.max_cells.unwrap_or(default_cells))
+            .map_err(geo_error)?;
+        Ok(inst)
+    }
+
+    /// The automaton's model, resolved, contraction checked, ready to draw.
+    fn automaton(
+        &self,
+        default_cells: u64,
+    ) -> Result<
+        (
+            lacuna::input::AutomatonModel,
+            lacuna::analysis::Resolved,
+            lacuna::analysis::ContractionReport,
+            lacuna::geometry::Evaluator,
+            String,
+        ),
+        Error,
+    > {
+        self.limits.check_level(u64::from(self.level))?;
+        let (name, model) = match load_any(&self.input)? {
+            Loaded::Automaton { name, model, .. } => (name, *model),
+            Loaded::Faces(_) => {
+                return Err(Error::Usage(format!(
+                    "`{}` is faces, not an automaton",
+                    self.input
+                )))
+            }
+        };
+        let values = param_values(&self.params)?;
+        let resolved = lacuna::analysis::resolve(&model, &values, self.limits.max_unknowns)?;
+        let contraction = lacuna::analysis::check_contraction(&model, &resolved.ops)?;
+        let ev = lacuna::geometry::Evaluator::new(&model, &resolved);
+        let max = self.max_cells.unwrap_or(default_cells);
+        let count = ev.count(self.level);
+        if count > u128::from(max) {
+            return Err(Error::limit(
+                "the pieces of the level",
+                count,
+                max,
+                "--max-cells",
+            ));
+        }
+        Ok((model, resolved, contraction, ev, name))
+    }
+}
+
+/// Reads the geometry keywords.
+#[allow(clippy::too_many_arguments)]
+fn geo(
+    input: String,
+    level: u32,
+    params: Vec<(String, String)>,
+    segments: usize,
+    max_cells: Option<u64>,
+    limits: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Geo> {
+    Ok(Geo {
+        input,
+        level,
+        params,
+        segments,
+        max_cells,
+        limits: self::limits(limits)?,
+    })
+}
+
+/// Polygons of the level: `(types, offsets, coordinates)`: cell `i` has type `types[i]` and the
+/// points `offsets[i]..offsets[i+1]` of `coordinates` (x, y interleaved), full `f64` precision.
+#[pyfunction]
+#[pyo3(signature = (input, level, params=Vec::new(), segments=4, max_cells=None, limits=None))]
+#[allow(clippy::type_complexity)]
+fn polygons(
+    py: Python<'_>,
+    input: String,
+    level: u32,
+    params: Vec<(String, String)>,
+    segments: usize,
+    max_cells: Option<u64>,
+    limits: Option<&Bound<'_, PyDict>>,
+) -> PyResult<(Vec<usize>, Vec<usize>, Vec<f64>)> {
+    let g = geo(input, level, params, segments, max_cells, limits)?;
+    run(py, move || {
+        let inst = g.instance(2_000_000)?;
+        let (mut types, mut offsets, mut xy) = (Vec::new(), vec![0usize], Vec::new());
+        inst.walk(g.level, false, |c| {
+            let poly = inst.cell_polygon(c.ty, c.points, g.segments);
+            types.push(c.ty);
+            for p in &poly {
+                xy.push(p[0]);
+                xy.push(p[1]);
+            }
+            offsets.push(offsets.last().copied().unwrap_or(0) + poly.len());
+        });
+        Ok((types, offsets, xy))
+    })
+}
+
+/// The shapes of an automaton's attractor at the level, as JSON (the `--json-out` file of
+/// `lacuna render` on an automaton), with the state names and whether the constraints hold.
+#[pyfunction]
+#[pyo3(signature = (input, level, params=Vec::new(), max_cells=None, limits=None))]
+fn automaton_shapes(
+    py: Python<'_>,
+    input: String,
+    level: u32,
+    params: Vec<(String, String)>,
+    max_cells: Option<u64>,
+    limits: Option<&Bound<'_, PyDict>>,
+) -> PyResult<(String, Vec<String>, bool)> {
+    let g = geo(input, level, params, 4, max_cells, limits)?;
+    run(py, move || {
+        let (_, resolved, _, ev, _) = g.automaton(2_000_000)?;
+        let mut buf = Vec::new();
+        lacuna::export::write_automaton_json(&ev, g.level, &mut buf).map_err(|e| Error::Write {
+            path: "<memory>".into(),
+            reason: e.to_string(),
+        })?;
+        Ok((
+            String::from_utf8_lossy(&buf).into_owned(),
+            ev.names.clone(),
+            resolved.verdict.consistent,
+        ))
+    })
+}
+
+/// Writes a file whole: to a temporary file beside it, renamed over the target when complete
+/// (E1005 when it cannot be written; nothing partial is left).
+fn write_file(
+    path: &Path,
+    body: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<(), Error> {
+    let failed = |e: std::io::Error| Error::Write {
+        path: path.display().to_string(),
+        reason: e.to_string(),
+    };
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let name = path
+        .file_name()
+        .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+    let result = (|| {
+        let mut f = std::io::BufWriter::new(std::fs::File::create(&tmp)?);
+        body(&mut f)?;
+        f.flush()?;
+        f.into_inner().map_err(|e| e.into_error())?.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result.map_err(failed)
+}
+
+/// Refuses (E0504, as the command line) an output that is the input file, or two outputs to one
+/// file.
+fn refuse_clobbering(input: &str, outputs: &[&Option<PathBuf>]) -> Result<(), Error> {
+    // A path names the same file as another when both resolve to it (an output that does not
+    // exist yet resolves through its folder).
+    let resolve = |p: &Path| -> PathBuf {
+        if let Ok(c) = p.canonicalize() {
+            return c;
+        }
+        match (p.parent(), p.file_name()) {
+            (Some(d), Some(n)) if !d.as_os_str().is_empty() => d
+                .canonicalize()
+                .map_or_else(|_| p.to_path_buf(), |d| d.join(n)),
+            (_, Some(n)) => std::env::current_dir().map_or_else(|_| p.to_path_buf(), |d| d.join(n)),
+            _ => p.to_path_buf(),
+        }
+    };
+    let input = Path::new(input);
+    let input = input.is_file().then(|| resolve(input));
+    let mut seen: Vec<PathBuf> = Vec::new();
+    for p in outputs.iter().filter_map(|p| p.as_deref()) {
+        let r = resolve(p);
+        if input.as_ref() == Some(&r) {
+            return Err(Error::Usage(format!(
+                "`{}` is the input: an output never overwrites it",
+                p.display()
+            )));
+        }
+        if seen.contains(&r) {
+            return Err(Error::Usage(format!(
+                "two outputs would write `{}`",
+                p.display()
+            )));
+        }
+        seen.push(r);
+    }
+    Ok(())
+}
+
+/// Writes the pictures and solids of the level of faces or of an automaton: SVG, PNG (`size`
+/// pixels wide), binary or ASCII STL (faces only; the solid is built and checked against the
+/// exact topology first). Returns the paths written.
+#[pyfunction]
+#[pyo3(signature = (input, level, params=Vec::new(), svg=None, png=None, stl=None, stl_ascii=false, size=1024, legend=true, transparent=false, width=None, thickness=None, segments=4, max_cells=None, limits=None))]
+#[allow(clippy::too_many_arguments)]
+fn render(
+    py: Python<'_>,
+    input: String,
+    level: u32,
+    params: Vec<(String, String)>,
+    svg: Option<PathBuf>,
+    png: Option<PathBuf>,
+    stl: Option<PathBuf>,
+    stl_ascii: bool,
+    size: usize,
+    legend: bool,
+    transparent: bool,
+    width: Option<f64>,
+    thickness: Option<f64>,
+    segments: usize,
+    max_cells: Option<u64>,
+    limits: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Vec<PathBuf>> {
+    let g = geo(input, level, params, segments, max_cells, limits)?;
+    run(py, move || {
+        if svg.is_none() && png.is_none() && stl.is_none() {
+            return Err(Error::Usage(
+                "nothing to write: give svg, png or stl".into(),
+            ));
+        }
+        if !(1..=8192).contains(&size) {
+            return Err(out_of_range(
+                "size",
+                size,
+                "the PNG size in pixels",
+                "from 1 to 8192",
+            ));
+        }
+        refuse_clobbering(&g.input, &[&svg, &png, &stl])?;
+        let mut wrote = Vec::new();
+        if let Loaded::Automaton { .. } = load_any(&g.input)? {
+            if stl.is_some() {
+                return Err(Error::Usage(
+                    "stl applies to faces; an automaton is written as svg or png".into(),
+                ));
+            }
+            let vector = svg.is_some();
+            let (_, _, _, ev, _) = g.automaton(if vector { 2_000_000 } else { 20_000_000 })?;
+            if let Some(p) = &svg {
+                write_file(p, |w| lacuna::export::write_automaton_svg(&ev, g.level, w))?;
+                wrote.push(p.clone());
+            }
+            if let Some(p) = &png {
+                let raster = lacuna::export::automaton_raster(&ev, g.level, size);
+                write_file(p, |w| lacuna::export::write_png(&raster, w))?;
+                wrote.push(p.clone());
+            }
+            return Ok(wrote);
+        }
+        let vector = svg.is_some() || stl.is_some();
+        let inst = g.instance(if vector { 2_000_000 } else { 100_000_000 })?;
+        let picture = lacuna::export::PictureOptions {
+            width: size as u32,
+            background: if transparent {
+                lacuna::export::Background::Transparent
+            } else {
+                lacuna::export::Background::White
+            },
+            legend,
+            ..Default::default()
+        };
+        if let Some(p) = &svg {
+            let opts = lacuna::export::PictureOptions {
+                width: 512,
+                ..picture.clone()
+            };
+            write_file(p, |w| {
+                lacuna::export::write_svg_picture(&inst, g.level, &opts, w)
+            })?;
+            wrote.push(p.clone());
+        }
+        if let Some(p) = &stl {
+            let size = lacuna::mesh::Size {
+                width: width.unwrap_or(lacuna::mesh::DEFAULT_WIDTH),
+                thickness: thickness.unwrap_or(2.0),
+            };
+            lacuna::mesh::check_size("--width", size.width).map_err(mesh_error)?;
+            lacuna::mesh::check_size("--thickness", size.thickness).map_err(mesh_error)?;
+            let solid =
+                lacuna::mesh::build(&inst, g.level, g.segments, size).map_err(mesh_error)?;
+            write_file(p, |w| match stl_ascii {
+                true => lacuna::mesh::stl::write_ascii(&solid, w),
+                false => lacuna::mesh::stl::write_binary(&solid, w),
+            })?;
+            wrote.push(p.clone());
+        }
+        if let Some(p) = &png {
+            write_file(p, |w| {
+                lacuna::export::write_png_picture(&inst, g.level, &picture, w)
+            })?;
+            wrote.push(p.clone());
+        }
+        Ok(wrote)
+    })
+}
+
+/// The measures of the level as `lacuna measure --json` prints them: of faces (with the
+/// printability at the level), or of an automaton's attractor.
+#[pyfunction]
+#[pyo3(signature = (input, level, params=Vec::new(), raster=2048, max_raster=8192, digits=30, width=None, resolution=None, segments=4, max_cells=None, limits=None))]
+#[allow(clippy::too_many_arguments)]
+fn measure(
+    py: Python<'_>,
+    input: String,
+    level: u32,
+    params: Vec<(String, String)>,
+    raster: usize,
+    max_raster: usize,
+    digits: usize,
+    width: Option<f64>,
+    resolution: Option<f64>,
+    segments: usize,
+    max_cells: Option<u64>,
+    limits: Option<&Bound<'_, PyDict>>,
+) -> PyResult<String> {
+    let g = geo(input, level, params, segments, max_cells, limits)?;
+    run(py, move || {
+        let largest = lacuna::measure::LARGEST_RASTER;
+        for (flag, r) in [("raster", raster), ("max_raster", max_raster)] {
+            if !(16..=largest).contains(&r) || !r.is_power_of_two() {
+                return Err(out_of_range(
+                    flag,
+                    r,
+                    "the raster size",
+                    &format!("a power of two from 16 to {largest}"),
+                ));
+            }
+        }
+        if max_raster < raster {
+            return Err(out_of_range(
+                "max_raster",
+                max_raster,
+                "the finest raster",
+                &format!("at least raster ({raster})"),
+            ));
+        }
+        if let Loaded::Automaton { .. } = load_any(&g.input)? {
+            if digits == 0 {
+                return Err(out_of_range(
+                    "digits",
+                    0,
+                    "the certified digits of the similarity dimension",
+                    &format!("from 1 to {}", g.limits.max_digits),
+                ));
+            }
+            g.limits.check_digits(digits)?;
+            let (model, resolved, contraction, ev, name) = g.automaton(2_000_000)?;
+            let levels = lacuna::measure::level_measures(&ev, g.level);
+            let mut box_level = g.level;
+            while box_level < 40 && ev.count(box_level + 1) <= 100_000 {
+                box_level += 1;
+            }
+            let box_dimension = lacuna::measure::box_dimension(&ev, box_level);
+            let (similarity_dimension, similarity_note) =
+                match lacuna::analysis::similarity_dimension(&model, &resolved.ops, digits) {
+                    Ok(s) => (Some(s), None),
+                    Err(n) => (None, Some(n)),
+                };
+            let m = lacuna::measure::AutomatonMeasure {
+                input: name,
+                space: model.space,
+                level: g.level,
+                solver: resolved.verdict.clone(),
+                contraction,
+                levels,
+                box_dimension,
+                similarity_dimension,
+                similarity_note,
+            };
+            return Ok(json(&m));
+        }
+        let inst = g.instance(20_000_000)?;
+        let opts = lacuna::measure::MeasureOptions {
+            level: g.level,
+            raster,
+            max_raster,
+            segments: g.segments,
+            ..Default::default()
+        };
+        let r = lacuna::measure::measure(&inst, &opts).map_err(geo_error)?;
+        let size = lacuna::mesh::Size {
+            width: width.unwrap_or(lacuna::mesh::DEFAULT_WIDTH),
+            ..Default::default()
+        };
+        let resolution = resolution.unwrap_or(lacuna::mesh::DEFAULT_RESOLUTION);
+        lacuna::mesh::check_size("--width", size.width).map_err(mesh_error)?;
+        lacuna::mesh::check_size("--resolution", resolution).map_err(mesh_error)?;
+        let p = lacuna::mesh::printability(&inst, g.level, g.segments, size, resolution)
+            .map_err(mesh_error)?;
+        Ok(json(&lacuna::mesh::printability::WithPrintability {
+            report: &r,
+            printability: &p,
+        }))
+    })
+}
+
+/// The native module.
+#[pymodule]
+fn _lacuna(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add_function(wrap_pyfunction!(kind, m)?)?;
+    m.add_function(wrap_pyfunction!(canonical, m)?)?;
+    m.add_function(wrap_pyfunction!(library, m)?)?;
+    m.add_function(wrap_pyfunction!(closure, m)?)?;
+    m.add_function(wrap_pyfunction!(counts, m)?)?;
+    m.add_function(wrap_pyfunction!(ratio, m)?)?;
+    m.add_function(wrap_pyfunction!(solve, m)?)?;
+    m.add_function(wrap_pyfunction!(verify, m)?)?;
+    m.add_function(wrap_pyfunction!(certificate, m)?)?;
+    m.add_function(wrap_pyfunction!(check_text, m)?)?;
+    m.add_function(wrap_pyfunction!(read_text, m)?)?;
+    m.add_function(wrap_pyfunction!(polygons, m)?)?;
+    m.add_function(wrap_pyfunction!(automaton_shapes, m)?)?;
+    m.add_function(wrap_pyfunction!(render, m)?)?;
+    m.add_function(wrap_pyfunction!(measure, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,60 @@
+"""The library and loading: names as `lacuna library --json` lists them, each loaded as the right
+kind, files read like the command line reads them."""
+
+import pytest
+
+import lacuna
+
+from conftest import REPO
+
+
+def test_library_names_match_the_command_line(cli):
+    code, data = cli("library", "--json")
+    assert code == 0
+    lib = lacuna.library()
+    assert list(lib) == [d["name"] for d in data]
+    assert [lib[d["name"]] for d in data] == [d["about"] for d in data]
+    assert lacuna.library_text("F0").startswith("#")
+    with pytest.raises(lacuna.FileError):
+        lacuna.library_text("no-such-entry")
+
+
+def test_load_gives_the_kind_of_each_entry(cli):
+    for name in lacuna.library():
+        if name in ("cube-B2", "tetrahedron-B2"):
+            with pytest.raises(lacuna.UsageError):
+                lacuna.load(name)
+            continue
+        obj = lacuna.load(name)
+        assert obj.name == name
+        # The library ships automata as fixtures/NAME.aut, production rules (compiled to
+        # automata) as fixtures/NAME.rule, faces as fixtures/NAME.txt.
+        is_automaton = (REPO / "fixtures" / f"{name}.aut").exists() or (
+            REPO / "fixtures" / f"{name}.rule"
+        ).exists()
+        assert is_automaton or (REPO / "fixtures" / f"{name}.txt").exists()
+        assert isinstance(obj, lacuna.Automaton) == is_automaton
+        assert isinstance(obj, lacuna.Assembly) == (not is_automaton)
+    assert isinstance(lacuna.load("C2 B2 B2 | C2 B2 B2 | A1"), lacuna.Face)
+
+
+def test_files_and_library_names_give_the_same_results():
+    by_name = lacuna.load("two-quads")
+    by_file = lacuna.Assembly.from_file(REPO / "fixtures" / "two-quads.txt")
+    autofrac = lacuna.Assembly.from_file(REPO / "fixtures" / "autofrac-two-quads.txt")
+    assert isinstance(by_file, lacuna.Assembly) and by_file.name.endswith("two-quads.txt")
+    # fixtures/two-quads.txt is "the same structure as autofrac-two-quads.txt in lacuna's
+    # assembly format": same types, same counts.
+    assert [t.face for t in by_name.closure().types] == [t.face for t in by_file.closure().types]
+    assert by_name.counts(6) == by_file.counts(6) == autofrac.counts(6)
+    # A face given in notation is the one-face assembly of the library.
+    f0 = lacuna.Face("C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1")
+    assert f0.counts(8) == lacuna.load("F0").counts(8)
+    assert f0.ratio().exact == lacuna.load("F0").ratio().exact
+
+
+def test_the_module_docstring_examples_run():
+    import doctest
+
+    result = doctest.testmod(lacuna)
+    assert result.attempted >= 4 and result.failed == 0
