@@ -30,7 +30,7 @@ const FACE_FIXTURES: [&str; 8] = [
     "two-quads",
     "autofrac-two-quads",
 ];
-const AUTOMATON_FIXTURES: [&str; 14] = [
+const AUTOMATON_FIXTURES: [&str; 23] = [
     "de-casteljau-edge",
     "chaikin-known",
     "spec-edge",
@@ -45,6 +45,16 @@ const AUTOMATON_FIXTURES: [&str; 14] = [
     "sierpinski-triangle",
     "cantor-set",
     "kite-dart",
+    // Production rules (issue #17), compiled to automata.
+    "quadric-koch",
+    "koch",
+    "sierpinski-arrowhead",
+    "heighway-dragon",
+    "monkeys-tree",
+    "pythagoras-tree",
+    "self-seeding-square",
+    "vegetation",
+    "random-tree",
 ];
 
 /// Volumes (THEORY §10) have no certificate step yet: the checker re-derives face closures and

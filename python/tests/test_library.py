@@ -27,8 +27,11 @@ def test_load_gives_the_kind_of_each_entry(cli):
             continue
         obj = lacuna.load(name)
         assert obj.name == name
-        # The library ships automata as fixtures/NAME.aut, faces as fixtures/NAME.txt.
-        is_automaton = (REPO / "fixtures" / f"{name}.aut").exists()
+        # The library ships automata as fixtures/NAME.aut, production rules (compiled to
+        # automata) as fixtures/NAME.rule, faces as fixtures/NAME.txt.
+        is_automaton = (REPO / "fixtures" / f"{name}.aut").exists() or (
+            REPO / "fixtures" / f"{name}.rule"
+        ).exists()
         assert is_automaton or (REPO / "fixtures" / f"{name}.txt").exists()
         assert isinstance(obj, lacuna.Automaton) == is_automaton
         assert isinstance(obj, lacuna.Assembly) == (not is_automaton)

@@ -13,6 +13,7 @@ pub(crate) mod curve;
 pub(crate) mod dcf;
 pub(crate) mod design;
 pub(crate) mod explore;
+pub(crate) mod open_set;
 pub(crate) mod operator;
 pub(crate) mod ratio;
 pub(crate) mod similarity;
@@ -39,6 +40,7 @@ pub use explore::{
     explore, explore_face, parse_properties, parse_shard, BoundaryResult, Check, Checks,
     ExploreSpec, Failure, Outcome, Property, Shrunk, Summary, Witness, MAX_FAMILY,
 };
+pub use open_set::{OpenSetVerdict, MAX_ROUNDS};
 pub use operator::{
     analyse_matrix, parse_matrix_arg, parse_rationals_arg, Behaviour, CurvatureClass, Eigenvalue,
     OperatorReport,

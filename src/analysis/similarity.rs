@@ -34,6 +34,12 @@ pub struct SimilarityDimension {
     pub decimal: String,
     /// The strongly connected parts (their states) and each part's exact value.
     pub parts: Vec<(Vec<String>, String)>,
+    /// True unless the open-set condition is proved for every part
+    /// ([`crate::analysis::open_set`]): the value is then only an upper bound of the Hausdorff
+    /// dimension, never the dimension.
+    pub upper_bound: bool,
+    /// What the open-set check found (the criterion that decided, or why none did).
+    pub open_set: String,
 }
 
 /// Why there is no similarity dimension.
@@ -195,7 +201,7 @@ impl Tarjan {
 
 /// Strongly connected parts of the reachable control graph that hold a cycle (Tarjan; the
 /// recursion is as deep as the number of states, at most 4096: checked by the caller).
-fn cyclic_parts(m: &AutomatonModel) -> Vec<Vec<usize>> {
+pub(crate) fn cyclic_parts(m: &AutomatonModel) -> Vec<Vec<usize>> {
     let a = &m.automaton;
     let g = control_graph(m);
     let reach = reachable(m);
@@ -358,18 +364,54 @@ pub fn similarity_dimension(
         let sigma = sigma
             .ok_or_else(|| format!("no operator of the part {{{}}} contracts", names.join(", ")))?;
         let n = part.len();
-        let mut entries = vec![vec![Vec::new(); n]; n];
-        for (i, j, r2, o) in &inside {
-            let mut pow = one.clone();
-            let mut e = None;
-            for kk in 0..=16usize {
-                if &pow == r2 {
-                    e = Some(kk);
-                    break;
+        // Exponents of every squared ratio over a common base: σ itself, or else (σ rational) a
+        // rational root τ = σ^(1/d), d ≤ 6, so that ratios 1/3 and 1/(3√3) (σ = 1/27) share
+        // τ = 1/3 with exponents 2 and 3.
+        let exponents = |base: &FieldElement, max: usize| -> Option<Vec<usize>> {
+            inside
+                .iter()
+                .map(|(_, _, r2, _)| {
+                    let mut pow = one.clone();
+                    for kk in 0..=max {
+                        if &pow == r2 {
+                            return Some(kk);
+                        }
+                        pow = k.mul(&pow, base);
+                    }
+                    None
+                })
+                .collect()
+        };
+        let mut found = exponents(&sigma, 16).map(|e| (sigma.clone(), e));
+        if found.is_none() {
+            if let Some(sr) = sigma.as_rational() {
+                for d in 2..=6u32 {
+                    if let Some(t) = rational_root(&sr, d) {
+                        let tau = k.rational(t);
+                        if let Some(e) = exponents(&tau, 16 * d as usize) {
+                            found = Some((tau, e));
+                            break;
+                        }
+                    }
                 }
-                pow = k.mul(&pow, &sigma);
             }
-            let e = e.ok_or_else(|| format!("the squared ratio of `{}` is not a power σ^k (k ≤ 16) of the smallest one σ = {}", a.operators[*o].name, k.render(&sigma)))?;
+        }
+        let Some((sigma, exps)) = found else {
+            let o = inside
+                .iter()
+                .find(|(_, _, r2, _)| {
+                    let mut pow = one.clone();
+                    !(0..=16).any(|_| {
+                        let hit = &pow == r2;
+                        pow = k.mul(&pow, &sigma);
+                        hit
+                    })
+                })
+                .map_or(0, |x| x.3);
+            return Err(format!("the squared ratio of `{}` is not a power σ^k (k ≤ 16) of the smallest one σ = {}, nor of a rational root of it", a.operators[o].name, k.render(&sigma)));
+        };
+        let mut entries = vec![vec![Vec::new(); n]; n];
+        for ((i, j, _, _), e) in inside.iter().zip(exps) {
             entries[*i][*j].push(e);
         }
         let p = part_polynomial(n, &entries);
@@ -410,7 +452,24 @@ pub fn similarity_dimension(
         }
     }
     let decimal = certified_decimal(k, &values[best].1, digits);
+    let verdicts: Vec<_> = parts
+        .iter()
+        .map(|p| crate::analysis::open_set::part_verdict(m, ops, p))
+        .collect();
+    let upper_bound = verdicts.iter().any(|v| v.holds != Some(true));
+    let open_set = if verdicts.len() == 1 {
+        verdicts[0].reason.clone()
+    } else {
+        verdicts
+            .iter()
+            .zip(&values)
+            .map(|(v, (n, _))| format!("part {{{}}}: {}", n.join(", "), v.reason))
+            .collect::<Vec<_>>()
+            .join("; ")
+    };
     Ok(SimilarityDimension {
+        upper_bound,
+        open_set,
         exact: values[best].1.exact.clone(),
         decimal,
         parts: values
@@ -467,6 +526,14 @@ fn exact_text(
         ),
         None,
     )
+}
+
+/// The rational d-th root of a positive rational, when it exists.
+fn rational_root(x: &BigRational, d: u32) -> Option<BigRational> {
+    let (n, m) = (x.numer().nth_root(d), x.denom().nth_root(d));
+    (num_traits::pow(n.clone(), d as usize) == *x.numer()
+        && num_traits::pow(m.clone(), d as usize) == *x.denom())
+    .then(|| BigRational::new(n, m))
 }
 
 fn rational_sqrt(x: &BigRational) -> Option<BigRational> {
@@ -562,5 +629,31 @@ fn certified_decimal(k: &NumberField, v: &PartValue, digits: usize) -> String {
             }
             return "undecided".into();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rational_roots_exist_only_when_exact() {
+        // (1/3)^3 = 1/27; (4/9)^2 = 16/81; 1/2 has no rational square root.
+        assert_eq!(
+            rational_root(&BigRational::new(1.into(), 27.into()), 3),
+            Some(BigRational::new(1.into(), 3.into()))
+        );
+        assert_eq!(
+            rational_root(&BigRational::new(16.into(), 81.into()), 2),
+            Some(BigRational::new(4.into(), 9.into()))
+        );
+        assert_eq!(
+            rational_root(&BigRational::new(1.into(), 2.into()), 2),
+            None
+        );
+        assert_eq!(
+            rational_root(&BigRational::new(1.into(), 27.into()), 2),
+            None
+        );
     }
 }

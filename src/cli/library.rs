@@ -5,11 +5,12 @@ use super::*;
 /// Runs `lacuna library`.
 pub(super) fn run(args: LibraryArgs) -> Result<ExitCode, Error> {
     let LibraryArgs { json } = args;
-    let names: Vec<(&str, String)> = lacuna::input::library()
+    let names: Vec<(&str, &str, String)> = lacuna::input::library()
         .iter()
         .map(|(n, t)| {
             (
                 *n,
+                lacuna::input::kind_of(t),
                 t.lines()
                     .next()
                     .unwrap_or("")
@@ -23,17 +24,17 @@ pub(super) fn run(args: LibraryArgs) -> Result<ExitCode, Error> {
         print_json(
             &names
                 .iter()
-                .map(|(n, d)| serde_json::json!({"name": n, "about": d}))
+                .map(|(n, k, d)| serde_json::json!({"name": n, "kind": k, "about": d}))
                 .collect::<Vec<_>>(),
         );
     } else {
         let width = names
             .iter()
-            .map(|(n, _)| n.chars().count())
+            .map(|(n, _, _)| n.chars().count())
             .max()
             .unwrap_or(0);
-        for (n, d) in names {
-            out(&format!("{n:<width$}  {d}\n"));
+        for (n, k, d) in names {
+            out(&format!("{n:<width$}  {k:<9}  {d}\n"));
         }
     }
     Ok(ExitCode::SUCCESS)

@@ -516,9 +516,15 @@ pub fn automaton_report_html(
         (Some(s), _) => {
             let _ = write!(
                 h,
-                "<li>similarity dimension (exact) = {} = {}…</li>",
+                "<li>similarity dimension (exact) = {} = {}…{}</li><li>open-set condition: {}</li>",
                 esc(&s.exact),
-                s.decimal
+                s.decimal,
+                if s.upper_bound {
+                    " — an upper bound of the Hausdorff dimension only"
+                } else {
+                    " — the Hausdorff dimension"
+                },
+                esc(&s.open_set)
             );
         }
         (None, Some(n)) => {

@@ -155,6 +155,12 @@ impl Evaluator {
         }
     }
 
+    /// True when a state has no subdivision operator: its shape is drawn as it is at every level
+    /// (a rule's infertile segment), not an approximation still to be refined.
+    pub fn is_terminal(&self, state: usize) -> bool {
+        self.out[state].is_empty()
+    }
+
     /// The primitive of a leaf as a shape (`None` for `none`).
     pub fn shape(&self, state: usize, pts: &[[f64; 3]]) -> Option<Shape> {
         let pick = |idx: &[usize]| idx.iter().map(|&i| pts[i]).collect::<Vec<_>>();

@@ -259,6 +259,85 @@ fn parse_kmatrix(
     Ok((rows, close + 1))
 }
 
+/// Parses a `field NAME = root of POLYNOMIAL in [LO, HI]` declaration (`t`, a trimmed slice of
+/// `line`): the field and (generator name, normalised declaration). Shared by automaton and rule
+/// files.
+pub(crate) fn parse_field_decl(
+    line: &str,
+    t: &str,
+    ln: usize,
+    src: &Source,
+) -> Result<(NumberField, (String, String))> {
+    let col = |s: &str| {
+        line[..(s.as_ptr() as usize - line.as_ptr() as usize)]
+            .chars()
+            .count()
+            + 1
+    };
+    let bad = || {
+        err(
+            "E0711",
+            "expected `field NAME = root of POLYNOMIAL in [LO, HI]`",
+            ln,
+            col(t),
+            t.chars().count(),
+            src,
+        )
+    };
+    let rest = t["field".len()..].trim();
+    let (name, rhs) = rest.split_once('=').ok_or_else(bad)?;
+    let name = name.trim();
+    if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphabetic()) {
+        return Err(bad());
+    }
+    let rhs = rhs.trim();
+    let body = rhs.strip_prefix("root of").ok_or_else(bad)?;
+    let (poly_text, interval) = body.rsplit_once(" in ").ok_or_else(bad)?;
+    let interval = interval.trim();
+    let inner = interval
+        .strip_prefix('[')
+        .and_then(|s| s.strip_suffix(']'))
+        .ok_or_else(bad)?;
+    let (lo, hi) = inner.split_once(',').ok_or_else(bad)?;
+    let (lo, hi) = (parse_rational(lo.trim()), parse_rational(hi.trim()));
+    let (Some(lo), Some(hi)) = (lo, hi) else {
+        return Err(err(
+            "E0711",
+            "the interval's ends must be exact numbers",
+            ln,
+            col(interval),
+            interval.len(),
+            src,
+        ));
+    };
+    let f = parse_poly(poly_text.trim(), "x")
+        .or_else(|| parse_poly(poly_text.trim(), name))
+        .filter(|p| p.deg() >= 1 && p.deg() <= 16)
+        .ok_or_else(|| {
+            err(
+                "E0711",
+                format!(
+                    "`{}` is not a polynomial in x of degree 1 to 16 with exact coefficients",
+                    poly_text.trim()
+                ),
+                ln,
+                col(poly_text.trim()),
+                poly_text.trim().len(),
+                src,
+            )
+        })?;
+    let gen = RealAlgebraic::root_in(&f, &lo, &hi).ok_or_else(|| {
+            err("E0711", format!("{} has no root or more than one root in [{lo}, {hi}]: give an interval isolating one root", f.render("x")), ln, col(interval), interval.len(), src)
+        })?;
+    Ok((
+        NumberField::new(gen),
+        (
+            name.to_string(),
+            format!("{name} = root of {} in [{lo}, {hi}]", f.render("x")),
+        ),
+    ))
+}
+
 /// A `primitive` line: state name, primitive, line, column, and the span of each index.
 type PrimitiveLine = (String, Primitive, usize, usize, Vec<(usize, usize)>);
 
@@ -307,54 +386,9 @@ pub fn parse_model(src: &Source) -> Result<AutomatonModel> {
                         src,
                     ));
                 }
-                let bad = || {
-                    err(
-                        "E0711",
-                        "expected `field NAME = root of POLYNOMIAL in [LO, HI]`",
-                        ln,
-                        col(t),
-                        t.chars().count(),
-                        src,
-                    )
-                };
-                let rest = t["field".len()..].trim();
-                let (name, rhs) = rest.split_once('=').ok_or_else(bad)?;
-                let name = name.trim();
-                if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphabetic()) {
-                    return Err(bad());
-                }
-                let rhs = rhs.trim();
-                let body = rhs.strip_prefix("root of").ok_or_else(bad)?;
-                let (poly_text, interval) = body.rsplit_once(" in ").ok_or_else(bad)?;
-                let interval = interval.trim();
-                let inner = interval
-                    .strip_prefix('[')
-                    .and_then(|s| s.strip_suffix(']'))
-                    .ok_or_else(bad)?;
-                let (lo, hi) = inner.split_once(',').ok_or_else(bad)?;
-                let (lo, hi) = (parse_rational(lo.trim()), parse_rational(hi.trim()));
-                let (Some(lo), Some(hi)) = (lo, hi) else {
-                    return Err(err(
-                        "E0711",
-                        "the interval's ends must be exact numbers",
-                        ln,
-                        col(interval),
-                        interval.len(),
-                        src,
-                    ));
-                };
-                let f = parse_poly(poly_text.trim(), "x")
-                    .or_else(|| parse_poly(poly_text.trim(), name))
-                    .filter(|p| p.deg() >= 1 && p.deg() <= 16)
-                    .ok_or_else(|| err("E0711", format!("`{}` is not a polynomial in x of degree 1 to 16 with exact coefficients", poly_text.trim()), ln, col(poly_text.trim()), poly_text.trim().len(), src))?;
-                let gen = RealAlgebraic::root_in(&f, &lo, &hi).ok_or_else(|| {
-                    err("E0711", format!("{} has no root or more than one root in [{lo}, {hi}]: give an interval isolating one root", f.render("x")), ln, col(interval), interval.len(), src)
-                })?;
-                field = NumberField::new(gen);
-                field_decl = Some((
-                    name.to_string(),
-                    format!("{name} = root of {} in [{lo}, {hi}]", f.render("x")),
-                ));
+                let (k, decl) = parse_field_decl(line, t, ln, src)?;
+                field = k;
+                field_decl = Some(decl);
                 filtered.push(String::new());
             }
             "space" => {

@@ -83,6 +83,36 @@ pub fn library() -> &'static [(&'static str, &'static str)] {
         ),
         ("cantor-set", include_str!("../../fixtures/cantor-set.aut")),
         ("kite-dart", include_str!("../../fixtures/kite-dart.aut")),
+        (
+            "quadric-koch",
+            include_str!("../../fixtures/quadric-koch.rule"),
+        ),
+        ("koch", include_str!("../../fixtures/koch.rule")),
+        (
+            "sierpinski-arrowhead",
+            include_str!("../../fixtures/sierpinski-arrowhead.rule"),
+        ),
+        (
+            "heighway-dragon",
+            include_str!("../../fixtures/heighway-dragon.rule"),
+        ),
+        (
+            "monkeys-tree",
+            include_str!("../../fixtures/monkeys-tree.rule"),
+        ),
+        (
+            "pythagoras-tree",
+            include_str!("../../fixtures/pythagoras-tree.rule"),
+        ),
+        (
+            "self-seeding-square",
+            include_str!("../../fixtures/self-seeding-square.rule"),
+        ),
+        ("vegetation", include_str!("../../fixtures/vegetation.rule")),
+        (
+            "random-tree",
+            include_str!("../../fixtures/random-tree.rule"),
+        ),
     ]
 }
 
@@ -108,6 +138,27 @@ pub fn parse_text(src: &Source) -> Result<Assembly> {
         parse_autofrac(src)
     } else {
         Assembly::parse(src)
+    }
+}
+
+/// What a library entry (or any input text) is: `volume`, `rule`, `automaton`, `assembly` (faces
+/// with shared edges, or several faces) or `face` (one face).
+pub fn kind_of(text: &str) -> &'static str {
+    if crate::input::volume_file::is_volume_text(text) {
+        "volume"
+    } else if crate::input::rule::is_rule(text) {
+        "rule"
+    } else if is_automaton_model(text) {
+        "automaton"
+    } else {
+        let src = Source {
+            name: String::new(),
+            text: text.to_string(),
+        };
+        match parse_text(&src) {
+            Ok(a) if a.faces.len() == 1 && a.shared.is_empty() => "face",
+            _ => "assembly",
+        }
     }
 }
 
@@ -150,6 +201,14 @@ pub fn load_any(arg: &str) -> Result<Loaded> {
             path: name,
             reason: "this is a volume: `closure`, `counts`, `ratio` and `verify` read volumes"
                 .into(),
+        });
+    }
+    if crate::input::rule::is_rule(&src.text) {
+        let (_, model) = crate::input::rule::compile_rule(&src)?;
+        return Ok(Loaded::Automaton {
+            name,
+            automaton: model.automaton.clone(),
+            model: Box::new(model),
         });
     }
     if is_automaton_model(&src.text) {
@@ -270,6 +329,24 @@ fn read_source(arg: &str) -> Result<(String, Source)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn kinds_by_content() {
+        assert_eq!(kind_of("face 0: B2 B2 B2 B2 | B2 B2 B2 | A1\n"), "face");
+        assert_eq!(kind_of("state e 2\n"), "automaton");
+        assert_eq!(
+            kind_of("# x\ninitiator 0,0 g 1,0\ngenerator g 0,0 g 1,0\n"),
+            "rule"
+        );
+        assert_eq!(
+            kind_of(include_str!("../../fixtures/two-quads.txt")),
+            "assembly"
+        );
+        assert_eq!(
+            kind_of(include_str!("../../fixtures/cube-B2.txt")),
+            "volume"
+        );
+    }
 
     #[test]
     fn every_library_entry_loads() {

@@ -10,6 +10,7 @@ pub(crate) mod automaton_format;
 pub(crate) mod automaton_model;
 pub(crate) mod coords;
 pub(crate) mod library;
+pub(crate) mod rule;
 pub(crate) mod volume_file;
 
 pub use assembly::{set_corners, vertices, Assembly, SharedEdge};
@@ -17,6 +18,7 @@ pub use automaton_format::{parse_automaton, parse_rational};
 pub use automaton_model::{parse_field_element, parse_model, AutomatonModel, Primitive};
 pub use coords::{control_count, CoordKind, ExactPoint, FaceCoords, UserCoords};
 pub use library::{
-    library, load_any, load_input, load_volume, parse_text, read_text, Input, Loaded,
+    kind_of, library, load_any, load_input, load_volume, parse_text, read_text, Input, Loaded,
 };
+pub use rule::{compile_rule, is_rule, parse_rule, Affine, Flip, Rule, RulePath, Segment, Target};
 pub use volume_file::{is_volume_notation, is_volume_text, parse_volume_text};

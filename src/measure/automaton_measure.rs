@@ -123,8 +123,9 @@ pub fn level_measures(ev: &Evaluator, level: u32) -> Vec<AutomatonLevel> {
 
 /// The box-counting estimate from the pieces of level `level`: every piece sampled finer than the
 /// finest box (polygons filled), boxes of size `L/2^k` counted for k from 2 up to the finest
-/// scale still coarser than twice the largest piece (at most 9 in the plane, 7 in space), lowered
-/// while the samples of every piece would exceed about 4 million.
+/// scale still coarser than twice the largest piece still to be refined (terminal shapes, such as a
+/// rule's infertile segments, are exact at every scale; at most 9 in the plane, 7 in space),
+/// lowered while the samples of every piece would exceed about 4 million.
 pub fn box_dimension(ev: &Evaluator, level: u32) -> BoxDimension {
     let shapes = ev.shapes(level);
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
@@ -139,7 +140,11 @@ pub fn box_dimension(ev: &Evaluator, level: u32) -> BoxDimension {
                 phi[d] = phi[d].max(p[d]);
             }
         }
-        piece = piece.max(dist(&plo, &phi));
+        // Shapes of terminal states are exact parts of the set at every scale: only the pieces
+        // still to be refined bound the finest scale.
+        if !ev.is_terminal(s.state) {
+            piece = piece.max(dist(&plo, &phi));
+        }
     }
     let side = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
     let empty = BoxDimension {
@@ -307,7 +312,18 @@ impl AutomatonMeasure {
             None => o += "box-counting dimension: too few scales (raise --level)\n",
         }
         match (&self.similarity_dimension, &self.similarity_note) {
-            (Some(s), _) => o += &format!("similarity dimension = {} = {}…\n", s.exact, s.decimal),
+            (Some(s), _) if s.upper_bound => {
+                o += &format!(
+                    "similarity dimension = {} = {}… — an upper bound of the dimension only; open-set condition {}\n",
+                    s.exact, s.decimal, s.open_set
+                )
+            }
+            (Some(s), _) => {
+                o += &format!(
+                    "similarity dimension = {} = {}… (the Hausdorff dimension: open-set condition {})\n",
+                    s.exact, s.decimal, s.open_set
+                )
+            }
             (None, Some(n)) => o += &format!("similarity dimension: not applicable ({n})\n"),
             _ => {}
         }

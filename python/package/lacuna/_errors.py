@@ -38,7 +38,8 @@ class LacunaError(Exception):
 
 class InputError(LacunaError, ValueError):
     """A text that cannot be read: face notation, an assembly, AutoFrac2D, automaton, template or
-    volume file, a parameter value (codes E01xx, E02xx, E03xx, E07xx, E09xx, E1007, E102x, E12xx)."""
+    volume or rule file, a parameter value (codes E01xx, E02xx, E03xx, E07xx, E09xx, E1007, E102x,
+    E12xx, E13xx)."""
 
 
 class FileError(LacunaError, OSError):
@@ -82,7 +83,7 @@ def error_class(code: str) -> type:
         return FileError
     if code in ("E0401", "E0801"):
         return AnalysisError
-    if code == "E1007" or code.startswith("E102") or code[:3] in ("E01", "E02", "E03", "E07", "E09", "E12"):
+    if code == "E1007" or code.startswith("E102") or code[:3] in ("E01", "E02", "E03", "E07", "E09", "E12", "E13"):
         return InputError
     if code.startswith("E1"):
         return GeometryError
