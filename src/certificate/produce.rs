@@ -11,7 +11,8 @@ use crate::certificate::format::{
     Adjacency, Algebraic, AutomatonClaim, AutomatonOperator, AutomatonState, Certificate, Claim,
     ClassClaim, ClosureStep, ConflictStep, Edge, Face, FacesClaim, Kind, Origin, Params, Pattern,
     PointClaim, RadiusWitness, RatioStep, Recipe, Row, SolutionStep, SpokeItem, Step, SubFace,
-    SubstitutionClaim, System, TypeRule, WordEquation, WordFactor,
+    SubstitutionClaim, System, TypeRule, Volume, VolumeClosureStep, VolumeCount, VolumeRule,
+    VolumeTypeRule, VolumesClaim, WordEquation, WordFactor,
 };
 use num_rational::BigRational;
 use num_traits::{One, Zero};
@@ -81,6 +82,93 @@ pub fn certificate_for(
     cert.steps
         .push(Step::LimitRatio(ratio_step(&matrix, &c, &start)?));
     Ok(cert)
+}
+
+/// The certificate of a closed set of volume types (THEORY §10): the claim is the start volumes
+/// and the number of levels, the one step the closure of volume types with the counts of the
+/// start volumes from level 0 to `levels`.
+pub fn certificate_for_volumes(
+    input: &str,
+    set: &crate::topology::volume::VolumeTypeSet,
+    levels: u64,
+) -> Result<Certificate, CertifyError> {
+    let types = set
+        .types
+        .iter()
+        .map(|t| {
+            Ok(VolumeTypeRule {
+                volume: volume(&t.volume)?,
+                children: t.children.clone(),
+                contribution_quarters: t.volume.contribution_quarters(),
+            })
+        })
+        .collect::<Result<Vec<_>, CertifyError>>()?;
+    let volumes = set
+        .start
+        .iter()
+        .map(|&s| types[s].volume.clone())
+        .collect();
+    let counts = crate::topology::volume::volume_counts(set, levels)
+        .into_iter()
+        .map(|c| VolumeCount {
+            level: c.level,
+            cells: c.cells.to_string(),
+            lacunas: c.lacunas.to_string(),
+        })
+        .collect();
+    let mut cert = Certificate::new(input, Claim::Volumes(VolumesClaim { volumes, levels }));
+    cert.steps
+        .push(Step::VolumeClosure(VolumeClosureStep { types, counts }));
+    Ok(cert)
+}
+
+/// A volume as certificate data.
+fn volume(v: &crate::topology::volume::Volume) -> Result<Volume, CertifyError> {
+    let inside = crate::topology::Face {
+        boundary: vec![v.inner],
+        params: v.params,
+        algorithm: v.algorithm.clone(),
+        delay: 1,
+    };
+    let inside = face(&inside)?;
+    Ok(Volume {
+        faces: v.surface.faces.iter().map(face).collect::<Result<_, _>>()?,
+        glue: v.surface.glue.clone(),
+        radial: edge(&v.radial),
+        inner: edge(&v.inner),
+        params: inside.params,
+        algorithm: inside.algorithm,
+        rule: match v.rule {
+            crate::topology::volume::VolumeRule::V1 => VolumeRule::V1,
+            crate::topology::volume::VolumeRule::V2 => VolumeRule::V2,
+        },
+        delay: v.delay,
+    })
+}
+
+/// A volume of a certificate as lacuna's volume.
+pub fn lacuna_volume(v: &Volume) -> crate::topology::volume::Volume {
+    let inside = lacuna_face(&Face {
+        boundary: vec![v.inner],
+        params: v.params,
+        algorithm: v.algorithm.clone(),
+        delay: 1,
+    });
+    crate::topology::volume::Volume {
+        surface: crate::topology::volume::Surface {
+            faces: v.faces.iter().map(lacuna_face).collect(),
+            glue: v.glue.clone(),
+        },
+        radial: lacuna_edge(&v.radial),
+        inner: lacuna_edge(&v.inner),
+        params: inside.params,
+        algorithm: inside.algorithm,
+        rule: match v.rule {
+            VolumeRule::V1 => crate::topology::volume::VolumeRule::V1,
+            VolumeRule::V2 => crate::topology::volume::VolumeRule::V2,
+        },
+        delay: v.delay,
+    }
 }
 
 /// The substitution of a closed type set: matrix rows, contributions in halves, start
@@ -781,6 +869,20 @@ pub fn recertify(
             };
             let solution = crate::constraint::solve(&sys);
             Ok(certificate_for_system(label, &s.source, &sys, &solution))
+        }
+        Claim::Volumes(c) => {
+            let volumes: Vec<_> = c.volumes.iter().map(lacuna_volume).collect();
+            for v in &volumes {
+                v.surface.check().map_err(crate::Error::Usage)?;
+            }
+            match crate::topology::volume::VolumeClosure::of(&volumes, limits)? {
+                crate::topology::volume::VolumeClosure::Closed(set) => {
+                    certificate_for_volumes(label, &set, c.levels)
+                }
+                crate::topology::volume::VolumeClosure::Runaway(r) => Err(CertifyError::Lacuna(
+                    crate::Error::Usage(format!("the volumes' closure did not close: {}", r.reason)),
+                )),
+            }
         }
     }
 }

@@ -12,7 +12,7 @@ pub(super) fn run(args: VerifyArgs, limits: &Limits) -> Result<ExitCode, Error> 
     } = args;
     if let Some((name, v)) = lacuna::input::load_volume(input.as_deref().unwrap_or("F0"))? {
         limits.check_level(levels)?;
-        return volume::verify(&name, &v, levels, json, limits);
+        return volume::verify(&name, &v, levels, json, certificate.as_deref(), limits);
     }
     limits.check_level(levels)?;
     let arg = input.as_deref().unwrap_or("F0");

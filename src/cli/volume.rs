@@ -91,16 +91,30 @@ pub(super) fn ratio(
     Ok(ExitCode::SUCCESS)
 }
 
-/// `lacuna verify` of a volume: the closure, every sub-volume's surface a sphere, counts and R.
+/// `lacuna verify` of a volume: the closure, every sub-volume's surface a sphere, counts and R;
+/// with `--certificate`, the certificate of the closure and counts (THEORY §10).
 pub(super) fn verify(
     name: &str,
     v: &Volume,
     levels: u64,
     json: bool,
+    certificate: Option<&std::path::Path>,
     limits: &Limits,
 ) -> Result<ExitCode, Error> {
+    let mut outputs = match certificate {
+        Some(path) => Outputs::check(&[std::path::Path::new(name)], &[("--certificate", path)])?,
+        None => Outputs::check(&[], &[])?,
+    };
+    if json && outputs.to_stdout {
+        return Err(Error::Usage(
+            "--json and --certificate - would both write to standard output".into(),
+        ));
+    }
     let c = VolumeClosure::of(std::slice::from_ref(v), limits)?;
     let VolumeClosure::Closed(set) = c else {
+        if certificate.is_some() {
+            eprintln!("no certificate written: the closure did not close (certificates have no runaway step)");
+        }
         return closure(name, v, json, limits).map(|_| ExitCode::from(EXIT_FAILED));
     };
     let mut failures = Vec::new();
@@ -116,6 +130,17 @@ pub(super) fn verify(
     let r = lacuna::export::volume_ratio(&set, 30)?;
     let solver = lacuna::constraint::solve_volumes(&set, Default::default(), limits)?;
     let verified = failures.is_empty() && solver.ok();
+    let cert = match certificate {
+        Some(_) => Some(
+            lacuna::certificate::certificate_for_volumes(name, &set, levels).map_err(|e| {
+                match e {
+                    lacuna::certificate::CertifyError::Lacuna(e) => e,
+                    e => Error::Usage(format!("--certificate: {e}")),
+                }
+            })?,
+        ),
+        None => None,
+    };
     if json {
         print_json(&serde_json::json!({
             "input": name,
@@ -128,23 +153,20 @@ pub(super) fn verify(
             "solver": solver,
         }));
     } else {
-        out(&lacuna::export::volume_closure_text(
-            name,
-            &VolumeClosure::Closed(set),
-        ));
-        out(&format!(
+        let mut t = lacuna::export::volume_closure_text(name, &VolumeClosure::Closed(set));
+        t += &format!(
             "\nstructure: every sub-volume's boundary is a sphere{}\n\ncounts\n",
             if verified { "" } else { ": FAILED" }
-        ));
+        );
         for f in &failures {
-            out(&format!("  {f}\n"));
+            t += &format!("  {f}\n");
         }
-        out(&lacuna::export::volume_counts_table(&counts));
-        out("\nthe level-n solid (exact cell counts; – where not derived)\n");
-        out(&lacuna::export::solid_table(&solid));
-        out("\n");
-        out(&lacuna::export::ratio_text(&r));
-        out(&format!(
+        t += &lacuna::export::volume_counts_table(&counts);
+        t += "\nthe level-n solid (exact cell counts; – where not derived)\n";
+        t += &lacuna::export::solid_table(&solid);
+        t += "\n";
+        t += &lacuna::export::ratio_text(&r);
+        t += &format!(
             "\nconstraints (faces and volumes, Bézier degree 2): {} unknowns, {} equations, {}\n",
             solver.unknowns,
             solver.equations,
@@ -153,8 +175,8 @@ pub(super) fn verify(
             } else {
                 "INCONSISTENT (see `lacuna solve`)".into()
             }
-        ));
-        out(&format!(
+        );
+        t += &format!(
             "degeneracy: {}\n",
             if solver.degenerate.is_empty() {
                 "no two distinct corner points of a face's level-1 complex are forced to coincide"
@@ -162,11 +184,21 @@ pub(super) fn verify(
             } else {
                 solver.degenerate.join("; ")
             }
-        ));
-        out(&format!(
+        );
+        t += &format!(
             "\nverdict: {}\n",
             if verified { "VERIFIED" } else { "NOT VERIFIED" }
-        ));
+        );
+        match outputs.to_stdout {
+            true => eprint!("{t}"),
+            false => out(&t),
+        }
+    }
+    if let (Some(path), Some(cert)) = (certificate, cert) {
+        outputs.write(path, |w| w.write_all(cert.to_json().as_bytes()))?;
+        if !json {
+            outputs.say(&format!("certificate written to {}\n", path.display()));
+        }
     }
     Ok(if verified {
         ExitCode::SUCCESS
