@@ -103,11 +103,7 @@ pub fn certificate_for_volumes(
             })
         })
         .collect::<Result<Vec<_>, CertifyError>>()?;
-    let volumes = set
-        .start
-        .iter()
-        .map(|&s| types[s].volume.clone())
-        .collect();
+    let volumes = set.start.iter().map(|&s| types[s].volume.clone()).collect();
     let counts = crate::topology::volume::volume_counts(set, levels)
         .into_iter()
         .map(|c| VolumeCount {
@@ -879,9 +875,12 @@ pub fn recertify(
                 crate::topology::volume::VolumeClosure::Closed(set) => {
                     certificate_for_volumes(label, &set, c.levels)
                 }
-                crate::topology::volume::VolumeClosure::Runaway(r) => Err(CertifyError::Lacuna(
-                    crate::Error::Usage(format!("the volumes' closure did not close: {}", r.reason)),
-                )),
+                crate::topology::volume::VolumeClosure::Runaway(r) => {
+                    Err(CertifyError::Lacuna(crate::Error::Usage(format!(
+                        "the volumes' closure did not close: {}",
+                        r.reason
+                    ))))
+                }
             }
         }
     }

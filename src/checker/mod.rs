@@ -252,7 +252,9 @@ pub fn check(cert: &Certificate) -> CheckReport {
             },
             Step::VolumeClosure(c) => match &cert.claim {
                 Claim::Volumes(v) => check_volume_closure(c, v),
-                _ => Err("a volume-closure step in a certificate whose claim has no volumes".into()),
+                _ => {
+                    Err("a volume-closure step in a certificate whose claim has no volumes".into())
+                }
             },
             Step::SolutionSpace(s) => check_solution(s, tie),
             Step::Inconsistent(c) => check_conflict(c, tie),

@@ -483,9 +483,14 @@ fn step(v: &Volume) -> Result<Vec<Volume>, String> {
         }
         let rim = &loops[0];
         let m = rim.len();
-        let mut faces: Vec<Face> = patch.iter().map(|&(f, k)| l1.subs[f][k].0.clone()).collect();
-        let mut glue: Vec<Vec<(usize, usize)>> =
-            patch.iter().map(|&sf| vec![(usize::MAX, 0); l1.len(sf)]).collect();
+        let mut faces: Vec<Face> = patch
+            .iter()
+            .map(|&(f, k)| l1.subs[f][k].0.clone())
+            .collect();
+        let mut glue: Vec<Vec<(usize, usize)>> = patch
+            .iter()
+            .map(|&sf| vec![(usize::MAX, 0); l1.len(sf)])
+            .collect();
         for &s in &sides {
             if inside(s) {
                 let t = l1.partner[&s];
@@ -498,7 +503,10 @@ fn step(v: &Volume) -> Result<Vec<Volume>, String> {
         let first = patch.len();
         let centre = first + m;
         for (i, &r) in rim.iter().enumerate() {
-            faces.push(inside_face(v, vec![l1.edge(r), v.radial, v.inner, v.radial]));
+            faces.push(inside_face(
+                v,
+                vec![l1.edge(r), v.radial, v.inner, v.radial],
+            ));
             glue[member[&(r.0, r.1)]][r.2] = (first + i, 0);
             glue.push(vec![
                 (member[&(r.0, r.1)], r.2),
