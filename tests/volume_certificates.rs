@@ -22,7 +22,12 @@ fn refused(what: &str, cert: &Certificate, reason: &str) {
     let step = report
         .step("volume-closure")
         .unwrap_or_else(|| panic!("{what}: no volume-closure report:\n{}", report.to_text()));
-    assert_eq!(step.outcome, Outcome::Failed, "{what}:\n{}", report.to_text());
+    assert_eq!(
+        step.outcome,
+        Outcome::Failed,
+        "{what}:\n{}",
+        report.to_text()
+    );
     assert!(
         step.message.contains(reason),
         "{what}: expected `{reason}` in `{}`",
@@ -124,7 +129,11 @@ fn a_forged_form_is_rejected() {
     let c = closure_of(&mut cert);
     let (a, b) = (1, 2);
     c.types[b].volume = c.types[a].volume.clone();
-    refused("duplicate", &cert, &format!("types {a} and {b} are the same volume type"));
+    refused(
+        "duplicate",
+        &cert,
+        &format!("types {a} and {b} are the same volume type"),
+    );
     // A gluing that is not an involution is not a surface.
     let mut cert = volume_certificate("cube-B2");
     let g = &mut closure_of(&mut cert).types[1].volume.glue;
@@ -165,7 +174,11 @@ fn lacuna_check_exits_1_on_a_tampered_volume_certificate() {
     // The level-3 count 3032 becomes 3033.
     assert!(text.contains("\"cells\":\"3032\""), "{text}");
     let bad = dir.join("bad.json");
-    std::fs::write(&bad, text.replace("\"cells\":\"3032\"", "\"cells\":\"3033\"")).unwrap();
+    std::fs::write(
+        &bad,
+        text.replace("\"cells\":\"3032\"", "\"cells\":\"3033\""),
+    )
+    .unwrap();
     let (code, out, _) = lacuna(&["check", bad.to_str().unwrap()]);
     assert_eq!(code, 1, "{out}");
     assert!(

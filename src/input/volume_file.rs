@@ -671,3 +671,158 @@ pub fn notation_file(arg: &str) -> Result<VolumeFile> {
         assembly: VolumeAssembly::single(parse_volume(arg)?),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::topology::volume::{volume_counts, VolumeClosure};
+
+    fn src(t: &str) -> Source {
+        Source {
+            name: "test.txt".into(),
+            text: t.into(),
+        }
+    }
+
+    /// The cube written out by hand: corner x + 2y + 4z, each face counter-clockwise seen from
+    /// outside, and every edge a → b glued to the edge b → a of the face next to it.
+    const CUBE_BLOCK: &str = "\
+# the cube, face by face
+volume cube {
+  inside: B2 B2 | B2 B2 B2 | A1 | V1
+  face bottom: B2 B2 B2 B2 | B2 B2 B2 | A1   # 0 2 3 1
+  face top:    B2 B2 B2 B2 | B2 B2 B2 | A1   # 4 5 7 6
+  face front:  B2 B2 B2 B2 | B2 B2 B2 | A1   # 0 1 5 4
+  face back:   B2 B2 B2 B2 | B2 B2 B2 | A1   # 2 6 7 3
+  face left:   B2 B2 B2 B2 | B2 B2 B2 | A1   # 0 4 6 2
+  face right:  B2 B2 B2 B2 | B2 B2 B2 | A1   # 1 3 7 5
+  face bottom edge 0 ~ face left edge 3      # 0→2 | 2→0
+  face bottom edge 1 ~ face back edge 3      # 2→3 | 3→2
+  face bottom edge 2 ~ face right edge 0     # 3→1 | 1→3
+  face bottom edge 3 ~ face front edge 0     # 1→0 | 0→1
+  face top edge 0 ~ face front edge 2        # 4→5 | 5→4
+  face top edge 1 ~ face right edge 2        # 5→7 | 7→5
+  face top edge 2 ~ face back edge 1         # 7→6 | 6→7
+  face top edge 3 ~ face left edge 1         # 6→4 | 4→6
+  face front edge 1 ~ face right edge 3      # 1→5 | 5→1
+  face front edge 3 ~ face left edge 0       # 4→0 | 0→4
+  face back edge 0 ~ face left edge 2        # 2→6 | 6→2
+  face back edge 2 ~ face right edge 1       # 7→3 | 3→7
+}
+";
+
+    #[test]
+    fn the_cube_block_is_the_cube_shorthand() {
+        let block = parse_volume_text(&src(CUBE_BLOCK)).unwrap();
+        let short = parse_volume("cube B2 | B2 B2 B2 | A1 | B2 B2 | V1").unwrap();
+        assert_eq!(block.canonical(), short.canonical());
+        let counts = |v: &Volume| {
+            let VolumeClosure::Closed(set) =
+                VolumeClosure::of(std::slice::from_ref(v), &Limits::default()).unwrap()
+            else {
+                panic!("closes")
+            };
+            (set.types.len(), volume_counts(&set, 3))
+        };
+        let (types, c) = counts(&block);
+        assert_eq!((types, c.clone()), counts(&short));
+        // THEORY §10: 1, 8, 152, 3032 cells.
+        let cells: Vec<String> = c.iter().map(|l| l.cells.to_string()).collect();
+        assert_eq!(cells, ["1", "8", "152", "3032"]);
+        // The named shorthand is the same volume as the unnamed one.
+        let named =
+            parse_volume_file(&src("volume A = cube B2 | B2 B2 B2 | A1 | B2 B2 | V1")).unwrap();
+        assert_eq!(named.names, ["A"]);
+        assert_eq!(named.assembly.volumes[0], short);
+    }
+
+    /// The tetrahedron with one C2 edge (corners 0 1 2 3; edge {0,1} is C2), every face with
+    /// `R`, which puts a spoke at the corner from a C edge to a B edge.
+    fn tetra(name: &str) -> String {
+        format!(
+            "volume {name} {{
+  inside: B2 B2 | B2 B2 B2 | R | V1
+  face f0: B2 B2 C2 | B2 B2 B2 | R   # 0 2 1
+  face f1: C2 B2 B2 | B2 B2 B2 | R   # 0 1 3
+  face f2: B2 B2 B2 | B2 B2 B2 | R   # 1 2 3
+  face f3: B2 B2 B2 | B2 B2 B2 | R   # 0 3 2
+  face f0 edge 0 ~ face f3 edge 2
+  face f0 edge 1 ~ face f2 edge 0
+  face f0 edge 2 ~ face f1 edge 0
+  face f1 edge 1 ~ face f2 edge 2
+  face f1 edge 2 ~ face f3 edge 0
+  face f2 edge 1 ~ face f3 edge 1
+}}
+"
+        )
+    }
+
+    #[test]
+    fn shared_faces_are_checked() {
+        let rule = "rule R = {joint gap corner(C,B)}\n";
+        let two = format!("{rule}{}{}", tetra("A"), tetra("B"));
+        assert!(parse_volume_file(&src(&two)).is_ok());
+        // A face shared with a face of another type.
+        let t = format!("{two}volume A face f2 edge 0 ~ volume B face f1 edge 0\n");
+        let e = parse_volume_file(&src(&t)).unwrap_err();
+        assert_eq!((e.code(), e.span().unwrap().line), ("E1230", 28));
+        // A's f1 (C2 B2 B2) read from B is B's f0 (B2 B2 C2) with A's edge 0 on B's edge 2: the
+        // same face, but R puts a spoke at the corner C2 → B2 of A's reading, which B reads as
+        // B2 → C2: the two volumes would subdivide it differently.
+        let t = format!("{two}volume A face f1 edge 0 ~ volume B face f0 edge 2\n");
+        let e = parse_volume_file(&src(&t)).unwrap_err();
+        assert_eq!(e.code(), "E1231", "{}", e.render());
+        // With the symmetric A1 the same gluing is accepted.
+        let sym = two.replace("corner(C,B)", "");
+        let t = format!("{sym}volume A face f1 edge 0 ~ volume B face f0 edge 2\n");
+        let file = parse_volume_file(&src(&t)).unwrap();
+        assert_eq!(file.assembly.shared.len(), 1);
+    }
+
+    #[test]
+    fn bad_volume_files_have_codes_lines_and_columns() {
+        let face = "B2 B2 B2 B2 | B2 B2 B2 | A1";
+        let inside = "  inside: B2 B2 | B2 B2 B2 | A1 | V1\n";
+        // A torus: one square with opposite edges glued (V − E + F = 1 − 2 + 1 = 0).
+        let torus = format!(
+            "volume T {{\n{inside}  face s: {face}\n  face s edge 0 ~ face s edge 2\n  face s edge 1 ~ face s edge 3\n}}\n"
+        );
+        // Two spheres of two digons each: not connected.
+        let digon = "B2 B2 | B2 B2 B2 | A1";
+        let apart = format!(
+            "volume D {{\n{inside}  face a: {digon}\n  face b: {digon}\n  face c: {digon}\n  face d: {digon}\n  face a edge 0 ~ face b edge 0\n  face a edge 1 ~ face b edge 1\n  face c edge 0 ~ face d edge 0\n  face c edge 1 ~ face d edge 1\n}}\n"
+        );
+        let cube = "volume A = cube B2 | B2 B2 B2 | A1 | B2 B2 | V1\n";
+        let cases: Vec<(String, &str, usize, usize)> = vec![
+            (format!("volume X {{\n{inside}  face a: {face}\n"), "E1220", 1, 8),
+            (format!("volume X {{\n  face a: {face}\n}}\n"), "E1220", 1, 8),
+            (format!("volume X {{\n{inside}  hello\n}}\n"), "E1220", 3, 3),
+            (format!("volume X {{\n{inside}  face a: {face}\n  face a: {face}\n}}\n"), "E1221", 4, 8),
+            (format!("{cube}{cube}"), "E1221", 2, 8),
+            (format!("volume X {{\n{inside}  face a: {face}\n  face a edge 0 ~ face b edge 1\n}}\n"), "E1222", 4, 24),
+            (format!("{cube}volume A face 0 edge 0 ~ volume Z face 0 edge 0\n"), "E1222", 2, 33),
+            (format!("volume X {{\n{inside}  face a: {face}\n  face a edge 7 ~ face a edge 1\n}}\n"), "E1223", 4, 3),
+            (format!("{cube}volume A face 0 edge 9 ~ volume A face 1 edge 0\n"), "E1223", 2, 22),
+            (format!("volume X {{\n{inside}  face a: {face}\n  face a edge 0 ~ face a edge 2\n  face a edge 2 ~ face a edge 1\n}}\n"), "E1224", 5, 3),
+            (format!("volume X {{\n{inside}  face a: {face}\n  face a edge 0 ~ face a edge 0\n}}\n"), "E1224", 4, 3),
+            (format!("volume X {{\n{inside}  face a: {face}\n  face a edge 0 ~ face a edge 2\n}}\n"), "E1225", 3, 8),
+            (format!("volume X {{\n{inside}  face a: C2 B2 | B2 B2 B2 | A1\n  face a edge 0 ~ face a edge 1\n}}\n"), "E1226", 4, 3),
+            (apart, "E1228", 1, 8),
+            (torus, "E1229", 1, 8),
+            (format!("{cube}volume A face 0 edge 0 ~ volume A face 1 edge 0\n"), "E1230", 2, 1),
+            (format!("volume X {{\n  inside: B2 | B2 B2 B2 | A1 | V1\n}}\n"), "E1232", 2, 11),
+            (format!("volume X {{\n  inside: B2 B2 | B2 B2 B2 | A1 | V7\n}}\n"), "E1232", 2, 35),
+            (format!("volume X {{\n{inside}  face a: B2 Q2 | B2 B2 B2 | A1\n}}\n"), "E0103", 3, 14),
+        ];
+        for (text, code, line, col) in cases {
+            let e = parse_volume_file(&src(&text)).unwrap_err();
+            let span = e.span().unwrap_or_else(|| panic!("{text}: no span"));
+            assert_eq!(
+                (e.code(), span.line, span.col),
+                (code, line, col),
+                "{text}\n{}",
+                e.render()
+            );
+        }
+    }
+}
