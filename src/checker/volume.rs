@@ -482,6 +482,17 @@ fn step(v: &Volume) -> Result<Vec<Volume>, String> {
             ));
         }
         let rim = &loops[0];
+        if rim.iter().any(|&s| {
+            spoke(v.rule, l1.origin(s))
+                && l1
+                    .partner
+                    .get(&s)
+                    .is_some_and(|t| member.contains_key(&(t.0, t.1)))
+        }) {
+            return Err(format!(
+                "patch {n} has a spoke edge with the patch on both sides: its sub-volume would meet itself"
+            ));
+        }
         let m = rim.len();
         let mut faces: Vec<Face> = patch
             .iter()

@@ -527,8 +527,8 @@ fn per_face_counts(ts: &TypeSet, input: &Input, levels: u64) -> Vec<FaceCounts> 
 /// JSON of `lacuna counts`.
 pub fn counts_json(ts: &TypeSet, input: &Input, levels: u64) -> Value {
     // `cells` (the faces, N^C) beside `faces`, as the counts of volumes name their sub-volumes.
-    let mut rows = serde_json::to_value(crate::topology::count::counts(ts, levels))
-        .unwrap_or(Value::Null);
+    let mut rows =
+        serde_json::to_value(crate::topology::count::counts(ts, levels)).unwrap_or(Value::Null);
     if let Some(rows) = rows.as_array_mut() {
         for row in rows {
             let faces = row["faces"].clone();
