@@ -187,3 +187,45 @@ fn lacuna_check_exits_1_on_a_tampered_volume_certificate() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+mod random {
+    //! The certificate of random small volumes checks, and a changed count is caught.
+    use super::*;
+    use lacuna::topology::volume::{parse_volume, VolumeClosure};
+    use lacuna::topology::Limits;
+    use proptest::prelude::*;
+
+    fn notation() -> impl Strategy<Value = String> {
+        (
+            proptest::sample::select(vec!["tetrahedron", "cube", "prism-3", "octahedron"]),
+            proptest::sample::select(vec!["B2", "C2", "B3", "C3"]),
+            proptest::sample::select(vec!["B2 B2 B2", "C2 B2 B2", "B2 B2 C2"]),
+            proptest::sample::select(vec!["A1", "A2", "A3"]),
+            proptest::sample::select(vec!["B2 B2", "C2 B2", "B2 C2"]),
+            proptest::sample::select(vec!["V1", "V2"]),
+            proptest::sample::select(vec!["", " | 2"]),
+        )
+            .prop_map(|(s, x, e, a, g, r, d)| format!("{s} {x} | {e} | {a} | {g} | {r}{d}"))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(12))]
+        #[test]
+        fn random_volumes_certify(text in notation()) {
+            let v = parse_volume(&text).unwrap();
+            let limits = Limits { max_types: 16, ..Limits::default() };
+            let Ok(VolumeClosure::Closed(set)) = VolumeClosure::of(&[v], &limits) else {
+                // A refused rule or a closure past the small limit: nothing to certify.
+                return Ok(());
+            };
+            let cert = lacuna::certificate::certificate_for_volumes(&text, &set, 2).unwrap();
+            let report = check(&cert);
+            prop_assert!(report.all_proved(), "{}\n{}", text, report.to_text());
+            let mut bad = cert.clone();
+            let c = closure_of(&mut bad);
+            let n: u64 = c.counts[1].cells.parse().unwrap();
+            c.counts[1].cells = (n + 1).to_string();
+            prop_assert!(check(&bad).failed());
+        }
+    }
+}
