@@ -110,8 +110,11 @@ struct Block {
     col: usize,
     inside: Option<(EdgeType, EdgeType, Face, VolumeRule, u32)>,
     faces: Vec<(String, Face, usize, usize)>,
-    links: Vec<(usize, usize, [(usize, usize); 2])>,
+    links: Vec<Gluing>,
 }
+
+/// A gluing inside a block: its line, column and the two (face, edge) sides.
+type Gluing = (usize, usize, [(usize, usize); 2]);
 
 /// Parses `face NAME edge I` in `part` (of `line`); names are looked up in `faces`.
 fn face_edge(part: &str, line: &Line, faces: &[String], src: &Source) -> Result<(usize, usize)> {
@@ -810,8 +813,8 @@ volume cube {
             (apart, "E1228", 1, 8),
             (torus, "E1229", 1, 8),
             (format!("{cube}volume A face 0 edge 0 ~ volume A face 1 edge 0\n"), "E1230", 2, 1),
-            (format!("volume X {{\n  inside: B2 | B2 B2 B2 | A1 | V1\n}}\n"), "E1232", 2, 11),
-            (format!("volume X {{\n  inside: B2 B2 | B2 B2 B2 | A1 | V7\n}}\n"), "E1232", 2, 35),
+            ("volume X {\n  inside: B2 | B2 B2 B2 | A1 | V1\n}\n".to_string(), "E1232", 2, 11),
+            ("volume X {\n  inside: B2 B2 | B2 B2 B2 | A1 | V7\n}\n".to_string(), "E1232", 2, 35),
             (format!("volume X {{\n{inside}  face a: B2 Q2 | B2 B2 B2 | A1\n}}\n"), "E0103", 3, 14),
         ];
         for (text, code, line, col) in cases {
