@@ -337,6 +337,64 @@ mod random {
         }
 
         #[test]
+        fn the_level_1_solid_counted_cell_by_cell(v in volume()) {
+            // The level-1 complex is the union of the sub-volumes (closed balls). Counted
+            // directly: the corners and edges of every sub-volume's surface, identified by its
+            // own gluing and, across a spoke, by the side face the two sub-volumes share (corner
+            // k of one reading is corner 1 − k of the other, edge k is edge −k); every other face
+            // lies on one sub-volume. Against the birth counts of `solid_topology`.
+            let limits = crate::topology::limits::Limits { max_types: 24, ..Default::default() };
+            let Ok(VolumeClosure::Closed(set)) = VolumeClosure::of(std::slice::from_ref(&v), &limits) else {
+                return Ok(());
+            };
+            let Ok(sub) = subdivide_volume(&v) else { return Ok(()) };
+            let solid = solid_topology(&set, 1).unwrap();
+            let mut base = Vec::new();
+            let mut total = 0usize;
+            for s in &sub.subvolumes {
+                base.push(s.volume.surface.faces.iter().map(|f| { let b = total; total += f.boundary.len(); b }).collect::<Vec<_>>());
+            }
+            let id = |w: usize, f: usize, k: usize| {
+                let n = sub.subvolumes[w].volume.surface.faces[f].boundary.len();
+                base[w][f] + k % n
+            };
+            let mut corners = crate::topology::component::Dsu::new(total);
+            let mut sides = crate::topology::component::Dsu::new(total);
+            for (w, s) in sub.subvolumes.iter().enumerate() {
+                for (f, row) in s.volume.surface.glue.iter().enumerate() {
+                    for (i, &(g, j)) in row.iter().enumerate() {
+                        sides.union(id(w, f, i), id(w, g, j));
+                        corners.union(id(w, f, i), id(w, g, j + 1));
+                    }
+                }
+            }
+            let mut holder = std::collections::HashMap::new();
+            for (w, s) in sub.subvolumes.iter().enumerate() {
+                for &(side, placed) in &s.sides {
+                    let b = &s.volume.surface.faces[placed.face].boundary;
+                    let frame = crate::topology::face::least_rotation(b);
+                    // As-built corner k is corner k − root of the surface's reading.
+                    holder.insert(side, (w, placed.face, (placed.rotation + 4 - frame) % 4));
+                }
+            }
+            for &(a, b) in &sub.spoke_pairs {
+                let (wa, fa, ra) = holder[&a];
+                let (wb, fb, rb) = holder[&b];
+                for k in 0..4 {
+                    corners.union(id(wa, fa, k + 4 - ra), id(wb, fb, (5 - k) + 4 - rb));
+                    sides.union(id(wa, fa, k + 4 - ra), id(wb, fb, (4 - k) + 4 - rb));
+                }
+            }
+            let faces: usize = sub.subvolumes.iter().map(|s| s.volume.surface.faces.len()).sum::<usize>()
+                - sub.spoke_pairs.len();
+            let level1 = &solid[1];
+            prop_assert_eq!(level1.volumes.clone(), num_bigint::BigUint::from(sub.subvolumes.len()));
+            prop_assert_eq!(level1.faces.clone(), num_bigint::BigUint::from(faces));
+            prop_assert_eq!(level1.edges.clone(), num_bigint::BigUint::from(sides.classes()));
+            prop_assert_eq!(level1.corners.clone(), num_bigint::BigUint::from(corners.classes()));
+        }
+
+        #[test]
         fn counts_follow_the_children_and_a_direct_count(v in volume()) {
             let limits = crate::topology::limits::Limits { max_types: 24, ..Default::default() };
             let Ok(VolumeClosure::Closed(set)) = VolumeClosure::of(std::slice::from_ref(&v), &limits) else {
