@@ -247,3 +247,26 @@ fn face_counts_name_their_cells() {
         assert_eq!(v["levels"][i]["faces"], *want, "{out}");
     }
 }
+
+#[test]
+fn a_bad_volume_file_is_exit_2_with_its_line_and_column() {
+    let dir = std::env::temp_dir().join(format!("lacuna-volbad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("open.txt");
+    // A square with only two of its edges glued: edge 1 is not glued (E1225, at the face's
+    // name on line 3, column 8).
+    std::fs::write(
+        &file,
+        "volume X {\n  inside: B2 B2 | B2 B2 B2 | A1 | V1\n  face a: B2 B2 B2 B2 | B2 B2 B2 | A1\n  face a edge 0 ~ face a edge 2\n}\n",
+    )
+    .unwrap();
+    let (code, _, err) = lacuna(&["counts", file.to_str().unwrap(), "--levels", "1"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("error[E1225]"), "{err}");
+    assert!(err.contains("open.txt:3:8"), "{err}");
+    // `solve` reads one volume: an assembly of two is refused by name.
+    let (code, _, err) = lacuna(&["solve", "two-cubes"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("2 volumes glued face to face"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -21,6 +21,14 @@ use std::collections::{HashMap, VecDeque};
 /// certificate must not make the checker build a surface of billions of sub-faces.
 const MAX_SIDES: u128 = 2_000_000;
 
+/// The most level-1 sides of all listed types together: the re-derivation costs time linear in
+/// them, so a small certificate of many types with long edges must not buy unbounded work.
+const MAX_TOTAL_SIDES: u128 = 20_000_000;
+
+/// The most sides (face edges) a listed or derived surface may have: its canonical code costs
+/// up to quadratic time in them.
+const MAX_SURFACE_SIDES: usize = 20_000;
+
 /// The most levels of counts the checker recomputes.
 const MAX_LEVELS: u64 = 10_000;
 
@@ -221,6 +229,16 @@ fn type_key(v: &Volume, code: Vec<Tok>) -> TypeKey {
     (code, v.radial, v.inner, inside, v.rule, v.delay)
 }
 
+/// The sides the level-1 surface of `v` may have: at most 4·n per edge side (n pieces, gap
+/// sides, spokes and lacuna sides), saturating.
+fn level1_sides(v: &Volume) -> u128 {
+    v.faces
+        .iter()
+        .flat_map(|f| &f.boundary)
+        .map(|e| u128::from(e.n).saturating_mul(4))
+        .fold(0, u128::saturating_add)
+}
+
 /// Checks a volume's own fields and its surface; returns its type key.
 fn checked_key(v: &Volume) -> Result<TypeKey, String> {
     let p = v.params;
@@ -228,12 +246,13 @@ fn checked_key(v: &Volume) -> Result<TypeKey, String> {
     if !fields_ok || v.delay < 1 || v.algorithm.is_empty() {
         return Err("G or E with n < 2 or a delay 0, no algorithm, or delay 0".into());
     }
-    let sides: u128 = v
-        .faces
-        .iter()
-        .flat_map(|f| &f.boundary)
-        .map(|e| u128::from(e.n).saturating_mul(4))
-        .fold(0, u128::saturating_add);
+    let surface: usize = v.faces.iter().map(|f| f.boundary.len()).sum();
+    if surface > MAX_SURFACE_SIDES {
+        return Err(format!(
+            "its surface has {surface} sides, above the checker's limit of {MAX_SURFACE_SIDES}"
+        ));
+    }
+    let sides = level1_sides(v);
     if sides > MAX_SIDES {
         return Err(format!(
             "its level-1 surface may have {sides} sides, above the checker's limit of {MAX_SIDES}"
@@ -551,6 +570,17 @@ pub(super) fn check_volume_closure(
     claim: &VolumesClaim,
 ) -> Result<(String, String), String> {
     let nt = c.types.len();
+    let total = c
+        .types
+        .iter()
+        .map(|t| level1_sides(&t.volume))
+        .fold(0u128, u128::saturating_add);
+    if total > MAX_TOTAL_SIDES {
+        return Err(format!(
+            "the level-1 surfaces of the listed types may have {total} sides together, above the \
+             checker's limit of {MAX_TOTAL_SIDES}"
+        ));
+    }
     let mut index: HashMap<TypeKey, usize> = HashMap::with_capacity(nt);
     for (t, rule) in c.types.iter().enumerate() {
         let key = checked_key(&rule.volume).map_err(|e| format!("type {t}: {e}"))?;
@@ -574,6 +604,13 @@ pub(super) fn check_volume_closure(
         let derived = step(&rule.volume).map_err(|e| format!("type {t}: {e}"))?;
         let mut got = Vec::with_capacity(derived.len());
         for (k, d) in derived.iter().enumerate() {
+            let surface: usize = d.faces.iter().map(|f| f.boundary.len()).sum();
+            if surface > MAX_SURFACE_SIDES {
+                return Err(format!(
+                    "type {t}: its sub-volume {k} has {surface} sides, above the checker's limit of \
+                     {MAX_SURFACE_SIDES}"
+                ));
+            }
             let map = map_of(d);
             map.sphere()
                 .map_err(|e| format!("type {t} sub-volume {k}: {e}"))?;
@@ -774,5 +811,33 @@ mod tests {
         let mut bad = map_of(&c);
         bad.glue[0][0] = bad.glue[0][1];
         assert!(bad.sphere().is_err());
+    }
+
+    #[test]
+    fn hostile_sizes_are_refused_before_the_work() {
+        // Two digons glued into a sphere, with edges of a million pieces: 8 000 000 level-1
+        // sides, above the per-type cap, refused before any subdivision.
+        let big = Edge {
+            kind: Kind::B,
+            n: 1_000_000,
+            delay: 1,
+        };
+        let digon = Face {
+            boundary: vec![big; 2],
+            ..square()
+        };
+        let v = Volume {
+            faces: vec![digon.clone(), digon],
+            glue: vec![vec![(1, 0), (1, 1)], vec![(0, 0), (0, 1)]],
+            ..cube()
+        };
+        let e = checked_key(&v).unwrap_err();
+        assert!(e.contains("above the checker's limit"), "{e}");
+        // A surface of 25 000 sides is refused before its canonical code is computed.
+        let mut many = cube();
+        many.faces[0].boundary = vec![b2(); 25_000];
+        let e = checked_key(&many).unwrap_err();
+        // 25 000 + five squares of 4.
+        assert!(e.contains("25020 sides"), "{e}");
     }
 }
