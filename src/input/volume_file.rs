@@ -802,6 +802,7 @@ volume cube {
             (format!("volume X {{\n{inside}  hello\n}}\n"), "E1220", 3, 3),
             (format!("volume X {{\n{inside}  face a: {face}\n  face a: {face}\n}}\n"), "E1221", 4, 8),
             (format!("{cube}{cube}"), "E1221", 2, 8),
+            ("# x\nvolume A = sphere B2 | B2 B2 B2 | A1 | B2 B2 | V1\n".to_string(), "E1202", 2, 12),
             (format!("volume X {{\n{inside}  face a: {face}\n  face a edge 0 ~ face b edge 1\n}}\n"), "E1222", 4, 24),
             (format!("{cube}volume A face 0 edge 0 ~ volume Z face 0 edge 0\n"), "E1222", 2, 33),
             (format!("volume X {{\n{inside}  face a: {face}\n  face a edge 7 ~ face a edge 1\n}}\n"), "E1223", 4, 3),
@@ -820,6 +821,13 @@ volume cube {
         for (text, code, line, col) in cases {
             let e = parse_volume_file(&src(&text)).unwrap_err();
             let span = e.span().unwrap_or_else(|| panic!("{text}: no span"));
+            // The error shows the file's line, not a sub-text's.
+            assert!(
+                e.render()
+                    .contains(&format!("test.txt:{}:{}", span.line, span.col)),
+                "{}",
+                e.render()
+            );
             assert_eq!(
                 (e.code(), span.line, span.col),
                 (code, line, col),
