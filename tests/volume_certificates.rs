@@ -72,6 +72,41 @@ fn the_cube_certificate_states_the_hand_counts() {
 }
 
 #[test]
+fn the_cube_certificate_proves_r_by_hand() {
+    // The dominant class {W3, W4} has M = [[16, 3], [20, 5]], ρ = 20 (λ² − 21λ + 20 = 0), left
+    // eigenvector u = (5, 1): cells grow as 20^i·(5 + 1), lacunas add u·c = 5·15/2 + 19/2 = 47
+    // per unit, summed over the levels below: 47/19. R = (47/19) / (47/19 + 6) = 47/161.
+    let cert = volume_certificate("cube-B2");
+    let Some(Step::LimitRatio(r)) = cert.steps.get(1) else {
+        panic!("the second step is the limit ratio")
+    };
+    assert!(r.exists);
+    assert_eq!(r.rho.poly, ["-20", "1"]);
+    assert_eq!(r.points.len(), 1);
+    assert_eq!(r.points[0].value, ["47/161"]);
+    let report = check(&cert);
+    assert!(report.all_proved(), "{}", report.to_text());
+    // A forged limit: 1/3 instead of 47/161.
+    let mut bad = cert.clone();
+    if let Some(Step::LimitRatio(r)) = bad.steps.get_mut(1) {
+        r.points[0].value = vec!["1/3".into()];
+    }
+    let report = check(&bad);
+    let step = report.step("limit-ratio").expect("a limit-ratio report");
+    assert_eq!(step.outcome, Outcome::Failed, "{}", report.to_text());
+    // Without its volume closure the ratio has no substitution: refused as a whole.
+    let mut alone = cert.clone();
+    alone.steps.remove(0);
+    let report = check(&alone);
+    assert_eq!(report.steps[0].step, "structure", "{}", report.to_text());
+    // Without the ratio the certificate is partial.
+    let mut partial = cert;
+    partial.steps.pop();
+    let report = check(&partial);
+    assert!(report.partial(), "{}", report.to_text());
+}
+
+#[test]
 fn a_changed_count_is_rejected() {
     let mut cert = volume_certificate("cube-B2");
     closure_of(&mut cert).counts[2].cells = "153".into();

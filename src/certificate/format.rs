@@ -46,7 +46,8 @@ pub struct Certificate {
 /// - an automaton ([`Claim::Automaton`]) or a system ([`Claim::System`]) needs
 ///   `solution-space` or `inconsistent`;
 /// - a substitution ([`Claim::Substitution`]) needs `limit-ratio`;
-/// - volumes ([`Claim::Volumes`]) need `volume-closure`.
+/// - volumes ([`Claim::Volumes`]) need `volume-closure`, then `limit-ratio` (lacunas in
+///   quarters).
 ///
 /// A certificate whose steps are a proper part of that sequence (in order, the closure present
 /// for faces) is *partial*: what it has is checked, but it proves less than the claim.
@@ -63,7 +64,7 @@ pub enum Claim {
     Substitution(SubstitutionClaim),
     /// An explicit linear system: its solution space or inconsistency is certified.
     System(System),
-    /// Start volumes (THEORY §10): their closure and exact counts are certified.
+    /// Start volumes (THEORY §10): their closure, exact counts and limit ratio are certified.
     Volumes(VolumesClaim),
 }
 
@@ -261,7 +262,7 @@ pub enum Step {
     /// and right-hand side `c ≠ 0`; any solution would satisfy `0 = c`.
     Inconsistent(ConflictStep),
     /// **The limit ratio R** (every case: shared radii, periodic classes, ρ = 1) of the closure's
-    /// substitution or the claimed matrix. Justification: the checker recomputes the classes reached from the start and their periods, isolates ρ
+    /// substitution, the volume closure's (lacunas in quarters) or the claimed matrix. Justification: the checker recomputes the classes reached from the start and their periods, isolates ρ
     /// (Sturm), and checks per class a positive Perron eigenvector for ρ or a Collatz–Wielandt
     /// bound below ρ. By Perron–Frobenius the eigenvalues of the augmented matrix
     /// `A = [[M, c], [0, 1]]` of modulus `σ = max(ρ, 1)` are `σ·ω`, `ω^P = 1`, with `P` the lcm

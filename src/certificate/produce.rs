@@ -85,8 +85,8 @@ pub fn certificate_for(
 }
 
 /// The certificate of a closed set of volume types (THEORY §10): the claim is the start volumes
-/// and the number of levels, the one step the closure of volume types with the counts of the
-/// start volumes from level 0 to `levels`.
+/// and the number of levels; the steps are the closure of volume types with the counts of the
+/// start volumes from level 0 to `levels`, and the limit ratio of its substitution.
 pub fn certificate_for_volumes(
     input: &str,
     set: &crate::topology::volume::VolumeTypeSet,
@@ -112,9 +112,28 @@ pub fn certificate_for_volumes(
             lacunas: c.lacunas.to_string(),
         })
         .collect();
+    // The substitution: one row per type (children counted), quarters, start multiplicities.
+    let matrix: Vec<Vec<(usize, u64)>> = types
+        .iter()
+        .map(|t| {
+            let mut row: std::collections::BTreeMap<usize, u64> = Default::default();
+            for &c in &t.children {
+                *row.entry(c).or_default() += 1;
+            }
+            row.into_iter().collect()
+        })
+        .collect();
+    let quarters: Vec<u64> = types.iter().map(|t| t.contribution_quarters).collect();
+    let mut start: std::collections::BTreeMap<usize, u64> = Default::default();
+    for &s in &set.start {
+        *start.entry(s).or_default() += 1;
+    }
+    let start: Vec<(usize, u64)> = start.into_iter().collect();
+    let ratio = ratio_step_in(&matrix, &quarters, &start, 4)?;
     let mut cert = Certificate::new(input, Claim::Volumes(VolumesClaim { volumes, levels }));
     cert.steps
         .push(Step::VolumeClosure(VolumeClosureStep { types, counts }));
+    cert.steps.push(Step::LimitRatio(ratio));
     Ok(cert)
 }
 
@@ -449,9 +468,19 @@ pub fn ratio_step(
     contribution_halves: &[u64],
     start: &[(usize, u64)],
 ) -> Result<RatioStep, CertifyError> {
-    let c: Vec<BigRational> = contribution_halves
+    ratio_step_in(matrix, contribution_halves, start, 2)
+}
+
+/// [`ratio_step`] with contributions in `1/unit` lacunas (2 for faces, 4 for volumes).
+fn ratio_step_in(
+    matrix: &[Vec<(usize, u64)>],
+    contributions: &[u64],
+    start: &[(usize, u64)],
+    unit: u32,
+) -> Result<RatioStep, CertifyError> {
+    let c: Vec<BigRational> = contributions
         .iter()
-        .map(|&h| BigRational::new(h.into(), 2.into()))
+        .map(|&h| BigRational::new(h.into(), unit.into()))
         .collect();
     let report = crate::analysis::analyse(matrix, &c, start)?;
     let field = &report.field;

@@ -316,7 +316,7 @@ fn slots(c: &Claim) -> &'static [&'static [&'static str]] {
         Claim::Faces(_) => &[&["closure"], SYSTEM, &["limit-ratio"]],
         Claim::Automaton(_) | Claim::System(_) => &[SYSTEM],
         Claim::Substitution(_) => &[&["limit-ratio"]],
-        Claim::Volumes(_) => &[&["volume-closure"]],
+        Claim::Volumes(_) => &[&["volume-closure"], &["limit-ratio"]],
     }
 }
 
@@ -352,7 +352,7 @@ pub(super) fn structure(c: &Claim, steps: &[Step]) -> Result<Vec<String>, String
             }
         }
     }
-    if matches!(c, Claim::Faces(_)) && !filled[0] {
+    if matches!(c, Claim::Faces(_) | Claim::Volumes(_)) && !filled[0] {
         return Err(format!(
             "no closure step: every other step is tied to it; {}",
             shape()

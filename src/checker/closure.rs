@@ -15,6 +15,8 @@ pub(super) struct Substitution {
     pub(super) matrix: Vec<BTreeMap<usize, BigUint>>,
     pub(super) contributions: Vec<BigUint>,
     pub(super) start: BTreeMap<usize, BigUint>,
+    /// Contributions are in `1/unit` lacunas: 2 (halves) for faces, 4 (quarters) for volumes.
+    pub(super) unit: u32,
 }
 
 /// `Σ k` of the pairs `(index, k)` with equal index, exactly (big integers), zeros dropped;
@@ -59,6 +61,7 @@ impl Substitution {
             matrix,
             contributions: s.contribution_halves.iter().map(|&h| h.into()).collect(),
             start,
+            unit: 2,
         })
     }
 }
@@ -385,6 +388,7 @@ pub(super) fn check_closure(
             matrix,
             contributions,
             start,
+            unit: 2,
         },
     ))
 }

@@ -225,6 +225,7 @@ pub fn check(cert: &Certificate) -> CheckReport {
     };
     let mut steps = Vec::new();
     let mut closure: Option<(Substitution, &crate::certificate::ClosureStep)> = None;
+    let mut volumes: Option<Substitution> = None;
     let given = match &cert.claim {
         Claim::Substitution(s) => Some(Substitution::of_claim(s)),
         Claim::Faces(_) | Claim::Automaton(_) | Claim::System(_) | Claim::Volumes(_) => None,
@@ -251,18 +252,24 @@ pub fn check(cert: &Certificate) -> CheckReport {
                 _ => Err("a closure step in a certificate whose claim has no faces".into()),
             },
             Step::VolumeClosure(c) => match &cert.claim {
-                Claim::Volumes(v) => check_volume_closure(c, v),
+                Claim::Volumes(v) => check_volume_closure(c, v).map(|(msg, verdict, sub)| {
+                    volumes = Some(sub);
+                    (msg, verdict)
+                }),
                 _ => {
                     Err("a volume-closure step in a certificate whose claim has no volumes".into())
                 }
             },
             Step::SolutionSpace(s) => check_solution(s, tie),
             Step::Inconsistent(c) => check_conflict(c, tie),
-            Step::LimitRatio(r) => match (&given, &closure) {
-                (Some(Ok(sub)), _) => check_ratio(r, sub, "the claim's substitution"),
-                (Some(Err(e)), _) => Err(format!("the claim's substitution: {e}")),
-                (None, Some((sub, _))) => check_ratio(r, sub, "the closure's substitution"),
-                (None, None) => Err("no proved closure step to take the substitution from".into()),
+            Step::LimitRatio(r) => match (&given, &closure, &volumes) {
+                (Some(Ok(sub)), _, _) => check_ratio(r, sub, "the claim's substitution"),
+                (Some(Err(e)), _, _) => Err(format!("the claim's substitution: {e}")),
+                (None, Some((sub, _)), _) => check_ratio(r, sub, "the closure's substitution"),
+                (None, None, Some(sub)) => check_ratio(r, sub, "the volume closure's substitution"),
+                (None, None, None) => {
+                    Err("no proved closure step to take the substitution from".into())
+                }
             },
         };
         let (outcome, message, verdict) = match result {

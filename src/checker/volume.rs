@@ -8,14 +8,14 @@
 //! the breadth-first traversal that reads each face from its root edge and records, for every
 //! edge, the discovery index of the face across it and the offset of that edge from its root.
 
-use super::closure::{contribution, subdivide};
+use super::closure::{contribution, subdivide, Substitution};
 use crate::certificate::{
     Edge, Face, Origin, SpokeItem, Volume, VolumeClosureStep, VolumeRule, VolumesClaim,
 };
 use num_bigint::BigUint;
 use num_rational::BigRational;
 use num_traits::Zero;
-use std::collections::{HashMap, VecDeque};
+use std::collections::{BTreeMap, HashMap, VecDeque};
 
 /// The most sides (sub-face edges) the level-1 surface of one listed type may have: a hostile
 /// certificate must not make the checker build a surface of billions of sub-faces.
@@ -564,11 +564,12 @@ fn quarters(v: &Volume) -> BigUint {
     }
 }
 
-/// Checks the volume-closure step against the claim; returns the report and the verdict.
+/// Checks the volume-closure step against the claim; returns the report, the verdict and the
+/// substitution read off it (lacunas in quarters).
 pub(super) fn check_volume_closure(
     c: &VolumeClosureStep,
     claim: &VolumesClaim,
-) -> Result<(String, String), String> {
+) -> Result<(String, String, Substitution), String> {
     let nt = c.types.len();
     let total = c
         .types
@@ -662,6 +663,27 @@ pub(super) fn check_volume_closure(
         .iter()
         .map(|r| BigUint::from(r.contribution_quarters))
         .collect();
+    let substitution = Substitution {
+        matrix: c
+            .types
+            .iter()
+            .map(|t| {
+                let mut row: BTreeMap<usize, BigUint> = BTreeMap::new();
+                for &ch in &t.children {
+                    *row.entry(ch).or_insert_with(BigUint::zero) += 1u32;
+                }
+                row
+            })
+            .collect(),
+        contributions: contributions.clone(),
+        start: start
+            .iter()
+            .enumerate()
+            .filter(|(_, k)| !k.is_zero())
+            .map(|(t, k)| (t, k.clone()))
+            .collect(),
+        unit: 4,
+    };
     let mut v = start;
     let mut lacuna_quarters = BigUint::zero();
     let (mut cells_line, mut lacunas_line) = (Vec::new(), Vec::new());
@@ -711,7 +733,7 @@ pub(super) fn check_volume_closure(
         cells_line.join(", "),
         lacunas_line.join(", ")
     );
-    Ok((msg, verdict))
+    Ok((msg, verdict, substitution))
 }
 
 #[cfg(test)]
