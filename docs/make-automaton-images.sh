@@ -5,7 +5,7 @@ set -e
 L=${LACUNA:-target/release/lacuna}
 $L render sierpinski-triangle --level 6 --svg docs/images/sierpinski-triangle.svg
 $L render cantor-set --level 6 --svg docs/images/cantor-set.svg
-$L render kite-dart --level 9 --svg docs/images/kite-dart.svg
+$L render kite-dart --level 6 --svg docs/images/kite-dart.svg
 $L render de-casteljau-cubic --level 3 --svg docs/images/de-casteljau-cubic.svg
 $L render bspline-quadratic-4 --level 3 --svg docs/images/bspline-quadratic-4.svg
 $L render bspline-cubic --level 3 --svg docs/images/bspline-cubic.svg

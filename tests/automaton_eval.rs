@@ -2,6 +2,7 @@
 //! forms, the exact similarity dimension against independent series, box counting, the refusal of
 //! a cycle that does not contract, and every new library entry rendered by the binary.
 
+use lacuna::algebra::FieldElement as Fe;
 use lacuna::analysis::{check_contraction, resolve, similarity_dimension};
 use lacuna::geometry::exact_points;
 use lacuna::input::{load_any, parse_model, AutomatonModel, Loaded};
@@ -454,4 +455,214 @@ fn rational_dimensions_are_exact() {
         (d.exact.as_str(), d.decimal.as_str()),
         ("3/2", "1.500000000000")
     );
+}
+
+#[test]
+fn kite_and_dart_pieces_tile_their_parents_exactly() {
+    // Hand derivation (fixtures/kite-dart.aut): the half kite A = P Q R has legs φ and apex
+    // angle π/5, so |A| = φ² sin(π/5) / 2 = s φ² / 2 with s = sin(π/5), φ = 3 − 4s²; the half
+    // dart B = S P Q has legs 1 and angle 3π/5, so |B| = sin(3π/5)/2 = s cos(π/5) = s φ / 2 =
+    // r |A| with r = 1/φ = 2 − 4s². A = T0a(B) ∪ T1a(A) and B = T0b(B) ∪ T1b(A): each piece lies in
+    // its parent, the areas add up exactly, every piece vertex is on the parent's boundary or the
+    // other piece's, and every piece but T0a(B) = B is similar to its prototile with ratio r,
+    // orientation kept.
+    let m = model("kite-dart");
+    let r = resolve(&m, &[], 10_000).unwrap();
+    let k = &m.field;
+    let s = k.generator_element();
+    let int = |n: i64| k.rational(q(n, 1));
+    let phi = k.sub(&int(3), &k.mul(&int(4), &k.mul(&s, &s)));
+    let ratio = k.sub(&int(2), &k.mul(&int(4), &k.mul(&s, &s)));
+    assert!(k.sub(&k.mul(&phi, &ratio), &int(1)).is_zero(), "r = 1/φ");
+    let pts = |w: &[&str]| {
+        let w: Vec<usize> = w.iter().map(|n| op(&m, n)).collect();
+        exact_points(&m, &r, &w).expect("a path of the control graph")
+    };
+    let cross = |a: &[Fe], b: &[Fe], c: &[Fe]| {
+        let (ux, uy) = (k.sub(&b[0], &a[0]), k.sub(&b[1], &a[1]));
+        let (vx, vy) = (k.sub(&c[0], &a[0]), k.sub(&c[1], &a[1]));
+        k.sub(&k.mul(&ux, &vy), &k.mul(&uy, &vx))
+    };
+    // Twice the signed area.
+    let area2 = |t: &[Vec<Fe>]| cross(&t[0], &t[1], &t[2]);
+    let sq = |a: &[Fe], b: &[Fe]| {
+        let (dx, dy) = (k.sub(&b[0], &a[0]), k.sub(&b[1], &a[1]));
+        k.add(&k.mul(&dx, &dx), &k.mul(&dy, &dy))
+    };
+    let sides = |t: &[Vec<Fe>]| {
+        let mut v: Vec<_> = (0..3).map(|i| sq(&t[i], &t[(i + 1) % 3])).collect();
+        v.sort_by(|x, y| k.sign(&k.sub(x, y)));
+        v
+    };
+    // On the closed segment ab: collinear and between.
+    let on_seg = |x: &[Fe], a: &[Fe], b: &[Fe]| {
+        let d = (0..2).map(|i| k.mul(&k.sub(&x[i], &a[i]), &k.sub(&x[i], &b[i])));
+        let dot = d.fold(int(0), |acc, v| k.add(&acc, &v));
+        cross(a, b, x).is_zero() && k.sign(&dot) != std::cmp::Ordering::Greater
+    };
+    let on_boundary = |x: &[Fe], t: &[Vec<Fe>]| (0..3).any(|i| on_seg(x, &t[i], &t[(i + 1) % 3]));
+    let inside = |x: &[Fe], t: &[Vec<Fe>]| {
+        let o = k.sign(&area2(t));
+        (0..3).all(|i| k.sign(&cross(&t[i], &t[(i + 1) % 3], x)) != o.reverse())
+    };
+    let a = pts(&[]);
+    let b = pts(&["a.T0"]);
+    let half = q(1, 2);
+    let want_a = k.scale(&k.mul(&s, &k.mul(&phi, &phi)), &half);
+    let abs = |x: Fe| {
+        if k.sign(&x) == std::cmp::Ordering::Less {
+            k.sub(&int(0), &x)
+        } else {
+            x
+        }
+    };
+    assert!(
+        k.sub(&k.scale(&abs(area2(&a)), &half), &want_a).is_zero(),
+        "|A|"
+    );
+    assert!(
+        k.sub(&k.scale(&abs(area2(&b)), &half), &k.mul(&ratio, &want_a))
+            .is_zero(),
+        "|B| = r |A|"
+    );
+    let r2 = k.mul(&ratio, &ratio);
+    for (parent, pieces) in [
+        (a.clone(), [pts(&["a.T0"]), pts(&["a.T1"])]),
+        (b.clone(), [pts(&["a.T0", "b.T0"]), pts(&["a.T0", "b.T1"])]),
+    ] {
+        let sum = k.add(&area2(&pieces[0]), &area2(&pieces[1]));
+        assert!(k.sub(&sum, &area2(&parent)).is_zero(), "areas add up");
+        for (i, p) in pieces.iter().enumerate() {
+            assert_eq!(k.sign(&area2(p)), k.sign(&area2(&parent)), "orientation");
+            for x in p {
+                assert!(inside(x, &parent), "a piece vertex outside its parent");
+                assert!(
+                    on_boundary(x, &parent) || on_boundary(x, &pieces[1 - i]),
+                    "a piece vertex inside the other piece's interior"
+                );
+            }
+        }
+    }
+    // Similar with ratio r: squared sides r² times the prototile's.
+    for (piece, proto) in [
+        (pts(&["a.T1"]), &a),
+        (pts(&["a.T0", "b.T0"]), &b),
+        (pts(&["a.T0", "b.T1"]), &a),
+    ] {
+        for (x, y) in sides(&piece).iter().zip(sides(proto)) {
+            assert!(k.sub(x, &k.mul(&r2, &y)).is_zero(), "ratio r");
+        }
+    }
+}
+
+#[test]
+fn the_chaikin_particular_solution_is_refused_on_a_mixed_cycle() {
+    // `lacuna solve bspline-quadratic` leaves its 4 free parameters at 0: e.T0 = [0 0 0; 0 1 1;
+    // 1 0 0], e.T1 = [0 0 1; 1 1 0; 0 0 0]. On the differences of points (A[i][j] = T[i][j] −
+    // T[i][2]): A0 = [0 0; −1 0], A1 = [−1 −1; 1 1], both nilpotent (trace 0, determinant 0), so
+    // each elementary cycle contracts; A0·A1 = [0 0; 1 1] has eigenvalue 1: refused, named.
+    let (code, _, err) = lacuna(&["render", "bspline-quadratic", "--svg", "-"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("E0715") && err.contains("e.T0 · e.T1"),
+        "{err}"
+    );
+    // With Chaikin's values (the header's solution) it is proven.
+    let (code, out, err) = lacuna(&[
+        "measure",
+        "bspline-quadratic",
+        "--level",
+        "1",
+        "--param",
+        "e.T0[0][0]=3/4",
+        "--param",
+        "e.T0[0][1]=1/4",
+        "--param",
+        "e.T0[1][0]=1/4",
+        "--param",
+        "e.T0[2][2]=1/4",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("contraction: proven"), "{out}");
+}
+
+#[test]
+fn the_report_plots_the_curvature_ranges_of_the_quadratic_bezier() {
+    // de-casteljau-edge: the quadratic de Casteljau halves with the default control points
+    // (j, j mod 2) = (0,0), (1,1), (2,0), the Bézier B(t) = (2t, 2t(1 − t)) of issue #16:
+    // B' = (2, 2 − 4t), B'' = (0, −4), κ(t) = |B' × B''| / |B'|³ = 8 / (4 + (2 − 4t)²)^(3/2):
+    // 1/(2√2) at t = 0 and t = 1, 1 at the joint t = 1/2; the curve is smooth, so κinf = κsup
+    // on both sides of every dyadic point. The report's table lists each side once.
+    let dir = std::env::temp_dir().join(format!("lacuna-autrep-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let page = dir.join("edge.html");
+    let (code, _, err) = lacuna(&[
+        "report",
+        "de-casteljau-edge",
+        "--level",
+        "2",
+        "--out",
+        page.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let html = std::fs::read_to_string(&page).unwrap();
+    assert!(html.contains("class=\"plot curvature-plot\""));
+    assert!(html.contains("class=\"box-fit\""));
+    let table = &html[html.find("<table class=\"kappa\">").expect("the κ table")..];
+    let table = &table[..table.find("</table>").unwrap()];
+    let cell = |row: &str, i: usize| -> String {
+        row.split("<td>")
+            .nth(i + 1)
+            .unwrap()
+            .split("</td>")
+            .next()
+            .unwrap()
+            .to_string()
+    };
+    let mut sides = (0, 0);
+    for row in table.split("<tr>").filter(|r| r.starts_with("<td>")) {
+        let t = cell(row, 0);
+        let t: f64 = match t.split_once('/') {
+            Some((a, b)) => a.parse::<f64>().unwrap() / b.parse::<f64>().unwrap(),
+            None => t.parse().unwrap(),
+        };
+        let want = 8.0 / (4.0 + (2.0 - 4.0 * t).powi(2)).powf(1.5);
+        match cell(row, 1).as_str() {
+            "left" => sides.0 += 1,
+            _ => sides.1 += 1,
+        }
+        for i in [3, 4] {
+            let k: f64 = cell(row, i).parse().unwrap();
+            assert!((k - want).abs() < 2e-6, "t = {t}: κ {k} against {want}");
+        }
+    }
+    // Parameters 0, 1/2, 1 and j/8 (j = 1, 2, 3, 5, 6, 7): 8 left sides, 8 right sides.
+    assert_eq!(sides, (8, 8));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn an_undecided_contraction_is_its_own_error_and_a_larger_limit_proves_it() {
+    // T's action on the differences of points is A = [1/2 4; 0 1/2] (A[i][j] = T[i][j] −
+    // T[i][2]); ‖A^n‖∞ = 2^-n (1 + 8n) is 41/32 at n = 5 and 49/64 at n = 6, so six products prove
+    // contraction and five leave it undecided (E0721, exit 2: a limit, not a verdict).
+    let dir = std::env::temp_dir().join(format!("lacuna-undecided-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("slow.aut");
+    std::fs::write(
+        &file,
+        "state e 3\nsub e.T : e <- e = [1/2 4 0; 0 1/2 0; 1/2 -7/2 1]\nbarycentric\nspace 2\nprimitive e polygon\n",
+    )
+    .unwrap();
+    let f = file.to_str().unwrap();
+    let (code, _, err) = lacuna(&["measure", f, "--level", "1", "--max-products", "5"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("E0721") && err.contains("--max-products"),
+        "{err}"
+    );
+    let (code, out, err) = lacuna(&["measure", f, "--level", "1"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("within 6 operator(s)"), "{out}");
+    let _ = std::fs::remove_dir_all(&dir);
 }

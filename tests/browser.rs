@@ -127,6 +127,10 @@ window.addEventListener('load', () => {
   document.querySelectorAll('svg.plot').forEach(p => lines.push('plot ' +
     p.querySelectorAll('g.axis').length + ' ' + p.querySelectorAll('text.tick').length + ' ' +
     p.querySelectorAll('line.fit').length + ' ' + p.querySelectorAll('text.equation').length));
+  document.querySelectorAll('svg.curvature-plot').forEach(p => lines.push('kappa ' +
+    p.querySelectorAll('g.kappa-left line').length + ' ' +
+    p.querySelectorAll('g.kappa-right line').length + ' ' +
+    p.querySelectorAll('.kappa-inf-marker').length));
   const nodes = [...document.querySelectorAll('circle.node')].map(c =>
     [c.cx.baseVal.value, c.cy.baseVal.value, c.r.baseVal.value]);
   let inside = 0, heads = 0;
@@ -154,7 +158,8 @@ struct Boxed {
 }
 
 /// The probe's lines about the report's elements: `legend ENTRIES TYPES`, one `plot AXES TICKS
-/// FITS EQUATIONS` per plot, `arrows HEADS EDGES INSIDE NODES`.
+/// FITS EQUATIONS` per plot, `arrows HEADS EDGES INSIDE NODES`, one `kappa LEFT RIGHT INFINITE`
+/// per curvature-range plot (bars on each side, +∞ markers).
 fn probe_lines(page: &Path) -> Vec<Vec<String>> {
     let html = std::fs::read_to_string(page).unwrap();
     let probed = page.with_file_name("probed.html");
@@ -164,7 +169,7 @@ fn probe_lines(page: &Path) -> Vec<Vec<String>> {
     let text = &dom[start..start + dom[start..].find("</pre>").unwrap()];
     text.lines()
         .filter(|l| {
-            ["legend ", "plot ", "arrows "]
+            ["legend ", "plot ", "arrows ", "kappa "]
                 .iter()
                 .any(|p| l.starts_with(p))
         })
@@ -222,7 +227,7 @@ fn layout(page: &Path) -> (i64, i64, Vec<Boxed>) {
         .collect();
     let boxes = lines
         .filter(|l| {
-            !["legend ", "plot ", "arrows "]
+            !["legend ", "plot ", "arrows ", "kappa "]
                 .iter()
                 .any(|p| l.starts_with(p))
         })
@@ -429,6 +434,78 @@ fn fifteen_type_graph_in_chromium() {
     let face = "B2 C3 B2 C2 B3 | C2 B2 C2 | A3 | 2";
     let page = report(face, "1");
     check_elements(&page, 15);
+}
+
+#[test]
+#[ignore = "needs Debian's chromium; .ci/run runs it with --ignored"]
+fn automaton_report_in_chromium() {
+    // The report of an automaton (issues #14, #16): no console output; the sections in order;
+    // every element inside the page; the box-counting plot with its fit and equation; the
+    // curvature-range plot with its bars. Hand count for the cubic de Casteljau curve (I = 2
+    // operators): the parameters are 0, 1/2, 1 and j/8 for j = 1, 2, 3, 5, 6, 7; a left side at
+    // every t > 0 (8) and a right side at every t < 1 (8); the class is finite everywhere
+    // (α = 2 for de Casteljau operators), so 8 bars on each side and no +∞ marker.
+    let page = report("de-casteljau-cubic", "3");
+    let (_, stderr) = browse(&page, 1000, &["--dump-dom"]);
+    let console = console_lines(&stderr);
+    assert!(console.is_empty(), "console output: {console:#?}");
+    let (width, _, boxes) = layout(&page);
+    assert!(width <= WIDTH as i64, "the page overflows: {width}px");
+    let names: Vec<&str> = boxes
+        .iter()
+        .filter(|b| b.tag == "h2")
+        .map(|b| b.label.as_str())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "Solver",
+            "Contraction",
+            "Operators",
+            "Dimension",
+            "Pseudo-curvature",
+            "Levels",
+            "Pictures",
+            "Input"
+        ],
+        "sections"
+    );
+    for b in &boxes {
+        let [l, t, r, bo] = b.rect;
+        assert!(r > l && bo > t, "{} has no size: {:?}", b.tag, b.rect);
+        assert!(
+            l >= 0 && r <= WIDTH as i64,
+            "{} sticks out: {:?}",
+            b.tag,
+            b.rect
+        );
+    }
+    assert_eq!(
+        boxes.iter().filter(|b| b.tag == "figure").count(),
+        4,
+        "levels 0–3"
+    );
+    let lines = probe_lines(&page);
+    let n = |l: &Vec<String>, i: usize| l[i].parse::<usize>().unwrap();
+    let plots: Vec<_> = lines.iter().filter(|l| l[0] == "plot").collect();
+    assert_eq!(
+        plots.len(),
+        2,
+        "the box-counting and curvature plots: {plots:?}"
+    );
+    for p in &plots {
+        assert_eq!(n(p, 1), 2, "two axes: {p:?}");
+        assert!(n(p, 2) >= 6, "tick labels on both axes: {p:?}");
+    }
+    assert_eq!(
+        (n(plots[0], 3), n(plots[0], 4)),
+        (1, 1),
+        "the box fit: {:?}",
+        plots[0]
+    );
+    let kappa: Vec<_> = lines.iter().filter(|l| l[0] == "kappa").collect();
+    assert_eq!(kappa.len(), 1);
+    assert_eq!((n(kappa[0], 1), n(kappa[0], 2), n(kappa[0], 3)), (8, 8, 0));
 }
 
 #[test]

@@ -221,6 +221,12 @@ pub fn resolve(
 }
 
 /// The constraints and barycentric conditions that fail, evaluated exactly in the field.
+/// The constraints of `m` that fail with the operator values `ops` (exact, in `m`'s field): one
+/// message per failing constraint (a morph's frame between two automata, THEORY §13).
+pub fn constraints_failing(m: &AutomatonModel, ops: &[KMatrix]) -> Result<Vec<String>> {
+    check_in_field(m, &m.field, ops)
+}
+
 fn check_in_field(m: &AutomatonModel, k: &NumberField, ops: &[KMatrix]) -> Result<Vec<String>> {
     let a = &m.automaton;
     let mut failed = Vec::new();

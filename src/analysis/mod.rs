@@ -7,6 +7,7 @@
 
 pub(crate) mod automaton_resolve;
 pub(crate) mod census;
+pub(crate) mod classes;
 pub(crate) mod contraction;
 pub(crate) mod curve;
 pub(crate) mod dcf;
@@ -16,9 +17,16 @@ pub(crate) mod operator;
 pub(crate) mod ratio;
 pub(crate) mod similarity;
 
-pub use automaton_resolve::{resolve, ResolveVerdict, Resolved};
+pub use automaton_resolve::{constraints_failing, resolve, ResolveVerdict, Resolved};
 pub use census::{census, CensusFace, CensusReport, CensusSpec};
-pub use contraction::{check_contraction, ContractionReport, MAX_CYCLES};
+pub use classes::{
+    automaton_invariants, classify, face_invariants, levels_for, levels_needed, volume_invariants,
+    Classification, Difference, Invariants, Named,
+};
+pub use contraction::{
+    check_contraction, check_contraction_within, difference_restriction, ContractionReport,
+    DEFAULT_MAX_PRODUCTS, MAX_CYCLES,
+};
 pub use curve::{
     analyse_automaton, analyse_automaton_only, estimate_curvature, AutomatonOperators,
     CurvatureEstimate, CurveReport, PointBehaviour, Side,

@@ -49,6 +49,10 @@ pub(crate) struct LimitArgs {
     /// Maximum size n of an n×n matrix for eigen analysis (`operators`).
     #[arg(long, help_heading = "Limits", default_value_t = Limits::default().max_matrix)]
     pub(crate) max_matrix: usize,
+    /// Maximum number of operator products formed to prove that an automaton contracts (one of
+    /// more than 1000 scalar multiplications counts as that many thousands).
+    #[arg(long, help_heading = "Limits", default_value_t = Limits::default().max_products)]
+    pub(crate) max_products: usize,
 }
 
 impl LimitArgs {
@@ -64,6 +68,7 @@ impl LimitArgs {
             max_unknowns: self.max_unknowns,
             max_memory_mb: self.max_memory,
             max_matrix: self.max_matrix,
+            max_products: self.max_products,
         }
     }
 }
@@ -119,6 +124,14 @@ pub(crate) enum Command {
     /// forced collapse, R exists, the certificate checks; each failure shrunk to a minimal
     /// counterexample (exit 1 when a property fails).
     Explore(Limited<ExploreArgs>),
+    /// Topological class (THEORY §13): cardinality (cells per level) and multiplicity (valences of
+    /// the level-k complex and of the limit) of two inputs; exit 0 same class, 1 different, with
+    /// the first invariant that differs.
+    Classify(Limited<ClassifyArgs>),
+    /// Metamorphosis (THEORY §13): frames along the segment between two parameter choices of one
+    /// structure, each verified (no forced collapse, observed holes and components equal to the
+    /// exact counts); an animated SVG and PNG frames; exit 1 with the first failing frame.
+    Morph(Limited<MorphArgs>),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell) on standard output.
     Completions(CompletionsArgs),
     /// Print the manual page (roff, for `man -l -`) on standard output.
@@ -255,6 +268,58 @@ pub(crate) struct CountsArgs {
     pub(crate) json: bool,
 }
 
+/// The arguments of `lacuna classify`.
+#[derive(Args)]
+pub(crate) struct ClassifyArgs {
+    /// The first input: face notation in quotes, a file, or a library name (faces, assemblies,
+    /// volumes, automata).
+    pub(crate) a: String,
+    /// The second input.
+    pub(crate) b: String,
+    /// Compare levels 0 to this at least (more when the recurrence orders of faces need more to
+    /// decide every level).
+    #[arg(long, default_value_t = 4)]
+    pub(crate) levels: u64,
+    /// Print JSON: `{"same_class", "differs", …}`.
+    #[arg(long)]
+    pub(crate) json: bool,
+}
+
+/// The arguments of `lacuna morph`.
+#[derive(Args)]
+pub(crate) struct MorphArgs {
+    /// The first parameter choice: a template file, `NAME=VALUE,…` (exact `--param` values),
+    /// or `default` (the default fit) — of the structure given by --on; or an automaton file.
+    pub(crate) a: String,
+    /// The second parameter choice (same form as A; an automaton of A's shape when A is one).
+    pub(crate) b: String,
+    /// The structure the two choices parametrize: face notation in quotes, a file, or a library
+    /// name (not needed for two automata).
+    #[arg(long, value_name = "INPUT")]
+    pub(crate) on: Option<String>,
+    /// Number of frames, both ends included (at least 2).
+    #[arg(long, default_value_t = 9)]
+    pub(crate) frames: u32,
+    /// The level drawn and checked in every frame.
+    #[arg(long, default_value_t = 2)]
+    pub(crate) level: u32,
+    /// The animated SVG to write.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) svg: Option<std::path::PathBuf>,
+    /// Write frame k as PNG to this pattern, `{}` replaced by k (`frame-{}.png`).
+    #[arg(long, value_name = "PATTERN")]
+    pub(crate) png: Option<String>,
+    /// Side of the PNG frames and of the raster that counts holes, in pixels.
+    #[arg(long, default_value_t = 512)]
+    pub(crate) size: u32,
+    /// Seconds per frame in the animation.
+    #[arg(long, default_value_t = 0.5)]
+    pub(crate) seconds: f64,
+    /// Print JSON.
+    #[arg(long)]
+    pub(crate) json: bool,
+}
+
 /// The arguments of `lacuna ratio`.
 #[derive(Args)]
 pub(crate) struct RatioArgs {
@@ -354,9 +419,11 @@ pub(crate) struct RenderArgs {
     /// Write the solid as 3MF (core specification, unit millimetre, one object per component).
     #[arg(long = "3mf", value_name = "OUT.3mf")]
     pub(crate) threemf: Option<std::path::PathBuf>,
-    /// Thickness of the solid in mm for --stl, --3mf and --obj (exact: 2, 1/2, 0.8).
-    #[arg(long, default_value = "2", value_name = "MM")]
-    pub(crate) thickness: String,
+    /// Thickness of the solid in mm for --stl, --3mf and --obj (exact: 2, 1/2, 0.8; default 2).
+    /// For an automaton's surface: thicken it into a closed shell (without it, --stl and --3mf
+    /// write the open surface).
+    #[arg(long, value_name = "MM")]
+    pub(crate) thickness: Option<String>,
     #[command(flatten)]
     pub(crate) print: PrintArgs,
     /// Write a colour PNG: anti-aliased cells filled by type (the SVG's palette), with a legend.

@@ -44,7 +44,8 @@ pub(super) fn prepare(
     }
     let values = param_values(&geo.params)?;
     let resolved = lacuna::analysis::resolve(&model, &values, limits.max_unknowns)?;
-    let contraction = lacuna::analysis::check_contraction(&model, &resolved.ops)?;
+    let contraction =
+        lacuna::analysis::check_contraction_within(&model, &resolved.ops, limits.max_products)?;
     let ev = Evaluator::new(&model, &resolved);
     let max = geo.max_cells.unwrap_or(default_cells);
     let count = ev.count(geo.level);
@@ -83,6 +84,94 @@ fn warn(p: &Prepared) {
     }
 }
 
+/// The mesh files asked of `render` on an automaton.
+pub(super) struct MeshOut {
+    /// The paths (STL, 3MF, OBJ).
+    pub(super) targets: lacuna::mesh::Targets,
+    /// Width and thickness in mm.
+    pub(super) size: lacuna::mesh::Size,
+    /// Whether `--thickness` was given: a closed shell instead of the open surface.
+    pub(super) thick: bool,
+}
+
+/// Writes the STL, 3MF and (with a thickness) OBJ meshes of the level's polygon leaves: the
+/// open surface, or the closed shell checked before anything is written.
+fn write_meshes(p: &Prepared, level: u32, m: &MeshOut, outputs: &mut Outputs) -> Result<(), Error> {
+    let t = &m.targets;
+    let raw_obj = !m.thick && t.obj.is_some();
+    if t.stl.is_none() && t.threemf.is_none() && (t.obj.is_none() || raw_obj) {
+        return Ok(());
+    }
+    let built = lacuna::mesh::automaton_mesh(
+        &p.ev,
+        Some((&p.model, &p.resolved)),
+        level,
+        &p.name,
+        m.size,
+        m.thick,
+    )
+    .map_err(mesh_error)?
+        .ok_or_else(|| {
+            Error::Syntax(Box::new(lacuna::Diagnostic {
+                code: "E0720",
+                message: format!(
+                    "{} has no polygon at level {level}: --stl, --3mf and a thickened --obj mesh the polygon primitives (`primitive STATE polygon`)",
+                    p.name
+                ),
+                span: None,
+                source: None,
+            }))
+        })?;
+    let solid = &built.solid;
+    let how = if built.exact_vertices {
+        "vertices identified exactly"
+    } else {
+        "vertices welded within 1e-9 of the size"
+    };
+    let part = &solid.parts[0];
+    match solid.checks.first() {
+        Some(c) => outputs.say(&format!(
+            "mesh: {} level {level}, width {} mm, shell {} mm thick: {} vertices, {} triangles ({how}); closed oriented manifold, Euler characteristic {}\n",
+            p.name, m.size.width, m.size.thickness, c.vertices, c.triangles, c.euler
+        )),
+        None => {
+            outputs.say(&format!(
+                "mesh: {} level {level}, width {} mm: the open surface, {} vertices, {} triangles ({how})\n",
+                p.name,
+                m.size.width,
+                part.vertices.len(),
+                part.triangles.len()
+            ));
+            eprintln!(
+                "warning: the surface of {} is open, not a solid: slicers will not print it; give --thickness T (mm) for a closed shell",
+                p.name
+            );
+        }
+    }
+    let wrote = |o: &Outputs, path: &std::path::Path| o.say(&format!("wrote {}\n", path.display()));
+    if let Some(path) = &t.stl {
+        outputs.write(path, |w| match t.stl_ascii {
+            true => lacuna::mesh::stl::write_ascii(solid, w),
+            false => lacuna::mesh::stl::write_binary(solid, w),
+        })?;
+        wrote(outputs, path);
+    }
+    if let Some(path) = &t.threemf {
+        let mut zip = std::io::Cursor::new(Vec::new());
+        lacuna::mesh::threemf::write(solid, &mut zip).map_err(|e| Error::Write {
+            path: path.display().to_string(),
+            reason: e.to_string(),
+        })?;
+        outputs.write(path, |w| w.write_all(zip.get_ref()))?;
+        wrote(outputs, path);
+    }
+    if let (Some(path), true) = (&t.obj, m.thick) {
+        outputs.write(path, |w| lacuna::mesh::obj::write(solid, w))?;
+        wrote(outputs, path);
+    }
+    Ok(())
+}
+
 /// `lacuna render` on an automaton.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn render(
@@ -91,8 +180,8 @@ pub(super) fn render(
     outputs: &mut Outputs,
     svg: Option<&std::path::Path>,
     json_out: Option<&std::path::Path>,
-    obj: Option<&std::path::Path>,
     png: Option<&std::path::Path>,
+    meshes: &MeshOut,
     size: usize,
 ) -> Result<ExitCode, Error> {
     warn(&p);
@@ -110,7 +199,8 @@ pub(super) fn render(
         })?;
         wrote(outputs, path);
     }
-    if let Some(path) = obj {
+    write_meshes(&p, level, meshes, outputs)?;
+    if let (Some(path), false) = (meshes.targets.obj.as_deref(), meshes.thick) {
         outputs.write(path, |w| {
             lacuna::export::write_automaton_obj(&p.ev, level, w)
         })?;
@@ -198,7 +288,8 @@ pub(super) fn report(
     warn(&p);
     let m = measures(geo, &p, 30, limits)?;
     let classes = classes_text(&p);
-    let html = lacuna::export::automaton_report_html(&p.ev, &m, &classes, &p.source);
+    let curves = report_curves(&p);
+    let html = lacuna::export::automaton_report_html(&p.ev, &m, &classes, &curves, &p.source);
     outputs.write(path, |w| w.write_all(html.as_bytes()))?;
     outputs.say(&format!("wrote {}\n", path.display()));
     Ok(if m.solver.consistent {
@@ -223,4 +314,93 @@ fn classes_text(p: &Prepared) -> String {
         Ok(r) => r.to_text(),
         Err(e) => format!("not analysed: {e}"),
     }
+}
+
+/// The pseudo-curvature ranges of the automaton's curves for the report: every reachable state
+/// drawn as a polyline with two or more rational subdivision operators onto itself, its control
+/// points those of its first node (reached from the start by the shortest word), at the start,
+/// the joints, the end and the parameters k/I³ (I operators); samples of level 6.
+fn report_curves(p: &Prepared) -> Vec<(String, Result<lacuna::analysis::CurveCurvature, String>)> {
+    use num_traits::ToPrimitive;
+    let m = &p.model;
+    let a = &m.automaton;
+    let k = &m.field;
+    // Shortest words from the start (breadth first over the control graph).
+    let mut word: Vec<Option<Vec<usize>>> = vec![None; a.states.len()];
+    word[m.start] = Some(Vec::new());
+    let mut queue = std::collections::VecDeque::from([m.start]);
+    while let Some(q) = queue.pop_front() {
+        for (o, op) in a.operators.iter().enumerate() {
+            if op.kind == lacuna::constraint::OpKind::Sub && op.to == q && word[op.from].is_none() {
+                let mut w = word[q].clone().unwrap_or_default();
+                w.push(o);
+                word[op.from] = Some(w);
+                queue.push_back(op.from);
+            }
+        }
+    }
+    let approx = |v: &lacuna::algebra::FieldElement| -> f64 {
+        match v.as_rational() {
+            Some(q) => q.to_f64().unwrap_or(f64::NAN),
+            None => {
+                let w =
+                    num_rational::BigRational::new(1.into(), num_bigint::BigInt::from(1u64 << 60));
+                let (lo, hi) = k.enclosure(v, &w);
+                ((lo + hi) / num_rational::BigRational::from_integer(2.into()))
+                    .to_f64()
+                    .unwrap_or(f64::NAN)
+            }
+        }
+    };
+    let mut out = Vec::new();
+    for (s, state) in a.states.iter().enumerate() {
+        let Some(w) = &word[s] else { continue };
+        if !matches!(m.primitives[s], lacuna::input::Primitive::Polyline(_)) {
+            continue;
+        }
+        let ops: Vec<usize> = (0..a.operators.len())
+            .filter(|&o| {
+                let op = &a.operators[o];
+                op.kind == lacuna::constraint::OpKind::Sub && op.to == s && op.from == s
+            })
+            .collect();
+        if ops.len() < 2 {
+            continue;
+        }
+        let mats: Option<Vec<lacuna::algebra::Matrix>> = ops
+            .iter()
+            .map(|&o| {
+                let km = &p.resolved.ops[o];
+                let data: Option<Vec<_>> = km.data.iter().map(|v| v.as_rational()).collect();
+                data.map(|d| lacuna::algebra::Matrix {
+                    rows: km.rows,
+                    cols: km.cols,
+                    data: d,
+                })
+            })
+            .collect();
+        let Some(mats) = mats else {
+            out.push((
+                state.name.clone(),
+                Err("operators outside Q: the differential characteristic functions are computed over Q".to_string()),
+            ));
+            continue;
+        };
+        let Some(pts) = lacuna::geometry::exact_points(m, &p.resolved, w) else {
+            continue;
+        };
+        let pts: Vec<Vec<f64>> = pts.iter().map(|q| q.iter().map(approx).collect()).collect();
+        let names: Vec<String> = ops.iter().map(|&o| a.operators[o].name.clone()).collect();
+        let i = ops.len() as i64;
+        let at: Vec<num_rational::BigRational> = (1..i * i * i)
+            .filter(|j| j % (i * i) != 0)
+            .map(|j| num_rational::BigRational::new(j.into(), (i * i * i).into()))
+            .collect();
+        out.push((
+            state.name.clone(),
+            lacuna::analysis::curve_curvature(&names, &mats, &pts, &at, 6)
+                .map_err(|e| e.to_string()),
+        ));
+    }
+    out
 }

@@ -9,6 +9,7 @@ mod output;
 
 mod census;
 mod check;
+mod classify;
 mod closure;
 mod counts;
 mod design;
@@ -16,6 +17,7 @@ mod explore;
 mod export;
 mod library;
 mod measure;
+mod morph;
 mod operators;
 mod ratio;
 mod render;
@@ -59,6 +61,8 @@ pub(crate) fn main() -> ExitCode {
         Command::Census(a) => a.args.json,
         Command::Library(a) => a.json,
         Command::Explore(a) => a.args.json,
+        Command::Classify(a) => a.args.json,
+        Command::Morph(a) => a.args.json,
         Command::Render(_)
         | Command::Report(_)
         | Command::Export(_)
@@ -119,6 +123,8 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
         Command::Library(a) => library::run(a),
         Command::Export(a) => export::run(a.args, &a.limits.limits()),
         Command::Explore(a) => explore::run(a.args, &a.limits.limits()),
+        Command::Classify(a) => classify::run(a.args, &a.limits.limits()),
+        Command::Morph(a) => morph::run(a.args, &a.limits.limits()),
         Command::Completions(a) => {
             let mut out = Vec::new();
             clap_complete::generate(a.shell, &mut Cli::command(), "lacuna", &mut out);

@@ -50,7 +50,11 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             range: "from 1 to 8192".into(),
         });
     }
-    let thickness = positive_number("--thickness", &thickness)?;
+    let thick = thickness.is_some();
+    let thickness = match &thickness {
+        Some(t) => positive_number("--thickness", t)?,
+        None => lacuna::mesh::DEFAULT_THICKNESS,
+    };
     let mesh = lacuna::mesh::Targets {
         stl: stl.clone(),
         stl_ascii,
@@ -68,9 +72,9 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
     }
     let mut outputs = Outputs::check(&geo.inputs(), &wanted)?;
     if let Some((name, model)) = automaton::automaton_input(&geo)? {
-        if stl.is_some() || threemf.is_some() || density.is_some() || write_template.is_some() {
+        if density.is_some() || write_template.is_some() {
             return Err(Error::Usage(
-                "--stl, --3mf, --density and --write-template apply to faces; an automaton is written with --svg, --png, --json-out or --obj".into(),
+                "--density and --write-template apply to faces; an automaton is written with --svg, --png, --json-out, --obj, --stl or --3mf".into(),
             ));
         }
         let vector = svg.is_some() || json_out.is_some() || obj.is_some();
@@ -81,14 +85,19 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             limits,
             if vector { 2_000_000 } else { 20_000_000 },
         )?;
+        let meshes = automaton::MeshOut {
+            targets: mesh,
+            size: solid_size,
+            thick,
+        };
         return automaton::render(
             &geo,
             p,
             &mut outputs,
             svg.as_deref(),
             json_out.as_deref(),
-            obj.as_deref(),
             png.as_deref(),
+            &meshes,
             size,
         );
     }

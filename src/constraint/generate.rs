@@ -267,8 +267,6 @@ pub fn automaton_of(ts: &TypeSet, opts: GenOptions) -> Generated {
 }
 
 /// An unknown as an affine function of the free parameters (see `Parametrization::expression`).
-type Expression<'a> = (&'a BigRational, &'a [(usize, BigRational)]);
-
 /// The degeneracy check (THEORY §6): for every face type, the corner points of its level-1
 /// complex that are combinatorially distinct must not be forced to coincide by the constraints.
 /// Returns one message per forced collapse.
@@ -278,8 +276,41 @@ pub fn degeneracies(
     offsets: &[Option<usize>],
     space: &SolutionSpace,
 ) -> Vec<String> {
-    let a = &g.automaton;
     let param = space.parametrize();
+    // Two points coincide on every solution exactly when each coordinate has the same affine
+    // expression in the free parameters.
+    coinciding(
+        ts,
+        g,
+        offsets,
+        |x| param.expression(x),
+        "are forced to coincide",
+    )
+}
+
+/// The same check at one point of the solution space (THEORY §13, a frame of a morph): with the
+/// exact value of every unknown, two combinatorially distinct corner points of a level-1 complex
+/// coincide when their barycentric coordinates in the parent are equal — then they coincide in
+/// every placement. Returns one message per collapse.
+pub fn collapses_at(
+    ts: &TypeSet,
+    g: &Generated,
+    offsets: &[Option<usize>],
+    values: &[BigRational],
+) -> Vec<String> {
+    coinciding(ts, g, offsets, |x| values[x].clone(), "coincide")
+}
+
+/// For every face type, the pairs of distinct level-1 corner points whose coordinates (unknown
+/// indices, mapped by `key`) are equal, as messages ending in `verb`.
+fn coinciding<K: std::hash::Hash + Eq>(
+    ts: &TypeSet,
+    g: &Generated,
+    offsets: &[Option<usize>],
+    key: impl Fn(usize) -> K,
+    verb: &str,
+) -> Vec<String> {
+    let a = &g.automaton;
     let mut out = Vec::new();
     for (t, ty) in ts.types.iter().enumerate() {
         let class = ty.subdivision.corner_classes(&ty.face);
@@ -300,19 +331,17 @@ pub fn degeneracies(
             let col = g.edge_offsets[w][p] % m_w;
             Some((0..m_t).map(|r| base + r * m_w + col).collect())
         };
-        // Two points coincide on every solution exactly when each coordinate has the same affine
-        // expression in the free parameters: group the representatives by that expression.
-        let mut seen: HashMap<Vec<Expression>, (usize, usize)> = HashMap::new();
+        let mut seen: HashMap<Vec<K>, (usize, usize)> = HashMap::new();
         for &rep in &reps {
             let Some(xs) = coords(rep) else { continue };
-            let key: Vec<_> = xs.iter().map(|&x| param.expression(x)).collect();
-            match seen.get(&key) {
+            let k: Vec<K> = xs.iter().map(|&x| key(x)).collect();
+            match seen.get(&k) {
                 Some(&first) => out.push(format!(
-                    "T{t}: corner {} of sub-face {} and corner {} of sub-face {} are forced to coincide",
+                    "T{t}: corner {} of sub-face {} and corner {} of sub-face {} {verb}",
                     first.1, first.0, rep.1, rep.0
                 )),
                 None => {
-                    seen.insert(key, rep);
+                    seen.insert(k, rep);
                 }
             }
         }

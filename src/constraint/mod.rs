@@ -15,7 +15,9 @@ pub use automaton::{
     solve_automaton, Automaton, Constraint, ConstraintKind, Factor, Linearized, OpKind, Operator,
     RowOrigin, SolveReport, State,
 };
-pub use generate::{automaton_of, degeneracies, solve_closure, GenOptions, Generated};
+pub use generate::{
+    automaton_of, collapses_at, degeneracies, solve_closure, GenOptions, Generated,
+};
 pub use linsys::{
     forced_equal, solve, write_text, Conflict, Equation, LinearSystem, Parametrization, Solution,
     SolutionSpace, TextLayout, MINIMIZE_LIMIT,

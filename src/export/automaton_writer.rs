@@ -2,7 +2,9 @@
 //! level n ([`crate::geometry::Evaluator`]), and the HTML report of an automaton. In space 3 the
 //! SVG and PNG show an axonometric view; OBJ keeps the coordinates.
 
-use crate::geometry::point::Raster;
+use crate::analysis::CurveCurvature;
+use crate::export::plot::{plot_svg, signed, tick_label, ticks, Plot};
+use crate::geometry::point::{fit_line, Raster};
 use crate::geometry::{Evaluator, Shape, ShapeKind};
 use crate::measure::AutomatonMeasure;
 use std::fmt::Write as _;
@@ -226,13 +228,241 @@ fn esc(s: &str) -> String {
         .replace('>', "&gt;")
 }
 
-/// The HTML report of an automaton: the solver's verdict, the contraction check, the operators'
-/// classes (text given by the caller), the dimensions, lengths and areas per level, and a picture
-/// of each level 0 to n.
+/// One side's pseudo-curvature ranges along a curve: `(t, κinf, κsup)`.
+type RangeSeries<'a> = (&'a str, &'a str, Vec<(f64, f64, f64)>);
+
+/// The curvature-range plot: at every reported parameter t, a vertical bar from κinf to κsup,
+/// left side (t − 0) and right side (t + 0) offset apart; +∞ (a sharp point) is a triangle above
+/// the top of the axis, a range with no sample is left out. Classes for the browser tests:
+/// `curvature-plot`, `kappa-left`, `kappa-right`, `kappa-inf-marker`.
+pub(crate) fn curvature_range_svg(title: &str, subtitle: &str, series: &[RangeSeries]) -> String {
+    let (w, h) = (520.0, 340.0);
+    let (left, right, top, bottom) = (62.0, 18.0, 86.0, 46.0);
+    let finite_max = series
+        .iter()
+        .flat_map(|(_, _, v)| v.iter())
+        .flat_map(|&(_, lo, hi)| [lo, hi])
+        .filter(|k| k.is_finite())
+        .fold(0.0f64, f64::max);
+    let (ys, yt) = ticks(0.0, if finite_max > 0.0 { finite_max } else { 1.0 }, 5);
+    let (xs, xt) = ticks(0.0, 1.0, 8);
+    let ay1 = yt[yt.len() - 1];
+    let px = |x: f64| left + x * (w - left - right);
+    let py = |y: f64| h - bottom - y / ay1 * (h - top - bottom);
+    let mut s = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"plot curvature-plot\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\" font-family=\"sans-serif\" font-size=\"12\">\
+         <rect width=\"{w}\" height=\"{h}\" fill=\"white\"/>\
+         <text x=\"{}\" y=\"17\" text-anchor=\"middle\" font-weight=\"bold\" font-size=\"13\">{}</text>\
+         <text x=\"{}\" y=\"33\" text-anchor=\"middle\" fill=\"#555\" font-size=\"11\">{}</text>",
+        w / 2.0,
+        esc(title),
+        w / 2.0,
+        esc(subtitle)
+    );
+    let _ = write!(s, "<g class=\"axis x\">");
+    for &x in &xt {
+        let _ = write!(
+            s,
+            "<line x1=\"{0:.1}\" y1=\"{top}\" x2=\"{0:.1}\" y2=\"{1}\" stroke=\"#eee\"/><text class=\"tick\" x=\"{0:.1}\" y=\"{2}\" text-anchor=\"middle\">{3}</text>",
+            px(x),
+            h - bottom,
+            h - bottom + 18.0,
+            tick_label(x, xs)
+        );
+    }
+    let _ = write!(
+        s,
+        "<line x1=\"{left}\" y1=\"{0}\" x2=\"{1}\" y2=\"{0}\" stroke=\"#333\"/><text x=\"{2}\" y=\"{3}\" text-anchor=\"middle\">parameter t</text></g>",
+        h - bottom,
+        w - right,
+        (left + w - right) / 2.0,
+        h - 8.0
+    );
+    let _ = write!(s, "<g class=\"axis y\">");
+    for &y in &yt {
+        let _ = write!(
+            s,
+            "<line x1=\"{left}\" y1=\"{0:.1}\" x2=\"{1}\" y2=\"{0:.1}\" stroke=\"#eee\"/><text class=\"tick\" x=\"{2}\" y=\"{3:.1}\" text-anchor=\"end\">{4}</text>",
+            py(y),
+            w - right,
+            left - 8.0,
+            py(y) + 4.0,
+            tick_label(y, ys)
+        );
+    }
+    let mid = (top + h - bottom) / 2.0;
+    let _ = write!(
+        s,
+        "<line x1=\"{left}\" y1=\"{top}\" x2=\"{left}\" y2=\"{}\" stroke=\"#333\"/><text x=\"14\" y=\"{mid}\" transform=\"rotate(-90 14 {mid})\" text-anchor=\"middle\">pseudo-curvature κ</text><text class=\"tick\" x=\"{}\" y=\"{}\" text-anchor=\"end\">+∞</text><line x1=\"{left}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#ddd\" stroke-dasharray=\"3,3\"/></g>",
+        h - bottom,
+        left - 8.0,
+        top - 12.0,
+        top - 16.0,
+        w - right,
+        top - 16.0
+    );
+    for (i, (name, colour, v)) in series.iter().enumerate() {
+        let off = if i == 0 { -3.0 } else { 3.0 };
+        let _ = write!(
+            s,
+            "<g class=\"kappa-{name}\"><rect x=\"{}\" y=\"{}\" width=\"10\" height=\"10\" fill=\"{colour}\"/><text x=\"{}\" y=\"{}\" font-size=\"11\">{} side (t {} 0)</text>",
+            left + 10.0 + 150.0 * i as f64,
+            top - 44.0,
+            left + 24.0 + 150.0 * i as f64,
+            top - 35.0,
+            name,
+            if i == 0 { "−" } else { "+" }
+        );
+        for &(t, lo, hi) in v {
+            let x = px(t) + off;
+            if lo.is_infinite() {
+                let _ = write!(
+                    s,
+                    "<path class=\"kappa-inf-marker\" d=\"M{:.1},{:.1} l-4,8 h8 z\" fill=\"{colour}\"><title>t = {t}: +∞ (sharp)</title></path>",
+                    x,
+                    top - 20.0
+                );
+                continue;
+            }
+            if !(lo.is_finite() && hi.is_finite()) {
+                continue;
+            }
+            let (y0, y1) = (py(lo), py(hi));
+            let _ = write!(
+                s,
+                "<line x1=\"{x:.1}\" y1=\"{y0:.1}\" x2=\"{x:.1}\" y2=\"{:.1}\" stroke=\"{colour}\" stroke-width=\"3\"><title>t = {t}: [{lo:.6}, {hi:.6}]</title></line><circle cx=\"{x:.1}\" cy=\"{y0:.1}\" r=\"2.5\" fill=\"{colour}\"/><circle cx=\"{x:.1}\" cy=\"{y1:.1}\" r=\"2.5\" fill=\"{colour}\"/>",
+                y1.min(y0 - 0.5)
+            );
+        }
+        s += "</g>";
+    }
+    s + "</svg>"
+}
+
+/// The report's section on the curves of the automaton: the curvature-range plot of each.
+fn curvature_section(h: &mut String, curves: &[(String, Result<CurveCurvature, String>)]) {
+    if curves.is_empty() {
+        return;
+    }
+    h.push_str("<h2 id=\"curvature\">Pseudo-curvature</h2>\n");
+    for (state, c) in curves {
+        match c {
+            Err(e) => {
+                let _ = writeln!(
+                    h,
+                    "<p>State {}: no pseudo-curvature ({}).</p>",
+                    esc(state),
+                    esc(e)
+                );
+            }
+            Ok(c) => {
+                let t_of = |t: &str| -> f64 {
+                    match t.split_once('/') {
+                        Some((a, b)) => {
+                            a.trim().parse::<f64>().unwrap_or(f64::NAN)
+                                / b.trim().parse::<f64>().unwrap_or(f64::NAN)
+                        }
+                        None => t.trim().parse().unwrap_or(f64::NAN),
+                    }
+                };
+                let mut sides: [Vec<(f64, f64, f64)>; 2] = [Vec::new(), Vec::new()];
+                let mut rows = String::new();
+                let mut points: Vec<_> = c.points.iter().collect();
+                points.sort_by(|a, b| t_of(&a.t).total_cmp(&t_of(&b.t)));
+                for p in points {
+                    let t = t_of(&p.t);
+                    for (i, s) in [&p.left, &p.right].into_iter().enumerate() {
+                        if let Some(s) = s {
+                            sides[i].push((t, s.kappa_inf.0, s.kappa_sup.0));
+                            let _ = write!(
+                                rows,
+                                "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                                esc(&p.t),
+                                if i == 0 { "left" } else { "right" },
+                                esc(&s.class),
+                                s.kappa_inf,
+                                s.kappa_sup
+                            );
+                        }
+                    }
+                }
+                let [l, r] = sides;
+                let _ = writeln!(
+                    h,
+                    "<p>State {}: the range [κinf, κsup] of the pseudo-curvature on each side of the parameters t (start, joints, end and the points k/I³, I operators), from the differential characteristic functions: {}; level {}.</p>{}",
+                    esc(state),
+                    esc(&c.note),
+                    c.level,
+                    curvature_range_svg(
+                        &format!("κinf and κsup against t, state {state}"),
+                        "bars from κinf to κsup; ▲ on the +∞ row: a sharp side",
+                        &[("left", "#1f5fa8", l), ("right", "#e07b00", r)],
+                    )
+                );
+                let _ = writeln!(
+                    h,
+                    "<table class=\"kappa\"><tr><th>t</th><th>side</th><th>class</th><th>κinf</th><th>κsup</th></tr>{rows}</table>"
+                );
+            }
+        }
+    }
+}
+
+/// The box-counting plot: `ln N` against `k·ln 2 = ln(1/ε) + ln L` with its least-squares line.
+fn box_section(h: &mut String, m: &AutomatonMeasure) {
+    let pts: Vec<(f64, f64)> = m
+        .box_dimension
+        .counts
+        .iter()
+        .map(|&(k, n)| (f64::from(k) * std::f64::consts::LN_2, (n as f64).ln()))
+        .collect();
+    if pts.len() < 2 {
+        return;
+    }
+    let f = fit_line(&pts);
+    let _ = writeln!(
+        h,
+        "<div class=\"box-fit\">{}</div>",
+        plot_svg(&Plot {
+            title: "box counting: ln N(ε) against ln(1/ε)",
+            subtitle: &format!(
+                "level {} pieces, boxes of side ε = L/2ᵏ, k = {}…{}",
+                m.box_dimension.level,
+                m.box_dimension.counts[0].0,
+                m.box_dimension.counts[m.box_dimension.counts.len() - 1].0
+            ),
+            xlabel: "ln(1/ε) + ln L = k·ln 2",
+            ylabel: "ln N(ε)",
+            points: &pts,
+            fit: Some((
+                &f,
+                format!(
+                    "ln N ≈ {}·k ln 2 {}  (residual {:.3})",
+                    signed(f.slope, 4),
+                    {
+                        let c = signed(f.intercept.abs(), 3);
+                        if f.intercept < 0.0 {
+                            format!("− {c}")
+                        } else {
+                            format!("+ {c}")
+                        }
+                    },
+                    f.residual
+                )
+            )),
+        })
+    );
+}
+
+/// The HTML report of an automaton: the solver's verdict, the contraction proof, the operators'
+/// classes (text given by the caller), the dimensions (with the box-counting fit), the
+/// pseudo-curvature ranges of its curves (`curves`: per state, computed by the caller), lengths
+/// and areas per level, and a picture of each level 0 to n.
 pub fn automaton_report_html(
     ev: &Evaluator,
     m: &AutomatonMeasure,
     classes: &str,
+    curves: &[(String, Result<CurveCurvature, String>)],
     source: &str,
 ) -> String {
     let mut h = format!(
@@ -275,7 +505,7 @@ pub fn automaton_report_html(
         }
         h += "</ul>\n";
     }
-    let _ = writeln!(h, "<h2>Contraction</h2><p>Every elementary cycle of the control graph contracts (its product's eigenvalues other than the barycentric 1 lie in the open unit disk, decided exactly):</p><ul>");
+    let _ = writeln!(h, "<h2>Contraction</h2><p>{}.</p><p>Every elementary cycle of the control graph contracts (its product's eigenvalues other than the barycentric 1 lie in the open unit disk, decided exactly):</p><ul>", esc(&m.contraction.text()));
     for c in &m.contraction.cycles {
         let _ = write!(h, "<li>{}</li>", esc(c));
     }
@@ -316,7 +546,10 @@ pub fn automaton_report_html(
         }
         None => h += "<li>box-counting dimension: too few scales</li>",
     }
-    h += "</ul>\n<h2>Levels</h2>\n<table><tr><th>level</th><th>pieces</th><th>length</th><th>area</th></tr>\n";
+    h += "</ul>\n";
+    box_section(&mut h, m);
+    curvature_section(&mut h, curves);
+    h += "<h2>Levels</h2>\n<table><tr><th>level</th><th>pieces</th><th>length</th><th>area</th></tr>\n";
     for l in &m.levels {
         let _ = writeln!(
             h,

@@ -12,6 +12,7 @@ pub(crate) mod bitmap;
 pub(crate) mod graph;
 pub(crate) mod html;
 pub(crate) mod moditere;
+pub(crate) mod morph;
 pub(crate) mod palette;
 pub(crate) mod picture;
 pub(crate) mod plot;
@@ -27,6 +28,7 @@ pub use automaton_writer::{
 pub use bitmap::{write_density_picture, write_png_picture, DensityPicture};
 pub use html::{report_html, report_html_unverified};
 pub use moditere::moditere_text;
+pub use morph::{write_morph_svg, FrameCells};
 pub use palette::{density_colour, hex, lightness, outline_colour, type_colour, Rgb, MUTED};
 pub use picture::{
     legend_entries, outline, stroke_width, write_svg_picture, Background, Frame, PictureOptions,

@@ -35,7 +35,7 @@ pub struct Shape {
 }
 
 /// A float approximation of a field element (for drawing only: never for a verdict).
-fn approx(k: &NumberField, v: &FieldElement) -> f64 {
+pub fn approx(k: &NumberField, v: &FieldElement) -> f64 {
     use num_traits::ToPrimitive;
     if let Some(q) = v.as_rational() {
         return q.to_f64().unwrap_or(f64::NAN);
@@ -218,4 +218,56 @@ pub fn exact_points(
             .map(|c| (0..f.rows).map(|d| f.get(d, c).clone()).collect())
             .collect(),
     )
+}
+
+/// The exact polygon leaves of level n (the walk of [`Evaluator::walk`], in the field): for every
+/// leaf whose primitive is a polygon, its corners as exact points (`space` coordinates each).
+/// `None` when the level has more than `max_leaves` leaves (checked before the walk).
+pub fn exact_polygons(
+    m: &AutomatonModel,
+    r: &Resolved,
+    level: u32,
+    max_leaves: u128,
+) -> Option<Vec<Vec<Vec<FieldElement>>>> {
+    let a = &m.automaton;
+    let k = &m.field;
+    if Evaluator::new(m, r).count(level) > max_leaves {
+        return None;
+    }
+    let pts = m
+        .points
+        .clone()
+        .unwrap_or_else(|| default_points(a.states[m.start].dim, m.space, k));
+    let start = KMatrix {
+        rows: m.space,
+        cols: pts.len(),
+        data: (0..m.space)
+            .flat_map(|d| pts.iter().map(move |p| p[d].clone()))
+            .collect(),
+    };
+    let mut out_ops: Vec<Vec<usize>> = vec![Vec::new(); a.states.len()];
+    for (o, op) in a.operators.iter().enumerate() {
+        if op.kind == OpKind::Sub {
+            out_ops[op.to].push(o);
+        }
+    }
+    let mut polys = Vec::new();
+    let mut stack: Vec<(usize, u32, KMatrix)> = vec![(m.start, 0, start)];
+    while let Some((q, d, f)) = stack.pop() {
+        if d == level || out_ops[q].is_empty() {
+            if let Primitive::Polygon(idx) = &m.primitives[q] {
+                polys.push(
+                    idx.iter()
+                        .map(|&c| (0..f.rows).map(|x| f.get(x, c).clone()).collect())
+                        .collect(),
+                );
+            }
+            continue;
+        }
+        for &o in out_ops[q].iter().rev() {
+            let child = f.mul(k, &r.ops[o])?;
+            stack.push((a.operators[o].from, d + 1, child));
+        }
+    }
+    Some(polys)
 }

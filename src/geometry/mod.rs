@@ -17,7 +17,9 @@ pub(crate) mod raster;
 pub(crate) mod template;
 pub(crate) mod template_file;
 
-pub use automaton_eval::{exact_points, Evaluator, Shape, ShapeKind};
+pub use automaton_eval::{
+    approx as field_approx, exact_points, exact_polygons, Evaluator, Shape, ShapeKind,
+};
 pub use choose::{project_exact, Choice, ExactColumn, Projection};
 pub use flatten::flatten_bezier;
 pub use instantiate::{instantiate, Cell, EdgeSlot, Instance};

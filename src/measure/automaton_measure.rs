@@ -123,7 +123,8 @@ pub fn level_measures(ev: &Evaluator, level: u32) -> Vec<AutomatonLevel> {
 
 /// The box-counting estimate from the pieces of level `level`: every piece sampled finer than the
 /// finest box (polygons filled), boxes of size `L/2^k` counted for k from 2 up to the finest
-/// scale still coarser than twice the largest piece (at most 9 in the plane, 7 in space; at most 4 million samples).
+/// scale still coarser than twice the largest piece (at most 9 in the plane, 7 in space), lowered
+/// while the samples of every piece would exceed about 4 million.
 pub fn box_dimension(ev: &Evaluator, level: u32) -> BoxDimension {
     let shapes = ev.shapes(level);
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
@@ -153,6 +154,32 @@ pub fn box_dimension(ev: &Evaluator, level: u32) -> BoxDimension {
     let mut kmax = 0u32;
     while kmax < kcap && side / f64::from(1u32 << (kmax + 1)) >= 2.0 * piece {
         kmax += 1;
+    }
+    // Lower the finest scale until the samples fit the budget (never drop pieces: a count over
+    // part of them is no estimate).
+    let estimate = |step: f64| -> f64 {
+        shapes
+            .iter()
+            .map(|s| {
+                let p = &s.points;
+                let per: f64 = p.windows(2).map(|w| dist(&w[0], &w[1])).sum::<f64>()
+                    + if s.kind == ShapeKind::Polygon && p.len() > 2 {
+                        dist(&p[p.len() - 1], &p[0])
+                    } else {
+                        0.0
+                    };
+                let fill = if s.kind == ShapeKind::Polygon {
+                    let diam = (1..p.len()).map(|i| dist(&p[0], &p[i])).fold(0.0, f64::max);
+                    (p.len().saturating_sub(2)) as f64 * (diam / step + 2.0).powi(2)
+                } else {
+                    0.0
+                };
+                per / step + fill + p.len() as f64 + 2.0
+            })
+            .sum()
+    };
+    while kmax >= 4 && estimate(side / f64::from(1u32 << kmax) / 3.0) > 4.0e6 {
+        kmax -= 1;
     }
     if kmax < 4 {
         return empty;
@@ -200,9 +227,6 @@ pub fn box_dimension(ev: &Evaluator, level: u32) -> BoxDimension {
                     samples.push(p[0]);
                 }
             }
-        }
-        if samples.len() > 4_000_000 {
-            break;
         }
     }
     let mut counts = Vec::new();
@@ -263,10 +287,8 @@ impl AutomatonMeasure {
                 self.solver.free_left.join(", ")
             );
         }
-        o += &format!(
-            "contraction: {} elementary cycle(s) contract\n",
-            self.contraction.cycles.len()
-        );
+        o += &self.contraction.text();
+        o += "\n";
         o += "level  pieces        length           area\n";
         for l in &self.levels {
             o += &format!(

@@ -8,6 +8,7 @@ pub(crate) mod automaton_measure;
 pub(crate) mod density;
 pub(crate) mod hole;
 pub(crate) mod measurement;
+pub(crate) mod morph;
 
 pub use automaton_measure::{
     box_dimension, level_measures, shape_measure, AutomatonLevel, AutomatonMeasure, BoxDimension,
@@ -17,4 +18,7 @@ pub use hole::{polygon_size, smallest_holes};
 pub use measurement::{
     check_cells, exact_components, exact_topology, measure, raster_for_hole, ExactTopology,
     LevelMeasure, MeasureOptions, MeasureReport, LARGEST_RASTER, MIN_HOLE_WIDTH,
+};
+pub use morph::{
+    frame_parameters, morph, morph_automata, shape_difference, MorphFrame, MorphReport,
 };

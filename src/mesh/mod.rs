@@ -29,6 +29,7 @@ pub mod outline;
 pub mod printability;
 pub mod solid;
 pub mod stl;
+pub mod surface;
 pub mod threemf;
 
 pub use check::{check_part, PartCheck};
@@ -36,15 +37,24 @@ pub use check::{check_part, PartCheck};
 /// The layers below as the mesh layer uses them, named once here: when a module of those layers
 /// moves, these lines are the only ones to change.
 mod below {
+    pub(crate) use crate::analysis::Resolved;
+    pub(crate) use crate::geometry::automaton_eval::{
+        approx, exact_polygons, Evaluator, ShapeKind,
+    };
     pub(crate) use crate::geometry::instantiate::{Cell, Instance};
     pub(crate) use crate::geometry::point::{bezier_point, distance, Point};
     pub(crate) use crate::geometry::raster::bounds;
+    pub(crate) use crate::input::automaton_model::AutomatonModel;
     pub(crate) use crate::measure::hole::{polygon_size, smallest_holes};
     pub(crate) use crate::measure::measurement::exact_topology;
     pub(crate) use crate::topology::component::{components_by_induction, start_components};
 }
 pub use printability::{printability, Printability};
 pub use solid::{build, Part, Solid};
+pub use surface::{
+    automaton_mesh, automaton_surface, exact_automaton_surface, thicken, AutomatonSolid, Surface,
+    EXACT_LEAVES,
+};
 
 /// Sizes of a printed solid, in millimetres.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -24,6 +24,9 @@ pub struct Limits {
     pub max_memory_mb: u64,
     /// Maximum size n of an n×n matrix given to the eigen analysis (`--max-matrix`).
     pub max_matrix: usize,
+    /// Maximum number of operator products formed to prove that an automaton contracts
+    /// (`--max-products`).
+    pub max_products: usize,
 }
 
 impl Default for Limits {
@@ -38,6 +41,7 @@ impl Default for Limits {
             max_unknowns: 20_000_000,
             max_memory_mb: 1024,
             max_matrix: 16,
+            max_products: 20_000,
         }
     }
 }

@@ -14,6 +14,7 @@ pub(crate) mod face;
 pub(crate) mod limits;
 pub(crate) mod rule;
 pub(crate) mod subdivision;
+pub(crate) mod vertex;
 pub mod volume;
 
 pub use class::{Class, ClassStructure};
@@ -25,3 +26,6 @@ pub use face::{least_rotation, Face, Params};
 pub use limits::Limits;
 pub use rule::{Algorithm, EdgePattern, Junction, SpokeChooser, SpokeItem};
 pub use subdivision::{subdivide, Adjacency, Complex, Origin, SubFace, Subdivision};
+pub use vertex::{
+    multiplicity, GrowthWitness, Item, LevelComplex, LimitValence, Multiplicity, SectorName,
+};

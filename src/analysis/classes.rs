@@ -1,0 +1,566 @@
+//! Topological classes (THEORY §13): the exact invariants of a structure — cardinality (cells per
+//! level) and multiplicity (valences of the vertices of each level, and in the limit) — and the
+//! comparison of two structures, stopping at the first invariant that differs.
+//!
+//! **How many levels decide.** For faces and assemblies with bounded valences, every count of the
+//! level-k complex is a linear functional of a state that steps linearly (vertex types, edge
+//! cells, face types, lacunas: [`Multiplicity::order`]), so it is a linear recurrence of order at
+//! most d; the difference of two such sequences is a linear recurrence of order at most d_A + d_B,
+//! and one that vanishes on d_A + d_B consecutive terms vanishes for ever. Comparing the first
+//! d_A + d_B + 1 levels therefore decides equality at every level. The same holds for the piece
+//! counts of an automaton (order: its number of states) and the cell counts of a volume (order:
+//! its number of types, plus one for the lacunas). When a valence is unbounded the comparison
+//! covers the levels compared only, and the result says so.
+//!
+//! **Automata.** The multiplicity of an automaton is read from its exact operators where that is
+//! decidable: the corners of a state that one of its sub-operators fixes are points of the
+//! attractor; their images under the sub-operators of the start state are the level-1 vertices,
+//! and the number of distinct pieces whose images coincide exactly is the multiplicity there (the
+//! dyadic point of a curve is where two pieces meet). Pieces that meet at points that are not such
+//! images (overlaps, tangencies inside a piece) are not seen: the report says "level 1, at the
+//! images of fixed corners" and no more.
+
+use crate::algebra::FieldElement;
+use crate::constraint::OpKind;
+use crate::error::{Error, Result};
+use crate::input::AutomatonModel;
+use crate::topology::volume::{solid_topology, volume_counts, VolumeTypeSet};
+use crate::topology::{counts, multiplicity, Glue, LimitValence, Multiplicity, TypeSet};
+use num_bigint::BigUint;
+use num_rational::BigRational;
+use num_traits::Zero;
+use serde::Serialize;
+use std::collections::{BTreeMap, HashMap};
+
+use super::Resolved;
+
+/// A named exact value.
+pub type Named = (String, String);
+
+/// The invariants of one structure, in the order `classify` compares them.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct Invariants {
+    /// The input's name.
+    pub name: String,
+    /// `faces`, `volume` or `automaton`.
+    pub kind: &'static str,
+    /// Per level from 0: cell counts (faces and lacunas; volumes' cells; automata's pieces).
+    pub cardinality: Vec<Vec<Named>>,
+    /// Per level from 0: the number of vertices of each valence (empty where not derived).
+    pub multiplicity: Vec<Vec<Named>>,
+    /// Invariants of the limit (the valences that vertices settle at, or unbounded).
+    pub limit: Vec<Named>,
+    /// The order bound of the linear recurrences (see the module doc), when there is one.
+    pub order: Option<usize>,
+    /// What was not derived, in words.
+    pub notes: Vec<String>,
+}
+
+/// The first invariant on which two structures differ.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct Difference {
+    /// `kind`, `cardinality`, `multiplicity` or `limit`.
+    pub group: &'static str,
+    /// The invariant's name (`faces`, `vertices of valence 3`, …).
+    pub invariant: String,
+    /// The level, for per-level invariants.
+    pub level: Option<u64>,
+    /// The value for the first structure.
+    pub a: String,
+    /// The value for the second structure.
+    pub b: String,
+}
+
+/// The answer of `classify`.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct Classification {
+    /// Whether the two structures share every invariant compared.
+    pub same_class: bool,
+    /// The first invariant that differs.
+    pub differs: Option<Difference>,
+    /// The levels compared, 0 to this.
+    pub levels: u64,
+    /// Whether equality of the per-level invariants at the levels compared proves equality at
+    /// every level (both order bounds known and enough levels compared).
+    pub every_level: bool,
+    /// What was not compared, in words.
+    pub notes: Vec<String>,
+}
+
+/// The number of levels that decides the per-level invariants of both structures at every level
+/// (`order_a + order_b`), when both have an order bound.
+pub fn levels_needed(a: Option<usize>, b: Option<usize>) -> Option<u64> {
+    Some((a? + b?) as u64)
+}
+
+/// The invariants of faces or an assembly (closed type set, shared edges) to `levels`.
+pub fn face_invariants(
+    name: &str,
+    ts: &TypeSet,
+    glue: &[Glue],
+    levels: u64,
+    max_types: usize,
+) -> Result<(Invariants, Multiplicity)> {
+    let m = multiplicity(ts, glue, levels, max_types)?;
+    let c = counts(ts, levels);
+    let cardinality = c
+        .iter()
+        .map(|l| {
+            vec![
+                ("faces".to_string(), l.faces.to_string()),
+                ("lacunas".to_string(), l.lacunas.to_string()),
+            ]
+        })
+        .collect();
+    let multiplicity = m
+        .levels
+        .iter()
+        .map(|l| {
+            // The valences give the vertices (their sum) and the edges (half the degree sum).
+            l.valences
+                .iter()
+                .map(|(val, k)| (format!("vertices of valence {val}"), k.clone()))
+                .collect()
+        })
+        .collect();
+    let limit = match &m.limit {
+        LimitValence::Bounded {
+            max_valence,
+            valences,
+        } => vec![
+            ("largest valence".to_string(), max_valence.to_string()),
+            (
+                "valences of the limit".to_string(),
+                valences
+                    .iter()
+                    .map(|v| v.to_string())
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            ),
+        ],
+        LimitValence::Unbounded { .. } => {
+            vec![("largest valence".to_string(), "unbounded".to_string())]
+        }
+    };
+    let inv = Invariants {
+        name: name.to_string(),
+        kind: "faces",
+        cardinality,
+        multiplicity,
+        limit,
+        order: m.order,
+        notes: Vec::new(),
+    };
+    Ok((inv, m))
+}
+
+/// The invariants of a volume's closed type set to `levels`: cells and lacunas per level and the
+/// cells of each dimension of the level-k solid. Multiplicity is not derived for volumes.
+pub fn volume_invariants(name: &str, set: &VolumeTypeSet, levels: u64) -> Result<Invariants> {
+    let c = volume_counts(set, levels);
+    let solid = solid_topology(set, levels)?;
+    let cardinality = c
+        .iter()
+        .zip(&solid)
+        .map(|(l, s)| {
+            vec![
+                ("cells".to_string(), l.cells.to_string()),
+                ("lacunas".to_string(), l.lacunas.to_string()),
+                ("solid faces".to_string(), s.faces.to_string()),
+                ("solid edges".to_string(), s.edges.to_string()),
+                ("solid corners".to_string(), s.corners.to_string()),
+            ]
+        })
+        .collect();
+    Ok(Invariants {
+        name: name.to_string(),
+        kind: "volume",
+        cardinality,
+        multiplicity: vec![Vec::new(); levels as usize + 1],
+        limit: Vec::new(),
+        // Cells and lacunas only: the solid's face, edge and corner counts have no order bound
+        // here, so a volume's comparison covers the levels compared.
+        order: None,
+        notes: vec!["multiplicity (valences) is not derived for volumes".into()],
+    })
+}
+
+/// The invariants of an automaton with its resolved operators: pieces per level from the start
+/// state, and the multiplicity at level 1 at the images of fixed corners (module doc).
+pub fn automaton_invariants(
+    name: &str,
+    model: &AutomatonModel,
+    resolved: &Resolved,
+    levels: u64,
+) -> Result<Invariants> {
+    let a = &model.automaton;
+    let n = a.states.len();
+    let subs: Vec<usize> = (0..a.operators.len())
+        .filter(|&o| a.operators[o].kind == OpKind::Sub)
+        .collect();
+    let mut v = vec![BigUint::zero(); n];
+    v[model.start] = BigUint::from(1u32);
+    let mut cardinality = Vec::new();
+    for level in 0..=levels {
+        let total: BigUint = v.iter().sum();
+        cardinality.push(vec![("pieces".to_string(), total.to_string())]);
+        if level == levels {
+            break;
+        }
+        let mut next = vec![BigUint::zero(); n];
+        for &o in &subs {
+            let op = &a.operators[o];
+            next[op.from] += &v[op.to];
+        }
+        v = next;
+    }
+    let (hist, points) = level_one_contacts(model, resolved, &subs);
+    let mut multiplicity = vec![Vec::new(); levels as usize + 1];
+    if levels >= 1 {
+        multiplicity[1] = hist
+            .iter()
+            .map(|(m, k)| (format!("points where {m} pieces meet"), k.to_string()))
+            .collect();
+        multiplicity[1].insert(0, ("fixed-corner images".to_string(), points.to_string()));
+    }
+    Ok(Invariants {
+        name: name.to_string(),
+        kind: "automaton",
+        cardinality,
+        multiplicity,
+        limit: Vec::new(),
+        order: None,
+        notes: vec![
+            "automaton multiplicity: level 1 only, at the exact images of fixed corners; contacts elsewhere and deeper levels are not decided".into(),
+        ],
+    })
+}
+
+/// The level-1 contacts of an automaton's start state: for each number m of pieces, how many
+/// points have exactly m pieces meeting there, and the number of points looked at.
+fn level_one_contacts(
+    model: &AutomatonModel,
+    resolved: &Resolved,
+    subs: &[usize],
+) -> (BTreeMap<usize, u64>, usize) {
+    let a = &model.automaton;
+    let k = &model.field;
+    // Corners of each state fixed by one of its own sub-operators: column j is e_j.
+    let one = k.rational(BigRational::from_integer(1.into()));
+    let mut fixed: Vec<Vec<usize>> = vec![Vec::new(); a.states.len()];
+    for &o in subs {
+        let op = &a.operators[o];
+        if op.to != op.from {
+            continue;
+        }
+        let m = &resolved.ops[o];
+        for j in 0..a.states[op.to].dim {
+            let is_unit = (0..a.states[op.to].dim).all(|r| {
+                if r == j {
+                    *m.get(r, j) == one
+                } else {
+                    m.get(r, j).is_zero()
+                }
+            });
+            if is_unit && !fixed[op.to].contains(&j) {
+                fixed[op.to].push(j);
+            }
+        }
+    }
+    let mut at: HashMap<Vec<FieldElement>, Vec<usize>> = HashMap::new();
+    for &o in subs {
+        let op = &a.operators[o];
+        if op.to != model.start {
+            continue;
+        }
+        let m = &resolved.ops[o];
+        for &j in &fixed[op.from] {
+            let col: Vec<FieldElement> = (0..a.states[op.to].dim)
+                .map(|r| m.get(r, j).clone())
+                .collect();
+            let pieces = at.entry(col).or_default();
+            if !pieces.contains(&o) {
+                pieces.push(o);
+            }
+        }
+    }
+    let mut hist: BTreeMap<usize, u64> = BTreeMap::new();
+    for p in at.values() {
+        *hist.entry(p.len()).or_default() += 1;
+    }
+    (hist, at.len())
+}
+
+/// Compares two structures' invariants: kind, then cardinality level by level, then multiplicity
+/// level by level, then the limit; the first that differs decides.
+pub fn classify(a: &Invariants, b: &Invariants) -> Classification {
+    let levels = a
+        .cardinality
+        .len()
+        .min(b.cardinality.len())
+        .saturating_sub(1) as u64;
+    let needed = levels_needed(a.order, b.order);
+    let mut notes: Vec<String> = a.notes.clone();
+    for n in &b.notes {
+        if !notes.contains(n) {
+            notes.push(n.clone());
+        }
+    }
+    let every_level = needed.is_some_and(|n| n <= levels);
+    let differs = first_difference(a, b, levels);
+    // A difference found is a difference at every level count; only an equality is partial.
+    if !every_level && differs.is_none() {
+        notes.push(format!(
+            "the per-level invariants were compared at levels 0 to {levels} only{}",
+            match needed {
+                Some(n) => format!(" ({n} decide every level)"),
+                None => String::from(
+                    ": no recurrence order bound (unbounded valence, volume or automaton)"
+                ),
+            }
+        ));
+    }
+    Classification {
+        same_class: differs.is_none(),
+        differs,
+        levels,
+        every_level,
+        notes,
+    }
+}
+
+fn first_difference(a: &Invariants, b: &Invariants, levels: u64) -> Option<Difference> {
+    if a.kind != b.kind {
+        return Some(Difference {
+            group: "kind",
+            invariant: "kind".into(),
+            level: None,
+            a: a.kind.into(),
+            b: b.kind.into(),
+        });
+    }
+    for (group, xa, xb) in [
+        ("cardinality", &a.cardinality, &b.cardinality),
+        ("multiplicity", &a.multiplicity, &b.multiplicity),
+    ] {
+        for level in 0..=levels as usize {
+            if let Some(d) = differ(group, Some(level as u64), &xa[level], &xb[level]) {
+                return Some(d);
+            }
+        }
+    }
+    differ("limit", None, &a.limit, &b.limit)
+}
+
+/// The first name whose values differ between two lists (a name missing on one side reads 0).
+fn differ(group: &'static str, level: Option<u64>, a: &[Named], b: &[Named]) -> Option<Difference> {
+    let get = |l: &[Named], k: &str| {
+        l.iter()
+            .find(|(n, _)| n == k)
+            .map_or_else(|| "0".to_string(), |(_, v)| v.clone())
+    };
+    let mut names: Vec<&String> = a.iter().map(|(n, _)| n).collect();
+    for (n, _) in b {
+        if !names.contains(&n) {
+            names.push(n);
+        }
+    }
+    for n in names {
+        let (va, vb) = (get(a, n), get(b, n));
+        if va != vb {
+            return Some(Difference {
+                group,
+                invariant: n.clone(),
+                level,
+                a: va,
+                b: vb,
+            });
+        }
+    }
+    None
+}
+
+/// The level count for comparing two face structures: the requested levels, or the levels that
+/// decide every level when that is more, as long as it stays within `max_level` (a limit error
+/// beyond, never a verdict).
+pub fn levels_for(
+    requested: u64,
+    order_a: Option<usize>,
+    order_b: Option<usize>,
+    max_level: u64,
+) -> Result<u64> {
+    match levels_needed(order_a, order_b) {
+        Some(n) if n > requested => {
+            if n > max_level {
+                return Err(Error::limit(
+                    "the number of levels that decides every level",
+                    n,
+                    max_level,
+                    "--max-level",
+                ));
+            }
+            Ok(n)
+        }
+        _ => Ok(requested),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::topology::{close_or_error, Face, Limits};
+
+    fn inv(text: &str, levels: u64) -> Invariants {
+        let ts = close_or_error(&[Face::parse(text).unwrap()], &Limits::default()).unwrap();
+        face_invariants(text, &ts, &[], levels, 10_000).unwrap().0
+    }
+
+    #[test]
+    fn the_same_face_twice_is_one_class() {
+        let a = inv("C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1", 4);
+        let c = classify(&a, &a.clone());
+        assert!(c.same_class);
+        assert_eq!(c.differs, None);
+    }
+
+    #[test]
+    fn different_face_counts_differ_in_cardinality_at_level_1() {
+        // F0 splits into 6 faces, the B2 square into 4 (THEORY §5, count.rs tests).
+        let a = inv("C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1", 2);
+        let b = inv("B2 B2 B2 B2 | B2 B2 B2 | A1", 2);
+        let d = classify(&a, &b).differs.unwrap();
+        assert_eq!(
+            (d.group, d.invariant.as_str(), d.level),
+            ("cardinality", "faces", Some(1))
+        );
+        assert_eq!((d.a.as_str(), d.b.as_str()), ("6", "4"));
+    }
+
+    #[test]
+    fn equal_counts_different_multiplicity() {
+        // P = `B2 B2 C2 | B2 B2 B2 | {joint corner}` and Q = `B2 B2^2 C2 | B2 B2 B2 | A2`.
+        // Level 1 by hand. P: spokes at its 2 joints and 3 corners (not at the C2 gap): 5
+        // sub-faces, lacunas 1 + 1/2 (the gap) = 3/2. Q: spokes at the B2 joint, the C2 gap and
+        // the 3 corners (the delayed B2^2 has no joint yet): 5 sub-faces, lacunas 3/2.
+        // Valences of P: 3 corners (two pieces and a spoke) 3, 2 joints 3, 5 lacuna corners 3;
+        // the gap has no spoke, so its two ends (a piece, an Ec, the outside) and its middle (two
+        // Ec and the outside) have valence 2: {2: 3, 3: 10}. Q: corners 3, the joint 3, lacuna
+        // corners 3, the gap's middle (two Ec and a spoke) 3, its two ends 2: {2: 2, 3: 10}.
+        let p = inv("B2 B2 C2 | B2 B2 B2 | {joint corner}", 3);
+        let q = inv("B2 B2^2 C2 | B2 B2 B2 | A2", 3);
+        assert_eq!(p.cardinality[1], q.cardinality[1]);
+        assert_eq!(p.cardinality[1][0].1, "5");
+        assert_eq!(p.cardinality[1][1].1, "3/2");
+        let c = classify(&p, &q);
+        assert!(!c.same_class);
+        let d = c.differs.unwrap();
+        assert_eq!(
+            (
+                d.group,
+                d.invariant.as_str(),
+                d.level,
+                d.a.as_str(),
+                d.b.as_str()
+            ),
+            ("multiplicity", "vertices of valence 2", Some(1), "3", "2")
+        );
+        // Corner spokes: both valences unbounded, so the verdict covers the levels compared.
+        assert!(!c.every_level);
+    }
+
+    #[test]
+    fn equal_counts_at_every_level_different_multiplicity() {
+        // Q = `B2 B2 B2 C2 | B2 B2 B2 | {joint}` and T = `B2 B2 C2 | B2 B2 B2 | A1`. Level 1 by
+        // hand: Q has spokes at its 3 joints (none at the C2 gap), T at its 2 joints and its gap:
+        // 3 sub-faces each, and 1 + 1/2 = 3/2 lacunas each. Neither puts a spoke at a corner, so
+        // both have bounded valences and order bounds: their cardinality agrees on the levels that
+        // decide every level. But Q has 4 corners and T 3: level 0 has 4 vertices of valence 2
+        // against 3.
+        let q = inv("B2 B2 B2 C2 | B2 B2 B2 | {joint}", 1);
+        let t = inv("B2 B2 C2 | B2 B2 B2 | A1", 1);
+        assert_eq!(q.cardinality[1][0].1, "3");
+        assert_eq!(q.cardinality[1][1].1, "3/2");
+        let l = levels_for(1, q.order, t.order, 1000).unwrap();
+        let q = inv("B2 B2 B2 C2 | B2 B2 B2 | {joint}", l);
+        let t = inv("B2 B2 C2 | B2 B2 B2 | A1", l);
+        assert_eq!(q.cardinality, t.cardinality, "equal counts at every level");
+        let c = classify(&q, &t);
+        assert!(c.every_level);
+        let d = c.differs.unwrap();
+        assert_eq!(
+            (
+                d.group,
+                d.invariant.as_str(),
+                d.level,
+                d.a.as_str(),
+                d.b.as_str()
+            ),
+            ("multiplicity", "vertices of valence 2", Some(0), "4", "3")
+        );
+    }
+
+    #[test]
+    fn different_faces_with_equal_invariants_are_one_class() {
+        // `B2 C2 B2 C2 | C2 B2 B2 | A1` and `B2 B2 C2 C2 | C2 B2 B2 | A1`: A1 puts no spoke at a
+        // corner, so each face has 2 joints and 2 gaps: 4 spokes, 4 sub-faces, and contributes
+        // 1 + 2·1/2 = 2 lacunas. Level 1, by hand, for both: 4 corners of valence 2; 2 joints
+        // (two pieces and a spoke) 3; 2 gaps with a spoke: the ends 2, the middle 3; 4 lacuna
+        // corners 3: {2: 8, 3: 8}. The valences stay bounded (no corner spoke), so the
+        // comparison at the levels of both order bounds decides every level.
+        let a = inv("B2 C2 B2 C2 | C2 B2 B2 | A1", 1);
+        let b = inv("B2 B2 C2 C2 | C2 B2 B2 | A1", 1);
+        let want: Vec<Named> = vec![
+            ("vertices of valence 2".into(), "8".into()),
+            ("vertices of valence 3".into(), "8".into()),
+        ];
+        assert_eq!(a.multiplicity[1], want);
+        assert_eq!(b.multiplicity[1], want);
+        let l = levels_for(1, a.order, b.order, 1000).unwrap();
+        let a = inv("B2 C2 B2 C2 | C2 B2 B2 | A1", l);
+        let b = inv("B2 B2 C2 C2 | C2 B2 B2 | A1", l);
+        let c = classify(&a, &b);
+        assert_eq!(c.differs, None);
+        assert!(c.same_class && c.every_level);
+    }
+
+    fn automaton(text: &str) -> Invariants {
+        let model = crate::input::parse_model(&crate::Source {
+            name: "test".into(),
+            text: text.into(),
+        })
+        .unwrap();
+        let resolved = crate::analysis::resolve(&model, &[], 1_000_000).unwrap();
+        automaton_invariants("test", &model, &resolved, 2).unwrap()
+    }
+
+    #[test]
+    fn automaton_contacts_at_level_1() {
+        // Sierpinski: T_i fixes corner i, and each T_i maps the three corners to its own corner
+        // and two midpoints: T0 → (1,0,0), (1/2,1/2,0), (1/2,0,1/2); T1 → (1/2,1/2,0), (0,1,0),
+        // (0,1/2,1/2); T2 → (1/2,0,1/2), (0,1/2,1/2), (0,0,1). Six points: the three midpoints
+        // where two pieces meet, the three corners with one. Pieces per level: 3^k.
+        let s = automaton(include_str!("../../fixtures/sierpinski-triangle.aut"));
+        assert_eq!(
+            s.cardinality[2],
+            vec![("pieces".to_string(), "9".to_string())]
+        );
+        assert_eq!(
+            s.multiplicity[1],
+            vec![
+                ("fixed-corner images".to_string(), "6".to_string()),
+                ("points where 1 pieces meet".to_string(), "3".to_string()),
+                ("points where 2 pieces meet".to_string(), "3".to_string()),
+            ]
+        );
+        // Cantor: T0 fixes end 0, T1 end 1; images (1,0), (2/3,1/3), (1/3,2/3), (0,1): four
+        // points, no two pieces meet.
+        let c = automaton(include_str!("../../fixtures/cantor-set.aut"));
+        assert_eq!(
+            c.multiplicity[1],
+            vec![
+                ("fixed-corner images".to_string(), "4".to_string()),
+                ("points where 1 pieces meet".to_string(), "4".to_string()),
+            ]
+        );
+    }
+}

@@ -1,0 +1,150 @@
+//! `lacuna classify A B`: the topological class of two inputs (THEORY §13).
+
+use super::*;
+use lacuna::analysis::{Classification, Invariants};
+use lacuna::topology::{LimitValence, TypeSet};
+
+/// An input made ready for its invariants.
+enum Structure {
+    Faces(String, TypeSet, Vec<lacuna::topology::Glue>),
+    Volume(String, lacuna::topology::volume::VolumeTypeSet),
+    Automaton(
+        String,
+        Box<lacuna::input::AutomatonModel>,
+        lacuna::analysis::Resolved,
+    ),
+}
+
+fn load(arg: &str, limits: &Limits) -> Result<Structure, Error> {
+    if let Some((name, v)) = lacuna::input::load_volume(arg)? {
+        return Ok(Structure::Volume(
+            name,
+            volume::closed(std::slice::from_ref(&v), limits)?,
+        ));
+    }
+    match lacuna::input::load_any(arg)? {
+        lacuna::input::Loaded::Faces(input) => {
+            let ts = lacuna::topology::close_or_error(&input.faces(), limits)?;
+            Ok(Structure::Faces(
+                input.name.clone(),
+                ts,
+                input.assembly.canonical_glue(),
+            ))
+        }
+        lacuna::input::Loaded::Automaton { name, model, .. } => {
+            let resolved = lacuna::analysis::resolve(&model, &[], limits.max_unknowns)?;
+            Ok(Structure::Automaton(name, model, resolved))
+        }
+    }
+}
+
+/// The order bound of a structure's recurrences (faces with bounded valences only).
+fn order(s: &Structure, limits: &Limits) -> Result<Option<usize>, Error> {
+    Ok(match s {
+        Structure::Faces(_, ts, glue) => {
+            lacuna::topology::multiplicity(ts, glue, 0, limits.max_types)?.order
+        }
+        _ => None,
+    })
+}
+
+fn invariants(
+    s: &Structure,
+    levels: u64,
+    limits: &Limits,
+) -> Result<(Invariants, Option<LimitValence>), Error> {
+    Ok(match s {
+        Structure::Faces(name, ts, glue) => {
+            let (i, m) =
+                lacuna::analysis::face_invariants(name, ts, glue, levels, limits.max_types)?;
+            (i, Some(m.limit))
+        }
+        Structure::Volume(name, set) => (
+            lacuna::analysis::volume_invariants(name, set, levels)?,
+            None,
+        ),
+        Structure::Automaton(name, model, resolved) => (
+            lacuna::analysis::automaton_invariants(name, model, resolved, levels)?,
+            None,
+        ),
+    })
+}
+
+/// Runs `lacuna classify`.
+pub(super) fn run(args: ClassifyArgs, limits: &Limits) -> Result<ExitCode, Error> {
+    limits.check_level(args.levels)?;
+    let a = load(&args.a, limits)?;
+    let b = load(&args.b, limits)?;
+    // The levels asked first: a difference there is a difference. Only when they agree and the
+    // order bounds say that more levels decide every level are those compared too.
+    let (mut ia, mut la) = invariants(&a, args.levels, limits)?;
+    let (mut ib, mut lb) = invariants(&b, args.levels, limits)?;
+    let mut c = lacuna::analysis::classify(&ia, &ib);
+    if c.same_class && !c.every_level {
+        let (oa, ob) = (order(&a, limits)?, order(&b, limits)?);
+        if lacuna::analysis::levels_needed(oa, ob).is_some() {
+            let levels = lacuna::analysis::levels_for(args.levels, oa, ob, limits.max_level)?;
+            (ia, la) = invariants(&a, levels, limits)?;
+            (ib, lb) = invariants(&b, levels, limits)?;
+            c = lacuna::analysis::classify(&ia, &ib);
+        }
+    }
+    if args.json {
+        print_json(&serde_json::json!({
+            "same_class": c.same_class,
+            "differs": c.differs,
+            "a": ia.name,
+            "b": ib.name,
+            "levels": c.levels,
+            "every_level": c.every_level,
+            "limit_valence": {"a": la, "b": lb},
+            "notes": c.notes,
+        }));
+    } else {
+        out(&text(&ia, &ib, &c, la.as_ref(), lb.as_ref()));
+    }
+    Ok(if c.same_class {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(EXIT_FAILED)
+    })
+}
+
+fn text(
+    a: &Invariants,
+    b: &Invariants,
+    c: &Classification,
+    la: Option<&LimitValence>,
+    lb: Option<&LimitValence>,
+) -> String {
+    let mut s = format!("A: {} ({})\nB: {} ({})\n", a.name, a.kind, b.name, b.kind);
+    if let Some(l) = la {
+        s += &format!("valence of A: {l}\n");
+    }
+    if let Some(l) = lb {
+        s += &format!("valence of B: {l}\n");
+    }
+    s += &format!(
+        "levels compared: 0 to {}{}\n",
+        c.levels,
+        if c.every_level {
+            " (enough to decide every level)"
+        } else {
+            ""
+        }
+    );
+    match &c.differs {
+        None => s += "SAME CLASS: every invariant compared is equal\n",
+        Some(d) => {
+            let at = d.level.map_or(String::new(), |l| format!(" at level {l}"));
+            s += &format!(
+                "DIFFERENT CLASSES: {} ({}){at}: A has {}, B has {}\n",
+                d.invariant, d.group, d.a, d.b
+            );
+        }
+    }
+    for n in &c.notes {
+        s += &format!("note: {n}\n");
+    }
+    s
+}

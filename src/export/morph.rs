@@ -1,0 +1,152 @@
+//! The animated SVG of a morph (THEORY §13): every frame's cells in one picture with a common
+//! window, shown one after the other by SMIL `<animate>` of `visibility` (discrete key times,
+//! repeated for ever), which browsers play. A viewer without animation shows frame 0. Each frame
+//! carries its label (t and its verdict); a frame that failed is outlined in red with the reason.
+
+use crate::export::palette::{hex, outline_colour, type_colour};
+use crate::export::picture::xml_escape;
+use crate::geometry::Point;
+use crate::measure::MorphFrame;
+use std::io::{self, Write};
+
+/// The cells of one frame: face type (or automaton state), points in the plane, and whether the
+/// points close a polygon (filled) or form an open polyline (stroked only).
+pub type FrameCells = Vec<(usize, Vec<Point>, bool)>;
+
+/// Writes the animated SVG of `frames` (cells and verdict per frame), `width` pixels wide,
+/// `seconds` per frame.
+pub fn write_morph_svg<W: Write>(
+    name: &str,
+    frames: &[(FrameCells, MorphFrame)],
+    width: u32,
+    seconds: f64,
+    mut out: W,
+) -> io::Result<()> {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for (cells, _) in frames {
+        for (_, poly, _) in cells {
+            for p in poly {
+                for i in 0..2 {
+                    lo[i] = lo[i].min(p[i]);
+                    hi[i] = hi[i].max(p[i]);
+                }
+            }
+        }
+    }
+    if !lo[0].is_finite() {
+        (lo, hi) = ([0.0, 0.0], [1.0, 1.0]);
+    }
+    let span = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1e-9);
+    let margin = span * 0.04;
+    let scale = f64::from(width) / (span + 2.0 * margin);
+    let height = ((hi[1] - lo[1] + 2.0 * margin) * scale).ceil() as u32 + 28;
+    let px = |p: &Point| {
+        (
+            (p[0] - lo[0] + margin) * scale,
+            (hi[1] - p[1] + margin) * scale,
+        )
+    };
+    let n = frames.len().max(1);
+    let total = seconds * n as f64;
+    writeln!(
+        out,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {width} {height}\" width=\"{width}\" height=\"{height}\">"
+    )?;
+    writeln!(
+        out,
+        "<title>{} morph, {n} frames</title>\n<rect width=\"{width}\" height=\"{height}\" fill=\"#fff\"/>",
+        xml_escape(name)
+    )?;
+    for (k, (cells, frame)) in frames.iter().enumerate() {
+        let (values, times) = key_times(k, n);
+        writeln!(
+            out,
+            "<g class=\"frame\" id=\"frame-{k}\" visibility=\"{}\">",
+            if k == 0 { "visible" } else { "hidden" }
+        )?;
+        writeln!(
+            out,
+            "<animate attributeName=\"visibility\" values=\"{values}\" keyTimes=\"{times}\" calcMode=\"discrete\" dur=\"{total}s\" repeatCount=\"indefinite\"/>"
+        )?;
+        for (ty, poly, closed) in cells {
+            let mut d = String::new();
+            for (i, p) in poly.iter().enumerate() {
+                let (x, y) = px(p);
+                d.push_str(&format!("{}{x:.2} {y:.2}", if i == 0 { "M" } else { " L" }));
+            }
+            let stroke = if frame.verified {
+                hex(outline_colour(*ty))
+            } else {
+                "#d00".to_string()
+            };
+            let fill = if *closed {
+                d.push_str(" Z");
+                hex(type_colour(*ty))
+            } else {
+                "none".to_string()
+            };
+            writeln!(
+                out,
+                "<path d=\"{d}\" fill=\"{fill}\" stroke=\"{stroke}\" stroke-width=\"{}\" stroke-linejoin=\"round\"/>",
+                if *closed { 0.8 } else { 1.5 }
+            )?;
+        }
+        let mut label = if frame.verified {
+            format!("frame {k}, t = {}: verified", frame.t)
+        } else {
+            format!(
+                "frame {k}, t = {}: FAILED — {}",
+                frame.t,
+                frame.failures.first().map_or("", String::as_str)
+            )
+        };
+        // About 7 pixels a character at 13 pixels: cut what would not fit.
+        let fit = (width.saturating_sub(16) / 7).max(8) as usize;
+        if label.chars().count() > fit {
+            label = label.chars().take(fit - 1).collect::<String>() + "…";
+        }
+        writeln!(
+            out,
+            "<text x=\"8\" y=\"{}\" font-family=\"sans-serif\" font-size=\"13\" fill=\"{}\">{}</text>\n</g>",
+            height - 9,
+            if frame.verified { "#222" } else { "#d00" },
+            xml_escape(&label)
+        )?;
+    }
+    writeln!(out, "</svg>")
+}
+
+/// The discrete `values` and `keyTimes` that show frame `k` of `n` during [k/n, (k+1)/n).
+fn key_times(k: usize, n: usize) -> (String, String) {
+    let t = |i: usize| format!("{}", i as f64 / n as f64);
+    let mut values = Vec::new();
+    let mut times = Vec::new();
+    if k > 0 {
+        values.push("hidden");
+        times.push(t(0));
+    }
+    values.push("visible");
+    times.push(t(k));
+    if k + 1 < n {
+        values.push("hidden");
+        times.push(t(k + 1));
+    }
+    (values.join(";"), times.join(";"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_frame_is_shown_in_its_own_slot() {
+        // 4 frames: frame 0 visible on [0, 1/4), frame 2 on [1/2, 3/4), frame 3 on [3/4, 1].
+        assert_eq!(key_times(0, 4), ("visible;hidden".into(), "0;0.25".into()));
+        assert_eq!(
+            key_times(2, 4),
+            ("hidden;visible;hidden".into(), "0;0.5;0.75".into())
+        );
+        assert_eq!(key_times(3, 4), ("hidden;visible".into(), "0;0.75".into()));
+        assert_eq!(key_times(0, 1), ("visible".into(), "0".into()));
+    }
+}

@@ -1,0 +1,939 @@
+//! Vertex types and the exact multiplicity of the level-k complex (THEORY §9, §13).
+//!
+//! A vertex's **link** is the cyclic sequence, counter-clockwise, of what surrounds it: the corners
+//! of faces (a sector: face type and corner index) and holes (a lacuna, a gap or the outside). Its
+//! **valence** — the number of edges meeting there, the multiplicity of the paper — is the length
+//! of the link, one edge between two consecutive items. Links are read off the incidence maps:
+//! turning counter-clockwise from a corner crosses the corner's incoming side into the face on the
+//! other side of it (the shared edge runs the other way) or into a hole.
+//!
+//! One step changes a link without looking at geometry: each sector becomes the sectors of the
+//! sub-faces at that corner of its face (two when the corner is a spoke, with the new edge between
+//! them), holes stay holes. So vertex types close like face types, and every vertex of the level-k
+//! complex is either a vertex of the level before or born inside a face (lacuna corners, gap
+//! points) or inside an edge (joints, gap ends, whose link joins the fans of the faces on both
+//! sides). Counts of vertex types, of edge cells (the pair of sides of an edge) and of face types
+//! per level are linear recurrences in big integers: the exact valence distribution at any level,
+//! V, E and F of the complex, and — where the vertex types close — the largest valence in the limit.
+
+use crate::error::{Error, Result};
+use crate::topology::closure::TypeSet;
+use crate::topology::component::Glue;
+use crate::topology::edge::JunctionKind;
+use crate::topology::face::least_rotation;
+use crate::topology::subdivision::Origin;
+use num_bigint::BigUint;
+use num_traits::Zero;
+use petgraph::graph::{DiGraph, NodeIndex};
+use serde::Serialize;
+use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
+
+/// The link items allowed per vertex type of `max_types`, summed over the vertex types of a level.
+pub const LINK_ITEMS_PER_TYPE: usize = 64;
+
+/// An item of a link.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Item {
+    /// Corner `corner` of a face of type `ty`.
+    Sector {
+        /// The face type.
+        ty: usize,
+        /// The corner (the start of boundary side `corner`).
+        corner: usize,
+    },
+    /// A lacuna, a gap or the outside.
+    Hole,
+}
+
+/// What lies on the other side of an edge.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+enum Other {
+    /// Side `side` of a face of type `ty`.
+    Face(usize, usize),
+    /// A lacuna or a gap: a hole inside the structure.
+    Hole,
+    /// The outside of the structure.
+    Outside,
+}
+
+/// An edge of the complex: one face side and what is across it (canonical: the smaller first
+/// when both are faces).
+type EdgeCell = ((usize, usize), Other);
+
+fn edge_cell(a: (usize, usize), b: Other) -> EdgeCell {
+    match b {
+        Other::Face(t, s) if (t, s) < a => ((t, s), Other::Face(a.0, a.1)),
+        _ => (a, b),
+    }
+}
+
+/// The canonical link: adjacent holes merged, least rotation.
+fn canonical(mut link: Vec<Item>) -> Vec<Item> {
+    let mut out: Vec<Item> = Vec::with_capacity(link.len());
+    for it in link.drain(..) {
+        if it == Item::Hole && out.last() == Some(&Item::Hole) {
+            continue;
+        }
+        out.push(it);
+    }
+    while out.len() > 1 && out.first() == Some(&Item::Hole) && out.last() == Some(&Item::Hole) {
+        out.pop();
+    }
+    let r = least_rotation(&out);
+    out.rotate_left(r);
+    out
+}
+
+/// Fans of a set of polygons with paired sides: maximal chains of corners, counter-clockwise,
+/// each with whether it closes on itself. `lens[k]` is polygon k's side count.
+fn fans(
+    lens: &[usize],
+    partner: &HashMap<(usize, usize), (usize, usize)>,
+) -> Vec<(Vec<(usize, usize)>, bool)> {
+    let succ = |(k, p): (usize, usize)| partner.get(&(k, (p + lens[k] - 1) % lens[k])).copied();
+    let pred = |(k, p): (usize, usize)| {
+        partner
+            .get(&(k, p))
+            .map(|&(k2, p2)| (k2, (p2 + 1) % lens[k2]))
+    };
+    let mut seen = std::collections::HashSet::new();
+    let mut out = Vec::new();
+    for (k, &len) in lens.iter().enumerate() {
+        for p in 0..len {
+            if seen.contains(&(k, p)) {
+                continue;
+            }
+            let mut first = (k, p);
+            let mut cyclic = false;
+            while let Some(q) = pred(first) {
+                first = q;
+                if first == (k, p) {
+                    cyclic = true;
+                    break;
+                }
+            }
+            let mut fan = vec![first];
+            seen.insert(first);
+            let mut c = first;
+            while let Some(d) = succ(c) {
+                if d == first {
+                    break;
+                }
+                fan.push(d);
+                seen.insert(d);
+                c = d;
+            }
+            out.push((fan, cyclic));
+        }
+    }
+    out
+}
+
+/// Where a fan of one face's level-1 complex touches the face's boundary.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum Point {
+    /// The start of piece `piece` of boundary edge `edge` (a corner when `piece` is 0).
+    Start(usize, usize),
+    /// The end of piece `piece` of edge `edge`, before a gap.
+    End(usize, usize),
+}
+
+/// What one step of a face type creates and how its corners turn.
+struct Local {
+    /// For each corner: the sectors at it after the step.
+    corner_fan: Vec<Vec<Item>>,
+    /// Links of the vertices born inside the face.
+    births: Vec<Vec<Item>>,
+    /// Edges born inside the face.
+    edges: Vec<EdgeCell>,
+    /// Fans at the points of the boundary, from the face's side.
+    at: HashMap<Point, Vec<Item>>,
+    /// For each edge and piece: the (sub-face type, side) holding it.
+    pieces: Vec<Vec<(usize, usize)>>,
+}
+
+fn local(ts: &TypeSet, t: usize) -> Local {
+    let ty = &ts.types[t];
+    let sub = &ty.subdivision;
+    let lens: Vec<usize> = sub.subfaces.iter().map(|s| s.origins.len()).collect();
+    let mut partner = HashMap::new();
+    for a in &sub.adjacencies {
+        partner.insert(a.first, a.second);
+        partner.insert(a.second, a.first);
+    }
+    let origin = |k: usize, p: usize| sub.subfaces[k].origins[p % lens[k]];
+    let sector = |(k, p): (usize, usize)| Item::Sector {
+        ty: ty.children[k],
+        corner: p,
+    };
+    let mut out = Local {
+        corner_fan: vec![Vec::new(); ty.face.boundary.len()],
+        births: Vec::new(),
+        edges: Vec::new(),
+        at: HashMap::new(),
+        pieces: ty
+            .face
+            .boundary
+            .iter()
+            .map(|e| vec![(0, 0); e.piece_count() as usize])
+            .collect(),
+    };
+    for (k, s) in sub.subfaces.iter().enumerate() {
+        for (p, o) in s.origins.iter().enumerate() {
+            let me = (ty.children[k], p);
+            match (*o, partner.get(&(k, p))) {
+                (Origin::Piece { edge, piece }, _) => out.pieces[edge][piece] = me,
+                (_, Some(&(k2, p2))) => {
+                    if (k, p) < (k2, p2) {
+                        out.edges
+                            .push(edge_cell(me, Other::Face(ty.children[k2], p2)));
+                    }
+                }
+                (_, None) => out.edges.push(edge_cell(me, Other::Hole)),
+            }
+        }
+    }
+    for (fan, cyclic) in fans(&lens, &partner) {
+        let sectors: Vec<Item> = fan.iter().map(|&c| sector(c)).collect();
+        if cyclic {
+            out.births.push(canonical(sectors));
+            continue;
+        }
+        let (k0, p0) = fan[0];
+        let (kr, pr) = *fan.last().expect("a fan has a corner");
+        let out_side = origin(k0, p0);
+        let in_side = origin(kr, pr + lens[kr] - 1);
+        let mut items = Vec::new();
+        if !matches!(out_side, Origin::Piece { .. }) {
+            items.push(Item::Hole);
+        }
+        items.extend(sectors.iter().copied());
+        if !matches!(in_side, Origin::Piece { .. }) {
+            items.push(Item::Hole);
+        }
+        match (out_side, in_side) {
+            (Origin::Piece { edge, piece }, _) => {
+                if piece == 0 {
+                    out.corner_fan[edge] = sectors;
+                }
+                out.at.insert(Point::Start(edge, piece), items);
+            }
+            (_, Origin::Piece { edge, piece }) => {
+                out.at.insert(Point::End(edge, piece), items);
+            }
+            _ => out.births.push(canonical(items)),
+        }
+    }
+    out
+}
+
+/// The valence distribution and the cells of the complex at one level.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct LevelComplex {
+    /// The level.
+    pub level: u64,
+    /// Vertices.
+    #[serde(serialize_with = "crate::topology::closure::ser_display")]
+    pub vertices: BigUint,
+    /// Edges.
+    #[serde(serialize_with = "crate::topology::closure::ser_display")]
+    pub edges: BigUint,
+    /// Faces.
+    #[serde(serialize_with = "crate::topology::closure::ser_display")]
+    pub faces: BigUint,
+    /// Number of vertices of each valence (as decimal strings).
+    pub valences: BTreeMap<usize, String>,
+    /// The largest valence.
+    pub max_valence: usize,
+    /// Gaps opened so far in edges with a face on one side only (each is half a lacuna that is
+    /// not a hole of its own): N^L = holes + half_gaps / 2.
+    #[serde(serialize_with = "crate::topology::closure::ser_display")]
+    pub half_gaps: BigUint,
+}
+
+/// A sector named for people: a face type in notation and one of its corners.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct SectorName {
+    /// The face type, in canonical notation.
+    pub face: String,
+    /// The corner: the start of boundary side `corner` (0-based, canonical rotation).
+    pub corner: usize,
+}
+
+/// Why the valence grows without bound: a sector that comes back to itself with more sectors.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct GrowthWitness {
+    /// The sector that reproduces itself.
+    pub sector: SectorName,
+    /// The sectors it steps through, from it back to it (`period + 1` entries).
+    pub cycle: Vec<SectorName>,
+    /// The number of steps p of the cycle.
+    pub period: usize,
+    /// How many more sectors (hence edges at the vertex) it has become after p steps, ≥ 1.
+    pub gained: String,
+}
+
+/// The valences of the limit complex (every level together: valences never decrease).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum LimitValence {
+    /// Every vertex's valence settles; the values every born vertex settles at.
+    Bounded {
+        /// The largest valence at any level and in the limit.
+        max_valence: usize,
+        /// The valences of the vertices of the limit, ascending.
+        valences: Vec<usize>,
+    },
+    /// Some vertex's valence grows without bound.
+    Unbounded {
+        /// The sector that proves it.
+        witness: GrowthWitness,
+    },
+}
+
+impl std::fmt::Display for LimitValence {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            LimitValence::Bounded { max_valence, valences } => {
+                let v: Vec<String> = valences.iter().map(|v| v.to_string()).collect();
+                write!(f, "bounded: largest valence {max_valence} (limit valences {})", v.join(", "))
+            }
+            LimitValence::Unbounded { witness: w } => write!(
+                f,
+                "unbounded: corner {} of `{}` comes back to itself after {} step{} with {} more sector{}",
+                w.sector.corner,
+                w.sector.face,
+                w.period,
+                if w.period == 1 { "" } else { "s" },
+                w.gained,
+                if w.gained == "1" { "" } else { "s" }
+            ),
+        }
+    }
+}
+
+/// The exact complex per level and the valences of the limit.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct Multiplicity {
+    /// Per level from 0.
+    pub levels: Vec<LevelComplex>,
+    /// The number of vertex types met up to the last level.
+    pub vertex_types: usize,
+    /// The valences of the limit: bounded with the values, or unbounded with a witness.
+    pub limit: LimitValence,
+    /// When the valences are bounded: a bound on the order of the linear recurrences that every
+    /// count of the complex (vertices of each valence, edges, faces, lacunas) satisfies — the
+    /// closed vertex types, the edge cells, the face types and one for the lacunas. Two such
+    /// sequences that agree on their first `order_a + order_b` levels agree at every level.
+    pub order: Option<usize>,
+}
+
+/// The exact complex of the start faces of `ts` (glued by `glue`) from level 0 to `levels`.
+///
+/// `max_types` bounds the number of vertex types met level by level (a limit error beyond it,
+/// `--max-types`): under a rule with unbounded valence they never stop growing.
+pub fn multiplicity(
+    ts: &TypeSet,
+    glue: &[Glue],
+    levels: u64,
+    max_types: usize,
+) -> Result<Multiplicity> {
+    let locals: Vec<Local> = (0..ts.types.len()).map(|t| local(ts, t)).collect();
+    let mut vtypes: Vec<Vec<Item>> = Vec::new();
+    let mut vindex: HashMap<Vec<Item>, usize> = HashMap::new();
+    let mut intern = |link: Vec<Item>, vtypes: &mut Vec<Vec<Item>>| -> usize {
+        let link = canonical(link);
+        if let Some(&i) = vindex.get(&link) {
+            return i;
+        }
+        vtypes.push(link.clone());
+        vindex.insert(link, vtypes.len() - 1);
+        vtypes.len() - 1
+    };
+    // Level 0: the start faces as polygons glued along the assembly's shared edges.
+    let lens: Vec<usize> = ts
+        .start
+        .iter()
+        .map(|&t| ts.types[t].face.boundary.len())
+        .collect();
+    let mut partner = HashMap::new();
+    for g in glue {
+        partner.insert(g[0], g[1]);
+        partner.insert(g[1], g[0]);
+    }
+    let mut vcount: HashMap<usize, BigUint> = HashMap::new();
+    let mut start_links = Vec::new();
+    for (fan, cyclic) in fans(&lens, &partner) {
+        let mut link: Vec<Item> = fan
+            .iter()
+            .map(|&(f, c)| Item::Sector {
+                ty: ts.start[f],
+                corner: c,
+            })
+            .collect();
+        if !cyclic {
+            link.push(Item::Hole);
+        }
+        start_links.push(link.clone());
+        let v = intern(link, &mut vtypes);
+        *vcount.entry(v).or_default() += 1u32;
+    }
+    let mut ecount: HashMap<EdgeCell, BigUint> = HashMap::new();
+    let mut start_cells = Vec::new();
+    for (f, &t) in ts.start.iter().enumerate() {
+        for i in 0..lens[f] {
+            let other = match partner.get(&(f, i)) {
+                Some(&(g, j)) => {
+                    if (g, j) < (f, i) {
+                        continue;
+                    }
+                    Other::Face(ts.start[g], j)
+                }
+                None => Other::Outside,
+            };
+            start_cells.push(edge_cell((t, i), other));
+            *ecount.entry(edge_cell((t, i), other)).or_default() += 1u32;
+        }
+    }
+    let mut fcount = vec![BigUint::zero(); ts.types.len()];
+    for &t in &ts.start {
+        fcount[t] += 1u32;
+    }
+    let matrix = ts.matrix();
+    let mut half_gaps = BigUint::zero();
+    let mut out = Vec::new();
+    for level in 0..=levels {
+        let mut valences: BTreeMap<usize, BigUint> = BTreeMap::new();
+        for (&v, k) in &vcount {
+            *valences.entry(vtypes[v].len()).or_default() += k;
+        }
+        out.push(LevelComplex {
+            level,
+            vertices: vcount.values().sum(),
+            edges: ecount.values().sum(),
+            faces: fcount.iter().sum(),
+            max_valence: valences.keys().next_back().copied().unwrap_or(0),
+            valences: valences
+                .into_iter()
+                .map(|(v, k)| (v, k.to_string()))
+                .collect(),
+            half_gaps: half_gaps.clone(),
+        });
+        if vtypes.len() > max_types {
+            return Err(Error::limit(
+                "the number of vertex types",
+                vtypes.len(),
+                max_types,
+                "--max-types",
+            ));
+        }
+        // Under an unbounded valence links grow with the level (doubling under A2): their total
+        // length is bounded too, before the next step is built.
+        let total: usize = vcount.keys().map(|&v| vtypes[v].len()).sum();
+        let budget = max_types.saturating_mul(LINK_ITEMS_PER_TYPE);
+        if level < levels && total > budget {
+            return Err(Error::limit(
+                "the total length of the vertex links of a level",
+                total,
+                budget,
+                "--max-types (64 link items per type)",
+            ));
+        }
+        if level == levels {
+            break;
+        }
+        let mut nv: HashMap<usize, BigUint> = HashMap::new();
+        let mut ne: HashMap<EdgeCell, BigUint> = HashMap::new();
+        let mut nf = vec![BigUint::zero(); ts.types.len()];
+        for (&v, k) in &vcount {
+            let link = evolve(&locals, &vtypes[v]);
+            let w = intern(link, &mut vtypes);
+            *nv.entry(w).or_default() += k;
+        }
+        for (t, k) in fcount.iter().enumerate() {
+            if k.is_zero() {
+                continue;
+            }
+            for b in &locals[t].births {
+                let w = intern(b.clone(), &mut vtypes);
+                *nv.entry(w).or_default() += k;
+            }
+            for e in &locals[t].edges {
+                *ne.entry(*e).or_default() += k;
+            }
+            for &(s, m) in &matrix[t] {
+                nf[s] += k * m;
+            }
+        }
+        for (&((t, i), other), k) in &ecount {
+            let (n, gap) = pieces_of(ts, t, i);
+            if gap && !matches!(other, Other::Face(..)) {
+                half_gaps += k * (n as u64 - 1);
+            }
+            for m in 0..n {
+                let c = edge_cell(locals[t].pieces[i][m], across(&locals, other, n, m));
+                *ne.entry(c).or_default() += k;
+            }
+            for w in edge_births(&locals, (t, i), other, n, gap) {
+                let w = intern(w, &mut vtypes);
+                *nv.entry(w).or_default() += k;
+            }
+        }
+        vcount = nv;
+        ecount = ne;
+        fcount = nf;
+    }
+    // The limit: every vertex type that is ever born — the start vertices, the births of every
+    // face type and of every edge cell reached — and the sector substitution that steps them.
+    let mut born: Vec<Vec<Item>> = start_links;
+    let mut cells: Vec<EdgeCell> = Vec::new();
+    let mut seen_cells: HashSet<EdgeCell> = HashSet::new();
+    for c in start_cells
+        .iter()
+        .copied()
+        .chain(locals.iter().flat_map(|l| l.edges.iter().copied()))
+    {
+        if seen_cells.insert(c) {
+            cells.push(c);
+        }
+    }
+    let mut i = 0;
+    while i < cells.len() {
+        let ((t, s), other) = cells[i];
+        let (n, gap) = pieces_of(ts, t, s);
+        for m in 0..n {
+            let c = edge_cell(locals[t].pieces[s][m], across(&locals, other, n, m));
+            if seen_cells.insert(c) {
+                cells.push(c);
+            }
+        }
+        born.extend(edge_births(&locals, (t, s), other, n, gap));
+        i += 1;
+    }
+    for l in &locals {
+        born.extend(l.births.iter().cloned());
+    }
+    let limit = limit_valence(ts, &locals, &born)?;
+    // With bounded valences the vertex types close (finitely many links of bounded length over
+    // finitely many sectors): the state of a level — vertex types, edge cells, face types and the
+    // lacunas so far — then steps linearly, so every count of the complex is a linear recurrence
+    // of order at most its dimension.
+    let order = match limit {
+        LimitValence::Unbounded { .. } => None,
+        LimitValence::Bounded { .. } => {
+            let mut closed: Vec<Vec<Item>> = Vec::new();
+            let mut seen: HashSet<Vec<Item>> = HashSet::new();
+            for l in born.iter().chain(vtypes.iter()) {
+                let l = canonical(l.clone());
+                if seen.insert(l.clone()) {
+                    closed.push(l);
+                }
+            }
+            let mut i = 0;
+            while i < closed.len() {
+                if closed.len() > max_types {
+                    return Err(Error::limit(
+                        "the number of vertex types",
+                        closed.len(),
+                        max_types,
+                        "--max-types",
+                    ));
+                }
+                let l = canonical(evolve(&locals, &closed[i]));
+                if seen.insert(l.clone()) {
+                    closed.push(l);
+                }
+                i += 1;
+            }
+            Some(closed.len() + cells.len() + ts.types.len() + 1)
+        }
+    };
+    Ok(Multiplicity {
+        levels: out,
+        vertex_types: vtypes.len(),
+        limit,
+        order,
+    })
+}
+
+/// The edge count and whether the inner junctions are gaps, for side `s` of type `t`.
+fn pieces_of(ts: &TypeSet, t: usize, s: usize) -> (usize, bool) {
+    let e = ts.types[t].face.boundary[s];
+    (
+        e.piece_count() as usize,
+        e.inner_junction() == Some(JunctionKind::Gap),
+    )
+}
+
+/// What lies across piece `m` of an edge of `n` pieces whose far side is `other`: the far side
+/// runs the edge backwards, so its piece n − 1 − m.
+fn across(locals: &[Local], other: Other, n: usize, m: usize) -> Other {
+    match other {
+        Other::Face(t2, j) => {
+            let (a, b) = locals[t2].pieces[j][n - 1 - m];
+            Other::Face(a, b)
+        }
+        o => o,
+    }
+}
+
+/// The valences of the limit complex.
+///
+/// A sector (face type, corner) steps to the sectors of the sub-faces at that corner, never to
+/// none, so the sectors form a non-erasing substitution and the length of what a sector becomes
+/// after k steps, L_k, never decreases in k (by induction: L_1 ≥ 1 = L_0, and L_{k+1}(a) =
+/// Σ_{b in fan(a)} L_k(b) ≥ Σ L_{k−1}(b) = L_k(a)). Every corner of every reached type is a corner
+/// of some vertex. Two cases, decided on the strongly connected classes of the sector graph:
+/// - some class on a cycle holds a sector whose fan has two or more sectors: that sector comes back
+///   to itself after p steps together with at least one more sector, so a vertex holding it gains
+///   an edge at least every p levels — the valence is unbounded (the witness);
+/// - otherwise every sector on a cycle has a fan of one sector, L_∞ = 1 on cycles and L_∞(a) =
+///   Σ L_∞(fan(a)) elsewhere (finite: the graph of classes is acyclic), and a vertex born with link
+///   ℓ ends with valence Σ_{x ∈ ℓ} L_∞(x) (a hole counts 1). Valences never decrease, so the
+///   largest of these is the largest valence at every level and in the limit.
+fn limit_valence(ts: &TypeSet, locals: &[Local], born: &[Vec<Item>]) -> Result<LimitValence> {
+    let mut index: HashMap<(usize, usize), usize> = HashMap::new();
+    let mut sectors: Vec<(usize, usize)> = Vec::new();
+    for (t, l) in locals.iter().enumerate() {
+        for c in 0..l.corner_fan.len() {
+            index.insert((t, c), sectors.len());
+            sectors.push((t, c));
+        }
+    }
+    let fan_of = |i: usize| -> Vec<usize> {
+        let (t, c) = sectors[i];
+        locals[t].corner_fan[c]
+            .iter()
+            .filter_map(|it| match *it {
+                Item::Sector { ty, corner } => Some(index[&(ty, corner)]),
+                Item::Hole => None,
+            })
+            .collect()
+    };
+    let mut graph: DiGraph<usize, ()> = DiGraph::new();
+    let nodes: Vec<NodeIndex> = (0..sectors.len()).map(|i| graph.add_node(i)).collect();
+    for i in 0..sectors.len() {
+        for j in fan_of(i) {
+            graph.add_edge(nodes[i], nodes[j], ());
+        }
+    }
+    // Sinks first: every class is listed after the classes it reaches.
+    let sccs = petgraph::algo::tarjan_scc(&graph);
+    let mut class_of = vec![0usize; sectors.len()];
+    for (k, scc) in sccs.iter().enumerate() {
+        for v in scc {
+            class_of[graph[*v]] = k;
+        }
+    }
+    let on_cycle = |i: usize| fan_of(i).iter().any(|&j| class_of[j] == class_of[i]);
+    if let Some(b) = (0..sectors.len()).find(|&b| on_cycle(b) && fan_of(b).len() >= 2) {
+        return Ok(LimitValence::Unbounded {
+            witness: growth_witness(ts, &sectors, &class_of, &fan_of, b),
+        });
+    }
+    let mut lim = vec![0usize; sectors.len()];
+    for scc in &sccs {
+        for v in scc {
+            let i = graph[*v];
+            lim[i] = if on_cycle(i) {
+                1
+            } else {
+                fan_of(i)
+                    .iter()
+                    .try_fold(0usize, |acc, &j| acc.checked_add(lim[j]))
+                    .ok_or_else(|| Error::Analysis("a limit valence above 2^64".into()))?
+            };
+        }
+    }
+    let mut valences: BTreeSet<usize> = BTreeSet::new();
+    for link in born {
+        let v = canonical(link.clone())
+            .iter()
+            .map(|it| match *it {
+                Item::Sector { ty, corner } => lim[index[&(ty, corner)]],
+                Item::Hole => 1,
+            })
+            .sum::<usize>();
+        valences.insert(v);
+    }
+    Ok(LimitValence::Bounded {
+        max_valence: valences.iter().next_back().copied().unwrap_or(0),
+        valences: valences.into_iter().collect(),
+    })
+}
+
+/// The witness of unbounded valence: sector `b` lies on a cycle and its fan has two or more
+/// sectors. The shortest cycle from `b` back to itself gives the period p; after p steps `b`
+/// has become itself and `gained` more sectors (counted exactly along the p steps).
+fn growth_witness(
+    ts: &TypeSet,
+    sectors: &[(usize, usize)],
+    class_of: &[usize],
+    fan_of: &dyn Fn(usize) -> Vec<usize>,
+    b: usize,
+) -> GrowthWitness {
+    // Breadth-first search inside b's class for the shortest path back to b.
+    let mut prev: HashMap<usize, usize> = HashMap::new();
+    let mut queue = std::collections::VecDeque::from([b]);
+    let mut back = None;
+    'search: while let Some(u) = queue.pop_front() {
+        for v in fan_of(u) {
+            if class_of[v] != class_of[b] {
+                continue;
+            }
+            if v == b {
+                back = Some(u);
+                break 'search;
+            }
+            if let std::collections::hash_map::Entry::Vacant(e) = prev.entry(v) {
+                e.insert(u);
+                queue.push_back(v);
+            }
+        }
+    }
+    let mut cycle = vec![b];
+    let mut u = back.expect("b lies on a cycle of its class");
+    while u != b {
+        cycle.push(u);
+        u = prev[&u];
+    }
+    cycle.push(b);
+    cycle[1..].reverse();
+    // Exact length of what b becomes after p steps: counts per sector, step by step.
+    let p = cycle.len() - 1;
+    let mut count: HashMap<usize, BigUint> = HashMap::from([(b, BigUint::from(1u32))]);
+    for _ in 0..p {
+        let mut next: HashMap<usize, BigUint> = HashMap::new();
+        for (&i, k) in &count {
+            for j in fan_of(i) {
+                *next.entry(j).or_default() += k;
+            }
+        }
+        count = next;
+    }
+    let after: BigUint = count.values().sum();
+    let name = |i: usize| {
+        let (t, c) = sectors[i];
+        SectorName {
+            face: ts.types[t].face.to_string(),
+            corner: c,
+        }
+    };
+    GrowthWitness {
+        sector: name(b),
+        cycle: cycle.iter().map(|&i| name(i)).collect(),
+        period: p,
+        gained: (after - 1u32).to_string(),
+    }
+}
+
+/// One step of a link: each sector becomes the sectors at that corner of its face.
+fn evolve(locals: &[Local], link: &[Item]) -> Vec<Item> {
+    link.iter()
+        .flat_map(|&it| match it {
+            Item::Sector { ty, corner } => locals[ty].corner_fan[corner].clone(),
+            Item::Hole => vec![Item::Hole],
+        })
+        .collect()
+}
+
+/// The links of the points born inside an edge cell of `n` pieces (joints, or both ends of every
+/// gap): the fan of the face on one side, then the fan of the face on the other side (or a hole).
+fn edge_births(
+    locals: &[Local],
+    (t, i): (usize, usize),
+    other: Other,
+    n: usize,
+    gap: bool,
+) -> Vec<Vec<Item>> {
+    let fan = |f: usize, p: Point| locals[f].at.get(&p).cloned().unwrap_or_default();
+    let mut out = Vec::new();
+    for m in 1..n {
+        // The same point read from the other side, which runs the edge backwards: piece m is
+        // its piece n − 1 − m.
+        let pairs = match (gap, other) {
+            (true, Other::Face(_, j)) => vec![
+                (Point::Start(i, m), Some(Point::End(j, n - 1 - m))),
+                (Point::End(i, m - 1), Some(Point::Start(j, n - m))),
+            ],
+            (true, _) => vec![(Point::Start(i, m), None), (Point::End(i, m - 1), None)],
+            (false, Other::Face(_, j)) => vec![(Point::Start(i, m), Some(Point::Start(j, n - m)))],
+            (false, _) => vec![(Point::Start(i, m), None)],
+        };
+        for (p, q) in pairs {
+            let mut link = fan(t, p);
+            match (other, q) {
+                (Other::Face(t2, _), Some(q)) => link.extend(fan(t2, q)),
+                _ => link.push(Item::Hole),
+            }
+            out.push(link);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::topology::closure::close_or_error;
+    use crate::topology::count::counts;
+    use crate::topology::face::Face;
+    use crate::topology::limits::Limits;
+    use num_bigint::BigInt;
+    use num_rational::BigRational;
+
+    fn of(text: &str, levels: u64) -> (TypeSet, Multiplicity) {
+        let f = Face::parse(text).unwrap();
+        let ts = close_or_error(&[f], &Limits::default()).unwrap();
+        let m = multiplicity(&ts, &[], levels, 400).unwrap();
+        (ts, m)
+    }
+
+    fn valences(l: &LevelComplex) -> Vec<(usize, String)> {
+        l.valences.iter().map(|(v, k)| (*v, k.clone())).collect()
+    }
+
+    #[test]
+    fn f0_by_hand() {
+        // Level 0: a hexagon, 6 corners of valence 2 (two boundary edges each).
+        // Level 1: 6 sub-faces; the 6 old corners (valence 2: A1 puts no spoke at a corner), the
+        // 3 joints (two pieces and a spoke: 3), the 6 ends of the 3 boundary gaps (a piece and a
+        // gap side: 2), the 3 gap points (two gap sides and a spoke: 3), the 6 lacuna corners
+        // (two lacuna edges and a spoke: 3): 24 vertices, {2: 12, 3: 12}; edges: 12 pieces, 6
+        // spokes, 6 lacuna edges, 6 gap sides = 30; valences sum to 2·30 = 60 = 12·2 + 12·3.
+        let (_, m) = of("C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1", 3);
+        let l0 = &m.levels[0];
+        assert_eq!(
+            (l0.vertices.to_string(), l0.edges.to_string()),
+            ("6".into(), "6".into())
+        );
+        assert_eq!(valences(l0), vec![(2, "6".into())]);
+        let l1 = &m.levels[1];
+        assert_eq!(
+            (
+                l1.vertices.to_string(),
+                l1.edges.to_string(),
+                l1.faces.to_string()
+            ),
+            ("24".into(), "30".into(), "6".into())
+        );
+        assert_eq!(valences(l1), vec![(2, "12".into()), (3, "12".into())]);
+        // No valence ever exceeds 3. Under A1 no corner is a spoke, so a sector stays one sector
+        // and a vertex keeps its valence once born. Births: a lacuna corner (two sub-faces and
+        // the lacuna) and a gap point (two sub-faces and the gap) have 3; a joint lies on a B2
+        // edge, and F0's B2 edges (its boundary, El and Ec) all border a hole or the outside, so
+        // a joint has two sub-faces and that hole: 3; the only edges with faces on both sides are
+        // the spokes Ea = C2 and their pieces, whose gap ends have a sub-face, the gap and a
+        // sub-face: 3 (on the outer C2 edges, a sub-face and the outside: 2).
+        assert_eq!(m.levels[2].max_valence, 3);
+        assert_eq!(m.levels[3].max_valence, 3);
+        assert_eq!(
+            m.limit,
+            LimitValence::Bounded {
+                max_valence: 3,
+                valences: vec![2, 3]
+            }
+        );
+    }
+
+    #[test]
+    fn f0_closed_forms_at_every_level() {
+        // Hand derivation for F0 = `C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1`. A sub-face is
+        // `C2 B2 | C2 B2 C2 | B2`: a piece of the parent's C2 side, a piece of its B2 side, a spoke
+        // Ea = C2 (shared with the neighbour), El = B2 (lacuna), a spoke, Ec = B2 (gap). So a B2
+        // side always borders a hole or the outside, a C2 side is outer (a piece of F0's C2 sides)
+        // or shared (a spoke or a piece of one). A1 puts no spoke at a corner, so a vertex keeps
+        // its valence once born. Edge cells at level k, with F_k = 6^k faces:
+        //   outer C2: 3·2^k, outer B2: 3·2^k,
+        //   shared C2: S_{k+1} = 2 S_k + 6 F_k, S_0 = 0, so S_k = 3(6^k − 2^k)/2,
+        //   B2 at holes: H_{k+1} = 2 H_k + 12 F_k (6 El and 6 Ec per face), so H_k = 2 S_k.
+        // Births of a step: per face 6 lacuna corners and 3 gap points (valence 3); a joint per B2
+        // cell (two sub-faces and the hole across: 3); two gap ends per shared C2 cell (two
+        // sub-faces and the gap: 3) and per outer C2 cell (one sub-face and the outside: 2).
+        //   n2_k = 6 + Σ_{j<k} 6·2^j = 6·2^k,
+        //   n3_{k+1} = n3_k + 9·6^k + 3·2^k + H_k + 2 S_k = n3_k + 15·6^k − 3·2^k,
+        //   so n3_k = 3·6^k − 3·2^k; V_k = 3·6^k + 3·2^k; E_k = 6·2^k + (9/2)(6^k − 2^k).
+        // Degree check: 2 n2 + 3 n3 = 9·6^k + 3·2^k = 2 E_k.
+        let (_, m) = of("C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1", 6);
+        for (k, l) in m.levels.iter().enumerate() {
+            let six = BigUint::from(6u32).pow(k as u32);
+            let two = BigUint::from(2u32).pow(k as u32);
+            let n2 = &two * 6u32;
+            let n3 = &six * 3u32 - &two * 3u32;
+            let mut want = vec![(2, n2.to_string())];
+            if !n3.is_zero() {
+                want.push((3, n3.to_string()));
+            }
+            assert_eq!(valences(l), want, "level {k}");
+            assert_eq!(l.vertices, &six * 3u32 + &two * 3u32, "level {k}");
+            assert_eq!(
+                l.edges,
+                &two * 6u32 + (&six - &two) * 9u32 / 2u32,
+                "level {k}"
+            );
+            assert_eq!(l.faces, six, "level {k}");
+            assert_eq!(l.max_valence, if k == 0 { 2 } else { 3 }, "level {k}");
+        }
+    }
+
+    #[test]
+    fn growing_links_meet_a_limit_not_a_hang() {
+        // Under A2 a corner's link doubles every level: level 40 would need links of 2^40 items.
+        let f = Face::parse("B2 B2 B2 B2 | B2 B2 B2 | A2").unwrap();
+        let ts = close_or_error(&[f], &Limits::default()).unwrap();
+        let e = multiplicity(&ts, &[], 40, 100).unwrap_err();
+        assert!(e.to_string().contains("--max-types"), "{e}");
+    }
+
+    #[test]
+    fn a2_corners_grow_without_bound() {
+        // Under A2 every corner is a spoke: a corner of valence v gains one spoke per face around
+        // it at every step, so the vertex types never close.
+        let (_, m) = of("B2 B2 B2 B2 | B2 B2 B2 | A2", 3);
+        assert!(m.levels[3].max_valence > m.levels[2].max_valence);
+        match &m.limit {
+            LimitValence::Unbounded { witness } => {
+                assert!(witness.period >= 1);
+                assert_ne!(witness.gained, "0");
+                assert_eq!(witness.cycle.first(), Some(&witness.sector));
+                assert_eq!(witness.cycle.last(), Some(&witness.sector));
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn euler_characteristic_matches_the_lacuna_count_at_every_level() {
+        // V − E + F = 1 − holes for a connected face, and the holes are the lacunas N^L less the
+        // half lacunas of gaps opened on the border of a hole or of the outside.
+        for text in [
+            "C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1",
+            "C2 C2 C2 C2 C2 | C2 C2 C2 | A2",
+            "B2^2 C2 B3 | C2 B2 B2 | A3",
+            "B2 C2 | B2 B2 B2 | A1 | 3",
+            "C3 B2 B2 | C2 C2 B2 | A1",
+        ] {
+            let (ts, m) = of(text, 4);
+            let c = counts(&ts, 4);
+            for (l, lc) in m.levels.iter().zip(&c) {
+                let chi = BigInt::from(l.vertices.clone()) - BigInt::from(l.edges.clone())
+                    + BigInt::from(l.faces.clone());
+                let holes = &lc.lacunas
+                    - BigRational::new(BigInt::from(l.half_gaps.clone()), BigInt::from(2));
+                assert_eq!(
+                    BigRational::from_integer(chi),
+                    BigRational::from_integer(1.into()) - holes,
+                    "{text} level {}",
+                    l.level
+                );
+                // Every edge has two ends.
+                let degree_sum: BigUint = l
+                    .valences
+                    .iter()
+                    .map(|(v, k)| k.parse::<BigUint>().unwrap() * *v)
+                    .sum();
+                assert_eq!(degree_sum, &l.edges * 2u32, "{text} level {}", l.level);
+            }
+        }
+    }
+}

@@ -1,0 +1,265 @@
+// Meshes of 3D automata (issue #14, brief autofin): `render X.aut --stl/--3mf` writes the open
+// surface of the polygon leaves, and with `--thickness T` a closed shell. The written files are
+// read back with readers that are not the writers (`stl_io`; `zip` and a minimal XML scan) and
+// their combinatorics counted here, independently of `lacuna::mesh::check`.
+//
+// Hand counts for fixtures/quad-patch-3d.aut at level 3: 4³ = 64 quad leaves on an 8 × 8 grid of
+// the parameter square, so 9 × 9 = 81 distinct corners, 2 · 64 = 128 triangles (a fan of two per
+// quad) and 4 · 8 = 32 boundary edges. The open surface is a disc: E = (3 · 128 + 32)/2 = 208,
+// χ = 81 − 208 + 128 = 1. The shell doubles the sheet (162 vertices, 256 triangles) and adds two
+// wall triangles per boundary edge (64): F = 320, E = 3 · 320 / 2 = 480, χ = 162 − 480 + 320 = 2,
+// a sphere.
+
+mod common;
+use common::lacuna;
+use std::collections::HashMap;
+use std::io::{Cursor, Read};
+
+struct Mesh {
+    vertices: Vec<[f32; 3]>,
+    triangles: Vec<[usize; 3]>,
+}
+
+fn read_stl(path: &std::path::Path) -> Mesh {
+    let bytes = std::fs::read(path).expect("the STL was written");
+    let m = stl_io::read_stl(&mut Cursor::new(bytes)).expect("stl_io reads it");
+    Mesh {
+        vertices: m.vertices.iter().map(|v| v.0).collect(),
+        triangles: m.faces.iter().map(|f| f.vertices).collect(),
+    }
+}
+
+/// Directed edge counts: (edges in one triangle, edges in two with opposite directions, edges
+/// traversed twice the same way or in more than two triangles).
+fn edges(m: &Mesh) -> (usize, usize, usize) {
+    let mut dir: HashMap<(usize, usize), usize> = HashMap::new();
+    for t in &m.triangles {
+        for k in 0..3 {
+            *dir.entry((t[k], t[(k + 1) % 3])).or_default() += 1;
+        }
+    }
+    let mut und: HashMap<(usize, usize), (usize, usize)> = HashMap::new();
+    for (&(a, b), &n) in &dir {
+        let e = und.entry((a.min(b), a.max(b))).or_default();
+        if a < b {
+            e.0 += n;
+        } else {
+            e.1 += n;
+        }
+    }
+    let (mut one, mut two, mut bad) = (0, 0, 0);
+    for &(f, r) in und.values() {
+        match (f, r) {
+            (1, 0) | (0, 1) => one += 1,
+            (1, 1) => two += 1,
+            _ => bad += 1,
+        }
+    }
+    (one, two, bad)
+}
+
+fn signed_volume(m: &Mesh) -> f64 {
+    m.triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| m.vertices[v].map(f64::from));
+            a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                + a[2] * (b[0] * c[1] - b[1] * c[0])
+        })
+        .sum::<f64>()
+        / 6.0
+}
+
+fn area(m: &Mesh) -> f64 {
+    m.triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| m.vertices[v].map(f64::from));
+            let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+            let w = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+            let n = [
+                u[1] * w[2] - u[2] * w[1],
+                u[2] * w[0] - u[0] * w[2],
+                u[0] * w[1] - u[1] * w[0],
+            ];
+            (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt() / 2.0
+        })
+        .sum()
+}
+
+fn dir(tag: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("lacuna-autmesh-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+#[test]
+fn the_open_patch_is_a_disc_and_its_shell_a_sphere() {
+    let d = dir("shell");
+    let open = d.join("open.stl");
+    let shell = d.join("shell.stl");
+    let (code, _, err) = lacuna(&[
+        "render",
+        "quad-patch-3d",
+        "--level",
+        "3",
+        "--stl",
+        open.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("open"),
+        "the open surface is said on stderr: {err}"
+    );
+    let (code, out, err) = lacuna(&[
+        "render",
+        "quad-patch-3d",
+        "--level",
+        "3",
+        "--thickness",
+        "2",
+        "--stl",
+        shell.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("open"), "{err}");
+    assert!(out.contains("Euler characteristic 2"), "{out}");
+
+    let o = read_stl(&open);
+    assert_eq!((o.vertices.len(), o.triangles.len()), (81, 128));
+    let (one, two, bad) = edges(&o);
+    assert_eq!((one, two, bad), (32, 176, 0));
+    assert_eq!(81 - (one + two) as i64 + 128, 1, "a disc");
+
+    let s = read_stl(&shell);
+    assert_eq!((s.vertices.len(), s.triangles.len()), (162, 320));
+    let (one, two, bad) = edges(&s);
+    assert_eq!(
+        (one, two, bad),
+        (0, 480, 0),
+        "closed, consistently oriented"
+    );
+    assert_eq!(162 - 480 + 320, 2);
+    // Outward, and the volume of a 2 mm shell is about 2 mm times the surface's area (the
+    // offset along normals changes it only by the curvature terms, small for a 100 mm patch).
+    let (v, a) = (signed_volume(&s), area(&o));
+    assert!(v > 0.0, "outward: {v}");
+    assert!(
+        (v / (2.0 * a) - 1.0).abs() < 0.02,
+        "volume {v} against 2 × {a}"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn the_3mf_and_obj_shells_have_the_same_counts() {
+    // Level 4: 16 × 16 quads, 17² = 289 corners, 512 triangles, 64 boundary edges; the shell has
+    // 578 vertices and 2 · 512 + 2 · 64 = 1152 triangles.
+    let d = dir("3mf");
+    let mf = d.join("p.3mf");
+    let obj = d.join("p.obj");
+    let (code, _, err) = lacuna(&[
+        "render",
+        "quad-patch-3d",
+        "--level",
+        "4",
+        "--thickness",
+        "1/2",
+        "--3mf",
+        mf.to_str().unwrap(),
+        "--obj",
+        obj.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let mut z = zip::ZipArchive::new(Cursor::new(std::fs::read(&mf).unwrap())).unwrap();
+    let mut model = String::new();
+    z.by_name("3D/3dmodel.model")
+        .unwrap()
+        .read_to_string(&mut model)
+        .unwrap();
+    assert!(model.contains(r#"unit="millimeter""#));
+    assert_eq!(model.matches("<vertex ").count(), 578);
+    assert_eq!(model.matches("<triangle ").count(), 1152);
+    let text = std::fs::read_to_string(&obj).unwrap();
+    assert_eq!(text.lines().filter(|l| l.starts_with("v ")).count(), 578);
+    assert_eq!(text.lines().filter(|l| l.starts_with("f ")).count(), 1152);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn an_automaton_without_polygons_has_no_mesh() {
+    let (code, _, err) = lacuna(&["render", "cantor-set", "--stl", "-"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("E0720"), "{err}");
+}
+
+/// Debian's admesh, an independent STL checker, on the shell: one part, nothing to repair.
+/// Ignored by a plain `cargo test` (it needs admesh).
+#[test]
+#[ignore]
+fn admesh_finds_the_shell_closed() {
+    let d = dir("admesh");
+    let shell = d.join("shell.stl");
+    let (code, _, err) = lacuna(&[
+        "render",
+        "quad-patch-3d",
+        "--level",
+        "4",
+        "--thickness",
+        "1",
+        "--stl",
+        shell.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let out = std::process::Command::new("admesh")
+        .arg(&shell)
+        .output()
+        .expect("admesh is installed");
+    let text = String::from_utf8_lossy(&out.stdout);
+    let field = |label: &str| -> String {
+        let line = text
+            .lines()
+            .find(|l| l.starts_with(label))
+            .unwrap_or_else(|| panic!("no `{label}` in admesh's output:\n{text}"));
+        line[line.find(':').unwrap() + 1..]
+            .split_whitespace()
+            .next()
+            .unwrap_or("")
+            .to_string()
+    };
+    assert_eq!(field("Number of parts"), "1", "{text}");
+    assert_eq!(field("Number of facets"), "1152", "{text}");
+    for label in [
+        "Facets with 1 disconnected edge",
+        "Facets with 2 disconnected edges",
+        "Facets with 3 disconnected edges",
+        "Degenerate facets",
+        "Edges fixed",
+        "Facets removed",
+        "Facets added",
+        "Facets reversed",
+        "Backwards edges",
+        "Normals fixed",
+    ] {
+        assert_eq!(field(label), "0", "admesh reports {label}:\n{text}");
+    }
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn exact_and_tolerance_identities_agree_on_the_patch() {
+    // The two ways of identifying corners (exact coordinates in the field; floats within 10⁻⁹ of
+    // the size) give the same surface at level 3: 81 vertices, 128 triangles (hand count above).
+    let m = match lacuna::input::load_any("quad-patch-3d").unwrap() {
+        lacuna::input::Loaded::Automaton { model, .. } => *model,
+        lacuna::input::Loaded::Faces(_) => unreachable!(),
+    };
+    let r = lacuna::analysis::resolve(&m, &[], 10_000).unwrap();
+    let ev = lacuna::geometry::Evaluator::new(&m, &r);
+    let exact = lacuna::mesh::exact_automaton_surface(&m, &r, 3).expect("64 leaves");
+    let floats = lacuna::mesh::automaton_surface(&ev, 3).expect("polygons");
+    for s in [&exact, &floats] {
+        assert_eq!((s.vertices.len(), s.triangles.len()), (81, 128));
+        assert_eq!(s.boundary_edges().len(), 32);
+    }
+}
