@@ -230,7 +230,8 @@ impl Error {
     }
 
     /// Attaches a source to a syntax error that has none yet (parsers of sub-texts leave it to
-    /// their caller), shifting the span by `line_offset` lines and `col_offset` columns.
+    /// their caller, or name the sub-text as the command line), shifting the span by
+    /// `line_offset` lines and `col_offset` columns.
     pub fn within(self, source: &Source, line: usize, col_offset: usize) -> Self {
         match self {
             Error::Syntax(mut d) => {
@@ -240,7 +241,11 @@ impl Error {
                     }
                     span.line += line - 1;
                 }
-                if d.source.is_none() {
+                let sub_text = d
+                    .source
+                    .as_ref()
+                    .is_some_and(|s| s.name == Source::command_line("").name);
+                if d.source.is_none() || sub_text {
                     d.source = Some(source.clone());
                 }
                 Error::Syntax(d)

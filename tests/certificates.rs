@@ -18,6 +18,7 @@ use proptest::prelude::*;
 mod common;
 use common::{
     assert_proved, assert_rejected, automaton_certificate, face_certificate, steps_named,
+    volume_certificate,
 };
 
 const FACE_FIXTURES: [&str; 8] = [
@@ -57,14 +58,20 @@ const AUTOMATON_FIXTURES: [&str; 23] = [
     "random-tree",
 ];
 
-/// Volumes (THEORY §10) have no certificate step yet: the checker re-derives face closures and
-/// linear systems only. Listed by name so that a new entry cannot slip through unnoticed.
-const VOLUME_FIXTURES_WITHOUT_PROOF: &[&str] = &["cube-B2", "tetrahedron-B2"];
+/// Volumes and assemblies of volumes (THEORY §10): the closure of volume types and the counts to
+/// level 3.
+const VOLUME_FIXTURES: &[&str] = &[
+    "cube-B2",
+    "tetrahedron-B2",
+    "cube-C2",
+    "truncated-tetrahedron",
+    "two-cubes",
+];
 
 #[test]
 fn every_library_entry_has_a_proof() {
     for (name, text) in lacuna::input::library() {
-        if VOLUME_FIXTURES_WITHOUT_PROOF.contains(name) {
+        if VOLUME_FIXTURES.contains(name) {
             assert!(
                 lacuna::input::is_volume_text(text),
                 "{name} is not a volume"
@@ -176,7 +183,8 @@ fn proofs_are_fresh_and_check() {
             AUTOMATON_FIXTURES
                 .iter()
                 .map(|n| (*n, automaton_certificate(n))),
-        );
+        )
+        .chain(VOLUME_FIXTURES.iter().map(|n| (*n, volume_certificate(n))));
     for (name, cert) in all {
         let path = format!("{dir}/{name}.json");
         let json = cert.to_json();

@@ -82,3 +82,191 @@ fn solve_a_volume() {
         "{states:?}"
     );
 }
+
+/// `counts --json` of a volume input: the cells and lacunas per level, and the solid's rows
+/// (volumes, faces, edges, corners, χ, components, tunnels) per level.
+fn counts_json(input: &str, levels: &str) -> (Vec<String>, Vec<String>, Vec<Vec<String>>) {
+    let (code, out, err) = lacuna(&["counts", input, "--levels", levels, "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let text = |x: &serde_json::Value| match x {
+        serde_json::Value::String(s) => s.clone(),
+        other => other.to_string(),
+    };
+    let col = |k: &str| -> Vec<String> {
+        v["counts"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|l| text(&l[k]))
+            .collect()
+    };
+    let solid = v["solid"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| {
+            [
+                "volumes",
+                "faces",
+                "edges",
+                "corners",
+                "euler",
+                "components",
+                "tunnels",
+            ]
+            .iter()
+            .map(|k| text(&l[*k]))
+            .collect()
+        })
+        .collect();
+    (col("cells"), col("lacunas"), solid)
+}
+
+fn row(x: [&str; 7]) -> Vec<String> {
+    x.iter().map(|s| s.to_string()).collect()
+}
+
+#[test]
+fn cube_c2_by_hand() {
+    // Each square C2 C2 C2 C2 with A1 (spokes at the four gaps, none at a corner) splits into
+    // four heptagons, one per corner; V1 joins the three at each cube corner: 8 cells. Every
+    // later volume also has one child per corner (every face has spokes at its joints and gaps
+    // only), and a level-1 cell has 31 corners (a patch of 3 heptagons: 16 points, 15 on the
+    // rim, plus 15 inner copies): 8·31 = 248 at level 2.
+    // Lacunas at level 1, in quarters: 4 (cavity) + 6 squares × (2 centre + 4 gaps·1) halves =
+    // 40, i.e. 10.
+    // The level-1 solid by birth (THEORY §10): level 0 has 1 volume, 6 faces, 12 C2 edges, 8
+    // corners. Faces: 24 spoke faces (4 spokes per square), 72 wall faces (4 El + 8 Ec sides
+    // per square), 8 inner faces, and the 24 heptagons: 128. Edges: one inner edge per side
+    // face (96), per square 4 Ea + 4 El + 8 Ec (96), two pieces per cube edge (24), and one
+    // radial edge per rim point of the level-1 surface: 24 lacuna corners, 24 gap points inside
+    // the squares, 24 gap ends on the cube edges (72): 288. Corners: 8 + 2·12 gap ends + 8·6
+    // (4 lacuna corners and 4 gap points per square) + 72 radial ends = 152.
+    // χ = 152 − 288 + 128 − 8 = −16; connected, no void: 17 tunnels.
+    let (cells, lacunas, solid) = counts_json("cube-C2", "2");
+    assert_eq!(cells, ["1", "8", "248"]);
+    assert_eq!(lacunas[1], "10");
+    assert_eq!(solid[0], row(["1", "6", "12", "8", "1", "1", "0"]));
+    assert_eq!(solid[1], row(["8", "128", "288", "152", "-16", "1", "17"]));
+}
+
+#[test]
+fn truncated_tetrahedron_by_hand() {
+    // 4 triangles and 4 hexagons, 12 corners of degree 3, 18 edges. With B2 edges and A1 every
+    // face splits into pentagons, one per corner (3 per triangle, 6 per hexagon: 36), and V1
+    // joins the three at each corner into the cube's corner type W3 (19 corners: 16 of degree 3,
+    // 3 of degree 4; W4 has 20 and 5): cells 1, 12, 12·19 = 228, 12·(16·19 + 3·25) = 4548.
+    // Lacunas at level 1: 4 + 8·2 quarters = 20, i.e. 5.
+    // The level-1 solid: faces 36 spoke + 36 wall + 12 inner + 36 pentagons = 120; edges 72
+    // inner, 54 radial (36 lacuna corners and 18 edge joints), 72 in the faces (36 Ea, 36 El),
+    // 36 pieces = 234; corners 12 + 18 joints + 36 lacuna corners + 54 radial ends = 120.
+    // χ = 120 − 234 + 120 − 12 = −6: the thickened graph of the solid, genus 18 − 12 + 1 = 7.
+    let (cells, lacunas, solid) = counts_json("truncated-tetrahedron", "3");
+    assert_eq!(cells, ["1", "12", "228", "4548"]);
+    assert_eq!(lacunas[1], "5");
+    assert_eq!(solid[0], row(["1", "8", "18", "12", "1", "1", "0"]));
+    assert_eq!(solid[1], row(["12", "120", "234", "120", "-6", "1", "7"]));
+}
+
+#[test]
+fn two_cubes_by_hand() {
+    // Two cubes sharing a square: level 0 has 2 volumes, 6 + 6 − 1 = 11 faces, 12 + 12 − 4 = 20
+    // edges, 8 + 8 − 4 = 12 corners: χ = 12 − 20 + 11 − 2 = 1. Counts are twice cube-B2's
+    // (1, 8, 152, 3032 and 0, 4, 64, 1252).
+    // Level 1 by birth, from cube-B2's level 1 (8 volumes, 80 faces, 156 edges, 80 corners):
+    // a B2 square gives 4 pentagons, 8 edges (4 Ea, 4 El), 4 lacuna corners; a B2 edge 2
+    // pieces and 1 joint; so a cube volume gives 80 − 24 = 56 faces, 156 − 48 − 24 = 84 edges,
+    // 80 − 24 − 12 − 8 = 36 corners. Two cubes: faces 2·56 + 11·4 = 156, edges 2·84 + 11·8 +
+    // 20·2 = 296, corners 2·36 + 11·4 + 20 + 12 = 148, χ = 148 − 296 + 156 − 16 = −8 =
+    // (−4) + (−4) − 0 (glued along the annulus of the shared square): 9 tunnels.
+    let (cells, lacunas, solid) = counts_json("two-cubes", "3");
+    assert_eq!(cells, ["2", "16", "304", "6064"]);
+    assert_eq!(lacunas, ["0", "8", "128", "2504"]);
+    assert_eq!(solid[0], row(["2", "11", "20", "12", "1", "1", "0"]));
+    assert_eq!(solid[1], row(["16", "156", "296", "148", "-8", "1", "9"]));
+}
+
+#[test]
+fn an_assembly_file_verifies_and_certifies() {
+    let dir = std::env::temp_dir().join(format!("lacuna-volasm-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // A tetrahedron block (corners 0 1 2 3, faces counter-clockwise from outside) glued to a
+    // shorthand tetrahedron along one triangle.
+    let file = dir.join("pair.txt");
+    std::fs::write(
+        &file,
+        "volume A {
+  inside: B2 B2 | B2 B2 B2 | A1 | V1
+  face a: B2 B2 B2 | B2 B2 B2 | A1   # 0 2 1
+  face b: B2 B2 B2 | B2 B2 B2 | A1   # 0 1 3
+  face c: B2 B2 B2 | B2 B2 B2 | A1   # 1 2 3
+  face d: B2 B2 B2 | B2 B2 B2 | A1   # 0 3 2
+  face a edge 0 ~ face d edge 2
+  face a edge 1 ~ face c edge 0
+  face a edge 2 ~ face b edge 0
+  face b edge 1 ~ face c edge 2
+  face b edge 2 ~ face d edge 0
+  face c edge 1 ~ face d edge 1
+}
+volume B = tetrahedron B2 | B2 B2 B2 | A1 | B2 B2 | V1
+volume A face c edge 0 ~ volume B face 0 edge 0
+",
+    )
+    .unwrap();
+    let cert = dir.join("pair.json");
+    let (code, out, err) = lacuna(&[
+        "verify",
+        file.to_str().unwrap(),
+        "--levels",
+        "2",
+        "--certificate",
+        cert.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    // Two tetrahedra, each with one child per corner (4), of type W3 (19 children each).
+    assert!(out.contains("verdict: VERIFIED"), "{out}");
+    let (code, out, _) = lacuna(&["check", cert.to_str().unwrap()]);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("proved  step 0 (volume-closure)"), "{out}");
+    let (cells, _, solid) = counts_json(file.to_str().unwrap(), "2");
+    assert_eq!(cells, ["2", "8", "152"]);
+    // Level 0: 2 volumes, 4 + 4 − 1 = 7 faces, 6 + 6 − 3 = 9 edges, 4 + 4 − 3 = 5 corners.
+    assert_eq!(solid[0], row(["2", "7", "9", "5", "1", "1", "0"]));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn face_counts_name_their_cells() {
+    // F0: one type, six sub-faces per face: 1, 6, 36 faces, and `cells` says the same.
+    let (code, out, err) = lacuna(&["counts", "F0", "--levels", "2", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    for (i, want) in ["1", "6", "36"].iter().enumerate() {
+        assert_eq!(v["levels"][i]["cells"], *want, "{out}");
+        assert_eq!(v["levels"][i]["faces"], *want, "{out}");
+    }
+}
+
+#[test]
+fn a_bad_volume_file_is_exit_2_with_its_line_and_column() {
+    let dir = std::env::temp_dir().join(format!("lacuna-volbad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("open.txt");
+    // A square with only two of its edges glued: edge 1 is not glued (E1225, at the face's
+    // name on line 3, column 8).
+    std::fs::write(
+        &file,
+        "volume X {\n  inside: B2 B2 | B2 B2 B2 | A1 | V1\n  face a: B2 B2 B2 B2 | B2 B2 B2 | A1\n  face a edge 0 ~ face a edge 2\n}\n",
+    )
+    .unwrap();
+    let (code, _, err) = lacuna(&["counts", file.to_str().unwrap(), "--levels", "1"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("error[E1225]"), "{err}");
+    assert!(err.contains("open.txt:3:8"), "{err}");
+    // `solve` reads one volume: an assembly of two is refused by name.
+    let (code, _, err) = lacuna(&["solve", "two-cubes"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("2 volumes glued face to face"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}

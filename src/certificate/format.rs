@@ -45,7 +45,9 @@ pub struct Certificate {
 ///   `limit-ratio`;
 /// - an automaton ([`Claim::Automaton`]) or a system ([`Claim::System`]) needs
 ///   `solution-space` or `inconsistent`;
-/// - a substitution ([`Claim::Substitution`]) needs `limit-ratio`.
+/// - a substitution ([`Claim::Substitution`]) needs `limit-ratio`;
+/// - volumes ([`Claim::Volumes`]) need `volume-closure`, then `limit-ratio` (lacunas in
+///   quarters).
 ///
 /// A certificate whose steps are a proper part of that sequence (in order, the closure present
 /// for faces) is *partial*: what it has is checked, but it proves less than the claim.
@@ -62,6 +64,85 @@ pub enum Claim {
     Substitution(SubstitutionClaim),
     /// An explicit linear system: its solution space or inconsistency is certified.
     System(System),
+    /// Start volumes (THEORY §10): their closure, exact counts and limit ratio are certified.
+    Volumes(VolumesClaim),
+}
+
+/// The claim about volumes: the start volumes, each as its boundary surface (faces glued edge
+/// to edge) with G, E, A, rule and delay.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VolumesClaim {
+    /// The start volumes.
+    pub volumes: Vec<Volume>,
+    /// The counts are certified at levels 0 to `levels`.
+    pub levels: u64,
+}
+
+/// The volume rule: which sub-face edges are spoke edges (THEORY §10).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+pub enum VolumeRule {
+    /// Every Ea edge of every face.
+    V1,
+    /// V1 and every sub-edge lying on an edge of the surface.
+    V2,
+}
+
+/// A volume `V(S, G, E, A, rule, d)`: its boundary surface S as faces read counter-clockwise
+/// from outside, edge `i` of face `f` glued to edge `j` of face `g` when `glue[f][i] = (g, j)`.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Volume {
+    /// The faces of S.
+    pub faces: Vec<Face>,
+    /// `glue[f][i] = (g, j)`.
+    pub glue: Vec<Vec<(usize, usize)>>,
+    /// Er: the radial edge type created inside.
+    pub radial: Edge,
+    /// Ei: the inner edge type created inside.
+    pub inner: Edge,
+    /// E of the faces created inside.
+    pub params: Params,
+    /// A of the faces created inside (spoke items).
+    pub algorithm: Vec<SpokeItem>,
+    /// The volume rule.
+    pub rule: VolumeRule,
+    /// d ≥ 1.
+    pub delay: u32,
+}
+
+/// One volume type with its children.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VolumeTypeRule {
+    /// A representative of the type (lacuna writes its canonical form).
+    pub volume: Volume,
+    /// The type index of every sub-volume of one step (with repetition, in any order).
+    pub children: Vec<usize>,
+    /// Lacunas added by one step, in quarters (THEORY §10).
+    pub contribution_quarters: u64,
+}
+
+/// The exact counts of the start volumes at one level.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VolumeCount {
+    /// The level i (the counts are listed for i = 0, 1, 2, … in order).
+    pub level: u64,
+    /// N^C_i: sub-volumes (a natural number).
+    pub cells: String,
+    /// N^L_i: lacunas (a rational, a multiple of 1/4).
+    pub lacunas: String,
+}
+
+/// The closure of volume types and the counts of the start volumes.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VolumeClosureStep {
+    /// The volume types (the claim's start volumes are among them, in any form).
+    pub types: Vec<VolumeTypeRule>,
+    /// The counts from level 0.
+    pub counts: Vec<VolumeCount>,
 }
 
 /// The claim about faces: the start faces (canonical form, one per start face, repeated for
@@ -181,7 +262,7 @@ pub enum Step {
     /// and right-hand side `c ≠ 0`; any solution would satisfy `0 = c`.
     Inconsistent(ConflictStep),
     /// **The limit ratio R** (every case: shared radii, periodic classes, ρ = 1) of the closure's
-    /// substitution or the claimed matrix. Justification: the checker recomputes the classes reached from the start and their periods, isolates ρ
+    /// substitution, the volume closure's (lacunas in quarters) or the claimed matrix. Justification: the checker recomputes the classes reached from the start and their periods, isolates ρ
     /// (Sturm), and checks per class a positive Perron eigenvector for ρ or a Collatz–Wielandt
     /// bound below ρ. By Perron–Frobenius the eigenvalues of the augmented matrix
     /// `A = [[M, c], [0, 1]]` of modulus `σ = max(ρ, 1)` are `σ·ω`, `ω^P = 1`, with `P` the lcm
@@ -191,6 +272,16 @@ pub enum Step {
     /// numerators from the counts, the pole orders and leading coefficients in Q(ρ) with exact
     /// zero tests, and each `R_r`; the limit exists iff they agree.
     LimitRatio(RatioStep),
+    /// **The closure of volumes and their counts** (THEORY §10). Justification: the checker
+    /// checks that every listed type's surface is a sphere, identifies types by its own canonical
+    /// code (orientation-preserving isomorphism of oriented maps with typed faces, plus G, E, A,
+    /// rule and delay), re-derives one step of every listed type with its own code (the faces'
+    /// subdivision of THEORY §3, the pairing of the level-1 surface, the patches cut along the
+    /// rule's spoke edges, each patch a disk, the side and inner faces, caps for a delayed
+    /// volume) and requires the derived sub-volumes to be exactly the listed children; the start
+    /// volumes must be listed types. Then it recounts N^C and N^L level by level from the derived
+    /// children and its own contributions and compares every listed count.
+    VolumeClosure(VolumeClosureStep),
 }
 
 /// `B` (connected) or `C` (Cantor-like).
@@ -521,6 +612,7 @@ impl Step {
             Step::SolutionSpace(_) => "solution-space",
             Step::Inconsistent(_) => "inconsistent",
             Step::LimitRatio(_) => "limit-ratio",
+            Step::VolumeClosure(_) => "volume-closure",
         }
     }
 }

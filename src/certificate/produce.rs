@@ -11,7 +11,8 @@ use crate::certificate::format::{
     Adjacency, Algebraic, AutomatonClaim, AutomatonOperator, AutomatonState, Certificate, Claim,
     ClassClaim, ClosureStep, ConflictStep, Edge, Face, FacesClaim, Kind, Origin, Params, Pattern,
     PointClaim, RadiusWitness, RatioStep, Recipe, Row, SolutionStep, SpokeItem, Step, SubFace,
-    SubstitutionClaim, System, TypeRule, WordEquation, WordFactor,
+    SubstitutionClaim, System, TypeRule, Volume, VolumeClosureStep, VolumeCount, VolumeRule,
+    VolumeTypeRule, VolumesClaim, WordEquation, WordFactor,
 };
 use num_rational::BigRational;
 use num_traits::{One, Zero};
@@ -81,6 +82,108 @@ pub fn certificate_for(
     cert.steps
         .push(Step::LimitRatio(ratio_step(&matrix, &c, &start)?));
     Ok(cert)
+}
+
+/// The certificate of a closed set of volume types (THEORY §10): the claim is the start volumes
+/// and the number of levels; the steps are the closure of volume types with the counts of the
+/// start volumes from level 0 to `levels`, and the limit ratio of its substitution.
+pub fn certificate_for_volumes(
+    input: &str,
+    set: &crate::topology::volume::VolumeTypeSet,
+    levels: u64,
+) -> Result<Certificate, CertifyError> {
+    let types = set
+        .types
+        .iter()
+        .map(|t| {
+            Ok(VolumeTypeRule {
+                volume: volume(&t.volume)?,
+                children: t.children.clone(),
+                contribution_quarters: t.volume.contribution_quarters(),
+            })
+        })
+        .collect::<Result<Vec<_>, CertifyError>>()?;
+    let volumes = set.start.iter().map(|&s| types[s].volume.clone()).collect();
+    let counts = crate::topology::volume::volume_counts(set, levels)
+        .into_iter()
+        .map(|c| VolumeCount {
+            level: c.level,
+            cells: c.cells.to_string(),
+            lacunas: c.lacunas.to_string(),
+        })
+        .collect();
+    // The substitution: one row per type (children counted), quarters, start multiplicities.
+    let matrix: Vec<Vec<(usize, u64)>> = types
+        .iter()
+        .map(|t| {
+            let mut row: std::collections::BTreeMap<usize, u64> = Default::default();
+            for &c in &t.children {
+                *row.entry(c).or_default() += 1;
+            }
+            row.into_iter().collect()
+        })
+        .collect();
+    let quarters: Vec<u64> = types.iter().map(|t| t.contribution_quarters).collect();
+    let mut start: std::collections::BTreeMap<usize, u64> = Default::default();
+    for &s in &set.start {
+        *start.entry(s).or_default() += 1;
+    }
+    let start: Vec<(usize, u64)> = start.into_iter().collect();
+    let ratio = ratio_step_in(&matrix, &quarters, &start, 4)?;
+    let mut cert = Certificate::new(input, Claim::Volumes(VolumesClaim { volumes, levels }));
+    cert.steps
+        .push(Step::VolumeClosure(VolumeClosureStep { types, counts }));
+    cert.steps.push(Step::LimitRatio(ratio));
+    Ok(cert)
+}
+
+/// A volume as certificate data.
+fn volume(v: &crate::topology::volume::Volume) -> Result<Volume, CertifyError> {
+    let inside = crate::topology::Face {
+        boundary: vec![v.inner],
+        params: v.params,
+        algorithm: v.algorithm.clone(),
+        delay: 1,
+    };
+    let inside = face(&inside)?;
+    Ok(Volume {
+        faces: v.surface.faces.iter().map(face).collect::<Result<_, _>>()?,
+        glue: v.surface.glue.clone(),
+        radial: edge(&v.radial),
+        inner: edge(&v.inner),
+        params: inside.params,
+        algorithm: inside.algorithm,
+        rule: match v.rule {
+            crate::topology::volume::VolumeRule::V1 => VolumeRule::V1,
+            crate::topology::volume::VolumeRule::V2 => VolumeRule::V2,
+        },
+        delay: v.delay,
+    })
+}
+
+/// A volume of a certificate as lacuna's volume.
+pub fn lacuna_volume(v: &Volume) -> crate::topology::volume::Volume {
+    let inside = lacuna_face(&Face {
+        boundary: vec![v.inner],
+        params: v.params,
+        algorithm: v.algorithm.clone(),
+        delay: 1,
+    });
+    crate::topology::volume::Volume {
+        surface: crate::topology::volume::Surface {
+            faces: v.faces.iter().map(lacuna_face).collect(),
+            glue: v.glue.clone(),
+        },
+        radial: lacuna_edge(&v.radial),
+        inner: lacuna_edge(&v.inner),
+        params: inside.params,
+        algorithm: inside.algorithm,
+        rule: match v.rule {
+            VolumeRule::V1 => crate::topology::volume::VolumeRule::V1,
+            VolumeRule::V2 => crate::topology::volume::VolumeRule::V2,
+        },
+        delay: v.delay,
+    }
 }
 
 /// The substitution of a closed type set: matrix rows, contributions in halves, start
@@ -365,9 +468,19 @@ pub fn ratio_step(
     contribution_halves: &[u64],
     start: &[(usize, u64)],
 ) -> Result<RatioStep, CertifyError> {
-    let c: Vec<BigRational> = contribution_halves
+    ratio_step_in(matrix, contribution_halves, start, 2)
+}
+
+/// [`ratio_step`] with contributions in `1/unit` lacunas (2 for faces, 4 for volumes).
+fn ratio_step_in(
+    matrix: &[Vec<(usize, u64)>],
+    contributions: &[u64],
+    start: &[(usize, u64)],
+    unit: u32,
+) -> Result<RatioStep, CertifyError> {
+    let c: Vec<BigRational> = contributions
         .iter()
-        .map(|&h| BigRational::new(h.into(), 2.into()))
+        .map(|&h| BigRational::new(h.into(), unit.into()))
         .collect();
     let report = crate::analysis::analyse(matrix, &c, start)?;
     let field = &report.field;
@@ -781,6 +894,23 @@ pub fn recertify(
             };
             let solution = crate::constraint::solve(&sys);
             Ok(certificate_for_system(label, &s.source, &sys, &solution))
+        }
+        Claim::Volumes(c) => {
+            let volumes: Vec<_> = c.volumes.iter().map(lacuna_volume).collect();
+            for v in &volumes {
+                v.surface.check().map_err(crate::Error::Usage)?;
+            }
+            match crate::topology::volume::VolumeClosure::of(&volumes, limits)? {
+                crate::topology::volume::VolumeClosure::Closed(set) => {
+                    certificate_for_volumes(label, &set, c.levels)
+                }
+                crate::topology::volume::VolumeClosure::Runaway(r) => {
+                    Err(CertifyError::Lacuna(crate::Error::Usage(format!(
+                        "the volumes' closure did not close: {}",
+                        r.reason
+                    ))))
+                }
+            }
         }
     }
 }

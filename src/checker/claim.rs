@@ -4,7 +4,7 @@
 use super::Q;
 use crate::certificate::{
     AutomatonClaim, Claim, Edge, Face, Kind, Pattern, SpokeItem, Step, SubstitutionClaim, System,
-    WordFactor,
+    VolumeRule, VolumesClaim, WordFactor,
 };
 use num_bigint::BigInt;
 use num_traits::Zero;
@@ -263,7 +263,49 @@ pub(super) fn claim_lines(c: &Claim) -> Vec<String> {
         Claim::Automaton(a) => automaton_lines(a),
         Claim::Substitution(s) => substitution_lines(s),
         Claim::System(s) => system_lines(s),
+        Claim::Volumes(v) => volume_lines(v),
     }
+}
+
+/// One line per start volume (G, E, A, rule, delay) and one per face with its gluing
+/// (`g.j`: edge j of face g).
+fn volume_lines(c: &VolumesClaim) -> Vec<String> {
+    let mut o = Vec::new();
+    for (i, v) in c.volumes.iter().enumerate() {
+        let inside = Face {
+            boundary: Vec::new(),
+            params: v.params,
+            algorithm: v.algorithm.clone(),
+            delay: 1,
+        };
+        let rule = match v.rule {
+            VolumeRule::V1 => "V1",
+            VolumeRule::V2 => "V2",
+        };
+        let e = face_text(&inside);
+        o.push(format!(
+            "start volume {i}: {} faces, G = ({}, {}), inside {}, rule {rule}, delay {}",
+            v.faces.len(),
+            edge(&v.radial),
+            edge(&v.inner),
+            e.trim_start_matches(" | "),
+            v.delay
+        ));
+        for (f, face) in v.faces.iter().enumerate() {
+            let glue: Vec<String> = v
+                .glue
+                .get(f)
+                .map(|r| r.iter().map(|(g, j)| format!("{g}.{j}")).collect())
+                .unwrap_or_default();
+            o.push(format!(
+                "volume {i} face {f}: {} glued to {}",
+                face_text(face),
+                glue.join(" ")
+            ));
+        }
+    }
+    o.push(format!("counts certified at levels 0 to {}", c.levels));
+    o
 }
 
 /// The steps a complete certificate of this claim has, in order: each slot lists the step
@@ -274,6 +316,7 @@ fn slots(c: &Claim) -> &'static [&'static [&'static str]] {
         Claim::Faces(_) => &[&["closure"], SYSTEM, &["limit-ratio"]],
         Claim::Automaton(_) | Claim::System(_) => &[SYSTEM],
         Claim::Substitution(_) => &[&["limit-ratio"]],
+        Claim::Volumes(_) => &[&["volume-closure"], &["limit-ratio"]],
     }
 }
 
@@ -309,7 +352,7 @@ pub(super) fn structure(c: &Claim, steps: &[Step]) -> Result<Vec<String>, String
             }
         }
     }
-    if matches!(c, Claim::Faces(_)) && !filled[0] {
+    if matches!(c, Claim::Faces(_) | Claim::Volumes(_)) && !filled[0] {
         return Err(format!(
             "no closure step: every other step is tied to it; {}",
             shape()

@@ -15,6 +15,8 @@ pub(super) struct Substitution {
     pub(super) matrix: Vec<BTreeMap<usize, BigUint>>,
     pub(super) contributions: Vec<BigUint>,
     pub(super) start: BTreeMap<usize, BigUint>,
+    /// Contributions are in `1/unit` lacunas: 2 (halves) for faces, 4 (quarters) for volumes.
+    pub(super) unit: u32,
 }
 
 /// `Σ k` of the pairs `(index, k)` with equal index, exactly (big integers), zeros dropped;
@@ -59,6 +61,7 @@ impl Substitution {
             matrix,
             contributions: s.contribution_halves.iter().map(|&h| h.into()).collect(),
             start,
+            unit: 2,
         })
     }
 }
@@ -74,7 +77,7 @@ enum JKind {
 type SubEdge = (Edge, (usize, usize), (JKind, Edge, Edge));
 
 /// A derived sub-face: canonical boundary, aligned origins, delay.
-type Derived = (Vec<Edge>, Vec<Origin>, u32);
+pub(super) type Derived = (Vec<Edge>, Vec<Origin>, u32);
 
 fn spoke(spoke: usize, inward: bool) -> Origin {
     Origin::Spoke { spoke, inward }
@@ -165,7 +168,7 @@ fn canonical(raw: Vec<(Edge, Origin)>, delay: u32) -> Derived {
 }
 
 /// One subdivision step of `face` (THEORY §3), with lacuna's origin conventions.
-fn subdivide(face: &Face) -> Result<(Vec<Derived>, Vec<Adjacency>), String> {
+pub(super) fn subdivide(face: &Face) -> Result<(Vec<Derived>, Vec<Adjacency>), String> {
     let len = face.boundary.len();
     // Sub-edge m: its type, (edge, piece), and the junction after it.
     let mut pieces: Vec<SubEdge> = Vec::new();
@@ -245,7 +248,7 @@ fn key(f: &Face) -> FaceKey {
 
 /// Lacunas of one step in halves (THEORY §5): 2 for the centre (d = 1), n−1 per non-delayed `Cn`
 /// (a big integer: the sum cannot wrap).
-fn contribution(f: &Face) -> BigUint {
+pub(super) fn contribution(f: &Face) -> BigUint {
     let gaps = f
         .boundary
         .iter()
@@ -385,6 +388,7 @@ pub(super) fn check_closure(
             matrix,
             contributions,
             start,
+            unit: 2,
         },
     ))
 }

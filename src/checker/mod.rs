@@ -12,7 +12,9 @@
 //! - `field.rs`: polynomials over Q, Sturm isolation, exact zero and sign tests in Q[x]/(p);
 //! - `ratio.rs`: strongly connected classes and periods, Perron–Frobenius witnesses, the verdict;
 //! - `series.rs`: the counts, the characteristic polynomial of `A^P` (Faddeev–LeVerrier, Newton)
-//!   and the pole of the generating functions at `ρ^(−P)`.
+//!   and the pole of the generating functions at `ρ^(−P)`;
+//! - `volume.rs`: oriented maps (sphere check, canonical code) and one subdivision step of a
+//!   volume (THEORY §10), the volume types and their counts.
 //!
 //! What each step proves is documented on [`Step`] and in `docs/CERTIFICATES.md`. No value read
 //! from a certificate, or derived from one, is held in a fixed-width integer that could wrap:
@@ -29,12 +31,14 @@ mod linear;
 mod ratio;
 mod series;
 mod system;
+mod volume;
 
 use self::claim::{claim_lines, structure};
 use self::closure::{check_closure, Substitution};
 use self::linear::{check_conflict, check_solution};
 use self::ratio::check_ratio;
 use self::system::Tie;
+use self::volume::check_volume_closure;
 use crate::certificate::{Certificate, Claim, Step, FORMAT, VERSION};
 use num_rational::BigRational;
 
@@ -221,9 +225,10 @@ pub fn check(cert: &Certificate) -> CheckReport {
     };
     let mut steps = Vec::new();
     let mut closure: Option<(Substitution, &crate::certificate::ClosureStep)> = None;
+    let mut volumes: Option<Substitution> = None;
     let given = match &cert.claim {
         Claim::Substitution(s) => Some(Substitution::of_claim(s)),
-        Claim::Faces(_) | Claim::Automaton(_) | Claim::System(_) => None,
+        Claim::Faces(_) | Claim::Automaton(_) | Claim::System(_) | Claim::Volumes(_) => None,
     };
     for (i, step) in cert.steps.iter().enumerate() {
         let name = step.name();
@@ -236,7 +241,7 @@ pub fn check(cert: &Certificate) -> CheckReport {
             (Claim::Faces(_), None) => Tie::Missing,
             (Claim::Automaton(a), _) => Tie::Automaton(a),
             (Claim::System(s), _) => Tie::Given(s),
-            (Claim::Substitution(_), _) => Tie::Missing,
+            (Claim::Substitution(_) | Claim::Volumes(_), _) => Tie::Missing,
         };
         let result = match step {
             Step::Closure(c) => match &cert.claim {
@@ -246,13 +251,25 @@ pub fn check(cert: &Certificate) -> CheckReport {
                 }),
                 _ => Err("a closure step in a certificate whose claim has no faces".into()),
             },
+            Step::VolumeClosure(c) => match &cert.claim {
+                Claim::Volumes(v) => check_volume_closure(c, v).map(|(msg, verdict, sub)| {
+                    volumes = Some(sub);
+                    (msg, verdict)
+                }),
+                _ => {
+                    Err("a volume-closure step in a certificate whose claim has no volumes".into())
+                }
+            },
             Step::SolutionSpace(s) => check_solution(s, tie),
             Step::Inconsistent(c) => check_conflict(c, tie),
-            Step::LimitRatio(r) => match (&given, &closure) {
-                (Some(Ok(sub)), _) => check_ratio(r, sub, "the claim's substitution"),
-                (Some(Err(e)), _) => Err(format!("the claim's substitution: {e}")),
-                (None, Some((sub, _))) => check_ratio(r, sub, "the closure's substitution"),
-                (None, None) => Err("no proved closure step to take the substitution from".into()),
+            Step::LimitRatio(r) => match (&given, &closure, &volumes) {
+                (Some(Ok(sub)), _, _) => check_ratio(r, sub, "the claim's substitution"),
+                (Some(Err(e)), _, _) => Err(format!("the claim's substitution: {e}")),
+                (None, Some((sub, _)), _) => check_ratio(r, sub, "the closure's substitution"),
+                (None, None, Some(sub)) => check_ratio(r, sub, "the volume closure's substitution"),
+                (None, None, None) => {
+                    Err("no proved closure step to take the substitution from".into())
+                }
             },
         };
         let (outcome, message, verdict) = match result {

@@ -17,7 +17,8 @@
 //!    (the only one on its circle) has order `m − j`, `m` the multiplicity of `y₀` in `q`, `j` that
 //!    in `Ñ`, decided by exact zero tests of derivatives at `y₀` in Q[x]/(p). Then
 //!    `x_n ~ C·n^(m−j−1)·ρ^(P·n)` with `C` proportional to `Ñ^(j)(y₀)`, the factor being common to
-//!    faces and lacunas: `R_r` is 1, 0, or `a_L / (a_L + 2·a_C)` (lacunas counted in halves).
+//!    faces and lacunas: `R_r` is 1, 0, or `a_L / (a_L + 2·a_C)` (lacunas counted in halves; in
+//!    quarters for volumes: `a_L / (a_L + 4·a_C)`).
 
 use super::claim::parse_decimal;
 use super::closure::Substitution;
@@ -452,7 +453,7 @@ pub(super) fn check_ratio(r: &RatioStep, sub: &Substitution, tied: &str) -> Chec
         let got = residue(
             &root,
             &q,
-            &reflected(&lacunas, res),
+            (&reflected(&lacunas, res), sub.unit),
             &reflected(&faces, res),
             &y0,
         )

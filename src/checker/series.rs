@@ -118,11 +118,12 @@ impl Residue {
     }
 }
 
-/// `R_r` from `q` and the reflected numerators of lacunas (in halves) and faces.
+/// `R_r` from `q` and the reflected numerators of lacunas (in `1/unit`: halves for faces,
+/// quarters for volumes) and cells.
 pub(super) fn residue(
     root: &Root,
     q: &[BigInt],
-    nl: &[BigInt],
+    (nl, unit): (&[BigInt], u32),
     nc: &[BigInt],
     y0: &[Q],
 ) -> Result<Residue, String> {
@@ -153,11 +154,12 @@ pub(super) fn residue(
             format!("pole orders: lacunas {} > {kc} = faces: R = 1", m - jl),
         ),
         Some((_, al)) => {
-            let den = add(&al, &scale(&ac, &int(2)));
+            let den = add(&al, &scale(&ac, &int(unit)));
             if root.is_zero(&den) {
                 return Err("the leading coefficients cancel".into());
             }
-            let why = format!("pole orders {kc} (lacunas and faces): R = a_L/(a_L + 2·a_C)");
+            let cells = if unit == 2 { "faces" } else { "cells" };
+            let why = format!("pole orders {kc} (lacunas and {cells}): R = a_L/(a_L + {unit}·a_C)");
             Residue { num: al, den, why }
         }
     })

@@ -17,7 +17,10 @@ enum Structure {
 
 fn load(arg: &str, limits: &Limits) -> Result<Structure, Error> {
     if let Some((name, v)) = lacuna::input::load_volume(arg)? {
-        return Ok(Structure::Volume(name, volume::closed(&v, limits)?));
+        return Ok(Structure::Volume(
+            name,
+            volume::closed(std::slice::from_ref(&v), limits)?,
+        ));
     }
     match lacuna::input::load_any(arg)? {
         lacuna::input::Loaded::Faces(input) => {

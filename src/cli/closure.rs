@@ -5,7 +5,7 @@ use super::*;
 /// Runs `lacuna closure`.
 pub(super) fn run(args: ClosureArgs, limits: &Limits) -> Result<ExitCode, Error> {
     let ClosureArgs { input, json } = args;
-    if let Some((name, v)) = lacuna::input::load_volume(&input)? {
+    if let Some((name, v)) = lacuna::input::load_volumes(&input)? {
         return volume::closure(&name, &v, json, limits);
     }
     let input = load_input(&input)?;

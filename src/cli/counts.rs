@@ -9,7 +9,7 @@ pub(super) fn run(args: CountsArgs, limits: &Limits) -> Result<ExitCode, Error> 
         levels,
         json,
     } = args;
-    if let Some((name, v)) = lacuna::input::load_volume(&input)? {
+    if let Some((name, v)) = lacuna::input::load_volumes(&input)? {
         limits.check_level(levels)?;
         return volume::counts(&name, &v, levels, json, limits);
     }

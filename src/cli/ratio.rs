@@ -9,7 +9,7 @@ pub(super) fn run(args: RatioArgs, limits: &Limits) -> Result<ExitCode, Error> {
         digits,
         json,
     } = args;
-    if let Some((name, v)) = lacuna::input::load_volume(&input)? {
+    if let Some((name, v)) = lacuna::input::load_volumes(&input)? {
         limits.check_digits(digits)?;
         return volume::ratio(&name, &v, digits, json, limits);
     }

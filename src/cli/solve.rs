@@ -41,7 +41,7 @@ pub(super) fn run(args: SolveArgs, limits: &Limits) -> Result<ExitCode, Error> {
         cantor_gap: gap.clone(),
     };
     let report = if let Some((_, v)) = lacuna::input::load_volume(&input)? {
-        let set = volume::closed(&v, limits)?;
+        let set = volume::closed(std::slice::from_ref(&v), limits)?;
         lacuna::constraint::solve_volumes(&set, opts, limits)?
     } else {
         match lacuna::input::load_any(&input)? {

@@ -526,9 +526,18 @@ fn per_face_counts(ts: &TypeSet, input: &Input, levels: u64) -> Vec<FaceCounts> 
 
 /// JSON of `lacuna counts`.
 pub fn counts_json(ts: &TypeSet, input: &Input, levels: u64) -> Value {
+    // `cells` (the faces, N^C) beside `faces`, as the counts of volumes name their sub-volumes.
+    let mut rows =
+        serde_json::to_value(crate::topology::count::counts(ts, levels)).unwrap_or(Value::Null);
+    if let Some(rows) = rows.as_array_mut() {
+        for row in rows {
+            let faces = row["faces"].clone();
+            row["cells"] = faces;
+        }
+    }
     let mut v = json!({
         "types": ts.types.len(),
-        "levels": crate::topology::count::counts(ts, levels),
+        "levels": rows,
     });
     let per = per_face_counts(ts, input, levels);
     if !per.is_empty() {

@@ -82,6 +82,12 @@ pub fn library() -> &'static [(&'static str, &'static str)] {
             include_str!("../../fixtures/sierpinski-triangle.aut"),
         ),
         ("cantor-set", include_str!("../../fixtures/cantor-set.aut")),
+        ("cube-C2", include_str!("../../fixtures/cube-C2.txt")),
+        (
+            "truncated-tetrahedron",
+            include_str!("../../fixtures/truncated-tetrahedron.txt"),
+        ),
+        ("two-cubes", include_str!("../../fixtures/two-cubes.txt")),
         ("kite-dart", include_str!("../../fixtures/kite-dart.aut")),
         (
             "quadric-koch",
@@ -261,6 +267,33 @@ pub fn load_volume(arg: &str) -> Result<Option<(String, crate::topology::volume:
     }
 }
 
+/// The volumes a command-line argument names, if it names volumes: notation, or a volume file
+/// or library entry (one volume or several glued face to face). `None` when the argument is
+/// something else.
+pub fn load_volumes(
+    arg: &str,
+) -> Result<Option<(String, crate::topology::volume::VolumeAssembly)>> {
+    if arg == "-" {
+        return Ok(None);
+    }
+    if arg.contains('|') {
+        return match crate::input::volume_file::is_volume_notation(arg) {
+            true => Ok(Some((
+                arg.trim().to_string(),
+                crate::input::volume_file::notation_file(arg)?.assembly,
+            ))),
+            false => Ok(None),
+        };
+    }
+    match read_source(arg) {
+        Ok((name, src)) if crate::input::volume_file::is_volume_text(&src.text) => Ok(Some((
+            name,
+            crate::input::volume_file::parse_volume_file(&src)?.assembly,
+        ))),
+        _ => Ok(None),
+    }
+}
+
 /// Reads a text file, or standard input for `-`: UTF-8 (else E0602, naming the offset of the
 /// first invalid byte), without a leading byte-order mark (editors on some systems write one; it
 /// is not part of the text). A file that cannot be read is E0601.
@@ -352,10 +385,12 @@ mod tests {
     fn every_library_entry_loads() {
         for (name, text) in library() {
             if crate::input::volume_file::is_volume_text(text) {
-                let (_, v) = load_volume(name)
+                let (_, a) = load_volumes(name)
                     .unwrap_or_else(|e| panic!("{name}: {}", e.render()))
                     .unwrap_or_else(|| panic!("{name}: not read as a volume"));
-                assert_eq!(v.surface.check(), Ok(()), "{name}");
+                for v in &a.volumes {
+                    assert_eq!(v.surface.check(), Ok(()), "{name}");
+                }
                 continue;
             }
             match load_any(name).unwrap_or_else(|e| panic!("{name}: {}", e.render())) {

@@ -49,6 +49,24 @@ pub fn automaton_certificate(name: &str) -> Certificate {
     }
 }
 
+/// The certificate of a volume (or an assembly of volumes) of the library, with counts to
+/// level 3.
+pub fn volume_certificate(name: &str) -> Certificate {
+    let (_, volumes) = lacuna::input::load_volumes(name)
+        .unwrap_or_else(|e| panic!("{name}: {}", e.render()))
+        .unwrap_or_else(|| panic!("{name} is not a volume"));
+    let set = match lacuna::topology::volume::VolumeClosure::of(
+        &volumes.volume_list(),
+        &Limits::default(),
+    )
+    .expect("closes")
+    {
+        lacuna::topology::volume::VolumeClosure::Closed(set) => set,
+        lacuna::topology::volume::VolumeClosure::Runaway(r) => panic!("{name}: {}", r.reason),
+    };
+    lacuna::certificate::certificate_for_volumes(name, &set, 3).expect("certifiable")
+}
+
 /// Emits, round-trips and checks a certificate (STYLE rule 5): every step must be proved.
 pub fn assert_proved(name: &str, cert: &Certificate) {
     let json = cert.to_json();

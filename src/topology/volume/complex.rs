@@ -25,6 +25,7 @@ use crate::error::Result;
 use crate::topology::edge::EdgeType;
 use crate::topology::face::Face;
 use crate::topology::subdivision::{subdivide, Origin};
+use crate::topology::volume::assembly::StartCells;
 use crate::topology::volume::closure::VolumeTypeSet;
 use crate::topology::volume::step::interior;
 use num_bigint::{BigInt, BigUint};
@@ -159,6 +160,38 @@ impl Cells {
 /// The exact topology of the solid of each start volume together (their disjoint union), from
 /// level 0 to `levels`.
 pub fn solid_topology(set: &VolumeTypeSet, levels: u64) -> Result<Vec<SolidLevel>> {
+    let mut faces = Vec::new();
+    let mut edges = Vec::new();
+    let mut corners = 0u64;
+    for &s in &set.start {
+        let surface = &set.types[s].volume.surface;
+        faces.extend(surface.faces.iter().cloned());
+        for (f, row) in surface.glue.iter().enumerate() {
+            for (i, &(g, j)) in row.iter().enumerate() {
+                if (f, i) < (g, j) {
+                    edges.push(surface.faces[f].boundary[i]);
+                }
+            }
+        }
+        corners += surface.vertices().1 as u64;
+    }
+    let start = StartCells {
+        faces,
+        edges,
+        corners,
+        components: set.start.len() as u64,
+    };
+    solid_topology_of(set, levels, &start)
+}
+
+/// The exact topology of the solid whose level-0 complex has the cells `start` (an assembly of
+/// the start volumes of `set`, glued face to face), from level 0 to `levels`. Every cell of
+/// `start` is subdivided once, whichever volumes share it.
+pub fn solid_topology_of(
+    set: &VolumeTypeSet,
+    levels: u64,
+    start: &StartCells,
+) -> Result<Vec<SolidLevel>> {
     let mut cells = Cells::default();
     let mut births: Vec<Birth> = Vec::with_capacity(set.types.len());
     let mut all_connected = true;
@@ -190,29 +223,21 @@ pub fn solid_topology(set: &VolumeTypeSet, levels: u64) -> Result<Vec<SolidLevel
         let e = b.edges.iter().map(|&e| cells.edge(e)).collect();
         vol_faces.push((f, e));
     }
-    // Level 0: each start volume with its surface.
+    // Level 0: the start volumes with the cells of their assembly.
     let nv = set.types.len();
     let mut vol = vec![BigUint::zero(); nv];
     let mut fac: Vec<BigUint> = Vec::new();
     let mut edg: Vec<BigUint> = Vec::new();
-    let mut corners = BigUint::zero();
-    let mut start_faces = Vec::new();
-    let mut start_edges = Vec::new();
+    let mut corners = BigUint::from(start.corners);
     for &s in &set.start {
         vol[s] += 1u32;
-        let surface = &set.types[s].volume.surface;
-        for f in &surface.faces {
-            start_faces.push(cells.face(f)?);
-        }
-        for (f, row) in surface.glue.iter().enumerate() {
-            for (i, &(g, j)) in row.iter().enumerate() {
-                if (f, i) < (g, j) {
-                    start_edges.push(cells.edge(surface.faces[f].boundary[i]));
-                }
-            }
-        }
-        corners += surface.vertices().1;
     }
+    let start_faces = start
+        .faces
+        .iter()
+        .map(|f| cells.face(f))
+        .collect::<Result<Vec<_>>>()?;
+    let start_edges: Vec<usize> = start.edges.iter().map(|&e| cells.edge(e)).collect();
     let any_delayed_face = cells.faces.iter().any(|f| f.delay >= 2);
     fac.resize(cells.faces.len(), BigUint::zero());
     edg.resize(cells.edges.len(), BigUint::zero());
@@ -222,12 +247,16 @@ pub fn solid_topology(set: &VolumeTypeSet, levels: u64) -> Result<Vec<SolidLevel
     for e in start_edges {
         edg[e] += 1u32;
     }
-    let starts = set.start.len() as u64;
-    let level1_voids: u64 = set
-        .start
-        .iter()
-        .map(|&s| u64::from(set.types[s].volume.delay == 1 && !opens[s]))
-        .sum();
+    let starts = start.components;
+    // Cavities of volumes glued face to face may open into each other: level-1 voids are derived
+    // for volumes apart only.
+    let apart = start.components == set.start.len() as u64;
+    let level1_voids: Option<u64> = apart.then(|| {
+        set.start
+            .iter()
+            .map(|&s| u64::from(set.types[s].volume.delay == 1 && !opens[s]))
+            .sum()
+    });
     let mut out = Vec::new();
     for level in 0..=levels {
         let sum = |v: &[BigUint]| v.iter().sum::<BigUint>();
@@ -239,7 +268,7 @@ pub fn solid_topology(set: &VolumeTypeSet, levels: u64) -> Result<Vec<SolidLevel
         let voids = match level {
             0 => Some(0),
             _ if !any_delayed && !any_delayed_face => Some(0),
-            1 => Some(level1_voids),
+            1 => level1_voids,
             _ => None,
         };
         let tunnels = match (components, voids) {

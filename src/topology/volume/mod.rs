@@ -6,18 +6,21 @@
 //! - [`solid`]: the common solids and the one-line volume notation;
 //! - [`step`]: one subdivision step of a volume, with its patches and sub-volumes;
 //! - [`closure`]: the closure of volume types, exact counts of sub-volumes and lacunas;
+//! - [`assembly`]: several volumes glued face to face, the level-0 complex of an assembly;
 //! - [`complex`]: the exact topology of the level-n solid (cells, χ, components, voids, tunnels).
 //!
 //! Like the rest of the topology layer this never sees a float.
 
+pub(crate) mod assembly;
 pub(crate) mod closure;
 pub(crate) mod complex;
 pub(crate) mod solid;
 pub(crate) mod step;
 pub(crate) mod surface;
 
+pub use assembly::{mirror_consistent, reversed, SharedFace, StartCells, VolumeAssembly};
 pub use closure::{volume_counts, VolumeClosure, VolumeLevelCount, VolumeType, VolumeTypeSet};
-pub use complex::{solid_topology, SolidLevel};
+pub use complex::{solid_topology, solid_topology_of, SolidLevel};
 pub use solid::{parse_volume, Solid};
 pub use step::{interior, subdivide_volume, Interior, Patch, Placed, SubVolume, VolumeSubdivision};
 pub use surface::Surface;

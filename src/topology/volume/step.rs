@@ -291,6 +291,20 @@ fn raise(v: &Volume, l1: &Level1, n: usize, patch: &[(usize, usize)]) -> Result<
         )));
     }
     let rim = &loops[0];
+    // A spoke edge with the patch on both sides would make the sub-volume meet itself across
+    // its spoke face: W(P) would not be a ball of the solid.
+    if let Some(&(f, k, p)) = rim.iter().find(|&&s| {
+        v.rule.is_spoke(&l1.origin(s))
+            && l1
+                .partner
+                .get(&s)
+                .is_some_and(|t| member.contains_key(&(t.0, t.1)))
+    }) {
+        return Err(Error::Usage(format!(
+            "volume rule {}: patch {n} is not a disk in the solid: the spoke edge on side {p} of face {f} sub-face {k} has the patch on both sides, so its sub-volume would meet itself across the spoke face",
+            v.rule
+        )));
+    }
     let m = rim.len();
     let mut faces = Vec::with_capacity(patch.len() + m + 1);
     let mut glue: Vec<Vec<(usize, usize)>> = Vec::new();

@@ -263,6 +263,187 @@ mod random {
             }
         }
 
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(24))]
+        #[test]
+        fn every_spoke_face_is_shared_by_two_sub_volumes_in_opposite_directions(v in volume()) {
+            // Only non-delayed volumes have spoke faces; refusals are tested above.
+            let Ok(sub) = subdivide_volume(&v) else { return Ok(()) };
+            if v.delay >= 2 {
+                return Ok(());
+            }
+            // Which sub-volume holds the side face over each rim side, and where.
+            let mut holder = std::collections::HashMap::new();
+            for (i, s) in sub.subvolumes.iter().enumerate() {
+                for &(side, placed) in &s.sides {
+                    prop_assert!(holder.insert(side, (i, placed)).is_none(), "side {:?} twice", side);
+                }
+            }
+            let spoke_sides: usize = sub
+                .subvolumes
+                .iter()
+                .map(|s| s.patch.as_ref().unwrap().spoke_sides)
+                .sum();
+            prop_assert_eq!(spoke_sides, 2 * sub.spoke_pairs.len());
+            let level1: Vec<_> = v
+                .surface
+                .faces
+                .iter()
+                .map(|f| crate::topology::subdivision::subdivide(&f.canonical().0).unwrap())
+                .collect();
+            for &(a, b) in &sub.spoke_pairs {
+                let (Some(&(wa, pa)), Some(&(wb, pb))) = (holder.get(&a), holder.get(&b)) else {
+                    return Err(TestCaseError::fail(format!("spoke {a:?}–{b:?} without its side faces")));
+                };
+                // Two different sub-volumes share the spoke face (a patch on both sides of a
+                // spoke is refused: its sub-volume would meet itself).
+                prop_assert_ne!(wa, wb);
+                let x = level1[a.0].subfaces[a.1].face.boundary[a.2];
+                prop_assert_eq!(x, level1[b.0].subfaces[b.1].face.boundary[b.2]);
+                for (w, placed, side) in [(wa, pa, a), (wb, pb, b)] {
+                    let s = &sub.subvolumes[w];
+                    let surface = &s.volume.surface;
+                    // `rotation` turns a face as built into its type's canonical form: the
+                    // surface reads it turned by `root = rotation − frame`, where the frame
+                    // turns the surface's reading into the canonical form.
+                    let root = |p: Placed| {
+                        let b = &surface.faces[p.face].boundary;
+                        let frame = crate::topology::face::least_rotation(b);
+                        (p.rotation + b.len() - frame) % b.len()
+                    };
+                    // As built the side face is `X Er Ei Er`, its edge 0 running against the
+                    // rim side.
+                    let r = root(placed);
+                    let mut built = surface.faces[placed.face].boundary.clone();
+                    built.rotate_right(r);
+                    prop_assert_eq!(built, vec![x, v.radial, v.inner, v.radial]);
+                    let (_, sp) = s
+                        .subfaces
+                        .iter()
+                        .find(|(sf, _)| *sf == (side.0, side.1))
+                        .copied()
+                        .expect("the rim side's sub-face is on the patch");
+                    let len = surface.faces[sp.face].boundary.len();
+                    let at_side = (sp.face, (side.2 + len - root(sp)) % len);
+                    prop_assert_eq!(surface.glue[placed.face][(4 - r) % 4], at_side);
+                }
+                // The two sides are the one level-1 edge traversed both ways, so the side faces
+                // over them (each running against its side) traverse it in opposite directions.
+                let tb = sub.spoke_pairs.iter().any(|&(p, q)| (p, q) == (a, b) && p != q);
+                prop_assert!(tb);
+            }
+        }
+
+        #[test]
+        fn the_level_1_solid_counted_cell_by_cell(v in volume()) {
+            // The level-1 complex is the union of the sub-volumes (closed balls). Counted
+            // directly: the corners and edges of every sub-volume's surface, identified by its
+            // own gluing and, across a spoke, by the side face the two sub-volumes share (corner
+            // k of one reading is corner 1 − k of the other, edge k is edge −k); every other face
+            // lies on one sub-volume. Against the birth counts of `solid_topology`.
+            let limits = crate::topology::limits::Limits { max_types: 24, ..Default::default() };
+            let Ok(VolumeClosure::Closed(set)) = VolumeClosure::of(std::slice::from_ref(&v), &limits) else {
+                return Ok(());
+            };
+            let Ok(sub) = subdivide_volume(&v) else { return Ok(()) };
+            let solid = solid_topology(&set, 1).unwrap();
+            let mut base = Vec::new();
+            let mut total = 0usize;
+            for s in &sub.subvolumes {
+                base.push(s.volume.surface.faces.iter().map(|f| { let b = total; total += f.boundary.len(); b }).collect::<Vec<_>>());
+            }
+            let id = |w: usize, f: usize, k: usize| {
+                let n = sub.subvolumes[w].volume.surface.faces[f].boundary.len();
+                base[w][f] + k % n
+            };
+            let mut corners = crate::topology::component::Dsu::new(total);
+            let mut sides = crate::topology::component::Dsu::new(total);
+            for (w, s) in sub.subvolumes.iter().enumerate() {
+                for (f, row) in s.volume.surface.glue.iter().enumerate() {
+                    for (i, &(g, j)) in row.iter().enumerate() {
+                        sides.union(id(w, f, i), id(w, g, j));
+                        corners.union(id(w, f, i), id(w, g, j + 1));
+                    }
+                }
+            }
+            let mut holder = std::collections::HashMap::new();
+            for (w, s) in sub.subvolumes.iter().enumerate() {
+                for &(side, placed) in &s.sides {
+                    let b = &s.volume.surface.faces[placed.face].boundary;
+                    let frame = crate::topology::face::least_rotation(b);
+                    // As-built corner k is corner k − root of the surface's reading.
+                    holder.insert(side, (w, placed.face, (placed.rotation + 4 - frame) % 4));
+                }
+            }
+            for &(a, b) in &sub.spoke_pairs {
+                let (wa, fa, ra) = holder[&a];
+                let (wb, fb, rb) = holder[&b];
+                for k in 0..4 {
+                    corners.union(id(wa, fa, k + 4 - ra), id(wb, fb, (5 - k) + 4 - rb));
+                    sides.union(id(wa, fa, k + 4 - ra), id(wb, fb, (4 - k) + 4 - rb));
+                }
+            }
+            let faces: usize = sub.subvolumes.iter().map(|s| s.volume.surface.faces.len()).sum::<usize>()
+                - sub.spoke_pairs.len();
+            let level1 = &solid[1];
+            prop_assert_eq!(level1.volumes.clone(), num_bigint::BigUint::from(sub.subvolumes.len()));
+            prop_assert_eq!(level1.faces.clone(), num_bigint::BigUint::from(faces));
+            prop_assert_eq!(level1.edges.clone(), num_bigint::BigUint::from(sides.classes()));
+            prop_assert_eq!(level1.corners.clone(), num_bigint::BigUint::from(corners.classes()));
+        }
+
+        #[test]
+        fn counts_follow_the_children_and_a_direct_count(v in volume()) {
+            let limits = crate::topology::limits::Limits { max_types: 24, ..Default::default() };
+            let Ok(VolumeClosure::Closed(set)) = VolumeClosure::of(std::slice::from_ref(&v), &limits) else {
+                return Ok(());
+            };
+            let index: std::collections::HashMap<Volume, usize> =
+                set.types.iter().enumerate().map(|(i, t)| (t.volume.clone(), i)).collect();
+            let counts = volume_counts(&set, 2);
+            // The level-n solid cell by cell: subdivide every volume of the level before (not by
+            // type) and read each sub-volume's type from its canonical form.
+            let mut level = vec![v.canonical()];
+            let mut vector = vec![0u64; set.types.len()];
+            vector[index[&v.canonical()]] = 1;
+            let mut lacunas = 0u64;
+            for (n, count) in counts.iter().enumerate() {
+                let mut direct = vec![0u64; set.types.len()];
+                for w in &level {
+                    direct[index[w]] += 1;
+                }
+                prop_assert_eq!(&direct, &vector, "level {}", n);
+                prop_assert_eq!(count.cells.clone(), num_bigint::BigUint::from(level.len()));
+                prop_assert_eq!(
+                    count.lacunas.clone(),
+                    num_rational::BigRational::new(lacunas.into(), 4.into())
+                );
+                if n == 2 || level.len() > 40 {
+                    break;
+                }
+                // The vector times the substitution matrix (the children lists).
+                let mut next = vec![0u64; set.types.len()];
+                for (t, &k) in vector.iter().enumerate() {
+                    for &c in &set.types[t].children {
+                        next[c] += k;
+                    }
+                }
+                vector = next;
+                let mut below = Vec::new();
+                for w in &level {
+                    lacunas += w.contribution_quarters();
+                    below.extend(subdivide_volume(w).unwrap().subvolumes.into_iter().map(|s| s.volume));
+                }
+                level = below;
+            }
+        }
+
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
         #[test]
         fn a_volume_is_its_type_under_relabelling(v in volume(), shift in 0usize..8) {
             // Relabel the faces cyclically and rotate every face's boundary: same canonical form.
@@ -374,4 +555,30 @@ fn face_births_agree_with_the_level_1_complex() {
             "{text}"
         );
     }
+}
+#[test]
+fn a_patch_on_both_sides_of_a_spoke_is_refused() {
+    // Found by the property test of spoke faces: a cube with mixed (some delayed) edges, in the
+    // order the cube numbers them, E = (B2, B2, C2), A1, V1. With few spokes, one patch reaches
+    // around to both sides of a spoke edge of face 0: the sub-volume over it would be glued to
+    // itself across its spoke face, so it is not a ball of the solid, and the rule is refused.
+    let edges: Vec<EdgeType> = [
+        "B2^2", "C2^2", "C2", "B2^2", "B3", "B2^2", "C3", "B2", "B3", "C2", "B2^2", "B2",
+    ]
+    .iter()
+    .map(|t| EdgeType::parse(t, 1).unwrap())
+    .collect();
+    let template = Face::parse("B2 B2 B2 | B2 B2 C2 | A1").unwrap();
+    let v = Volume {
+        surface: Solid::Cube.surface_with(|k| edges[k], &template),
+        radial: EdgeType::parse("B2", 1).unwrap(),
+        inner: EdgeType::parse("B2", 1).unwrap(),
+        params: template.params,
+        algorithm: template.algorithm.clone(),
+        rule: VolumeRule::V1,
+        delay: 1,
+    };
+    assert_eq!(v.surface.check(), Ok(()));
+    let e = subdivide_volume(&v).unwrap_err().to_string();
+    assert!(e.contains("would meet itself across the spoke face"), "{e}");
 }

@@ -1,0 +1,266 @@
+//! Certificates of volumes (THEORY §10, issue #15): the volume-closure step round-trips and
+//! checks for every volume of the library, and a certificate with a changed count, a wrong type,
+//! a missing type or a forged form of a type is rejected, by `lacuna check` with exit 1, with a
+//! reason that names what is wrong.
+
+use lacuna::certificate::{Certificate, Step, VolumeClosureStep, VolumeRule};
+use lacuna::checker::{check, Outcome};
+
+mod common;
+use common::{assert_proved, lacuna, volume_certificate};
+
+fn closure_of(cert: &mut Certificate) -> &mut VolumeClosureStep {
+    match cert.steps.first_mut() {
+        Some(Step::VolumeClosure(c)) => c,
+        _ => panic!("the first step is the volume closure"),
+    }
+}
+
+/// The checker refuses `cert` at the volume-closure step with a message containing `reason`.
+fn refused(what: &str, cert: &Certificate, reason: &str) {
+    let report = check(cert);
+    let step = report
+        .step("volume-closure")
+        .unwrap_or_else(|| panic!("{what}: no volume-closure report:\n{}", report.to_text()));
+    assert_eq!(
+        step.outcome,
+        Outcome::Failed,
+        "{what}:\n{}",
+        report.to_text()
+    );
+    assert!(
+        step.message.contains(reason),
+        "{what}: expected `{reason}` in `{}`",
+        step.message
+    );
+    assert!(!report.all_proved());
+}
+
+#[test]
+fn library_volumes_certify() {
+    for name in [
+        "cube-B2",
+        "tetrahedron-B2",
+        "cube-C2",
+        "truncated-tetrahedron",
+        "two-cubes",
+    ] {
+        let cert = volume_certificate(name);
+        assert_proved(name, &cert);
+    }
+}
+
+#[test]
+fn the_cube_certificate_states_the_hand_counts() {
+    // THEORY §10 and docs/VOLUMES.md: the cube has 8 corner pieces W3 (19 corners: 16 of degree
+    // 3, 3 of degree 4), W4 has 25 corners (20 and 5), and every volume has one child per
+    // corner: 1, 8, 8·19 = 152, 8·(16·19 + 3·25) = 3032 cells. Lacunas: one step of the cube
+    // gives its cavity and half of each square's centre: 1 + 6/2 = 4; W3 (3 pentagons, 9
+    // squares, a 9-gon, each with one centre) gives 1 + 13/2 = 15/2, W4 1 + 17/2 = 19/2; so
+    // N^L_2 = 4 + 8·15/2 = 64 and N^L_3 = 64 + 8·(16·15/2 + 3·19/2) = 64 + 8·(120 + 57/2) = 1252.
+    let cert = volume_certificate("cube-B2");
+    let report = check(&cert);
+    assert!(report.all_proved(), "{}", report.to_text());
+    assert!(
+        report
+            .claims()
+            .iter()
+            .any(|c| c.contains("N^C = 1, 8, 152, 3032; N^L = 0, 4, 64, 1252")),
+        "{:?}",
+        report.claims()
+    );
+}
+
+#[test]
+fn the_cube_certificate_proves_r_by_hand() {
+    // The dominant class {W3, W4} has M = [[16, 3], [20, 5]], ρ = 20 (λ² − 21λ + 20 = 0), left
+    // eigenvector u = (5, 1): cells grow as 20^i·(5 + 1), lacunas add u·c = 5·15/2 + 19/2 = 47
+    // per unit, summed over the levels below: 47/19. R = (47/19) / (47/19 + 6) = 47/161.
+    let cert = volume_certificate("cube-B2");
+    let Some(Step::LimitRatio(r)) = cert.steps.get(1) else {
+        panic!("the second step is the limit ratio")
+    };
+    assert!(r.exists);
+    assert_eq!(r.rho.poly, ["-20", "1"]);
+    assert_eq!(r.points.len(), 1);
+    assert_eq!(r.points[0].value, ["47/161"]);
+    let report = check(&cert);
+    assert!(report.all_proved(), "{}", report.to_text());
+    // A forged limit: 1/3 instead of 47/161.
+    let mut bad = cert.clone();
+    if let Some(Step::LimitRatio(r)) = bad.steps.get_mut(1) {
+        r.points[0].value = vec!["1/3".into()];
+    }
+    let report = check(&bad);
+    let step = report.step("limit-ratio").expect("a limit-ratio report");
+    assert_eq!(step.outcome, Outcome::Failed, "{}", report.to_text());
+    // Without its volume closure the ratio has no substitution: refused as a whole.
+    let mut alone = cert.clone();
+    alone.steps.remove(0);
+    let report = check(&alone);
+    assert_eq!(report.steps[0].step, "structure", "{}", report.to_text());
+    // Without the ratio the certificate is partial.
+    let mut partial = cert;
+    partial.steps.pop();
+    let report = check(&partial);
+    assert!(report.partial(), "{}", report.to_text());
+}
+
+#[test]
+fn a_changed_count_is_rejected() {
+    let mut cert = volume_certificate("cube-B2");
+    closure_of(&mut cert).counts[2].cells = "153".into();
+    refused("cells", &cert, "level 2: 153 cells listed, 152 recounted");
+    let mut cert = volume_certificate("cube-B2");
+    closure_of(&mut cert).counts[1].lacunas = "9/2".into();
+    refused("lacunas", &cert, "level 1: 9/2 lacunas listed, 4 recounted");
+    let mut cert = volume_certificate("cube-B2");
+    closure_of(&mut cert).counts.pop();
+    refused("a level missing", &cert, "counts listed for levels 0 to 3");
+    let mut cert = volume_certificate("tetrahedron-B2");
+    closure_of(&mut cert).types[0].contribution_quarters += 1;
+    refused("contribution", &cert, "is not the one of THEORY §10");
+}
+
+#[test]
+fn a_wrong_type_is_rejected() {
+    // A child listed as the wrong type.
+    let mut cert = volume_certificate("cube-B2");
+    let c = closure_of(&mut cert);
+    let child = c.types[0].children[0];
+    c.types[0].children[0] = (child + 1) % c.types.len();
+    refused("child", &cert, "are not the derived sub-volumes");
+    // A listed type whose rule is changed: the cube's corner pieces (rule V1) are then not
+    // listed.
+    let mut cert = volume_certificate("cube-B2");
+    let c = closure_of(&mut cert);
+    let t = c.types[0].children[0];
+    c.types[t].volume.rule = VolumeRule::V2;
+    refused("rule", &cert, "is not a listed type");
+    // A start volume that is not the listed one.
+    let mut cert = volume_certificate("cube-B2");
+    if let lacuna::certificate::Claim::Volumes(v) = &mut cert.claim {
+        v.volumes[0].delay = 2;
+    }
+    refused("start", &cert, "start volume 0 is not a listed type");
+}
+
+#[test]
+fn a_missing_type_is_rejected() {
+    let mut cert = volume_certificate("cube-C2");
+    let c = closure_of(&mut cert);
+    let last = c.types.len() - 1;
+    c.types.pop();
+    for t in &mut c.types {
+        t.children.retain(|&x| x != last);
+    }
+    refused("missing", &cert, "is not a listed type");
+}
+
+#[test]
+fn a_forged_form_is_rejected() {
+    // Two entries of one type: the second copy of a type under another index.
+    let mut cert = volume_certificate("cube-B2");
+    let c = closure_of(&mut cert);
+    let (a, b) = (1, 2);
+    c.types[b].volume = c.types[a].volume.clone();
+    refused(
+        "duplicate",
+        &cert,
+        &format!("types {a} and {b} are the same volume type"),
+    );
+    // A gluing that is not an involution is not a surface.
+    let mut cert = volume_certificate("cube-B2");
+    let g = &mut closure_of(&mut cert).types[1].volume.glue;
+    g[0][0] = g[0][1];
+    refused("gluing", &cert, "not glued back");
+    // Re-gluing two pairs of edges crosswise keeps every edge glued once to an edge of its type
+    // but makes another surface: the cube's face 0 edge 0 and 1 swap partners. The corners
+    // then no longer close up into a sphere (or the type changes), and the certificate fails.
+    let mut cert = volume_certificate("cube-B2");
+    let v = &mut closure_of(&mut cert).types[0].volume;
+    let (p, q) = (v.glue[0][0], v.glue[0][1]);
+    v.glue[0][0] = q;
+    v.glue[0][1] = p;
+    v.glue[p.0][p.1] = (0, 1);
+    v.glue[q.0][q.1] = (0, 0);
+    let report = check(&cert);
+    assert!(report.failed(), "{}", report.to_text());
+}
+
+#[test]
+fn lacuna_check_exits_1_on_a_tampered_volume_certificate() {
+    let dir = std::env::temp_dir().join(format!("lacuna-volcert-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let good = dir.join("cube.json");
+    let (code, _, err) = lacuna(&[
+        "verify",
+        "cube-B2",
+        "--levels",
+        "3",
+        "--certificate",
+        good.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let (code, out, _) = lacuna(&["check", good.to_str().unwrap()]);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("proved  step 0 (volume-closure)"), "{out}");
+    let text = std::fs::read_to_string(&good).unwrap();
+    // The level-3 count 3032 becomes 3033.
+    assert!(text.contains("\"cells\":\"3032\""), "{text}");
+    let bad = dir.join("bad.json");
+    std::fs::write(
+        &bad,
+        text.replace("\"cells\":\"3032\"", "\"cells\":\"3033\""),
+    )
+    .unwrap();
+    let (code, out, _) = lacuna(&["check", bad.to_str().unwrap()]);
+    assert_eq!(code, 1, "{out}");
+    assert!(
+        out.contains("FAILED") && out.contains("level 3: 3033 cells listed, 3032 recounted"),
+        "{out}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+mod random {
+    //! The certificate of random small volumes checks, and a changed count is caught.
+    use super::*;
+    use lacuna::topology::volume::{parse_volume, VolumeClosure};
+    use lacuna::topology::Limits;
+    use proptest::prelude::*;
+
+    fn notation() -> impl Strategy<Value = String> {
+        (
+            proptest::sample::select(vec!["tetrahedron", "cube", "prism-3", "octahedron"]),
+            proptest::sample::select(vec!["B2", "C2", "B3", "C3"]),
+            proptest::sample::select(vec!["B2 B2 B2", "C2 B2 B2", "B2 B2 C2"]),
+            proptest::sample::select(vec!["A1", "A2", "A3"]),
+            proptest::sample::select(vec!["B2 B2", "C2 B2", "B2 C2"]),
+            proptest::sample::select(vec!["V1", "V2"]),
+            proptest::sample::select(vec!["", " | 2"]),
+        )
+            .prop_map(|(s, x, e, a, g, r, d)| format!("{s} {x} | {e} | {a} | {g} | {r}{d}"))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(12))]
+        #[test]
+        fn random_volumes_certify(text in notation()) {
+            let v = parse_volume(&text).unwrap();
+            let limits = Limits { max_types: 16, ..Limits::default() };
+            let Ok(VolumeClosure::Closed(set)) = VolumeClosure::of(&[v], &limits) else {
+                // A refused rule or a closure past the small limit: nothing to certify.
+                return Ok(());
+            };
+            let cert = lacuna::certificate::certificate_for_volumes(&text, &set, 2).unwrap();
+            let report = check(&cert);
+            prop_assert!(report.all_proved(), "{}\n{}", text, report.to_text());
+            let mut bad = cert.clone();
+            let c = closure_of(&mut bad);
+            let n: u64 = c.counts[1].cells.parse().unwrap();
+            c.counts[1].cells = (n + 1).to_string();
+            prop_assert!(check(&bad).failed());
+        }
+    }
+}
