@@ -16,6 +16,7 @@ pub(crate) mod point;
 pub(crate) mod raster;
 pub(crate) mod template;
 pub(crate) mod template_file;
+pub(crate) mod volume;
 
 pub use automaton_eval::{exact_points, Evaluator, Shape, ShapeKind};
 pub use choose::{project_exact, Choice, ExactColumn, Projection};
@@ -30,6 +31,10 @@ pub use point::{
 };
 pub use raster::{bounds, cell_count, rasterize};
 pub use template::{control_points, regular_polygon};
+pub use volume::{
+    default_placement, evaluate_volume, solid_corners, GeoEdge, GeoFace, GeoVolume, Reading,
+    SolidGeometry, P3,
+};
 pub use template_file::{
     format_exact, parse_template, write_template, ExactTemplate, TypeTemplate,
 };

@@ -30,6 +30,7 @@ pub mod printability;
 pub mod solid;
 pub mod stl;
 pub mod threemf;
+pub mod volume;
 
 pub use check::{check_part, PartCheck};
 
@@ -45,6 +46,7 @@ mod below {
 }
 pub use printability::{printability, Printability};
 pub use solid::{build, Part, Solid};
+pub use volume::{self_intersection, volume_solid, VolumeSolid};
 
 /// Sizes of a printed solid, in millimetres.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -142,7 +144,7 @@ impl MeshError {
 
 /// Whether a diagnostic code is a verification failure of the mesh layer (exit 1).
 pub fn is_failure_code(code: &str) -> bool {
-    matches!(code, "E1040" | "E1041" | "E1042")
+    matches!(code, "E1040" | "E1041" | "E1042" | "E1211")
 }
 
 /// Checks that a size option is a positive finite number.
