@@ -31,10 +31,10 @@ pub use point::{
 };
 pub use raster::{bounds, cell_count, rasterize};
 pub use template::{control_points, regular_polygon};
-pub use volume::{
-    default_placement, evaluate_volume, solid_corners, GeoEdge, GeoFace, GeoVolume, Reading,
-    SolidGeometry, P3,
-};
 pub use template_file::{
     format_exact, parse_template, write_template, ExactTemplate, TypeTemplate,
+};
+pub use volume::{
+    default_placement, evaluate_volume, hole_width, least_thickness, solid_corners, GeoEdge,
+    GeoFace, GeoVolume, Reading, SolidGeometry, P3,
 };

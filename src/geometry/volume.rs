@@ -106,6 +106,9 @@ pub struct SolidGeometry {
     pub faces: Vec<GeoFace>,
     /// The volumes of this level.
     pub volumes: Vec<GeoVolume>,
+    /// The holes the last step opened, as loops of points: the lacuna of every face it
+    /// subdivided (its lacuna corners) and every gap of a `Cn` edge (its two ends).
+    pub holes: Vec<Vec<usize>>,
 }
 
 impl SolidGeometry {
@@ -301,6 +304,7 @@ struct Builder {
     inner_edge: HashMap<usize, usize>,
     steps: HashMap<Volume, Rc<VolumeSubdivision>>,
     face_steps: HashMap<Face, Rc<Subdivision>>,
+    holes: Vec<Vec<usize>>,
 }
 
 impl Builder {
@@ -315,8 +319,7 @@ impl Builder {
     }
 
     fn face(&mut self, face: Face, corners: Vec<usize>, center: Option<P3>) -> usize {
-        let center =
-            center.unwrap_or_else(|| mean(corners.iter().map(|&c| self.points[c])));
+        let center = center.unwrap_or_else(|| mean(corners.iter().map(|&c| self.points[c])));
         self.faces.push(GeoFace {
             face,
             corners,
@@ -349,6 +352,7 @@ impl Builder {
                     out.push((start, end, id));
                     if q + 1 < n {
                         start = self.point(lerp(pa, pb, (2 * q + 2) as f64 / len));
+                        self.holes.push(vec![end, start]);
                     }
                 }
             }
@@ -445,6 +449,11 @@ impl Builder {
                 }
             };
             spokes.push((j, s.0, s.1));
+        }
+        if spokes.len() > 1 && !self.spoke.contains_key(&(g, usize::MAX)) {
+            // Once per face: its lacuna (the mark is a key no point has).
+            self.spoke.insert((g, usize::MAX), (0, 0));
+            self.holes.push(spokes.iter().map(|s| s.2).collect());
         }
         let mut subs = Vec::with_capacity(sub.subfaces.len());
         for s in &sub.subfaces {
@@ -617,23 +626,39 @@ impl Builder {
                 }
             }
         }
-        let mut inner_of = |me: &mut Builder, p: usize| -> P3 {
-            let at = me.points[p];
-            let n = normal.get(&p).copied().unwrap_or([0.0; 3]);
+        // One depth for the whole volume: a fraction of its least thickness, so that the inner
+        // copy of its surface is an offset at constant distance.
+        let direction = |n: P3| {
             let len = norm(n);
-            if len == 0.0 {
-                return lerp(at, vcenter, PUSH);
+            (len > 0.0).then(|| scale(n, -1.0 / len))
+        };
+        let mut least: Option<f64> = None;
+        let mut keys: Vec<&usize> = normal.keys().collect();
+        keys.sort();
+        for p in keys {
+            if let Some(d) = direction(normal[p]) {
+                if let Some(h) = thickness(self.points[*p], d, &tris) {
+                    least = Some(least.map_or(h, |l: f64| l.min(h)));
+                }
             }
-            let d = scale(n, -1.0 / len);
-            let h = thickness(at, d, &tris).unwrap_or(2.0 * norm(sub(vcenter, at)));
-            add(at, scale(d, PUSH * h))
+        }
+        let depth = PUSH * least.unwrap_or(1.0);
+        let inner_of = |me: &mut Builder, p: usize| -> P3 {
+            let at = me.points[p];
+            match normal.get(&p).copied().and_then(direction) {
+                Some(d) => add(at, scale(d, depth)),
+                None => lerp(at, vcenter, PUSH),
+            }
         };
         let mut out = Vec::with_capacity(step.subvolumes.len());
         if v.delay >= 2 {
             let s = &step.subvolumes[0];
             let mut faces: Vec<Option<Reading>> = vec![None; s.volume.surface.faces.len()];
             for &((f, k), placed) in &s.subfaces {
-                faces[placed.face] = Some(rotated(&subs[f].subs[k], placed.rotation));
+                faces[placed.face] = Some(rotated(
+                    &subs[f].subs[k],
+                    surface_rotation(&s.volume, placed),
+                ));
             }
             let faces = self.fill(&s.volume, faces, Some(vcenter))?;
             out.push(GeoVolume {
@@ -653,13 +678,19 @@ impl Builder {
                 Some(o)
             })
             .collect();
-        let slots = offsets.last().map_or(0, |&o| o) + step.subvolumes.last().map_or(0, |s| s.sides.len());
+        let slots =
+            offsets.last().map_or(0, |&o| o) + step.subvolumes.last().map_or(0, |s| s.sides.len());
         let mut dsu = crate::topology::component::Dsu::new(slots);
         let rim = |s: usize, i: usize| -> (usize, bool, usize, usize) {
             let ((f, k, p), _) = step.subvolumes[s].sides[i];
             let r = &subs[f].subs[k];
             let e = r.edges[p];
-            (e, r.forward[p], r.corners[p], r.corners[(p + 1) % r.corners.len()])
+            (
+                e,
+                r.forward[p],
+                r.corners[p],
+                r.corners[(p + 1) % r.corners.len()],
+            )
         };
         let mut over: HashMap<usize, (usize, usize)> = HashMap::new();
         for (s, sv) in step.subvolumes.iter().enumerate() {
@@ -691,7 +722,10 @@ impl Builder {
         for (s, sv) in step.subvolumes.iter().enumerate() {
             let mut faces: Vec<Option<Reading>> = vec![None; sv.volume.surface.faces.len()];
             for &((f, k), placed) in &sv.subfaces {
-                faces[placed.face] = Some(rotated(&subs[f].subs[k], placed.rotation));
+                faces[placed.face] = Some(rotated(
+                    &subs[f].subs[k],
+                    surface_rotation(&sv.volume, placed),
+                ));
             }
             let m = sv.sides.len();
             for (i, &(_, placed)) in sv.sides.iter().enumerate() {
@@ -722,7 +756,7 @@ impl Builder {
                     edges: vec![e, ra, ei, rb],
                     forward: vec![!fwd, true, created, false],
                 };
-                faces[placed.face] = Some(rotated(&built, placed.rotation));
+                faces[placed.face] = Some(rotated(&built, surface_rotation(&sv.volume, placed)));
             }
             let faces = self.fill(&sv.volume, faces, None)?;
             out.push(GeoVolume {
@@ -782,6 +816,17 @@ impl Builder {
     }
 }
 
+/// The rotation from a face as built to the frame of the sub-volume's surface: [`Placed`] gives
+/// the rotation to the canonical form of the face's type, which is the surface's frame turned by
+/// the least rotation of the boundary the surface holds.
+///
+/// [`Placed`]: crate::topology::volume::Placed
+fn surface_rotation(child: &Volume, placed: crate::topology::volume::Placed) -> usize {
+    let b = &child.surface.faces[placed.face].boundary;
+    let len = b.len();
+    (placed.rotation + len - crate::topology::face::least_rotation(b) % len) % len
+}
+
 /// The reading of a face rotated left by `r` (side `i` of the result is side `i + r`).
 fn rotated(r: &Reading, by: usize) -> Reading {
     let rot = |v: &[usize]| {
@@ -819,7 +864,9 @@ fn check_glue(v: &Volume, faces: &[Reading], edges: &[GeoEdge]) -> Result<()> {
             if !ok {
                 return Err(geometry_error(
                     "E1211",
-                    format!("the geometry of face {f} side {i} does not follow the volume's gluing"),
+                    format!(
+                        "the geometry of face {f} side {i} does not follow the volume's gluing"
+                    ),
                 ));
             }
         }
@@ -934,9 +981,11 @@ pub fn evaluate_volume(v: &Volume, level: u32) -> Result<SolidGeometry> {
         inner_edge: HashMap::new(),
         steps: HashMap::new(),
         face_steps: HashMap::new(),
+        holes: Vec::new(),
     };
     let mut volumes = vec![start(&mut b, v)?];
     for _ in 0..level {
+        b.holes.clear();
         let mut next = Vec::new();
         for (vid, gv) in volumes.iter().enumerate() {
             next.extend(b.step(vid, gv)?);
@@ -951,7 +1000,62 @@ pub fn evaluate_volume(v: &Volume, level: u32) -> Result<SolidGeometry> {
         edges: b.edges,
         faces: b.faces,
         volumes,
+        holes: b.holes,
     })
+}
+
+/// The least thickness of a volume of the solid: from every corner of its surface, the distance
+/// along the inward normal (the sum of the unit normals of its faces there) to its surface.
+pub fn least_thickness(g: &SolidGeometry, v: &GeoVolume) -> Option<f64> {
+    let mut tris: Vec<[P3; 3]> = Vec::new();
+    let mut normal: HashMap<usize, P3> = HashMap::new();
+    for r in &v.faces {
+        let c = g.faces[r.face].center;
+        let mut n = [0.0; 3];
+        for i in 0..r.corners.len() {
+            let a = g.points[r.corners[i]];
+            let b = g.points[r.corners[(i + 1) % r.corners.len()]];
+            n = add(n, cross(sub(a, c), sub(b, c)));
+            tris.push([c, a, b]);
+        }
+        let len = norm(n);
+        if len > 0.0 {
+            for &p in &r.corners {
+                let e = normal.entry(p).or_insert([0.0; 3]);
+                *e = add(*e, scale(n, 1.0 / len));
+            }
+        }
+    }
+    let mut least: Option<f64> = None;
+    for (p, n) in normal {
+        let len = norm(n);
+        if len == 0.0 {
+            continue;
+        }
+        if let Some(h) = thickness(g.points[p], scale(n, -1.0 / len), &tris) {
+            least = Some(least.map_or(h, |l: f64| l.min(h)));
+        }
+    }
+    least
+}
+
+/// The width of a hole given as a loop of points: two points, their distance (a gap); more,
+/// twice the least distance from their mean to a side (the inscribed circle's diameter, as an
+/// estimate).
+pub fn hole_width(g: &SolidGeometry, hole: &[usize]) -> f64 {
+    let pts: Vec<P3> = hole.iter().map(|&p| g.points[p]).collect();
+    if pts.len() == 2 {
+        return norm(sub(pts[1], pts[0]));
+    }
+    let c = mean(pts.iter().copied());
+    let mut least = f64::INFINITY;
+    for i in 0..pts.len() {
+        let (a, b) = (pts[i], pts[(i + 1) % pts.len()]);
+        let ab = sub(b, a);
+        let t = (dot(sub(c, a), ab) / dot(ab, ab).max(1e-300)).clamp(0.0, 1.0);
+        least = least.min(norm(sub(c, add(a, scale(ab, t)))));
+    }
+    2.0 * least
 }
 
 #[cfg(test)]
@@ -979,7 +1083,10 @@ mod tests {
                 }
                 assert!(dot(n, c) > 0.0, "{name}: a face is wound inwards");
                 for q in p {
-                    assert!(dot(sub(*q, c), n).abs() < 1e-9, "{name}: a face is not flat");
+                    assert!(
+                        dot(sub(*q, c), n).abs() < 1e-9,
+                        "{name}: a face is not flat"
+                    );
                 }
             }
         }
