@@ -20,7 +20,7 @@ use super::expect::Expected;
 use super::solid::{Part, Solid};
 use super::Size;
 use crate::error::{Diagnostic, Error, Result};
-use crate::geometry::{evaluate_volume, SolidGeometry};
+use crate::geometry::{evaluate_volume, GeoEdge, SolidGeometry};
 use crate::topology::component::Dsu;
 use crate::topology::volume::{solid_topology, SolidLevel, Volume, VolumeTypeSet};
 use num_bigint::{BigInt, BigUint};
@@ -138,6 +138,27 @@ pub fn volume_solid(
             "the geometry has {cv} volumes, {cf} faces, {ce} edges and {cc} corners, the exact complex {} volumes, {} faces, {} edges and {} corners",
             exact.volumes, exact.faces, exact.edges, exact.corners
         )));
+    }
+    // Edges are straight segments here: two edges between the same points (a lacuna of two
+    // sides, a face with two spokes) or an edge from a point to itself (one spoke) cannot be
+    // drawn apart.
+    let mut ends: HashMap<(usize, usize), usize> = HashMap::new();
+    for v in &g.volumes {
+        for r in &v.faces {
+            for &e in &r.edges {
+                let GeoEdge { a, b, .. } = g.edges[e];
+                if a == b {
+                    return Err(failure("E1211", format!("the default placement cannot draw the level-{level} solid: an edge of type {} runs from a point to itself (a face with one spoke)", g.edges[e].ty)));
+                }
+                if let Some(&other) = ends.get(&(a.min(b), a.max(b))) {
+                    if other != e {
+                        return Err(failure("E1211", format!("the default placement cannot draw the level-{level} solid: two edges join the same two points (a lacuna with two sides, from a face with two spokes), and edges are straight here")));
+                    }
+                } else {
+                    ends.insert((a.min(b), a.max(b)), e);
+                }
+            }
+        }
     }
     let (points, parts_raw) = boundary_triangles(&g);
     // Scale: the x extent becomes `width`, the least corner goes to the origin.
@@ -530,27 +551,6 @@ mod cube_tests {
                 }
             }
         }
-    }
-}
-#[cfg(test)]
-mod debug_tests {
-    use super::*;
-    use crate::topology::limits::Limits;
-    use crate::topology::volume::{parse_volume, VolumeClosure};
-    #[test]
-    fn dump() {
-        let v = parse_volume("cube B2 | B2 B2 B2 | A1 | B2 B2 | V1").unwrap();
-        let g = evaluate_volume(&v, 1).unwrap();
-        let g = evaluate_volume(&v, 2).unwrap();
-        let (pts, parts) = boundary_triangles(&g);
-        for t in [472usize, 475] {
-            let tr = parts[0][t];
-            eprintln!("{t}: {:?} {:?}", tr, tr.map(|p| pts[p]));
-        }
-        let _ = (
-            Limits::default(),
-            VolumeClosure::of(&[v], &Limits::default()),
-        );
     }
 }
 
