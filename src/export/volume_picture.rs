@@ -59,7 +59,15 @@ impl View {
             }
         }
         let centre = [0, 1, 2].map(|k| (lo[k] + hi[k]) / 2.0);
-        let radius = (dot(sub(hi, lo), sub(hi, lo)).sqrt() / 2.0).max(1e-9);
+        // The farthest vertex from the centre: the solid fits the picture in every rotation.
+        let radius = parts
+            .iter()
+            .flat_map(|p| p.vertices.iter())
+            .map(|v| {
+                let d = sub(v.map(f64::from), centre);
+                dot(d, d).sqrt()
+            })
+            .fold(1e-9, f64::max);
         View {
             right,
             up,
@@ -72,7 +80,7 @@ impl View {
     /// Screen position in [0, size]² (y down) and depth (larger is farther).
     fn project(&self, p: V3, size: f64) -> (f64, f64, f64) {
         let d = sub(p, self.centre);
-        let s = size / (2.2 * self.radius);
+        let s = size / (2.1 * self.radius);
         (
             size / 2.0 + dot(d, self.right) * s,
             size / 2.0 - dot(d, self.up) * s,

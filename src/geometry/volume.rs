@@ -1004,11 +1004,11 @@ pub fn evaluate_volume(v: &Volume, level: u32) -> Result<SolidGeometry> {
     })
 }
 
-/// The least thickness of a volume of the solid: from every corner of its surface, the distance
-/// along the inward normal (the sum of the unit normals of its faces there) to its surface.
+/// The least thickness of a volume of the solid: from every corner of its surface, along the
+/// inward normal of every face there, the distance to its surface (an estimate: corners only).
 pub fn least_thickness(g: &SolidGeometry, v: &GeoVolume) -> Option<f64> {
     let mut tris: Vec<[P3; 3]> = Vec::new();
-    let mut normal: HashMap<usize, P3> = HashMap::new();
+    let mut rays: Vec<(usize, P3)> = Vec::new();
     for r in &v.faces {
         let c = g.faces[r.face].center;
         let mut n = [0.0; 3];
@@ -1021,18 +1021,13 @@ pub fn least_thickness(g: &SolidGeometry, v: &GeoVolume) -> Option<f64> {
         let len = norm(n);
         if len > 0.0 {
             for &p in &r.corners {
-                let e = normal.entry(p).or_insert([0.0; 3]);
-                *e = add(*e, scale(n, 1.0 / len));
+                rays.push((p, scale(n, -1.0 / len)));
             }
         }
     }
     let mut least: Option<f64> = None;
-    for (p, n) in normal {
-        let len = norm(n);
-        if len == 0.0 {
-            continue;
-        }
-        if let Some(h) = thickness(g.points[p], scale(n, -1.0 / len), &tris) {
+    for (p, d) in rays {
+        if let Some(h) = thickness(g.points[p], d, &tris) {
             least = Some(least.map_or(h, |l: f64| l.min(h)));
         }
     }

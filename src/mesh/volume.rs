@@ -554,10 +554,82 @@ mod cube_tests {
     }
 }
 
+/// The thinnest material of the mesh, in mm: from every vertex (every k-th for large meshes,
+/// so that at most about 10⁸ ray–triangle tests run), along the inward normal of each triangle
+/// there, the distance to the first other triangle. An estimate, not a bound.
+fn thinnest(parts: &[Part]) -> Option<f64> {
+    let mut least: Option<f64> = None;
+    for p in parts {
+        let pos: Vec<[f64; 3]> = p.vertices.iter().map(|v| v.map(f64::from)).collect();
+        let tris: Vec<[[f64; 3]; 3]> = p
+            .triangles
+            .iter()
+            .map(|t| t.map(|v| pos[v as usize]))
+            .collect();
+        let step = ((pos.len() * tris.len()) as f64 / 1e8).ceil().max(1.0) as usize;
+        for (i, t) in p.triangles.iter().enumerate() {
+            let [a, b, c] = tris[i];
+            let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+            let w = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+            let n = [
+                u[1] * w[2] - u[2] * w[1],
+                u[2] * w[0] - u[0] * w[2],
+                u[0] * w[1] - u[1] * w[0],
+            ];
+            let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            if len == 0.0 {
+                continue;
+            }
+            let d = n.map(|x| -x / len);
+            for &v in t {
+                if v as usize % step != 0 {
+                    continue;
+                }
+                let o = pos[v as usize];
+                for (j, q) in tris.iter().enumerate() {
+                    if p.triangles[j].contains(&v) {
+                        continue;
+                    }
+                    if let Some(h) = ray_hit(o, d, q) {
+                        least = Some(least.map_or(h, |l: f64| l.min(h)));
+                    }
+                }
+            }
+        }
+    }
+    least
+}
+
+/// The distance along the unit direction `d` from `o` to the triangle `t`, if the ray meets it.
+fn ray_hit(o: [f64; 3], d: [f64; 3], t: &[[f64; 3]; 3]) -> Option<f64> {
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let (e1, e2) = (sub(t[1], t[0]), sub(t[2], t[0]));
+    let h = cross(d, e2);
+    let a = dot(e1, h);
+    if a.abs() < 1e-12 {
+        return None;
+    }
+    let s = sub(o, t[0]);
+    let u = dot(s, h) / a;
+    let q = cross(s, e1);
+    let w = dot(d, q) / a;
+    let dist = dot(e2, q) / a;
+    ((0.0..=1.0).contains(&u) && w >= 0.0 && u + w <= 1.0 && dist > 1e-9).then_some(dist)
+}
+
 /// Sizes of a volume's solid, in millimetres: from the checked mesh (enclosed volume, surface
 /// area, extent) and from the evaluated cells (smallest hole, thinnest ligament; both estimates,
 /// not bounds: a hole's width is its inscribed circle's diameter seen from its mean point, a
-/// ligament's the least distance across a level-n volume along its inward normals).
+/// ligament's the least distance through the material from a vertex along a triangle's inward
+/// normal).
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct VolumeSizes {
     /// Enclosed volume, mm³.
@@ -609,14 +681,7 @@ impl VolumeSolid {
             .fold(None, |acc: Option<f64>, x| {
                 Some(acc.map_or(x, |a| a.min(x)))
             });
-        let ligament = g
-            .volumes
-            .iter()
-            .filter_map(|v| crate::geometry::least_thickness(g, v))
-            .map(|h| h * mm)
-            .fold(None, |acc: Option<f64>, x| {
-                Some(acc.map_or(x, |a| a.min(x)))
-            });
+        let ligament = thinnest(&self.solid.parts);
         VolumeSizes {
             volume_mm3: volume6 / 6.0,
             area_mm2: area2 / 2.0,
