@@ -642,7 +642,32 @@ impl Builder {
                 }
             }
         }
-        let depth = PUSH * least.unwrap_or(1.0);
+        // Nor more than half the way from a point inside a face to the face's border: the
+        // walls pushed in from the holes of two faces that meet at an edge stay apart.
+        let mut border = f64::INFINITY;
+        for (k, r) in gv.faces.iter().enumerate() {
+            let mut on_border = std::collections::HashSet::new();
+            for &e in &r.edges {
+                for (a, b, _) in self.pieces(e) {
+                    on_border.insert(a);
+                    on_border.insert(b);
+                }
+            }
+            let poly: Vec<P3> = r.corners.iter().map(|&c| self.points[c]).collect();
+            for sr in &subs[k].subs {
+                for &p in &sr.corners {
+                    if on_border.contains(&p) {
+                        continue;
+                    }
+                    let q = self.points[p];
+                    for i in 0..poly.len() {
+                        border =
+                            border.min(segment_distance(q, poly[i], poly[(i + 1) % poly.len()]));
+                    }
+                }
+            }
+        }
+        let depth = (PUSH * least.unwrap_or(1.0)).min(0.5 * border);
         let inner_of = |me: &mut Builder, p: usize| -> P3 {
             let at = me.points[p];
             match normal.get(&p).copied().and_then(direction) {
@@ -872,6 +897,13 @@ fn check_glue(v: &Volume, faces: &[Reading], edges: &[GeoEdge]) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The distance from `q` to the segment `a b`.
+fn segment_distance(q: P3, a: P3, b: P3) -> f64 {
+    let ab = sub(b, a);
+    let t = (dot(sub(q, a), ab) / dot(ab, ab).max(1e-300)).clamp(0.0, 1.0);
+    norm(sub(q, add(a, scale(ab, t))))
 }
 
 /// The distance from `p` along the unit direction `d` to the first triangle it meets further
