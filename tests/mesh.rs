@@ -600,6 +600,19 @@ fn volume_solids_read_back_with_the_hand_derived_euler_characteristic() {
     assert_eq!((cube.genus, cube.euler), (5, -8));
 }
 
+/// cube-B2 at level 2, by hand: each of the 8 corner blocks (13 faces) is at level 2 a shell
+/// pierced by 13 holes, χ = 1 − 12 = −11; two blocks along a cube edge share two spoke faces,
+/// each an annulus at level 2 (χ = 0), joined along their radial edge (χ = −1); no three blocks
+/// share a point. χ = 8·(−11) − 12·(−1) = −76, connected with no void: genus 77, surface
+/// χ = −152.
+#[test]
+fn the_cube_at_level_two_reads_back_with_genus_77() {
+    let s = volume("cube-B2", 2);
+    s.embedded().unwrap();
+    assert_eq!((s.genus, s.euler), (77, -152));
+    check_written(&s.solid, &[-152], "cube-B2 level 2");
+}
+
 /// admesh on volume solids at level 1: one part, nothing to repair.
 #[test]
 #[ignore]

@@ -148,13 +148,14 @@ fn render_a_volume_writes_a_checked_mesh_and_pictures() {
 
 #[test]
 fn a_solid_that_folds_is_not_written() {
-    // At level 2 the default placement of the cube folds (two triangles cross): a mesh would
-    // not be the verified structure, so nothing is written and the verdict is negative.
+    // At level 2 the default placement of this tetrahedron with Cantor edges folds (two
+    // triangles cross): a mesh would not be the verified structure, so nothing is written and
+    // the verdict is negative.
     let d = scratch("fold");
-    let stl = d.join("c2.stl");
+    let stl = d.join("t2.stl");
     let (code, _, err) = lacuna(&[
         "render",
-        "cube-B2",
+        "tetrahedron C2 | B2 B2 B2 | A1 | B2 B2 | V1",
         "--level",
         "2",
         "--stl",
