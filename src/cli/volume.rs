@@ -313,7 +313,7 @@ pub(super) fn measure(
     let sizes = vs.sizes();
     let below = sizes.below(print.resolution);
     let embedded = vs.crossing.is_none();
-    let verified = embedded && !(print.strict && !below.is_empty());
+    let verified = embedded && (!print.strict || below.is_empty());
     if json {
         print_json(&serde_json::json!({
             "input": name,

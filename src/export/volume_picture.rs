@@ -200,9 +200,9 @@ pub fn write_volume_png<W: Write>(
                 }
             }
             let o = (y * s + x) * 4;
-            if cover > 0 {
-                for k in 0..3 {
-                    data[o + k] = (acc[k] / cover) as u8;
+            for k in 0..3 {
+                if let Some(v) = acc[k].checked_div(cover) {
+                    data[o + k] = v as u8;
                 }
             }
             data[o + 3] = (255 * cover / (ss * ss)) as u8;
@@ -221,7 +221,9 @@ pub fn write_volume_png<W: Write>(
 pub fn volume_svg(parts: &[Part], size: u32) -> String {
     let view = View::of(parts);
     let c = base();
-    let mut tris: Vec<(f64, [(f64, f64); 3], Rgb)> = Vec::new();
+    // (farthest depth, screen corners, shade) of each triangle facing the viewer.
+    type Flat = (f64, [(f64, f64); 3], Rgb);
+    let mut tris: Vec<Flat> = Vec::new();
     for t in triangles(parts) {
         let normal = cross(sub(t[1], t[0]), sub(t[2], t[0]));
         if dot(normal, view.into) >= 0.0 {

@@ -1091,6 +1091,30 @@ mod tests {
     use crate::topology::volume::parse_volume;
 
     #[test]
+    fn a_surface_that_is_no_shorthand_solid_has_no_default_placement() {
+        // The tetrahedron with its faces listed in another order is the same sphere, but its
+        // gluing is not the one `Solid::Tetrahedron` writes: no placement is guessed (E1210).
+        let mut v = parse_volume("tetrahedron B2 | B2 B2 B2 | A1 | B2 B2 | V1").unwrap();
+        assert!(default_placement(&v).is_some());
+        let order = [1usize, 0, 2, 3];
+        let new_index = |f: usize| order.iter().position(|&o| o == f).unwrap();
+        let faces = order.iter().map(|&f| v.surface.faces[f].clone()).collect();
+        let glue = order
+            .iter()
+            .map(|&f| {
+                v.surface.glue[f]
+                    .iter()
+                    .map(|&(g, j)| (new_index(g), j))
+                    .collect()
+            })
+            .collect();
+        v.surface = crate::topology::volume::Surface { faces, glue };
+        assert_eq!(v.surface.check(), Ok(()));
+        assert!(default_placement(&v).is_none());
+        assert_eq!(evaluate_volume(&v, 1).unwrap_err().code(), "E1210");
+    }
+
+    #[test]
     fn the_solids_are_placed_counter_clockwise_from_outside() {
         for name in [
             "cube",

@@ -529,28 +529,24 @@ mod cube_tests {
     fn the_cube_at_level_one_has_genus_five() {
         let s = solid_of("cube B2 | B2 B2 B2 | A1 | B2 B2 | V1", 1).unwrap();
         s.embedded().unwrap();
-        eprintln!("{}", s.summary());
         assert_eq!((s.euler, s.genus, s.solid.parts.len()), (-8, 5, 1));
     }
 
     #[test]
-    fn explore() {
-        for text in [
-            "cube B2 | B2 B2 B2 | A1 | B2 B2 | V1",
-            "tetrahedron B2 | B2 B2 B2 | A1 | B2 B2 | V1",
-            "cube B2 | B2 B2 B2 | A1 | B2 B2 | V2",
-            "octahedron B2 | B2 B2 B2 | A1 | B2 B2 | V2",
-            "prism-5 C2 | C2 B2 B2 | A1 | C2 B2 | V1",
-            "truncated-tetrahedron B2 | B2 B2 B2 | A1 | B2 B2 | V1",
-            "cube B2 | B2 B2 B2 | A1 | B2 B2 | V1 | 2",
-        ] {
-            for level in 1..=2 {
-                match solid_of(text, level).and_then(|s| s.embedded().cloned()) {
-                    Ok(s) => eprintln!("OK {text} L{level}: {}", s.summary()),
-                    Err(e) => eprintln!("ERR {text} L{level}: {} {e}", e.code()),
-                }
-            }
-        }
+    fn a_mesh_that_is_not_the_exact_solid_is_a_failed_verdict() {
+        // The cube's geometry checked against the tetrahedron's exact solid: 8 volumes built,
+        // 4 expected. Nothing is returned to write: E1040 (exit 1).
+        let cube = parse_volume("cube B2 | B2 B2 B2 | A1 | B2 B2 | V1").unwrap();
+        let tetra = parse_volume("tetrahedron B2 | B2 B2 B2 | A1 | B2 B2 | V1").unwrap();
+        let VolumeClosure::Closed(set) =
+            VolumeClosure::of(std::slice::from_ref(&tetra), &Limits::default()).unwrap()
+        else {
+            panic!("closes")
+        };
+        let e = volume_solid("t", &cube, &set, 1, 100.0).unwrap_err();
+        assert_eq!(e.code(), "E1040");
+        assert!(e.to_string().contains("8 volumes"), "{e}");
+        assert!(crate::mesh::is_failure_code(e.code()));
     }
 }
 
