@@ -551,7 +551,7 @@ mod cube_tests {
 }
 
 /// The thinnest material of the mesh, in mm: from every vertex (every k-th for large meshes,
-/// so that at most about 10⁸ ray–triangle tests run), along the inward normal of each triangle
+/// so that at most about 2·10⁷ ray–triangle tests run), along the inward normal of each triangle
 /// there, the distance to the first other triangle. An estimate, not a bound.
 fn thinnest(parts: &[Part]) -> Option<f64> {
     let mut least: Option<f64> = None;
@@ -562,7 +562,7 @@ fn thinnest(parts: &[Part]) -> Option<f64> {
             .iter()
             .map(|t| t.map(|v| pos[v as usize]))
             .collect();
-        let step = ((pos.len() * tris.len()) as f64 / 1e8).ceil().max(1.0) as usize;
+        let step = ((pos.len() * tris.len()) as f64 / 2e7).ceil().max(1.0) as usize;
         for (i, t) in p.triangles.iter().enumerate() {
             let [a, b, c] = tris[i];
             let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
