@@ -23,10 +23,12 @@
 //!   `c + λ(j − c)` (λ = [`LACUNA`]), the point of a gap with ends `a`, `b` is
 //!   `m + μ(c − m)` with `m = (a + b)/2` (μ = [`NOTCH`]).
 //! - Inside a volume: the inner corner at the end of the radial edge from a rim point `p` is
-//!   `p − κ h n`, where `n` is the outward normal of the volume's surface at `p` (the sum of the
-//!   unit normals of the faces of the volume that hold `p`), `h` the distance from `p` along `−n`
-//!   to the volume's surface (its thickness there) and κ = [`PUSH`]. Side faces join a rim edge
-//!   to its inner copy; the inner face is the loop of inner corners.
+//!   `p − δ n`, where `n` is the unit sum of the outward normals of the faces of the volume that
+//!   hold `p`, and δ one depth for the whole volume: κ = [`PUSH`] of its least thickness (from its
+//!   level-1 points along `−n` to its surface), and at most half the least distance from a point
+//!   inside one of its faces to that face's border (so that the walls pushed in from the holes of
+//!   two faces meeting at an edge stay apart). Side faces join a rim edge to its inner copy; the
+//!   inner face is the loop of inner corners.
 //! - A face's centre is the mean of its corners; a cap of a delayed volume is pushed into its
 //!   volume by [`PUSH`] of the way to the volume's centre, so that two caps over one hole part.
 
