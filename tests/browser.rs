@@ -524,3 +524,68 @@ fn the_console_check_can_fail() {
     assert_eq!(console.len(), 2, "{console:#?}");
     assert!(console[1].contains("Uncaught ReferenceError"));
 }
+
+/// The volume report's WebGL view in Chromium: the script logs nothing, marks the canvas ready,
+/// draws the solid (part of the canvas covered, in several shades), and a mouse drag turns it
+/// (the pixels change). The probe reads the canvas back with `readPixels` and writes its counts
+/// into the DOM, which `--dump-dom` prints.
+#[test]
+#[ignore = "needs Debian's chromium; .ci/run runs it with --ignored"]
+fn volume_report_webgl_view_in_chromium() {
+    let dir = scratch("volume-report");
+    let page = dir.join("report.html");
+    let (code, _, err) = common::lacuna(&[
+        "report",
+        "tetrahedron-B2",
+        "--level",
+        "1",
+        "--out",
+        page.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let html = std::fs::read_to_string(&page).unwrap();
+    let probe = r#"<script>
+window.addEventListener('load', () => {
+  const cv = document.getElementById('solid3d');
+  const gl = cv.getContext('webgl', {preserveDrawingBuffer: true});
+  const lines = ['ready ' + cv.getAttribute('data-ready') + ' ' + cv.getAttribute('data-error')];
+  const read = () => { const px = new Uint8Array(4 * cv.width * cv.height);
+    gl.readPixels(0, 0, cv.width, cv.height, gl.RGBA, gl.UNSIGNED_BYTE, px); return px; };
+  const a = read();
+  let cover = 0; const shades = new Set();
+  for (let i = 0; i < a.length; i += 4)
+    if (a[i] < 250 || a[i + 1] < 250 || a[i + 2] < 250) { cover++; shades.add(a[i] + ',' + a[i + 1] + ',' + a[i + 2]); }
+  lines.push('cover ' + cover + ' ' + cv.width * cv.height + ' ' + shades.size);
+  const at = (type, x, y) => new MouseEvent(type, {clientX: x, clientY: y, bubbles: true});
+  cv.dispatchEvent(at('mousedown', 100, 100));
+  window.dispatchEvent(at('mousemove', 160, 130));
+  window.dispatchEvent(at('mouseup', 160, 130));
+  const b = read();
+  let changed = 0;
+  for (let i = 0; i < a.length; i += 4) if (a[i] !== b[i] || a[i + 1] !== b[i + 1] || a[i + 2] !== b[i + 2]) changed++;
+  lines.push('changed ' + changed);
+  const out = document.createElement('pre'); out.id = 'webgl-probe'; out.textContent = lines.join('\n');
+  document.body.appendChild(out);
+});
+</script>"#;
+    let probed = dir.join("probed.html");
+    std::fs::write(&probed, html.replace("</body>", &format!("{probe}</body>"))).unwrap();
+    // Headless Chromium has no GPU: WebGL runs on SwiftShader, which it wants asked for.
+    let (dom, stderr) = browse(&probed, 900, &["--dump-dom", "--enable-unsafe-swiftshader"]);
+    // The probe's own `readPixels` makes the driver log a performance note; nothing else may
+    // be logged.
+    let console: Vec<&str> = console_lines(&stderr)
+        .into_iter()
+        .filter(|l| !l.contains("GPU stall due to ReadPixels"))
+        .collect();
+    assert!(console.is_empty(), "console: {console:?}");
+    let text = &dom[dom.find("id=\"webgl-probe\">").expect("the probe ran") + 17..];
+    let text = &text[..text.find("</pre>").unwrap()];
+    let lines: Vec<Vec<&str>> = text.lines().map(|l| l.split(' ').collect()).collect();
+    assert_eq!(lines[0], ["ready", "1", "null"], "{text}");
+    let n = |i: usize, k: usize| lines[i][k].parse::<u64>().unwrap();
+    let (cover, all, shades) = (n(1, 1), n(1, 2), n(1, 3));
+    assert!(cover * 20 > all && cover * 20 < all * 19, "{text}");
+    assert!(shades > 3, "{text}");
+    assert!(n(2, 1) > all / 100, "a drag turns the solid: {text}");
+}

@@ -24,6 +24,9 @@ pub(super) fn run(args: MeasureArgs, limits: &Limits) -> Result<ExitCode, Error>
         });
     }
     check_density_grid(density_grid, 0)?;
+    if let Some((name, v)) = lacuna::input::load_volume(&geo.input)? {
+        return volume::measure(&name, &v, &geo, &print, json, limits);
+    }
     if let Some((name, model)) = automaton::automaton_input(&geo)? {
         let p = automaton::prepare(&geo, name, model, limits, 2_000_000)?;
         return automaton::measure(&geo, p, digits, json, limits);

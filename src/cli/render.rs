@@ -71,6 +71,21 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         lacuna::mesh::check_size("--resolution", print.resolution).map_err(mesh_error)?;
     }
     let mut outputs = Outputs::check(&geo.inputs(), &wanted)?;
+    if let Some((name, v)) = lacuna::input::load_volume(&geo.input)? {
+        if json_out.is_some() || density.is_some() || write_template.is_some() {
+            return Err(Error::Usage(
+                "--json-out, --density and --write-template apply to faces; a volume is written with --svg, --png, --stl, --3mf or --obj".into(),
+            ));
+        }
+        let targets = volume::VolumeTargets {
+            svg: svg.as_deref(),
+            png: png.as_deref(),
+            mesh: &mesh,
+            size,
+            transparent: background == BackgroundArg::Transparent,
+        };
+        return volume::render(&name, &v, &geo, &print, targets, &mut outputs, limits);
+    }
     if let Some((name, model)) = automaton::automaton_input(&geo)? {
         if density.is_some() || write_template.is_some() {
             return Err(Error::Usage(

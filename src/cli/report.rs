@@ -11,6 +11,9 @@ pub(super) fn run(args: ReportArgs, limits: &Limits) -> Result<ExitCode, Error> 
     } = args;
     check_raster("--raster", raster, 8192)?;
     let mut outputs = Outputs::check(&geo.inputs(), &[("--out", &path)])?;
+    if let Some((name, v)) = lacuna::input::load_volume(&geo.input)? {
+        return volume::report(&name, &v, &geo, &path, &mut outputs, limits);
+    }
     if let Some((name, model)) = automaton::automaton_input(&geo)? {
         let p = automaton::prepare(&geo, name, model, limits, 100_000)?;
         return automaton::report(&geo, p, &path, &mut outputs, limits);

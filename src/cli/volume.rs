@@ -2,7 +2,7 @@
 //! [`lacuna::input::load_volume`] first and hand a volume to these functions.
 
 use super::*;
-use lacuna::topology::volume::{volume_counts, VolumeAssembly, VolumeClosure};
+use lacuna::topology::volume::{volume_counts, Volume, VolumeAssembly, VolumeClosure};
 
 /// `lacuna closure` of a volume.
 pub(super) fn closure(
@@ -219,6 +219,228 @@ pub(super) fn verify(
     Ok(if verified {
         ExitCode::SUCCESS
     } else {
+        ExitCode::from(EXIT_FAILED)
+    })
+}
+
+/// The default bound on the faces of the level-n solid drawn or printed (`--max-cells`).
+const MAX_SOLID_FACES: u64 = 400_000;
+
+/// The checked solid of a volume at `level` (THEORY §10, §11): the level and the exact number of
+/// faces are bounded before any geometry is built.
+fn checked_solid(
+    name: &str,
+    v: &Volume,
+    geo: &GeoArgs,
+    width: f64,
+    limits: &Limits,
+) -> Result<lacuna::mesh::VolumeSolid, Error> {
+    if u64::from(geo.level) > limits.max_level {
+        return Err(Error::limit(
+            "the level",
+            geo.level,
+            limits.max_level,
+            "--max-level",
+        ));
+    }
+    if !geo.params.is_empty()
+        || geo.corners.is_some()
+        || geo.template.is_some()
+        || !geo.goals.is_empty()
+    {
+        return Err(Error::Usage(
+            "--param, --corners, --template and --goal apply to faces; a volume is placed on its solid (see docs/VOLUMES.md)".into(),
+        ));
+    }
+    let set = closed(std::slice::from_ref(v), limits)?;
+    let exact = lacuna::topology::volume::solid_topology(&set, u64::from(geo.level))?;
+    let faces = &exact.last().expect("one row per level").faces;
+    let cap = geo.max_cells.unwrap_or(MAX_SOLID_FACES);
+    if *faces > cap.into() {
+        return Err(Error::limit(
+            "the number of faces of the level-n solid",
+            faces,
+            cap,
+            "--max-cells",
+        ));
+    }
+    lacuna::mesh::check_size("--width", width).map_err(mesh_error)?;
+    lacuna::mesh::volume_solid(name, v, &set, geo.level, width)
+}
+
+/// What `render` writes for a volume.
+pub(super) struct VolumeTargets<'a> {
+    pub(super) svg: Option<&'a std::path::Path>,
+    pub(super) png: Option<&'a std::path::Path>,
+    pub(super) mesh: &'a lacuna::mesh::Targets,
+    pub(super) size: usize,
+    pub(super) transparent: bool,
+}
+
+/// `lacuna render` of a volume: the mesh files only when the solid is embedded (no two triangles
+/// cross); the pictures in any case, with a warning when it folds.
+pub(super) fn render(
+    name: &str,
+    v: &Volume,
+    geo: &GeoArgs,
+    print: &PrintArgs,
+    t: VolumeTargets<'_>,
+    outputs: &mut Outputs,
+    limits: &Limits,
+) -> Result<ExitCode, Error> {
+    lacuna::mesh::check_size("--resolution", print.resolution).map_err(mesh_error)?;
+    let vs = checked_solid(name, v, geo, print.width, limits)?;
+    outputs.say(&vs.summary());
+    let sizes = vs.sizes();
+    outputs.say(&sizes.text(print.resolution));
+    let mut failed = false;
+    if t.mesh.any() {
+        vs.embedded()?;
+        if print.strict {
+            if let Some(b) = sizes.below(print.resolution).first() {
+                return Err(mesh_error(lacuna::mesh::MeshError::Resolution(b.clone())));
+            }
+        }
+    } else if let Some(m) = &vs.crossing {
+        eprintln!("warning: {m}");
+        failed = true;
+    }
+    let wrote = |o: &Outputs, p: &std::path::Path| o.say(&format!("wrote {}\n", p.display()));
+    let solid = &vs.solid;
+    if let Some(p) = &t.mesh.stl {
+        outputs.write(p, |w| match t.mesh.stl_ascii {
+            true => lacuna::mesh::stl::write_ascii(solid, w),
+            false => lacuna::mesh::stl::write_binary(solid, w),
+        })?;
+        wrote(outputs, p);
+    }
+    if let Some(p) = &t.mesh.threemf {
+        let mut zip = std::io::Cursor::new(Vec::new());
+        lacuna::mesh::threemf::write(solid, &mut zip).map_err(|e| Error::Write {
+            path: p.display().to_string(),
+            reason: e.to_string(),
+        })?;
+        outputs.write(p, |w| w.write_all(zip.get_ref()))?;
+        wrote(outputs, p);
+    }
+    if let Some(p) = &t.mesh.obj {
+        outputs.write(p, |w| lacuna::mesh::obj::write(solid, w))?;
+        wrote(outputs, p);
+    }
+    if let Some(p) = t.svg {
+        outputs.write(p, |w| {
+            lacuna::export::write_volume_svg(&solid.parts, 512, w)
+        })?;
+        wrote(outputs, p);
+    }
+    if let Some(p) = t.png {
+        outputs.write(p, |w| {
+            lacuna::export::write_volume_png(&solid.parts, t.size as u32, t.transparent, w)
+        })?;
+        wrote(outputs, p);
+    }
+    Ok(if failed {
+        ExitCode::from(EXIT_FAILED)
+    } else {
+        ExitCode::SUCCESS
+    })
+}
+
+/// `lacuna measure` of a volume: the exact topology of the level, the checked mesh, its sizes in
+/// mm and the printability against `--resolution`.
+pub(super) fn measure(
+    name: &str,
+    v: &Volume,
+    geo: &GeoArgs,
+    print: &PrintArgs,
+    json: bool,
+    limits: &Limits,
+) -> Result<ExitCode, Error> {
+    lacuna::mesh::check_size("--resolution", print.resolution).map_err(mesh_error)?;
+    let vs = checked_solid(name, v, geo, print.width, limits)?;
+    let sizes = vs.sizes();
+    let below = sizes.below(print.resolution);
+    let embedded = vs.crossing.is_none();
+    let verified = embedded && (!print.strict || below.is_empty());
+    if json {
+        print_json(&serde_json::json!({
+            "input": name,
+            "level": geo.level,
+            "verified": verified,
+            "solid": vs.exact,
+            "mesh": {
+                "parts": vs.solid.parts.len(),
+                "triangles": vs.solid.triangle_count(),
+                "surface_euler": vs.euler,
+                "surface_pieces": vs.surfaces,
+                "genus": vs.genus,
+                "embedded": embedded,
+                "crossing": vs.crossing,
+            },
+            "sizes": sizes,
+            "resolution_mm": print.resolution,
+            "below_resolution": below,
+        }));
+    } else {
+        out(&format!("{name}, level {}\n", geo.level));
+        out(&lacuna::export::solid_table(std::slice::from_ref(
+            &vs.exact,
+        )));
+        out(&vs.summary());
+        out(&sizes.text(print.resolution));
+        out(&format!(
+            "verdict: {}\n",
+            if verified { "VERIFIED" } else { "NOT VERIFIED" }
+        ));
+    }
+    Ok(if verified {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(EXIT_FAILED)
+    })
+}
+
+/// `lacuna report` of a volume: an HTML page with the closure, the exact solid, the checked mesh
+/// and its sizes, a WebGL view and an SVG projection.
+pub(super) fn report(
+    name: &str,
+    v: &Volume,
+    geo: &GeoArgs,
+    path: &std::path::Path,
+    outputs: &mut Outputs,
+    limits: &Limits,
+) -> Result<ExitCode, Error> {
+    let c = VolumeClosure::of(std::slice::from_ref(v), limits)?;
+    let closure_text = lacuna::export::volume_closure_text(name, &c);
+    let VolumeClosure::Closed(set) = c else {
+        return Err(Error::Usage(format!(
+            "the volume's closure did not close (see `lacuna closure {name}`)"
+        )));
+    };
+    let levels = u64::from(geo.level).max(3);
+    let solid = lacuna::topology::volume::solid_topology(&set, levels)?;
+    let vs = checked_solid(name, v, geo, lacuna::mesh::DEFAULT_WIDTH, limits)?;
+    let sizes = vs.sizes();
+    let mut check = vs.summary();
+    check += &sizes.text(lacuna::mesh::DEFAULT_RESOLUTION);
+    let html = lacuna::export::volume_report_html(
+        &format!("{name} — level {}", geo.level),
+        &[
+            ("Closure", closure_text),
+            (
+                "The level-n solid (exact; – where not derived)",
+                lacuna::export::solid_table(&solid),
+            ),
+            ("The mesh, checked against the exact topology", check),
+        ],
+        &vs.solid.parts,
+    );
+    outputs.write(path, |w| w.write_all(html.as_bytes()))?;
+    outputs.say(&format!("wrote {}\n", path.display()));
+    Ok(if vs.crossing.is_none() {
+        ExitCode::SUCCESS
+    } else {
+        eprintln!("warning: {}", vs.crossing.as_deref().unwrap_or(""));
         ExitCode::from(EXIT_FAILED)
     })
 }

@@ -17,6 +17,7 @@ pub(crate) mod palette;
 pub(crate) mod picture;
 pub(crate) mod plot;
 pub(crate) mod report;
+pub(crate) mod volume_picture;
 pub(crate) mod volume_report;
 pub(crate) mod writer;
 
@@ -36,6 +37,9 @@ pub use picture::{
 pub use report::{
     closure_json, closure_report, counts_json, counts_table, ratio_of, ratio_text, verify_report,
     VerifyReport,
+};
+pub use volume_picture::{
+    volume_report_html, volume_svg, volume_viewer, write_volume_png, write_volume_svg,
 };
 pub use volume_report::{
     solid_table, surface_summary, volume_closure_json, volume_closure_text, volume_counts_table,

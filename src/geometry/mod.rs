@@ -16,6 +16,7 @@ pub(crate) mod point;
 pub(crate) mod raster;
 pub(crate) mod template;
 pub(crate) mod template_file;
+pub(crate) mod volume;
 
 pub use automaton_eval::{
     approx as field_approx, exact_points, exact_polygons, Evaluator, Shape, ShapeKind,
@@ -34,4 +35,8 @@ pub use raster::{bounds, cell_count, rasterize};
 pub use template::{control_points, regular_polygon};
 pub use template_file::{
     format_exact, parse_template, write_template, ExactTemplate, TypeTemplate,
+};
+pub use volume::{
+    default_placement, evaluate_volume, hole_width, least_thickness, solid_corners, GeoEdge,
+    GeoFace, GeoVolume, Reading, SolidGeometry, P3,
 };

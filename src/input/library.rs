@@ -205,7 +205,7 @@ pub fn load_any(arg: &str) -> Result<Loaded> {
     if crate::input::volume_file::is_volume_text(&src.text) {
         return Err(Error::Io {
             path: name,
-            reason: "this is a volume: `closure`, `counts`, `ratio` and `verify` read volumes"
+            reason: "this is a volume: `closure`, `counts`, `ratio`, `verify`, `solve`, `render`, `measure` and `report` read volumes"
                 .into(),
         });
     }

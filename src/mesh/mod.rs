@@ -31,6 +31,7 @@ pub mod solid;
 pub mod stl;
 pub mod surface;
 pub mod threemf;
+pub mod volume;
 
 pub use check::{check_part, PartCheck};
 
@@ -55,6 +56,7 @@ pub use surface::{
     automaton_mesh, automaton_surface, exact_automaton_surface, thicken, AutomatonSolid, Surface,
     EXACT_LEAVES,
 };
+pub use volume::{self_intersection, volume_solid, VolumeSolid};
 
 /// Sizes of a printed solid, in millimetres.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -152,7 +154,7 @@ impl MeshError {
 
 /// Whether a diagnostic code is a verification failure of the mesh layer (exit 1).
 pub fn is_failure_code(code: &str) -> bool {
-    matches!(code, "E1040" | "E1041" | "E1042")
+    matches!(code, "E1040" | "E1041" | "E1042" | "E1211")
 }
 
 /// Checks that a size option is a positive finite number.

@@ -1,0 +1,10 @@
+#!/bin/sh
+# Writes the pictures of volumes in docs/images/ (issue #15, docs/VOLUMES.md), with the release
+# binary (or $LACUNA). Run from the repository's root.
+set -e
+L=${LACUNA:-target/release/lacuna}
+$L render cube-B2 --level 1 --png docs/images/cube-B2-level1.png --size 480
+$L render tetrahedron-B2 --level 1 --png docs/images/tetrahedron-B2-level1.png --size 480
+$L render 'octahedron B2 | B2 B2 B2 | A1 | B2 B2 | V2' --level 1 --png docs/images/octahedron-B2-V2-level1.png --size 480
+$L render cube-B2 --level 1 --svg docs/images/cube-B2-level1.svg
+$L render cube-B2 --level 2 --png docs/images/cube-B2-level2.png --size 480

@@ -1,0 +1,1147 @@
+//! The level-n solid of a volume in 3D (THEORY §10), for pictures and printable meshes.
+//!
+//! **What this is.** A default placement, not a solution of the BC-IFS constraint system: the
+//! start volume is a regular solid (its corners on known coordinates), and every step places
+//! the new points by simple rules on the points already placed. Floats live here only; every
+//! cell, incidence and count comes from the exact step ([`subdivide_volume`] and
+//! [`crate::topology::subdivision::subdivide`]), so the geometry cannot have other cells than the
+//! topology: the cells built here are counted and compared with
+//! [`crate::topology::volume::solid_topology`] by the mesh layer.
+//!
+//! **Cells.** Points, edges (straight segments between two points), faces (a loop of edges, with
+//! a centre point used to place their inner points and to triangulate them) and volumes (a
+//! canonical [`Volume`] with, for every face of its surface, the global face it reads and how).
+//! A face shared by two volumes is one global face, subdivided once: the points and edges born
+//! inside a face are keyed by what identifies them on either side (the junction point of a
+//! spoke, the boundary pieces of a sub-face, the end point of a gap), so the second reader finds
+//! what the first made. A reader that would make a different cell is refused.
+//!
+//! **Placement rules.**
+//! - An edge's pieces split its segment evenly; a `Cn` edge has n pieces and n − 1 gaps of equal
+//!   length.
+//! - Inside a face with centre `c`: the lacuna corner of the spoke at junction point `j` is
+//!   `c + λ(j − c)` (λ = [`LACUNA`]), the point of a gap with ends `a`, `b` is
+//!   `m + μ(c − m)` with `m = (a + b)/2` (μ = [`NOTCH`]).
+//! - Inside a volume: the inner corner at the end of the radial edge from a rim point `p` is
+//!   `p − δ n`, where `n` is the unit sum of the outward normals of the faces of the volume that
+//!   hold `p`, and δ one depth for the whole volume: κ = [`PUSH`] of its least thickness (from its
+//!   level-1 points along `−n` to its surface), and at most half the least distance from a point
+//!   inside one of its faces to that face's border (so that the walls pushed in from the holes of
+//!   two faces meeting at an edge stay apart). Side faces join a rim edge to its inner copy; the
+//!   inner face is the loop of inner corners.
+//! - A face's centre is the mean of its corners; a cap of a delayed volume is pushed into its
+//!   volume by [`PUSH`] of the way to the volume's centre, so that two caps over one hole part.
+
+use crate::error::{Diagnostic, Error, Result};
+use crate::topology::edge::{EdgeType, JunctionKind};
+use crate::topology::face::Face;
+use crate::topology::subdivision::{subdivide, Origin, Subdivision};
+use crate::topology::volume::{subdivide_volume, Solid, Volume, VolumeSubdivision};
+use std::collections::HashMap;
+use std::rc::Rc;
+
+/// A point in space.
+pub type P3 = [f64; 3];
+
+/// λ: where a lacuna corner lies between the face centre and its spoke's junction point.
+pub const LACUNA: f64 = 0.5;
+/// μ: how far a gap's point lies from the gap towards the face centre.
+pub const NOTCH: f64 = 0.25;
+/// κ: the fraction of the local thickness by which a rim point is pushed into its volume.
+pub const PUSH: f64 = 0.2;
+
+/// An edge: a straight segment from point `a` to point `b`.
+#[derive(Clone, Debug)]
+pub struct GeoEdge {
+    /// Start point.
+    pub a: usize,
+    /// End point.
+    pub b: usize,
+    /// Its type.
+    pub ty: EdgeType,
+}
+
+/// A face: a loop of edges as its first reader reads it.
+#[derive(Clone, Debug)]
+pub struct GeoFace {
+    /// Its type as read by its first reader.
+    pub face: Face,
+    /// Corner `i` is where side `i` starts.
+    pub corners: Vec<usize>,
+    /// The centre: inner points are placed towards it, and the face is triangulated as a fan
+    /// around it.
+    pub center: P3,
+}
+
+/// One face of a volume's surface as the volume reads it (counter-clockwise from outside).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Reading {
+    /// The global face.
+    pub face: usize,
+    /// Corner `i`: the start of side `i`.
+    pub corners: Vec<usize>,
+    /// The edge of side `i`.
+    pub edges: Vec<usize>,
+    /// Whether side `i` runs along its edge (from `a` to `b`).
+    pub forward: Vec<bool>,
+}
+
+/// A volume of the evaluated solid.
+#[derive(Clone, Debug)]
+pub struct GeoVolume {
+    /// The volume (its surface in the form the step gives it).
+    pub volume: Volume,
+    /// `faces[k]` reads face `k` of `volume.surface`.
+    pub faces: Vec<Reading>,
+}
+
+/// The solid of one level: every cell with its geometry.
+#[derive(Clone, Debug)]
+pub struct SolidGeometry {
+    /// The level.
+    pub level: u32,
+    /// Every point made so far (cells of this level and of the levels before).
+    pub points: Vec<P3>,
+    /// Every edge made so far.
+    pub edges: Vec<GeoEdge>,
+    /// Every face made so far.
+    pub faces: Vec<GeoFace>,
+    /// The volumes of this level.
+    pub volumes: Vec<GeoVolume>,
+    /// The holes the last step opened, as loops of points: the lacuna of every face it
+    /// subdivided (its lacuna corners) and every gap of a `Cn` edge (its two ends).
+    pub holes: Vec<Vec<usize>>,
+}
+
+impl SolidGeometry {
+    /// The cells of this level: (volumes, faces, edges, corners), each counted once.
+    pub fn cell_counts(&self) -> (usize, usize, usize, usize) {
+        let mut faces = std::collections::HashSet::new();
+        let mut edges = std::collections::HashSet::new();
+        let mut corners = std::collections::HashSet::new();
+        for v in &self.volumes {
+            for r in &v.faces {
+                faces.insert(r.face);
+                edges.extend(r.edges.iter().copied());
+                corners.extend(r.corners.iter().copied());
+            }
+        }
+        (self.volumes.len(), faces.len(), edges.len(), corners.len())
+    }
+
+    /// For every face of this level, the volumes that hold it, with the reading of each.
+    pub fn face_readers(&self) -> HashMap<usize, Vec<(usize, usize)>> {
+        let mut out: HashMap<usize, Vec<(usize, usize)>> = HashMap::new();
+        for (vi, v) in self.volumes.iter().enumerate() {
+            for (k, r) in v.faces.iter().enumerate() {
+                out.entry(r.face).or_default().push((vi, k));
+            }
+        }
+        out
+    }
+}
+
+fn geometry_error(code: &'static str, message: String) -> Error {
+    Error::Syntax(Box::new(Diagnostic {
+        code,
+        message,
+        span: None,
+        source: None,
+    }))
+}
+
+fn add(a: P3, b: P3) -> P3 {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+fn sub(a: P3, b: P3) -> P3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn scale(a: P3, s: f64) -> P3 {
+    [a[0] * s, a[1] * s, a[2] * s]
+}
+fn lerp(a: P3, b: P3, t: f64) -> P3 {
+    add(a, scale(sub(b, a), t))
+}
+fn dot(a: P3, b: P3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn cross(a: P3, b: P3) -> P3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+fn norm(a: P3) -> f64 {
+    dot(a, a).sqrt()
+}
+fn mean(points: impl Iterator<Item = P3>) -> P3 {
+    let (mut s, mut n) = ([0.0; 3], 0.0f64);
+    for p in points {
+        s = add(s, p);
+        n += 1.0;
+    }
+    scale(s, 1.0 / n.max(1.0))
+}
+
+/// The corners of a solid, indexed as [`Solid::polygons`] numbers them: regular solids with
+/// their centre at the origin and edges of comparable length.
+pub fn solid_corners(solid: Solid) -> Vec<P3> {
+    match solid {
+        Solid::Cube => (0..8)
+            .map(|i| {
+                let b = |k: usize| if i >> k & 1 == 1 { 1.0 } else { -1.0 };
+                [b(0), b(1), b(2)]
+            })
+            .collect(),
+        Solid::Tetrahedron => vec![
+            [1.0, 1.0, 1.0],
+            [1.0, -1.0, -1.0],
+            [-1.0, 1.0, -1.0],
+            [-1.0, -1.0, 1.0],
+        ],
+        Solid::Octahedron => vec![
+            [1.5, 0.0, 0.0],
+            [-1.5, 0.0, 0.0],
+            [0.0, 1.5, 0.0],
+            [0.0, -1.5, 0.0],
+            [0.0, 0.0, 1.5],
+            [0.0, 0.0, -1.5],
+        ],
+        Solid::Prism(n) => {
+            let h = (std::f64::consts::PI / n as f64).sin();
+            let ring = |z: f64| {
+                (0..n).map(move |i| {
+                    let a = 2.0 * std::f64::consts::PI * i as f64 / n as f64;
+                    [a.cos(), a.sin(), z]
+                })
+            };
+            ring(-h).chain(ring(h)).collect()
+        }
+        Solid::TruncatedTetrahedron => {
+            let t = solid_corners(Solid::Tetrahedron);
+            (0..16)
+                .map(|id| {
+                    let (v, w) = (id / 4, id % 4);
+                    if v == w {
+                        [0.0; 3]
+                    } else {
+                        lerp(t[v], t[w], 1.0 / 3.0)
+                    }
+                })
+                .collect()
+        }
+    }
+}
+
+/// The solids whose surface a volume may have been written with.
+fn candidates() -> impl Iterator<Item = Solid> {
+    [
+        Solid::Cube,
+        Solid::Tetrahedron,
+        Solid::Octahedron,
+        Solid::TruncatedTetrahedron,
+    ]
+    .into_iter()
+    .chain((3..=64).map(Solid::Prism))
+}
+
+/// The default placement of a volume's surface: the solid it was written as (its gluing is that
+/// solid's), with the solid's corners. `None` when the surface is no shorthand solid.
+pub fn default_placement(v: &Volume) -> Option<(Solid, Vec<Vec<P3>>)> {
+    let first = v.surface.faces.first()?;
+    for s in candidates() {
+        let polys = s.polygons();
+        if polys.len() != v.surface.faces.len() {
+            continue;
+        }
+        if s.surface_with(|_| first.boundary[0], first).glue != v.surface.glue {
+            continue;
+        }
+        let mut corners = solid_corners(s);
+        // Counter-clockwise from outside: the enclosed volume is positive; mirror otherwise.
+        let vol: f64 = polys
+            .iter()
+            .map(|p| {
+                (1..p.len() - 1)
+                    .map(|i| dot(corners[p[0]], cross(corners[p[i]], corners[p[i + 1]])))
+                    .sum::<f64>()
+            })
+            .sum();
+        if vol < 0.0 {
+            for c in &mut corners {
+                c[0] = -c[0];
+            }
+        }
+        let placed = polys
+            .iter()
+            .map(|p| p.iter().map(|&i| corners[i]).collect())
+            .collect();
+        return Some((s, placed));
+    }
+    None
+}
+
+/// The pieces of an edge, in its direction: (start point, end point, piece edge).
+type Pieces = Vec<(usize, usize, usize)>;
+
+/// One face of a volume as the step reads it: its sub-faces in the form the step builds them.
+struct SubReadings {
+    /// `subs[k]`: sub-face `k` of the canonical subdivision, read from its canonical start.
+    subs: Vec<Reading>,
+}
+
+/// Builds the solid level by level.
+struct Builder {
+    points: Vec<P3>,
+    edges: Vec<GeoEdge>,
+    faces: Vec<GeoFace>,
+    pieces: HashMap<usize, Pieces>,
+    gap_point: HashMap<(usize, usize), usize>,
+    spoke: HashMap<(usize, usize), (usize, usize)>,
+    lacuna: HashMap<(usize, usize), usize>,
+    gap_side: HashMap<(usize, usize), usize>,
+    subface: HashMap<(usize, usize), usize>,
+    side: HashMap<(usize, usize), usize>,
+    inner_edge: HashMap<usize, usize>,
+    steps: HashMap<Volume, Rc<VolumeSubdivision>>,
+    face_steps: HashMap<Face, Rc<Subdivision>>,
+    holes: Vec<Vec<usize>>,
+}
+
+impl Builder {
+    fn point(&mut self, p: P3) -> usize {
+        self.points.push(p);
+        self.points.len() - 1
+    }
+
+    fn edge(&mut self, a: usize, b: usize, ty: EdgeType) -> usize {
+        self.edges.push(GeoEdge { a, b, ty });
+        self.edges.len() - 1
+    }
+
+    fn face(&mut self, face: Face, corners: Vec<usize>, center: Option<P3>) -> usize {
+        let center = center.unwrap_or_else(|| mean(corners.iter().map(|&c| self.points[c])));
+        self.faces.push(GeoFace {
+            face,
+            corners,
+            center,
+        });
+        self.faces.len() - 1
+    }
+
+    /// The pieces of edge `e` in its direction.
+    fn pieces(&mut self, e: usize) -> Pieces {
+        if let Some(p) = self.pieces.get(&e) {
+            return p.clone();
+        }
+        let GeoEdge { a, b, ty } = self.edges[e].clone();
+        let n = ty.piece_count() as usize;
+        let (pa, pb) = (self.points[a], self.points[b]);
+        let mut out = Vec::with_capacity(n);
+        match ty.inner_junction() {
+            Some(JunctionKind::Gap) => {
+                // n pieces and n − 1 gaps of equal length.
+                let len = (2 * n - 1) as f64;
+                let mut start = a;
+                for q in 0..n {
+                    let end = if q + 1 == n {
+                        b
+                    } else {
+                        self.point(lerp(pa, pb, (2 * q + 1) as f64 / len))
+                    };
+                    let id = self.edge(start, end, ty.piece());
+                    out.push((start, end, id));
+                    if q + 1 < n {
+                        start = self.point(lerp(pa, pb, (2 * q + 2) as f64 / len));
+                        self.holes.push(vec![end, start]);
+                    }
+                }
+            }
+            _ => {
+                let mut start = a;
+                for q in 0..n {
+                    let end = if q + 1 == n {
+                        b
+                    } else {
+                        self.point(lerp(pa, pb, (q + 1) as f64 / n as f64))
+                    };
+                    let id = self.edge(start, end, ty.piece());
+                    out.push((start, end, id));
+                    start = end;
+                }
+            }
+        }
+        self.pieces.insert(e, out.clone());
+        out
+    }
+
+    fn face_step(&mut self, f: &Face) -> Result<Rc<Subdivision>> {
+        if let Some(s) = self.face_steps.get(f) {
+            return Ok(s.clone());
+        }
+        let s = Rc::new(subdivide(f)?);
+        self.face_steps.insert(f.clone(), s.clone());
+        Ok(s)
+    }
+
+    /// The sub-faces of a face as a volume reads it (`face` its type in that reading).
+    fn subdivide_reading(&mut self, face: &Face, r: &Reading) -> Result<SubReadings> {
+        let g = r.face;
+        let (canon, rot) = face.canonical();
+        let sub = self.face_step(&canon)?;
+        let n = face.boundary.len();
+        // Piece q of canonical edge e, in the reading's direction: (start, end, edge, forward).
+        let mut piece_of: HashMap<(usize, usize), (usize, usize, usize, bool)> = HashMap::new();
+        for e in 0..n {
+            let side = (e + rot) % n;
+            let edge = r.edges[side];
+            let list = self.pieces(edge);
+            let count = list.len();
+            for q in 0..count {
+                let item = if r.forward[side] {
+                    let (s, t, id) = list[q];
+                    (s, t, id, true)
+                } else {
+                    let (s, t, id) = list[count - 1 - q];
+                    (t, s, id, false)
+                };
+                piece_of.insert((e, q), item);
+            }
+        }
+        // The flattened pieces with their junctions.
+        let mut flat: Vec<(usize, usize)> = Vec::new();
+        for (e, ty) in canon.boundary.iter().enumerate() {
+            for q in 0..ty.piece_count() as usize {
+                flat.push((e, q));
+            }
+        }
+        let center = self.faces[g].center;
+        // The point of the gap after flattened piece m (kept by the gap's first end).
+        let gap_point = |me: &mut Builder, m: usize| -> usize {
+            let (_, end, _, _) = piece_of[&flat[m]];
+            let (start, _, _, _) = piece_of[&flat[(m + 1) % flat.len()]];
+            let key = (g, end.min(start));
+            if let Some(&p) = me.gap_point.get(&key) {
+                return p;
+            }
+            let mid = lerp(me.points[end], me.points[start], 0.5);
+            let p = me.point(lerp(mid, center, NOTCH));
+            me.gap_point.insert(key, p);
+            p
+        };
+        let junction_point = |me: &mut Builder, m: usize| -> usize {
+            match sub.junctions[m].kind {
+                JunctionKind::Gap => gap_point(me, m),
+                _ => piece_of[&flat[m]].1,
+            }
+        };
+        // Spokes: (edge from the junction point to the lacuna corner, lacuna corner).
+        let mut spokes = Vec::with_capacity(sub.spokes.len());
+        for &m in &sub.spokes {
+            let j = junction_point(self, m);
+            let key = (g, j);
+            let s = match self.spoke.get(&key) {
+                Some(&s) => s,
+                None => {
+                    let l = self.point(lerp(center, self.points[j], LACUNA));
+                    let e = self.edge(j, l, canon.params.ea);
+                    self.spoke.insert(key, (e, l));
+                    (e, l)
+                }
+            };
+            spokes.push((j, s.0, s.1));
+        }
+        if spokes.len() > 1 && !self.spoke.contains_key(&(g, usize::MAX)) {
+            // Once per face: its lacuna (the mark is a key no point has).
+            self.spoke.insert((g, usize::MAX), (0, 0));
+            self.holes.push(spokes.iter().map(|s| s.2).collect());
+        }
+        let mut subs = Vec::with_capacity(sub.subfaces.len());
+        for s in &sub.subfaces {
+            // The sub-face's key: its least piece edge.
+            let subkey = s
+                .origins
+                .iter()
+                .filter_map(|o| match *o {
+                    Origin::Piece { edge, piece } => Some(piece_of[&(edge, piece)].2),
+                    _ => None,
+                })
+                .min()
+                .ok_or_else(|| {
+                    geometry_error(
+                        "E1211",
+                        format!("a sub-face of `{canon}` has no piece of the face's boundary"),
+                    )
+                })?;
+            let len = s.origins.len();
+            let mut corners = Vec::with_capacity(len);
+            let mut edges = Vec::with_capacity(len);
+            let mut forward = Vec::with_capacity(len);
+            for (p, o) in s.origins.iter().enumerate() {
+                let (start, edge, fwd) = match *o {
+                    Origin::Piece { edge, piece } => {
+                        let (a, _, id, f) = piece_of[&(edge, piece)];
+                        (a, id, f)
+                    }
+                    Origin::Spoke { spoke, inward } => {
+                        let (j, e, l) = spokes[spoke];
+                        if inward {
+                            (j, e, true)
+                        } else {
+                            (l, e, false)
+                        }
+                    }
+                    Origin::Lacuna { side } => {
+                        let from = spokes[(side + 1) % spokes.len()].2;
+                        let to = spokes[side].2;
+                        match self.lacuna.get(&(g, subkey)) {
+                            Some(&e) => (from, e, false),
+                            None => {
+                                let e = self.edge(from, to, canon.params.el);
+                                self.lacuna.insert((g, subkey), e);
+                                (from, e, true)
+                            }
+                        }
+                    }
+                    Origin::GapSide { edge, gap, after } => {
+                        // Flattened index of piece `gap` of canonical edge `edge`.
+                        let m = flat
+                            .iter()
+                            .position(|&x| x == (edge, gap))
+                            .expect("the gap's piece is on the boundary");
+                        let gp = gap_point(self, m);
+                        let end = if after {
+                            piece_of[&flat[(m + 1) % flat.len()]].0
+                        } else {
+                            piece_of[&flat[m]].1
+                        };
+                        let e = match self.gap_side.get(&(g, end)) {
+                            Some(&e) => e,
+                            None => {
+                                let e = self.edge(end, gp, canon.params.ec);
+                                self.gap_side.insert((g, end), e);
+                                e
+                            }
+                        };
+                        if after {
+                            (gp, e, false)
+                        } else {
+                            (end, e, true)
+                        }
+                    }
+                };
+                corners.push(start);
+                edges.push(edge);
+                forward.push(fwd);
+                let _ = p;
+            }
+            // The sides must chain: each ends where the next starts.
+            for p in 0..len {
+                let e = &self.edges[edges[p]];
+                let end = if forward[p] { e.b } else { e.a };
+                if end != corners[(p + 1) % len] {
+                    return Err(geometry_error(
+                        "E1211",
+                        format!("the sub-faces of `{canon}` do not close as read from this side"),
+                    ));
+                }
+            }
+            let id = match self.subface.get(&(g, subkey)) {
+                Some(&id) => {
+                    let mut mine = corners.clone();
+                    let mut theirs = self.faces[id].corners.clone();
+                    mine.sort_unstable();
+                    theirs.sort_unstable();
+                    if mine != theirs {
+                        return Err(geometry_error(
+                            "E1211",
+                            format!(
+                                "face `{canon}` is subdivided differently from its two sides: the geometry needs one subdivision of a shared face"
+                            ),
+                        ));
+                    }
+                    id
+                }
+                None => {
+                    let id = self.face(s.face.clone(), corners.clone(), None);
+                    self.subface.insert((g, subkey), id);
+                    id
+                }
+            };
+            subs.push(Reading {
+                face: id,
+                corners,
+                edges,
+                forward,
+            });
+        }
+        Ok(SubReadings { subs })
+    }
+
+    fn volume_step(&mut self, v: &Volume) -> Result<Rc<VolumeSubdivision>> {
+        if let Some(s) = self.steps.get(v) {
+            return Ok(s.clone());
+        }
+        let s = Rc::new(subdivide_volume(v)?);
+        self.steps.insert(v.clone(), s.clone());
+        Ok(s)
+    }
+
+    /// The sub-volumes of one volume (number `vid` of its level, for keys).
+    fn step(&mut self, vid: usize, gv: &GeoVolume) -> Result<Vec<GeoVolume>> {
+        let v = &gv.volume;
+        let step = self.volume_step(v)?;
+        let mut subs = Vec::with_capacity(gv.faces.len());
+        for (k, r) in gv.faces.iter().enumerate() {
+            subs.push(self.subdivide_reading(&v.surface.faces[k], r)?);
+        }
+        let vcenter = mean(
+            gv.faces
+                .iter()
+                .flat_map(|r| r.corners.iter())
+                .map(|&c| self.points[c]),
+        );
+        // Outward normals at the level-1 points, from the faces of the volume that hold them.
+        let mut normal: HashMap<usize, P3> = HashMap::new();
+        let mut tris: Vec<[P3; 3]> = Vec::new();
+        for (k, r) in gv.faces.iter().enumerate() {
+            let c = self.faces[r.face].center;
+            let mut n = [0.0; 3];
+            for i in 0..r.corners.len() {
+                let a = self.points[r.corners[i]];
+                let b = self.points[r.corners[(i + 1) % r.corners.len()]];
+                n = add(n, cross(sub(a, c), sub(b, c)));
+                tris.push([c, a, b]);
+            }
+            let len = norm(n);
+            if len > 0.0 {
+                let n = scale(n, 1.0 / len);
+                let mut seen = std::collections::HashSet::new();
+                for s in &subs[k].subs {
+                    for &p in &s.corners {
+                        if seen.insert(p) {
+                            let e = normal.entry(p).or_insert([0.0; 3]);
+                            *e = add(*e, n);
+                        }
+                    }
+                }
+            }
+        }
+        // One depth for the whole volume: a fraction of its least thickness, so that the inner
+        // copy of its surface is an offset at constant distance.
+        let direction = |n: P3| {
+            let len = norm(n);
+            (len > 0.0).then(|| scale(n, -1.0 / len))
+        };
+        let mut least: Option<f64> = None;
+        let mut keys: Vec<&usize> = normal.keys().collect();
+        keys.sort();
+        for p in keys {
+            if let Some(d) = direction(normal[p]) {
+                if let Some(h) = thickness(self.points[*p], d, &tris) {
+                    least = Some(least.map_or(h, |l: f64| l.min(h)));
+                }
+            }
+        }
+        // Nor more than half the way from a point inside a face to the face's border: the
+        // walls pushed in from the holes of two faces that meet at an edge stay apart.
+        let mut border = f64::INFINITY;
+        for (k, r) in gv.faces.iter().enumerate() {
+            let mut on_border = std::collections::HashSet::new();
+            for &e in &r.edges {
+                for (a, b, _) in self.pieces(e) {
+                    on_border.insert(a);
+                    on_border.insert(b);
+                }
+            }
+            let poly: Vec<P3> = r.corners.iter().map(|&c| self.points[c]).collect();
+            for sr in &subs[k].subs {
+                for &p in &sr.corners {
+                    if on_border.contains(&p) {
+                        continue;
+                    }
+                    let q = self.points[p];
+                    for i in 0..poly.len() {
+                        border =
+                            border.min(segment_distance(q, poly[i], poly[(i + 1) % poly.len()]));
+                    }
+                }
+            }
+        }
+        let depth = (PUSH * least.unwrap_or(1.0)).min(0.5 * border);
+        let inner_of = |me: &mut Builder, p: usize| -> P3 {
+            let at = me.points[p];
+            match normal.get(&p).copied().and_then(direction) {
+                Some(d) => add(at, scale(d, depth)),
+                None => lerp(at, vcenter, PUSH),
+            }
+        };
+        let mut out = Vec::with_capacity(step.subvolumes.len());
+        if v.delay >= 2 {
+            let s = &step.subvolumes[0];
+            let mut faces: Vec<Option<Reading>> = vec![None; s.volume.surface.faces.len()];
+            for &((f, k), placed) in &s.subfaces {
+                faces[placed.face] = Some(rotated(
+                    &subs[f].subs[k],
+                    surface_rotation(&s.volume, placed),
+                ));
+            }
+            let faces = self.fill(&s.volume, faces, Some(vcenter))?;
+            out.push(GeoVolume {
+                volume: s.volume.clone(),
+                faces,
+            });
+            return Ok(out);
+        }
+        // Radial slots: slot (s, i) is the radial edge at the start of rim side i of sub-volume
+        // s; the sub-volumes of a fan share it through their spoke faces.
+        let offsets: Vec<usize> = step
+            .subvolumes
+            .iter()
+            .scan(0usize, |acc, s| {
+                let o = *acc;
+                *acc += s.sides.len();
+                Some(o)
+            })
+            .collect();
+        let slots =
+            offsets.last().map_or(0, |&o| o) + step.subvolumes.last().map_or(0, |s| s.sides.len());
+        let mut dsu = crate::topology::component::Dsu::new(slots);
+        let rim = |s: usize, i: usize| -> (usize, bool, usize, usize) {
+            let ((f, k, p), _) = step.subvolumes[s].sides[i];
+            let r = &subs[f].subs[k];
+            let e = r.edges[p];
+            (
+                e,
+                r.forward[p],
+                r.corners[p],
+                r.corners[(p + 1) % r.corners.len()],
+            )
+        };
+        let mut over: HashMap<usize, (usize, usize)> = HashMap::new();
+        for (s, sv) in step.subvolumes.iter().enumerate() {
+            let m = sv.sides.len();
+            for i in 0..m {
+                let (e, _, _, _) = rim(s, i);
+                if let Some(&(s2, i2)) = over.get(&e) {
+                    let m2 = step.subvolumes[s2].sides.len();
+                    dsu.union(offsets[s] + i, offsets[s2] + (i2 + 1) % m2);
+                    dsu.union(offsets[s] + (i + 1) % m, offsets[s2] + i2);
+                } else {
+                    over.insert(e, (s, i));
+                }
+            }
+        }
+        let mut radial: HashMap<usize, (usize, usize)> = HashMap::new();
+        let mut slot_edge = |me: &mut Builder, s: usize, i: usize| -> (usize, usize) {
+            let root = dsu.find(offsets[s] + i);
+            if let Some(&x) = radial.get(&root) {
+                return x;
+            }
+            let (_, _, a, _) = rim(s, i);
+            let inner = inner_of(me, a);
+            let ia = me.point(inner);
+            let e = me.edge(a, ia, v.radial);
+            radial.insert(root, (e, ia));
+            (e, ia)
+        };
+        for (s, sv) in step.subvolumes.iter().enumerate() {
+            let mut faces: Vec<Option<Reading>> = vec![None; sv.volume.surface.faces.len()];
+            for &((f, k), placed) in &sv.subfaces {
+                faces[placed.face] = Some(rotated(
+                    &subs[f].subs[k],
+                    surface_rotation(&sv.volume, placed),
+                ));
+            }
+            let m = sv.sides.len();
+            for (i, &(_, placed)) in sv.sides.iter().enumerate() {
+                let (e, fwd, a, b) = rim(s, i);
+                let (ra, ia) = slot_edge(self, s, i);
+                let (rb, ib) = slot_edge(self, s, (i + 1) % m);
+                let x = self.edges[e].ty;
+                let (id, created) = match self.side.get(&(vid, e)) {
+                    Some(&id) => (id, false),
+                    None => {
+                        let face = v.inner_face(vec![x, v.radial, v.inner, v.radial]);
+                        let id = self.face(face, vec![b, a, ia, ib], None);
+                        self.side.insert((vid, e), id);
+                        (id, true)
+                    }
+                };
+                let ei = match self.inner_edge.get(&id) {
+                    Some(&ei) => ei,
+                    None => {
+                        let ei = self.edge(ia, ib, v.inner);
+                        self.inner_edge.insert(id, ei);
+                        ei
+                    }
+                };
+                let built = Reading {
+                    face: id,
+                    corners: vec![b, a, ia, ib],
+                    edges: vec![e, ra, ei, rb],
+                    forward: vec![!fwd, true, created, false],
+                };
+                faces[placed.face] = Some(rotated(&built, surface_rotation(&sv.volume, placed)));
+            }
+            let faces = self.fill(&sv.volume, faces, None)?;
+            out.push(GeoVolume {
+                volume: sv.volume.clone(),
+                faces,
+            });
+        }
+        Ok(out)
+    }
+
+    /// Completes the readings of a sub-volume: every face not placed (the inner face, or the caps
+    /// of a delayed volume) runs against the placed faces it is glued to. A cap's centre is
+    /// pushed towards `push_to`.
+    fn fill(
+        &mut self,
+        v: &Volume,
+        mut faces: Vec<Option<Reading>>,
+        push_to: Option<P3>,
+    ) -> Result<Vec<Reading>> {
+        let surface = &v.surface;
+        for u in 0..faces.len() {
+            if faces[u].is_some() {
+                continue;
+            }
+            let len = surface.faces[u].boundary.len();
+            let mut corners = Vec::with_capacity(len);
+            let mut edges = Vec::with_capacity(len);
+            let mut forward = Vec::with_capacity(len);
+            for i in 0..len {
+                let (h, j) = surface.glue[u][i];
+                let Some(other) = faces[h].as_ref() else {
+                    return Err(geometry_error(
+                        "E1211",
+                        "a face made inside a volume is glued to another such face".into(),
+                    ));
+                };
+                let lh = other.corners.len();
+                corners.push(other.corners[(j + 1) % lh]);
+                edges.push(other.edges[j]);
+                forward.push(!other.forward[j]);
+            }
+            let center = push_to.map(|c| {
+                let m = mean(corners.iter().map(|&p| self.points[p]));
+                lerp(m, c, PUSH)
+            });
+            let id = self.face(surface.faces[u].clone(), corners.clone(), center);
+            faces[u] = Some(Reading {
+                face: id,
+                corners,
+                edges,
+                forward,
+            });
+        }
+        let faces: Vec<Reading> = faces.into_iter().map(|f| f.expect("filled")).collect();
+        check_glue(v, &faces, &self.edges)?;
+        Ok(faces)
+    }
+}
+
+/// The rotation from a face as built to the frame of the sub-volume's surface: [`Placed`] gives
+/// the rotation to the canonical form of the face's type, which is the surface's frame turned by
+/// the least rotation of the boundary the surface holds.
+///
+/// [`Placed`]: crate::topology::volume::Placed
+fn surface_rotation(child: &Volume, placed: crate::topology::volume::Placed) -> usize {
+    let b = &child.surface.faces[placed.face].boundary;
+    let len = b.len();
+    (placed.rotation + len - crate::topology::face::least_rotation(b) % len) % len
+}
+
+/// The reading of a face rotated left by `r` (side `i` of the result is side `i + r`).
+fn rotated(r: &Reading, by: usize) -> Reading {
+    let rot = |v: &[usize]| {
+        let mut v = v.to_vec();
+        let len = v.len().max(1);
+        v.rotate_left(by % len);
+        v
+    };
+    let mut forward = r.forward.clone();
+    let len = forward.len().max(1);
+    forward.rotate_left(by % len);
+    Reading {
+        face: r.face,
+        corners: rot(&r.corners),
+        edges: rot(&r.edges),
+        forward,
+    }
+}
+
+/// Checks that the readings of a volume's faces agree with its gluing: glued sides are one edge
+/// run both ways, and every side runs along its edge as it says.
+fn check_glue(v: &Volume, faces: &[Reading], edges: &[GeoEdge]) -> Result<()> {
+    for (f, row) in v.surface.glue.iter().enumerate() {
+        let r = &faces[f];
+        let len = r.corners.len();
+        for (i, &(g, j)) in row.iter().enumerate() {
+            let o = &faces[g];
+            let e = &edges[r.edges[i]];
+            let (s, t) = if r.forward[i] { (e.a, e.b) } else { (e.b, e.a) };
+            let ok = r.edges[i] == o.edges[j]
+                && r.forward[i] != o.forward[j]
+                && s == r.corners[i]
+                && t == r.corners[(i + 1) % len]
+                && e.ty == v.surface.faces[f].boundary[i];
+            if !ok {
+                return Err(geometry_error(
+                    "E1211",
+                    format!(
+                        "the geometry of face {f} side {i} does not follow the volume's gluing"
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The distance from `q` to the segment `a b`.
+fn segment_distance(q: P3, a: P3, b: P3) -> f64 {
+    let ab = sub(b, a);
+    let t = (dot(sub(q, a), ab) / dot(ab, ab).max(1e-300)).clamp(0.0, 1.0);
+    norm(sub(q, add(a, scale(ab, t))))
+}
+
+/// The distance from `p` along the unit direction `d` to the first triangle it meets further
+/// than a small tolerance (the surface's thickness there).
+fn thickness(p: P3, d: P3, tris: &[[P3; 3]]) -> Option<f64> {
+    let mut best: Option<f64> = None;
+    let scale_of = tris
+        .iter()
+        .flat_map(|t| t.iter())
+        .map(|q| norm(sub(*q, p)))
+        .fold(0.0f64, f64::max);
+    let eps = 1e-7 * scale_of.max(1e-30);
+    for t in tris {
+        // Möller–Trumbore.
+        let e1 = sub(t[1], t[0]);
+        let e2 = sub(t[2], t[0]);
+        let h = cross(d, e2);
+        let a = dot(e1, h);
+        if a.abs() < 1e-14 * norm(e1) * norm(e2) {
+            continue;
+        }
+        let f = 1.0 / a;
+        let s = sub(p, t[0]);
+        let u = f * dot(s, h);
+        if !(-1e-9..=1.0 + 1e-9).contains(&u) {
+            continue;
+        }
+        let q = cross(s, e1);
+        let w = f * dot(d, q);
+        if w < -1e-9 || u + w > 1.0 + 1e-9 {
+            continue;
+        }
+        let dist = f * dot(e2, q);
+        if dist > eps && best.is_none_or(|b| dist < b) {
+            best = Some(dist);
+        }
+    }
+    best
+}
+
+/// The start of the evaluation: the volume on its default placement (E1210 when the surface is
+/// no shorthand solid).
+fn start(b: &mut Builder, v: &Volume) -> Result<GeoVolume> {
+    let (_, polys) = default_placement(v).ok_or_else(|| {
+        geometry_error(
+            "E1210",
+            "this volume's surface is none of the shorthand solids (cube, tetrahedron, octahedron, prism-N, truncated-tetrahedron): it has no default placement in 3D".into(),
+        )
+    })?;
+    let surface = &v.surface;
+    // Points: one per point of the surface.
+    let (vid, count) = surface.vertices();
+    let mut pos = vec![[0.0; 3]; count];
+    for (f, poly) in polys.iter().enumerate() {
+        for (i, p) in poly.iter().enumerate() {
+            pos[vid[f][i]] = *p;
+        }
+    }
+    let ids: Vec<usize> = pos.into_iter().map(|p| b.point(p)).collect();
+    // Edges: one per glued pair, made by the side that comes first.
+    let mut edge_of: HashMap<(usize, usize), (usize, bool)> = HashMap::new();
+    for (f, row) in surface.glue.iter().enumerate() {
+        let len = row.len();
+        for (i, &(g, j)) in row.iter().enumerate() {
+            if (f, i) < (g, j) {
+                let a = ids[vid[f][i]];
+                let c = ids[vid[f][(i + 1) % len]];
+                let e = b.edge(a, c, surface.faces[f].boundary[i]);
+                edge_of.insert((f, i), (e, true));
+                edge_of.insert((g, j), (e, false));
+            }
+        }
+    }
+    let mut faces = Vec::with_capacity(surface.faces.len());
+    for (f, face) in surface.faces.iter().enumerate() {
+        let len = face.boundary.len();
+        let corners: Vec<usize> = (0..len).map(|i| ids[vid[f][i]]).collect();
+        let id = b.face(face.clone(), corners.clone(), None);
+        faces.push(Reading {
+            face: id,
+            corners,
+            edges: (0..len).map(|i| edge_of[&(f, i)].0).collect(),
+            forward: (0..len).map(|i| edge_of[&(f, i)].1).collect(),
+        });
+    }
+    check_glue(v, &faces, &b.edges)?;
+    Ok(GeoVolume {
+        volume: v.clone(),
+        faces,
+    })
+}
+
+/// Evaluates the level-`level` solid of a volume on its default placement. The caller bounds
+/// the work first (the exact number of level-n cells is known from the topology).
+pub fn evaluate_volume(v: &Volume, level: u32) -> Result<SolidGeometry> {
+    let mut b = Builder {
+        points: Vec::new(),
+        edges: Vec::new(),
+        faces: Vec::new(),
+        pieces: HashMap::new(),
+        gap_point: HashMap::new(),
+        spoke: HashMap::new(),
+        lacuna: HashMap::new(),
+        gap_side: HashMap::new(),
+        subface: HashMap::new(),
+        side: HashMap::new(),
+        inner_edge: HashMap::new(),
+        steps: HashMap::new(),
+        face_steps: HashMap::new(),
+        holes: Vec::new(),
+    };
+    let mut volumes = vec![start(&mut b, v)?];
+    for _ in 0..level {
+        b.holes.clear();
+        let mut next = Vec::new();
+        for (vid, gv) in volumes.iter().enumerate() {
+            next.extend(b.step(vid, gv)?);
+        }
+        volumes = next;
+        // Keys of one level are not needed at the next (face and volume numbers are fresh).
+        b.side.clear();
+    }
+    Ok(SolidGeometry {
+        level,
+        points: b.points,
+        edges: b.edges,
+        faces: b.faces,
+        volumes,
+        holes: b.holes,
+    })
+}
+
+/// The least thickness of a volume of the solid: from every corner of its surface, along the
+/// inward normal of every face there, the distance to its surface (an estimate: corners only).
+pub fn least_thickness(g: &SolidGeometry, v: &GeoVolume) -> Option<f64> {
+    let mut tris: Vec<[P3; 3]> = Vec::new();
+    let mut rays: Vec<(usize, P3)> = Vec::new();
+    for r in &v.faces {
+        let c = g.faces[r.face].center;
+        let mut n = [0.0; 3];
+        for i in 0..r.corners.len() {
+            let a = g.points[r.corners[i]];
+            let b = g.points[r.corners[(i + 1) % r.corners.len()]];
+            n = add(n, cross(sub(a, c), sub(b, c)));
+            tris.push([c, a, b]);
+        }
+        let len = norm(n);
+        if len > 0.0 {
+            for &p in &r.corners {
+                rays.push((p, scale(n, -1.0 / len)));
+            }
+        }
+    }
+    let mut least: Option<f64> = None;
+    for (p, d) in rays {
+        if let Some(h) = thickness(g.points[p], d, &tris) {
+            least = Some(least.map_or(h, |l: f64| l.min(h)));
+        }
+    }
+    least
+}
+
+/// The width of a hole given as a loop of points: two points, their distance (a gap); more,
+/// twice the least distance from their mean to a side (the inscribed circle's diameter, as an
+/// estimate).
+pub fn hole_width(g: &SolidGeometry, hole: &[usize]) -> f64 {
+    let pts: Vec<P3> = hole.iter().map(|&p| g.points[p]).collect();
+    if pts.len() == 2 {
+        return norm(sub(pts[1], pts[0]));
+    }
+    let c = mean(pts.iter().copied());
+    let mut least = f64::INFINITY;
+    for i in 0..pts.len() {
+        let (a, b) = (pts[i], pts[(i + 1) % pts.len()]);
+        let ab = sub(b, a);
+        let t = (dot(sub(c, a), ab) / dot(ab, ab).max(1e-300)).clamp(0.0, 1.0);
+        least = least.min(norm(sub(c, add(a, scale(ab, t)))));
+    }
+    2.0 * least
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::topology::volume::parse_volume;
+
+    #[test]
+    fn a_surface_that_is_no_shorthand_solid_has_no_default_placement() {
+        // The tetrahedron with its faces listed in another order is the same sphere, but its
+        // gluing is not the one `Solid::Tetrahedron` writes: no placement is guessed (E1210).
+        let mut v = parse_volume("tetrahedron B2 | B2 B2 B2 | A1 | B2 B2 | V1").unwrap();
+        assert!(default_placement(&v).is_some());
+        let order = [1usize, 0, 2, 3];
+        let new_index = |f: usize| order.iter().position(|&o| o == f).unwrap();
+        let faces = order.iter().map(|&f| v.surface.faces[f].clone()).collect();
+        let glue = order
+            .iter()
+            .map(|&f| {
+                v.surface.glue[f]
+                    .iter()
+                    .map(|&(g, j)| (new_index(g), j))
+                    .collect()
+            })
+            .collect();
+        v.surface = crate::topology::volume::Surface { faces, glue };
+        assert_eq!(v.surface.check(), Ok(()));
+        assert!(default_placement(&v).is_none());
+        assert_eq!(evaluate_volume(&v, 1).unwrap_err().code(), "E1210");
+    }
+
+    #[test]
+    fn the_solids_are_placed_counter_clockwise_from_outside() {
+        for name in [
+            "cube",
+            "tetrahedron",
+            "octahedron",
+            "prism-5",
+            "truncated-tetrahedron",
+        ] {
+            let v = parse_volume(&format!("{name} B2 | B2 B2 B2 | A1 | B2 B2 | V1")).unwrap();
+            let (_, polys) = default_placement(&v).unwrap();
+            // Every face is planar with its normal pointing away from the origin (the centre).
+            for p in &polys {
+                let c = mean(p.iter().copied());
+                let mut n = [0.0; 3];
+                for i in 0..p.len() {
+                    n = add(n, cross(p[i], p[(i + 1) % p.len()]));
+                }
+                assert!(dot(n, c) > 0.0, "{name}: a face is wound inwards");
+                for q in p {
+                    assert!(
+                        dot(sub(*q, c), n).abs() < 1e-9,
+                        "{name}: a face is not flat"
+                    );
+                }
+            }
+        }
+    }
+}

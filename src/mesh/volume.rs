@@ -1,0 +1,726 @@
+//! The printable solid of a volume (THEORY §10, §11): the boundary of the union of the level-n
+//! sub-volumes as one closed, oriented triangle mesh per connected component, checked against the
+//! exact topology before anything is written.
+//!
+//! **Which faces.** A face of the level-n complex held by two sub-volumes is inside the solid and
+//! gives no triangle; a face held by one is on the boundary and is triangulated as a fan around its
+//! centre (a triangle as itself), wound as its volume reads it (counter-clockwise from outside).
+//! Vertices are the points of the complex, one per point: nothing is welded by distance.
+//!
+//! **The verdict.** Integer checks only, against [`solid_topology`]: the cells built by the
+//! geometry (volumes, faces, edges, corners) are exactly as many as the exact counts; the mesh is a
+//! closed oriented manifold ([`check_part`]); its Euler characteristic is 2χ (the boundary of a
+//! compact 3-manifold has twice its Euler characteristic); one part per component; surface pieces
+//! b0 + b2 and total genus b1 (the tunnels) where the exact topology derives them. A geometric check
+//! with exact predicates on the written `f32` coordinates ([`self_intersection`]) refuses two
+//! boundary triangles that cross or touch away from their shared vertices.
+
+use super::check::{check_part, PartCheck};
+use super::expect::Expected;
+use super::solid::{Part, Solid};
+use super::Size;
+use crate::error::{Diagnostic, Error, Result};
+use crate::geometry::{evaluate_volume, GeoEdge, SolidGeometry};
+use crate::topology::component::Dsu;
+use crate::topology::volume::{solid_topology, SolidLevel, Volume, VolumeTypeSet};
+use num_bigint::{BigInt, BigUint};
+use num_traits::ToPrimitive;
+use robust::{orient2d, orient3d, Coord, Coord3D};
+use std::collections::HashMap;
+
+/// A checked volume solid with what it was checked against.
+#[derive(Clone, Debug)]
+pub struct VolumeSolid {
+    /// The mesh, one part per component, in millimetres.
+    pub solid: Solid,
+    /// The exact topology of the level.
+    pub exact: SolidLevel,
+    /// Surface pieces over all parts (components plus voids).
+    pub surfaces: usize,
+    /// Euler characteristic of the whole mesh surface.
+    pub euler: i64,
+    /// Total genus of the surface pieces (the solid's tunnels).
+    pub genus: i64,
+    /// Triangle pairs tested for crossing (after the bounding-box filter).
+    pub pairs_tested: u64,
+    /// Two triangles that cross or touch, if any (the placement folds: not printable).
+    pub crossing: Option<String>,
+    /// The evaluated cells, in the solid's own units (for pictures and measures).
+    pub geometry: SolidGeometry,
+    /// Millimetres per unit of the geometry, and the offset subtracted before scaling.
+    pub transform: (f64, [f64; 3]),
+}
+
+fn failure(code: &'static str, message: String) -> Error {
+    Error::Syntax(Box::new(Diagnostic {
+        code,
+        message,
+        span: None,
+        source: None,
+    }))
+}
+
+/// The boundary triangles of the evaluated solid, by component, over the geometry's points and
+/// extra centre points: (positions, triangles of each component).
+pub fn boundary_triangles(g: &SolidGeometry) -> (Vec<[f64; 3]>, Vec<Vec<[usize; 3]>>) {
+    let readers = g.face_readers();
+    let mut dsu = Dsu::new(g.volumes.len());
+    let mut first_at: HashMap<usize, usize> = HashMap::new();
+    for (vi, v) in g.volumes.iter().enumerate() {
+        for r in &v.faces {
+            for &c in &r.corners {
+                match first_at.get(&c) {
+                    Some(&w) => dsu.union(vi, w),
+                    None => {
+                        first_at.insert(c, vi);
+                    }
+                }
+            }
+        }
+    }
+    let mut comp: HashMap<usize, usize> = HashMap::new();
+    let mut parts: Vec<Vec<[usize; 3]>> = Vec::new();
+    let mut points = g.points.clone();
+    let mut faces: Vec<(&usize, &Vec<(usize, usize)>)> = readers.iter().collect();
+    faces.sort();
+    for (&f, held) in faces {
+        if held.len() != 1 {
+            continue;
+        }
+        let (vi, k) = held[0];
+        let root = dsu.find(vi);
+        let next = comp.len();
+        let c = *comp.entry(root).or_insert(next);
+        if c == parts.len() {
+            parts.push(Vec::new());
+        }
+        let r = &g.volumes[vi].faces[k];
+        let n = r.corners.len();
+        if n == 3 {
+            parts[c].push([r.corners[0], r.corners[1], r.corners[2]]);
+            continue;
+        }
+        points.push(g.faces[f].center);
+        let centre = points.len() - 1;
+        for i in 0..n {
+            parts[c].push([centre, r.corners[i], r.corners[(i + 1) % n]]);
+        }
+    }
+    (points, parts)
+}
+
+/// Builds, scales and checks the level-`level` solid of a start volume of `set` (the closure of
+/// `v`). `width` is the x extent in millimetres. Failures of the check are coded E1040 (the mesh
+/// is not the exact topology) or E1211 (the geometry cannot follow the step); two triangles that
+/// cross are reported in [`VolumeSolid::crossing`] ([`VolumeSolid::embedded`] makes it E1041).
+pub fn volume_solid(
+    name: &str,
+    v: &Volume,
+    set: &VolumeTypeSet,
+    level: u32,
+    width: f64,
+) -> Result<VolumeSolid> {
+    let exact = solid_topology(set, u64::from(level))?
+        .pop()
+        .expect("one row per level");
+    let g = evaluate_volume(v, level)?;
+    let check = |m: String| {
+        failure(
+            "E1040",
+            format!("the level-{level} mesh fails its check: {m}"),
+        )
+    };
+    let (cv, cf, ce, cc) = g.cell_counts();
+    let want = [&exact.volumes, &exact.faces, &exact.edges, &exact.corners];
+    let got = [cv, cf, ce, cc];
+    if want.iter().zip(got).any(|(w, g)| w.to_usize() != Some(g)) {
+        return Err(check(format!(
+            "the geometry has {cv} volumes, {cf} faces, {ce} edges and {cc} corners, the exact complex {} volumes, {} faces, {} edges and {} corners",
+            exact.volumes, exact.faces, exact.edges, exact.corners
+        )));
+    }
+    // Edges are straight segments here: two edges between the same points (a lacuna of two
+    // sides, a face with two spokes) or an edge from a point to itself (one spoke) cannot be
+    // drawn apart.
+    let mut ends: HashMap<(usize, usize), usize> = HashMap::new();
+    for v in &g.volumes {
+        for r in &v.faces {
+            for &e in &r.edges {
+                let GeoEdge { a, b, .. } = g.edges[e];
+                if a == b {
+                    return Err(failure("E1211", format!("the default placement cannot draw the level-{level} solid: an edge of type {} runs from a point to itself (a face with one spoke)", g.edges[e].ty)));
+                }
+                if let Some(&other) = ends.get(&(a.min(b), a.max(b))) {
+                    if other != e {
+                        return Err(failure("E1211", format!("the default placement cannot draw the level-{level} solid: two edges join the same two points (a lacuna with two sides, from a face with two spokes), and edges are straight here")));
+                    }
+                } else {
+                    ends.insert((a.min(b), a.max(b)), e);
+                }
+            }
+        }
+    }
+    let (points, parts_raw) = boundary_triangles(&g);
+    // Scale: the x extent becomes `width`, the least corner goes to the origin.
+    let used: Vec<usize> = {
+        let mut u: Vec<usize> = parts_raw.iter().flatten().flatten().copied().collect();
+        u.sort_unstable();
+        u.dedup();
+        u
+    };
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for &i in &used {
+        for k in 0..3 {
+            lo[k] = lo[k].min(points[i][k]);
+            hi[k] = hi[k].max(points[i][k]);
+        }
+    }
+    let mm = if hi[0] > lo[0] {
+        width / (hi[0] - lo[0])
+    } else {
+        1.0
+    };
+    let mut parts = Vec::with_capacity(parts_raw.len());
+    for tris in &parts_raw {
+        let mut local: HashMap<usize, u32> = HashMap::new();
+        let mut vertices = Vec::new();
+        let mut triangles = Vec::with_capacity(tris.len());
+        for t in tris {
+            triangles.push(t.map(|p| {
+                *local.entry(p).or_insert_with(|| {
+                    let q = points[p];
+                    vertices.push([
+                        ((q[0] - lo[0]) * mm) as f32,
+                        ((q[1] - lo[1]) * mm) as f32,
+                        ((q[2] - lo[2]) * mm) as f32,
+                    ]);
+                    (vertices.len() - 1) as u32
+                })
+            }));
+        }
+        parts.push(Part {
+            vertices,
+            triangles,
+            holes: None,
+        });
+    }
+    let mut checks: Vec<PartCheck> = Vec::with_capacity(parts.len());
+    for (i, p) in parts.iter().enumerate() {
+        checks.push(check_part(p).map_err(|e| check(format!("part {i}: {e}")))?);
+    }
+    let euler: i64 = checks.iter().map(|c| c.euler).sum();
+    let surfaces: usize = checks.iter().map(|c| c.components).sum();
+    let genus: i64 = checks
+        .iter()
+        .map(|c| (2 * c.components as i64 - c.euler) / 2)
+        .sum();
+    if BigInt::from(euler) != BigInt::from(2) * &exact.euler {
+        return Err(check(format!(
+            "the surface has Euler characteristic {euler}, twice the solid's exact χ = {} is {}",
+            exact.euler,
+            BigInt::from(2) * &exact.euler
+        )));
+    }
+    if let Some(b0) = exact.components {
+        if parts.len() as u64 != b0 {
+            return Err(check(format!(
+                "{} part(s), the exact topology has {b0} component(s)",
+                parts.len()
+            )));
+        }
+        if let Some(b2) = exact.voids {
+            if surfaces as u64 != b0 + b2 {
+                return Err(check(format!(
+                    "{surfaces} surface piece(s), the exact topology has {b0} component(s) and {b2} void(s)"
+                )));
+            }
+        }
+    }
+    if let Some(b1) = &exact.tunnels {
+        if BigInt::from(genus) != *b1 {
+            return Err(check(format!(
+                "the surface has genus {genus}, the exact topology {b1} tunnel(s)"
+            )));
+        }
+    }
+    let (crossing, pairs_tested) = self_intersection(&parts);
+    let crossing = crossing.map(|((pa, ta), (pb, tb))| {
+        let at = |p: usize, t: usize| {
+            let part = &parts[p];
+            let c: Vec<String> = part.triangles[t]
+                .iter()
+                .map(|&v| {
+                    let q = part.vertices[v as usize];
+                    format!("({:.2}, {:.2}, {:.2})", q[0], q[1], q[2])
+                })
+                .collect();
+            c.join(" ")
+        };
+        format!(
+            "the level-{level} cells do not form the verified structure: triangle {ta} of part {pa} [{}] and triangle {tb} of part {pb} [{}] (mm) cross or touch: the default placement folds there",
+            at(pa, ta),
+            at(pb, tb)
+        )
+    });
+    let cells = cv as u64;
+    let solid = Solid {
+        name: name.to_string(),
+        level,
+        size: Size {
+            width,
+            thickness: (hi[2] - lo[2]) * mm,
+        },
+        parts,
+        checks,
+        expected: Expected {
+            components: exact.components.unwrap_or(0),
+            holes: BigUint::from(genus.max(0) as u64),
+            per_start: None,
+        },
+        cells,
+    };
+    Ok(VolumeSolid {
+        solid,
+        exact,
+        surfaces,
+        euler,
+        genus,
+        pairs_tested,
+        crossing,
+        geometry: g,
+        transform: (mm, lo),
+    })
+}
+
+impl VolumeSolid {
+    /// The solid if no two triangles cross, else the crossing as E1041 (a failed verdict: the
+    /// mesh would not be the verified structure).
+    pub fn embedded(&self) -> Result<&VolumeSolid> {
+        match &self.crossing {
+            None => Ok(self),
+            Some(m) => Err(failure("E1041", m.clone())),
+        }
+    }
+
+    /// A few lines saying what was built and checked.
+    pub fn summary(&self) -> String {
+        let crossing = match &self.crossing {
+            None => format!(
+                "no two triangles cross ({} pairs tested)",
+                self.pairs_tested
+            ),
+            Some(m) => format!("NOT EMBEDDED: {m}"),
+        };
+        let v: usize = self.solid.parts.iter().map(|p| p.vertices.len()).sum();
+        format!(
+            "mesh: {} level {}, {} volumes, width {} mm: {} part(s), {v} vertices, {} triangles; closed oriented manifold, surface Euler characteristic {} = 2χ (exact χ = {}), {} surface piece(s), genus {}; {crossing}\n",
+            self.solid.name,
+            self.solid.level,
+            self.solid.cells,
+            self.solid.size.width,
+            self.solid.parts.len(),
+            self.solid.triangle_count(),
+            self.euler,
+            self.exact.euler,
+            self.surfaces,
+            self.genus,
+        )
+    }
+}
+
+type Tri = [[f64; 3]; 3];
+
+fn c3(p: [f64; 3]) -> Coord3D<f64> {
+    Coord3D {
+        x: p[0],
+        y: p[1],
+        z: p[2],
+    }
+}
+
+fn sign(x: f64) -> i8 {
+    if x > 0.0 {
+        1
+    } else if x < 0.0 {
+        -1
+    } else {
+        0
+    }
+}
+
+/// Whether the segment `p q` meets the triangle `t` (touching counts), exactly on the given
+/// coordinates.
+fn segment_meets(p: [f64; 3], q: [f64; 3], t: &Tri) -> bool {
+    let [a, b, c] = *t;
+    let dp = sign(orient3d(c3(a), c3(b), c3(c), c3(p)));
+    let dq = sign(orient3d(c3(a), c3(b), c3(c), c3(q)));
+    if dp == dq && dp != 0 {
+        return false;
+    }
+    if dp == 0 && dq == 0 {
+        return coplanar_meets(p, q, t);
+    }
+    let s = [
+        sign(orient3d(c3(p), c3(q), c3(a), c3(b))),
+        sign(orient3d(c3(p), c3(q), c3(b), c3(c))),
+        sign(orient3d(c3(p), c3(q), c3(c), c3(a))),
+    ];
+    s.iter().all(|&x| x >= 0) || s.iter().all(|&x| x <= 0)
+}
+
+/// The coplanar case: projected on the coordinate plane where the triangle is not flat.
+fn coplanar_meets(p: [f64; 3], q: [f64; 3], t: &Tri) -> bool {
+    for (x, y) in [(0, 1), (1, 2), (2, 0)] {
+        let pr = |v: [f64; 3]| Coord { x: v[x], y: v[y] };
+        let (a, b, c) = (pr(t[0]), pr(t[1]), pr(t[2]));
+        let area = sign(orient2d(a, b, c));
+        if area == 0 {
+            continue;
+        }
+        let inside = |v: Coord<f64>| {
+            let s = [
+                sign(orient2d(a, b, v)) * area,
+                sign(orient2d(b, c, v)) * area,
+                sign(orient2d(c, a, v)) * area,
+            ];
+            s.iter().all(|&x| x >= 0)
+        };
+        let (pp, qq) = (pr(p), pr(q));
+        if inside(pp) || inside(qq) {
+            return true;
+        }
+        let cross = |u: Coord<f64>, w: Coord<f64>| {
+            let d1 = sign(orient2d(pp, qq, u));
+            let d2 = sign(orient2d(pp, qq, w));
+            let d3 = sign(orient2d(u, w, pp));
+            let d4 = sign(orient2d(u, w, qq));
+            d1 * d2 <= 0 && d3 * d4 <= 0
+        };
+        return cross(a, b) || cross(b, c) || cross(c, a);
+    }
+    false
+}
+
+/// Finds two triangles of the parts that cross or touch away from their shared vertices:
+/// triangles sharing no vertex must not meet at all; triangles sharing one vertex must not meet
+/// along the edges opposite it; triangles sharing an edge are not tested. Returns the first pair
+/// found ((part, triangle), (part, triangle)) and the number of pairs tested.
+#[allow(clippy::type_complexity)]
+pub fn self_intersection(parts: &[Part]) -> (Option<((usize, usize), (usize, usize))>, u64) {
+    struct Item {
+        part: usize,
+        tri: usize,
+        ids: [u64; 3],
+        p: Tri,
+        lo: [f64; 3],
+        hi: [f64; 3],
+    }
+    let mut items = Vec::new();
+    for (pi, part) in parts.iter().enumerate() {
+        for (ti, t) in part.triangles.iter().enumerate() {
+            let p = t.map(|v| part.vertices[v as usize].map(f64::from));
+            let mut lo = p[0];
+            let mut hi = p[0];
+            for q in &p[1..] {
+                for k in 0..3 {
+                    lo[k] = lo[k].min(q[k]);
+                    hi[k] = hi[k].max(q[k]);
+                }
+            }
+            items.push(Item {
+                part: pi,
+                tri: ti,
+                ids: t.map(|v| ((pi as u64) << 32) | u64::from(v)),
+                p,
+                lo,
+                hi,
+            });
+        }
+    }
+    items.sort_by(|a, b| a.lo[0].total_cmp(&b.lo[0]));
+    let mut tested = 0u64;
+    for i in 0..items.len() {
+        let a = &items[i];
+        for b in &items[i + 1..] {
+            if b.lo[0] > a.hi[0] {
+                break;
+            }
+            if (1..3).any(|k| b.lo[k] > a.hi[k] || a.lo[k] > b.hi[k]) {
+                continue;
+            }
+            let shared: Vec<u64> = a
+                .ids
+                .iter()
+                .filter(|x| b.ids.contains(x))
+                .copied()
+                .collect();
+            tested += 1;
+            let meets = match shared.len() {
+                0 => {
+                    (0..3).any(|k| segment_meets(a.p[k], a.p[(k + 1) % 3], &b.p))
+                        || (0..3).any(|k| segment_meets(b.p[k], b.p[(k + 1) % 3], &a.p))
+                }
+                1 => {
+                    let opposite = |t: &Item| {
+                        let k = t.ids.iter().position(|x| *x == shared[0]).expect("shared");
+                        (t.p[(k + 1) % 3], t.p[(k + 2) % 3])
+                    };
+                    let (p, q) = opposite(a);
+                    let (r, s) = opposite(b);
+                    segment_meets(p, q, &b.p) || segment_meets(r, s, &a.p)
+                }
+                _ => false,
+            };
+            if meets {
+                return (Some(((a.part, a.tri), (b.part, b.tri))), tested);
+            }
+        }
+    }
+    (None, tested)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn crossing_triangles_are_found_and_apart_ones_are_not() {
+        // Two triangles in the planes z = 0 and x = 0.25 that pierce each other.
+        let part = Part {
+            vertices: vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.25, 0.25, -1.0],
+                [0.25, 0.25, 1.0],
+                [0.25, -1.0, 0.0],
+            ],
+            triangles: vec![[0, 1, 2], [3, 4, 5]],
+            holes: None,
+        };
+        assert!(self_intersection(std::slice::from_ref(&part)).0.is_some());
+        // Moved to x = 2 they are apart.
+        let mut apart = part.clone();
+        for v in &mut apart.vertices[3..] {
+            v[0] = 2.0;
+        }
+        assert_eq!(self_intersection(&[apart]).0, None);
+    }
+}
+
+#[cfg(test)]
+mod cube_tests {
+    use super::*;
+    use crate::topology::limits::Limits;
+    use crate::topology::volume::{parse_volume, VolumeClosure};
+
+    fn solid_of(text: &str, level: u32) -> Result<VolumeSolid> {
+        let v = parse_volume(text).unwrap();
+        let VolumeClosure::Closed(set) =
+            VolumeClosure::of(std::slice::from_ref(&v), &Limits::default()).unwrap()
+        else {
+            panic!("closes")
+        };
+        volume_solid("t", &v, &set, level, 100.0)
+    }
+
+    #[test]
+    fn the_cube_at_level_one_has_genus_five() {
+        let s = solid_of("cube B2 | B2 B2 B2 | A1 | B2 B2 | V1", 1).unwrap();
+        s.embedded().unwrap();
+        assert_eq!((s.euler, s.genus, s.solid.parts.len()), (-8, 5, 1));
+    }
+
+    #[test]
+    fn a_mesh_that_is_not_the_exact_solid_is_a_failed_verdict() {
+        // The cube's geometry checked against the tetrahedron's exact solid: 8 volumes built,
+        // 4 expected. Nothing is returned to write: E1040 (exit 1).
+        let cube = parse_volume("cube B2 | B2 B2 B2 | A1 | B2 B2 | V1").unwrap();
+        let tetra = parse_volume("tetrahedron B2 | B2 B2 B2 | A1 | B2 B2 | V1").unwrap();
+        let VolumeClosure::Closed(set) =
+            VolumeClosure::of(std::slice::from_ref(&tetra), &Limits::default()).unwrap()
+        else {
+            panic!("closes")
+        };
+        let e = volume_solid("t", &cube, &set, 1, 100.0).unwrap_err();
+        assert_eq!(e.code(), "E1040");
+        assert!(e.to_string().contains("8 volumes"), "{e}");
+        assert!(crate::mesh::is_failure_code(e.code()));
+    }
+}
+
+/// The thinnest material of the mesh, in mm: from every vertex (every k-th for large meshes,
+/// so that at most about 2·10⁷ ray–triangle tests run), along the inward normal of each triangle
+/// there, the distance to the first other triangle. An estimate, not a bound.
+fn thinnest(parts: &[Part]) -> Option<f64> {
+    let mut least: Option<f64> = None;
+    for p in parts {
+        let pos: Vec<[f64; 3]> = p.vertices.iter().map(|v| v.map(f64::from)).collect();
+        let tris: Vec<[[f64; 3]; 3]> = p
+            .triangles
+            .iter()
+            .map(|t| t.map(|v| pos[v as usize]))
+            .collect();
+        let step = ((pos.len() * tris.len()) as f64 / 2e7).ceil().max(1.0) as usize;
+        for (i, t) in p.triangles.iter().enumerate() {
+            let [a, b, c] = tris[i];
+            let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+            let w = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+            let n = [
+                u[1] * w[2] - u[2] * w[1],
+                u[2] * w[0] - u[0] * w[2],
+                u[0] * w[1] - u[1] * w[0],
+            ];
+            let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            if len == 0.0 {
+                continue;
+            }
+            let d = n.map(|x| -x / len);
+            for &v in t {
+                if v as usize % step != 0 {
+                    continue;
+                }
+                let o = pos[v as usize];
+                for (j, q) in tris.iter().enumerate() {
+                    if p.triangles[j].contains(&v) {
+                        continue;
+                    }
+                    if let Some(h) = ray_hit(o, d, q) {
+                        least = Some(least.map_or(h, |l: f64| l.min(h)));
+                    }
+                }
+            }
+        }
+    }
+    least
+}
+
+/// The distance along the unit direction `d` from `o` to the triangle `t`, if the ray meets it.
+fn ray_hit(o: [f64; 3], d: [f64; 3], t: &[[f64; 3]; 3]) -> Option<f64> {
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let (e1, e2) = (sub(t[1], t[0]), sub(t[2], t[0]));
+    let h = cross(d, e2);
+    let a = dot(e1, h);
+    if a.abs() < 1e-12 {
+        return None;
+    }
+    let s = sub(o, t[0]);
+    let u = dot(s, h) / a;
+    let q = cross(s, e1);
+    let w = dot(d, q) / a;
+    let dist = dot(e2, q) / a;
+    ((0.0..=1.0).contains(&u) && w >= 0.0 && u + w <= 1.0 && dist > 1e-9).then_some(dist)
+}
+
+/// Sizes of a volume's solid, in millimetres: from the checked mesh (enclosed volume, surface
+/// area, extent) and from the evaluated cells (smallest hole, thinnest ligament; both estimates,
+/// not bounds: a hole's width is its inscribed circle's diameter seen from its mean point, a
+/// ligament's the least distance through the material from a vertex along a triangle's inward
+/// normal).
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct VolumeSizes {
+    /// Enclosed volume, mm³.
+    pub volume_mm3: f64,
+    /// Surface area, mm².
+    pub area_mm2: f64,
+    /// Extent along x, y and z, mm.
+    pub extent_mm: [f64; 3],
+    /// The smallest hole the last step opened, mm (none at level 0).
+    pub smallest_hole_mm: Option<f64>,
+    /// The thinnest level-n volume, mm.
+    pub thinnest_ligament_mm: Option<f64>,
+}
+
+impl VolumeSolid {
+    /// The sizes of the solid (see [`VolumeSizes`]).
+    pub fn sizes(&self) -> VolumeSizes {
+        let mut volume6 = 0.0;
+        let mut area2 = 0.0;
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for p in &self.solid.parts {
+            for v in &p.vertices {
+                for k in 0..3 {
+                    lo[k] = lo[k].min(f64::from(v[k]));
+                    hi[k] = hi[k].max(f64::from(v[k]));
+                }
+            }
+            for t in &p.triangles {
+                let [a, b, c] = t.map(|v| p.vertices[v as usize].map(f64::from));
+                let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+                let w = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+                let n = [
+                    u[1] * w[2] - u[2] * w[1],
+                    u[2] * w[0] - u[0] * w[2],
+                    u[0] * w[1] - u[1] * w[0],
+                ];
+                area2 += (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+                volume6 += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                    + a[2] * (b[0] * c[1] - b[1] * c[0]);
+            }
+        }
+        let mm = self.transform.0;
+        let g = &self.geometry;
+        let hole = g
+            .holes
+            .iter()
+            .map(|h| crate::geometry::hole_width(g, h) * mm)
+            .fold(None, |acc: Option<f64>, x| {
+                Some(acc.map_or(x, |a| a.min(x)))
+            });
+        let ligament = thinnest(&self.solid.parts);
+        VolumeSizes {
+            volume_mm3: volume6 / 6.0,
+            area_mm2: area2 / 2.0,
+            extent_mm: [0, 1, 2].map(|k| (hi[k] - lo[k]).max(0.0)),
+            smallest_hole_mm: hole,
+            thinnest_ligament_mm: ligament,
+        }
+    }
+}
+
+impl VolumeSizes {
+    /// The features below a printer's resolution, in words.
+    pub fn below(&self, resolution: f64) -> Vec<String> {
+        let mut out = Vec::new();
+        if let Some(h) = self.smallest_hole_mm.filter(|&h| h < resolution) {
+            out.push(format!(
+                "the smallest hole ({h:.3} mm) is below the resolution {resolution} mm"
+            ));
+        }
+        if let Some(l) = self.thinnest_ligament_mm.filter(|&l| l < resolution) {
+            out.push(format!(
+                "the thinnest ligament ({l:.3} mm) is below the resolution {resolution} mm"
+            ));
+        }
+        out
+    }
+
+    /// A few lines for the terminal.
+    pub fn text(&self, resolution: f64) -> String {
+        let opt = |x: Option<f64>| x.map_or("none".to_string(), |v| format!("{v:.3} mm"));
+        let mut s = format!(
+            "volume {:.3} mm³, surface area {:.3} mm², extent {:.2} × {:.2} × {:.2} mm\nsmallest hole {} (estimate), thinnest ligament {} (estimate), resolution {resolution} mm\n",
+            self.volume_mm3,
+            self.area_mm2,
+            self.extent_mm[0],
+            self.extent_mm[1],
+            self.extent_mm[2],
+            opt(self.smallest_hole_mm),
+            opt(self.thinnest_ligament_mm),
+        );
+        for b in self.below(resolution) {
+            s += &format!("warning: {b}\n");
+        }
+        s
+    }
+}
