@@ -269,6 +269,7 @@ fn a_bad_volume_file_is_exit_2_with_its_line_and_column() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("2 volumes glued face to face"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
+}
 
 fn scratch(what: &str) -> std::path::PathBuf {
     let d = std::env::temp_dir().join(format!("lacuna-volgeo-{what}-{}", std::process::id()));
