@@ -16,7 +16,7 @@ total=0
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cargo fuzz build --sanitizer none >/dev/null 2>&1 || cargo fuzz build --sanitizer none
-for t in face_notation input_files automaton_file certificate certificate_forgery pipeline; do
+for t in face_notation input_files automaton_file structure_files certificate certificate_forgery pipeline; do
   mkdir -p "$work/$t"
   cp seeds/"$t"/* "$work/$t/"
   log="$work/$t.log"
