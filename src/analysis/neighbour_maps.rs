@@ -1,0 +1,325 @@
+//! The open-set condition decided by neighbour maps (Bandt–Graf 1992; for graph-directed
+//! systems Das–Edgar 2005), in exact rational arithmetic.
+//!
+//! The system is a strongly connected part of similitudes `g_e: chart w → chart q` (one per
+//! operator `e: q ← w`) of the line or the plane. For words u from a state p to q and v from p to
+//! r whose first letters differ, the neighbour map `h = g_u⁻¹ ∘ g_v` maps r's chart into q's. The
+//! open-set condition holds iff the identity is not an accumulation point of the neighbour maps
+//! with q = r.
+//!
+//! The search: attractors lie in balls `B(c_q, R)` (one certified radius R for every state, with
+//! `R ≥ |g_e(c_w) − c_q| / (1 − r_e)` for every operator, so `g_e` maps `B(c_w, R)` into
+//! `B(c_q, R)`). Starting from the maps `g_a⁻¹ ∘ g_b` of two different operators out of one state,
+//! the larger side is refined (u when `ratio(h) ≤ 1`, else v), so every ratio stays in
+//! `[r_min, 1/r_min]`, and a map is kept when it passes the ball test with a margin μ > 0:
+//! `|h(c_r) − c_q| ≤ R + ratio(h)·R + μ`, compared exactly with squared distances in Q.
+//!
+//! - **Fails** when the identity appears (q = r): two words with different first letters give the
+//!   same map, so two pieces under different first operators coincide and carry positive
+//!   s-dimensional measure, impossible under the condition (Mauldin–Williams).
+//! - **Holds** when the worklist closes without it. A neighbour map h with q = r, ratio in
+//!   `(r_max, 1/r_max)` and `|h(x) − x| < μ` on `A_q` is reached: every pair of prefixes on the
+//!   way contains the two final pieces, which come within `r_u·μ`, i.e. within μ after rescaling
+//!   by the prefix's ratio (at least `r_u`), so the prefixes pass the test; the refinement cannot
+//!   stop early because a finished larger side would leave a ratio at most `r_max`. A finite
+//!   closed set without the identity keeps the neighbour maps away from the identity.
+//! - **Undecided** when the search reaches [`MAX_NEIGHBOUR_MAPS`] maps (a limit, never a
+//!   verdict), or a coefficient is irrational, or a map is not a similitude in the coordinates.
+
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{One, Signed, Zero};
+use std::collections::{HashSet, VecDeque};
+
+/// The most neighbour maps the search keeps before it gives up (undecided). A documented
+/// constant: the search is quadratic in nothing, but each map costs a few big rationals.
+pub const MAX_NEIGHBOUR_MAPS: usize = 4096;
+
+/// Bits of the rational upper bounds of square roots.
+const SQRT_BITS: u32 = 32;
+
+/// An affine map of Q^d (d = 1 or 2): `x ↦ A·x + b`, `A` row-major.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub(crate) struct QAffine {
+    /// The linear part, `d × d` row-major.
+    pub a: Vec<BigRational>,
+    /// The translation.
+    pub b: Vec<BigRational>,
+}
+
+impl QAffine {
+    fn dim(&self) -> usize {
+        self.b.len()
+    }
+
+    /// The image of a point.
+    pub fn apply(&self, x: &[BigRational]) -> Vec<BigRational> {
+        let d = self.dim();
+        (0..d)
+            .map(|r| {
+                let mut acc = self.b[r].clone();
+                for (j, xj) in x.iter().enumerate() {
+                    acc += &self.a[r * d + j] * xj;
+                }
+                acc
+            })
+            .collect()
+    }
+
+    /// `self ∘ o`.
+    pub fn then(&self, o: &QAffine) -> QAffine {
+        let d = self.dim();
+        let mut a = vec![BigRational::zero(); d * d];
+        for r in 0..d {
+            for c in 0..d {
+                for j in 0..d {
+                    a[r * d + c] += &self.a[r * d + j] * &o.a[j * d + c];
+                }
+            }
+        }
+        QAffine {
+            a,
+            b: self.apply(&o.b),
+        }
+    }
+
+    fn det(&self) -> BigRational {
+        match self.dim() {
+            1 => self.a[0].clone(),
+            _ => &self.a[0] * &self.a[3] - &self.a[1] * &self.a[2],
+        }
+    }
+
+    /// The inverse map, when the linear part is invertible (d = 1 or 2).
+    pub fn inverse(&self) -> Option<QAffine> {
+        let det = self.det();
+        if det.is_zero() {
+            return None;
+        }
+        let a = match self.dim() {
+            1 => vec![BigRational::one() / &det],
+            2 => vec![
+                &self.a[3] / &det,
+                -&self.a[1] / &det,
+                -&self.a[2] / &det,
+                &self.a[0] / &det,
+            ],
+            _ => return None,
+        };
+        let lin = QAffine {
+            a,
+            b: vec![BigRational::zero(); self.dim()],
+        };
+        let b = lin.apply(&self.b).into_iter().map(|x| -x).collect();
+        Some(QAffine { a: lin.a, b })
+    }
+
+    /// The squared ratio when the map is a similitude (`AᵀA = ρ²·I`, ρ > 0).
+    pub fn similitude_ratio2(&self) -> Option<BigRational> {
+        let r2 = match self.dim() {
+            1 => &self.a[0] * &self.a[0],
+            2 => {
+                let (a, b, c, d) = (&self.a[0], &self.a[1], &self.a[2], &self.a[3]);
+                let r2 = a * a + c * c;
+                if b * b + d * d != r2 || !(a * b + c * d).is_zero() {
+                    return None;
+                }
+                r2
+            }
+            _ => return None,
+        };
+        (r2.is_positive()).then_some(r2)
+    }
+
+    fn is_identity(&self) -> bool {
+        let d = self.dim();
+        self.b.iter().all(Zero::is_zero)
+            && (0..d * d).all(|i| {
+                if i % (d + 1) == 0 {
+                    self.a[i].is_one()
+                } else {
+                    self.a[i].is_zero()
+                }
+            })
+    }
+}
+
+/// A rational `s ≥ √x` (x ≥ 0), within `2^-SQRT_BITS` of it.
+pub(crate) fn sqrt_up(x: &BigRational) -> BigRational {
+    let scale = BigInt::one() << (2 * SQRT_BITS);
+    // ⌈x·4^k⌉, then ⌈√·⌉: (s/2^k)² ≥ ⌈x·4^k⌉/4^k ≥ x.
+    let n = (x * BigRational::from_integer(scale)).ceil().to_integer();
+    let mut s = n.sqrt();
+    if &s * &s < n {
+        s += 1;
+    }
+    BigRational::new(s, BigInt::one() << SQRT_BITS)
+}
+
+fn dist2(x: &[BigRational], y: &[BigRational]) -> BigRational {
+    x.iter()
+        .zip(y)
+        .map(|(a, b)| (a - b) * (a - b))
+        .fold(BigRational::zero(), |s, t| s + t)
+}
+
+/// The outcome of the neighbour-map search.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) enum Search {
+    /// The worklist closed without the identity: this many maps.
+    Closed(usize),
+    /// The identity appeared: the operators that start the two words (indices into the edges).
+    Identity(usize, usize),
+    /// Undecided, and why.
+    Undecided(String),
+}
+
+/// One operator of the part: `(q, w, g)` with `g: chart w → chart q` a similitude.
+pub(crate) type QEdge = (usize, usize, QAffine);
+
+/// The neighbour-map search over the part's states (indices into `centres`, one point per state
+/// in its chart) and operators.
+pub(crate) fn search(centres: &[Vec<BigRational>], edges: &[QEdge]) -> Search {
+    let mut ratio2 = Vec::with_capacity(edges.len());
+    let mut inverse = Vec::with_capacity(edges.len());
+    for (_, _, g) in edges {
+        let (Some(r2), Some(inv)) = (g.similitude_ratio2(), g.inverse()) else {
+            return Search::Undecided("an operator is not a similitude in the coordinates".into());
+        };
+        if r2 >= BigRational::one() {
+            return Search::Undecided("an operator does not contract".into());
+        }
+        ratio2.push(r2);
+        inverse.push(inv);
+    }
+    // The certified common radius: R ≥ |g_e(c_w) − c_q| / (1 − r̄_e) for every operator.
+    let mut radius = BigRational::zero();
+    for ((q, w, g), r2) in edges.iter().zip(&ratio2) {
+        let r_up = sqrt_up(r2);
+        if r_up >= BigRational::one() {
+            return Search::Undecided("a ratio too close to 1 for the certified radius".into());
+        }
+        let d = sqrt_up(&dist2(&g.apply(&centres[*w]), &centres[*q]));
+        let r = d / (BigRational::one() - r_up);
+        if r > radius {
+            radius = r;
+        }
+    }
+    if radius.is_zero() {
+        // Every attractor is a single point: only possible for degenerate systems.
+        return Search::Undecided("the attractors are points".into());
+    }
+    let margin = &radius / BigRational::from_integer(16.into());
+    let passes = |q: usize, r: usize, h: &QAffine, h_r2: &BigRational| {
+        let bound = &radius + sqrt_up(h_r2) * &radius + &margin;
+        dist2(&h.apply(&centres[r]), &centres[q]) <= &bound * &bound
+    };
+    // (q, r, map, squared ratio, first operators).
+    let mut seen: HashSet<(usize, usize, QAffine)> = HashSet::new();
+    let mut queue: VecDeque<(usize, usize, QAffine, BigRational, (usize, usize))> =
+        VecDeque::new();
+    for (i, (p, qa, _)) in edges.iter().enumerate() {
+        for (j, (p2, rb, gb)) in edges.iter().enumerate() {
+            if i == j || p != p2 {
+                continue;
+            }
+            let h = inverse[i].then(gb);
+            let h_r2 = &ratio2[j] / &ratio2[i];
+            if passes(*qa, *rb, &h, &h_r2) && seen.insert((*qa, *rb, h.clone())) {
+                queue.push_back((*qa, *rb, h, h_r2, (i, j)));
+            }
+        }
+    }
+    while let Some((q, r, h, h_r2, first)) = queue.pop_front() {
+        if q == r && h.is_identity() {
+            return Search::Identity(first.0, first.1);
+        }
+        if seen.len() > MAX_NEIGHBOUR_MAPS {
+            return Search::Undecided(format!(
+                "the neighbour-map search reached its limit of {MAX_NEIGHBOUR_MAPS} maps"
+            ));
+        }
+        let refine_u = h_r2 <= BigRational::one();
+        for (e, (s, w, g)) in edges.iter().enumerate() {
+            let (nq, nr, nh, n_r2) = if refine_u {
+                if *s != q {
+                    continue;
+                }
+                (*w, r, inverse[e].then(&h), &h_r2 / &ratio2[e])
+            } else {
+                if *s != r {
+                    continue;
+                }
+                (q, *w, h.then(g), &h_r2 * &ratio2[e])
+            };
+            if passes(nq, nr, &nh, &n_r2) && seen.insert((nq, nr, nh.clone())) {
+                queue.push_back((nq, nr, nh, n_r2, first));
+            }
+        }
+    }
+    Search::Closed(seen.len())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn r(n: i64, d: i64) -> BigRational {
+        BigRational::new(n.into(), d.into())
+    }
+    fn line(a: BigRational, b: BigRational) -> QAffine {
+        QAffine {
+            a: vec![a],
+            b: vec![b],
+        }
+    }
+
+    #[test]
+    fn square_root_bounds_are_above_and_close() {
+        // √2 = 1.41421356237…: the bound is ≥ it (square ≥ 2) and below 1.4143.
+        let s = sqrt_up(&r(2, 1));
+        assert!(&s * &s >= r(2, 1));
+        assert!(s < r(14143, 10000));
+        // A perfect square comes out exactly: √(9/4) = 3/2.
+        assert_eq!(sqrt_up(&r(9, 4)), r(3, 2));
+    }
+
+    #[test]
+    fn inverse_and_composition_of_a_rotation() {
+        // z ↦ (1+i)/2·z + 1 as a matrix [[1/2, −1/2], [1/2, 1/2]], b = (1, 0); ratio² = 1/2.
+        let g = QAffine {
+            a: vec![r(1, 2), r(-1, 2), r(1, 2), r(1, 2)],
+            b: vec![r(1, 1), r(0, 1)],
+        };
+        assert_eq!(g.similitude_ratio2(), Some(r(1, 2)));
+        assert!(g.inverse().unwrap().then(&g).is_identity());
+        // A shear is no similitude.
+        let s = QAffine {
+            a: vec![r(1, 2), r(1, 2), r(0, 1), r(1, 2)],
+            b: vec![r(0, 1), r(0, 1)],
+        };
+        assert_eq!(s.similitude_ratio2(), None);
+    }
+
+    #[test]
+    fn cantor_set_closes_and_exact_overlap_finds_the_identity() {
+        // Middle-thirds Cantor set: x/3, x/3 + 2/3 on one state, centre 1/2. The first maps are
+        // h = 3(x/3 + 2/3) = x + 2 and its inverse x − 2; R = (1/2 − 1/6)/(1 − 1/3) = 1/2, the
+        // test |h(1/2) − 1/2| = 2 ≤ 1/2 + 1/2 + 1/32 fails: nothing passes, the list closes empty.
+        let c = vec![vec![r(1, 2)]];
+        let cantor = vec![
+            (0, 0, line(r(1, 3), r(0, 1))),
+            (0, 0, line(r(1, 3), r(2, 3))),
+        ];
+        assert_eq!(search(&c, &cantor), Search::Closed(0));
+        // f1 = x/2, f2 = x/2 + 1/4, f3 = x/2 + 1/2: f2∘f1 = (x/2)/2 + 1/4 = x/4 + 1/4 and
+        // f1∘f3 = (x/2 + 1/2)/2 = x/4 + 1/4, words with first letters 2 and 1: the identity
+        // f3⁻¹∘f1⁻¹∘f2∘f1 is a neighbour map, and the search must find it.
+        let overlap = vec![
+            (0, 0, line(r(1, 2), r(0, 1))),
+            (0, 0, line(r(1, 2), r(1, 4))),
+            (0, 0, line(r(1, 2), r(1, 2))),
+        ];
+        assert!(matches!(search(&c, &overlap), Search::Identity(_, _)));
+    }
+}
