@@ -180,21 +180,89 @@ fn the_open_set_condition_is_proved_only_where_it_is_decided() {
         assert!(!d.upper_bound, "{name}: {}", d.open_set);
         assert!(d.open_set.starts_with("holds"), "{name}");
     }
-    // Overlapping hulls (dragon, tree, squares, Monkeys tree, vegetation): not decided, so the
-    // value is an upper bound.
-    for name in [
-        "heighway-dragon",
-        "monkeys-tree",
-        "pythagoras-tree",
-        "self-seeding-square",
-        "vegetation",
-        "random-tree",
-    ] {
+    // The dragon and the 45° Pythagoras tree: the hulls overlap, but the neighbour maps decide.
+    // Both hold: the dragon's two pieces tile the plane (the twin dragon is a lattice tile:
+    // Heighway's dragon is a copy of half of it), and the tree's two maps i + (1+i)/2·z,
+    // (1+3i)/2 + (1−i)/2·z are similar to the Lévy C curve's (any two maps a·z + t1, ā·z + t2
+    // with t1·(1 − ā) ≠ t2·(1 − a), here i·(1+i)/2 ≠ (1+3i)/2·(1−i)/2, i.e. (−1+i)/2 ≠ (2+i)/2,
+    // are conjugate by a similitude), which has interior points, so positive area, and a
+    // self-similar set of similarity dimension 2 with positive area satisfies the condition
+    // (Schief 1994). Hence the dimension 2 is the Hausdorff dimension for both.
+    for name in ["heighway-dragon", "pythagoras-tree"] {
+        let m = model(name);
+        let r = resolve(&m, &[], 64).unwrap();
+        let d = similarity_dimension(&m, &r.ops, 10).unwrap();
+        assert!(!d.upper_bound, "{name}: {}", d.open_set);
+        assert!(
+            d.open_set.contains("neighbour maps"),
+            "{name}: {}",
+            d.open_set
+        );
+    }
+    // The Monkeys tree's coordinates lie in Q(√3): the exact neighbour-map search works over Q
+    // and leaves it undecided, an upper bound.
+    let m = model("monkeys-tree");
+    let r = resolve(&m, &[], 64).unwrap();
+    let d = similarity_dimension(&m, &r.ops, 10).unwrap();
+    assert!(
+        d.upper_bound && d.open_set.starts_with("undecided"),
+        "{}",
+        d.open_set
+    );
+    // Squares, vegetation, random tree: upper bounds (never the dimension).
+    for name in ["self-seeding-square", "vegetation", "random-tree"] {
         let m = model(name);
         let r = resolve(&m, &[], 64).unwrap();
         let d = similarity_dimension(&m, &r.ops, 10).unwrap();
         assert!(d.upper_bound, "{name}");
     }
+    // The self-seeding square fails, by an exact overlap found independently (a search over
+    // words written in Python, redone here in Gaussian rationals from the rule's segments):
+    // with the seven fertile segments P→Q of the generator taken as z ↦ P + (Q − P)·z in order
+    // (T1..T3 the side in thirds, T4..T7 the square), T4∘T6∘T7∘T6 = T5∘T6∘T3∘T2, two words whose
+    // first letters differ. So the condition fails, and lacuna must say so.
+    type G = (BigRational, BigRational);
+    let g = |x: i64, y: i64, d: i64| -> G {
+        (
+            BigRational::new(x.into(), d.into()),
+            BigRational::new(y.into(), d.into()),
+        )
+    };
+    let gmul = |a: &G, b: &G| -> G { (&a.0 * &b.0 - &a.1 * &b.1, &a.0 * &b.1 + &a.1 * &b.0) };
+    let pts = [
+        g(0, 0, 6),
+        g(2, 0, 6),
+        g(4, 0, 6),
+        g(6, 0, 6),
+        g(2, -1, 6),
+        g(4, -1, 6),
+        g(4, -3, 6),
+        g(2, -3, 6),
+        g(2, -1, 6),
+    ];
+    // Segments 0→1, 1→2, 2→3 (the side), then 4→5, 5→6, 6→7, 7→8 (the square after the jump).
+    let seg: Vec<(G, G)> = [(0, 1), (1, 2), (2, 3), (4, 5), (5, 6), (6, 7), (7, 8)]
+        .iter()
+        .map(|&(i, j)| {
+            let (p, q) = (&pts[i], &pts[j]);
+            ((&q.0 - &p.0, &q.1 - &p.1), p.clone())
+        })
+        .collect();
+    let word = |w: &[usize]| -> (G, G) {
+        // f_w = f_(w1) ∘ … ∘ f_(wn): z ↦ a·z + b, composed from the right.
+        let mut m: (G, G) = (g(1, 0, 1), g(0, 0, 1));
+        for &i in w.iter().rev() {
+            let (a, b) = &seg[i - 1];
+            let nb = gmul(a, &m.1);
+            m = (gmul(a, &m.0), (&nb.0 + &b.0, &nb.1 + &b.1));
+        }
+        m
+    };
+    assert_eq!(word(&[4, 6, 7, 6]), word(&[5, 6, 3, 2]));
+    let m = model("self-seeding-square");
+    let r = resolve(&m, &[], 64).unwrap();
+    let d = similarity_dimension(&m, &r.ops, 10).unwrap();
+    assert!(d.open_set.starts_with("fails"), "{}", d.open_set);
     // A segment drawn twice with the same generator is the same map twice: the condition fails
     // (the two pieces coincide), reported as such and as an upper bound.
     let r = rule("initiator 0,0 g 1,0\ngenerator g 0,0 g 1/2,0 g 1,0 . 0,0 g 1/2,0\n");
@@ -227,7 +295,11 @@ fn box_counting_agrees_where_the_dimension_is_proved_and_stays_below_the_bounds(
         let b = v["box_dimension"]["value"]
             .as_f64()
             .expect("a box dimension");
-        if bound {
+        // The dragon and the Pythagoras tree's canopy have dimension 2 (proved by neighbour maps),
+        // but at level 2 box counting sees a curve of 4 segments and a tree of 4 squares: it is
+        // only held below the value there (getting within 0.05 needs finer levels, outside this
+        // test).
+        if bound || ["heighway-dragon", "pythagoras-tree"].contains(&name) {
             assert!(b < s + 0.05, "{name}: box {b} above the bound {s}");
         } else {
             assert!((b - s).abs() < 0.05, "{name}: box {b} against {s}");

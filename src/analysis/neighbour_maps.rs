@@ -23,17 +23,21 @@
 //!   by the prefix's ratio (at least `r_u`), so the prefixes pass the test; the refinement cannot
 //!   stop early because a finished larger side would leave a ratio at most `r_max`. A finite
 //!   closed set without the identity keeps the neighbour maps away from the identity.
-//! - **Undecided** when the search reaches [`MAX_NEIGHBOUR_MAPS`] maps (a limit, never a
-//!   verdict), or a coefficient is irrational, or a map is not a similitude in the coordinates.
+//! - **Undecided** when the search reaches [`MAX_NEIGHBOUR_MAPS`] maps or
+//!   [`MAX_NEIGHBOUR_TESTS`] tested candidates (limits, never a verdict), or a coefficient is
+//!   irrational, or an operator is not a contracting similitude in the coordinates.
 
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 use std::collections::{HashSet, VecDeque};
 
-/// The most neighbour maps the search keeps before it gives up (undecided). A documented
-/// constant: the search is quadratic in nothing, but each map costs a few big rationals.
+/// The most neighbour maps the search keeps before it gives up (undecided): a documented limit
+/// (each map costs a few big rationals), never a verdict.
 pub const MAX_NEIGHBOUR_MAPS: usize = 4096;
+/// The most candidate maps the search composes and tests (a part with many operators tries
+/// each one on every kept map); beyond it the search gives up (undecided).
+pub const MAX_NEIGHBOUR_TESTS: usize = 1 << 18;
 
 /// Bits of the rational upper bounds of square roots.
 const SQRT_BITS: u32 = 32;
@@ -216,8 +220,7 @@ pub(crate) fn search(centres: &[Vec<BigRational>], edges: &[QEdge]) -> Search {
     };
     // (q, r, map, squared ratio, first operators).
     let mut seen: HashSet<(usize, usize, QAffine)> = HashSet::new();
-    let mut queue: VecDeque<(usize, usize, QAffine, BigRational, (usize, usize))> =
-        VecDeque::new();
+    let mut queue: VecDeque<(usize, usize, QAffine, BigRational, (usize, usize))> = VecDeque::new();
     for (i, (p, qa, _)) in edges.iter().enumerate() {
         for (j, (p2, rb, gb)) in edges.iter().enumerate() {
             if i == j || p != p2 {
@@ -230,6 +233,7 @@ pub(crate) fn search(centres: &[Vec<BigRational>], edges: &[QEdge]) -> Search {
             }
         }
     }
+    let mut tests = 0usize;
     while let Some((q, r, h, h_r2, first)) = queue.pop_front() {
         if q == r && h.is_identity() {
             return Search::Identity(first.0, first.1);
@@ -241,15 +245,18 @@ pub(crate) fn search(centres: &[Vec<BigRational>], edges: &[QEdge]) -> Search {
         }
         let refine_u = h_r2 <= BigRational::one();
         for (e, (s, w, g)) in edges.iter().enumerate() {
+            if (refine_u && *s != q) || (!refine_u && *s != r) {
+                continue;
+            }
+            tests += 1;
+            if tests > MAX_NEIGHBOUR_TESTS {
+                return Search::Undecided(format!(
+                    "the neighbour-map search reached its limit of {MAX_NEIGHBOUR_TESTS} tested maps"
+                ));
+            }
             let (nq, nr, nh, n_r2) = if refine_u {
-                if *s != q {
-                    continue;
-                }
                 (*w, r, inverse[e].then(&h), &h_r2 / &ratio2[e])
             } else {
-                if *s != r {
-                    continue;
-                }
                 (q, *w, h.then(g), &h_r2 * &ratio2[e])
             };
             if passes(nq, nr, &nh, &n_r2) && seen.insert((nq, nr, nh.clone())) {
@@ -321,5 +328,63 @@ mod tests {
             (0, 0, line(r(1, 2), r(1, 2))),
         ];
         assert!(matches!(search(&c, &overlap), Search::Identity(_, _)));
+    }
+
+    #[test]
+    fn sierpinski_triangle_closes_without_the_identity() {
+        // z/2, z/2 + (1/2, 0), z/2 + (0, 1/2): the open triangle is a feasible open set, so the
+        // condition holds and (Bandt–Graf) the neighbour maps stay away from the identity; all
+        // maps are x ↦ 2^k·x + t with t in (1/2)·Z², so the list must close.
+        let half = |t: (i64, i64)| QAffine {
+            a: vec![r(1, 2), r(0, 1), r(0, 1), r(1, 2)],
+            b: vec![r(t.0, 2), r(t.1, 2)],
+        };
+        let e = vec![
+            (0, 0, half((0, 0))),
+            (0, 0, half((1, 0))),
+            (0, 0, half((0, 1))),
+        ];
+        let got = search(&[vec![r(1, 3), r(1, 3)]], &e);
+        assert!(matches!(got, Search::Closed(n) if n > 0), "{got:?}");
+    }
+
+    #[test]
+    fn an_irrational_rotation_with_overlaps_stays_undecided_within_the_limit() {
+        // f1(z) = a·z, f2(z) = a·z + 1 with a = (12 + 16i)/25 = (4/5)·(3 + 4i)/5: the rotation
+        // by atan(4/3) is an irrational angle. Hand derivation of the expected outcome:
+        // - the condition fails: two maps of ratio 4/5 have similarity dimension
+        //   log 2 / log(5/4) ≈ 3.1 > 2, impossible for a plane set under the condition;
+        // - the identity is never a neighbour map: f_u = f_v for words of one length n with
+        //   different first letters means Σ c_k a^k = 0 with c_k ∈ {−1, 0, 1}, c_0 = ±1. With
+        //   α = 25a = 4(3 + 4i) = 4(2 + i)², multiply by 25^d (d the top k with c_k ≠ 0): every
+        //   term but c_d·α^d is divisible by 25, hence by the Gaussian prime 2 − i, and α^d is
+        //   not (2 − i ∤ 4(2 + i)²), so c_d = 0: a contradiction.
+        // So the list can neither close (that would prove the condition) nor find the identity:
+        // the search must stop at its limit, undecided.
+        let (p, q) = (r(12, 25), r(16, 25));
+        let rot = |t: i64| QAffine {
+            a: vec![p.clone(), -q.clone(), q.clone(), p.clone()],
+            b: vec![r(t, 1), r(0, 1)],
+        };
+        let e = vec![(0, 0, rot(0)), (0, 0, rot(1))];
+        match search(&[vec![r(1, 2), r(0, 1)]], &e) {
+            Search::Undecided(why) => assert!(why.contains("limit"), "{why}"),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_non_similitude_or_expanding_operator_is_undecided() {
+        let shear = QAffine {
+            a: vec![r(1, 2), r(1, 4), r(0, 1), r(1, 2)],
+            b: vec![r(0, 1), r(0, 1)],
+        };
+        let got = search(&[vec![r(1, 2), r(0, 1)]], &[(0, 0, shear)]);
+        assert!(matches!(got, Search::Undecided(_)));
+        let grow = line(r(3, 2), r(0, 1));
+        assert!(matches!(
+            search(&[vec![r(1, 2)]], &[(0, 0, grow)]),
+            Search::Undecided(_)
+        ));
     }
 }

@@ -18,11 +18,13 @@
 //!      non-empty interior;
 //!   2. one fixed polygon for every state: the square whose diagonal is the state's first two
 //!      points (for rules: the square on the segment), or the segment itself for 2-point states.
-//! - **Fails** when two operators out of one state into the same state are equal: the two
-//!   pieces coincide, and the dimension is smaller than s.
-//! - **Undecided** otherwise (hulls with infinitely many vertices, overlapping hulls around an
-//!   attractor that still satisfies the condition, states of other sizes, 3D): s is then
-//!   reported as an upper bound, never as the dimension.
+//!   3. the neighbour maps ([`crate::analysis::neighbour_maps`], Bandt–Graf, exact over Q): the
+//!      worklist of maps `f_u⁻¹ ∘ f_v` whose pieces may meet closes without the identity.
+//! - **Fails** when two operators out of one state into the same state are equal, or when the
+//!   neighbour maps meet the identity: two pieces coincide, and the dimension is smaller than s.
+//! - **Undecided** otherwise (coefficients outside Q where the hulls and squares do not decide,
+//!   infinitely many neighbour maps, states of other sizes, 3D): s is then reported as an upper
+//!   bound, never as the dimension.
 
 use crate::algebra::algebraic::{FieldElement, NumberField};
 use crate::algebra::kmatrix::KMatrix;
