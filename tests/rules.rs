@@ -761,3 +761,39 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn neighbour_maps_through_the_command_prove_the_dragon_and_refute_an_exact_overlap() {
+    // The dragon: proved by neighbour maps (see the open-set test above), so `measure` calls 2
+    // the dimension, not an upper bound.
+    let (code, out, err) = lacuna(&["measure", "heighway-dragon", "--level", "1", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["similarity_dimension"]["upper_bound"], false);
+    assert_eq!(v["similarity_dimension"]["exact"], "2");
+    // Three collinear halves of the segment at 0, 1/4, 1/2: z ↦ z/2, z/2 + 1/4, z/2 + 1/2 (the
+    // third piece starts at 1/2 and ends at 1). By hand, f2∘f1 = z/4 + 1/4 = f1∘f3: two words
+    // with different first letters give the same map, so two pieces coincide and the condition
+    // fails (besides, log 3 / log 2 > 1 for a set on a segment). The hull is a segment (no
+    // interior) and the squares overlap, so only the neighbour maps can refute it.
+    let dir = std::env::temp_dir().join(format!("lacuna-osc-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("halves.rule");
+    std::fs::write(
+        &path,
+        "initiator 0,0 g 1,0\ngenerator g 0,0 g 1/2,0 . 1/4,0 g 3/4,0 . 1/2,0 g 1,0\n",
+    )
+    .unwrap();
+    let (code, out, err) = lacuna(&["measure", path.to_str().unwrap(), "--level", "1", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let s = &v["similarity_dimension"];
+    assert_eq!(s["exact"], "log 3 / log 2");
+    assert_eq!(s["upper_bound"], true);
+    let why = s["open_set"].as_str().unwrap();
+    assert!(
+        why.starts_with("fails") && why.contains("identity"),
+        "{why}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

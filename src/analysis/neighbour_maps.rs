@@ -387,4 +387,28 @@ mod tests {
             Search::Undecided(_)
         ));
     }
+
+    proptest::proptest! {
+        #[test]
+        fn dyadic_systems_on_the_line_are_decided_by_the_count_of_maps(
+            ks in proptest::collection::btree_set(0i64..8, 2..5),
+        ) {
+            // m distinct maps x/2 + k/8 (k ∈ 0..8). Two of them: the attractor is the interval
+            // between their fixed points k1/4 and k2/4, and the two halves meet in one point, so
+            // the condition holds. Three or more: the similarity dimension log m / log 2 exceeds
+            // 1, impossible for a set on the line under the condition, so it fails; and the
+            // neighbour maps x + t (all ratios 1/2, t ∈ Z/8 bounded by the ball test) are
+            // finitely many, so the search decides: closed for m = 2, the identity for m ≥ 3.
+            let e: Vec<QEdge> = ks.iter().map(|&k| (0, 0, line(r(1, 2), r(k, 8)))).collect();
+            let lo = r(*ks.iter().next().unwrap(), 4);
+            let hi = r(*ks.iter().next_back().unwrap(), 4);
+            let c = vec![vec![(lo + hi) / r(2, 1)]];
+            let got = search(&c, &e);
+            if ks.len() == 2 {
+                proptest::prop_assert!(matches!(got, Search::Closed(_)), "{:?}", got);
+            } else {
+                proptest::prop_assert!(matches!(got, Search::Identity(_, _)), "{:?}", got);
+            }
+        }
+    }
 }
