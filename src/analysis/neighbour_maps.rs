@@ -178,6 +178,9 @@ pub(crate) enum Search {
     Undecided(String),
 }
 
+/// A kept map waiting to be refined: `(q, r, h, ratio(h)², the two first operators)`.
+type Pending = (usize, usize, QAffine, BigRational, (usize, usize));
+
 /// One operator of the part: `(q, w, g)` with `g: chart w → chart q` a similitude.
 pub(crate) type QEdge = (usize, usize, QAffine);
 
@@ -218,9 +221,8 @@ pub(crate) fn search(centres: &[Vec<BigRational>], edges: &[QEdge]) -> Search {
         let bound = &radius + sqrt_up(h_r2) * &radius + &margin;
         dist2(&h.apply(&centres[r]), &centres[q]) <= &bound * &bound
     };
-    // (q, r, map, squared ratio, first operators).
     let mut seen: HashSet<(usize, usize, QAffine)> = HashSet::new();
-    let mut queue: VecDeque<(usize, usize, QAffine, BigRational, (usize, usize))> = VecDeque::new();
+    let mut queue: VecDeque<Pending> = VecDeque::new();
     for (i, (p, qa, _)) in edges.iter().enumerate() {
         for (j, (p2, rb, gb)) in edges.iter().enumerate() {
             if i == j || p != p2 {
