@@ -797,3 +797,34 @@ fn neighbour_maps_through_the_command_prove_the_dragon_and_refute_an_exact_overl
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn neighbour_maps_work_in_the_frames_of_a_skew_automaton() {
+    // Heighway's dragon g1(z) = (1+i)/2·z, g2(z) = 1 + (−1+i)/2·z (the condition holds: the
+    // dragon tiles the plane) written as a one-state automaton on the skew frame P0 = (0,0),
+    // P1 = (2,0), P2 = (1,1), whose charts are not orthonormal (so the operators are no
+    // similitudes in the charts and the search must work in the frame). Barycentric coordinates
+    // of (x, y) there: y2 = y, y1 = (x − y)/2, y0 = 1 − y1 − y2. Images of the frame points:
+    // g1: 0 → (0,0) = (1,0,0), 2 → (1,1) = (0,0,1), 1+i → i = (0,1) = (1/2,−1/2,1);
+    // g2: 0 → (1,0) = (1/2,1/2,0), 2 → i = (1/2,−1/2,1), 1+i → 1 − 1 = (0,0) = (1,0,0).
+    // Columns of T are those images; two maps of ratio 1/√2: dimension 2, proved.
+    let dir = std::env::temp_dir().join(format!("lacuna-osc-skew-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("dragon-skew.aut");
+    std::fs::write(
+        &path,
+        "state t 3\n\
+         sub t.T0 : t <- t = [1 0 1/2; 0 0 -1/2; 0 1 1]\n\
+         sub t.T1 : t <- t = [1/2 1/2 1; 1/2 -1/2 0; 0 1 0]\n\
+         barycentric\nspace 2\npoints [0 0; 2 0; 1 1]\nprimitive t polygon\n",
+    )
+    .unwrap();
+    let (code, out, err) = lacuna(&["measure", path.to_str().unwrap(), "--level", "1", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let s = &v["similarity_dimension"];
+    assert_eq!(s["exact"], "2");
+    assert_eq!(s["upper_bound"], false, "{}", s["open_set"]);
+    assert!(s["open_set"].as_str().unwrap().contains("neighbour maps"));
+    std::fs::remove_dir_all(&dir).ok();
+}
