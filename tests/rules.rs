@@ -199,13 +199,23 @@ fn the_open_set_condition_is_proved_only_where_it_is_decided() {
             d.open_set
         );
     }
-    // The Monkeys tree's coordinates lie in Q(√3): the exact neighbour-map search works over Q
-    // and leaves it undecided, an upper bound.
+    // The Monkeys tree (coordinates in Q(√3), s = √3): two pieces coincide exactly. With the
+    // segments numbered from 0 along the generator, T3: (5/6, s/6) → (2/3, s/3), T9: (7/6, s/18)
+    // → (1, s/9), T1: (1/3, 0) → (2/3, 0), T10: (1, s/9) → (1, 0), each z ↦ P + (Q − P)·z:
+    // T9∘T3 has linear part (−1/6 + i·s/18)(−1/6 + i·s/6) = 1/36 − 3/108 − i·s·(1/36 + 1/108) =
+    // −i·s/27, and T10∘T1 has (−i·s/9)(1/3) = −i·s/27; translations T9(P3) = 7/6 + i·s/18 +
+    // (−1/6 + i·s/18)(5/6 + i·s/6) = 1 + i·2s/27 and T10(P1) = 1 + i·s/9 − i·s/27 = 1 + i·2s/27.
+    // So T9∘T3 = T10∘T1 (also found by a word search in Python): the condition fails.
     let m = model("monkeys-tree");
     let r = resolve(&m, &[], 64).unwrap();
     let d = similarity_dimension(&m, &r.ops, 10).unwrap();
     assert!(
-        d.upper_bound && d.open_set.starts_with("undecided"),
+        d.upper_bound && d.open_set.starts_with("fails"),
+        "{}",
+        d.open_set
+    );
+    assert!(
+        d.open_set.contains("m.T9") && d.open_set.contains("m.T10"),
         "{}",
         d.open_set
     );

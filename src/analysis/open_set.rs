@@ -18,18 +18,18 @@
 //!      non-empty interior;
 //!   2. one fixed polygon for every state: the square whose diagonal is the state's first two
 //!      points (for rules: the square on the segment), or the segment itself for 2-point states.
-//!   3. the neighbour maps ([`crate::analysis::neighbour_maps`], Bandt–Graf, exact over Q): the
+//!   3. the neighbour maps ([`crate::analysis::neighbour_maps`], Bandt–Graf, exact in K): the
 //!      worklist of maps `f_u⁻¹ ∘ f_v` whose pieces may meet closes without the identity.
 //! - **Fails** when two operators out of one state into the same state are equal, or when the
 //!   neighbour maps meet the identity: two pieces coincide, and the dimension is smaller than s.
-//! - **Undecided** otherwise (coefficients outside Q where the hulls and squares do not decide,
-//!   infinitely many neighbour maps, states of other sizes, 3D): s is then reported as an upper
+//! - **Undecided** otherwise (infinitely many neighbour maps, operators that are no contracting
+//!   similitudes in the coordinates, states of other sizes, 3D): s is then reported as an upper
 //!   bound, never as the dimension.
 
 use crate::algebra::algebraic::{FieldElement, NumberField};
 use crate::algebra::kmatrix::KMatrix;
 use crate::analysis::contraction::control_graph;
-use crate::analysis::neighbour_maps::{search, QAffine, QEdge, Search};
+use crate::analysis::neighbour_maps::{search, KAffine, KEdge, Search};
 use crate::input::automaton_model::AutomatonModel;
 use num_rational::BigRational;
 use num_traits::{One, Zero};
@@ -436,9 +436,9 @@ pub(crate) fn part_verdict(
             },
         };
     }
-    let why = match neighbour_edges(part, &edges, frames, d) {
+    let why = match neighbour_edges(k, part, &edges, frames, d) {
         Err(why) => why,
-        Ok((centres, qedges)) => match search(&centres, &qedges) {
+        Ok((centres, kedges)) => match search(k, &centres, &kedges) {
             Search::Closed(n) => {
                 return OpenSetVerdict {
                     holds: Some(true),
@@ -460,7 +460,7 @@ pub(crate) fn part_verdict(
     undecided(format!("undecided: neither the convex hulls of the attractors nor the square on the segment is a feasible open set, and the neighbour maps decide nothing: {why} (the condition may still hold)"))
 }
 
-/// The part's operators as rational similitudes between per-state coordinates, for the
+/// The part's operators as similitudes over K between per-state coordinates, for the
 /// neighbour-map search: in one dimension the charts themselves (every affine map of the line is
 /// a similitude); in the plane the charts when every operator is a contracting similitude there
 /// (a rule's states: the charts are the generators' own Euclidean coordinates), else the
@@ -468,38 +468,34 @@ pub(crate) fn part_verdict(
 /// where the operators are similitudes. The centres are the midpoints of each state's first two
 /// points. Any choice of coordinates per state is sound: the condition does not depend on it.
 fn neighbour_edges(
+    k: &NumberField,
     part: &[usize],
     edges: &[Edge],
     frames: &[Option<KMatrix>],
     d: usize,
-) -> Result<(Vec<Vec<BigRational>>, Vec<QEdge>), String> {
-    let rat = |x: &FieldElement| {
-        x.as_rational()
-            .ok_or_else(|| "a coefficient is irrational (the search works over Q)".to_string())
-    };
+) -> Result<(Vec<Vec<FieldElement>>, Vec<KEdge>), String> {
     let pos = |s: usize| part.binary_search(&s).expect("in part");
-    let chart = |m: &Map| -> Result<QAffine, String> {
-        Ok(QAffine {
-            a: m.a.iter().map(rat).collect::<Result<_, _>>()?,
-            b: m.b.iter().map(rat).collect::<Result<_, _>>()?,
-        })
+    let chart = |m: &Map| KAffine {
+        a: m.a.clone(),
+        b: m.b.clone(),
     };
-    let half = BigRational::new(1.into(), 2.into());
-    let in_charts: Vec<QEdge> = edges
+    let half = k.rational(BigRational::new(1.into(), 2.into()));
+    let in_charts: Vec<KEdge> = edges
         .iter()
-        .map(|(s, w, m, _)| Ok((pos(*s), pos(*w), chart(m)?)))
-        .collect::<Result<_, String>>()?;
-    let contracting = |q: &[QEdge]| {
+        .map(|(s, w, m, _)| (pos(*s), pos(*w), chart(m)))
+        .collect();
+    let one = k.rational(BigRational::one());
+    let contracting = |q: &[KEdge]| {
         q.iter().all(|(_, _, g)| {
-            g.similitude_ratio2()
-                .is_some_and(|r2| r2 < BigRational::one())
+            g.similitude_ratio2(k)
+                .is_some_and(|r2| cmp(k, &r2, &one) == Ordering::Less)
         })
     };
     if d == 1 || contracting(&in_charts) {
         let centre = if d == 1 {
             vec![half]
         } else {
-            vec![half, BigRational::zero()]
+            vec![half, q0(k)]
         };
         return Ok((vec![centre; part.len()], in_charts));
     }
@@ -510,30 +506,33 @@ fn neighbour_edges(
             .as_ref()
             .filter(|f| f.rows == 2 && f.cols == 3)
             .ok_or_else(|| "a state has no frame of three points in the plane".to_string())?;
-        let p = |r: usize, c: usize| rat(f.get(r, c));
-        let (x0, y0) = (p(0, 0)?, p(1, 0)?);
-        let e = QAffine {
+        let p = |r: usize, c: usize| f.get(r, c);
+        let (x0, y0) = (p(0, 0), p(1, 0));
+        let e = KAffine {
             a: vec![
-                p(0, 1)? - &x0,
-                p(0, 2)? - &x0,
-                p(1, 1)? - &y0,
-                p(1, 2)? - &y0,
+                k.sub(p(0, 1), x0),
+                k.sub(p(0, 2), x0),
+                k.sub(p(1, 1), y0),
+                k.sub(p(1, 2), y0),
             ],
             b: vec![x0.clone(), y0.clone()],
         };
         let inv = e
-            .inverse()
+            .inverse(k)
             .ok_or_else(|| "a state's frame is degenerate".to_string())?;
-        centres.push(vec![(x0 + p(0, 1)?) * &half, (y0 + p(1, 1)?) * &half]);
+        centres.push(vec![
+            k.mul(&k.add(x0, p(0, 1)), &half),
+            k.mul(&k.add(y0, p(1, 1)), &half),
+        ]);
         embed.push((e, inv));
     }
     let q = edges
         .iter()
         .map(|(s, w, m, _)| {
             let (i, j) = (pos(*s), pos(*w));
-            Ok((i, j, embed[i].0.then(&chart(m)?).then(&embed[j].1)))
+            (i, j, embed[i].0.then(k, &chart(m)).then(k, &embed[j].1))
         })
-        .collect::<Result<_, String>>()?;
+        .collect();
     Ok((centres, q))
 }
 
