@@ -301,6 +301,9 @@ pub(crate) fn search(k: &NumberField, centres: &[Vec<FieldElement>], edges: &[KE
                 (q, *w, h.then(k, g), k.mul(&h_r2, &ratio2[e]))
             };
             if passes(nq, nr, &nh, &n_r2) && seen.insert((nq, nr, nh.clone())) {
+                if nq == nr && nh.is_identity(k) {
+                    return Search::Identity(first.0, first.1);
+                }
                 queue.push_back((nq, nr, nh, n_r2, first));
             }
         }
