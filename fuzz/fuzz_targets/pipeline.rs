@@ -20,7 +20,6 @@ fuzz_target!(|data: &[u8]| {
         max_unknowns: 100_000,
         max_memory_mb: 256,
         max_matrix: 8,
-        max_products: 1_000,
     };
     if let Ok(lacuna::topology::Closure::Closed(ts)) = lacuna::topology::close(&face, &limits) {
         ts.verify().expect("closure identities");
