@@ -180,21 +180,99 @@ fn the_open_set_condition_is_proved_only_where_it_is_decided() {
         assert!(!d.upper_bound, "{name}: {}", d.open_set);
         assert!(d.open_set.starts_with("holds"), "{name}");
     }
-    // Overlapping hulls (dragon, tree, squares, Monkeys tree, vegetation): not decided, so the
-    // value is an upper bound.
-    for name in [
-        "heighway-dragon",
-        "monkeys-tree",
-        "pythagoras-tree",
-        "self-seeding-square",
-        "vegetation",
-        "random-tree",
-    ] {
+    // The dragon and the 45° Pythagoras tree: the hulls overlap, but the neighbour maps decide.
+    // Both hold: the dragon's two pieces tile the plane (the twin dragon is a lattice tile:
+    // Heighway's dragon is a copy of half of it), and the tree's two maps i + (1+i)/2·z,
+    // (1+3i)/2 + (1−i)/2·z are similar to the Lévy C curve's (any two maps a·z + t1, ā·z + t2
+    // with t1·(1 − ā) ≠ t2·(1 − a), here i·(1+i)/2 ≠ (1+3i)/2·(1−i)/2, i.e. (−1+i)/2 ≠ (2+i)/2,
+    // are conjugate by a similitude), which has interior points, so positive area, and a
+    // self-similar set of similarity dimension 2 with positive area satisfies the condition
+    // (Schief 1994). Hence the dimension 2 is the Hausdorff dimension for both.
+    for name in ["heighway-dragon", "pythagoras-tree"] {
+        let m = model(name);
+        let r = resolve(&m, &[], 64).unwrap();
+        let d = similarity_dimension(&m, &r.ops, 10).unwrap();
+        assert!(!d.upper_bound, "{name}: {}", d.open_set);
+        assert!(
+            d.open_set.contains("neighbour maps"),
+            "{name}: {}",
+            d.open_set
+        );
+    }
+    // The Monkeys tree (coordinates in Q(√3), s = √3): two pieces coincide exactly. With the
+    // segments numbered from 0 along the generator, T3: (5/6, s/6) → (2/3, s/3), T9: (7/6, s/18)
+    // → (1, s/9), T1: (1/3, 0) → (2/3, 0), T10: (1, s/9) → (1, 0), each z ↦ P + (Q − P)·z:
+    // T9∘T3 has linear part (−1/6 + i·s/18)(−1/6 + i·s/6) = 1/36 − 3/108 − i·s·(1/36 + 1/108) =
+    // −i·s/27, and T10∘T1 has (−i·s/9)(1/3) = −i·s/27; translations T9(P3) = 7/6 + i·s/18 +
+    // (−1/6 + i·s/18)(5/6 + i·s/6) = 1 + i·2s/27 and T10(P1) = 1 + i·s/9 − i·s/27 = 1 + i·2s/27.
+    // So T9∘T3 = T10∘T1 (also found by a word search in Python): the condition fails.
+    let m = model("monkeys-tree");
+    let r = resolve(&m, &[], 64).unwrap();
+    let d = similarity_dimension(&m, &r.ops, 10).unwrap();
+    assert!(
+        d.upper_bound && d.open_set.starts_with("fails"),
+        "{}",
+        d.open_set
+    );
+    assert!(
+        d.open_set.contains("m.T9") && d.open_set.contains("m.T10"),
+        "{}",
+        d.open_set
+    );
+    // Squares, vegetation, random tree: upper bounds (never the dimension).
+    for name in ["self-seeding-square", "vegetation", "random-tree"] {
         let m = model(name);
         let r = resolve(&m, &[], 64).unwrap();
         let d = similarity_dimension(&m, &r.ops, 10).unwrap();
         assert!(d.upper_bound, "{name}");
     }
+    // The self-seeding square fails, by an exact overlap found independently (a search over
+    // words written in Python, redone here in Gaussian rationals from the rule's segments):
+    // with the seven fertile segments P→Q of the generator taken as z ↦ P + (Q − P)·z in order
+    // (T1..T3 the side in thirds, T4..T7 the square), T4∘T6∘T7∘T6 = T5∘T6∘T3∘T2, two words whose
+    // first letters differ. So the condition fails, and lacuna must say so.
+    type G = (BigRational, BigRational);
+    let g = |x: i64, y: i64, d: i64| -> G {
+        (
+            BigRational::new(x.into(), d.into()),
+            BigRational::new(y.into(), d.into()),
+        )
+    };
+    let gmul = |a: &G, b: &G| -> G { (&a.0 * &b.0 - &a.1 * &b.1, &a.0 * &b.1 + &a.1 * &b.0) };
+    let pts = [
+        g(0, 0, 6),
+        g(2, 0, 6),
+        g(4, 0, 6),
+        g(6, 0, 6),
+        g(2, -1, 6),
+        g(4, -1, 6),
+        g(4, -3, 6),
+        g(2, -3, 6),
+        g(2, -1, 6),
+    ];
+    // Segments 0→1, 1→2, 2→3 (the side), then 4→5, 5→6, 6→7, 7→8 (the square after the jump).
+    let seg: Vec<(G, G)> = [(0, 1), (1, 2), (2, 3), (4, 5), (5, 6), (6, 7), (7, 8)]
+        .iter()
+        .map(|&(i, j)| {
+            let (p, q) = (&pts[i], &pts[j]);
+            ((&q.0 - &p.0, &q.1 - &p.1), p.clone())
+        })
+        .collect();
+    let word = |w: &[usize]| -> (G, G) {
+        // f_w = f_(w1) ∘ … ∘ f_(wn): z ↦ a·z + b, composed from the right.
+        let mut m: (G, G) = (g(1, 0, 1), g(0, 0, 1));
+        for &i in w.iter().rev() {
+            let (a, b) = &seg[i - 1];
+            let nb = gmul(a, &m.1);
+            m = (gmul(a, &m.0), (&nb.0 + &b.0, &nb.1 + &b.1));
+        }
+        m
+    };
+    assert_eq!(word(&[4, 6, 7, 6]), word(&[5, 6, 3, 2]));
+    let m = model("self-seeding-square");
+    let r = resolve(&m, &[], 64).unwrap();
+    let d = similarity_dimension(&m, &r.ops, 10).unwrap();
+    assert!(d.open_set.starts_with("fails"), "{}", d.open_set);
     // A segment drawn twice with the same generator is the same map twice: the condition fails
     // (the two pieces coincide), reported as such and as an upper bound.
     let r = rule("initiator 0,0 g 1,0\ngenerator g 0,0 g 1/2,0 g 1,0 . 0,0 g 1/2,0\n");
@@ -227,7 +305,11 @@ fn box_counting_agrees_where_the_dimension_is_proved_and_stays_below_the_bounds(
         let b = v["box_dimension"]["value"]
             .as_f64()
             .expect("a box dimension");
-        if bound {
+        // The dragon and the Pythagoras tree's canopy have dimension 2 (proved by neighbour maps),
+        // but at level 2 box counting sees a curve of 4 segments and a tree of 4 squares: it is
+        // only held below the value there (getting within 0.05 needs finer levels, outside this
+        // test).
+        if bound || ["heighway-dragon", "pythagoras-tree"].contains(&name) {
             assert!(b < s + 0.05, "{name}: box {b} above the bound {s}");
         } else {
             assert!((b - s).abs() < 0.05, "{name}: box {b} against {s}");
@@ -688,4 +770,71 @@ proptest! {
             Err(e) => prop_assert!(e.code().starts_with('E'), "{}", e.render()),
         }
     }
+}
+
+#[test]
+fn neighbour_maps_through_the_command_prove_the_dragon_and_refute_an_exact_overlap() {
+    // The dragon: proved by neighbour maps (see the open-set test above), so `measure` calls 2
+    // the dimension, not an upper bound.
+    let (code, out, err) = lacuna(&["measure", "heighway-dragon", "--level", "1", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["similarity_dimension"]["upper_bound"], false);
+    assert_eq!(v["similarity_dimension"]["exact"], "2");
+    // Three collinear halves of the segment at 0, 1/4, 1/2: z ↦ z/2, z/2 + 1/4, z/2 + 1/2 (the
+    // third piece starts at 1/2 and ends at 1). By hand, f2∘f1 = z/4 + 1/4 = f1∘f3: two words
+    // with different first letters give the same map, so two pieces coincide and the condition
+    // fails (besides, log 3 / log 2 > 1 for a set on a segment). The hull is a segment (no
+    // interior) and the squares overlap, so only the neighbour maps can refute it.
+    let dir = std::env::temp_dir().join(format!("lacuna-osc-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("halves.rule");
+    std::fs::write(
+        &path,
+        "initiator 0,0 g 1,0\ngenerator g 0,0 g 1/2,0 . 1/4,0 g 3/4,0 . 1/2,0 g 1,0\n",
+    )
+    .unwrap();
+    let (code, out, err) = lacuna(&["measure", path.to_str().unwrap(), "--level", "1", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let s = &v["similarity_dimension"];
+    assert_eq!(s["exact"], "log 3 / log 2");
+    assert_eq!(s["upper_bound"], true);
+    let why = s["open_set"].as_str().unwrap();
+    assert!(
+        why.starts_with("fails") && why.contains("identity"),
+        "{why}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn neighbour_maps_work_in_the_frames_of_a_skew_automaton() {
+    // Heighway's dragon g1(z) = (1+i)/2·z, g2(z) = 1 + (−1+i)/2·z (the condition holds: the
+    // dragon tiles the plane) written as a one-state automaton on the skew frame P0 = (0,0),
+    // P1 = (2,0), P2 = (1,1), whose charts are not orthonormal (so the operators are no
+    // similitudes in the charts and the search must work in the frame). Barycentric coordinates
+    // of (x, y) there: y2 = y, y1 = (x − y)/2, y0 = 1 − y1 − y2. Images of the frame points:
+    // g1: 0 → (0,0) = (1,0,0), 2 → (1,1) = (0,0,1), 1+i → i = (0,1) = (1/2,−1/2,1);
+    // g2: 0 → (1,0) = (1/2,1/2,0), 2 → i = (1/2,−1/2,1), 1+i → 1 − 1 = (0,0) = (1,0,0).
+    // Columns of T are those images; two maps of ratio 1/√2: dimension 2, proved.
+    let dir = std::env::temp_dir().join(format!("lacuna-osc-skew-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("dragon-skew.aut");
+    std::fs::write(
+        &path,
+        "state t 3\n\
+         sub t.T0 : t <- t = [1 0 1/2; 0 0 -1/2; 0 1 1]\n\
+         sub t.T1 : t <- t = [1/2 1/2 1; 1/2 -1/2 0; 0 1 0]\n\
+         barycentric\nspace 2\npoints [0 0; 2 0; 1 1]\nprimitive t polygon\n",
+    )
+    .unwrap();
+    let (code, out, err) = lacuna(&["measure", path.to_str().unwrap(), "--level", "1", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let s = &v["similarity_dimension"];
+    assert_eq!(s["exact"], "2");
+    assert_eq!(s["upper_bound"], false, "{}", s["open_set"]);
+    assert!(s["open_set"].as_str().unwrap().contains("neighbour maps"));
+    std::fs::remove_dir_all(&dir).ok();
 }

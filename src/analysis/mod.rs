@@ -13,6 +13,7 @@ pub(crate) mod curve;
 pub(crate) mod dcf;
 pub(crate) mod design;
 pub(crate) mod explore;
+pub(crate) mod neighbour_maps;
 pub(crate) mod open_set;
 pub(crate) mod operator;
 pub(crate) mod ratio;

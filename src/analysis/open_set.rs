@@ -18,15 +18,18 @@
 //!      non-empty interior;
 //!   2. one fixed polygon for every state: the square whose diagonal is the state's first two
 //!      points (for rules: the square on the segment), or the segment itself for 2-point states.
-//! - **Fails** when two operators out of one state into the same state are equal: the two
-//!   pieces coincide, and the dimension is smaller than s.
-//! - **Undecided** otherwise (hulls with infinitely many vertices, overlapping hulls around an
-//!   attractor that still satisfies the condition, states of other sizes, 3D): s is then
-//!   reported as an upper bound, never as the dimension.
+//!   3. the neighbour maps ([`crate::analysis::neighbour_maps`], Bandt–Graf, exact in K): the
+//!      worklist of maps `f_u⁻¹ ∘ f_v` whose pieces may meet closes without the identity.
+//! - **Fails** when two operators out of one state into the same state are equal, or when the
+//!   neighbour maps meet the identity: two pieces coincide, and the dimension is smaller than s.
+//! - **Undecided** otherwise (infinitely many neighbour maps, operators that are no contracting
+//!   similitudes in the coordinates, states of other sizes, 3D): s is then reported as an upper
+//!   bound, never as the dimension.
 
 use crate::algebra::algebraic::{FieldElement, NumberField};
 use crate::algebra::kmatrix::KMatrix;
 use crate::analysis::contraction::control_graph;
+use crate::analysis::neighbour_maps::{search, KAffine, KEdge, Search};
 use crate::input::automaton_model::AutomatonModel;
 use num_rational::BigRational;
 use num_traits::{One, Zero};
@@ -343,7 +346,12 @@ fn attractor_hulls(
 }
 
 /// The verdict for one strongly connected part (sorted state indices).
-pub(crate) fn part_verdict(m: &AutomatonModel, ops: &[KMatrix], part: &[usize]) -> OpenSetVerdict {
+pub(crate) fn part_verdict(
+    m: &AutomatonModel,
+    ops: &[KMatrix],
+    frames: &[Option<KMatrix>],
+    part: &[usize],
+) -> OpenSetVerdict {
     let a = &m.automaton;
     let k = &m.field;
     let g = control_graph(m);
@@ -428,7 +436,104 @@ pub(crate) fn part_verdict(m: &AutomatonModel, ops: &[KMatrix], part: &[usize]) 
             },
         };
     }
-    undecided("undecided: neither the convex hulls of the attractors nor the square on the segment is a feasible open set (the condition may still hold)".into())
+    let why = match neighbour_edges(k, part, &edges, frames, d) {
+        Err(why) => why,
+        Ok((centres, kedges)) => match search(k, &centres, &kedges) {
+            Search::Closed(n) => {
+                return OpenSetVerdict {
+                    holds: Some(true),
+                    reason: format!("holds: the neighbour maps (Bandt–Graf, exact) form a finite set of {n} maps without the identity"),
+                }
+            }
+            Search::Identity(i, j) => {
+                return OpenSetVerdict {
+                    holds: Some(false),
+                    reason: format!(
+                        "fails: the identity is a neighbour map (two words starting with `{}` and `{}` give the same map, so their pieces coincide)",
+                        a.operators[edges[i].3].name, a.operators[edges[j].3].name
+                    ),
+                }
+            }
+            Search::Undecided(why) => why,
+        },
+    };
+    undecided(format!("undecided: neither the convex hulls of the attractors nor the square on the segment is a feasible open set, and the neighbour maps decide nothing: {why} (the condition may still hold)"))
+}
+
+/// The part's operators as similitudes over K between per-state coordinates, for the
+/// neighbour-map search: in one dimension the charts themselves (every affine map of the line is
+/// a similitude); in the plane the charts when every operator is a contracting similitude there
+/// (a rule's states: the charts are the generators' own Euclidean coordinates), else the
+/// drawing's coordinates through each state's frame `E_q(y) = P_0 + (P_1 − P_0, P_2 − P_0)·y`,
+/// where the operators are similitudes. The centres are the midpoints of each state's first two
+/// points. Any choice of coordinates per state is sound: the condition does not depend on it.
+fn neighbour_edges(
+    k: &NumberField,
+    part: &[usize],
+    edges: &[Edge],
+    frames: &[Option<KMatrix>],
+    d: usize,
+) -> Result<(Vec<Vec<FieldElement>>, Vec<KEdge>), String> {
+    let pos = |s: usize| part.binary_search(&s).expect("in part");
+    let chart = |m: &Map| KAffine {
+        a: m.a.clone(),
+        b: m.b.clone(),
+    };
+    let half = k.rational(BigRational::new(1.into(), 2.into()));
+    let in_charts: Vec<KEdge> = edges
+        .iter()
+        .map(|(s, w, m, _)| (pos(*s), pos(*w), chart(m)))
+        .collect();
+    let one = k.rational(BigRational::one());
+    let contracting = |q: &[KEdge]| {
+        q.iter().all(|(_, _, g)| {
+            g.similitude_ratio2(k)
+                .is_some_and(|r2| cmp(k, &r2, &one) == Ordering::Less)
+        })
+    };
+    if d == 1 || contracting(&in_charts) {
+        let centre = if d == 1 {
+            vec![half]
+        } else {
+            vec![half, q0(k)]
+        };
+        return Ok((vec![centre; part.len()], in_charts));
+    }
+    let mut embed = Vec::with_capacity(part.len());
+    let mut centres = Vec::with_capacity(part.len());
+    for &s in part {
+        let f = frames[s]
+            .as_ref()
+            .filter(|f| f.rows == 2 && f.cols == 3)
+            .ok_or_else(|| "a state has no frame of three points in the plane".to_string())?;
+        let p = |r: usize, c: usize| f.get(r, c);
+        let (x0, y0) = (p(0, 0), p(1, 0));
+        let e = KAffine {
+            a: vec![
+                k.sub(p(0, 1), x0),
+                k.sub(p(0, 2), x0),
+                k.sub(p(1, 1), y0),
+                k.sub(p(1, 2), y0),
+            ],
+            b: vec![x0.clone(), y0.clone()],
+        };
+        let inv = e
+            .inverse(k)
+            .ok_or_else(|| "a state's frame is degenerate".to_string())?;
+        centres.push(vec![
+            k.mul(&k.add(x0, p(0, 1)), &half),
+            k.mul(&k.add(y0, p(1, 1)), &half),
+        ]);
+        embed.push((e, inv));
+    }
+    let q = edges
+        .iter()
+        .map(|(s, w, m, _)| {
+            let (i, j) = (pos(*s), pos(*w));
+            (i, j, embed[i].0.then(k, &chart(m)).then(k, &embed[j].1))
+        })
+        .collect();
+    Ok((centres, q))
 }
 
 #[cfg(test)]

@@ -454,7 +454,7 @@ pub fn similarity_dimension(
     let decimal = certified_decimal(k, &values[best].1, digits);
     let verdicts: Vec<_> = parts
         .iter()
-        .map(|p| crate::analysis::open_set::part_verdict(m, ops, p))
+        .map(|p| crate::analysis::open_set::part_verdict(m, ops, &frames, p))
         .collect();
     let upper_bound = verdicts.iter().any(|v| v.holds != Some(true));
     let open_set = if verdicts.len() == 1 {
