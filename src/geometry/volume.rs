@@ -1071,4 +1071,38 @@ mod tests {
             }
         }
     }
+
+    #[test]
+    fn inner_corners_of_the_cube_are_its_rim_points_shrunk_towards_its_centre() {
+        // By hand: the cube on [−1, 1]³ has its centre o at the origin (every corner is counted
+        // three times, once per face, and the corners are symmetric). At level 1 its rim points
+        // are the 12 edge midpoints and the 24 lacuna corners (c + ½(j − c) on each face), all
+        // on the surface (max |coordinate| = 1); with the 8 cube corners that is 44 surface
+        // points. Each rim point has one radial edge (its two sub-volumes share it through their
+        // spoke face), ending at p + σ(o − p) = 0.65 p: 36 inner corners, max |coordinate| =
+        // 0.65, each 0.65 times a rim point. 44 + 36 = 80 corners (docs/VOLUMES.md).
+        let v = parse_volume("cube B2 | B2 B2 B2 | A1 | B2 B2 | V1").unwrap();
+        let g = evaluate_volume(&v, 1).unwrap();
+        let mut corners = std::collections::BTreeSet::new();
+        for gv in &g.volumes {
+            for r in &gv.faces {
+                corners.extend(r.corners.iter().copied());
+            }
+        }
+        let size = |p: P3| p.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let (outer, inner): (Vec<P3>, Vec<P3>) = corners
+            .iter()
+            .map(|&c| g.points[c])
+            .partition(|&p| (size(p) - 1.0).abs() < 1e-12);
+        assert_eq!((outer.len(), inner.len()), (44, 36));
+        for q in &inner {
+            assert!((size(*q) - (1.0 - SHRINK)).abs() < 1e-12, "{q:?}");
+            assert!(
+                outer
+                    .iter()
+                    .any(|p| norm(sub(scale(*p, 1.0 - SHRINK), *q)) < 1e-12),
+                "{q:?} is no rim point shrunk towards the centre"
+            );
+        }
+    }
 }
