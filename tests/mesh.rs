@@ -613,6 +613,30 @@ fn the_cube_at_level_two_reads_back_with_genus_77() {
     check_written(&s.solid, &[-152], "cube-B2 level 2");
 }
 
+/// Solids the default placement once folded (issue #15): with every rim point's inner corner
+/// shrunk towards its volume's centre they embed. The surface's Euler characteristic read back
+/// from the written STL and 3MF must be twice the solid's χ from the exact counting of
+/// `solid_topology` (an independent computation: it never sees the geometry).
+#[test]
+fn solids_that_folded_before_now_embed_and_read_back() {
+    for (text, level) in [
+        ("cube C2 | B2 B2 B2 | A1 | B2 B2 | V1", 2),
+        ("cube B2 | B2 B2 B2 | A1 | B2 B2 | V2", 2),
+        ("tetrahedron C2 | B2 B2 B2 | A1 | B2 B2 | V1", 2),
+        ("octahedron B2 | B2 B2 B2 | A1 | B2 B2 | V2", 2),
+        ("cube-B2", 3),
+    ] {
+        let s = volume(text, level);
+        s.embedded()
+            .unwrap_or_else(|e| panic!("{text} level {level}: {e}"));
+        let twice: i64 = (num_bigint::BigInt::from(2) * &s.exact.euler)
+            .try_into()
+            .unwrap();
+        assert_eq!(s.euler, twice, "{text} level {level}");
+        check_written(&s.solid, &[twice], &format!("{text} level {level}"));
+    }
+}
+
 /// admesh on volume solids at level 1: one part, nothing to repair.
 #[test]
 #[ignore]

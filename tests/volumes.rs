@@ -336,14 +336,14 @@ fn render_a_volume_writes_a_checked_mesh_and_pictures() {
 
 #[test]
 fn a_solid_that_folds_is_not_written() {
-    // At level 2 the default placement of this tetrahedron with Cantor edges folds (two
+    // At level 2 the default placement of this tetrahedron with Cantor edges and A2 folds (two
     // triangles cross): a mesh would not be the verified structure, so nothing is written and
     // the verdict is negative.
     let d = scratch("fold");
     let stl = d.join("t2.stl");
     let (code, _, err) = lacuna(&[
         "render",
-        "tetrahedron C2 | B2 B2 B2 | A1 | B2 B2 | V1",
+        "tetrahedron C2 | B2 B2 B2 | A2 | B2 B2 | V1",
         "--level",
         "2",
         "--stl",
@@ -396,5 +396,38 @@ fn measure_and_report_a_volume() {
     let html = std::fs::read_to_string(&page).unwrap();
     assert!(html.contains("<canvas id=\"solid3d\""));
     assert!(!html.contains("<script src"), "no external script");
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// The default placement's cases of issue #15 through the command line: `render` of each writes
+/// a binary STL and exits 0; the STL reads back as 80 header bytes, a count and 50 bytes per
+/// triangle, and the count agrees with the mesh line.
+#[test]
+fn render_writes_the_solids_that_folded_before() {
+    let d = scratch("unfold");
+    for (i, (text, level)) in [
+        ("cube C2 | B2 B2 B2 | A1 | B2 B2 | V1", "2"),
+        ("cube B2 | B2 B2 B2 | A1 | B2 B2 | V2", "2"),
+        ("cube-B2", "3"),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let stl = d.join(format!("s{i}.stl"));
+        let (code, out, err) = lacuna(&[
+            "render",
+            text,
+            "--level",
+            level,
+            "--stl",
+            &stl.to_string_lossy(),
+        ]);
+        assert_eq!(code, 0, "{text} level {level}: {err}");
+        assert!(out.contains("no two triangles cross"), "{out}");
+        let bytes = std::fs::read(&stl).unwrap();
+        let n = u32::from_le_bytes(bytes[80..84].try_into().unwrap()) as usize;
+        assert_eq!(bytes.len(), 84 + 50 * n, "{text}");
+        assert!(out.contains(&format!("{n} triangles")), "{text}: {n} {out}");
+    }
     let _ = std::fs::remove_dir_all(&d);
 }

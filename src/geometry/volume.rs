@@ -22,13 +22,13 @@
 //! - Inside a face with centre `c`: the lacuna corner of the spoke at junction point `j` is
 //!   `c + λ(j − c)` (λ = [`LACUNA`]), the point of a gap with ends `a`, `b` is
 //!   `m + μ(c − m)` with `m = (a + b)/2` (μ = [`NOTCH`]).
-//! - Inside a volume: the inner corner at the end of the radial edge from a rim point `p` is
-//!   `p − δ n`, where `n` is the unit sum of the outward normals of the faces of the volume that
-//!   hold `p`, and δ one depth for the whole volume: κ = [`PUSH`] of its least thickness (from its
-//!   level-1 points along `−n` to its surface), and at most half the least distance from a point
-//!   inside one of its faces to that face's border (so that the walls pushed in from the holes of
-//!   two faces meeting at an edge stay apart). Side faces join a rim edge to its inner copy; the
-//!   inner face is the loop of inner corners.
+//! - Inside a volume with centre `o` (the mean of the corners of its faces, a corner counted once
+//!   for every face that holds it): the inner corner at the end of the radial edge from a rim
+//!   point `p` is `p + σ(o − p)` (σ = [`SHRINK`]). The side face over a rim edge then lies in the
+//!   cone from `o` over that edge, and the inner face is the rim loop shrunk towards `o`. (An
+//!   earlier rule pushed `p` along the summed outward normals of its faces by one depth per
+//!   volume; on the non-convex pieces of level 2 and beyond the pushed copies crossed.) Side faces
+//!   join a rim edge to its inner copy; the inner face is the loop of inner corners.
 //! - A face's centre is the mean of its corners; a cap of a delayed volume is pushed into its
 //!   volume by [`PUSH`] of the way to the volume's centre, so that two caps over one hole part.
 
@@ -47,8 +47,11 @@ pub type P3 = [f64; 3];
 pub const LACUNA: f64 = 0.5;
 /// μ: how far a gap's point lies from the gap towards the face centre.
 pub const NOTCH: f64 = 0.25;
-/// κ: the fraction of the local thickness by which a rim point is pushed into its volume.
+/// κ: how far the centre of a cap of a delayed volume is pushed towards the volume's centre.
 pub const PUSH: f64 = 0.2;
+/// σ: the fraction of the way from a rim point to its volume's centre at which its inner corner
+/// (the end of its radial edge) is placed.
+pub const SHRINK: f64 = 0.35;
 
 /// An edge: a straight segment from point `a` to point `b`.
 #[derive(Clone, Debug)]
@@ -602,81 +605,12 @@ impl Builder {
                 .flat_map(|r| r.corners.iter())
                 .map(|&c| self.points[c]),
         );
-        // Outward normals at the level-1 points, from the faces of the volume that hold them.
-        let mut normal: HashMap<usize, P3> = HashMap::new();
-        let mut tris: Vec<[P3; 3]> = Vec::new();
-        for (k, r) in gv.faces.iter().enumerate() {
-            let c = self.faces[r.face].center;
-            let mut n = [0.0; 3];
-            for i in 0..r.corners.len() {
-                let a = self.points[r.corners[i]];
-                let b = self.points[r.corners[(i + 1) % r.corners.len()]];
-                n = add(n, cross(sub(a, c), sub(b, c)));
-                tris.push([c, a, b]);
-            }
-            let len = norm(n);
-            if len > 0.0 {
-                let n = scale(n, 1.0 / len);
-                let mut seen = std::collections::HashSet::new();
-                for s in &subs[k].subs {
-                    for &p in &s.corners {
-                        if seen.insert(p) {
-                            let e = normal.entry(p).or_insert([0.0; 3]);
-                            *e = add(*e, n);
-                        }
-                    }
-                }
-            }
-        }
-        // One depth for the whole volume: a fraction of its least thickness, so that the inner
-        // copy of its surface is an offset at constant distance.
-        let direction = |n: P3| {
-            let len = norm(n);
-            (len > 0.0).then(|| scale(n, -1.0 / len))
-        };
-        let mut least: Option<f64> = None;
-        let mut keys: Vec<&usize> = normal.keys().collect();
-        keys.sort();
-        for p in keys {
-            if let Some(d) = direction(normal[p]) {
-                if let Some(h) = thickness(self.points[*p], d, &tris) {
-                    least = Some(least.map_or(h, |l: f64| l.min(h)));
-                }
-            }
-        }
-        // Nor more than half the way from a point inside a face to the face's border: the
-        // walls pushed in from the holes of two faces that meet at an edge stay apart.
-        let mut border = f64::INFINITY;
-        for (k, r) in gv.faces.iter().enumerate() {
-            let mut on_border = std::collections::HashSet::new();
-            for &e in &r.edges {
-                for (a, b, _) in self.pieces(e) {
-                    on_border.insert(a);
-                    on_border.insert(b);
-                }
-            }
-            let poly: Vec<P3> = r.corners.iter().map(|&c| self.points[c]).collect();
-            for sr in &subs[k].subs {
-                for &p in &sr.corners {
-                    if on_border.contains(&p) {
-                        continue;
-                    }
-                    let q = self.points[p];
-                    for i in 0..poly.len() {
-                        border =
-                            border.min(segment_distance(q, poly[i], poly[(i + 1) % poly.len()]));
-                    }
-                }
-            }
-        }
-        let depth = (PUSH * least.unwrap_or(1.0)).min(0.5 * border);
-        let inner_of = |me: &mut Builder, p: usize| -> P3 {
-            let at = me.points[p];
-            match normal.get(&p).copied().and_then(direction) {
-                Some(d) => add(at, scale(d, depth)),
-                None => lerp(at, vcenter, PUSH),
-            }
-        };
+        // Every rim point goes [`SHRINK`] of the way to the volume's centre: the side face over a
+        // rim edge lies in the cone from the centre over that edge, so the side faces of two rim
+        // edges meet only along the radial edge they share, and the inner face is the rim loop
+        // shrunk towards the centre (no offset along summed normals, which folds where the
+        // volume is not convex).
+        let inner_of = |me: &mut Builder, p: usize| -> P3 { lerp(me.points[p], vcenter, SHRINK) };
         let mut out = Vec::with_capacity(step.subvolumes.len());
         if v.delay >= 2 {
             let s = &step.subvolumes[0];
@@ -899,13 +833,6 @@ fn check_glue(v: &Volume, faces: &[Reading], edges: &[GeoEdge]) -> Result<()> {
         }
     }
     Ok(())
-}
-
-/// The distance from `q` to the segment `a b`.
-fn segment_distance(q: P3, a: P3, b: P3) -> f64 {
-    let ab = sub(b, a);
-    let t = (dot(sub(q, a), ab) / dot(ab, ab).max(1e-300)).clamp(0.0, 1.0);
-    norm(sub(q, add(a, scale(ab, t))))
 }
 
 /// The distance from `p` along the unit direction `d` to the first triangle it meets further
@@ -1142,6 +1069,40 @@ mod tests {
                     );
                 }
             }
+        }
+    }
+
+    #[test]
+    fn inner_corners_of_the_cube_are_its_rim_points_shrunk_towards_its_centre() {
+        // By hand: the cube on [−1, 1]³ has its centre o at the origin (every corner is counted
+        // three times, once per face, and the corners are symmetric). At level 1 its rim points
+        // are the 12 edge midpoints and the 24 lacuna corners (c + ½(j − c) on each face), all
+        // on the surface (max |coordinate| = 1); with the 8 cube corners that is 44 surface
+        // points. Each rim point has one radial edge (its two sub-volumes share it through their
+        // spoke face), ending at p + σ(o − p) = 0.65 p: 36 inner corners, max |coordinate| =
+        // 0.65, each 0.65 times a rim point. 44 + 36 = 80 corners (docs/VOLUMES.md).
+        let v = parse_volume("cube B2 | B2 B2 B2 | A1 | B2 B2 | V1").unwrap();
+        let g = evaluate_volume(&v, 1).unwrap();
+        let mut corners = std::collections::BTreeSet::new();
+        for gv in &g.volumes {
+            for r in &gv.faces {
+                corners.extend(r.corners.iter().copied());
+            }
+        }
+        let size = |p: P3| p.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let (outer, inner): (Vec<P3>, Vec<P3>) = corners
+            .iter()
+            .map(|&c| g.points[c])
+            .partition(|&p| (size(p) - 1.0).abs() < 1e-12);
+        assert_eq!((outer.len(), inner.len()), (44, 36));
+        for q in &inner {
+            assert!((size(*q) - (1.0 - SHRINK)).abs() < 1e-12, "{q:?}");
+            assert!(
+                outer
+                    .iter()
+                    .any(|p| norm(sub(scale(*p, 1.0 - SHRINK), *q)) < 1e-12),
+                "{q:?} is no rim point shrunk towards the centre"
+            );
         }
     }
 }
