@@ -107,7 +107,10 @@ pub fn analyse_automaton_only(a: &Automaton, only: Option<&str>) -> Result<Autom
                 op.name, a.states[op.from].name, a.states[op.to].name
             )),
             (None, true) => {
-                skipped.push(format!("{}: unknown (solve the automaton first)", op.name))
+                skipped.push(format!(
+                    "{}: no value over Q (unknown until the automaton is solved, or entries in a declared number field: the eigen analysis works over Q only)",
+                    op.name
+                ))
             }
             (Some(m), true) => {
                 let mut r = analyse_matrix(m)?;
