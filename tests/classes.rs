@@ -175,6 +175,17 @@ fn classify_automata_and_volumes() {
         (v["differs"]["a"].as_str(), v["differs"]["b"].as_str()),
         (Some("6"), Some("4"))
     );
+    // Two cubes glued face to face (fixtures/two-cubes.txt) start from two volumes, one cube
+    // from one: they differ in cells at level 0. Against itself the assembly is one class.
+    let v = json(&["classify", "cube-B2", "two-cubes", "--json"], 1);
+    assert_eq!(v["differs"]["invariant"], "cells");
+    assert_eq!(v["differs"]["level"], 0);
+    assert_eq!(
+        (v["differs"]["a"].as_str(), v["differs"]["b"].as_str()),
+        (Some("1"), Some("2"))
+    );
+    let v = json(&["classify", "two-cubes", "two-cubes", "--json"], 0);
+    assert_eq!(v["same_class"], true);
 }
 
 /// F0's default template with the points of every sub-face's lacuna side (its El edge: points

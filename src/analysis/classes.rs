@@ -24,7 +24,7 @@ use crate::algebra::FieldElement;
 use crate::constraint::OpKind;
 use crate::error::{Error, Result};
 use crate::input::AutomatonModel;
-use crate::topology::volume::{solid_topology, volume_counts, VolumeTypeSet};
+use crate::topology::volume::{solid_topology_of, volume_counts, StartCells, VolumeTypeSet};
 use crate::topology::{counts, multiplicity, Glue, LimitValence, Multiplicity, TypeSet};
 use num_bigint::BigUint;
 use num_rational::BigRational;
@@ -154,11 +154,17 @@ pub fn face_invariants(
     Ok((inv, m))
 }
 
-/// The invariants of a volume's closed type set to `levels`: cells and lacunas per level and the
+/// The invariants of a volume (or of volumes glued face to face, `start` their level-0 complex)
+/// to `levels`: cells and lacunas per level and the
 /// cells of each dimension of the level-k solid. Multiplicity is not derived for volumes.
-pub fn volume_invariants(name: &str, set: &VolumeTypeSet, levels: u64) -> Result<Invariants> {
+pub fn volume_invariants(
+    name: &str,
+    set: &VolumeTypeSet,
+    start: &StartCells,
+    levels: u64,
+) -> Result<Invariants> {
     let c = volume_counts(set, levels);
-    let solid = solid_topology(set, levels)?;
+    let solid = solid_topology_of(set, levels, start)?;
     let cardinality = c
         .iter()
         .zip(&solid)

@@ -7,7 +7,11 @@ use lacuna::topology::{LimitValence, TypeSet};
 /// An input made ready for its invariants.
 enum Structure {
     Faces(String, TypeSet, Vec<lacuna::topology::Glue>),
-    Volume(String, lacuna::topology::volume::VolumeTypeSet),
+    Volume(
+        String,
+        lacuna::topology::volume::VolumeTypeSet,
+        lacuna::topology::volume::StartCells,
+    ),
     Automaton(
         String,
         Box<lacuna::input::AutomatonModel>,
@@ -16,10 +20,13 @@ enum Structure {
 }
 
 fn load(arg: &str, limits: &Limits) -> Result<Structure, Error> {
-    if let Some((name, v)) = lacuna::input::load_volume(arg)? {
+    // A volume, or several volumes glued face to face (the level-0 complex counts a shared face
+    // once).
+    if let Some((name, v)) = lacuna::input::load_volumes(arg)? {
         return Ok(Structure::Volume(
             name,
-            volume::closed(std::slice::from_ref(&v), limits)?,
+            volume::closed(&v.volumes, limits)?,
+            v.start_cells(),
         ));
     }
     match lacuna::input::load_any(arg)? {
@@ -59,8 +66,8 @@ fn invariants(
                 lacuna::analysis::face_invariants(name, ts, glue, levels, limits.max_types)?;
             (i, Some(m.limit))
         }
-        Structure::Volume(name, set) => (
-            lacuna::analysis::volume_invariants(name, set, levels)?,
+        Structure::Volume(name, set, start) => (
+            lacuna::analysis::volume_invariants(name, set, start, levels)?,
             None,
         ),
         Structure::Automaton(name, model, resolved) => (
