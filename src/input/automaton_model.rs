@@ -82,6 +82,13 @@ pub fn parse_field_element(t: &str, k: &NumberField, gen: Option<&str>) -> Optio
     if t.is_empty() || t.len() > 400 {
         return None;
     }
+    parse_terms(t, gen).map(|coeffs| k.element(&Poly::new(coeffs)))
+}
+
+/// Reads a sum of terms `c`, `c*v`, `c v^e` (c rational, optional; e at most 64; `v` the
+/// variable, absent for rationals only), without spaces, into coefficients by degree. `None` when
+/// the text is not of that form.
+fn parse_terms(t: &str, var: Option<&str>) -> Option<Vec<BigRational>> {
     let mut coeffs: Vec<BigRational> = Vec::new();
     let bytes = t.as_bytes();
     let mut i = 0;
@@ -111,69 +118,8 @@ pub fn parse_field_element(t: &str, k: &NumberField, gen: Option<&str>) -> Optio
             i += 1;
         }
         let mut exp = 0usize;
-        if let Some(g) = gen {
-            if t[i..].starts_with(g) {
-                i += g.len();
-                exp = 1;
-                if i < bytes.len() && bytes[i] == b'^' {
-                    i += 1;
-                    let s = i;
-                    while i < bytes.len() && bytes[i].is_ascii_digit() {
-                        i += 1;
-                    }
-                    exp = t[s..i].parse().ok().filter(|e| *e <= 64)?;
-                }
-            } else if i == start {
-                return None;
-            }
-        } else if i == start {
-            return None;
-        }
-        if coeffs.len() <= exp {
-            coeffs.resize(exp + 1, BigRational::zero());
-        }
-        coeffs[exp] += sign * coef;
-    }
-    Some(k.element(&Poly::new(coeffs)))
-}
-
-/// Parses a polynomial in `x` (or `var`) over Q: `16x^4 - 20x^2 + 5`.
-fn parse_poly(t: &str, var: &str) -> Option<Poly> {
-    let q = NumberField::new(RealAlgebraic::rational(BigRational::zero()));
-    // Parse with a huge formal field: read the coefficients directly.
-    let compact: String = t.chars().filter(|c| !c.is_whitespace()).collect();
-    let _ = q;
-    let mut coeffs: Vec<BigRational> = Vec::new();
-    let bytes = compact.as_bytes();
-    let mut i = 0;
-    let mut first = true;
-    while i < bytes.len() {
-        let mut sign = BigRational::one();
-        if bytes[i] == b'+' || bytes[i] == b'-' {
-            if bytes[i] == b'-' {
-                sign = -sign;
-            }
-            i += 1;
-        } else if !first {
-            return None;
-        }
-        first = false;
-        let start = i;
-        while i < bytes.len() && (bytes[i].is_ascii_digit() || bytes[i] == b'/' || bytes[i] == b'.')
-        {
-            i += 1;
-        }
-        let coef = if i > start {
-            parse_rational(&compact[start..i])?
-        } else {
-            BigRational::one()
-        };
-        if i < bytes.len() && bytes[i] == b'*' {
-            i += 1;
-        }
-        let mut exp = 0usize;
-        if compact[i..].starts_with(var) {
-            i += var.len();
+        if let Some(v) = var.filter(|v| t[i..].starts_with(v)) {
+            i += v.len();
             exp = 1;
             if i < bytes.len() && bytes[i] == b'^' {
                 i += 1;
@@ -181,7 +127,7 @@ fn parse_poly(t: &str, var: &str) -> Option<Poly> {
                 while i < bytes.len() && bytes[i].is_ascii_digit() {
                     i += 1;
                 }
-                exp = compact[s..i].parse().ok().filter(|e| *e <= 64)?;
+                exp = t[s..i].parse().ok().filter(|e| *e <= 64)?;
             }
         } else if i == start {
             return None;
@@ -191,7 +137,13 @@ fn parse_poly(t: &str, var: &str) -> Option<Poly> {
         }
         coeffs[exp] += sign * coef;
     }
-    Some(Poly::new(coeffs))
+    Some(coeffs)
+}
+
+/// Parses a polynomial in `x` (or `var`) over Q: `16x^4 - 20x^2 + 5`.
+fn parse_poly(t: &str, var: &str) -> Option<Poly> {
+    let compact: String = t.chars().filter(|c| !c.is_whitespace()).collect();
+    parse_terms(&compact, Some(var)).map(Poly::new)
 }
 
 /// Parses a bracketed matrix of field elements starting at byte `start` of `line`.
