@@ -410,12 +410,7 @@ fn curvature_section(h: &mut String, curves: &[(String, Result<CurveCurvature, S
 
 /// The box-counting plot: `ln N` against `k·ln 2 = ln(1/ε) + ln L` with its least-squares line.
 fn box_section(h: &mut String, m: &AutomatonMeasure) {
-    let pts: Vec<(f64, f64)> = m
-        .box_dimension
-        .counts
-        .iter()
-        .map(|&(k, n)| (f64::from(k) * std::f64::consts::LN_2, (n as f64).ln()))
-        .collect();
+    let pts = m.box_dimension.log_points();
     if pts.len() < 2 {
         return;
     }

@@ -4,7 +4,7 @@
 //! measure; they decide nothing.
 
 use crate::analysis::{ContractionReport, ResolveVerdict, SimilarityDimension};
-use crate::geometry::{Evaluator, Shape, ShapeKind};
+use crate::geometry::{fit_line, Evaluator, Shape, ShapeKind};
 use serde::Serialize;
 use std::collections::HashSet;
 
@@ -247,20 +247,22 @@ pub fn box_dimension(ev: &Evaluator, level: u32) -> BoxDimension {
         }
         counts.push((k, set.len() as u64));
     }
-    let pts: Vec<(f64, f64)> = counts
-        .iter()
-        .map(|&(k, n)| (f64::from(k) * std::f64::consts::LN_2, (n as f64).ln()))
-        .collect();
-    let n = pts.len() as f64;
-    let (sx, sy) = pts.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
-    let (mx, my) = (sx / n, sy / n);
-    let (num, den) = pts.iter().fold((0.0, 0.0), |a, p| {
-        (a.0 + (p.0 - mx) * (p.1 - my), a.1 + (p.0 - mx).powi(2))
-    });
-    BoxDimension {
-        value: Some(num / den),
+    let mut b = BoxDimension {
+        value: None,
         level,
         counts,
+    };
+    b.value = Some(fit_line(&b.log_points()).slope);
+    b
+}
+
+impl BoxDimension {
+    /// The points of the fit: `(k·ln 2, ln N)` for every count, `k·ln 2 = ln(1/ε) + ln L`.
+    pub fn log_points(&self) -> Vec<(f64, f64)> {
+        self.counts
+            .iter()
+            .map(|&(k, n)| (f64::from(k) * std::f64::consts::LN_2, (n as f64).ln()))
+            .collect()
     }
 }
 
