@@ -76,6 +76,27 @@ pub struct Runaway {
     pub witness: Vec<String>,
 }
 
+impl Runaway {
+    /// The runaway whose witness ends with `last`, the new type that broke the limit, found in
+    /// the subdivision of type `from`; `link(t)` gives type t's name and its parent.
+    pub(crate) fn chain(
+        reason: String,
+        last: String,
+        from: usize,
+        link: impl Fn(usize) -> (String, Option<usize>),
+    ) -> Self {
+        let mut witness = vec![last];
+        let mut cur = Some(from);
+        while let Some(c) = cur {
+            let (name, parent) = link(c);
+            witness.push(name);
+            cur = parent;
+        }
+        witness.reverse();
+        Runaway { reason, witness }
+    }
+}
+
 /// The outcome of closing a set of faces.
 #[derive(Clone, Debug)]
 #[allow(clippy::large_enum_variant)]
@@ -140,14 +161,12 @@ impl Closure {
                             } else {
                                 format!("more than {} face types (--max-types)", limits.max_types)
                             };
-                            let mut witness = vec![s.face.to_string()];
-                            let mut cur = Some(t);
-                            while let Some(c) = cur {
-                                witness.push(types[c].face.to_string());
-                                cur = types[c].parent;
-                            }
-                            witness.reverse();
-                            return Ok(Closure::Runaway(Runaway { reason, witness }));
+                            return Ok(Closure::Runaway(Runaway::chain(
+                                reason,
+                                s.face.to_string(),
+                                t,
+                                |c| (types[c].face.to_string(), types[c].parent),
+                            )));
                         }
                         index.insert(s.face.clone(), id);
                         types.push(FaceType {

@@ -101,14 +101,12 @@ impl VolumeClosure {
                     } else {
                         format!("more than {} volume types (--max-types)", limits.max_types)
                     };
-                    let mut witness = vec![s.volume.to_string()];
-                    let mut cur = Some(t);
-                    while let Some(c) = cur {
-                        witness.push(types[c].volume.to_string());
-                        cur = types[c].parent;
-                    }
-                    witness.reverse();
-                    return Ok(VolumeClosure::Runaway(Runaway { reason, witness }));
+                    return Ok(VolumeClosure::Runaway(Runaway::chain(
+                        reason,
+                        s.volume.to_string(),
+                        t,
+                        |c| (types[c].volume.to_string(), types[c].parent),
+                    )));
                 }
                 index.insert(s.volume.clone(), id);
                 types.push(VolumeType {
