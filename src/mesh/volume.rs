@@ -16,6 +16,7 @@
 //! boundary triangles that cross or touch away from their shared vertices.
 
 use super::check::{check_part, PartCheck};
+use super::outline::segments_meet;
 use super::expect::Expected;
 use super::solid::{Part, Solid};
 use super::Size;
@@ -390,13 +391,9 @@ fn coplanar_meets(p: [f64; 3], q: [f64; 3], t: &Tri) -> bool {
         if inside(pp) || inside(qq) {
             return true;
         }
-        let cross = |u: Coord<f64>, w: Coord<f64>| {
-            let d1 = sign(orient2d(pp, qq, u));
-            let d2 = sign(orient2d(pp, qq, w));
-            let d3 = sign(orient2d(u, w, pp));
-            let d4 = sign(orient2d(u, w, qq));
-            d1 * d2 <= 0 && d3 * d4 <= 0
-        };
+        // Collinear segments meet only where their extents overlap: `segments_meet` tests that
+        // (signs alone would call two disjoint pieces of one line crossing).
+        let cross = |u: Coord<f64>, w: Coord<f64>| segments_meet(pp, qq, u, w);
         return cross(a, b) || cross(b, c) || cross(c, a);
     }
     false
@@ -506,6 +503,29 @@ mod tests {
             v[0] = 2.0;
         }
         assert_eq!(self_intersection(&[apart]).0, None);
+    }
+
+    #[test]
+    fn coplanar_triangles_with_collinear_apart_edges_do_not_touch() {
+        // In the plane z = 0, sharing vertex 0: the edge 1–2 of the first triangle and the edge
+        // 3–4 of the second lie on the line y = x − 1 but are apart (x in [1, 2] and [3, 4]).
+        let part = Part {
+            vertices: vec![
+                [0.0, 5.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [2.0, 1.0, 0.0],
+                [3.0, 2.0, 0.0],
+                [4.0, 3.0, 0.0],
+            ],
+            triangles: vec![[0, 1, 2], [0, 3, 4]],
+            holes: None,
+        };
+        assert_eq!(self_intersection(std::slice::from_ref(&part)).0, None);
+        // Moved so that the collinear edges overlap (x in [1, 2] and [1.5, 2.5]) they touch.
+        let mut overlapping = part.clone();
+        overlapping.vertices[3] = [1.5, 0.5, 0.0];
+        overlapping.vertices[4] = [2.5, 1.5, 0.0];
+        assert!(self_intersection(&[overlapping]).0.is_some());
     }
 }
 
