@@ -24,7 +24,7 @@ pub(super) fn run(args: MeasureArgs, limits: &Limits) -> Result<ExitCode, Error>
         });
     }
     check_density_grid(density_grid, 0)?;
-    if let Some((name, v)) = lacuna::input::load_volume(&geo.input)? {
+    if let Some((name, v)) = lacuna::input::load_volume_file(&geo.input)? {
         return volume::measure(&name, &v, &geo, &print, json, limits);
     }
     if let Some((name, model)) = automaton::automaton_input(&geo)? {

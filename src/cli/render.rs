@@ -71,7 +71,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         lacuna::mesh::check_size("--resolution", print.resolution).map_err(mesh_error)?;
     }
     let mut outputs = Outputs::check(&geo.inputs(), &wanted)?;
-    if let Some((name, v)) = lacuna::input::load_volume(&geo.input)? {
+    if let Some((name, v)) = lacuna::input::load_volume_file(&geo.input)? {
         if json_out.is_some() || density.is_some() || write_template.is_some() {
             return Err(Error::Usage(
                 "--json-out, --density and --write-template apply to faces; a volume is written with --svg, --png, --stl, --3mf or --obj".into(),

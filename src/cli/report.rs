@@ -11,7 +11,7 @@ pub(super) fn run(args: ReportArgs, limits: &Limits) -> Result<ExitCode, Error> 
     } = args;
     check_raster("--raster", raster, 8192)?;
     let mut outputs = Outputs::check(&geo.inputs(), &[("--out", &path)])?;
-    if let Some((name, v)) = lacuna::input::load_volume(&geo.input)? {
+    if let Some((name, v)) = lacuna::input::load_volume_file(&geo.input)? {
         return volume::report(&name, &v, &geo, &path, &mut outputs, limits);
     }
     if let Some((name, model)) = automaton::automaton_input(&geo)? {

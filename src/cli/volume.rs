@@ -2,7 +2,7 @@
 //! [`lacuna::input::load_volume`] first and hand a volume to these functions.
 
 use super::*;
-use lacuna::topology::volume::{volume_counts, Volume, VolumeAssembly, VolumeClosure};
+use lacuna::topology::volume::{volume_counts, VolumeAssembly, VolumeClosure};
 
 /// `lacuna closure` of a volume.
 pub(super) fn closure(
@@ -230,7 +230,7 @@ const MAX_SOLID_FACES: u64 = 400_000;
 /// faces are bounded before any geometry is built.
 fn checked_solid(
     name: &str,
-    v: &Volume,
+    v: &lacuna::input::VolumeFile,
     geo: &GeoArgs,
     width: f64,
     limits: &Limits,
@@ -249,11 +249,15 @@ fn checked_solid(
         || !geo.goals.is_empty()
     {
         return Err(Error::Usage(
-            "--param, --corners, --template and --goal apply to faces; a volume is placed on its solid (see docs/VOLUMES.md)".into(),
+            "--param, --corners, --template and --goal apply to faces; a volume is placed on its solid or on the corners its file gives (see docs/VOLUMES.md)".into(),
         ));
     }
-    let set = closed(std::slice::from_ref(v), limits)?;
-    let exact = lacuna::topology::volume::solid_topology(&set, u64::from(geo.level))?;
+    let set = closed(&v.assembly.volumes, limits)?;
+    let exact = lacuna::topology::volume::solid_topology_of(
+        &set,
+        u64::from(geo.level),
+        &v.assembly.start_cells(),
+    )?;
     let faces = &exact.last().expect("one row per level").faces;
     let cap = geo.max_cells.unwrap_or(MAX_SOLID_FACES);
     if *faces > cap.into() {
@@ -265,7 +269,8 @@ fn checked_solid(
         ));
     }
     lacuna::mesh::check_size("--width", width).map_err(mesh_error)?;
-    lacuna::mesh::volume_solid(name, v, &set, geo.level, width)
+    let placement = lacuna::geometry::place_assembly(&v.assembly, &v.corners, &v.names)?;
+    lacuna::mesh::assembly_solid(name, &v.assembly, &placement, &set, geo.level, width)
 }
 
 /// What `render` writes for a volume.
@@ -281,7 +286,7 @@ pub(super) struct VolumeTargets<'a> {
 /// cross); the pictures in any case, with a warning when it folds.
 pub(super) fn render(
     name: &str,
-    v: &Volume,
+    v: &lacuna::input::VolumeFile,
     geo: &GeoArgs,
     print: &PrintArgs,
     t: VolumeTargets<'_>,
@@ -350,7 +355,7 @@ pub(super) fn render(
 /// mm and the printability against `--resolution`.
 pub(super) fn measure(
     name: &str,
-    v: &Volume,
+    v: &lacuna::input::VolumeFile,
     geo: &GeoArgs,
     print: &PrintArgs,
     json: bool,
@@ -404,13 +409,13 @@ pub(super) fn measure(
 /// and its sizes, a WebGL view and an SVG projection.
 pub(super) fn report(
     name: &str,
-    v: &Volume,
+    v: &lacuna::input::VolumeFile,
     geo: &GeoArgs,
     path: &std::path::Path,
     outputs: &mut Outputs,
     limits: &Limits,
 ) -> Result<ExitCode, Error> {
-    let c = VolumeClosure::of(std::slice::from_ref(v), limits)?;
+    let c = VolumeClosure::of(&v.assembly.volumes, limits)?;
     let closure_text = lacuna::export::volume_closure_text(name, &c);
     let VolumeClosure::Closed(set) = c else {
         return Err(Error::Usage(format!(
@@ -418,7 +423,8 @@ pub(super) fn report(
         )));
     };
     let levels = u64::from(geo.level).max(3);
-    let solid = lacuna::topology::volume::solid_topology(&set, levels)?;
+    let solid =
+        lacuna::topology::volume::solid_topology_of(&set, levels, &v.assembly.start_cells())?;
     let vs = checked_solid(name, v, geo, lacuna::mesh::DEFAULT_WIDTH, limits)?;
     let sizes = vs.sizes();
     let mut check = vs.summary();

@@ -37,6 +37,7 @@ pub use template_file::{
     format_exact, parse_template, write_template, ExactTemplate, TypeTemplate,
 };
 pub use volume::{
-    default_placement, evaluate_volume, hole_width, least_thickness, solid_corners, GeoEdge,
-    GeoFace, GeoVolume, Reading, SolidGeometry, P3,
+    default_placement, evaluate_assembly, evaluate_volume, hole_width, least_thickness,
+    place_assembly, solid_corners, GeoEdge, GeoFace, GeoVolume, Placement, Placement1, Reading,
+    SolidGeometry, P3,
 };

@@ -36,7 +36,7 @@ use crate::error::{Diagnostic, Error, Result};
 use crate::topology::edge::{EdgeType, JunctionKind};
 use crate::topology::face::Face;
 use crate::topology::subdivision::{subdivide, Origin, Subdivision};
-use crate::topology::volume::{subdivide_volume, Solid, Volume, VolumeSubdivision};
+use crate::topology::volume::{subdivide_volume, Solid, Volume, VolumeAssembly, VolumeSubdivision};
 use std::collections::HashMap;
 use std::rc::Rc;
 
@@ -873,61 +873,280 @@ fn thickness(p: P3, d: P3, tris: &[[P3; 3]]) -> Option<f64> {
     best
 }
 
-/// The start of the evaluation: the volume on its default placement (E1210 when the surface is
-/// no shorthand solid).
-fn start(b: &mut Builder, v: &Volume) -> Result<GeoVolume> {
-    let (_, polys) = default_placement(v).ok_or_else(|| {
-        geometry_error(
-            "E1210",
-            "this volume's surface is none of the shorthand solids (cube, tetrahedron, octahedron, prism-N, truncated-tetrahedron): it has no default placement in 3D".into(),
-        )
-    })?;
-    let surface = &v.surface;
-    // Points: one per point of the surface.
-    let (vid, count) = surface.vertices();
-    let mut pos = vec![[0.0; 3]; count];
-    for (f, poly) in polys.iter().enumerate() {
-        for (i, p) in poly.iter().enumerate() {
-            pos[vid[f][i]] = *p;
+/// Where the corners of the volumes of an assembly lie: `[v][f][i]` is corner `i` (the start of
+/// edge `i`) of face `f` of volume `v`.
+pub type Placement = Vec<Vec<Vec<P3>>>;
+
+/// The enclosed volume of a closed surface given as polygons (fans around their means): positive
+/// when the polygons run counter-clockwise seen from outside.
+fn enclosed(polys: &[Vec<P3>]) -> f64 {
+    polys
+        .iter()
+        .map(|p| {
+            let c = mean(p.iter().copied());
+            (0..p.len())
+                .map(|i| dot(c, cross(p[i], p[(i + 1) % p.len()])))
+                .sum::<f64>()
+        })
+        .sum::<f64>()
+        / 6.0
+}
+
+/// A similarity (rotation, uniform scale, translation; no reflection) taking the polygon `q` onto
+/// `p` corner by corner, if there is one (up to rounding).
+fn fit(q: &[P3], p: &[P3]) -> Option<impl Fn(P3) -> P3> {
+    let frame = |pts: &[P3]| -> Option<(P3, [P3; 3], f64)> {
+        let c = mean(pts.iter().copied());
+        let mut n = [0.0; 3];
+        for i in 0..pts.len() {
+            n = add(n, cross(sub(pts[i], c), sub(pts[(i + 1) % pts.len()], c)));
         }
+        let nl = norm(n);
+        let r = (pts.iter().map(|x| dot(sub(*x, c), sub(*x, c))).sum::<f64>() / pts.len() as f64)
+            .sqrt();
+        if nl <= 1e-12 * r * r || r == 0.0 {
+            return None;
+        }
+        let n = scale(n, 1.0 / nl);
+        let d = sub(pts[0], c);
+        let u = sub(d, scale(n, dot(d, n)));
+        let ul = norm(u);
+        if ul <= 1e-12 * r {
+            return None;
+        }
+        let u = scale(u, 1.0 / ul);
+        Some((c, [u, cross(n, u), n], r))
+    };
+    let (cq, bq, rq) = frame(q)?;
+    let (cp, bp, rp) = frame(p)?;
+    let s = rp / rq;
+    let map = move |x: P3| {
+        let d = sub(x, cq);
+        let mut out = cp;
+        for k in 0..3 {
+            out = add(out, scale(bp[k], s * dot(d, bq[k])));
+        }
+        out
+    };
+    let worst = q
+        .iter()
+        .zip(p)
+        .map(|(a, b)| norm(sub(map(*a), *b)))
+        .fold(0.0f64, f64::max);
+    (worst <= 1e-9 * rp).then_some(map)
+}
+
+/// Places the volumes of an assembly in 3D: a volume with user coordinates (`given`) where they
+/// say; a shorthand solid glued to a placed volume by the similarity that lays its shared face on
+/// the placed one (so the solid lands on the far side); the first shorthand of a group that
+/// nothing places yet on its default placement ([`default_placement`]). Refused: a volume left
+/// without a place (E1210), coordinates that wind a surface inside out (E1215), and two volumes
+/// that put one corner of the level-0 complex at two places (E1216).
+pub fn place_assembly(
+    a: &VolumeAssembly,
+    given: &[Option<Placement1>],
+    names: &[String],
+) -> Result<Placement> {
+    let n = a.volumes.len();
+    let name = |v: usize| match names.get(v) {
+        Some(x) => format!("volume `{x}`"),
+        None if n == 1 => "the volume".to_string(),
+        None => format!("volume {v}"),
+    };
+    let mut placed: Vec<Option<Placement1>> =
+        (0..n).map(|v| given.get(v).cloned().flatten()).collect();
+    let default: Vec<Option<Placement1>> = a
+        .volumes
+        .iter()
+        .map(|v| default_placement(v).map(|(_, p)| p))
+        .collect();
+    let mut group = crate::topology::component::Dsu::new(n);
+    for s in &a.shared {
+        group.union(s.a.0, s.b.0);
     }
-    let ids: Vec<usize> = pos.into_iter().map(|p| b.point(p)).collect();
-    // Edges: one per glued pair, made by the side that comes first.
-    let mut edge_of: HashMap<(usize, usize), (usize, bool)> = HashMap::new();
-    for (f, row) in surface.glue.iter().enumerate() {
-        let len = row.len();
-        for (i, &(g, j)) in row.iter().enumerate() {
-            if (f, i) < (g, j) {
-                let a = ids[vid[f][i]];
-                let c = ids[vid[f][(i + 1) % len]];
-                let e = b.edge(a, c, surface.faces[f].boundary[i]);
-                edge_of.insert((f, i), (e, true));
-                edge_of.insert((g, j), (e, false));
+    loop {
+        let mut progress = false;
+        for s in &a.shared {
+            for (here, there) in [(s.a, s.b), (s.b, s.a)] {
+                let (vh, fh, eh) = here;
+                let (vt, ft, et) = there;
+                if placed[vh].is_none() || placed[vt].is_some() {
+                    continue;
+                }
+                let Some(own) = &default[vt] else { continue };
+                let len = own[ft].len();
+                // Corner `eh + k` of the placed face is corner `et + 1 − k` of the other.
+                let target: Vec<P3> = (0..len)
+                    .map(|j| {
+                        placed[vh].as_ref().expect("placed")[fh]
+                            [(eh + et + 1 + len - j % len) % len]
+                    })
+                    .collect();
+                let Some(map) = fit(&own[ft], &target) else {
+                    return Err(geometry_error(
+                        "E1216",
+                        format!(
+                            "{} cannot be laid on face {fh} of {}: its face {ft} has another shape (give its corners)",
+                            name(vt),
+                            name(vh)
+                        ),
+                    ));
+                };
+                placed[vt] = Some(
+                    own.iter()
+                        .map(|f| f.iter().map(|&x| map(x)).collect())
+                        .collect(),
+                );
+                progress = true;
+            }
+        }
+        if !progress {
+            let next = (0..n).find(|&v| {
+                placed[v].is_none()
+                    && default[v].is_some()
+                    && (0..n).all(|w| placed[w].is_none() || group.find(w) != group.find(v))
+            });
+            match next {
+                Some(v) => placed[v] = default[v].clone(),
+                None => break,
             }
         }
     }
-    let mut faces = Vec::with_capacity(surface.faces.len());
-    for (f, face) in surface.faces.iter().enumerate() {
-        let len = face.boundary.len();
-        let corners: Vec<usize> = (0..len).map(|i| ids[vid[f][i]]).collect();
-        let id = b.face(face.clone(), corners.clone(), None);
-        faces.push(Reading {
-            face: id,
-            corners,
-            edges: (0..len).map(|i| edge_of[&(f, i)].0).collect(),
-            forward: (0..len).map(|i| edge_of[&(f, i)].1).collect(),
+    let mut out = Vec::with_capacity(n);
+    for (v, p) in placed.into_iter().enumerate() {
+        let Some(p) = p else {
+            return Err(geometry_error(
+                "E1210",
+                format!("the surface of {} is none of the shorthand solids (cube, tetrahedron, octahedron, prism-N, truncated-tetrahedron) and nothing places it: give its corners (`corners FACE: X Y Z, …` lines in its block, docs/FORMATS.md)", name(v)),
+            ));
+        };
+        if enclosed(&p).partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+            return Err(geometry_error(
+                "E1215",
+                format!("the corners of {} do not enclose a positive volume with its faces counter-clockwise seen from outside (mirror them, or list every face's corners counter-clockwise from outside)", name(v)),
+            ));
+        }
+        out.push(p);
+    }
+    // One corner of the level-0 complex, one place.
+    let map = a.start_map();
+    let size = out
+        .iter()
+        .flatten()
+        .flatten()
+        .map(|x| norm(*x))
+        .fold(0.0f64, f64::max)
+        .max(1e-300);
+    let mut seen: HashMap<usize, (P3, usize)> = HashMap::new();
+    for (v, faces) in out.iter().enumerate() {
+        for (f, face) in faces.iter().enumerate() {
+            for (i, &x) in face.iter().enumerate() {
+                let c = map.corner[v][f][i];
+                match seen.get(&c) {
+                    Some(&(y, w)) if norm(sub(x, y)) > 1e-9 * size => {
+                        return Err(geometry_error(
+                            "E1216",
+                            format!(
+                                "corner {i} of face {f} of {} is at ({:.6} {:.6} {:.6}) but {} puts the same corner at ({:.6} {:.6} {:.6}): volumes sharing a face must agree on its corners",
+                                name(v), x[0], x[1], x[2], name(w), y[0], y[1], y[2]
+                            ),
+                        ))
+                    }
+                    Some(_) => {}
+                    None => {
+                        seen.insert(c, (x, v));
+                    }
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The coordinates of one volume's surface: `[f][i]`.
+pub type Placement1 = Vec<Vec<P3>>;
+
+/// The start of the evaluation: the level-0 complex of the assembly on its placement, one cell
+/// per cell of [`VolumeAssembly::start_map`].
+fn start(b: &mut Builder, a: &VolumeAssembly, placement: &Placement) -> Result<Vec<GeoVolume>> {
+    let map = a.start_map();
+    let mut ids: Vec<Option<usize>> = vec![None; map.corner_count()];
+    for (v, faces) in map.corner.iter().enumerate() {
+        for (f, row) in faces.iter().enumerate() {
+            for (i, &c) in row.iter().enumerate() {
+                if ids[c].is_none() {
+                    ids[c] = Some(b.point(placement[v][f][i]));
+                }
+            }
+        }
+    }
+    let ids: Vec<usize> = ids
+        .into_iter()
+        .map(|x| x.expect("every corner placed"))
+        .collect();
+    let mut edge_of: Vec<Option<usize>> = vec![None; map.edge_count()];
+    let mut face_of: Vec<Option<usize>> = vec![None; map.faces.len()];
+    let mut out = Vec::with_capacity(a.volumes.len());
+    for (v, vol) in a.volumes.iter().enumerate() {
+        let mut faces = Vec::with_capacity(vol.surface.faces.len());
+        for (f, face) in vol.surface.faces.iter().enumerate() {
+            let len = face.boundary.len();
+            let corners: Vec<usize> = (0..len).map(|i| ids[map.corner[v][f][i]]).collect();
+            let mut edges = Vec::with_capacity(len);
+            let mut forward = Vec::with_capacity(len);
+            for i in 0..len {
+                let (s, t) = (corners[i], corners[(i + 1) % len]);
+                let e = match edge_of[map.side[v][f][i]] {
+                    Some(e) => e,
+                    None => {
+                        let e = b.edge(s, t, face.boundary[i]);
+                        edge_of[map.side[v][f][i]] = Some(e);
+                        e
+                    }
+                };
+                edges.push(e);
+                forward.push(b.edges[e].a == s && b.edges[e].b == t);
+            }
+            let g = map.face[v][f];
+            let id = match face_of[g] {
+                Some(id) => id,
+                None => {
+                    let id = b.face(face.clone(), corners.clone(), None);
+                    face_of[g] = Some(id);
+                    id
+                }
+            };
+            faces.push(Reading {
+                face: id,
+                corners,
+                edges,
+                forward,
+            });
+        }
+        check_glue(vol, &faces, &b.edges)?;
+        out.push(GeoVolume {
+            volume: vol.clone(),
+            faces,
         });
     }
-    check_glue(v, &faces, &b.edges)?;
-    Ok(GeoVolume {
-        volume: v.clone(),
-        faces,
-    })
+    Ok(out)
 }
 
 /// Evaluates the level-`level` solid of a volume on its default placement. The caller bounds
 /// the work first (the exact number of level-n cells is known from the topology).
 pub fn evaluate_volume(v: &Volume, level: u32) -> Result<SolidGeometry> {
+    let a = VolumeAssembly::single(v.clone());
+    let placement = place_assembly(&a, &[], &[])?;
+    evaluate_assembly(&a, &placement, level)
+}
+
+/// Evaluates the level-`level` solid of an assembly on a placement ([`place_assembly`]): one
+/// complex, a face shared by two volumes subdivided once. The caller bounds the work first.
+pub fn evaluate_assembly(
+    a: &VolumeAssembly,
+    placement: &Placement,
+    level: u32,
+) -> Result<SolidGeometry> {
     let mut b = Builder {
         points: Vec::new(),
         edges: Vec::new(),
@@ -944,7 +1163,7 @@ pub fn evaluate_volume(v: &Volume, level: u32) -> Result<SolidGeometry> {
         face_steps: HashMap::new(),
         holes: Vec::new(),
     };
-    let mut volumes = vec![start(&mut b, v)?];
+    let mut volumes = start(&mut b, a, placement)?;
     for _ in 0..level {
         b.holes.clear();
         let mut next = Vec::new();

@@ -273,6 +273,12 @@ pub fn load_volume(arg: &str) -> Result<Option<(String, crate::topology::volume:
 pub fn load_volumes(
     arg: &str,
 ) -> Result<Option<(String, crate::topology::volume::VolumeAssembly)>> {
+    Ok(load_volume_file(arg)?.map(|(name, f)| (name, f.assembly)))
+}
+
+/// The volume file a command-line argument names (notation, a file or a library entry), with
+/// the volumes' user coordinates; `None` when the argument is something else.
+pub fn load_volume_file(arg: &str) -> Result<Option<(String, crate::input::VolumeFile)>> {
     if arg == "-" {
         return Ok(None);
     }
@@ -280,7 +286,7 @@ pub fn load_volumes(
         return match crate::input::volume_file::is_volume_notation(arg) {
             true => Ok(Some((
                 arg.trim().to_string(),
-                crate::input::volume_file::notation_file(arg)?.assembly,
+                crate::input::volume_file::notation_file(arg)?,
             ))),
             false => Ok(None),
         };
@@ -288,7 +294,7 @@ pub fn load_volumes(
     match read_source(arg) {
         Ok((name, src)) if crate::input::volume_file::is_volume_text(&src.text) => Ok(Some((
             name,
-            crate::input::volume_file::parse_volume_file(&src)?.assembly,
+            crate::input::volume_file::parse_volume_file(&src)?,
         ))),
         _ => Ok(None),
     }

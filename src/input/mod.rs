@@ -18,10 +18,10 @@ pub use automaton_format::{parse_automaton, parse_rational};
 pub use automaton_model::{parse_field_element, parse_model, AutomatonModel, Primitive};
 pub use coords::{control_count, CoordKind, ExactPoint, FaceCoords, UserCoords};
 pub use library::{
-    kind_of, library, load_any, load_input, load_volume, load_volumes, parse_text, read_text,
-    Input, Loaded,
+    kind_of, library, load_any, load_input, load_volume, load_volume_file, load_volumes,
+    parse_text, read_text, Input, Loaded,
 };
 pub use rule::{compile_rule, is_rule, parse_rule, Affine, Flip, Rule, RulePath, Segment, Target};
 pub use volume_file::{
-    is_volume_notation, is_volume_text, parse_volume_file, parse_volume_text, VolumeFile,
+    is_volume_notation, is_volume_text, parse_volume_file, parse_volume_text, Corners, VolumeFile,
 };

@@ -58,7 +58,13 @@ pub struct VolumeFile {
     pub names: Vec<String>,
     /// The volumes and their shared faces.
     pub assembly: VolumeAssembly,
+    /// User coordinates, aligned with `assembly.volumes`: `corners[v][f][i]` is where corner `i`
+    /// (the start of edge `i`) of face `f` lies; `None` for a volume given no coordinates.
+    pub corners: Vec<Option<Corners>>,
 }
+
+/// The coordinates of a volume's surface: `[f][i]` for corner `i` of face `f`.
+pub type Corners = Vec<Vec<[f64; 3]>>;
 
 /// Parses a volume file of exactly one volume.
 pub fn parse_volume_text(src: &Source) -> Result<Volume> {
@@ -111,7 +117,12 @@ struct Block {
     inside: Option<(EdgeType, EdgeType, Face, VolumeRule, u32)>,
     faces: Vec<(String, Face, usize, usize)>,
     links: Vec<Gluing>,
+    /// `corners FACE: …` lines: (face, coordinates with the column of each, line).
+    corners: Vec<(usize, Vec<Located>, usize)>,
 }
+
+/// A point of a `corners` line with the column where it is written.
+type Located = ([f64; 3], usize);
 
 /// A gluing inside a block: its line, column and the two (face, edge) sides.
 type Gluing = (usize, usize, [(usize, usize); 2]);
@@ -211,11 +222,11 @@ fn inside(
 
 /// Builds and checks the volume of a block: every edge glued exactly once, to an edge of the
 /// same type and delay, the surface connected and a sphere.
-fn finish(b: Block, src: &Source) -> Result<Volume> {
+fn finish(b: Block, src: &Source) -> Result<(Volume, Option<Corners>)> {
     let head = |code: &'static str, m: String| {
         Error::at(code, m, b.ln, b.col, b.name.chars().count().max(1), src)
     };
-    let Some((radial, inner, template, rule, delay)) = b.inside else {
+    let Some((radial, inner, template, rule, delay)) = b.inside.clone() else {
         return Err(head(
             "E1220",
             format!(
@@ -325,15 +336,128 @@ fn finish(b: Block, src: &Source) -> Result<Volume> {
             ),
         ));
     }
-    Ok(Volume {
-        surface,
-        radial,
-        inner,
-        params: template.params,
-        algorithm: template.algorithm,
-        rule,
-        delay,
-    })
+    let corners = block_corners(&b, &surface, src)?;
+    Ok((
+        Volume {
+            surface,
+            radial,
+            inner,
+            params: template.params,
+            algorithm: template.algorithm,
+            rule,
+            delay,
+        },
+        corners,
+    ))
+}
+
+/// The coordinates of a block's surface from its `corners FACE:` lines: `None` without such
+/// lines; every point of the surface placed once (a point given by several faces must be given
+/// the same coordinates).
+fn block_corners(b: &Block, surface: &Surface, src: &Source) -> Result<Option<Corners>> {
+    if b.corners.is_empty() {
+        return Ok(None);
+    }
+    let (vid, count) = surface.vertices();
+    let mut at_point: Vec<Option<([f64; 3], usize, String)>> = vec![None; count];
+    for (f, pts, ln) in &b.corners {
+        for (i, (p, col)) in pts.iter().enumerate() {
+            let here = format!("corner {i} of face `{}`", b.faces[*f].0);
+            match &at_point[vid[*f][i]] {
+                Some((q, _, there)) if q != p => {
+                    return Err(Error::at(
+                        "E1212",
+                        format!(
+                            "{here} is at {} but it is the same point as {there}, given at {}",
+                            show(*p),
+                            show(*q)
+                        ),
+                        *ln,
+                        *col,
+                        1,
+                        src,
+                    ))
+                }
+                Some(_) => {}
+                None => at_point[vid[*f][i]] = Some((*p, *ln, here)),
+            }
+        }
+    }
+    let mut out = Vec::with_capacity(surface.faces.len());
+    for (f, row) in vid.iter().enumerate() {
+        let mut face = Vec::with_capacity(row.len());
+        for (i, &p) in row.iter().enumerate() {
+            let Some((q, _, _)) = &at_point[p] else {
+                let (name, _, ln, col) = &b.faces[f];
+                return Err(Error::at(
+                    "E1213",
+                    format!("corner {i} of face `{name}` has no coordinates: with `corners` lines, every corner of the surface is placed (a corner shared by several faces needs to be given once)"),
+                    *ln,
+                    *col,
+                    name.chars().count().max(1),
+                    src,
+                ));
+            };
+            face.push(*q);
+        }
+        out.push(face);
+    }
+    Ok(Some(out))
+}
+
+fn show(p: [f64; 3]) -> String {
+    format!("({} {} {})", p[0], p[1], p[2])
+}
+
+/// Parses `X Y Z, X Y Z, …`: exactly `n` points of three finite numbers.
+fn coordinates(
+    list: &str,
+    n: usize,
+    what: &str,
+    line: &Line,
+    src: &Source,
+) -> Result<Vec<Located>> {
+    let list_t = list.trim();
+    let items: Vec<&str> = list_t.split(',').collect();
+    if items.len() != n {
+        return Err(at(
+            "E1214",
+            format!(
+                "{what} has {n} corners; {} point(s) given (`X Y Z`, separated by commas)",
+                items.len()
+            ),
+            line,
+            list_t,
+            src,
+        ));
+    }
+    let mut out = Vec::with_capacity(n);
+    for item in items {
+        let words: Vec<&str> = item.split_whitespace().collect();
+        let nums: Vec<f64> = words
+            .iter()
+            .filter_map(|w| w.parse::<f64>().ok().filter(|x| x.is_finite()))
+            .collect();
+        if words.len() != 3 || nums.len() != 3 {
+            let part = if item.trim().is_empty() {
+                list_t
+            } else {
+                item.trim()
+            };
+            return Err(at(
+                "E1214",
+                format!(
+                    "`{}` is not a point `X Y Z` of three finite numbers",
+                    item.trim()
+                ),
+                line,
+                part,
+                src,
+            ));
+        }
+        out.push(([nums[0], nums[1], nums[2]], col_of(line, item.trim())));
+    }
+    Ok(out)
 }
 
 fn connected(s: &Surface) -> bool {
@@ -355,6 +479,9 @@ pub fn parse_volume_file(src: &Source) -> Result<VolumeFile> {
     let mut rules: Vec<(String, Algorithm)> = Vec::new();
     let mut names: Vec<String> = Vec::new();
     let mut volumes: Vec<Volume> = Vec::new();
+    let mut corners: Vec<Option<Corners>> = Vec::new();
+    // The solid of every volume given as a shorthand.
+    let mut solids: Vec<Option<Solid>> = Vec::new();
     // The face names of every volume (a shorthand's faces are `0`, `1`, …).
     let mut face_names: Vec<Vec<String>> = Vec::new();
     let mut unnamed = false;
@@ -378,7 +505,10 @@ pub fn parse_volume_file(src: &Source) -> Result<VolumeFile> {
             if text == "}" {
                 let b = block.take().expect("inside a block");
                 face_names.push(b.faces.iter().map(|f| f.0.clone()).collect());
-                volumes.push(finish(b, src)?);
+                let (v, c) = finish(b, src)?;
+                volumes.push(v);
+                corners.push(c);
+                solids.push(None);
                 continue;
             }
             if let Some(rest) = text.strip_prefix("inside:") {
@@ -386,6 +516,38 @@ pub fn parse_volume_file(src: &Source) -> Result<VolumeFile> {
                     return Err(at("E1220", "a second `inside:` line", &line, text, src));
                 }
                 b.inside = Some(inside(rest, &line, &rules, src)?);
+            } else if let Some(rest) = text.strip_prefix("corners ") {
+                let Some((name, list)) = rest.split_once(':') else {
+                    return Err(at(
+                        "E1214",
+                        "expected `corners FACE: X Y Z, X Y Z, …`",
+                        &line,
+                        text,
+                        src,
+                    ));
+                };
+                let name = name.trim();
+                let Some(f) = b.faces.iter().position(|x| x.0 == name) else {
+                    return Err(at(
+                        "E1222",
+                        format!("no face named `{name}` above (give a face before its corners)"),
+                        &line,
+                        name,
+                        src,
+                    ));
+                };
+                if b.corners.iter().any(|c| c.0 == f) {
+                    return Err(at(
+                        "E1221",
+                        format!("the corners of face `{name}` are given twice"),
+                        &line,
+                        name,
+                        src,
+                    ));
+                }
+                let n = b.faces[f].1.boundary.len();
+                let pts = coordinates(list, n, &format!("face `{name}`"), &line, src)?;
+                b.corners.push((f, pts, line.ln));
             } else if text.starts_with("face ") && text.contains('~') {
                 let (l, r) = text.split_once('~').expect("checked");
                 let names: Vec<String> = b.faces.iter().map(|f| f.0.clone()).collect();
@@ -421,7 +583,7 @@ pub fn parse_volume_file(src: &Source) -> Result<VolumeFile> {
             } else {
                 return Err(at(
                     "E1220",
-                    format!("inside a volume block: expected `inside: …`, `face NAME: …`, `face A edge I ~ face B edge J` or `}}`, found `{text}`"),
+                    format!("inside a volume block: expected `inside: …`, `face NAME: …`, `corners NAME: …`, `face A edge I ~ face B edge J` or `}}`, found `{text}`"),
                     &line,
                     text,
                     src,
@@ -468,7 +630,51 @@ pub fn parse_volume_file(src: &Source) -> Result<VolumeFile> {
             ));
         }
         let rest_t = rest.trim();
-        if text.contains('~') {
+        if let Some((name, list)) = rest_t
+            .split_once(" corners:")
+            .filter(|(n, _)| valid_name(n.trim()))
+        {
+            let name = name.trim();
+            let Some(v) = names.iter().position(|n| n == name) else {
+                return Err(at(
+                    "E1222",
+                    format!("no volume named `{name}` defined above"),
+                    &line,
+                    name,
+                    src,
+                ));
+            };
+            let Some(solid) = solids[v] else {
+                return Err(at(
+                    "E1214",
+                    format!("volume `{name}` is a block: give its corners face by face inside it (`corners FACE: …`)"),
+                    &line,
+                    name,
+                    src,
+                ));
+            };
+            if corners[v].is_some() {
+                return Err(at(
+                    "E1221",
+                    format!("the corners of volume `{name}` are given twice"),
+                    &line,
+                    name,
+                    src,
+                ));
+            }
+            let polys = solid.polygons();
+            let mut ids: Vec<usize> = polys.iter().flatten().copied().collect();
+            ids.sort_unstable();
+            ids.dedup();
+            let pts = coordinates(list, ids.len(), &format!("volume `{name}`"), &line, src)?;
+            let of = |id: usize| pts[ids.binary_search(&id).expect("a corner of the solid")].0;
+            corners[v] = Some(
+                polys
+                    .iter()
+                    .map(|p| p.iter().map(|&id| of(id)).collect())
+                    .collect(),
+            );
+        } else if text.contains('~') {
             let (l, r) = text.split_once('~').expect("checked");
             let a = volume_face_edge(l, &line, &names, &face_names, &volumes, src)?;
             let b = volume_face_edge(r, &line, &names, &face_names, &volumes, src)?;
@@ -484,6 +690,7 @@ pub fn parse_volume_file(src: &Source) -> Result<VolumeFile> {
                 inside: None,
                 faces: Vec::new(),
                 links: Vec::new(),
+                corners: Vec::new(),
             });
         } else if let Some((name, notation)) = rest_t.split_once('=') {
             let name = name.trim();
@@ -494,11 +701,15 @@ pub fn parse_volume_file(src: &Source) -> Result<VolumeFile> {
             names.push(name.to_string());
             face_names.push((0..v.surface.faces.len()).map(|i| i.to_string()).collect());
             volumes.push(v);
+            corners.push(None);
+            solids.push(notation.split_whitespace().next().and_then(Solid::parse));
         } else if volumes.is_empty() && !rest_t.is_empty() {
             let offset = col_of(&line, rest_t) - 1;
             let v = crate::topology::volume::solid::parse_with(rest_t, &rules)
                 .map_err(|e| e.within(src, line.ln, offset))?;
             volumes.push(v);
+            corners.push(None);
+            solids.push(None);
             unnamed = true;
         } else {
             return Err(at(
@@ -575,7 +786,11 @@ pub fn parse_volume_file(src: &Source) -> Result<VolumeFile> {
         }
         assembly.shared.push(s);
     }
-    Ok(VolumeFile { names, assembly })
+    Ok(VolumeFile {
+        names,
+        assembly,
+        corners,
+    })
 }
 
 fn check_new_name(name: &str, line: &Line, names: &[String], src: &Source) -> Result<()> {
@@ -672,6 +887,7 @@ pub fn notation_file(arg: &str) -> Result<VolumeFile> {
     Ok(VolumeFile {
         names: Vec::new(),
         assembly: VolumeAssembly::single(parse_volume(arg)?),
+        corners: vec![None],
     })
 }
 

@@ -56,7 +56,7 @@ pub use surface::{
     automaton_mesh, automaton_surface, exact_automaton_surface, thicken, AutomatonSolid, Surface,
     EXACT_LEAVES,
 };
-pub use volume::{self_intersection, volume_solid, VolumeSolid};
+pub use volume::{assembly_solid, self_intersection, volume_solid, VolumeSolid};
 
 /// Sizes of a printed solid, in millimetres.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -16,14 +16,16 @@
 //! boundary triangles that cross or touch away from their shared vertices.
 
 use super::check::{check_part, PartCheck};
-use super::outline::segments_meet;
 use super::expect::Expected;
+use super::outline::segments_meet;
 use super::solid::{Part, Solid};
 use super::Size;
 use crate::error::{Diagnostic, Error, Result};
-use crate::geometry::{evaluate_volume, GeoEdge, SolidGeometry};
+use crate::geometry::{evaluate_assembly, place_assembly, GeoEdge, Placement, SolidGeometry};
 use crate::topology::component::Dsu;
-use crate::topology::volume::{solid_topology, SolidLevel, Volume, VolumeTypeSet};
+use crate::topology::volume::{
+    solid_topology_of, SolidLevel, Volume, VolumeAssembly, VolumeTypeSet,
+};
 use num_bigint::{BigInt, BigUint};
 use num_traits::ToPrimitive;
 use robust::{orient2d, orient3d, Coord, Coord3D};
@@ -111,9 +113,7 @@ pub fn boundary_triangles(g: &SolidGeometry) -> (Vec<[f64; 3]>, Vec<Vec<[usize; 
 }
 
 /// Builds, scales and checks the level-`level` solid of a start volume of `set` (the closure of
-/// `v`). `width` is the x extent in millimetres. Failures of the check are coded E1040 (the mesh
-/// is not the exact topology) or E1211 (the geometry cannot follow the step); two triangles that
-/// cross are reported in [`VolumeSolid::crossing`] ([`VolumeSolid::embedded`] makes it E1041).
+/// `v`) on its default placement. See [`assembly_solid`].
 pub fn volume_solid(
     name: &str,
     v: &Volume,
@@ -121,10 +121,28 @@ pub fn volume_solid(
     level: u32,
     width: f64,
 ) -> Result<VolumeSolid> {
-    let exact = solid_topology(set, u64::from(level))?
+    let a = VolumeAssembly::single(v.clone());
+    let placement = place_assembly(&a, &[], &[])?;
+    assembly_solid(name, &a, &placement, set, level, width)
+}
+
+/// Builds, scales and checks the level-`level` solid of an assembly (one volume or several glued
+/// face to face; `set` the closure of its volumes) on `placement`. `width` is the x extent in
+/// millimetres. Failures of the check are coded E1040 (the mesh is not the exact topology) or
+/// E1211 (the geometry cannot follow the step); two triangles that cross are reported in
+/// [`VolumeSolid::crossing`] ([`VolumeSolid::embedded`] makes it E1041).
+pub fn assembly_solid(
+    name: &str,
+    a: &VolumeAssembly,
+    placement: &Placement,
+    set: &VolumeTypeSet,
+    level: u32,
+    width: f64,
+) -> Result<VolumeSolid> {
+    let exact = solid_topology_of(set, u64::from(level), &a.start_cells())?
         .pop()
         .expect("one row per level");
-    let g = evaluate_volume(v, level)?;
+    let g = evaluate_assembly(a, placement, level)?;
     let check = |m: String| {
         failure(
             "E1040",

@@ -53,6 +53,41 @@ pub struct StartCells {
     pub components: u64,
 }
 
+/// The cells of the level-0 complex of an assembly as the volumes read them.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct StartMap {
+    /// `corner[v][f][i]`: the corner of the complex that corner `i` of face `f` of volume `v` is.
+    pub corner: Vec<Vec<Vec<usize>>>,
+    /// `side[v][f][i]`: the edge of the complex that side `i` of face `f` of volume `v` lies on.
+    pub side: Vec<Vec<Vec<usize>>>,
+    /// `face[v][f]`: the face of the complex that face `f` of volume `v` is.
+    pub face: Vec<Vec<usize>>,
+    /// Each face of the complex as its first reader holds it: (volume, face).
+    pub faces: Vec<(usize, usize)>,
+}
+
+impl StartMap {
+    /// The number of corners of the complex.
+    pub fn corner_count(&self) -> usize {
+        self.corner
+            .iter()
+            .flatten()
+            .flatten()
+            .max()
+            .map_or(0, |m| m + 1)
+    }
+
+    /// The number of edges of the complex.
+    pub fn edge_count(&self) -> usize {
+        self.side
+            .iter()
+            .flatten()
+            .flatten()
+            .max()
+            .map_or(0, |m| m + 1)
+    }
+}
+
 /// The face read from the other side, with edge `k` the edge `−k` of `f`.
 pub fn reversed(f: &Face) -> Face {
     let n = f.boundary.len();
@@ -165,8 +200,9 @@ impl VolumeAssembly {
         Ok(())
     }
 
-    /// The cells of the level-0 complex.
-    pub fn start_cells(&self) -> StartCells {
+    /// How the corners, sides and faces of the volumes' surfaces are the cells of the level-0
+    /// complex (glued inside each volume and across the shared faces).
+    pub fn start_map(&self) -> StartMap {
         // Sides and corners numbered volume by volume, face by face.
         let mut base: Vec<Vec<usize>> = Vec::new();
         let mut total = 0usize;
@@ -196,30 +232,76 @@ impl VolumeAssembly {
                 }
             }
         }
-        let mut hidden: HashSet<(usize, usize)> = HashSet::new();
+        let mut hidden: HashMap<(usize, usize), (usize, usize)> = HashMap::new();
         for s in &self.shared {
             let (va, fa, a) = s.a;
             let (vb, fb, b) = s.b;
             let n = len(va, fa);
-            hidden.insert((vb, fb));
+            hidden.insert((vb, fb), (va, fa));
             for k in 0..n {
                 let bk = (b + n - k % n) % n;
                 sides.union(id(va, fa, a + k), id(vb, fb, bk));
                 corners.union(id(va, fa, a + k), id(vb, fb, bk + 1));
             }
         }
-        let mut faces = Vec::new();
-        let mut edges = Vec::new();
-        let mut seen_edge = HashSet::new();
+        // Dense numbers in the order of first appearance.
+        let dense = |d: &mut Dsu, next: &mut HashMap<usize, usize>, x: usize| {
+            let root = d.find(x);
+            let n = next.len();
+            *next.entry(root).or_insert(n)
+        };
+        let (mut corner_no, mut side_no) = (HashMap::new(), HashMap::new());
+        let mut map = StartMap {
+            corner: Vec::new(),
+            side: Vec::new(),
+            face: Vec::new(),
+            faces: Vec::new(),
+        };
+        for (v, vol) in self.volumes.iter().enumerate() {
+            let mut cs = Vec::new();
+            let mut ss = Vec::new();
+            for (f, face) in vol.surface.faces.iter().enumerate() {
+                let n = face.boundary.len();
+                cs.push(
+                    (0..n)
+                        .map(|i| dense(&mut corners, &mut corner_no, id(v, f, i)))
+                        .collect(),
+                );
+                ss.push(
+                    (0..n)
+                        .map(|i| dense(&mut sides, &mut side_no, id(v, f, i)))
+                        .collect(),
+                );
+            }
+            map.corner.push(cs);
+            map.side.push(ss);
+        }
+        for (v, vol) in self.volumes.iter().enumerate() {
+            let mut fs = Vec::new();
+            for f in 0..vol.surface.faces.len() {
+                if !hidden.contains_key(&(v, f)) {
+                    map.faces.push((v, f));
+                    fs.push(map.faces.len() - 1);
+                } else {
+                    fs.push(usize::MAX);
+                }
+            }
+            map.face.push(fs);
+        }
+        for (&(v, f), &(va, fa)) in &hidden {
+            map.face[v][f] = map.face[va][fa];
+        }
+        map
+    }
+
+    /// The cells of the level-0 complex.
+    pub fn start_cells(&self) -> StartCells {
+        let map = self.start_map();
+        let mut edges: Vec<Option<EdgeType>> = vec![None; map.edge_count()];
         for (v, vol) in self.volumes.iter().enumerate() {
             for (f, face) in vol.surface.faces.iter().enumerate() {
-                if !hidden.contains(&(v, f)) {
-                    faces.push(face.clone());
-                }
                 for (i, &e) in face.boundary.iter().enumerate() {
-                    if seen_edge.insert(sides.find(id(v, f, i))) {
-                        edges.push(e);
-                    }
+                    edges[map.side[v][f][i]].get_or_insert(e);
                 }
             }
         }
@@ -228,9 +310,13 @@ impl VolumeAssembly {
             parts.union(s.a.0, s.b.0);
         }
         StartCells {
-            faces,
-            edges,
-            corners: corners.classes() as u64,
+            faces: map
+                .faces
+                .iter()
+                .map(|&(v, f)| self.volumes[v].surface.faces[f].clone())
+                .collect(),
+            edges: edges.into_iter().flatten().collect(),
+            corners: map.corner_count() as u64,
             components: parts.classes() as u64,
         }
     }

@@ -18,7 +18,7 @@ pub(crate) mod solid;
 pub(crate) mod step;
 pub(crate) mod surface;
 
-pub use assembly::{mirror_consistent, reversed, SharedFace, StartCells, VolumeAssembly};
+pub use assembly::{mirror_consistent, reversed, SharedFace, StartCells, StartMap, VolumeAssembly};
 pub use closure::{volume_counts, VolumeClosure, VolumeLevelCount, VolumeType, VolumeTypeSet};
 pub use complex::{solid_topology, solid_topology_of, SolidLevel};
 pub use solid::{parse_volume, Solid};
