@@ -8,3 +8,5 @@ $L render tetrahedron-B2 --level 1 --png docs/images/tetrahedron-B2-level1.png -
 $L render 'octahedron B2 | B2 B2 B2 | A1 | B2 B2 | V2' --level 1 --png docs/images/octahedron-B2-V2-level1.png --size 480
 $L render cube-B2 --level 1 --svg docs/images/cube-B2-level1.svg
 $L render cube-B2 --level 2 --png docs/images/cube-B2-level2.png --size 480
+$L render two-cubes --level 2 --png docs/images/two-cubes-level2.png --size 480
+$L render fixtures/pyramid.txt --level 2 --png docs/images/pyramid-level2.png --size 480

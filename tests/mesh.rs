@@ -773,3 +773,71 @@ mod random_volumes {
         }
     }
 }
+
+/// Moving a volume's corners by a similarity (a rotation, a scale, a translation) changes
+/// nothing but where the solid lies: the mesh check passes with the same Euler characteristic,
+/// and the enclosed volume scales with the cube of the scale.
+mod placed_anywhere {
+    use lacuna::geometry::{default_placement, place_assembly};
+    use lacuna::topology::volume::{parse_volume, VolumeAssembly, VolumeClosure};
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(8))]
+        #[test]
+        fn a_similar_placement_is_the_same_solid(
+            q in proptest::array::uniform4(-1.0f64..1.0),
+            s in 0.1f64..20.0,
+            t in proptest::array::uniform3(-50.0f64..50.0),
+            which in 0usize..3,
+        ) {
+            let text = ["cube-B2", "tetrahedron-B2", "prism-5 B2 | B2 B2 B2 | A1 | B2 B2 | V1"][which];
+            let text = match text {
+                "cube-B2" => "cube B2 | B2 B2 B2 | A1 | B2 B2 | V1",
+                "tetrahedron-B2" => "tetrahedron B2 | B2 B2 B2 | A1 | B2 B2 | V1",
+                x => x,
+            };
+            let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+            prop_assume!(n > 0.1);
+            let [w, x, y, z] = q.map(|c| c / n);
+            // The rotation matrix of the unit quaternion (w, x, y, z).
+            let r = [
+                [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y)],
+                [2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x)],
+                [2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y)],
+            ];
+            let v = parse_volume(text).unwrap();
+            let (_, base) = default_placement(&v).unwrap();
+            let moved: Vec<Vec<[f64; 3]>> = base
+                .iter()
+                .map(|f| {
+                    f.iter()
+                        .map(|p| {
+                            let mut o = [0.0; 3];
+                            for i in 0..3 {
+                                o[i] = t[i] + s * (0..3).map(|k| r[i][k] * p[k]).sum::<f64>();
+                            }
+                            o
+                        })
+                        .collect()
+                })
+                .collect();
+            let a = VolumeAssembly::single(v.clone());
+            let VolumeClosure::Closed(set) =
+                VolumeClosure::of(&a.volumes, &Default::default()).unwrap()
+            else {
+                panic!("closes")
+            };
+            let at_home = lacuna::mesh::volume_solid("home", &v, &set, 1, 100.0).unwrap();
+            let placement = place_assembly(&a, &[Some(moved)], &[]).unwrap();
+            let away = lacuna::mesh::assembly_solid("away", &a, &placement, &set, 1, 100.0).unwrap();
+            prop_assert!(away.crossing.is_none(), "{:?}", away.crossing);
+            prop_assert_eq!(away.euler, at_home.euler);
+            prop_assert_eq!(away.genus, at_home.genus);
+            // In the geometry's own units the enclosed volume is s³ times the original's.
+            let vol = |g: &lacuna::mesh::VolumeSolid| g.sizes().volume_mm3 / g.transform.0.powi(3);
+            let ratio = vol(&away) / vol(&at_home);
+            prop_assert!((ratio / s.powi(3) - 1.0).abs() < 1e-4, "{} vs {}", ratio, s.powi(3));
+        }
+    }
+}

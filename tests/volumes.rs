@@ -431,3 +431,123 @@ fn render_writes_the_solids_that_folded_before() {
     }
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// A square pyramid is none of the shorthand solids: `fixtures/pyramid.txt` gives its corners.
+/// Under V1 each of its 5 corners raises one piece, and the pieces meet pairwise along its 8
+/// edges (as the cube's 8 pieces along its 12): a thickened graph with 5 vertices and 8 edges,
+/// genus 8 − 5 + 1 = 4, surface Euler characteristic 2 − 2·4 = −6. The apex is at height 0.8 on
+/// a unit base, so at 100 mm wide the extent is 100 × 100 × 80 mm.
+#[test]
+fn a_volume_on_user_coordinates() {
+    let (code, out, err) = lacuna(&["measure", "fixtures/pyramid.txt", "--level", "1", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["verified"], true);
+    assert_eq!(v["solid"]["volumes"], "5");
+    assert_eq!(v["mesh"]["genus"], 4);
+    assert_eq!(v["mesh"]["surface_euler"], -6);
+    let e = &v["sizes"]["extent_mm"];
+    for (k, want) in [100.0, 100.0, 80.0].into_iter().enumerate() {
+        assert!((e[k].as_f64().unwrap() - want).abs() < 1e-3, "{e}");
+    }
+    // The cube shorthand on corners of a 2 × 1 × 1 box: the cube's topology (genus 5), the
+    // box's proportions.
+    let (code, out, err) = lacuna(&[
+        "measure",
+        "fixtures/box-2x1x1.txt",
+        "--level",
+        "1",
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["mesh"]["genus"], 5);
+    let e = &v["sizes"]["extent_mm"];
+    for (k, want) in [100.0, 50.0, 50.0].into_iter().enumerate() {
+        assert!((e[k].as_f64().unwrap() - want).abs() < 1e-3, "{e}");
+    }
+}
+
+/// Two cube-B2 volumes glued face to face. As a thickened graph: 8 + 8 pieces, 12 + 12 bridges
+/// inside the cubes and 4 across the shared face (the pentagons at its corners), cycle rank
+/// 28 − 16 + 1 = 13. But around each of the shared face's 4 edges the two bridges and the two
+/// crossings meet along one spoke edge of the shared face (all four pieces hold it), so those 4
+/// cycles bound no tunnel: genus 13 − 4 = 9, surface Euler characteristic 2 − 2·9 = −16.
+/// The second cube is laid beside the first: 100 × 200 × 100 mm.
+#[test]
+fn an_assembly_is_drawn_as_one_solid() {
+    let d = scratch("assembly");
+    let stl = d.join("two.stl");
+    let (code, out, err) = lacuna(&[
+        "render",
+        "two-cubes",
+        "--level",
+        "1",
+        "--stl",
+        &stl.to_string_lossy(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("16 volumes"), "{out}");
+    assert!(out.contains("surface Euler characteristic -16"), "{out}");
+    assert!(out.contains("genus 9"), "{out}");
+    assert!(out.contains("1 part(s)"), "{out}");
+    assert!(stl.metadata().unwrap().len() > 84);
+    let (code, out, err) = lacuna(&["measure", "two-cubes", "--level", "1", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let e = &v["sizes"]["extent_mm"];
+    let mut ext: Vec<f64> = (0..3).map(|k| e[k].as_f64().unwrap()).collect();
+    ext.sort_by(f64::total_cmp);
+    assert!(
+        (ext[0] - 100.0).abs() < 1e-3 && (ext[2] - 200.0).abs() < 1e-3,
+        "{e}"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn bad_coordinates_are_coded_errors_with_their_place() {
+    let d = scratch("coords");
+    let pyramid = std::fs::read_to_string("fixtures/pyramid.txt").unwrap();
+    let cases: [(&str, String, &str); 5] = [
+        // s2 gives the base's corner (1 1 0) as (1 1 0.5).
+        (
+            "E1212",
+            pyramid.replace("corners s2: 1 1 0,", "corners s2: 1 1 0.5,"),
+            ":19:15",
+        ),
+        // Without s0 and s2 the apex has no coordinates.
+        (
+            "E1213",
+            pyramid
+                .lines()
+                .filter(|l| !l.contains("corners s"))
+                .collect::<Vec<_>>()
+                .join("\n"),
+            ":5:8",
+        ),
+        // Two points for a triangle.
+        (
+            "E1214",
+            pyramid.replace(", 1 0 0, 0.5 0.5 0.8", ", 1 0 0"),
+            ":18:",
+        ),
+        // The apex below the base: the faces wind clockwise seen from outside.
+        ("E1215", pyramid.replace(" 0.8", " -0.8"), ""),
+        // A box of 2 × 1 × 1 cannot take a unit cube on its 2 × 1 face.
+        (
+            "E1216",
+            "volume A = cube B2 | B2 B2 B2 | A1 | B2 B2 | V1\nvolume B = cube B2 | B2 B2 B2 | A1 | B2 B2 | V1\nvolume A face 1 edge 0 ~ volume B face 0 edge 0\nvolume B corners: 0 0 0, 2 0 0, 0 1 0, 2 1 0, 0 0 1, 2 0 1, 0 1 1, 2 1 1\n".to_string(),
+            "",
+        ),
+    ];
+    for (code_want, text, place) in cases {
+        let p = d.join(format!("{code_want}.txt"));
+        std::fs::write(&p, text).unwrap();
+        let (code, _, err) = lacuna(&["measure", &p.to_string_lossy(), "--level", "1"]);
+        assert_eq!(code, 2, "{code_want}: {err}");
+        assert!(err.contains(code_want), "{code_want}: {err}");
+        assert!(err.contains(place), "{code_want}: {err}");
+    }
+    let _ = std::fs::remove_dir_all(&d);
+}
