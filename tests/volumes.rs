@@ -409,6 +409,9 @@ fn render_writes_the_solids_that_folded_before() {
         ("cube C2 | B2 B2 B2 | A1 | B2 B2 | V1", "2"),
         ("cube B2 | B2 B2 B2 | A1 | B2 B2 | V2", "2"),
         ("cube-B2", "3"),
+        // Folded until the inner faces could be fanned around a point of their patch
+        // (`InnerFan::PatchPoint`), which the summary then names.
+        ("cube C2 | B2 B2 B2 | A2 | B2 B2 | V1", "2"),
     ]
     .into_iter()
     .enumerate()
@@ -424,6 +427,12 @@ fn render_writes_the_solids_that_folded_before() {
         ]);
         assert_eq!(code, 0, "{text} level {level}: {err}");
         assert!(out.contains("no two triangles cross"), "{out}");
+        if text.contains("A2") {
+            assert!(
+                out.contains("around the shrink of a point of their patch"),
+                "{out}"
+            );
+        }
         let bytes = std::fs::read(&stl).unwrap();
         let n = u32::from_le_bytes(bytes[80..84].try_into().unwrap()) as usize;
         assert_eq!(bytes.len(), 84 + 50 * n, "{text}");

@@ -38,6 +38,6 @@ pub use template_file::{
 };
 pub use volume::{
     default_placement, evaluate_assembly, evaluate_volume, hole_width, least_thickness,
-    place_assembly, solid_corners, GeoEdge, GeoFace, GeoVolume, Placement, Placement1, Reading,
-    SolidGeometry, P3,
+    place_assembly, solid_corners, GeoEdge, GeoFace, GeoVolume, InnerFan, Placement, Placement1,
+    Reading, SolidGeometry, P3,
 };

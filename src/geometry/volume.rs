@@ -285,6 +285,37 @@ pub fn default_placement(v: &Volume) -> Option<(Solid, Vec<Vec<P3>>)> {
     None
 }
 
+/// How the inner face of a sub-volume (its rim shrunk towards the volume's centre, see
+/// [`SHRINK`]) is drawn: a fan of triangles around one centre point. Two rules, because each
+/// folds where the other does not (`docs/volume-sweep.sh`); the mesh layer tries them in order
+/// and keeps the first whose solid embeds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InnerFan {
+    /// Around the mean of the inner face's corners.
+    RimMean,
+    /// Around the same shrink of a point M of the patch (a corner of the patch inside it, the
+    /// middle of an edge between two of its sub-faces, or a sub-face's centre: the one with the
+    /// least sum of squared distances to the rim's corners), so that the fan is the shrunk image
+    /// of a fan on the patch. Around the rim's mean, the fan of a strongly bent rim (two faces
+    /// meeting in a valley seen from the centre) can cut through the patch.
+    PatchPoint,
+}
+
+impl InnerFan {
+    /// Every rule, in the order the mesh layer tries them.
+    pub const ALL: [InnerFan; 2] = [InnerFan::RimMean, InnerFan::PatchPoint];
+
+    /// A few words for reports.
+    pub fn describe(self) -> &'static str {
+        match self {
+            InnerFan::RimMean => "inner faces fanned around their mean",
+            InnerFan::PatchPoint => {
+                "inner faces fanned around the shrink of a point of their patch"
+            }
+        }
+    }
+}
+
 /// The pieces of an edge, in its direction: (start point, end point, piece edge).
 type Pieces = Vec<(usize, usize, usize)>;
 
@@ -296,6 +327,7 @@ struct SubReadings {
 
 /// Builds the solid level by level.
 struct Builder {
+    fan: InnerFan,
     points: Vec<P3>,
     edges: Vec<GeoEdge>,
     faces: Vec<GeoFace>,
@@ -582,6 +614,53 @@ impl Builder {
         Ok(SubReadings { subs })
     }
 
+    /// The point the sub-volumes of `gv` shrink towards: the mean of the corners of its faces (a
+    /// corner counted once per face that holds it) when the whole surface is seen from there
+    /// from inside — every fan triangle of every face with the point strictly on its inner side
+    /// (the point lies in the surface's *kernel*) — else the point of the kernel nearest to that
+    /// mean with a margin of half the kernel's inradius, found by two linear programs; the mean
+    /// when the kernel is empty (the volume is not star-shaped; the placement may then fold, and
+    /// the mesh check says so).
+    ///
+    /// Shrinking towards a kernel point keeps the side faces of two sub-volumes in disjoint
+    /// cones; towards the mean of a non-convex volume (the bent pieces next to a Cantor gap) some
+    /// faces are seen from behind and the sub-volumes over them fold.
+    fn star_centre(&self, gv: &GeoVolume) -> P3 {
+        let m = mean(
+            gv.faces
+                .iter()
+                .flat_map(|r| r.corners.iter())
+                .map(|&c| self.points[c]),
+        );
+        // Outward unit normals and a point of every fan triangle.
+        let mut planes: Vec<(P3, P3)> = Vec::new();
+        let mut size = 0.0f64;
+        for r in &gv.faces {
+            let c = self.faces[r.face].center;
+            let n = r.corners.len();
+            for i in 0..n {
+                let a = self.points[r.corners[i]];
+                let b = self.points[r.corners[(i + 1) % n]];
+                size = size.max(norm(sub(a, m)));
+                let nn = cross(sub(a, c), sub(b, c));
+                let l = norm(nn);
+                if l > 0.0 {
+                    planes.push((scale(nn, 1.0 / l), c));
+                }
+            }
+        }
+        let margin = |x: P3| {
+            planes
+                .iter()
+                .map(|(n, c)| -dot(*n, sub(x, *c)))
+                .fold(f64::INFINITY, f64::min)
+        };
+        if margin(m) > 1e-9 * size {
+            return m;
+        }
+        kernel_point(&planes, m, size).unwrap_or(m)
+    }
+
     fn volume_step(&mut self, v: &Volume) -> Result<Rc<VolumeSubdivision>> {
         if let Some(s) = self.steps.get(v) {
             return Ok(s.clone());
@@ -599,12 +678,7 @@ impl Builder {
         for (k, r) in gv.faces.iter().enumerate() {
             subs.push(self.subdivide_reading(&v.surface.faces[k], r)?);
         }
-        let vcenter = mean(
-            gv.faces
-                .iter()
-                .flat_map(|r| r.corners.iter())
-                .map(|&c| self.points[c]),
-        );
+        let vcenter = self.star_centre(gv);
         // Every rim point goes [`SHRINK`] of the way to the volume's centre: the side face over a
         // rim edge lies in the cone from the centre over that edge, so the side faces of two rim
         // edges meet only along the radial edge they share, and the inner face is the rim loop
@@ -621,7 +695,7 @@ impl Builder {
                     surface_rotation(&s.volume, placed),
                 ));
             }
-            let faces = self.fill(&s.volume, faces, Some(vcenter))?;
+            let faces = self.fill(&s.volume, faces, Some(vcenter), None)?;
             out.push(GeoVolume {
                 volume: s.volume.clone(),
                 faces,
@@ -719,7 +793,40 @@ impl Builder {
                 };
                 faces[placed.face] = Some(rotated(&built, surface_rotation(&sv.volume, placed)));
             }
-            let faces = self.fill(&sv.volume, faces, None)?;
+            // The inner face is the rim shrunk towards the centre, drawn as a fan (see
+            // [`InnerFan`]).
+            let rim_pts: Vec<P3> = (0..m).map(|i| self.points[rim(s, i).2]).collect();
+            let rim_ids: std::collections::HashSet<usize> = (0..m).map(|i| rim(s, i).2).collect();
+            let rim_edges: std::collections::HashSet<usize> = (0..m).map(|i| rim(s, i).0).collect();
+            let mut candidates: Vec<P3> = Vec::new();
+            for &((f, k), _) in &sv.subfaces {
+                let r = &subs[f].subs[k];
+                candidates.push(self.faces[r.face].center);
+                for (j, &c) in r.corners.iter().enumerate() {
+                    if !rim_ids.contains(&c) {
+                        candidates.push(self.points[c]);
+                    }
+                    let e = r.edges[j];
+                    if !rim_edges.contains(&e) {
+                        let GeoEdge { a, b, .. } = self.edges[e];
+                        candidates.push(lerp(self.points[a], self.points[b], 0.5));
+                    }
+                }
+            }
+            let spread = |x: P3| {
+                rim_pts
+                    .iter()
+                    .map(|p| dot(sub(*p, x), sub(*p, x)))
+                    .sum::<f64>()
+            };
+            let centre = match self.fan {
+                InnerFan::RimMean => None,
+                InnerFan::PatchPoint => candidates
+                    .into_iter()
+                    .min_by(|a, b| spread(*a).total_cmp(&spread(*b)))
+                    .map(|p| lerp(p, vcenter, SHRINK)),
+            };
+            let faces = self.fill(&sv.volume, faces, None, centre)?;
             out.push(GeoVolume {
                 volume: sv.volume.clone(),
                 faces,
@@ -736,6 +843,7 @@ impl Builder {
         v: &Volume,
         mut faces: Vec<Option<Reading>>,
         push_to: Option<P3>,
+        centre: Option<P3>,
     ) -> Result<Vec<Reading>> {
         let surface = &v.surface;
         for u in 0..faces.len() {
@@ -759,10 +867,12 @@ impl Builder {
                 edges.push(other.edges[j]);
                 forward.push(!other.forward[j]);
             }
-            let center = push_to.map(|c| {
-                let m = mean(corners.iter().map(|&p| self.points[p]));
-                lerp(m, c, PUSH)
-            });
+            let center = push_to
+                .map(|c| {
+                    let m = mean(corners.iter().map(|&p| self.points[p]));
+                    lerp(m, c, PUSH)
+                })
+                .or(centre);
             let id = self.face(surface.faces[u].clone(), corners.clone(), center);
             faces[u] = Some(Reading {
                 face: id,
@@ -775,6 +885,58 @@ impl Builder {
         check_glue(v, &faces, &self.edges)?;
         Ok(faces)
     }
+}
+
+/// A point of the kernel of a surface given by the outward unit normals and points of its fan
+/// triangles (`n·(x − c) < 0` for all): the one nearest (in L1) to `near` among the points at
+/// least half the kernel's inradius inside every plane. `None` when the kernel is empty or thin
+/// (inradius ≤ 10⁻⁹·`size`) or the solver fails. Two linear programs with `good_lp`'s pure-Rust
+/// simplex (`microlp`, f64): this is geometry, no verdict rests on it.
+fn kernel_point(planes: &[(P3, P3)], near: P3, size: f64) -> Option<P3> {
+    use good_lp::{microlp, variable, variables, Expression, Solution, SolverModel};
+    let side = |x: &[good_lp::Variable; 3], n: P3, c: P3| -> Expression {
+        // −n·(x − c): the distance inside the plane.
+        let mut e = Expression::from(dot(n, c));
+        for k in 0..3 {
+            e.add_mul(-n[k], x[k]);
+        }
+        e
+    };
+    let bound = |k: usize| (near[k] - 2.0 * size, near[k] + 2.0 * size);
+    // 1. The inradius: maximise t with every plane at least t away.
+    let mut vars = variables!();
+    let x: [good_lp::Variable; 3] = std::array::from_fn(|k| {
+        let (lo, hi) = bound(k);
+        vars.add(variable().min(lo).max(hi))
+    });
+    let t = vars.add(variable().min(0.0).max(size));
+    let mut model = vars.maximise(t).using(microlp);
+    for &(n, c) in planes {
+        model.add_constraint(side(&x, n, c).geq(t));
+    }
+    let sol = model.solve().ok()?;
+    let r = sol.value(t);
+    if r <= 1e-9 * size {
+        return None;
+    }
+    // 2. Nearest to `near` (L1) among the points at least r/2 inside.
+    let mut vars = variables!();
+    let x: [good_lp::Variable; 3] = std::array::from_fn(|k| {
+        let (lo, hi) = bound(k);
+        vars.add(variable().min(lo).max(hi))
+    });
+    let d: [good_lp::Variable; 3] = std::array::from_fn(|_| vars.add(variable().min(0.0)));
+    let total: Expression = d.iter().copied().sum();
+    let mut model = vars.minimise(total).using(microlp);
+    for k in 0..3 {
+        model.add_constraint((Expression::from(x[k]) - near[k]).leq(d[k]));
+        model.add_constraint((Expression::from(near[k]) - x[k]).leq(d[k]));
+    }
+    for &(n, c) in planes {
+        model.add_constraint(side(&x, n, c).geq(r / 2.0));
+    }
+    let sol = model.solve().ok()?;
+    Some(std::array::from_fn(|k| sol.value(x[k])))
 }
 
 /// The rotation from a face as built to the frame of the sub-volume's surface: [`Placed`] gives
@@ -1137,17 +1299,20 @@ fn start(b: &mut Builder, a: &VolumeAssembly, placement: &Placement) -> Result<V
 pub fn evaluate_volume(v: &Volume, level: u32) -> Result<SolidGeometry> {
     let a = VolumeAssembly::single(v.clone());
     let placement = place_assembly(&a, &[], &[])?;
-    evaluate_assembly(&a, &placement, level)
+    evaluate_assembly(&a, &placement, level, InnerFan::RimMean)
 }
 
 /// Evaluates the level-`level` solid of an assembly on a placement ([`place_assembly`]): one
-/// complex, a face shared by two volumes subdivided once. The caller bounds the work first.
+/// complex, a face shared by two volumes subdivided once; inner faces fanned as `fan` says. The
+/// caller bounds the work first.
 pub fn evaluate_assembly(
     a: &VolumeAssembly,
     placement: &Placement,
     level: u32,
+    fan: InnerFan,
 ) -> Result<SolidGeometry> {
     let mut b = Builder {
+        fan,
         points: Vec::new(),
         edges: Vec::new(),
         faces: Vec::new(),
@@ -1237,6 +1402,31 @@ pub fn hole_width(g: &SolidGeometry, hole: &[usize]) -> f64 {
 mod tests {
     use super::*;
     use crate::topology::volume::parse_volume;
+
+    #[test]
+    fn the_kernel_point_of_a_cube_nearest_to_a_far_point() {
+        // The unit cube [0, 1]³ by its six planes (outward normal, a point). Its kernel is the
+        // cube, whose inradius is 1/2 (the centre). The points at least 1/4 inside every plane
+        // form [1/4, 3/4]³, and the one nearest to (5, 5, 5) in L1 is its corner (3/4, 3/4, 3/4).
+        // (`size` bounds the search to a box of ±2·size around the given point.)
+        let planes: Vec<(P3, P3)> = (0..3)
+            .flat_map(|k| {
+                let mut n = [0.0; 3];
+                n[k] = 1.0;
+                [(n, [1.0; 3]), (scale(n, -1.0), [0.0; 3])]
+            })
+            .collect();
+        let p = kernel_point(&planes, [5.0; 3], 10.0).unwrap();
+        for x in p {
+            assert!((x - 0.75).abs() < 1e-7, "{p:?}");
+        }
+        // Two parallel planes facing away from each other leave an empty kernel.
+        let empty = [
+            ([1.0, 0.0, 0.0], [0.0; 3]),
+            ([-1.0, 0.0, 0.0], [1.0, 0.0, 0.0]),
+        ];
+        assert_eq!(kernel_point(&empty, [0.5; 3], 1.0), None);
+    }
 
     #[test]
     fn a_surface_that_is_no_shorthand_solid_has_no_default_placement() {

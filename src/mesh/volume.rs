@@ -21,7 +21,9 @@ use super::outline::segments_meet;
 use super::solid::{Part, Solid};
 use super::Size;
 use crate::error::{Diagnostic, Error, Result};
-use crate::geometry::{evaluate_assembly, place_assembly, GeoEdge, Placement, SolidGeometry};
+use crate::geometry::{
+    evaluate_assembly, place_assembly, GeoEdge, InnerFan, Placement, SolidGeometry,
+};
 use crate::topology::component::Dsu;
 use crate::topology::volume::{
     solid_topology_of, SolidLevel, Volume, VolumeAssembly, VolumeTypeSet,
@@ -50,6 +52,8 @@ pub struct VolumeSolid {
     pub crossing: Option<String>,
     /// The evaluated cells, in the solid's own units (for pictures and measures).
     pub geometry: SolidGeometry,
+    /// How the inner faces were drawn.
+    pub fan: InnerFan,
     /// Millimetres per unit of the geometry, and the offset subtracted before scaling.
     pub transform: (f64, [f64; 3]),
 }
@@ -131,6 +135,9 @@ pub fn volume_solid(
 /// millimetres. Failures of the check are coded E1040 (the mesh is not the exact topology) or
 /// E1211 (the geometry cannot follow the step); two triangles that cross are reported in
 /// [`VolumeSolid::crossing`] ([`VolumeSolid::embedded`] makes it E1041).
+///
+/// The inner faces are drawn by each [`InnerFan`] rule in turn until the solid embeds; the
+/// result is the first that embeds, or the first rule's when none does.
 pub fn assembly_solid(
     name: &str,
     a: &VolumeAssembly,
@@ -142,7 +149,29 @@ pub fn assembly_solid(
     let exact = solid_topology_of(set, u64::from(level), &a.start_cells())?
         .pop()
         .expect("one row per level");
-    let g = evaluate_assembly(a, placement, level)?;
+    let mut first: Option<VolumeSolid> = None;
+    for fan in InnerFan::ALL {
+        let s = solid_with(name, a, placement, &exact, level, width, fan)?;
+        if s.crossing.is_none() {
+            return Ok(s);
+        }
+        first.get_or_insert(s);
+    }
+    Ok(first.expect("at least one rule"))
+}
+
+/// [`assembly_solid`] with one rule for the inner faces.
+fn solid_with(
+    name: &str,
+    a: &VolumeAssembly,
+    placement: &Placement,
+    exact: &SolidLevel,
+    level: u32,
+    width: f64,
+    fan: InnerFan,
+) -> Result<VolumeSolid> {
+    let exact = exact.clone();
+    let g = evaluate_assembly(a, placement, level, fan)?;
     let check = |m: String| {
         failure(
             "E1040",
@@ -308,6 +337,7 @@ pub fn assembly_solid(
         pairs_tested,
         crossing,
         geometry: g,
+        fan,
         transform: (mm, lo),
     })
 }
@@ -330,6 +360,10 @@ impl VolumeSolid {
                 self.pairs_tested
             ),
             Some(m) => format!("NOT EMBEDDED: {m}"),
+        };
+        let crossing = match self.fan {
+            InnerFan::RimMean => crossing,
+            other => format!("{crossing}; {}", other.describe()),
         };
         let v: usize = self.solid.parts.iter().map(|p| p.vertices.len()).sum();
         format!(
