@@ -452,6 +452,16 @@ pub fn analyse(
         })
         .collect();
     let start_types: Vec<usize> = start.iter().map(|&(t, _)| t).collect();
+    // Checked before the spectrum: a reached type without sub-face would leave no cycle.
+    let structure = ClassStructure::new(&succ, &start_types);
+    for t in (0..n).filter(|&t| structure.class_of[t].is_some()) {
+        if succ[t].is_empty() {
+            return Err(RatioError::NoSubFace { face_type: t });
+        }
+        if c[t].is_negative() {
+            return Err(RatioError::NegativeContribution { face_type: t });
+        }
+    }
     let Spectrum {
         reached,
         classes,
@@ -460,14 +470,6 @@ pub fn analyse(
         period: big_p,
         det,
     } = spectrum(m, &start_types)?;
-    for &t in &reached {
-        if succ[t].is_empty() {
-            return Err(RatioError::NoSubFace { face_type: t });
-        }
-        if c[t].is_negative() {
-            return Err(RatioError::NegativeContribution { face_type: t });
-        }
-    }
     let field = NumberField::new(rho.clone());
     let f = rho.min_poly().clone();
     let period = usize::try_from(big_p).expect("period fits usize");
