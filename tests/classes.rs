@@ -110,6 +110,38 @@ fn classify_f0_with_itself_and_with_the_square() {
     );
     // F0's limit valence (hand derivation in topology/vertex.rs): bounded, largest 3.
     assert_eq!(v["limit_valence"]["a"]["max_valence"], 3);
+    // Limit shares. F0: 6·2^k vertices of valence 2, 3·6^k − 3·2^k of valence 3 (THEORY §13),
+    // so the shares tend to 0 and 1. The square: 4 corners of valence 2, (4/3)(5^k − 1) +
+    // (8/3)(2^k − 1) of valence 3 and (5^k − 1)/3 − (4/3)(2^k − 1) of valence 4 (derivation in
+    // analysis/shares.rs), so 0, 4/5 and 1/5.
+    let shares = |side: &str| -> Vec<(u64, String, String)> {
+        assert_eq!(v["limit_shares"][side]["status"], "exact");
+        v["limit_shares"][side]["shares"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| {
+                (
+                    x["valence"].as_u64().unwrap(),
+                    x["share"].as_str().unwrap().to_string(),
+                    x["decimal"].as_str().unwrap()[..8].to_string(),
+                )
+            })
+            .collect()
+    };
+    let row = |v: u64, s: &str, d: &str| (v, s.to_string(), d.to_string());
+    assert_eq!(
+        shares("a"),
+        vec![row(2, "0", "0.000000"), row(3, "1", "1.000000")]
+    );
+    assert_eq!(
+        shares("b"),
+        vec![
+            row(2, "0", "0.000000"),
+            row(3, "4/5", "0.800000"),
+            row(4, "1/5", "0.200000")
+        ]
+    );
 }
 
 #[test]
@@ -134,8 +166,10 @@ fn classify_tells_equal_counts_with_different_multiplicity_apart() {
         (v["differs"]["a"].as_str(), v["differs"]["b"].as_str()),
         (Some("3"), Some("2"))
     );
-    // Both have spokes at corners: their valences grow without bound, with a witness.
+    // Both have spokes at corners: their valences grow without bound, with a witness, and the
+    // limit shares are not decided.
     assert_eq!(v["limit_valence"]["a"]["kind"], "unbounded");
+    assert_eq!(v["limit_shares"]["a"]["status"], "not_decided");
     assert_eq!(v["every_level"], false);
 }
 

@@ -21,6 +21,7 @@
 //! images of fixed corners" and no more.
 
 use crate::algebra::FieldElement;
+use crate::analysis::shares::{limit_shares, LimitShare, LimitShares};
 use crate::constraint::OpKind;
 use crate::error::{Error, Result};
 use crate::input::AutomatonModel;
@@ -50,6 +51,9 @@ pub struct Invariants {
     pub multiplicity: Vec<Vec<Named>>,
     /// Invariants of the limit (the valences that vertices settle at, or unbounded).
     pub limit: Vec<Named>,
+    /// The limit share of each valence among the vertices of level k, as k grows (exact, or
+    /// why it is not decided).
+    pub limit_shares: LimitShares,
     /// The order bound of the linear recurrences (see the module doc), when there is one.
     pub order: Option<usize>,
     /// What was not derived, in words.
@@ -148,6 +152,7 @@ pub fn face_invariants(
         cardinality,
         multiplicity,
         limit,
+        limit_shares: limit_shares(&m)?,
         order: m.order,
         notes: Vec::new(),
     };
@@ -184,6 +189,9 @@ pub fn volume_invariants(
         cardinality,
         multiplicity: vec![Vec::new(); levels as usize + 1],
         limit: Vec::new(),
+        limit_shares: LimitShares::NotDecided {
+            reason: "valences are not derived for volumes".into(),
+        },
         // Cells and lacunas only: the solid's face, edge and corner counts have no order bound
         // here, so a volume's comparison covers the levels compared.
         order: None,
@@ -235,6 +243,9 @@ pub fn automaton_invariants(
         cardinality,
         multiplicity,
         limit: Vec::new(),
+        limit_shares: LimitShares::NotDecided {
+            reason: "the valences of an automaton's levels are not derived".into(),
+        },
         order: None,
         notes: vec![
             "automaton multiplicity: level 1 only, at the exact images of fixed corners; contacts elsewhere and deeper levels are not decided".into(),
@@ -313,7 +324,12 @@ pub fn classify(a: &Invariants, b: &Invariants) -> Classification {
         }
     }
     let every_level = needed.is_some_and(|n| n <= levels);
-    let differs = first_difference(a, b, levels);
+    let mut differs = first_difference(a, b, levels);
+    if differs.is_none() {
+        let (d, share_notes) = share_difference(&a.limit_shares, &b.limit_shares);
+        differs = d;
+        notes.extend(share_notes);
+    }
     // A difference found is a difference at every level count; only an equality is partial.
     if !every_level && differs.is_none() {
         notes.push(format!(
@@ -356,6 +372,104 @@ fn first_difference(a: &Invariants, b: &Invariants, levels: u64) -> Option<Diffe
         }
     }
     differ("limit", None, &a.limit, &b.limit)
+}
+
+/// The first valence whose limit shares differ, and notes on what could not be compared exactly.
+///
+/// Shares in canonical form (rational or quadratic) are equal iff their strings are. Otherwise
+/// certified decimals that differ prove a difference (both are truncations of the exact values
+/// to the same number of digits), and equal decimals leave the question open: the note says so.
+fn share_difference(a: &LimitShares, b: &LimitShares) -> (Option<Difference>, Vec<String>) {
+    let lists = |s: &LimitShares| -> Option<(u64, Vec<Vec<LimitShare>>)> {
+        match s {
+            LimitShares::Exact { shares } => Some((1, vec![shares.clone()])),
+            LimitShares::NoLimit { period, residues } => Some((*period, residues.clone())),
+            LimitShares::NotDecided { .. } => None,
+        }
+    };
+    let (Some((pa, ra)), Some((pb, rb))) = (lists(a), lists(b)) else {
+        let why = [a, b]
+            .iter()
+            .find_map(|s| match s {
+                LimitShares::NotDecided { reason } => Some(reason.clone()),
+                _ => None,
+            })
+            .unwrap_or_default();
+        return (None, vec![format!("limit shares not compared: {why}")]);
+    };
+    let shape = |p: u64| {
+        if p == 1 {
+            "a limit".to_string()
+        } else {
+            format!("no limit (period {p})")
+        }
+    };
+    if pa != pb {
+        return (
+            Some(Difference {
+                group: "limit",
+                invariant: "limit shares of the valences".into(),
+                level: None,
+                a: shape(pa),
+                b: shape(pb),
+            }),
+            Vec::new(),
+        );
+    }
+    let mut notes = Vec::new();
+    for (r, (sa, sb)) in ra.iter().zip(&rb).enumerate() {
+        let mut valences: Vec<usize> = sa.iter().chain(sb).map(|x| x.valence).collect();
+        valences.sort_unstable();
+        valences.dedup();
+        let zero = |v: usize| LimitShare {
+            valence: v,
+            share: "0".into(),
+            decimal: String::new(),
+            canonical: true,
+        };
+        for v in valences {
+            let get = |s: &[LimitShare]| {
+                s.iter()
+                    .find(|x| x.valence == v)
+                    .cloned()
+                    .unwrap_or_else(|| zero(v))
+            };
+            let (xa, xb) = (get(sa), get(sb));
+            let name = if pa == 1 {
+                format!("limit share of valence {v}")
+            } else {
+                format!("limit share of valence {v} at levels {r} mod {pa}")
+            };
+            let differ = if xa.canonical && xb.canonical {
+                xa.share != xb.share
+            } else if xa.decimal.is_empty() || xb.decimal.is_empty() {
+                // One side has no vertex of this valence at all (share 0), the other a share
+                // that is not rational: an irrational is not 0.
+                true
+            } else if xa.decimal != xb.decimal {
+                true
+            } else {
+                notes.push(format!(
+                    "{name}: equal to {} digits, not decided exactly (different number fields)",
+                    xa.decimal.len()
+                ));
+                false
+            };
+            if differ {
+                return (
+                    Some(Difference {
+                        group: "limit",
+                        invariant: name,
+                        level: None,
+                        a: xa.share,
+                        b: xb.share,
+                    }),
+                    notes,
+                );
+            }
+        }
+    }
+    (None, notes)
 }
 
 /// The first name whose values differ between two lists (a name missing on one side reads 0).
@@ -527,6 +641,38 @@ mod tests {
         let c = classify(&a, &b);
         assert_eq!(c.differs, None);
         assert!(c.same_class && c.every_level);
+    }
+
+    #[test]
+    fn equal_levels_different_limit_shares() {
+        // The square `B2 B2 B2 B2 | B2 B2 B2 | A1` and the same square with lacuna sides El = C2.
+        // Level 1 is the same for both: 4 pentagons around a 4-sided lacuna (the C2 sides' gaps
+        // open only at level 2), 4 corners of valence 2, 4 joints and 4 lacuna corners of
+        // valence 3; both have limit valences 2, 3, 4. The limit shares differ: in the square
+        // only its 4 corners ever have valence 2, share 0 (analysis::shares derives 0, 4/5,
+        // 1/5); with El = C2 every lacuna side opens a gap towards the hole, and both gap ends
+        // have a sub-face and the hole, valence 2, one per lacuna side, as many as the faces up
+        // to a constant: a share strictly between 0 and 1.
+        let a = inv("B2 B2 B2 B2 | B2 C2 B2 | A1", 1);
+        let b = inv("B2 B2 B2 B2 | B2 B2 B2 | A1", 1);
+        assert_eq!(a.cardinality, b.cardinality);
+        assert_eq!(a.multiplicity, b.multiplicity);
+        assert_eq!(a.limit, b.limit);
+        let c = classify(&a, &b);
+        let d = c.differs.expect("the limit shares differ");
+        assert_eq!(
+            (d.group, d.invariant.as_str(), d.b.as_str()),
+            ("limit", "limit share of valence 2", "0")
+        );
+        let LimitShares::Exact { shares } = &a.limit_shares else {
+            panic!("{:?}", a.limit_shares)
+        };
+        let x: f64 = shares[0].decimal.parse().unwrap();
+        assert!(
+            shares[0].valence == 2 && x > 0.0 && x < 1.0,
+            "{:?}",
+            shares[0]
+        );
     }
 
     fn automaton(text: &str) -> Invariants {

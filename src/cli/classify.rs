@@ -105,6 +105,7 @@ pub(super) fn run(args: ClassifyArgs, limits: &Limits) -> Result<ExitCode, Error
             "levels": c.levels,
             "every_level": c.every_level,
             "limit_valence": {"a": la, "b": lb},
+            "limit_shares": {"a": ia.limit_shares, "b": ib.limit_shares},
             "notes": c.notes,
         }));
     } else {
@@ -131,6 +132,8 @@ fn text(
     if let Some(l) = lb {
         s += &format!("valence of B: {l}\n");
     }
+    s += &format!("limit shares of the valences of A: {}\n", a.limit_shares);
+    s += &format!("limit shares of the valences of B: {}\n", b.limit_shares);
     s += &format!(
         "levels compared: 0 to {}{}\n",
         c.levels,
