@@ -432,7 +432,7 @@ fn vertex_system(
     let valence = closed
         .iter()
         .map(|l| Some(l.len()))
-        .chain(std::iter::repeat(None).take(cells.len() + ts.types.len()))
+        .chain(std::iter::repeat_n(None, cells.len() + ts.types.len()))
         .collect();
     VertexSystem {
         step,
