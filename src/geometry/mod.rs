@@ -17,6 +17,7 @@ pub(crate) mod raster;
 pub(crate) mod template;
 pub(crate) mod template_file;
 pub(crate) mod volume;
+pub(crate) mod volume_valence;
 
 pub use automaton_eval::{
     approx as field_approx, exact_points, exact_polygons, Evaluator, Shape, ShapeKind,
@@ -40,3 +41,4 @@ pub use volume::{
     default_placement, evaluate_volume, hole_width, least_thickness, solid_corners, GeoEdge,
     GeoFace, GeoVolume, Reading, SolidGeometry, P3,
 };
+pub use volume_valence::{volume_valences, ComplexValences};
