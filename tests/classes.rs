@@ -222,6 +222,50 @@ fn classify_automata_and_volumes() {
     assert_eq!(v["same_class"], true);
 }
 
+#[test]
+fn classify_volumes_by_the_valences_of_their_complexes() {
+    // The hexagonal prism and the truncated tetrahedron (B2, A1, G = (B2, B2), V1) are different
+    // solids with 12 corners of degree 3, 18 edges and 8 faces. By hand (geometry's
+    // volume_valence tests) a solid with 3 faces at every corner has, at level 1, V + E corners
+    // of valence 3, 4E of valence 4 and E of valence 5: equal here, and so are the counts. The
+    // comparison covers the levels built (0 to 2 by default; the counts 0 to 4) and says that
+    // the limit is not decided.
+    let v = json(
+        &[
+            "classify",
+            "truncated-tetrahedron",
+            "prism-6 B2 | B2 B2 B2 | A1 | B2 B2 | V1",
+            "--json",
+        ],
+        0,
+    );
+    assert_eq!(v["same_class"], true);
+    assert_eq!(v["every_level"], false);
+    assert_eq!(v["limit_shares"]["a"]["status"], "not_decided");
+    let notes = v["notes"].to_string();
+    assert!(
+        notes.contains("volume valences: levels 0 to 2 only")
+            && !notes.contains("not derived")
+            && !notes.contains("not built"),
+        "{notes}"
+    );
+    // The cells of the level-3 complex of cube-B2: 3032 + 29432 + 53520 + 25700 = 111684
+    // (lacuna counts), above a limit of 1000: refused before the work, exit 2.
+    let (code, _, err) = lacuna(&[
+        "classify",
+        "cube-B2",
+        "cube-B2",
+        "--levels",
+        "3",
+        "--volume-levels",
+        "3",
+        "--max-cells",
+        "1000",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--max-cells"), "{err}");
+}
+
 /// F0's default template with the points of every sub-face's lacuna side (its El edge: points
 /// 6–8 of the even sub-faces, 3–5 of the odd ones, as the template's comments say) scaled by
 /// `factor` about the centre.

@@ -160,13 +160,18 @@ pub fn face_invariants(
 }
 
 /// The invariants of a volume (or of volumes glued face to face, `start` their level-0 complex)
-/// to `levels`: cells and lacunas per level and the
-/// cells of each dimension of the level-k solid. Multiplicity is not derived for volumes.
+/// to `levels`: cells and lacunas per level, the cells of each dimension of the level-k solid,
+/// and the multiplicity where the caller enumerated it: `valences[k]` gives, for each valence,
+/// the corners of the level-k complex with that many edges (levels 0 to `valences.len() − 1`;
+/// the geometry layer builds the complex). Those are checked against the exact counts: the
+/// corners must number `corners` and their valences sum to twice `edges` of the level-k solid
+/// (E1440 otherwise, a bug). The limit of a volume's valences is not decided.
 pub fn volume_invariants(
     name: &str,
     set: &VolumeTypeSet,
     start: &StartCells,
     levels: u64,
+    valences: &[BTreeMap<usize, u64>],
 ) -> Result<Invariants> {
     let c = volume_counts(set, levels);
     let solid = solid_topology_of(set, levels, start)?;
@@ -183,19 +188,50 @@ pub fn volume_invariants(
             ]
         })
         .collect();
+    let mut multiplicity = vec![Vec::new(); levels as usize + 1];
+    for (k, (val, s)) in valences.iter().zip(&solid).enumerate() {
+        let corners: u64 = val.values().sum();
+        let degree: BigUint = val.iter().map(|(v, n)| BigUint::from(*n) * *v).sum();
+        if BigUint::from(corners) != s.corners || degree != &s.edges * 2u32 {
+            return Err(Error::Syntax(Box::new(crate::error::Diagnostic {
+                code: "E1440",
+                message: format!(
+                    "the level-{k} complex of `{name}` has {corners} corners and a degree sum of {degree}, but the exact counts give {} corners and {} edges (a bug: please report it with the input)",
+                    s.corners, s.edges
+                ),
+                span: None,
+                source: None,
+            })));
+        }
+        multiplicity[k] = val
+            .iter()
+            .map(|(v, n)| (format!("vertices of valence {v}"), n.to_string()))
+            .collect();
+    }
+    let mut notes = Vec::new();
+    if valences.len() as u64 <= levels {
+        notes.push(if valences.is_empty() {
+            "multiplicity (valences) of this volume is not derived".to_string()
+        } else {
+            format!(
+                "volume valences: levels 0 to {} only, by building the level-k complex",
+                valences.len() - 1
+            )
+        });
+    }
     Ok(Invariants {
         name: name.to_string(),
         kind: "volume",
         cardinality,
-        multiplicity: vec![Vec::new(); levels as usize + 1],
+        multiplicity,
         limit: Vec::new(),
         limit_shares: LimitShares::NotDecided {
-            reason: "valences are not derived for volumes".into(),
+            reason: "the limit of a volume's valences is not decided by enumeration".into(),
         },
         // Cells and lacunas only: the solid's face, edge and corner counts have no order bound
         // here, so a volume's comparison covers the levels compared.
         order: None,
-        notes: vec!["multiplicity (valences) is not derived for volumes".into()],
+        notes,
     })
 }
 

@@ -109,4 +109,28 @@ mod tests {
         assert_eq!((c.corners, c.edges), (80, 156));
         assert_eq!(c.valences, BTreeMap::from([(3, 20), (4, 48), (5, 12)]));
     }
+
+    #[test]
+    fn simple_polyhedra_at_level_1() {
+        // The count of the cube generalizes to every solid with 3 faces at each corner (V
+        // corners, E edges), B2 edges, A1 and V1: the V old corners 3, the E joints 5, the 2E
+        // lacuna corners (one per spoke, two spokes per edge) 4, the E inner corners of joints 3
+        // and the 2E inner corners of lacuna corners 4: {3: V + E, 4: 4E, 5: E}. The hexagonal
+        // prism and the truncated tetrahedron (V = 12, E = 18) are different solids with equal
+        // valences; the tetrahedron has V = 4, E = 6.
+        for (solid, v, e) in [
+            ("tetrahedron", 4, 6),
+            ("truncated-tetrahedron", 12, 18),
+            ("prism-6", 12, 18),
+        ] {
+            let vol = parse_volume(&format!("{solid} B2 | B2 B2 B2 | A1 | B2 B2 | V1")).unwrap();
+            let c = volume_valences(&vol, 1).unwrap();
+            assert_eq!(
+                c.valences,
+                BTreeMap::from([(3, v + e), (4, 4 * e), (5, e)]),
+                "{solid}"
+            );
+            assert_eq!(c.corners as u64, v + 6 * e, "{solid}");
+        }
+    }
 }
