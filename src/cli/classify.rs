@@ -58,6 +58,9 @@ fn order(s: &Structure, limits: &Limits) -> Result<Option<usize>, Error> {
     })
 }
 
+/// For each valence, the corners of one level's complex with that many edges.
+type Valences = BTreeMap<usize, u64>;
+
 /// The valences of a volume's level-k complex for k = 0 to `top`, built by the geometry layer
 /// after the exact cell count of every level is checked against `max_cells`; empty with the
 /// reason when they are not built (volumes glued face to face, no default placement).
@@ -67,7 +70,7 @@ fn volume_valences(
     volumes: &[lacuna::topology::volume::Volume],
     top: u64,
     max_cells: u64,
-) -> Result<(Vec<BTreeMap<usize, u64>>, Option<String>), Error> {
+) -> Result<(Vec<Valences>, Option<String>), Error> {
     let [v] = volumes else {
         return Ok((
             Vec::new(),
