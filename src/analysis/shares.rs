@@ -74,6 +74,8 @@ impl std::fmt::Display for LimitShares {
                     };
                     if x.share.len() > 40 {
                         format!("{}: {short}", x.valence)
+                    } else if x.share.parse::<i64>().is_ok() {
+                        format!("{}: {}", x.valence, x.share)
                     } else {
                         format!("{}: {} ≈ {short}", x.valence, x.share)
                     }
