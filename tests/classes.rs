@@ -86,6 +86,44 @@ proptest! {
             prop_assert_eq!(degree_sum, &l.edges * 2u32, "{} level {}", f, l.level);
         }
     }
+
+    /// With bounded valences the linear system of the complex (closed vertex types, edge cells,
+    /// face types) stepped k times gives the valences of level k built level by level, and the
+    /// limit shares lie in [0, 1], cover every valence of the system and sum to 1 (certified
+    /// decimals, truncated: within 1e-9). With an unbounded valence the shares are not decided.
+    #[test]
+    fn limit_shares_are_a_distribution(f in face()) {
+        let limits = Limits { max_types: 40, ..Limits::default() };
+        let Ok(Closure::Closed(ts)) = close(&f, &limits) else { return Ok(()) };
+        let Ok(m) = multiplicity(&ts, &[], 3, 2_000) else { return Ok(()) };
+        let Ok(shares) = lacuna::analysis::limit_shares(&m) else { return Ok(()) };
+        match (&m.system, &shares) {
+            (None, lacuna::analysis::LimitShares::NotDecided { .. }) => {}
+            (Some(sys), lacuna::analysis::LimitShares::Exact { shares }) => {
+                for l in &m.levels {
+                    let got: Vec<(usize, String)> = sys
+                        .valences_at(l.level)
+                        .into_iter()
+                        .map(|(v, k)| (v, k.to_string()))
+                        .collect();
+                    let want: Vec<(usize, String)> =
+                        l.valences.iter().map(|(v, k)| (*v, k.clone())).collect();
+                    prop_assert_eq!(got, want, "{} level {}", f, l.level);
+                }
+                let mut sum = 0.0;
+                for x in shares {
+                    let d: f64 = x.decimal.parse().unwrap();
+                    prop_assert!((0.0..=1.0).contains(&d), "{}: {:?}", f, x);
+                    sum += d;
+                }
+                prop_assert!((sum - 1.0).abs() < 1e-9, "{}: sum {}", f, sum);
+            }
+            (Some(_), lacuna::analysis::LimitShares::NoLimit { residues, .. }) => {
+                prop_assert!(residues.len() >= 2, "{}", f);
+            }
+            (sys, other) => prop_assert!(false, "{}: system {} with {:?}", f, sys.is_some(), other),
+        }
+    }
 }
 
 fn json(args: &[&str], want_code: i32) -> serde_json::Value {

@@ -1016,6 +1016,22 @@ mod tests {
                 assert_eq!(got, valences(l), "{text} level {}", l.level);
             }
         }
+        // Two quads glued along a B2 side (fixtures/two-quads.txt in canonical rotation): the
+        // shared edge is one edge cell of the start, its two end vertices have two sectors.
+        let f = Face::parse("B2 C2 B2 C2 | C2 B2 B2 | A1").unwrap();
+        let ts = close_or_error(&[f.clone(), f], &Limits::default()).unwrap();
+        assert_eq!(ts.start.len(), 2);
+        let m = multiplicity(&ts, &[[(0, 2), (1, 0)]], 4, 400).unwrap();
+        assert_eq!(m.levels[0].edges.to_string(), "7");
+        let sys = m.system.as_ref().expect("bounded valences");
+        for l in &m.levels {
+            let got: Vec<(usize, String)> = sys
+                .valences_at(l.level)
+                .into_iter()
+                .map(|(v, k)| (v, k.to_string()))
+                .collect();
+            assert_eq!(got, valences(l), "two quads level {}", l.level);
+        }
         let (_, m) = of("B2 B2 B2 B2 | B2 B2 B2 | A2", 2);
         assert!(
             m.system.is_none(),
