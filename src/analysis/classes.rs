@@ -20,7 +20,7 @@
 //! images (overlaps, tangencies inside a piece) are not seen: the report says "level 1, at the
 //! images of fixed corners" and no more.
 
-use crate::algebra::FieldElement;
+use crate::algebra::{FieldElement, KMatrix};
 use crate::analysis::shares::{limit_shares, LimitShare, LimitShares};
 use crate::constraint::OpKind;
 use crate::error::{Error, Result};
@@ -264,15 +264,21 @@ pub fn automaton_invariants(
         }
         v = next;
     }
-    let (hist, points) = level_one_contacts(model, resolved, &subs);
+    let (per_level, cut) = contacts(model, resolved, &subs, levels, MAX_CONTACT_PIECES)?;
     let mut multiplicity = vec![Vec::new(); levels as usize + 1];
-    if levels >= 1 {
-        multiplicity[1] = hist
-            .iter()
-            .map(|(m, k)| (format!("points where {m} pieces meet"), k.to_string()))
-            .collect();
-        multiplicity[1].insert(0, ("fixed-corner images".to_string(), points.to_string()));
+    for (i, (hist, points)) in per_level.iter().enumerate() {
+        let row = &mut multiplicity[i + 1];
+        row.push(("fixed-corner images".to_string(), points.to_string()));
+        row.extend(
+            hist.iter()
+                .map(|(m, k)| (format!("points where {m} pieces meet"), k.to_string())),
+        );
     }
+    let mut notes = vec![format!(
+        "automaton multiplicity: levels 1 to {}, at the exact images of fixed corners; contacts elsewhere and the limit are not decided",
+        per_level.len()
+    )];
+    notes.extend(cut);
     Ok(Invariants {
         name: name.to_string(),
         kind: "automaton",
@@ -283,22 +289,80 @@ pub fn automaton_invariants(
             reason: "the valences of an automaton's levels are not derived".into(),
         },
         order: None,
-        notes: vec![
-            "automaton multiplicity: level 1 only, at the exact images of fixed corners; contacts elsewhere and deeper levels are not decided".into(),
-        ],
+        notes,
     })
 }
 
-/// The level-1 contacts of an automaton's start state: for each number m of pieces, how many
-/// points have exactly m pieces meeting there, and the number of points looked at.
-fn level_one_contacts(
+/// The pieces of one level an automaton's contacts are enumerated for, at most.
+pub const MAX_CONTACT_PIECES: usize = 4096;
+
+/// The contacts of an automaton's start state at levels 1 to `levels`: for each level, for each
+/// number m of pieces, how many points have exactly m pieces meeting there, and the number of
+/// points looked at. A piece of level k is a word `o_1 … o_k` of sub-operators chained from the
+/// start state, with the exact map `M_{o_1} ⋯ M_{o_k}`; its points are the images of the corners
+/// of its last state that one of that state's own sub-operators fixes (points of the attractor).
+/// Levels whose pieces number more than `max_pieces` are not enumerated (the note says so).
+fn contacts(
     model: &AutomatonModel,
     resolved: &Resolved,
     subs: &[usize],
-) -> (BTreeMap<usize, u64>, usize) {
+    levels: u64,
+    max_pieces: usize,
+) -> Result<(Vec<(BTreeMap<usize, u64>, usize)>, Option<String>)> {
     let a = &model.automaton;
     let k = &model.field;
-    // Corners of each state fixed by one of its own sub-operators: column j is e_j.
+    let fixed = fixed_corners(model, resolved, subs);
+    let dim0 = a.states[model.start].dim;
+    let mut pieces: Vec<(KMatrix, usize)> = vec![(KMatrix::identity(k, dim0), model.start)];
+    let mut out = Vec::new();
+    for level in 1..=levels {
+        let count: usize = pieces
+            .iter()
+            .map(|(_, s)| subs.iter().filter(|&&o| a.operators[o].to == *s).count())
+            .sum();
+        if count > max_pieces {
+            let note = format!(
+                "automaton contacts not enumerated from level {level}: {count} pieces, above {max_pieces}"
+            );
+            return Ok((out, Some(note)));
+        }
+        let mut next = Vec::with_capacity(count);
+        for (m, s) in &pieces {
+            for &o in subs {
+                let op = &a.operators[o];
+                if op.to != *s {
+                    continue;
+                }
+                let p = m.mul(k, &resolved.ops[o]).ok_or_else(|| {
+                    Error::Analysis(format!("operator {o} does not chain with its state's maps"))
+                })?;
+                next.push((p, op.from));
+            }
+        }
+        pieces = next;
+        let mut at: HashMap<Vec<FieldElement>, Vec<usize>> = HashMap::new();
+        for (w, (m, s)) in pieces.iter().enumerate() {
+            for &j in &fixed[*s] {
+                let col: Vec<FieldElement> = (0..dim0).map(|r| m.get(r, j).clone()).collect();
+                let meeting = at.entry(col).or_default();
+                if !meeting.contains(&w) {
+                    meeting.push(w);
+                }
+            }
+        }
+        let mut hist: BTreeMap<usize, u64> = BTreeMap::new();
+        for p in at.values() {
+            *hist.entry(p.len()).or_default() += 1;
+        }
+        out.push((hist, at.len()));
+    }
+    Ok((out, None))
+}
+
+/// For each state, its corners that one of its own sub-operators fixes (column j is e_j).
+fn fixed_corners(model: &AutomatonModel, resolved: &Resolved, subs: &[usize]) -> Vec<Vec<usize>> {
+    let a = &model.automaton;
+    let k = &model.field;
     let one = k.rational(BigRational::from_integer(1.into()));
     let mut fixed: Vec<Vec<usize>> = vec![Vec::new(); a.states.len()];
     for &o in subs {
@@ -320,28 +384,7 @@ fn level_one_contacts(
             }
         }
     }
-    let mut at: HashMap<Vec<FieldElement>, Vec<usize>> = HashMap::new();
-    for &o in subs {
-        let op = &a.operators[o];
-        if op.to != model.start {
-            continue;
-        }
-        let m = &resolved.ops[o];
-        for &j in &fixed[op.from] {
-            let col: Vec<FieldElement> = (0..a.states[op.to].dim)
-                .map(|r| m.get(r, j).clone())
-                .collect();
-            let pieces = at.entry(col).or_default();
-            if !pieces.contains(&o) {
-                pieces.push(o);
-            }
-        }
-    }
-    let mut hist: BTreeMap<usize, u64> = BTreeMap::new();
-    for p in at.values() {
-        *hist.entry(p.len()).or_default() += 1;
-    }
-    (hist, at.len())
+    fixed
 }
 
 /// Compares two structures' invariants: kind, then cardinality level by level, then multiplicity
@@ -722,7 +765,7 @@ mod tests {
     }
 
     #[test]
-    fn automaton_contacts_at_level_1() {
+    fn automaton_contacts_at_levels_1_and_2() {
         // Sierpinski: T_i fixes corner i, and each T_i maps the three corners to its own corner
         // and two midpoints: T0 → (1,0,0), (1/2,1/2,0), (1/2,0,1/2); T1 → (1/2,1/2,0), (0,1,0),
         // (0,1/2,1/2); T2 → (1/2,0,1/2), (0,1/2,1/2), (0,0,1). Six points: the three midpoints
@@ -740,6 +783,18 @@ mod tests {
                 ("points where 2 pieces meet".to_string(), "3".to_string()),
             ]
         );
+        // Level 2: 9 triangles with 3 corners each, the 15 points of the level-2 triangle grid
+        // that are corners of a small triangle (3·(3^2 + 1)/2): the 3 outer corners lie in one
+        // piece, the other 12 in two (27 = 3 + 2·12 corner incidences).
+        assert_eq!(
+            s.multiplicity[2],
+            vec![
+                ("fixed-corner images".to_string(), "15".to_string()),
+                ("points where 1 pieces meet".to_string(), "3".to_string()),
+                ("points where 2 pieces meet".to_string(), "12".to_string()),
+            ]
+        );
+        assert!(s.notes[0].contains("levels 1 to 2"), "{:?}", s.notes);
         // Cantor: T0 fixes end 0, T1 end 1; images (1,0), (2/3,1/3), (1/3,2/3), (0,1): four
         // points, no two pieces meet.
         let c = automaton(include_str!("../../fixtures/cantor-set.aut"));
@@ -748,6 +803,14 @@ mod tests {
             vec![
                 ("fixed-corner images".to_string(), "4".to_string()),
                 ("points where 1 pieces meet".to_string(), "4".to_string()),
+            ]
+        );
+        // Level 2: 4 intervals of length 1/9, 8 distinct ends (the gaps keep them apart).
+        assert_eq!(
+            c.multiplicity[2],
+            vec![
+                ("fixed-corner images".to_string(), "8".to_string()),
+                ("points where 1 pieces meet".to_string(), "8".to_string()),
             ]
         );
     }
