@@ -293,6 +293,10 @@ pub fn automaton_invariants(
     })
 }
 
+/// The contacts of one level: for each number m of pieces, the points where exactly m meet; and
+/// the number of points.
+type Contacts = (BTreeMap<usize, u64>, usize);
+
 /// The pieces of one level an automaton's contacts are enumerated for, at most.
 pub const MAX_CONTACT_PIECES: usize = 4096;
 
@@ -308,7 +312,7 @@ fn contacts(
     subs: &[usize],
     levels: u64,
     max_pieces: usize,
-) -> Result<(Vec<(BTreeMap<usize, u64>, usize)>, Option<String>)> {
+) -> Result<(Vec<Contacts>, Option<String>)> {
     let a = &model.automaton;
     let k = &model.field;
     let fixed = fixed_corners(model, resolved, subs);
