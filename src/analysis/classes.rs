@@ -769,6 +769,25 @@ mod tests {
     }
 
     #[test]
+    fn automaton_contacts_stop_at_the_piece_limit() {
+        // Sierpinski has 3 pieces at level 1 and 9 at level 2: with at most 5 a level, level 1 is
+        // enumerated and level 2 is not, with a note (a limit, not a verdict).
+        let model = crate::input::parse_model(&crate::Source {
+            name: "test".into(),
+            text: include_str!("../../fixtures/sierpinski-triangle.aut").into(),
+        })
+        .unwrap();
+        let resolved = crate::analysis::resolve(&model, &[], 1_000_000).unwrap();
+        let subs: Vec<usize> = (0..model.automaton.operators.len())
+            .filter(|&o| model.automaton.operators[o].kind == OpKind::Sub)
+            .collect();
+        let (levels, note) = contacts(&model, &resolved, &subs, 3, 5).unwrap();
+        assert_eq!(levels.len(), 1);
+        assert_eq!(levels[0].1, 6);
+        assert!(note.unwrap().contains("from level 2: 9 pieces"));
+    }
+
+    #[test]
     fn automaton_contacts_at_levels_1_and_2() {
         // Sierpinski: T_i fixes corner i, and each T_i maps the three corners to its own corner
         // and two midpoints: T0 → (1,0,0), (1/2,1/2,0), (1/2,0,1/2); T1 → (1/2,1/2,0), (0,1,0),
