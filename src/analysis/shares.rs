@@ -340,6 +340,38 @@ mod tests {
     }
 
     #[test]
+    fn periodic_births_have_no_limit() {
+        // A system made by hand: face types A (state 0) and B (1) with A → 2 B and a vertex of
+        // valence 3 (state 2), B → 2 A and a vertex of valence 4 (3); vertices stay. From one A,
+        // level k has 2^k faces, of type A for even k; the births of the step from level j are
+        // 2^j vertices of valence 3 (j even) or 4 (j odd). At k = 2n: n3 = (4^n − 1)/3,
+        // n4 = 2(4^n − 1)/3, shares 1/3 and 2/3; at k = 2n + 1: n3 = (4^(n+1) − 1)/3,
+        // n4 = 2(4^n − 1)/3, shares tending to 4/6 = 2/3 and 1/3. No limit, period 2.
+        let sys = VertexSystem {
+            step: vec![
+                vec![(1, 2), (2, 1)],
+                vec![(0, 2), (3, 1)],
+                vec![(2, 1)],
+                vec![(3, 1)],
+            ],
+            start: vec![(0, 1)],
+            valence: vec![None, None, Some(3), Some(4)],
+        };
+        let LimitShares::NoLimit { period, residues } = shares_of(&sys).unwrap() else {
+            panic!("a limit")
+        };
+        assert_eq!(period, 2);
+        let at = |r: usize| -> Vec<(usize, String)> {
+            residues[r]
+                .iter()
+                .map(|x| (x.valence, x.share.clone()))
+                .collect()
+        };
+        assert_eq!(at(0), vec![(3, "1/3".to_string()), (4, "2/3".to_string())]);
+        assert_eq!(at(1), vec![(3, "2/3".to_string()), (4, "1/3".to_string())]);
+    }
+
+    #[test]
     fn unbounded_valences_are_not_decided() {
         // A2 puts a spoke at every corner: valences grow, there is no finite system.
         assert!(matches!(
