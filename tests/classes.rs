@@ -86,6 +86,44 @@ proptest! {
             prop_assert_eq!(degree_sum, &l.edges * 2u32, "{} level {}", f, l.level);
         }
     }
+
+    /// With bounded valences the linear system of the complex (closed vertex types, edge cells,
+    /// face types) stepped k times gives the valences of level k built level by level, and the
+    /// limit shares lie in [0, 1], cover every valence of the system and sum to 1 (certified
+    /// decimals, truncated: within 1e-9). With an unbounded valence the shares are not decided.
+    #[test]
+    fn limit_shares_are_a_distribution(f in face()) {
+        let limits = Limits { max_types: 40, ..Limits::default() };
+        let Ok(Closure::Closed(ts)) = close(&f, &limits) else { return Ok(()) };
+        let Ok(m) = multiplicity(&ts, &[], 3, 2_000) else { return Ok(()) };
+        let Ok(shares) = lacuna::analysis::limit_shares(&m) else { return Ok(()) };
+        match (&m.system, &shares) {
+            (None, lacuna::analysis::LimitShares::NotDecided { .. }) => {}
+            (Some(sys), lacuna::analysis::LimitShares::Exact { shares }) => {
+                for l in &m.levels {
+                    let got: Vec<(usize, String)> = sys
+                        .valences_at(l.level)
+                        .into_iter()
+                        .map(|(v, k)| (v, k.to_string()))
+                        .collect();
+                    let want: Vec<(usize, String)> =
+                        l.valences.iter().map(|(v, k)| (*v, k.clone())).collect();
+                    prop_assert_eq!(got, want, "{} level {}", f, l.level);
+                }
+                let mut sum = 0.0;
+                for x in shares {
+                    let d: f64 = x.decimal.parse().unwrap();
+                    prop_assert!((0.0..=1.0).contains(&d), "{}: {:?}", f, x);
+                    sum += d;
+                }
+                prop_assert!((sum - 1.0).abs() < 1e-9, "{}: sum {}", f, sum);
+            }
+            (Some(_), lacuna::analysis::LimitShares::NoLimit { residues, .. }) => {
+                prop_assert!(residues.len() >= 2, "{}", f);
+            }
+            (sys, other) => prop_assert!(false, "{}: system {} with {:?}", f, sys.is_some(), other),
+        }
+    }
 }
 
 fn json(args: &[&str], want_code: i32) -> serde_json::Value {
@@ -110,6 +148,38 @@ fn classify_f0_with_itself_and_with_the_square() {
     );
     // F0's limit valence (hand derivation in topology/vertex.rs): bounded, largest 3.
     assert_eq!(v["limit_valence"]["a"]["max_valence"], 3);
+    // Limit shares. F0: 6·2^k vertices of valence 2, 3·6^k − 3·2^k of valence 3 (THEORY §13),
+    // so the shares tend to 0 and 1. The square: 4 corners of valence 2, (4/3)(5^k − 1) +
+    // (8/3)(2^k − 1) of valence 3 and (5^k − 1)/3 − (4/3)(2^k − 1) of valence 4 (derivation in
+    // analysis/shares.rs), so 0, 4/5 and 1/5.
+    let shares = |side: &str| -> Vec<(u64, String, String)> {
+        assert_eq!(v["limit_shares"][side]["status"], "exact");
+        v["limit_shares"][side]["shares"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| {
+                (
+                    x["valence"].as_u64().unwrap(),
+                    x["share"].as_str().unwrap().to_string(),
+                    x["decimal"].as_str().unwrap()[..8].to_string(),
+                )
+            })
+            .collect()
+    };
+    let row = |v: u64, s: &str, d: &str| (v, s.to_string(), d.to_string());
+    assert_eq!(
+        shares("a"),
+        vec![row(2, "0", "0.000000"), row(3, "1", "1.000000")]
+    );
+    assert_eq!(
+        shares("b"),
+        vec![
+            row(2, "0", "0.000000"),
+            row(3, "4/5", "0.800000"),
+            row(4, "1/5", "0.200000")
+        ]
+    );
 }
 
 #[test]
@@ -134,8 +204,10 @@ fn classify_tells_equal_counts_with_different_multiplicity_apart() {
         (v["differs"]["a"].as_str(), v["differs"]["b"].as_str()),
         (Some("3"), Some("2"))
     );
-    // Both have spokes at corners: their valences grow without bound, with a witness.
+    // Both have spokes at corners: their valences grow without bound, with a witness, and the
+    // limit shares are not decided.
     assert_eq!(v["limit_valence"]["a"]["kind"], "unbounded");
+    assert_eq!(v["limit_shares"]["a"]["status"], "not_decided");
     assert_eq!(v["every_level"], false);
 }
 
@@ -186,6 +258,50 @@ fn classify_automata_and_volumes() {
     );
     let v = json(&["classify", "two-cubes", "two-cubes", "--json"], 0);
     assert_eq!(v["same_class"], true);
+}
+
+#[test]
+fn classify_volumes_by_the_valences_of_their_complexes() {
+    // The hexagonal prism and the truncated tetrahedron (B2, A1, G = (B2, B2), V1) are different
+    // solids with 12 corners of degree 3, 18 edges and 8 faces. By hand (geometry's
+    // volume_valence tests) a solid with 3 faces at every corner has, at level 1, V + E corners
+    // of valence 3, 4E of valence 4 and E of valence 5: equal here, and so are the counts. The
+    // comparison covers the levels built (0 to 2 by default; the counts 0 to 4) and says that
+    // the limit is not decided.
+    let v = json(
+        &[
+            "classify",
+            "truncated-tetrahedron",
+            "prism-6 B2 | B2 B2 B2 | A1 | B2 B2 | V1",
+            "--json",
+        ],
+        0,
+    );
+    assert_eq!(v["same_class"], true);
+    assert_eq!(v["every_level"], false);
+    assert_eq!(v["limit_shares"]["a"]["status"], "not_decided");
+    let notes = v["notes"].to_string();
+    assert!(
+        notes.contains("volume valences: levels 0 to 2 only")
+            && !notes.contains("not derived")
+            && !notes.contains("not built"),
+        "{notes}"
+    );
+    // The cells of the level-3 complex of cube-B2: 3032 + 29432 + 53520 + 25700 = 111684
+    // (lacuna counts), above a limit of 1000: refused before the work, exit 2.
+    let (code, _, err) = lacuna(&[
+        "classify",
+        "cube-B2",
+        "cube-B2",
+        "--levels",
+        "3",
+        "--volume-levels",
+        "3",
+        "--max-cells",
+        "1000",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--max-cells"), "{err}");
 }
 
 /// F0's default template with the points of every sub-face's lacuna side (its El edge: points

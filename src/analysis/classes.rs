@@ -20,7 +20,8 @@
 //! images (overlaps, tangencies inside a piece) are not seen: the report says "level 1, at the
 //! images of fixed corners" and no more.
 
-use crate::algebra::FieldElement;
+use crate::algebra::{FieldElement, KMatrix};
+use crate::analysis::shares::{limit_shares, LimitShare, LimitShares};
 use crate::constraint::OpKind;
 use crate::error::{Error, Result};
 use crate::input::AutomatonModel;
@@ -50,6 +51,9 @@ pub struct Invariants {
     pub multiplicity: Vec<Vec<Named>>,
     /// Invariants of the limit (the valences that vertices settle at, or unbounded).
     pub limit: Vec<Named>,
+    /// The limit share of each valence among the vertices of level k, as k grows (exact, or
+    /// why it is not decided).
+    pub limit_shares: LimitShares,
     /// The order bound of the linear recurrences (see the module doc), when there is one.
     pub order: Option<usize>,
     /// What was not derived, in words.
@@ -148,6 +152,7 @@ pub fn face_invariants(
         cardinality,
         multiplicity,
         limit,
+        limit_shares: limit_shares(&m)?,
         order: m.order,
         notes: Vec::new(),
     };
@@ -155,13 +160,18 @@ pub fn face_invariants(
 }
 
 /// The invariants of a volume (or of volumes glued face to face, `start` their level-0 complex)
-/// to `levels`: cells and lacunas per level and the
-/// cells of each dimension of the level-k solid. Multiplicity is not derived for volumes.
+/// to `levels`: cells and lacunas per level, the cells of each dimension of the level-k solid,
+/// and the multiplicity where the caller enumerated it: `valences[k]` gives, for each valence,
+/// the corners of the level-k complex with that many edges (levels 0 to `valences.len() − 1`;
+/// the geometry layer builds the complex). Those are checked against the exact counts: the
+/// corners must number `corners` and their valences sum to twice `edges` of the level-k solid
+/// (E1440 otherwise, a bug). The limit of a volume's valences is not decided.
 pub fn volume_invariants(
     name: &str,
     set: &VolumeTypeSet,
     start: &StartCells,
     levels: u64,
+    valences: &[BTreeMap<usize, u64>],
 ) -> Result<Invariants> {
     let c = volume_counts(set, levels);
     let solid = solid_topology_of(set, levels, start)?;
@@ -178,16 +188,50 @@ pub fn volume_invariants(
             ]
         })
         .collect();
+    let mut multiplicity = vec![Vec::new(); levels as usize + 1];
+    for (k, (val, s)) in valences.iter().zip(&solid).enumerate() {
+        let corners: u64 = val.values().sum();
+        let degree: BigUint = val.iter().map(|(v, n)| BigUint::from(*n) * *v).sum();
+        if BigUint::from(corners) != s.corners || degree != &s.edges * 2u32 {
+            return Err(Error::Syntax(Box::new(crate::error::Diagnostic {
+                code: "E1440",
+                message: format!(
+                    "the level-{k} complex of `{name}` has {corners} corners and a degree sum of {degree}, but the exact counts give {} corners and {} edges (a bug: please report it with the input)",
+                    s.corners, s.edges
+                ),
+                span: None,
+                source: None,
+            })));
+        }
+        multiplicity[k] = val
+            .iter()
+            .map(|(v, n)| (format!("vertices of valence {v}"), n.to_string()))
+            .collect();
+    }
+    let mut notes = Vec::new();
+    if valences.len() as u64 <= levels {
+        notes.push(if valences.is_empty() {
+            "multiplicity (valences) of this volume is not derived".to_string()
+        } else {
+            format!(
+                "volume valences: levels 0 to {} only, by building the level-k complex",
+                valences.len() - 1
+            )
+        });
+    }
     Ok(Invariants {
         name: name.to_string(),
         kind: "volume",
         cardinality,
-        multiplicity: vec![Vec::new(); levels as usize + 1],
+        multiplicity,
         limit: Vec::new(),
+        limit_shares: LimitShares::NotDecided {
+            reason: "the limit of a volume's valences is not decided by enumeration".into(),
+        },
         // Cells and lacunas only: the solid's face, edge and corner counts have no order bound
         // here, so a volume's comparison covers the levels compared.
         order: None,
-        notes: vec!["multiplicity (valences) is not derived for volumes".into()],
+        notes,
     })
 }
 
@@ -220,38 +264,109 @@ pub fn automaton_invariants(
         }
         v = next;
     }
-    let (hist, points) = level_one_contacts(model, resolved, &subs);
+    let (per_level, cut) = contacts(model, resolved, &subs, levels, MAX_CONTACT_PIECES)?;
     let mut multiplicity = vec![Vec::new(); levels as usize + 1];
-    if levels >= 1 {
-        multiplicity[1] = hist
-            .iter()
-            .map(|(m, k)| (format!("points where {m} pieces meet"), k.to_string()))
-            .collect();
-        multiplicity[1].insert(0, ("fixed-corner images".to_string(), points.to_string()));
+    for (i, (hist, points)) in per_level.iter().enumerate() {
+        let row = &mut multiplicity[i + 1];
+        row.push(("fixed-corner images".to_string(), points.to_string()));
+        row.extend(
+            hist.iter()
+                .map(|(m, k)| (format!("points where {m} pieces meet"), k.to_string())),
+        );
     }
+    let mut notes = vec![format!(
+        "automaton multiplicity: levels 1 to {}, at the exact images of fixed corners; contacts elsewhere and the limit are not decided",
+        per_level.len()
+    )];
+    notes.extend(cut);
     Ok(Invariants {
         name: name.to_string(),
         kind: "automaton",
         cardinality,
         multiplicity,
         limit: Vec::new(),
+        limit_shares: LimitShares::NotDecided {
+            reason: "the valences of an automaton's levels are not derived".into(),
+        },
         order: None,
-        notes: vec![
-            "automaton multiplicity: level 1 only, at the exact images of fixed corners; contacts elsewhere and deeper levels are not decided".into(),
-        ],
+        notes,
     })
 }
 
-/// The level-1 contacts of an automaton's start state: for each number m of pieces, how many
-/// points have exactly m pieces meeting there, and the number of points looked at.
-fn level_one_contacts(
+/// The contacts of one level: for each number m of pieces, the points where exactly m meet; and
+/// the number of points.
+type Contacts = (BTreeMap<usize, u64>, usize);
+
+/// The pieces of one level an automaton's contacts are enumerated for, at most.
+pub const MAX_CONTACT_PIECES: usize = 4096;
+
+/// The contacts of an automaton's start state at levels 1 to `levels`: for each level, for each
+/// number m of pieces, how many points have exactly m pieces meeting there, and the number of
+/// points looked at. A piece of level k is a word `o_1 … o_k` of sub-operators chained from the
+/// start state, with the exact map `M_{o_1} ⋯ M_{o_k}`; its points are the images of the corners
+/// of its last state that one of that state's own sub-operators fixes (points of the attractor).
+/// Levels whose pieces number more than `max_pieces` are not enumerated (the note says so).
+fn contacts(
     model: &AutomatonModel,
     resolved: &Resolved,
     subs: &[usize],
-) -> (BTreeMap<usize, u64>, usize) {
+    levels: u64,
+    max_pieces: usize,
+) -> Result<(Vec<Contacts>, Option<String>)> {
     let a = &model.automaton;
     let k = &model.field;
-    // Corners of each state fixed by one of its own sub-operators: column j is e_j.
+    let fixed = fixed_corners(model, resolved, subs);
+    let dim0 = a.states[model.start].dim;
+    let mut pieces: Vec<(KMatrix, usize)> = vec![(KMatrix::identity(k, dim0), model.start)];
+    let mut out = Vec::new();
+    for level in 1..=levels {
+        let count: usize = pieces
+            .iter()
+            .map(|(_, s)| subs.iter().filter(|&&o| a.operators[o].to == *s).count())
+            .sum();
+        if count > max_pieces {
+            let note = format!(
+                "automaton contacts not enumerated from level {level}: {count} pieces, above {max_pieces}"
+            );
+            return Ok((out, Some(note)));
+        }
+        let mut next = Vec::with_capacity(count);
+        for (m, s) in &pieces {
+            for &o in subs {
+                let op = &a.operators[o];
+                if op.to != *s {
+                    continue;
+                }
+                let p = m.mul(k, &resolved.ops[o]).ok_or_else(|| {
+                    Error::Analysis(format!("operator {o} does not chain with its state's maps"))
+                })?;
+                next.push((p, op.from));
+            }
+        }
+        pieces = next;
+        let mut at: HashMap<Vec<FieldElement>, Vec<usize>> = HashMap::new();
+        for (w, (m, s)) in pieces.iter().enumerate() {
+            for &j in &fixed[*s] {
+                let col: Vec<FieldElement> = (0..dim0).map(|r| m.get(r, j).clone()).collect();
+                let meeting = at.entry(col).or_default();
+                if !meeting.contains(&w) {
+                    meeting.push(w);
+                }
+            }
+        }
+        let mut hist: BTreeMap<usize, u64> = BTreeMap::new();
+        for p in at.values() {
+            *hist.entry(p.len()).or_default() += 1;
+        }
+        out.push((hist, at.len()));
+    }
+    Ok((out, None))
+}
+
+/// For each state, its corners that one of its own sub-operators fixes (column j is e_j).
+fn fixed_corners(model: &AutomatonModel, resolved: &Resolved, subs: &[usize]) -> Vec<Vec<usize>> {
+    let a = &model.automaton;
+    let k = &model.field;
     let one = k.rational(BigRational::from_integer(1.into()));
     let mut fixed: Vec<Vec<usize>> = vec![Vec::new(); a.states.len()];
     for &o in subs {
@@ -273,28 +388,7 @@ fn level_one_contacts(
             }
         }
     }
-    let mut at: HashMap<Vec<FieldElement>, Vec<usize>> = HashMap::new();
-    for &o in subs {
-        let op = &a.operators[o];
-        if op.to != model.start {
-            continue;
-        }
-        let m = &resolved.ops[o];
-        for &j in &fixed[op.from] {
-            let col: Vec<FieldElement> = (0..a.states[op.to].dim)
-                .map(|r| m.get(r, j).clone())
-                .collect();
-            let pieces = at.entry(col).or_default();
-            if !pieces.contains(&o) {
-                pieces.push(o);
-            }
-        }
-    }
-    let mut hist: BTreeMap<usize, u64> = BTreeMap::new();
-    for p in at.values() {
-        *hist.entry(p.len()).or_default() += 1;
-    }
-    (hist, at.len())
+    fixed
 }
 
 /// Compares two structures' invariants: kind, then cardinality level by level, then multiplicity
@@ -313,7 +407,12 @@ pub fn classify(a: &Invariants, b: &Invariants) -> Classification {
         }
     }
     let every_level = needed.is_some_and(|n| n <= levels);
-    let differs = first_difference(a, b, levels);
+    let mut differs = first_difference(a, b, levels);
+    if differs.is_none() {
+        let (d, share_notes) = share_difference(&a.limit_shares, &b.limit_shares);
+        differs = d;
+        notes.extend(share_notes);
+    }
     // A difference found is a difference at every level count; only an equality is partial.
     if !every_level && differs.is_none() {
         notes.push(format!(
@@ -356,6 +455,104 @@ fn first_difference(a: &Invariants, b: &Invariants, levels: u64) -> Option<Diffe
         }
     }
     differ("limit", None, &a.limit, &b.limit)
+}
+
+/// The first valence whose limit shares differ, and notes on what could not be compared exactly.
+///
+/// Shares in canonical form (rational or quadratic) are equal iff their strings are. Otherwise
+/// certified decimals that differ prove a difference (both are truncations of the exact values
+/// to the same number of digits), and equal decimals leave the question open: the note says so.
+fn share_difference(a: &LimitShares, b: &LimitShares) -> (Option<Difference>, Vec<String>) {
+    let lists = |s: &LimitShares| -> Option<(u64, Vec<Vec<LimitShare>>)> {
+        match s {
+            LimitShares::Exact { shares } => Some((1, vec![shares.clone()])),
+            LimitShares::NoLimit { period, residues } => Some((*period, residues.clone())),
+            LimitShares::NotDecided { .. } => None,
+        }
+    };
+    let (Some((pa, ra)), Some((pb, rb))) = (lists(a), lists(b)) else {
+        let why = [a, b]
+            .iter()
+            .find_map(|s| match s {
+                LimitShares::NotDecided { reason } => Some(reason.clone()),
+                _ => None,
+            })
+            .unwrap_or_default();
+        return (None, vec![format!("limit shares not compared: {why}")]);
+    };
+    let shape = |p: u64| {
+        if p == 1 {
+            "a limit".to_string()
+        } else {
+            format!("no limit (period {p})")
+        }
+    };
+    if pa != pb {
+        return (
+            Some(Difference {
+                group: "limit",
+                invariant: "limit shares of the valences".into(),
+                level: None,
+                a: shape(pa),
+                b: shape(pb),
+            }),
+            Vec::new(),
+        );
+    }
+    let mut notes = Vec::new();
+    for (r, (sa, sb)) in ra.iter().zip(&rb).enumerate() {
+        let mut valences: Vec<usize> = sa.iter().chain(sb).map(|x| x.valence).collect();
+        valences.sort_unstable();
+        valences.dedup();
+        let zero = |v: usize| LimitShare {
+            valence: v,
+            share: "0".into(),
+            decimal: String::new(),
+            canonical: true,
+        };
+        for v in valences {
+            let get = |s: &[LimitShare]| {
+                s.iter()
+                    .find(|x| x.valence == v)
+                    .cloned()
+                    .unwrap_or_else(|| zero(v))
+            };
+            let (xa, xb) = (get(sa), get(sb));
+            let name = if pa == 1 {
+                format!("limit share of valence {v}")
+            } else {
+                format!("limit share of valence {v} at levels {r} mod {pa}")
+            };
+            let differ = if xa.canonical && xb.canonical {
+                xa.share != xb.share
+            } else if xa.decimal.is_empty() || xb.decimal.is_empty() {
+                // One side has no vertex of this valence at all (share 0), the other a share
+                // that is not rational: an irrational is not 0.
+                true
+            } else if xa.decimal != xb.decimal {
+                true
+            } else {
+                notes.push(format!(
+                    "{name}: equal to {} digits, not decided exactly (different number fields)",
+                    xa.decimal.len()
+                ));
+                false
+            };
+            if differ {
+                return (
+                    Some(Difference {
+                        group: "limit",
+                        invariant: name,
+                        level: None,
+                        a: xa.share,
+                        b: xb.share,
+                    }),
+                    notes,
+                );
+            }
+        }
+    }
+    (None, notes)
 }
 
 /// The first name whose values differ between two lists (a name missing on one side reads 0).
@@ -529,6 +726,38 @@ mod tests {
         assert!(c.same_class && c.every_level);
     }
 
+    #[test]
+    fn equal_levels_different_limit_shares() {
+        // The square `B2 B2 B2 B2 | B2 B2 B2 | A1` and the same square with lacuna sides El = C2.
+        // Level 1 is the same for both: 4 pentagons around a 4-sided lacuna (the C2 sides' gaps
+        // open only at level 2), 4 corners of valence 2, 4 joints and 4 lacuna corners of
+        // valence 3; both have limit valences 2, 3, 4. The limit shares differ: in the square
+        // only its 4 corners ever have valence 2, share 0 (analysis::shares derives 0, 4/5,
+        // 1/5); with El = C2 every lacuna side opens a gap towards the hole, and both gap ends
+        // have a sub-face and the hole, valence 2, one per lacuna side, as many as the faces up
+        // to a constant: a share strictly between 0 and 1.
+        let a = inv("B2 B2 B2 B2 | B2 C2 B2 | A1", 1);
+        let b = inv("B2 B2 B2 B2 | B2 B2 B2 | A1", 1);
+        assert_eq!(a.cardinality, b.cardinality);
+        assert_eq!(a.multiplicity, b.multiplicity);
+        assert_eq!(a.limit, b.limit);
+        let c = classify(&a, &b);
+        let d = c.differs.expect("the limit shares differ");
+        assert_eq!(
+            (d.group, d.invariant.as_str(), d.b.as_str()),
+            ("limit", "limit share of valence 2", "0")
+        );
+        let LimitShares::Exact { shares } = &a.limit_shares else {
+            panic!("{:?}", a.limit_shares)
+        };
+        let x: f64 = shares[0].decimal.parse().unwrap();
+        assert!(
+            shares[0].valence == 2 && x > 0.0 && x < 1.0,
+            "{:?}",
+            shares[0]
+        );
+    }
+
     fn automaton(text: &str) -> Invariants {
         let model = crate::input::parse_model(&crate::Source {
             name: "test".into(),
@@ -540,7 +769,26 @@ mod tests {
     }
 
     #[test]
-    fn automaton_contacts_at_level_1() {
+    fn automaton_contacts_stop_at_the_piece_limit() {
+        // Sierpinski has 3 pieces at level 1 and 9 at level 2: with at most 5 a level, level 1 is
+        // enumerated and level 2 is not, with a note (a limit, not a verdict).
+        let model = crate::input::parse_model(&crate::Source {
+            name: "test".into(),
+            text: include_str!("../../fixtures/sierpinski-triangle.aut").into(),
+        })
+        .unwrap();
+        let resolved = crate::analysis::resolve(&model, &[], 1_000_000).unwrap();
+        let subs: Vec<usize> = (0..model.automaton.operators.len())
+            .filter(|&o| model.automaton.operators[o].kind == OpKind::Sub)
+            .collect();
+        let (levels, note) = contacts(&model, &resolved, &subs, 3, 5).unwrap();
+        assert_eq!(levels.len(), 1);
+        assert_eq!(levels[0].1, 6);
+        assert!(note.unwrap().contains("from level 2: 9 pieces"));
+    }
+
+    #[test]
+    fn automaton_contacts_at_levels_1_and_2() {
         // Sierpinski: T_i fixes corner i, and each T_i maps the three corners to its own corner
         // and two midpoints: T0 → (1,0,0), (1/2,1/2,0), (1/2,0,1/2); T1 → (1/2,1/2,0), (0,1,0),
         // (0,1/2,1/2); T2 → (1/2,0,1/2), (0,1/2,1/2), (0,0,1). Six points: the three midpoints
@@ -558,6 +806,18 @@ mod tests {
                 ("points where 2 pieces meet".to_string(), "3".to_string()),
             ]
         );
+        // Level 2: 9 triangles with 3 corners each, the 15 points of the level-2 triangle grid
+        // that are corners of a small triangle (3·(3^2 + 1)/2): the 3 outer corners lie in one
+        // piece, the other 12 in two (27 = 3 + 2·12 corner incidences).
+        assert_eq!(
+            s.multiplicity[2],
+            vec![
+                ("fixed-corner images".to_string(), "15".to_string()),
+                ("points where 1 pieces meet".to_string(), "3".to_string()),
+                ("points where 2 pieces meet".to_string(), "12".to_string()),
+            ]
+        );
+        assert!(s.notes[0].contains("levels 1 to 2"), "{:?}", s.notes);
         // Cantor: T0 fixes end 0, T1 end 1; images (1,0), (2/3,1/3), (1/3,2/3), (0,1): four
         // points, no two pieces meet.
         let c = automaton(include_str!("../../fixtures/cantor-set.aut"));
@@ -566,6 +826,14 @@ mod tests {
             vec![
                 ("fixed-corner images".to_string(), "4".to_string()),
                 ("points where 1 pieces meet".to_string(), "4".to_string()),
+            ]
+        );
+        // Level 2: 4 intervals of length 1/9, 8 distinct ends (the gaps keep them apart).
+        assert_eq!(
+            c.multiplicity[2],
+            vec![
+                ("fixed-corner images".to_string(), "8".to_string()),
+                ("points where 1 pieces meet".to_string(), "8".to_string()),
             ]
         );
     }

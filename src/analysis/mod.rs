@@ -17,6 +17,7 @@ pub(crate) mod neighbour_maps;
 pub(crate) mod open_set;
 pub(crate) mod operator;
 pub(crate) mod ratio;
+pub(crate) mod shares;
 pub(crate) mod similarity;
 
 pub use automaton_resolve::{constraints_failing, resolve, ResolveVerdict, Resolved};
@@ -47,4 +48,5 @@ pub use operator::{
     OperatorReport,
 };
 pub use ratio::{analyse, ClassReport, LimitPoint, RatioError, RatioReport};
+pub use shares::{limit_shares, shares_of, LimitShare, LimitShares};
 pub use similarity::{default_points, frames, similarity_dimension, SimilarityDimension};

@@ -280,6 +280,13 @@ pub(crate) struct ClassifyArgs {
     /// decide every level).
     #[arg(long, default_value_t = 4)]
     pub(crate) levels: u64,
+    /// For a volume: build its level-k complex for k = 0 to this (at most --levels) and compare
+    /// the valences of its corners.
+    #[arg(long, default_value_t = 2)]
+    pub(crate) volume_levels: u64,
+    /// Refuse before the work when a volume's level-k complex has more cells than this.
+    #[arg(long, default_value_t = 200_000)]
+    pub(crate) max_cells: u64,
     /// Print JSON: `{"same_class", "differs", …}`.
     #[arg(long)]
     pub(crate) json: bool,

@@ -3,6 +3,7 @@
 use super::*;
 use lacuna::analysis::{Classification, Invariants};
 use lacuna::topology::{LimitValence, TypeSet};
+use std::collections::BTreeMap;
 
 /// An input made ready for its invariants.
 enum Structure {
@@ -11,6 +12,7 @@ enum Structure {
         String,
         lacuna::topology::volume::VolumeTypeSet,
         lacuna::topology::volume::StartCells,
+        Vec<lacuna::topology::volume::Volume>,
     ),
     Automaton(
         String,
@@ -27,6 +29,7 @@ fn load(arg: &str, limits: &Limits) -> Result<Structure, Error> {
             name,
             volume::closed(&v.volumes, limits)?,
             v.start_cells(),
+            v.volumes.clone(),
         ));
     }
     match lacuna::input::load_any(arg)? {
@@ -55,9 +58,60 @@ fn order(s: &Structure, limits: &Limits) -> Result<Option<usize>, Error> {
     })
 }
 
+/// For each valence, the corners of one level's complex with that many edges.
+type Valences = BTreeMap<usize, u64>;
+
+/// The valences of a volume's level-k complex for k = 0 to `top`, built by the geometry layer
+/// after the exact cell count of every level is checked against `max_cells`; empty with the
+/// reason when they are not built (volumes glued face to face, no default placement).
+fn volume_valences(
+    set: &lacuna::topology::volume::VolumeTypeSet,
+    start: &lacuna::topology::volume::StartCells,
+    volumes: &[lacuna::topology::volume::Volume],
+    top: u64,
+    max_cells: u64,
+) -> Result<(Vec<Valences>, Option<String>), Error> {
+    let [v] = volumes else {
+        return Ok((
+            Vec::new(),
+            Some(
+                "volume valences are built for one volume, not for volumes glued face to face"
+                    .into(),
+            ),
+        ));
+    };
+    let exact = lacuna::topology::volume::solid_topology_of(set, top, start)?;
+    for s in &exact {
+        let cells = &s.volumes + &s.faces + &s.edges + &s.corners;
+        if cells > num_bigint::BigUint::from(max_cells) {
+            return Err(Error::limit(
+                "the cells of a volume's level-k complex (--volume-levels)",
+                format!("{cells} at level {}", s.level),
+                max_cells,
+                "--max-cells",
+            ));
+        }
+    }
+    let mut out = Vec::new();
+    for k in 0..=top {
+        let level =
+            u32::try_from(k).map_err(|_| Error::Usage("--volume-levels too large".into()))?;
+        match lacuna::geometry::volume_valences(v, level) {
+            Ok(c) => out.push(c.valences),
+            // No default placement, or one that cannot build this volume's cells: not derived.
+            Err(e) if matches!(e.code(), "E1210" | "E1211") => {
+                return Ok((Vec::new(), Some(format!("volume valences not built: {e}"))));
+            }
+            Err(e) => return Err(e),
+        }
+    }
+    Ok((out, None))
+}
+
 fn invariants(
     s: &Structure,
     levels: u64,
+    args: &ClassifyArgs,
     limits: &Limits,
 ) -> Result<(Invariants, Option<LimitValence>), Error> {
     Ok(match s {
@@ -66,10 +120,13 @@ fn invariants(
                 lacuna::analysis::face_invariants(name, ts, glue, levels, limits.max_types)?;
             (i, Some(m.limit))
         }
-        Structure::Volume(name, set, start) => (
-            lacuna::analysis::volume_invariants(name, set, start, levels)?,
-            None,
-        ),
+        Structure::Volume(name, set, start, volumes) => {
+            let top = levels.min(args.volume_levels);
+            let (valences, why) = volume_valences(set, start, volumes, top, args.max_cells)?;
+            let mut i = lacuna::analysis::volume_invariants(name, set, start, levels, &valences)?;
+            i.notes.extend(why);
+            (i, None)
+        }
         Structure::Automaton(name, model, resolved) => (
             lacuna::analysis::automaton_invariants(name, model, resolved, levels)?,
             None,
@@ -84,15 +141,15 @@ pub(super) fn run(args: ClassifyArgs, limits: &Limits) -> Result<ExitCode, Error
     let b = load(&args.b, limits)?;
     // The levels asked first: a difference there is a difference. Only when they agree and the
     // order bounds say that more levels decide every level are those compared too.
-    let (mut ia, mut la) = invariants(&a, args.levels, limits)?;
-    let (mut ib, mut lb) = invariants(&b, args.levels, limits)?;
+    let (mut ia, mut la) = invariants(&a, args.levels, &args, limits)?;
+    let (mut ib, mut lb) = invariants(&b, args.levels, &args, limits)?;
     let mut c = lacuna::analysis::classify(&ia, &ib);
     if c.same_class && !c.every_level {
         let (oa, ob) = (order(&a, limits)?, order(&b, limits)?);
         if lacuna::analysis::levels_needed(oa, ob).is_some() {
             let levels = lacuna::analysis::levels_for(args.levels, oa, ob, limits.max_level)?;
-            (ia, la) = invariants(&a, levels, limits)?;
-            (ib, lb) = invariants(&b, levels, limits)?;
+            (ia, la) = invariants(&a, levels, &args, limits)?;
+            (ib, lb) = invariants(&b, levels, &args, limits)?;
             c = lacuna::analysis::classify(&ia, &ib);
         }
     }
@@ -105,6 +162,7 @@ pub(super) fn run(args: ClassifyArgs, limits: &Limits) -> Result<ExitCode, Error
             "levels": c.levels,
             "every_level": c.every_level,
             "limit_valence": {"a": la, "b": lb},
+            "limit_shares": {"a": ia.limit_shares, "b": ib.limit_shares},
             "notes": c.notes,
         }));
     } else {
@@ -131,6 +189,8 @@ fn text(
     if let Some(l) = lb {
         s += &format!("valence of B: {l}\n");
     }
+    s += &format!("limit shares of the valences of A: {}\n", a.limit_shares);
+    s += &format!("limit shares of the valences of B: {}\n", b.limit_shares);
     s += &format!(
         "levels compared: 0 to {}{}\n",
         c.levels,

@@ -17,6 +17,7 @@ pub(crate) mod raster;
 pub(crate) mod template;
 pub(crate) mod template_file;
 pub(crate) mod volume;
+pub(crate) mod volume_valence;
 
 pub use automaton_eval::{
     approx as field_approx, exact_points, exact_polygons, Evaluator, Shape, ShapeKind,
@@ -41,3 +42,4 @@ pub use volume::{
     place_assembly, solid_corners, GeoEdge, GeoFace, GeoVolume, InnerFan, Placement, Placement1,
     Reading, SolidGeometry, P3,
 };
+pub use volume_valence::{volume_valences, ComplexValences};

@@ -28,4 +28,5 @@ pub use rule::{Algorithm, EdgePattern, Junction, SpokeChooser, SpokeItem};
 pub use subdivision::{subdivide, Adjacency, Complex, Origin, SubFace, Subdivision};
 pub use vertex::{
     multiplicity, GrowthWitness, Item, LevelComplex, LimitValence, Multiplicity, SectorName,
+    VertexSystem,
 };

@@ -326,6 +326,119 @@ pub struct Multiplicity {
     /// closed vertex types, the edge cells, the face types and one for the lacunas. Two such
     /// sequences that agree on their first `order_a + order_b` levels agree at every level.
     pub order: Option<usize>,
+    /// When the valences are bounded: the linear system that steps every count of the complex
+    /// (closed vertex types, edge cells, face types), for the limit shares of the valences.
+    #[serde(skip)]
+    pub system: Option<VertexSystem>,
+}
+
+/// The counts of the complex as a substitution over finitely many states, when the vertex types
+/// close: vertex types (one step turns a vertex into the vertex of its stepped link), edge cells
+/// (into their pieces and the vertices born inside them) and face types (into sub-faces and the
+/// edges and vertices born inside). The number of states of each kind at level k is the start
+/// vector stepped k times, so the number of vertices of valence v is a linear functional of it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct VertexSystem {
+    /// For each state, `(s, k)`: one of it becomes `k` of state `s` in one step.
+    pub step: Vec<Vec<(usize, u64)>>,
+    /// The states of level 0 with their numbers.
+    pub start: Vec<(usize, u64)>,
+    /// For each state: its valence when it is a vertex type, `None` for edge cells and faces.
+    pub valence: Vec<Option<usize>>,
+}
+
+impl VertexSystem {
+    /// The number of vertices of each valence after `k` steps from the start (a check of the
+    /// system against the level-by-level complex).
+    pub fn valences_at(&self, k: u64) -> BTreeMap<usize, BigUint> {
+        let mut x = vec![BigUint::zero(); self.step.len()];
+        for &(s, n) in &self.start {
+            x[s] += n;
+        }
+        for _ in 0..k {
+            let mut y = vec![BigUint::zero(); x.len()];
+            for (s, n) in x.iter().enumerate() {
+                if n.is_zero() {
+                    continue;
+                }
+                for &(t, m) in &self.step[s] {
+                    y[t] += n * m;
+                }
+            }
+            x = y;
+        }
+        let mut out = BTreeMap::new();
+        for (s, n) in x.iter().enumerate() {
+            if let (Some(v), false) = (self.valence[s], n.is_zero()) {
+                *out.entry(v).or_insert_with(BigUint::zero) += n;
+            }
+        }
+        out
+    }
+}
+
+/// The substitution of [`VertexSystem`] over the closed vertex types `closed` (canonical links),
+/// the edge cells `cells` and the face types of `ts`.
+fn vertex_system(
+    ts: &TypeSet,
+    locals: &[Local],
+    closed: &[Vec<Item>],
+    cells: &[EdgeCell],
+    start: (&[Vec<Item>], &[EdgeCell]),
+) -> VertexSystem {
+    let vindex: HashMap<&Vec<Item>, usize> =
+        closed.iter().enumerate().map(|(i, l)| (l, i)).collect();
+    let v = |link: Vec<Item>| vindex[&canonical(link)];
+    let cindex: HashMap<EdgeCell, usize> = cells
+        .iter()
+        .enumerate()
+        .map(|(i, &c)| (c, closed.len() + i))
+        .collect();
+    let f0 = closed.len() + cells.len();
+    let tally = |items: Vec<usize>| -> Vec<(usize, u64)> {
+        let mut m: BTreeMap<usize, u64> = BTreeMap::new();
+        for i in items {
+            *m.entry(i).or_default() += 1;
+        }
+        m.into_iter().collect()
+    };
+    let mut step = Vec::with_capacity(f0 + ts.types.len());
+    for link in closed {
+        step.push(vec![(v(evolve(locals, link)), 1)]);
+    }
+    for &((t, i), other) in cells {
+        let (n, gap) = pieces_of(ts, t, i);
+        let mut items: Vec<usize> = (0..n)
+            .map(|m| cindex[&edge_cell(locals[t].pieces[i][m], across(locals, other, n, m))])
+            .collect();
+        items.extend(
+            edge_births(locals, (t, i), other, n, gap)
+                .into_iter()
+                .map(&v),
+        );
+        step.push(tally(items));
+    }
+    let matrix = ts.matrix();
+    for (t, l) in locals.iter().enumerate() {
+        let mut items: Vec<usize> = l.births.iter().map(|b| v(b.clone())).collect();
+        items.extend(l.edges.iter().map(|e| cindex[e]));
+        let mut row = tally(items);
+        row.extend(matrix[t].iter().map(|&(s, m)| (f0 + s, m)));
+        step.push(row);
+    }
+    let mut items: Vec<usize> = start.0.iter().map(|l| v(l.clone())).collect();
+    items.extend(start.1.iter().map(|c| cindex[c]));
+    items.extend(ts.start.iter().map(|&t| f0 + t));
+    let valence = closed
+        .iter()
+        .map(|l| Some(l.len()))
+        .chain(std::iter::repeat_n(None, cells.len() + ts.types.len()))
+        .collect();
+    VertexSystem {
+        step,
+        start: tally(items),
+        valence,
+    }
 }
 
 /// The exact complex of the start faces of `ts` (glued by `glue`) from level 0 to `levels`.
@@ -485,7 +598,7 @@ pub fn multiplicity(
     }
     // The limit: every vertex type that is ever born — the start vertices, the births of every
     // face type and of every edge cell reached — and the sector substitution that steps them.
-    let mut born: Vec<Vec<Item>> = start_links;
+    let mut born: Vec<Vec<Item>> = start_links.clone();
     let mut cells: Vec<EdgeCell> = Vec::new();
     let mut seen_cells: HashSet<EdgeCell> = HashSet::new();
     for c in start_cells
@@ -518,8 +631,8 @@ pub fn multiplicity(
     // finitely many sectors): the state of a level — vertex types, edge cells, face types and the
     // lacunas so far — then steps linearly, so every count of the complex is a linear recurrence
     // of order at most its dimension.
-    let order = match limit {
-        LimitValence::Unbounded { .. } => None,
+    let (order, system) = match limit {
+        LimitValence::Unbounded { .. } => (None, None),
         LimitValence::Bounded { .. } => {
             let mut closed: Vec<Vec<Item>> = Vec::new();
             let mut seen: HashSet<Vec<Item>> = HashSet::new();
@@ -545,7 +658,11 @@ pub fn multiplicity(
                 }
                 i += 1;
             }
-            Some(closed.len() + cells.len() + ts.types.len() + 1)
+            let system = vertex_system(ts, &locals, &closed, &cells, (&start_links, &start_cells));
+            (
+                Some(closed.len() + cells.len() + ts.types.len() + 1),
+                Some(system),
+            )
         }
     };
     Ok(Multiplicity {
@@ -553,6 +670,7 @@ pub fn multiplicity(
         vertex_types: vtypes.len(),
         limit,
         order,
+        system,
     })
 }
 
@@ -874,6 +992,51 @@ mod tests {
             assert_eq!(l.faces, six, "level {k}");
             assert_eq!(l.max_valence, if k == 0 { 2 } else { 3 }, "level {k}");
         }
+    }
+
+    #[test]
+    fn the_linear_system_steps_like_the_complex() {
+        // The substitution over closed vertex types, edge cells and face types is an independent
+        // way to the valence counts: stepping its start vector k times must give the valences of
+        // level k built level by level (vertex links evolved and interned one level at a time).
+        for text in [
+            "C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1",
+            "B2 C2 | B2 B2 B2 | A1 | 3",
+            "C3 B2 B2 | C2 C2 B2 | A1",
+            "B2 B2 B2 C2 | B2 B2 B2 | {joint}",
+        ] {
+            let (_, m) = of(text, 4);
+            let sys = m.system.as_ref().expect("bounded valences");
+            for l in &m.levels {
+                let got: Vec<(usize, String)> = sys
+                    .valences_at(l.level)
+                    .into_iter()
+                    .map(|(v, k)| (v, k.to_string()))
+                    .collect();
+                assert_eq!(got, valences(l), "{text} level {}", l.level);
+            }
+        }
+        // Two quads glued along a B2 side (fixtures/two-quads.txt in canonical rotation): the
+        // shared edge is one edge cell of the start, its two end vertices have two sectors.
+        let f = Face::parse("B2 C2 B2 C2 | C2 B2 B2 | A1").unwrap();
+        let ts = close_or_error(&[f.clone(), f], &Limits::default()).unwrap();
+        assert_eq!(ts.start.len(), 2);
+        let m = multiplicity(&ts, &[[(0, 2), (1, 0)]], 4, 400).unwrap();
+        assert_eq!(m.levels[0].edges.to_string(), "7");
+        let sys = m.system.as_ref().expect("bounded valences");
+        for l in &m.levels {
+            let got: Vec<(usize, String)> = sys
+                .valences_at(l.level)
+                .into_iter()
+                .map(|(v, k)| (v, k.to_string()))
+                .collect();
+            assert_eq!(got, valences(l), "two quads level {}", l.level);
+        }
+        let (_, m) = of("B2 B2 B2 B2 | B2 B2 B2 | A2", 2);
+        assert!(
+            m.system.is_none(),
+            "unbounded valences have no finite system"
+        );
     }
 
     #[test]

@@ -236,7 +236,7 @@ fn reversed_power_charpoly(chi: &Poly, period: u64) -> Vec<BigInt> {
 
 /// The multiplicity of the monic integral `f` in the integral `p` (nonzero) and the cofactor.
 /// Division by a monic integer polynomial stays in Z, so this runs on integers.
-fn split_off(p: &[BigInt], f: &Poly) -> (usize, Poly) {
+pub(crate) fn split_off(p: &[BigInt], f: &Poly) -> (usize, Poly) {
     let f: Vec<BigInt> = f.coeffs().iter().map(BigRational::to_integer).collect();
     let df = f.len() - 1;
     let mut h: Vec<BigInt> = p.to_vec();
@@ -269,7 +269,7 @@ fn split_off(p: &[BigInt], f: &Poly) -> (usize, Poly) {
 }
 
 /// `y^(P·K) · N(y^(−P))` for the coefficients `n` of `N(w)`, `deg N ≤ K`.
-fn reflect(n: &[BigInt], period: usize, k: usize) -> Vec<BigInt> {
+pub(crate) fn reflect(n: &[BigInt], period: usize, k: usize) -> Vec<BigInt> {
     let mut c = vec![BigInt::zero(); period * k + 1];
     for (j, a) in n.iter().enumerate() {
         c[period * (k - j)] = a.clone();
@@ -277,34 +277,30 @@ fn reflect(n: &[BigInt], period: usize, k: usize) -> Vec<BigInt> {
     c
 }
 
-/// Analyses the limit ratio of the substitution `m` (`m[t]` lists `(s, k)`: a face of type `t`
-/// has `k` sub-faces of type `s`), contributions `c` (lacunas added by subdividing one face of
-/// each type) and start faces `start` (`(type, multiplicity)`). Decimals have
-/// [`DEFAULT_DIGITS`] digits; see [`RatioReport::with_digits`].
-pub fn analyse(
+/// The part of a substitution's spectrum that decides its limits (module doc).
+pub(crate) struct Spectrum {
+    /// The states reached from the start, ascending.
+    pub(crate) reached: Vec<usize>,
+    /// The classes reached from the start, sources first.
+    pub(crate) classes: Vec<ClassReport>,
+    /// `ρ`, the largest spectral radius.
+    pub(crate) rho: RealAlgebraic,
+    /// Indices into `classes` of the classes of radius `ρ`.
+    pub(crate) dominant: Vec<usize>,
+    /// `P`, the lcm of the periods of the dominant classes.
+    pub(crate) period: u64,
+    /// `Π det(I − w·B^P)` over the non-transient class blocks `B`, lowest degree first.
+    pub(crate) det: Vec<BigInt>,
+}
+
+/// The classes of the substitution `m` reached from `start_types`, their spectral radii, `ρ`,
+/// `P` and the denominator `det(I − w·M^P)` of the generating functions of every subsequence
+/// `x_{Pn+r}` of a count (`M` block triangular over its classes).
+pub(crate) fn spectrum(
     m: &[Vec<(usize, u64)>],
-    c: &[BigRational],
-    start: &[(usize, u64)],
-) -> Result<RatioReport, RatioError> {
+    start_types: &[usize],
+) -> Result<Spectrum, FactorError> {
     let n = m.len();
-    if c.len() != n {
-        return Err(RatioError::LengthMismatch {
-            contributions: c.len(),
-            types: n,
-        });
-    }
-    for &(t, _) in start.iter().chain(m.iter().flatten()) {
-        if t >= n {
-            return Err(RatioError::TypeOutOfRange {
-                face_type: t,
-                types: n,
-            });
-        }
-    }
-    let start: Vec<(usize, u64)> = start.iter().copied().filter(|&(_, k)| k > 0).collect();
-    if start.is_empty() {
-        return Err(RatioError::EmptyStart);
-    }
     let succ: Vec<Vec<usize>> = m
         .iter()
         .map(|row| {
@@ -314,20 +310,10 @@ pub fn analyse(
                 .collect()
         })
         .collect();
-    let start_types: Vec<usize> = start.iter().map(|&(t, _)| t).collect();
-    let structure = ClassStructure::new(&succ, &start_types);
+    let structure = ClassStructure::new(&succ, start_types);
     let reached: Vec<usize> = (0..n)
         .filter(|&t| structure.class_of[t].is_some())
         .collect();
-    for &t in &reached {
-        if succ[t].is_empty() {
-            return Err(RatioError::NoSubFace { face_type: t });
-        }
-        if c[t].is_negative() {
-            return Err(RatioError::NegativeContribution { face_type: t });
-        }
-    }
-
     // Per class: characteristic polynomial of its block and spectral radius.
     let mut chis: Vec<Option<Poly>> = Vec::new();
     let mut classes: Vec<ClassReport> = Vec::new();
@@ -385,22 +371,111 @@ pub fn analyse(
             big_p = big_p.lcm(&cl.period.expect("a dominant class has a cycle (ρ ≥ 1)"));
         }
     }
+    let mut det = vec![BigInt::one()];
+    for chi in chis.iter().flatten() {
+        det = poly_mul(&det, &reversed_power_charpoly(chi, big_p));
+    }
+    Ok(Spectrum {
+        reached,
+        classes,
+        rho,
+        dominant,
+        period: big_p,
+        det,
+    })
+}
+
+/// The product of two integer polynomials (coefficients lowest first).
+pub(crate) fn poly_mul(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
+    let mut prod = vec![BigInt::zero(); a.len() + b.len() - 1];
+    for (i, x) in a.iter().enumerate() {
+        for (j, y) in b.iter().enumerate() {
+            prod[i + j] += x * y;
+        }
+    }
+    prod
+}
+
+/// The numerator `N(w) = D(w)·X(w) mod w^dim` of the generating function of `x_{Pn+r}`, from
+/// the first `P·dim` terms of `x` (`deg N < dim`).
+pub(crate) fn numerator(
+    d: &[BigInt],
+    seq: &[BigInt],
+    period: usize,
+    dim: usize,
+    r: usize,
+) -> Vec<BigInt> {
+    (0..dim)
+        .map(|j| {
+            (0..=j.min(d.len() - 1))
+                .map(|i| &d[i] * &seq[period * (j - i) + r])
+                .sum()
+        })
+        .collect()
+}
+
+/// Analyses the limit ratio of the substitution `m` (`m[t]` lists `(s, k)`: a face of type `t`
+/// has `k` sub-faces of type `s`), contributions `c` (lacunas added by subdividing one face of
+/// each type) and start faces `start` (`(type, multiplicity)`). Decimals have
+/// [`DEFAULT_DIGITS`] digits; see [`RatioReport::with_digits`].
+pub fn analyse(
+    m: &[Vec<(usize, u64)>],
+    c: &[BigRational],
+    start: &[(usize, u64)],
+) -> Result<RatioReport, RatioError> {
+    let n = m.len();
+    if c.len() != n {
+        return Err(RatioError::LengthMismatch {
+            contributions: c.len(),
+            types: n,
+        });
+    }
+    for &(t, _) in start.iter().chain(m.iter().flatten()) {
+        if t >= n {
+            return Err(RatioError::TypeOutOfRange {
+                face_type: t,
+                types: n,
+            });
+        }
+    }
+    let start: Vec<(usize, u64)> = start.iter().copied().filter(|&(_, k)| k > 0).collect();
+    if start.is_empty() {
+        return Err(RatioError::EmptyStart);
+    }
+    let succ: Vec<Vec<usize>> = m
+        .iter()
+        .map(|row| {
+            row.iter()
+                .filter(|&&(_, k)| k > 0)
+                .map(|&(s, _)| s)
+                .collect()
+        })
+        .collect();
+    let start_types: Vec<usize> = start.iter().map(|&(t, _)| t).collect();
+    // Checked before the spectrum: a reached type without sub-face would leave no cycle.
+    let structure = ClassStructure::new(&succ, &start_types);
+    for t in (0..n).filter(|&t| structure.class_of[t].is_some()) {
+        if succ[t].is_empty() {
+            return Err(RatioError::NoSubFace { face_type: t });
+        }
+        if c[t].is_negative() {
+            return Err(RatioError::NegativeContribution { face_type: t });
+        }
+    }
+    let Spectrum {
+        reached,
+        classes,
+        rho,
+        dominant,
+        period: big_p,
+        det,
+    } = spectrum(m, &start_types)?;
     let field = NumberField::new(rho.clone());
     let f = rho.min_poly().clone();
     let period = usize::try_from(big_p).expect("period fits usize");
 
     // D(w) = (1 − w) · Π det(I − w B^P) over the non-transient blocks.
-    let mut d = vec![BigInt::one(), -BigInt::one()];
-    for chi in chis.iter().flatten() {
-        let factor = reversed_power_charpoly(chi, big_p);
-        let mut prod = vec![BigInt::zero(); d.len() + factor.len() - 1];
-        for (i, a) in d.iter().enumerate() {
-            for (j, b) in factor.iter().enumerate() {
-                prod[i + j] += a * b;
-            }
-        }
-        d = prod;
-    }
+    let d = poly_mul(&[BigInt::one(), -BigInt::one()], &det);
     let dim = reached.len() + 1;
 
     // The counts X_i for i < P·dim, lacunas scaled by `den` to stay integral.
@@ -434,15 +509,7 @@ pub fn analyse(
     }
 
     let (ord_d, _) = split_off(&reflect(&d, period, dim), &f);
-    let numerator = |seq: &[BigInt], r: usize| -> Vec<BigInt> {
-        (0..dim)
-            .map(|j| {
-                (0..=j.min(d.len() - 1))
-                    .map(|i| &d[i] * &seq[period * (j - i) + r])
-                    .sum()
-            })
-            .collect()
-    };
+    let numerator = |seq: &[BigInt], r: usize| numerator(&d, seq, period, dim, r);
     let mut reasons = vec![format!(
         "{} face type{} reached in {} class{}; rho = {} from dominant class(es) {}",
         reached.len(),
