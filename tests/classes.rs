@@ -502,3 +502,35 @@ fn morph_between_two_automata_of_one_shape() {
     assert!(err.contains("E1403"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Valences of an assembly's complex: two cubes sharing a square. At level 0 the 4 corners of the
+/// shared square hold the 3 edges of one cube and the edge of the other cube that leaves the
+/// square (4 edges); the 8 other corners hold 3. Edges 12 + 12 − 4 = 20, and 4·4 + 8·3 = 2·20.
+/// At level 1 the corners and edges agree with the exact counts of the assembly's solid.
+#[test]
+fn the_valences_of_two_cubes_glued_face_to_face() {
+    let (_, file) = lacuna::input::load_volume_file("two-cubes")
+        .unwrap()
+        .unwrap();
+    let placement =
+        lacuna::geometry::place_assembly(&file.assembly, &file.corners, &file.names).unwrap();
+    let c = lacuna::geometry::assembly_valences(&file.assembly, &placement, 0).unwrap();
+    assert_eq!((c.corners, c.edges), (12, 20));
+    assert_eq!(
+        c.valences,
+        std::collections::BTreeMap::from([(3, 8), (4, 4)])
+    );
+    let lacuna::topology::volume::VolumeClosure::Closed(set) =
+        lacuna::topology::volume::VolumeClosure::of(&file.assembly.volumes, &Default::default())
+            .unwrap()
+    else {
+        panic!("closes")
+    };
+    let exact =
+        lacuna::topology::volume::solid_topology_of(&set, 1, &file.assembly.start_cells()).unwrap();
+    let c = lacuna::geometry::assembly_valences(&file.assembly, &placement, 1).unwrap();
+    assert_eq!(exact[1].corners, c.corners.into());
+    assert_eq!(exact[1].edges, c.edges.into());
+    let degree_sum: u64 = c.valences.iter().map(|(v, n)| *v as u64 * n).sum();
+    assert_eq!(degree_sum, 2 * c.edges as u64);
+}

@@ -12,7 +12,7 @@ enum Structure {
         String,
         lacuna::topology::volume::VolumeTypeSet,
         lacuna::topology::volume::StartCells,
-        Vec<lacuna::topology::volume::Volume>,
+        Box<lacuna::input::VolumeFile>,
     ),
     Automaton(
         String,
@@ -24,12 +24,12 @@ enum Structure {
 fn load(arg: &str, limits: &Limits) -> Result<Structure, Error> {
     // A volume, or several volumes glued face to face (the level-0 complex counts a shared face
     // once).
-    if let Some((name, v)) = lacuna::input::load_volumes(arg)? {
+    if let Some((name, v)) = lacuna::input::load_volume_file(arg)? {
         return Ok(Structure::Volume(
             name,
-            volume::closed(&v.volumes, limits)?,
-            v.start_cells(),
-            v.volumes.clone(),
+            volume::closed(&v.assembly.volumes, limits)?,
+            v.assembly.start_cells(),
+            Box::new(v),
         ));
     }
     match lacuna::input::load_any(arg)? {
@@ -63,23 +63,15 @@ type Valences = BTreeMap<usize, u64>;
 
 /// The valences of a volume's level-k complex for k = 0 to `top`, built by the geometry layer
 /// after the exact cell count of every level is checked against `max_cells`; empty with the
-/// reason when they are not built (volumes glued face to face, no default placement).
+/// reason when they are not built (no placement: a surface that is no shorthand without
+/// coordinates; or a placement that cannot build the cells).
 fn volume_valences(
     set: &lacuna::topology::volume::VolumeTypeSet,
     start: &lacuna::topology::volume::StartCells,
-    volumes: &[lacuna::topology::volume::Volume],
+    file: &lacuna::input::VolumeFile,
     top: u64,
     max_cells: u64,
 ) -> Result<(Vec<Valences>, Option<String>), Error> {
-    let [v] = volumes else {
-        return Ok((
-            Vec::new(),
-            Some(
-                "volume valences are built for one volume, not for volumes glued face to face"
-                    .into(),
-            ),
-        ));
-    };
     let exact = lacuna::topology::volume::solid_topology_of(set, top, start)?;
     for s in &exact {
         let cells = &s.volumes + &s.faces + &s.edges + &s.corners;
@@ -92,11 +84,19 @@ fn volume_valences(
             ));
         }
     }
+    let placement =
+        match lacuna::geometry::place_assembly(&file.assembly, &file.corners, &file.names) {
+            Ok(p) => p,
+            Err(e) if matches!(e.code(), "E1210" | "E1215" | "E1216") => {
+                return Ok((Vec::new(), Some(format!("volume valences not built: {e}"))));
+            }
+            Err(e) => return Err(e),
+        };
     let mut out = Vec::new();
     for k in 0..=top {
         let level =
             u32::try_from(k).map_err(|_| Error::Usage("--volume-levels too large".into()))?;
-        match lacuna::geometry::volume_valences(v, level) {
+        match lacuna::geometry::assembly_valences(&file.assembly, &placement, level) {
             Ok(c) => out.push(c.valences),
             // No default placement, or one that cannot build this volume's cells: not derived.
             Err(e) if matches!(e.code(), "E1210" | "E1211") => {
@@ -120,9 +120,9 @@ fn invariants(
                 lacuna::analysis::face_invariants(name, ts, glue, levels, limits.max_types)?;
             (i, Some(m.limit))
         }
-        Structure::Volume(name, set, start, volumes) => {
+        Structure::Volume(name, set, start, file) => {
             let top = levels.min(args.volume_levels);
-            let (valences, why) = volume_valences(set, start, volumes, top, args.max_cells)?;
+            let (valences, why) = volume_valences(set, start, file, top, args.max_cells)?;
             let mut i = lacuna::analysis::volume_invariants(name, set, start, levels, &valences)?;
             i.notes.extend(why);
             (i, None)

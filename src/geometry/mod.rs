@@ -42,4 +42,4 @@ pub use volume::{
     place_assembly, solid_corners, GeoEdge, GeoFace, GeoVolume, InnerFan, Placement, Placement1,
     Reading, SolidGeometry, P3,
 };
-pub use volume_valence::{volume_valences, ComplexValences};
+pub use volume_valence::{assembly_valences, volume_valences, ComplexValences};

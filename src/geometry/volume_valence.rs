@@ -1,5 +1,5 @@
 //! The valences of a volume's level-k complex (THEORY §13): the number of edges at every corner
-//! of the level-k solid, read off the cells [`evaluate_volume`] builds from the exact step.
+//! of the level-k solid, read off the cells [`evaluate_assembly`] builds from the exact step.
 //!
 //! The cells are identified by the step's incidences (a point or edge born inside a face or an
 //! edge is keyed by what names it from either side), never by coordinates: the placement only
@@ -8,8 +8,8 @@
 //! degree sum). The caller also bounds the work before it starts, from those exact counts.
 
 use crate::error::{Diagnostic, Error, Result};
-use crate::geometry::volume::evaluate_volume;
-use crate::topology::volume::Volume;
+use crate::geometry::volume::{evaluate_assembly, place_assembly, InnerFan, Placement};
+use crate::topology::volume::{Volume, VolumeAssembly};
 use std::collections::{BTreeMap, HashMap, HashSet};
 
 /// The corners of one level of a volume's solid by valence.
@@ -29,7 +29,19 @@ pub struct ComplexValences {
 /// solid: E1210 otherwise). E1440 when the complex is not one: an edge from a corner to itself,
 /// or an edge whose ends are not corners of the level's faces.
 pub fn volume_valences(v: &Volume, level: u32) -> Result<ComplexValences> {
-    let g = evaluate_volume(v, level)?;
+    let a = VolumeAssembly::single(v.clone());
+    let placement = place_assembly(&a, &[], &[])?;
+    assembly_valences(&a, &placement, level)
+}
+
+/// [`volume_valences`] of an assembly (volumes glued face to face, a shared face one face of the
+/// complex) on a placement ([`place_assembly`]); the placement only positions the cells.
+pub fn assembly_valences(
+    a: &VolumeAssembly,
+    placement: &Placement,
+    level: u32,
+) -> Result<ComplexValences> {
+    let g = evaluate_assembly(a, placement, level, InnerFan::RimMean)?;
     let mut edges: HashSet<usize> = HashSet::new();
     let mut corners: HashSet<usize> = HashSet::new();
     for gv in &g.volumes {
