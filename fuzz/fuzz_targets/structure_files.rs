@@ -1,6 +1,7 @@
 //! Invariant: any text read as a production-rule file or a volume file gives a coded error, or a
-//! rule whose compiled automaton parses and a volume file whose volumes are all spheres — never a
-//! panic or a hang.
+//! rule whose compiled automaton parses and a volume file whose volumes are all spheres (with
+//! coordinates, if any, for every corner, and a placement or a coded error) — never a panic or a
+//! hang.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 
@@ -21,6 +22,21 @@ fuzz_target!(|data: &[u8]| {
                     if let Err(why) = v.surface.check() {
                         panic!("an accepted volume is not a sphere: {why}");
                     }
+                }
+                // Coordinates, when given, are one point per corner of every face.
+                assert_eq!(f.corners.len(), f.assembly.volumes.len());
+                for (v, c) in f.assembly.volumes.iter().zip(&f.corners) {
+                    if let Some(c) = c {
+                        assert_eq!(c.len(), v.surface.faces.len());
+                        for (face, pts) in v.surface.faces.iter().zip(c) {
+                            assert_eq!(face.boundary.len(), pts.len());
+                        }
+                    }
+                }
+                // Placing the start volumes is a coded error or a placement, never a panic.
+                if let Err(e) = lacuna::geometry::place_assembly(&f.assembly, &f.corners, &f.names)
+                {
+                    let _ = e.render();
                 }
             }
             Err(e) => {
