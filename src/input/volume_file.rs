@@ -121,8 +121,8 @@ struct Block {
     corners: Vec<(usize, Vec<Located>, usize)>,
 }
 
-/// A point of a `corners` line with the column where it is written.
-type Located = ([f64; 3], usize);
+/// A point of a `corners` line with the column where it is written and its width.
+type Located = ([f64; 3], usize, usize);
 
 /// A gluing inside a block: its line, column and the two (face, edge) sides.
 type Gluing = (usize, usize, [(usize, usize); 2]);
@@ -361,7 +361,7 @@ fn block_corners(b: &Block, surface: &Surface, src: &Source) -> Result<Option<Co
     let (vid, count) = surface.vertices();
     let mut at_point: Vec<Option<([f64; 3], usize, String)>> = vec![None; count];
     for (f, pts, ln) in &b.corners {
-        for (i, (p, col)) in pts.iter().enumerate() {
+        for (i, (p, col, width)) in pts.iter().enumerate() {
             let here = format!("corner {i} of face `{}`", b.faces[*f].0);
             match &at_point[vid[*f][i]] {
                 Some((q, _, there)) if q != p => {
@@ -374,7 +374,7 @@ fn block_corners(b: &Block, surface: &Surface, src: &Source) -> Result<Option<Co
                         ),
                         *ln,
                         *col,
-                        1,
+                        *width,
                         src,
                     ))
                 }
@@ -455,7 +455,12 @@ fn coordinates(
                 src,
             ));
         }
-        out.push(([nums[0], nums[1], nums[2]], col_of(line, item.trim())));
+        let item = item.trim();
+        out.push((
+            [nums[0], nums[1], nums[2]],
+            col_of(line, item),
+            item.chars().count(),
+        ));
     }
     Ok(out)
 }
