@@ -91,6 +91,9 @@ fn hardening_18_the_docs_name_flags_that_exist_and_built_things_as_built() {
         "density maps",
         "progress bars",
         "several dominant classes",
+        "certificates and geometry of volumes",
+        "topological classes",
+        "morphing",
     ] {
         assert!(
             !not_yet.contains(built),
