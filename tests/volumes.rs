@@ -264,10 +264,6 @@ fn a_bad_volume_file_is_exit_2_with_its_line_and_column() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("error[E1225]"), "{err}");
     assert!(err.contains("open.txt:3:8"), "{err}");
-    // `solve` reads one volume: an assembly of two is refused by name.
-    let (code, _, err) = lacuna(&["solve", "two-cubes"]);
-    assert_eq!(code, 2, "{err}");
-    assert!(err.contains("2 volumes glued face to face"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -558,5 +554,46 @@ fn bad_coordinates_are_coded_errors_with_their_place() {
         assert!(err.contains(code_want), "{code_want}: {err}");
         assert!(err.contains(place), "{code_want}: {err}");
     }
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// A face shared by two volumes is one face: its sub-faces seen from either side must be the same
+/// polygons, at every level (THEORY §10, constraint/volume.rs). `fixtures/two-boxes.txt` stacks
+/// two copies of one block (edges along x are B3, the others B2), so the assembly has exactly the
+/// volume types of one box and the same unknowns; the shared square `B3 B2 B3 B2` can only add
+/// equations. They must leave the system consistent (two stacked boxes with their regular
+/// subdivision are a solution) and collapse nothing. A reading of the square turned by one edge
+/// would pair B3 with B2 and is refused, so the pairing of the two readings is checked too.
+#[test]
+fn an_assembly_solves_with_its_shared_face_read_from_both_sides() {
+    let solve = |path: &str| -> serde_json::Value {
+        let (code, out, err) = lacuna(&["solve", path, "--degree", "1", "--json"]);
+        assert_eq!(code, 0, "{err}");
+        serde_json::from_str(&out).unwrap()
+    };
+    let d = scratch("solve-assembly");
+    let both = std::fs::read_to_string("fixtures/two-boxes.txt").unwrap();
+    // Box A alone: the lines up to the end of its block.
+    let one: String = both
+        .lines()
+        .take_while(|l| !l.starts_with("volume B"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let alone = d.join("one-box.txt");
+    std::fs::write(&alone, one).unwrap();
+    let a = solve(&alone.to_string_lossy());
+    let ab = solve("fixtures/two-boxes.txt");
+    assert_eq!(ab["consistent"], true);
+    assert_eq!(ab["degeneracy_checked"], true);
+    assert_eq!(ab["degenerate"].as_array().unwrap().len(), 0);
+    assert_eq!(a["unknowns"], ab["unknowns"]);
+    let n = |v: &serde_json::Value, k: &str| v[k].as_u64().unwrap();
+    assert!(
+        n(&ab, "equations") > n(&a, "equations"),
+        "{} {}",
+        ab["equations"],
+        a["equations"]
+    );
+    assert!(n(&ab, "dof") <= n(&a, "dof"));
     let _ = std::fs::remove_dir_all(&d);
 }

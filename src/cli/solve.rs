@@ -40,9 +40,10 @@ pub(super) fn run(args: SolveArgs, limits: &Limits) -> Result<ExitCode, Error> {
         degree,
         cantor_gap: gap.clone(),
     };
-    let report = if let Some((_, v)) = lacuna::input::load_volume(&input)? {
-        let set = volume::closed(std::slice::from_ref(&v), limits)?;
-        lacuna::constraint::solve_volumes(&set, opts, limits)?
+    let report = if let Some((_, v)) = lacuna::input::load_volumes(&input)? {
+        let set = volume::closed(&v.volumes, limits)?;
+        let shared = lacuna::constraint::shared_readings(&v);
+        lacuna::constraint::solve_volumes(&set, &shared, opts, limits)?
     } else {
         match lacuna::input::load_any(&input)? {
             lacuna::input::Loaded::Automaton { model, .. } if !model.field_ops.is_empty() => {

@@ -128,17 +128,14 @@ pub(super) fn verify(
     let counts = volume_counts(&set, levels);
     let solid = lacuna::topology::volume::solid_topology_of(&set, levels, &v.start_cells())?;
     let r = lacuna::export::volume_ratio(&set, 30)?;
-    // The constraints of THEORY §10 are generated for one volume: the incidence along faces
-    // shared between volumes is not built.
-    let solver = match v.volumes.len() {
-        1 => Some(lacuna::constraint::solve_volumes(
-            &set,
-            Default::default(),
-            limits,
-        )?),
-        _ => None,
-    };
-    let verified = failures.is_empty() && solver.as_ref().is_none_or(|s| s.ok());
+    // The constraints of THEORY §10, with the faces shared between volumes read from both sides.
+    let solver = lacuna::constraint::solve_volumes(
+        &set,
+        &lacuna::constraint::shared_readings(v),
+        Default::default(),
+        limits,
+    )?;
+    let verified = failures.is_empty() && solver.ok();
     let cert = match certificate {
         Some(_) => Some(
             lacuna::certificate::certificate_for_volumes(name, &set, levels).map_err(
@@ -175,32 +172,25 @@ pub(super) fn verify(
         t += &lacuna::export::solid_table(&solid);
         t += "\n";
         t += &lacuna::export::ratio_text(&r);
-        match &solver {
-            Some(solver) => {
-                t += &format!(
-                    "\nconstraints (faces and volumes, Bézier degree 2): {} unknowns, {} equations, {}\n",
-                    solver.unknowns,
-                    solver.equations,
-                    if solver.consistent {
-                        format!("consistent, {} degrees of freedom", solver.dof)
-                    } else {
-                        "INCONSISTENT (see `lacuna solve`)".into()
-                    }
-                );
-                t += &format!(
-                    "degeneracy: {}\n",
-                    if solver.degenerate.is_empty() {
-                        "no two distinct corner points of a face's level-1 complex are forced to coincide"
-                            .to_string()
-                    } else {
-                        solver.degenerate.join("; ")
-                    }
-                );
+        t += &format!(
+            "\nconstraints (faces and volumes, Bézier degree 2): {} unknowns, {} equations, {}\n",
+            solver.unknowns,
+            solver.equations,
+            if solver.consistent {
+                format!("consistent, {} degrees of freedom", solver.dof)
+            } else {
+                "INCONSISTENT (see `lacuna solve`)".into()
             }
-            None => {
-                t += "\nconstraints: not generated for an assembly of several volumes (the incidence along shared faces is not built); the verdict covers the closure, the spheres, the counts and R\n";
+        );
+        t += &format!(
+            "degeneracy: {}\n",
+            if solver.degenerate.is_empty() {
+                "no two distinct corner points of a face's level-1 complex are forced to coincide"
+                    .to_string()
+            } else {
+                solver.degenerate.join("; ")
             }
-        }
+        );
         t += &format!(
             "\nverdict: {}\n",
             if verified { "VERIFIED" } else { "NOT VERIFIED" }

@@ -22,4 +22,6 @@ pub use linsys::{
     forced_equal, solve, write_text, Conflict, Equation, LinearSystem, Parametrization, Solution,
     SolutionSpace, TextLayout, MINIMIZE_LIMIT,
 };
-pub use volume::{solve_volumes, volume_automaton, GeneratedVolumes};
+pub use volume::{
+    shared_readings, solve_volumes, volume_automaton, GeneratedVolumes, SharedReading,
+};

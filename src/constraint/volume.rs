@@ -12,6 +12,12 @@
 //! * Adjacency: two sub-volumes share the side face over a spoke edge, read in opposite
 //!   orientations: `T_a · B_s · P = T_b · B_s'`, where `P` pairs the points of the two readings
 //!   (edge `e` of one reading is edge `−e` of the other, run backwards).
+//! * Shared faces of an assembly: a face read by two start volumes in opposite directions is one
+//!   face, so its sub-faces from either side must be the same polygons, at every level. For the
+//!   two face types `t₁`, `t₂` of the readings, with edge `i` of `t₁` on edge `x − i` of `t₂`:
+//!   `P · T₂ₖ' = T₁ₖ · Q` for every sub-face `k` of `t₁` and its mirror `k'` of `t₂` (the one with
+//!   the same boundary pieces), where `P` reads `t₁`'s points in `t₂`'s frame and `Q` the
+//!   sub-face's points in the mirror's frame; then the same for every pair of sub-face types.
 
 use crate::algebra::matrix::Matrix;
 use crate::constraint::automaton::{Constraint, ConstraintKind, Factor, OpKind};
@@ -22,6 +28,7 @@ use crate::topology::component::Dsu;
 use crate::topology::edge::{EdgeKind, EdgeType};
 use crate::topology::face::Face;
 use crate::topology::limits::Limits;
+use crate::topology::subdivision::Origin;
 use crate::topology::volume::{Placed, Surface, VolumeTypeSet};
 use std::collections::HashMap;
 
@@ -57,9 +64,38 @@ fn permutation(m: usize, row_of: impl Fn(usize) -> usize) -> Matrix {
     Matrix::from_rows(rows)
 }
 
-/// Builds the automaton of a closed set of volumes.
+/// A face shared by two volumes of an assembly: each volume's reading of it (counter-clockwise
+/// from its own outside) and the edge of each reading that lies on the other's.
+#[derive(Clone, Debug)]
+pub struct SharedReading {
+    /// The face as the first volume reads it.
+    pub a: Face,
+    /// Its edge lying on `b_edge` of the other reading.
+    pub a_edge: usize,
+    /// The face as the second volume reads it.
+    pub b: Face,
+    /// Its edge lying on `a_edge`.
+    pub b_edge: usize,
+}
+
+/// The shared faces of an assembly as its volumes read them.
+pub fn shared_readings(a: &crate::topology::volume::VolumeAssembly) -> Vec<SharedReading> {
+    a.shared
+        .iter()
+        .map(|s| SharedReading {
+            a: a.volumes[s.a.0].surface.faces[s.a.1].clone(),
+            a_edge: s.a.2,
+            b: a.volumes[s.b.0].surface.faces[s.b.1].clone(),
+            b_edge: s.b.2,
+        })
+        .collect()
+}
+
+/// Builds the automaton of a closed set of volumes; `shared` are the faces shared between the
+/// start volumes of an assembly (empty for one volume).
 pub fn volume_automaton(
     set: &VolumeTypeSet,
+    shared: &[SharedReading],
     opts: GenOptions,
     limits: &Limits,
 ) -> Result<GeneratedVolumes> {
@@ -254,11 +290,130 @@ pub fn volume_automaton(
             });
         }
     }
+    let mut start = Vec::with_capacity(shared.len());
+    for sh in shared {
+        let (ta, ra) = type_of(&sh.a)?;
+        let (tb, rb) = type_of(&sh.b)?;
+        let n = sh.a.boundary.len();
+        // Edge i of type ta is edge i + ra of a's reading, which lies on edge
+        // b_edge − (i + ra − a_edge) of b's reading, which is edge (that − rb) of type tb.
+        let x = (sh.a_edge + sh.b_edge + 2 * n - ra % n - rb % n) % n;
+        start.push((ta, tb, x));
+    }
+    mirror_constraints(&mut g, &faces, q, start)?;
     Ok(GeneratedVolumes {
         generated: g,
         faces,
         volume_state,
     })
+}
+
+/// The constraints of faces read from both sides (see the module documentation): a work list of
+/// (t₁, t₂, x), edge `i` of type `t₁` on edge `x − i` of type `t₂` run backwards.
+fn mirror_constraints(
+    g: &mut Generated,
+    faces: &TypeSet,
+    q: usize,
+    start: Vec<(usize, usize, usize)>,
+) -> Result<()> {
+    let dims = g_dims(faces, q);
+    let mut seen = std::collections::HashSet::new();
+    let mut work = start;
+    // Point p₂ of t₂'s frame is point `row_of[p₂]` of t₁'s frame, with x pairing the edges.
+    let reading = |g: &Generated, t1: usize, t2: usize, x: usize| -> Result<Vec<usize>> {
+        let (f1, f2) = (&faces.types[t1].face, &faces.types[t2].face);
+        let n = f1.boundary.len();
+        let m = dims[t1];
+        if f2.boundary.len() != n || dims[t2] != m {
+            return Err(Error::Usage(format!(
+                "a shared face is read as {f1} and {f2}: not one face"
+            )));
+        }
+        let mut row_of = vec![0usize; m];
+        for i2 in 0..n {
+            let i1 = (x + n - i2 % n) % n;
+            let e = f2.boundary[i2];
+            if f1.boundary[i1] != e {
+                return Err(Error::Usage(format!(
+                    "a shared face is read as {f1} and {f2}: edge {i1} of one is not edge {i2} of the other"
+                )));
+            }
+            let d = dim(&e, q);
+            for c in 0..d {
+                row_of[point(&g.edge_offsets[t2], m, i2, c)] =
+                    point(&g.edge_offsets[t1], m, i1, d - 1 - c);
+            }
+        }
+        Ok(row_of)
+    };
+    while let Some((t1, t2, x)) = work.pop() {
+        if !seen.insert((t1.min(t2), t1.max(t2), x)) {
+            continue;
+        }
+        let row_of = reading(g, t1, t2, x)?;
+        let p = permutation(dims[t1], |c| row_of[c]);
+        let (y1, y2) = (&faces.types[t1], &faces.types[t2]);
+        let n = y1.face.boundary.len();
+        let pieces = |o: &[Origin]| -> Vec<(usize, usize, usize)> {
+            o.iter()
+                .enumerate()
+                .filter_map(|(l, o)| match *o {
+                    Origin::Piece { edge, piece } => Some((edge, piece, l)),
+                    _ => None,
+                })
+                .collect()
+        };
+        for (k1, sub1) in y1.subdivision.subfaces.iter().enumerate() {
+            let mine = pieces(&sub1.origins);
+            // The mirror of piece (e, p): piece count − 1 − p of edge x − e.
+            let mirror = |e: usize, p: usize| {
+                let count = y1.face.boundary[e].piece_count() as usize;
+                ((x + n - e % n) % n, count - 1 - p)
+            };
+            let mut want: Vec<(usize, usize)> =
+                mine.iter().map(|&(e, p, _)| mirror(e, p)).collect();
+            want.sort_unstable();
+            let found = y2.subdivision.subfaces.iter().position(|s2| {
+                let mut got: Vec<(usize, usize)> = pieces(&s2.origins)
+                    .iter()
+                    .map(|&(e, p, _)| (e, p))
+                    .collect();
+                got.sort_unstable();
+                got == want
+            });
+            let (Some(k2), Some(&(e, pc, l1))) = (found, mine.first()) else {
+                return Err(Error::Usage(format!(
+                    "sub-face {k1} of {} has no mirror in {} read from the other side",
+                    y1.face, y2.face
+                )));
+            };
+            let sub2 = &y2.subdivision.subfaces[k2];
+            let (me, mp) = mirror(e, pc);
+            let l2 = pieces(&sub2.origins)
+                .iter()
+                .find(|&&(e2, p2, _)| (e2, p2) == (me, mp))
+                .map(|&(_, _, l)| l)
+                .expect("matched by pieces");
+            let len = sub1.origins.len();
+            let xk = (l1 + l2) % len.max(1);
+            let (w1, w2) = (y1.children[k1], y2.children[k2]);
+            let q_rows = reading(g, w1, w2, xk)?;
+            g.automaton.constraints.push(Constraint {
+                label: format!(
+                    "shared face: sub-face {k1} of T{t1} = sub-face {k2} of T{t2} read from the other side"
+                ),
+                span: None,
+                kind: ConstraintKind::Adjacency,
+                lhs: vec![Factor::Literal(p.clone()), Factor::Op(g.sub_ops[t2][k2])],
+                rhs: vec![
+                    Factor::Op(g.sub_ops[t1][k1]),
+                    Factor::Literal(permutation(dims[w1], |c| q_rows[c])),
+                ],
+            });
+            work.push((w1, w2, xk));
+        }
+    }
+    Ok(())
 }
 
 /// The dimension of each face type's state.
@@ -282,10 +437,11 @@ fn g_dims(faces: &TypeSet, q: usize) -> Vec<usize> {
 /// points of two faces would force distinct corners of a face's level-1 complex together.
 pub fn solve_volumes(
     set: &VolumeTypeSet,
+    shared: &[SharedReading],
     opts: GenOptions,
     limits: &Limits,
 ) -> Result<crate::constraint::automaton::SolveReport> {
-    let gv = volume_automaton(set, opts, limits)?;
+    let gv = volume_automaton(set, shared, opts, limits)?;
     limits.check_unknowns(gv.generated.automaton.unknown_count())?;
     limits.check_memory(gv.generated.automaton.solve_memory_estimate())?;
     let (mut report, lin, solution) =
@@ -317,7 +473,7 @@ mod tests {
             degree: 1,
             ..GenOptions::default()
         };
-        solve_volumes(&set, opts, &Limits::default()).unwrap()
+        solve_volumes(&set, &[], opts, &Limits::default()).unwrap()
     }
 
     #[test]
