@@ -51,7 +51,7 @@ pub const NOTCH: f64 = 0.25;
 pub const PUSH: f64 = 0.2;
 /// σ: the fraction of the way from a rim point to its volume's centre at which its inner corner
 /// (the end of its radial edge) is placed.
-pub const SHRINK: f64 = 0.35;
+pub const SHRINK: f64 = 0.5;
 
 /// An edge: a straight segment from point `a` to point `b`.
 #[derive(Clone, Debug)]

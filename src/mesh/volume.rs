@@ -306,7 +306,7 @@ fn solid_with(
             c.join(" ")
         };
         format!(
-            "the level-{level} cells do not form the verified structure: triangle {ta} of part {pa} [{}] and triangle {tb} of part {pb} [{}] (mm) cross or touch: the default placement folds there",
+            "the level-{level} cells do not form the verified structure: triangle {ta} of part {pa} [{}] and triangle {tb} of part {pb} [{}] (mm) cross or touch: the placement folds there",
             at(pa, ta),
             at(pb, tb)
         )
