@@ -151,7 +151,14 @@ pub fn assembly_solid(
         .expect("one row per level");
     let mut first: Option<VolumeSolid> = None;
     for fan in InnerFan::ALL {
-        let s = solid_with(name, a, placement, &exact, level, width, fan)?;
+        // The first rule's failures are the verdict; a later rule is only a fallback for a solid
+        // that folds, and one it cannot build (e.g. a fan centre in line with a side, a triangle of
+        // zero area) leaves the first rule's result standing.
+        let s = match solid_with(name, a, placement, &exact, level, width, fan) {
+            Ok(s) => s,
+            Err(_) if first.is_some() => continue,
+            Err(e) => return Err(e),
+        };
         if s.crossing.is_none() {
             return Ok(s);
         }
