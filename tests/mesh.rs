@@ -520,42 +520,9 @@ fn admesh_finds_one_part_and_nothing_to_repair() {
             lacuna::mesh::stl::write_binary(&s, &mut f).unwrap();
         }
         drop(f);
-        let out = std::process::Command::new("admesh")
-            .arg(&path)
-            .output()
-            .expect("admesh is installed (.ci/run installs it)");
-        let text = String::from_utf8_lossy(&out.stdout);
         let what = format!("{name} level {level}{}", if ascii { " ASCII" } else { "" });
-        let field = |label: &str| -> Vec<String> {
-            let line = text
-                .lines()
-                .find(|l| l.starts_with(label))
-                .unwrap_or_else(|| panic!("{what}: no `{label}` in admesh's output:\n{text}"));
-            line[line.find(':').unwrap() + 1..]
-                .split_whitespace()
-                .map(str::to_string)
-                .collect()
-        };
-        assert_eq!(field("Number of parts")[0], "1", "{what}:\n{text}");
-        for label in [
-            "Facets with 1 disconnected edge",
-            "Facets with 2 disconnected edges",
-            "Facets with 3 disconnected edges",
-            "Degenerate facets",
-            "Edges fixed",
-            "Facets removed",
-            "Facets added",
-            "Facets reversed",
-            "Backwards edges",
-            "Normals fixed",
-        ] {
-            assert!(
-                field(label).iter().all(|v| v == "0"),
-                "{what}: admesh reports {label}:\n{text}"
-            );
-        }
-        let facets = field("Number of facets");
-        assert_eq!(facets[0], s.triangle_count().to_string(), "{what}");
+        let facets = common::admesh_finds_nothing_to_repair(&path, &what);
+        assert_eq!(facets, s.triangle_count().to_string(), "{what}");
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -649,43 +616,8 @@ fn admesh_on_volume_solids() {
         let mut f = std::io::BufWriter::new(std::fs::File::create(&path).unwrap());
         lacuna::mesh::stl::write_binary(&s.solid, &mut f).unwrap();
         drop(f);
-        let out = std::process::Command::new("admesh")
-            .arg(&path)
-            .output()
-            .expect("admesh is installed (.ci/run installs it)");
-        let text = String::from_utf8_lossy(&out.stdout);
-        let field = |label: &str| -> Vec<String> {
-            let line = text
-                .lines()
-                .find(|l| l.starts_with(label))
-                .unwrap_or_else(|| panic!("{name}: no `{label}` in admesh's output:\n{text}"));
-            line[line.find(':').unwrap() + 1..]
-                .split_whitespace()
-                .map(str::to_string)
-                .collect()
-        };
-        assert_eq!(field("Number of parts")[0], "1", "{name}:\n{text}");
-        for label in [
-            "Facets with 1 disconnected edge",
-            "Facets with 2 disconnected edges",
-            "Facets with 3 disconnected edges",
-            "Degenerate facets",
-            "Edges fixed",
-            "Facets removed",
-            "Facets added",
-            "Facets reversed",
-            "Backwards edges",
-            "Normals fixed",
-        ] {
-            assert!(
-                field(label).iter().all(|v| v == "0"),
-                "{name}: admesh reports {label}:\n{text}"
-            );
-        }
-        assert_eq!(
-            field("Number of facets")[0],
-            s.solid.triangle_count().to_string()
-        );
+        let facets = common::admesh_finds_nothing_to_repair(&path, name);
+        assert_eq!(facets, s.solid.triangle_count().to_string(), "{name}");
     }
     let _ = std::fs::remove_dir_all(&dir);
 }

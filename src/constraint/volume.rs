@@ -253,27 +253,12 @@ pub fn volume_automaton(
             };
             let (wa, wb) = (ty.children[ka], ty.children[kb]);
             let t = frames[wa][pa.face].0;
-            let m = face_dim(t);
-            let n = 4;
-            let offs = g.edge_offsets[t].clone();
-            let dims: Vec<usize> = faces.types[t]
-                .face
-                .boundary
-                .iter()
-                .map(|e| dim(e, q))
-                .collect();
+            let n = faces.types[t].face.boundary.len();
             // Frame edge k of b's reading is built edge (k + rb) of b; built edge e of b is built
-            // edge (n − e) of a run backwards; built edge e of a is frame edge (e − ra) of a.
-            let mut row_of = vec![0usize; m];
-            for kb_edge in 0..n {
-                let built_b = (kb_edge + pb.rotation) % n;
-                let built_a = (n - built_b) % n;
-                let ka_edge = (built_a + n - pa.rotation) % n;
-                let d = dims[kb_edge];
-                for c in 0..d {
-                    row_of[point(&offs, m, kb_edge, c)] = point(&offs, m, ka_edge, d - 1 - c);
-                }
-            }
+            // edge (n − e) of a run backwards; built edge e of a is frame edge (e − ra) of a: frame
+            // edge k of b lies on frame edge (−ra − rb − k) of a.
+            let x = (2 * n - pa.rotation % n - pb.rotation % n) % n;
+            let row_of = reversed_reading(&g, &faces, &dims, q, t, t, x)?;
             g.automaton.constraints.push(Constraint {
                 label: format!(
                     "V{v} adjacency: face {} of sub-volume {ka} = face {} of sub-volume {kb} reversed",
@@ -284,7 +269,7 @@ pub fn volume_automaton(
                 lhs: vec![
                     Factor::Op(ops[ka]),
                     Factor::Op(embeds[wa][pa.face]),
-                    Factor::Literal(permutation(m, |c| row_of[c])),
+                    Factor::Literal(permutation(face_dim(t), |c| row_of[c])),
                 ],
                 rhs: vec![Factor::Op(ops[kb]), Factor::Op(embeds[wb][pb.face])],
             });
@@ -308,6 +293,44 @@ pub fn volume_automaton(
     })
 }
 
+/// One face read from both sides as types `t1` and `t2`, edge `i` of `t1` lying on edge `x − i`
+/// of `t2` run backwards: point `p` of `t2`'s frame is point `row_of[p]` of `t1`'s frame (for
+/// [`permutation`]). An error when the two types are not one face read both ways.
+fn reversed_reading(
+    g: &Generated,
+    faces: &TypeSet,
+    dims: &[usize],
+    q: usize,
+    t1: usize,
+    t2: usize,
+    x: usize,
+) -> Result<Vec<usize>> {
+    let (f1, f2) = (&faces.types[t1].face, &faces.types[t2].face);
+    let n = f1.boundary.len();
+    let m = dims[t1];
+    if f2.boundary.len() != n || dims[t2] != m {
+        return Err(Error::Usage(format!(
+            "a face read from both sides as {f1} and {f2}: not one face"
+        )));
+    }
+    let mut row_of = vec![0usize; m];
+    for i2 in 0..n {
+        let i1 = (x + n - i2 % n) % n;
+        let e = f2.boundary[i2];
+        if f1.boundary[i1] != e {
+            return Err(Error::Usage(format!(
+                "a face read from both sides as {f1} and {f2}: edge {i1} of one is not edge {i2} of the other"
+            )));
+        }
+        let d = dim(&e, q);
+        for c in 0..d {
+            row_of[point(&g.edge_offsets[t2], m, i2, c)] =
+                point(&g.edge_offsets[t1], m, i1, d - 1 - c);
+        }
+    }
+    Ok(row_of)
+}
+
 /// The constraints of faces read from both sides (see the module documentation): a work list of
 /// (t₁, t₂, x), edge `i` of type `t₁` on edge `x − i` of type `t₂` run backwards.
 fn mirror_constraints(
@@ -319,38 +342,11 @@ fn mirror_constraints(
     let dims = g_dims(faces, q);
     let mut seen = std::collections::HashSet::new();
     let mut work = start;
-    // Point p₂ of t₂'s frame is point `row_of[p₂]` of t₁'s frame, with x pairing the edges.
-    let reading = |g: &Generated, t1: usize, t2: usize, x: usize| -> Result<Vec<usize>> {
-        let (f1, f2) = (&faces.types[t1].face, &faces.types[t2].face);
-        let n = f1.boundary.len();
-        let m = dims[t1];
-        if f2.boundary.len() != n || dims[t2] != m {
-            return Err(Error::Usage(format!(
-                "a shared face is read as {f1} and {f2}: not one face"
-            )));
-        }
-        let mut row_of = vec![0usize; m];
-        for i2 in 0..n {
-            let i1 = (x + n - i2 % n) % n;
-            let e = f2.boundary[i2];
-            if f1.boundary[i1] != e {
-                return Err(Error::Usage(format!(
-                    "a shared face is read as {f1} and {f2}: edge {i1} of one is not edge {i2} of the other"
-                )));
-            }
-            let d = dim(&e, q);
-            for c in 0..d {
-                row_of[point(&g.edge_offsets[t2], m, i2, c)] =
-                    point(&g.edge_offsets[t1], m, i1, d - 1 - c);
-            }
-        }
-        Ok(row_of)
-    };
     while let Some((t1, t2, x)) = work.pop() {
         if !seen.insert((t1.min(t2), t1.max(t2), x)) {
             continue;
         }
-        let row_of = reading(g, t1, t2, x)?;
+        let row_of = reversed_reading(g, faces, &dims, q, t1, t2, x)?;
         let p = permutation(dims[t1], |c| row_of[c]);
         let (y1, y2) = (&faces.types[t1], &faces.types[t2]);
         let n = y1.face.boundary.len();
@@ -397,7 +393,7 @@ fn mirror_constraints(
             let len = sub1.origins.len();
             let xk = (l1 + l2) % len.max(1);
             let (w1, w2) = (y1.children[k1], y2.children[k2]);
-            let q_rows = reading(g, w1, w2, xk)?;
+            let q_rows = reversed_reading(g, faces, &dims, q, w1, w2, xk)?;
             g.automaton.constraints.push(Constraint {
                 label: format!(
                     "shared face: sub-face {k1} of T{t1} = sub-face {k2} of T{t2} read from the other side"

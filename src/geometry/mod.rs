@@ -39,7 +39,7 @@ pub use template_file::{
 };
 pub use volume::{
     default_placement, evaluate_assembly, evaluate_volume, hole_width, least_thickness,
-    place_assembly, solid_corners, GeoEdge, GeoFace, GeoVolume, InnerFan, Placement, Placement1,
-    Reading, SolidGeometry, P3,
+    place_assembly, solid_corners, GeoEdge, GeoFace, GeoVolume, InnerFan, Placement, Reading,
+    SolidGeometry, P3,
 };
 pub use volume_valence::{assembly_valences, volume_valences, ComplexValences};

@@ -33,6 +33,7 @@
 //!   volume by [`PUSH`] of the way to the volume's centre, so that two caps over one hole part.
 
 use crate::error::{Diagnostic, Error, Result};
+use crate::input::Corners;
 use crate::topology::edge::{EdgeType, JunctionKind};
 use crate::topology::face::Face;
 use crate::topology::subdivision::{subdivide, Origin, Subdivision};
@@ -795,36 +796,16 @@ impl Builder {
             }
             // The inner face is the rim shrunk towards the centre, drawn as a fan (see
             // [`InnerFan`]).
-            let rim_pts: Vec<P3> = (0..m).map(|i| self.points[rim(s, i).2]).collect();
-            let rim_ids: std::collections::HashSet<usize> = (0..m).map(|i| rim(s, i).2).collect();
-            let rim_edges: std::collections::HashSet<usize> = (0..m).map(|i| rim(s, i).0).collect();
-            let mut candidates: Vec<P3> = Vec::new();
-            for &((f, k), _) in &sv.subfaces {
-                let r = &subs[f].subs[k];
-                candidates.push(self.faces[r.face].center);
-                for (j, &c) in r.corners.iter().enumerate() {
-                    if !rim_ids.contains(&c) {
-                        candidates.push(self.points[c]);
-                    }
-                    let e = r.edges[j];
-                    if !rim_edges.contains(&e) {
-                        let GeoEdge { a, b, .. } = self.edges[e];
-                        candidates.push(lerp(self.points[a], self.points[b], 0.5));
-                    }
-                }
-            }
-            let spread = |x: P3| {
-                rim_pts
-                    .iter()
-                    .map(|p| dot(sub(*p, x), sub(*p, x)))
-                    .sum::<f64>()
-            };
             let centre = match self.fan {
                 InnerFan::RimMean => None,
-                InnerFan::PatchPoint => candidates
-                    .into_iter()
-                    .min_by(|a, b| spread(*a).total_cmp(&spread(*b)))
-                    .map(|p| lerp(p, vcenter, SHRINK)),
+                InnerFan::PatchPoint => {
+                    let rim_of = |i: usize| {
+                        let (e, _, a, _) = rim(s, i);
+                        (e, a)
+                    };
+                    self.patch_point(sv, &subs, (0..m).map(rim_of).collect())
+                        .map(|p| lerp(p, vcenter, SHRINK))
+                }
             };
             let faces = self.fill(&sv.volume, faces, None, centre)?;
             out.push(GeoVolume {
@@ -833,6 +814,44 @@ impl Builder {
             });
         }
         Ok(out)
+    }
+
+    /// The point M of [`InnerFan::PatchPoint`] for sub-volume `sv`, whose rim is `rim` ((edge,
+    /// start point) of every side): among the patch's corners inside it, the middles of the edges
+    /// between two of its sub-faces and its sub-faces' centres, the one with the least sum of
+    /// squared distances to the rim's points.
+    fn patch_point(
+        &self,
+        sv: &crate::topology::volume::SubVolume,
+        subs: &[SubReadings],
+        rim: Vec<(usize, usize)>,
+    ) -> Option<P3> {
+        let rim_ids: std::collections::HashSet<usize> = rim.iter().map(|r| r.1).collect();
+        let rim_edges: std::collections::HashSet<usize> = rim.iter().map(|r| r.0).collect();
+        let mut candidates: Vec<P3> = Vec::new();
+        for &((f, k), _) in &sv.subfaces {
+            let r = &subs[f].subs[k];
+            candidates.push(self.faces[r.face].center);
+            for (j, &c) in r.corners.iter().enumerate() {
+                if !rim_ids.contains(&c) {
+                    candidates.push(self.points[c]);
+                }
+                let e = r.edges[j];
+                if !rim_edges.contains(&e) {
+                    let GeoEdge { a, b, .. } = self.edges[e];
+                    candidates.push(lerp(self.points[a], self.points[b], 0.5));
+                }
+            }
+        }
+        let spread = |x: P3| {
+            rim.iter()
+                .map(|r| sub(self.points[r.1], x))
+                .map(|d| dot(d, d))
+                .sum::<f64>()
+        };
+        candidates
+            .into_iter()
+            .min_by(|a, b| spread(*a).total_cmp(&spread(*b)))
     }
 
     /// Completes the readings of a sub-volume: every face not placed (the inner face, or the caps
@@ -1106,7 +1125,7 @@ fn fit(q: &[P3], p: &[P3]) -> Option<impl Fn(P3) -> P3> {
 /// that put one corner of the level-0 complex at two places (E1216).
 pub fn place_assembly(
     a: &VolumeAssembly,
-    given: &[Option<Placement1>],
+    given: &[Option<Corners>],
     names: &[String],
 ) -> Result<Placement> {
     let n = a.volumes.len();
@@ -1115,9 +1134,9 @@ pub fn place_assembly(
         None if n == 1 => "the volume".to_string(),
         None => format!("volume {v}"),
     };
-    let mut placed: Vec<Option<Placement1>> =
+    let mut placed: Vec<Option<Corners>> =
         (0..n).map(|v| given.get(v).cloned().flatten()).collect();
-    let default: Vec<Option<Placement1>> = a
+    let default: Vec<Option<Corners>> = a
         .volumes
         .iter()
         .map(|v| default_placement(v).map(|(_, p)| p))
@@ -1224,9 +1243,6 @@ pub fn place_assembly(
     }
     Ok(out)
 }
-
-/// The coordinates of one volume's surface: `[f][i]`.
-pub type Placement1 = Vec<Vec<P3>>;
 
 /// The start of the evaluation: the level-0 complex of the assembly on its placement, one cell
 /// per cell of [`VolumeAssembly::start_map`].

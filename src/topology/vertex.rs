@@ -994,6 +994,20 @@ mod tests {
         }
     }
 
+    /// Stepping the counting system of `m` from its start gives, at every level, the valences
+    /// built level by level.
+    fn steps_like_levels(m: &Multiplicity, what: &str) {
+        let sys = m.system.as_ref().expect("bounded valences");
+        for l in &m.levels {
+            let got: Vec<(usize, String)> = sys
+                .valences_at(l.level)
+                .into_iter()
+                .map(|(v, k)| (v, k.to_string()))
+                .collect();
+            assert_eq!(got, valences(l), "{what} level {}", l.level);
+        }
+    }
+
     #[test]
     fn the_linear_system_steps_like_the_complex() {
         // The substitution over closed vertex types, edge cells and face types is an independent
@@ -1006,15 +1020,7 @@ mod tests {
             "B2 B2 B2 C2 | B2 B2 B2 | {joint}",
         ] {
             let (_, m) = of(text, 4);
-            let sys = m.system.as_ref().expect("bounded valences");
-            for l in &m.levels {
-                let got: Vec<(usize, String)> = sys
-                    .valences_at(l.level)
-                    .into_iter()
-                    .map(|(v, k)| (v, k.to_string()))
-                    .collect();
-                assert_eq!(got, valences(l), "{text} level {}", l.level);
-            }
+            steps_like_levels(&m, text);
         }
         // Two quads glued along a B2 side (fixtures/two-quads.txt in canonical rotation): the
         // shared edge is one edge cell of the start, its two end vertices have two sectors.
@@ -1023,15 +1029,7 @@ mod tests {
         assert_eq!(ts.start.len(), 2);
         let m = multiplicity(&ts, &[[(0, 2), (1, 0)]], 4, 400).unwrap();
         assert_eq!(m.levels[0].edges.to_string(), "7");
-        let sys = m.system.as_ref().expect("bounded valences");
-        for l in &m.levels {
-            let got: Vec<(usize, String)> = sys
-                .valences_at(l.level)
-                .into_iter()
-                .map(|(v, k)| (v, k.to_string()))
-                .collect();
-            assert_eq!(got, valences(l), "two quads level {}", l.level);
-        }
+        steps_like_levels(&m, "two quads");
         let (_, m) = of("B2 B2 B2 B2 | B2 B2 B2 | A2", 2);
         assert!(
             m.system.is_none(),

@@ -105,3 +105,43 @@ pub fn assert_rejected(what: &str, cert: &Certificate, step: &str) {
 pub fn steps_named<'a>(cert: &'a mut Certificate, name: &str) -> Vec<&'a mut Step> {
     cert.steps.iter_mut().filter(|s| s.name() == name).collect()
 }
+
+/// Runs Debian's admesh (an independent STL checker) on `path` and checks that it reads one part
+/// with nothing to repair: no disconnected edge, degenerate facet, fixed edge, removed, added or
+/// reversed facet, backwards edge or fixed normal. Returns the number of facets it read.
+pub fn admesh_finds_nothing_to_repair(path: &std::path::Path, what: &str) -> String {
+    let out = Command::new("admesh")
+        .arg(path)
+        .output()
+        .expect("admesh is installed (.ci/run installs it)");
+    let text = String::from_utf8_lossy(&out.stdout);
+    let field = |label: &str| -> Vec<String> {
+        let line = text
+            .lines()
+            .find(|l| l.starts_with(label))
+            .unwrap_or_else(|| panic!("{what}: no `{label}` in admesh's output:\n{text}"));
+        line[line.find(':').unwrap() + 1..]
+            .split_whitespace()
+            .map(str::to_string)
+            .collect()
+    };
+    assert_eq!(field("Number of parts")[0], "1", "{what}:\n{text}");
+    for label in [
+        "Facets with 1 disconnected edge",
+        "Facets with 2 disconnected edges",
+        "Facets with 3 disconnected edges",
+        "Degenerate facets",
+        "Edges fixed",
+        "Facets removed",
+        "Facets added",
+        "Facets reversed",
+        "Backwards edges",
+        "Normals fixed",
+    ] {
+        assert!(
+            field(label).iter().all(|v| v == "0"),
+            "{what}: admesh reports {label}:\n{text}"
+        );
+    }
+    field("Number of facets")[0].clone()
+}

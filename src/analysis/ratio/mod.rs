@@ -300,17 +300,27 @@ pub(crate) fn spectrum(
     m: &[Vec<(usize, u64)>],
     start_types: &[usize],
 ) -> Result<Spectrum, FactorError> {
-    let n = m.len();
-    let succ: Vec<Vec<usize>> = m
-        .iter()
+    spectrum_of(m, &ClassStructure::new(&successors(m), start_types))
+}
+
+/// The states each state of `m` has a positive count of.
+fn successors(m: &[Vec<(usize, u64)>]) -> Vec<Vec<usize>> {
+    m.iter()
         .map(|row| {
             row.iter()
                 .filter(|&&(_, k)| k > 0)
                 .map(|&(s, _)| s)
                 .collect()
         })
-        .collect();
-    let structure = ClassStructure::new(&succ, start_types);
+        .collect()
+}
+
+/// [`spectrum`] over the class structure of `m` already built from its start.
+fn spectrum_of(
+    m: &[Vec<(usize, u64)>],
+    structure: &ClassStructure,
+) -> Result<Spectrum, FactorError> {
+    let n = m.len();
     let reached: Vec<usize> = (0..n)
         .filter(|&t| structure.class_of[t].is_some())
         .collect();
@@ -442,15 +452,7 @@ pub fn analyse(
     if start.is_empty() {
         return Err(RatioError::EmptyStart);
     }
-    let succ: Vec<Vec<usize>> = m
-        .iter()
-        .map(|row| {
-            row.iter()
-                .filter(|&&(_, k)| k > 0)
-                .map(|&(s, _)| s)
-                .collect()
-        })
-        .collect();
+    let succ = successors(m);
     let start_types: Vec<usize> = start.iter().map(|&(t, _)| t).collect();
     // Checked before the spectrum: a reached type without sub-face would leave no cycle.
     let structure = ClassStructure::new(&succ, &start_types);
@@ -469,7 +471,7 @@ pub fn analyse(
         dominant,
         period: big_p,
         det,
-    } = spectrum(m, &start_types)?;
+    } = spectrum_of(m, &structure)?;
     let field = NumberField::new(rho.clone());
     let f = rho.min_poly().clone();
     let period = usize::try_from(big_p).expect("period fits usize");
