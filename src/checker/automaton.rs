@@ -73,11 +73,15 @@ impl Sparse {
             for (k, a) in row {
                 *work += b.data[*k].len() as u128;
                 if *work > MAX_PRODUCT_WORK {
-                    return Err(format!(
-                        "the products of known factors exceed the checker's limit of \
-                         {MAX_PRODUCT_WORK} multiplications"
+                    return Err(super::over(
+                        "the products of known factors (multiplications of rationals)",
+                        *work,
+                        MAX_PRODUCT_WORK,
+                        "max-work",
                     ));
                 }
+                // A product of rationals costs a few word operations and gcds: charged as 16.
+                super::within_work("the products of known factors", 16 * b.data[*k].len() as u128)?;
                 for (c, x) in &b.data[*k] {
                     *acc.entry(*c).or_insert_with(Q::zero) += a * x;
                 }

@@ -90,6 +90,54 @@ pub fn parse_decimal(s: &str, digits: usize) -> Result<BigInt, String> {
     }
 }
 
+/// Whether `c` may be printed as it is. Refused: controls (which move the cursor, end the line or
+/// drive the terminal), the bidirectional embeddings, overrides and isolates (which reorder what
+/// the terminal shows: U+202E turns `fail` into a word read backwards), the line and paragraph
+/// separators, and the invisible format characters (zero-width spaces and joiners, word
+/// joiners, the byte-order mark, soft hyphen, variation selectors, fillers, tags), which hide
+/// text or make two different names look alike.
+fn printable(c: char) -> bool {
+    let invisible = matches!(
+        c,
+        '\u{ad}'
+            | '\u{34f}'
+            | '\u{61c}'
+            | '\u{115f}'..='\u{1160}'
+            | '\u{17b4}'..='\u{17b5}'
+            | '\u{180b}'..='\u{180f}'
+            | '\u{200b}'..='\u{200f}'
+            | '\u{2028}'..='\u{202e}'
+            | '\u{2060}'..='\u{206f}'
+            | '\u{3164}'
+            | '\u{fe00}'..='\u{fe0f}'
+            | '\u{feff}'
+            | '\u{ffa0}'
+            | '\u{fff0}'..='\u{fffb}'
+            | '\u{1bca0}'..='\u{1bca3}'
+            | '\u{1d173}'..='\u{1d17a}'
+            | '\u{e0000}'..='\u{e0fff}'
+    );
+    !c.is_control() && !invisible
+}
+
+/// Text read from a certificate (a name, a label, a quoted number) as the checker prints it:
+/// every character that is not [`printable`] is shown as `\u{…}` (its code point in hex), and a
+/// backslash as `\\`, so the escape is unambiguous. What `check` shows is then exactly what the
+/// file says: a name cannot end the line and start a fake `proved` line, nor reorder the text
+/// around it. The checker escapes every line it reports (claim, messages, verdicts), so no path
+/// of a hostile string to the terminal is left open.
+pub fn escape(s: &str) -> String {
+    let mut o = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '\\' => o.push_str("\\\\"),
+            c if printable(c) => o.push(c),
+            c => o.push_str(&format!("\\u{{{:x}}}", u32::from(c))),
+        }
+    }
+    o
+}
+
 /// At most 40 characters of a hostile string, for messages.
 pub(super) fn shorten(s: &str) -> String {
     match s.char_indices().nth(40) {

@@ -309,10 +309,15 @@ pub(super) fn check_closure(
         return Err("the claim has no start face".into());
     }
     let mut start: BTreeMap<usize, BigUint> = BTreeMap::new();
+    let mut firsts = Vec::new();
     for (i, f) in faces.iter().enumerate() {
         match index.get(&key(f)) {
             Some(&t) if c.types[t].face == *f => {
-                *start.entry(t).or_insert_with(BigUint::zero) += 1u32;
+                let count = start.entry(t).or_insert_with(BigUint::zero);
+                if count.is_zero() {
+                    firsts.push(t);
+                }
+                *count += 1u32;
             }
             _ => {
                 return Err(format!(
@@ -321,6 +326,12 @@ pub(super) fn check_closure(
             }
         }
     }
+    let children: Vec<Vec<usize>> = c
+        .types
+        .iter()
+        .map(|r| r.subfaces.iter().map(|s| s.type_index).collect())
+        .collect();
+    breadth_first_order(&firsts, &children, "face")?;
     let mut matrix = Vec::with_capacity(nt);
     for (t, rule) in c.types.iter().enumerate() {
         let (subs, adj) = subdivide(&rule.face).map_err(|e| format!("type {t}: {e}"))?;
@@ -391,6 +402,55 @@ pub(super) fn check_closure(
             unit: 2,
         },
     ))
+}
+
+/// Checks that the listed types are exactly the closure of the start types, numbered in the
+/// order of the canonical breadth-first closure: the distinct start types first, in the claim's
+/// order, then every type the first time a listed child names it, parents in index order and
+/// children in listed order. A type no start reaches, or one numbered out of that order, is
+/// refused: the closure then cannot hold a family the claim never produces (whose types would
+/// add constraints, counts and classes to the claim's), and two accepted certificates of one
+/// claim number their types alike. Linear in the number of children.
+pub(super) fn breadth_first_order(
+    starts: &[usize],
+    children: &[Vec<usize>],
+    what: &str,
+) -> Result<(), String> {
+    let n = children.len();
+    let mut next = 0usize;
+    for &s in starts {
+        if s != next {
+            return Err(format!(
+                "the claim's start {what}s must be types 0, 1, … in the claim's order \
+                 (the canonical breadth-first closure); a start is type {s}, expected {next}"
+            ));
+        }
+        next += 1;
+    }
+    let mut t = 0usize;
+    while t < next {
+        for &ch in &children[t] {
+            match ch.cmp(&next) {
+                std::cmp::Ordering::Less => {}
+                std::cmp::Ordering::Equal if ch < n => next += 1,
+                _ => {
+                    return Err(format!(
+                        "type {t} names child type {ch} where the canonical breadth-first \
+                         closure numbers its next new type {next}"
+                    ))
+                }
+            }
+        }
+        t += 1;
+    }
+    match next == n {
+        true => Ok(()),
+        false => Err(format!(
+            "types {next} to {} are not reached from the claim's start {what}s (the canonical \
+             breadth-first closure lists only what its claim produces)",
+            n - 1
+        )),
+    }
 }
 
 /// The incidence identities of type `t`, on the certificate's own data: every edge has the type

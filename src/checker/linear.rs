@@ -169,6 +169,12 @@ fn nonsingular_minor(
                 if j >= k {
                     break;
                 }
+                // Fill-in cannot be foreseen from the sizes: the elimination is metered as it
+                // goes (a modular multiply-add and a map update, charged as 4 word operations).
+                super::within_work(
+                    "the elimination of the pivot minor",
+                    4 * done[j].len() as u128,
+                )?;
                 for (&l, &y) in &done[j] {
                     let e = row.entry(l).or_insert(0);
                     *e = (*e + p - mul(x, y)) % p;

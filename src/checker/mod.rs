@@ -42,7 +42,7 @@ use self::volume::check_volume_closure;
 use crate::certificate::{Certificate, Claim, Step, FORMAT, VERSION};
 use num_rational::BigRational;
 
-pub use self::claim::{parse_decimal, parse_rational};
+pub use self::claim::{escape, parse_decimal, parse_rational};
 
 /// The verdict on one step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -51,6 +51,85 @@ pub enum Outcome {
     Proved,
     /// The step does not prove its claim.
     Failed,
+    /// The step was not checked: its estimated cost exceeds a [`Budget`] (E0501, naming the
+    /// figure and the flag that raises it), or an earlier step was refused so. Not a verdict:
+    /// the certificate may be right or wrong.
+    Refused,
+}
+
+/// What the checker may spend on one certificate. Before each phase it estimates the work from
+/// the sizes it has already read (matrix dimension, degree, period, number of residues, boundary
+/// lengths, pivots) and refuses the step for cost when an estimate exceeds its budget; phases
+/// whose cost cannot be foreseen (elimination with fill-in, products of operators) count their
+/// work as they go and stop at the budget. At the defaults every certificate of at most 100 KB is
+/// answered within seconds; `lacuna check --max-work`, `--max-levels`, `--max-sides` raise them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Budget {
+    /// The most (estimated) big-integer word operations of one phase (`--max-work`).
+    pub work: u128,
+    /// The most levels of counts: `P·d` for a limit ratio, the claimed levels of a volume
+    /// closure (`--max-levels`).
+    pub levels: u64,
+    /// The most sides of the level-1 surfaces of all listed volume types together, the work of
+    /// re-deriving them (`--max-sides`).
+    pub sides: u128,
+}
+
+impl Default for Budget {
+    fn default() -> Self {
+        Budget {
+            work: 2_000_000_000,
+            levels: 20_000,
+            sides: 400_000,
+        }
+    }
+}
+
+thread_local! {
+    /// The budget of the check running on this thread (set by [`check_with`]).
+    static BUDGET: std::cell::Cell<Budget> = std::cell::Cell::new(Budget::default());
+    /// Set when the current step was refused for cost: kept out of the messages, so that no
+    /// text read from a certificate can make a rejection look like a refusal or the reverse.
+    static OVER: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    /// The word operations charged to the check running on this thread.
+    static SPENT: std::cell::Cell<u128> = const { std::cell::Cell::new(0) };
+}
+
+/// The budget in force.
+pub(super) fn budget() -> Budget {
+    BUDGET.with(std::cell::Cell::get)
+}
+
+/// Refuses the current step for cost: `what` needs about `figure` (of the unit the flag
+/// counts), above `limit`. Returns the message (E0501, the figure, the flag).
+pub(super) fn over(what: &str, figure: u128, limit: u128, flag: &str) -> String {
+    OVER.with(|o| o.set(true));
+    format!(
+        "E0501 refused for cost, not a verdict: {what} needs about {figure}, above the budget of \
+         {limit} (raise it with `lacuna check --{flag} N`)"
+    )
+}
+
+/// Charges `work` word operations to the certificate's account (an estimate before a phase, or
+/// one metered product) and refuses when the account exceeds the work budget: the budget bounds
+/// the whole check, not each phase, so a certificate of many classes or residues cannot buy
+/// unbounded work a phase at a time.
+pub(super) fn within_work(what: &str, work: u128) -> Result<(), String> {
+    let limit = budget().work;
+    let total = SPENT.with(|s| {
+        let t = s.get().saturating_add(work);
+        s.set(t);
+        t
+    });
+    match total <= limit {
+        true => Ok(()),
+        false => Err(over(
+            &format!("the check, at {what}, (word operations)"),
+            total,
+            limit,
+            "max-work",
+        )),
+    }
 }
 
 /// What the checker concluded about one step.
@@ -82,7 +161,9 @@ impl CheckReport {
     /// True when every step is proved and none is missing: the only outcome `lacuna check`
     /// accepts (exit 0).
     pub fn all_proved(&self) -> bool {
-        !self.steps.is_empty() && !self.failed() && self.missing.is_empty()
+        !self.steps.is_empty()
+            && self.steps.iter().all(|s| s.outcome == Outcome::Proved)
+            && self.missing.is_empty()
     }
 
     /// True when some step failed (exit 1).
@@ -90,10 +171,15 @@ impl CheckReport {
         self.steps.iter().any(|s| s.outcome == Outcome::Failed)
     }
 
-    /// True when nothing failed but steps the claim needs are missing: the certificate proves
-    /// part of its claim only (`lacuna check` exits 3).
+    /// True when nothing failed but a step was refused for cost (exit 2): no verdict.
+    pub fn refused(&self) -> bool {
+        !self.failed() && self.steps.iter().any(|s| s.outcome == Outcome::Refused)
+    }
+
+    /// True when nothing failed or was refused but steps the claim needs are missing: the
+    /// certificate proves part of its claim only (`lacuna check` exits 3).
     pub fn partial(&self) -> bool {
-        !self.failed() && !self.missing.is_empty()
+        !self.failed() && !self.refused() && !self.missing.is_empty()
     }
 
     /// The report for one step name (the first with that name).
@@ -118,6 +204,7 @@ impl CheckReport {
             let v = match s.outcome {
                 Outcome::Proved => "proved",
                 Outcome::Failed => "FAILED",
+                Outcome::Refused => "REFUSED",
             };
             o += &format!("{v:>13}  {}\n", s.message);
         }
@@ -140,12 +227,14 @@ impl CheckReport {
                 let outcome = match s.outcome {
                     Outcome::Proved => "proved",
                     Outcome::Failed => "failed",
+                    Outcome::Refused => "refused",
                 };
                 serde_json::json!({"step": s.step, "outcome": outcome, "message": s.message,
                                    "verdict": s.verdict})
             })
             .collect();
         serde_json::json!({"all_proved": self.all_proved(), "partial": self.partial(),
+                           "refused": self.refused(),
                            "claim": self.claim, "missing": self.missing, "steps": steps})
     }
 }
@@ -194,6 +283,11 @@ fn wrong_version(format: &str, version: &str) -> Option<CheckReport> {
 /// failed `header`). The format and version are read first, so a certificate of another version
 /// is refused by name rather than by a parse error in a step whose form changed.
 pub fn check_json(text: &str) -> CheckReport {
+    check_json_with(text, Budget::default())
+}
+
+/// [`check_json`] within the given budget.
+pub fn check_json_with(text: &str, budget: Budget) -> CheckReport {
     if let Ok(v) = serde_json::from_str::<serde_json::Value>(text) {
         let field = |k: &str| {
             v.get(k)
@@ -201,13 +295,17 @@ pub fn check_json(text: &str) -> CheckReport {
         };
         if let (Some(f), Some(ver)) = (field("format"), field("version")) {
             if let Some(report) = wrong_version(&f, &ver) {
-                return report;
+                return escaped(report);
             }
         }
     }
     match Certificate::from_json(text) {
-        Ok(c) => check(&c),
-        Err(e) => refused("header", Vec::new(), format!("not a certificate: {e}")),
+        Ok(c) => check_with(&c, budget),
+        Err(e) => escaped(refused(
+            "header",
+            Vec::new(),
+            format!("not a certificate: {e}"),
+        )),
     }
 }
 
@@ -215,6 +313,39 @@ pub fn check_json(text: &str) -> CheckReport {
 /// demands (else it is refused as a whole), then checks every step, each tied to the claim or
 /// to the closure step.
 pub fn check(cert: &Certificate) -> CheckReport {
+    check_with(cert, Budget::default())
+}
+
+/// [`check`] within the given budget: a step whose estimated cost exceeds it is refused for
+/// cost (E0501), and the steps after it are not checked.
+pub fn check_with(cert: &Certificate, budget: Budget) -> CheckReport {
+    let before = BUDGET.with(|b| b.replace(budget));
+    let spent = SPENT.with(|s| s.replace(0));
+    let report = escaped(check_unescaped(cert));
+    BUDGET.with(|b| b.set(before));
+    SPENT.with(|s| s.set(spent));
+    report
+}
+
+/// The report with every line [`escape`]d: the claim, the messages and the verdicts all carry
+/// text read from the file.
+fn escaped(r: CheckReport) -> CheckReport {
+    CheckReport {
+        claim: r.claim.iter().map(|c| escape(c)).collect(),
+        steps: r
+            .steps
+            .into_iter()
+            .map(|s| StepReport {
+                message: escape(&s.message),
+                verdict: s.verdict.as_deref().map(escape),
+                ..s
+            })
+            .collect(),
+        missing: r.missing,
+    }
+}
+
+fn check_unescaped(cert: &Certificate) -> CheckReport {
     if let Some(report) = wrong_version(&cert.format, &cert.version.to_string()) {
         return report;
     }
@@ -230,8 +361,21 @@ pub fn check(cert: &Certificate) -> CheckReport {
         Claim::Substitution(s) => Some(Substitution::of_claim(s)),
         Claim::Faces(_) | Claim::Automaton(_) | Claim::System(_) | Claim::Volumes(_) => None,
     };
+    let mut refused_at: Option<usize> = None;
     for (i, step) in cert.steps.iter().enumerate() {
         let name = step.name();
+        if let Some(j) = refused_at {
+            steps.push(StepReport {
+                step: name.into(),
+                outcome: Outcome::Refused,
+                message: format!(
+                    "step {i} ({name}): not checked, step {j} was refused for cost"
+                ),
+                verdict: None,
+            });
+            continue;
+        }
+        OVER.with(|o| o.set(false));
         let tie = match (&cert.claim, &closure) {
             (Claim::Faces(f), Some((_, c))) => Tie::Closure {
                 closure: c,
@@ -274,6 +418,10 @@ pub fn check(cert: &Certificate) -> CheckReport {
         };
         let (outcome, message, verdict) = match result {
             Ok((m, v)) => (Outcome::Proved, m, Some(v)),
+            Err(m) if OVER.with(|o| o.replace(false)) => {
+                refused_at = Some(i);
+                (Outcome::Refused, m, None)
+            }
             Err(m) => (Outcome::Failed, m, None),
         };
         steps.push(StepReport {

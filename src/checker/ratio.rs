@@ -23,28 +23,17 @@
 use super::claim::parse_decimal;
 use super::closure::Substitution;
 use super::field::{add, scale, Root, P};
-use super::series::{charpoly, counts, power_charpoly, residue, Residue};
-use super::{rat, Checked, Q};
+use super::series::{charpoly, counts, multiplicity, power_charpoly, residue, Powers, Residue};
+use super::{budget, over, rat, within_work, Checked, Q};
 use crate::certificate::{ClassClaim, PointClaim, RadiusWitness, RatioStep};
 use num_bigint::{BigInt, BigUint};
 use num_integer::Integer;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 use std::collections::{BTreeMap, VecDeque};
 
-/// The most levels of counts (`P·d`) the checker computes: the counts grow like `ρ^(P·d)`, so
-/// a hostile period must not make it hang. Closures met in practice need `P·d` below a few
-/// hundred.
-const MAX_LEVELS: u64 = 20_000;
-
-/// The largest class whose characteristic polynomial the checker computes.
-const MAX_CLASS: usize = 1_000;
-
-/// The most big-integer word operations the checker spends on one phase of a ratio step
-/// (Faddeev–LeVerrier on a class: `size²·arcs` products of numbers of about
-/// `size·log₂(max entry)` bits; the counts: `levels²·arcs·log₂(max row sum)` bits). Well under
-/// a second of work in a release build; the honest certificates of the library need a
-/// thousandth of it. A sparse class of about 100 types is the largest this allows.
-const MAX_WORK: u128 = 100_000_000;
+/// The largest class whose characteristic polynomial the checker computes (its cost is also
+/// estimated against the work budget; this only keeps the estimate's own arithmetic small).
+const MAX_CLASS: usize = 100_000;
 
 /// The lcm of the periods, exactly (a big integer: the lcm of 115 small periods can exceed
 /// 2^64, and a wrapped value must never be compared with the claim).
@@ -57,16 +46,6 @@ pub(super) fn lcm_of(periods: impl IntoIterator<Item = u64>) -> BigUint {
 /// The bits of a big integer (at least 1), as a u128 for work estimates.
 fn bits(x: &BigUint) -> u128 {
     u128::from(x.bits().max(1))
-}
-
-/// Refuses a phase whose estimated work exceeds [`MAX_WORK`].
-fn within_budget(what: &str, work: u128) -> Result<(), String> {
-    match work <= MAX_WORK {
-        true => Ok(()),
-        false => Err(format!(
-            "{what} needs about {work} word operations, beyond the checker's limit of {MAX_WORK}"
-        )),
-    }
 }
 
 /// The product of two integer polynomials (ascending coefficients).
@@ -359,12 +338,18 @@ pub(super) fn check_ratio(r: &RatioStep, sub: &Substitution, tied: &str) -> Chec
     }
     let d = cls.iter().map(|(ms, _)| ms.len()).sum::<usize>() + 1;
     let levels = &period * BigUint::from(d);
-    if levels > BigUint::from(MAX_LEVELS) {
-        return Err(format!(
-            "P·d = {period}·{d} levels of counts exceed the checker's limit of {MAX_LEVELS}"
+    let max_levels = budget().levels;
+    if levels > BigUint::from(max_levels) {
+        return Err(over(
+            &format!("P·d = {period}·{d} levels of counts"),
+            levels.to_u128().unwrap_or(u128::MAX),
+            max_levels.into(),
+            "max-levels",
         ));
     }
-    let big_p = period.to_usize().expect("P ≤ MAX_LEVELS");
+    let Some(big_p) = period.to_usize() else {
+        return Err("the period does not fit in memory".into());
+    };
     let levels = big_p * d;
     // The counts: levels · arcs products of numbers of up to levels·log₂(growth) bits.
     let arcs: usize = cls
@@ -380,7 +365,7 @@ pub(super) fn check_ratio(r: &RatioStep, sub: &Substitution, tied: &str) -> Chec
         .unwrap_or_default();
     let start_bits = sub.start.values().map(bits).max().unwrap_or(1);
     let count_bits = (levels as u128) * bits(&growth) + start_bits;
-    within_budget(
+    within_work(
         "iterating the substitution",
         (levels as u128) * (arcs as u128) * (count_bits.div_ceil(64) + 1),
     )?;
@@ -412,7 +397,7 @@ pub(super) fn check_ratio(r: &RatioStep, sub: &Substitution, tied: &str) -> Chec
             .map(|(_, k)| u128::from(k.bits().max(1)))
             .max()
             .unwrap_or(1);
-        within_budget(
+        within_work(
             "the characteristic polynomial of a class (Faddeev–LeVerrier)",
             size * size * class_arcs * ((size * (entry_bits + 10)).div_ceil(64) + 1),
         )?;
@@ -436,26 +421,30 @@ pub(super) fn check_ratio(r: &RatioStep, sub: &Substitution, tied: &str) -> Chec
     let (faces, lacunas) = counts(m, &sub.contributions, &sub.start, levels);
     let y0 = root.reduce(&[vec![Q::zero(); big_p], vec![Q::one()]].concat());
     // Q(w) = Σ b_i w^i with b_i = q_(d−i); N_j = Σ_(i ≤ j) b_i·x_(j−i); Ñ reverses N.
-    let reflected = |seq: &[BigInt], res: usize| -> Vec<BigInt> {
-        let mut n: Vec<BigInt> = (0..d)
-            .map(|j| {
-                (0..=j)
-                    .map(|i| &q[d - i] * &seq[big_p * (j - i) + res])
-                    .sum()
-            })
-            .collect();
+    let powers = Powers::of(&root, &y0, d);
+    let reflected = |seq: &[BigInt], res: usize| -> Result<Vec<BigInt>, String> {
+        let mut n = Vec::with_capacity(d);
+        for j in 0..d {
+            let mut sum = BigInt::zero();
+            for i in 0..=j {
+                let (a, b) = (&q[d - i], &seq[big_p * (j - i) + res]);
+                powers.spend(a.bits(), b.bits())?;
+                sum += a * b;
+            }
+            n.push(sum);
+        }
         n.reverse();
-        n
+        Ok(n)
     };
+    let m = multiplicity(&root, &powers, &q)?;
     let mut values: Vec<P> = Vec::new();
     let mut whys = Vec::new();
     for (res, claim) in r.points.iter().enumerate() {
         let got = residue(
             &root,
-            &q,
-            (&reflected(&lacunas, res), sub.unit),
-            &reflected(&faces, res),
-            &y0,
+            (&powers, m),
+            (&reflected(&lacunas, res)?, sub.unit),
+            &reflected(&faces, res)?,
         )
         .map_err(|e| format!("residue {res}: {e}"))?;
         values.push(check_point(&root, (res, r.digits), &got, claim)?);

@@ -1,8 +1,8 @@
 //! The counts, the characteristic polynomial of `A^P` and the pole of the generating functions
 //! at `w₀ = ρ^(−P)`: what `R_r` is for one residue (see `ratio.rs` for the argument).
 
-use super::field::{add, scale, Root, P};
-use super::Q;
+use super::field::{add, scale, trim, Root, P};
+use super::{within_work, Q};
 use num_bigint::{BigInt, BigUint};
 use num_integer::Integer;
 use num_traits::{One, Zero};
@@ -82,26 +82,110 @@ pub(super) fn power_charpoly(chi: &[BigInt], period: usize) -> Result<Vec<BigInt
     Ok(b.into_iter().rev().collect())
 }
 
-fn derivative(f: &[BigInt]) -> Vec<BigInt> {
-    f.iter()
-        .enumerate()
-        .skip(1)
-        .map(|(i, c)| c * BigInt::from(i))
-        .collect()
+/// The powers `y₀^k`, `k ≤ top`, of an element `y₀` of Q[x]/(p), as integer vectors over one
+/// common denominator `D`: `y₀^k = vecs[k] / D`.
+///
+/// With them, every derivative of an integer polynomial at `y₀` is an integer combination of
+/// integer vectors: no rational arithmetic, hence no gcd of the huge numbers that the counts of a
+/// long period reach (measured: 71 % of the checker's time went to those gcds before).
+pub(super) struct Powers {
+    vecs: Vec<Vec<BigInt>>,
 }
 
-/// The multiplicity `j < cap` of `y₀` as a root of `f` and `f^(j)(y₀)`, or `None` when
-/// `f^(j)(y₀) = 0` for every `j < cap`.
-fn order(root: &Root, f: &[BigInt], y0: &[Q], cap: usize) -> Option<(usize, P)> {
-    let mut f = f.to_vec();
-    for j in 0..cap {
-        let v = root.eval_at(&f, y0);
-        if !root.is_zero(&v) {
-            return Some((j, v));
+impl Powers {
+    /// The powers `y₀^0 … y₀^top`, reduced modulo `p`.
+    pub(super) fn of(root: &Root, y0: &[Q], top: usize) -> Powers {
+        let mut rational: Vec<P> = Vec::with_capacity(top + 1);
+        let mut x = root.reduce(&[Q::one()]);
+        for _ in 0..=top {
+            let next = root.mul(&x, y0);
+            rational.push(std::mem::replace(&mut x, next));
         }
-        f = derivative(&f);
+        let den = rational
+            .iter()
+            .flatten()
+            .fold(BigInt::one(), |acc, c| acc.lcm(c.denom()));
+        let vecs = rational
+            .iter()
+            .map(|v| {
+                v.iter()
+                    .map(|c| c.numer() * (&den / c.denom()))
+                    .collect()
+            })
+            .collect();
+        Powers { vecs }
     }
-    None
+
+    /// Meters one product of big integers of `a` and `b` bits (its schoolbook word operations)
+    /// against the work budget: the residue phase's cost depends on how the multiplicities and
+    /// the sizes of the counts play out, so it is counted as it goes and stops at the budget,
+    /// whatever the certificate claims.
+    pub(super) fn spend(&self, a: u64, b: u64) -> Result<(), String> {
+        let words = |x: u64| u128::from(x / 64 + 1);
+        within_work("the residues of the generating functions", words(a) * words(b))
+    }
+
+    /// `D·f^(j)(y₀)/(j!)·j!`, i.e. `Σ_(i ≥ j) f_i·i!/(i − j)!·vecs[i − j]`: the `j`-th
+    /// derivative at `y₀` times the positive constant `D`, as an integer vector.
+    fn derivative_at(&self, f: &[BigInt], j: usize) -> Result<Vec<BigInt>, String> {
+        let width = self.vecs.iter().map(Vec::len).max().unwrap_or(0);
+        let mut out = vec![BigInt::zero(); width];
+        let mut falling = BigInt::one(); // i!/(i − j)! for i = j: j!
+        for k in 1..=j {
+            falling *= BigInt::from(k);
+        }
+        for (i, c) in f.iter().enumerate().skip(j) {
+            if i > j {
+                // i!/(i − j)! from (i − 1)!/(i − 1 − j)!: times i/(i − j), exact.
+                falling = falling * BigInt::from(i) / BigInt::from(i - j);
+            }
+            if c.is_zero() {
+                continue;
+            }
+            let k = c * &falling;
+            for (o, v) in out.iter_mut().zip(&self.vecs[i - j]) {
+                self.spend(k.bits(), v.bits())?;
+                *o += &k * v;
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// An integer vector as an element of Q[x]/(p) (its content divided out: only its zero test
+/// and ratios with elements of the same scale are used).
+fn element(v: Vec<BigInt>) -> P {
+    let content = v.iter().fold(BigInt::zero(), |g, c| g.gcd(c));
+    let content = if content.is_zero() { BigInt::one() } else { content };
+    trim(v.into_iter().map(|c| Q::from_integer(c / &content)).collect())
+}
+
+/// The multiplicity `j < cap` of `y₀` as a root of `f` and `D·f^(j)(y₀)` (up to a positive
+/// factor common to every polynomial evaluated with the same `j`), or `None` when
+/// `f^(j)(y₀) = 0` for every `j < cap`.
+fn order(
+    root: &Root,
+    powers: &Powers,
+    f: &[BigInt],
+    cap: usize,
+) -> Result<Option<(usize, P)>, String> {
+    for j in 0..cap.min(f.len()) {
+        let v = powers.derivative_at(f, j)?;
+        if v.iter().all(Zero::is_zero) {
+            continue;
+        }
+        let v = element(v);
+        if !root.is_zero(&v) {
+            return Ok(Some((j, v)));
+        }
+    }
+    Ok(None)
+}
+
+/// The multiplicity `m` of `y₀ = ρ^P` as a root of `q = det(y·I − A^P)`: the same for every
+/// residue, so computed once.
+pub(super) fn multiplicity(root: &Root, powers: &Powers, q: &[BigInt]) -> Result<usize, String> {
+    Ok(order(root, powers, q, q.len())?.map_or(0, |(j, _)| j))
 }
 
 /// What one residue gives: `R_r = num / den` in Q[x]/(p) (`den` ≠ 0 at ρ), and how it was decided.
@@ -118,20 +202,20 @@ impl Residue {
     }
 }
 
-/// `R_r` from `q` and the reflected numerators of lacunas (in `1/unit`: halves for faces,
-/// quarters for volumes) and cells.
+/// `R_r` from the multiplicity `m` of `y₀` in `q` and the reflected numerators of lacunas (in
+/// `1/unit`: halves for faces, quarters for volumes) and cells. The leading coefficients `a_L`,
+/// `a_C` are compared at the same derivative order, so the factor `D·j!` they share cancels in
+/// `a_L/(a_L + unit·a_C)`.
 pub(super) fn residue(
     root: &Root,
-    q: &[BigInt],
+    (powers, m): (&Powers, usize),
     (nl, unit): (&[BigInt], u32),
     nc: &[BigInt],
-    y0: &[Q],
 ) -> Result<Residue, String> {
-    let m = order(root, q, y0, q.len()).map_or(0, |(j, _)| j);
     if m == 0 {
         return Err("y₀ = ρ^P is not an eigenvalue of A^P".into());
     }
-    let Some((jc, ac)) = order(root, nc, y0, m) else {
+    let Some((jc, _)) = order(root, powers, nc, m)? else {
         return Err("the face counts have no pole at w₀ = ρ^(−P)".into());
     };
     let one = vec![Q::one()];
@@ -144,7 +228,7 @@ pub(super) fn residue(
         return Ok(fixed(P::new(), "no lacuna ever: R = 0".into()));
     }
     let kc = m - jc;
-    Ok(match order(root, nl, y0, jc + 1) {
+    Ok(match order(root, powers, nl, jc + 1)? {
         None => fixed(
             P::new(),
             format!("pole orders: lacunas < {kc} = faces: R = 0"),
@@ -153,7 +237,22 @@ pub(super) fn residue(
             one.clone(),
             format!("pole orders: lacunas {} > {kc} = faces: R = 1", m - jl),
         ),
-        Some((_, al)) => {
+        Some((_, _)) => {
+            // Both at order jc: the unscaled vectors, with the same factor D·jc!.
+            let al = trim(
+                powers
+                    .derivative_at(nl, jc)?
+                    .into_iter()
+                    .map(Q::from_integer)
+                    .collect(),
+            );
+            let ac = trim(
+                powers
+                    .derivative_at(nc, jc)?
+                    .into_iter()
+                    .map(Q::from_integer)
+                    .collect(),
+            );
             let den = add(&al, &scale(&ac, &int(unit)));
             if root.is_zero(&den) {
                 return Err("the leading coefficients cancel".into());

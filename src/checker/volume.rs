@@ -8,7 +8,7 @@
 //! the breadth-first traversal that reads each face from its root edge and records, for every
 //! edge, the discovery index of the face across it and the offset of that edge from its root.
 
-use super::closure::{contribution, subdivide, Substitution};
+use super::closure::{breadth_first_order, contribution, subdivide, Substitution};
 use crate::certificate::{
     Edge, Face, Origin, SpokeItem, Volume, VolumeClosureStep, VolumeRule, VolumesClaim,
 };
@@ -21,16 +21,9 @@ use std::collections::{BTreeMap, HashMap, VecDeque};
 /// certificate must not make the checker build a surface of billions of sub-faces.
 const MAX_SIDES: u128 = 2_000_000;
 
-/// The most level-1 sides of all listed types together: the re-derivation costs time linear in
-/// them, so a small certificate of many types with long edges must not buy unbounded work.
-const MAX_TOTAL_SIDES: u128 = 20_000_000;
-
 /// The most sides (face edges) a listed or derived surface may have: its canonical code costs
 /// up to quadratic time in them.
 const MAX_SURFACE_SIDES: usize = 20_000;
-
-/// The most levels of counts the checker recomputes.
-const MAX_LEVELS: u64 = 10_000;
 
 /// A face as compared: boundary as read from a root, E, the spoke items as a set, delay.
 type FaceKey = (Vec<Edge>, [Edge; 3], Vec<SpokeItem>, u32);
@@ -260,6 +253,8 @@ fn checked_key(v: &Volume) -> Result<TypeKey, String> {
     }
     let map = map_of(v);
     map.sphere()?;
+    // The canonical code reads the surface once from every root: quadratic in its sides.
+    super::within_work("the canonical codes of surfaces", (surface as u128).pow(2))?;
     Ok(type_key(v, map.canonical_code()))
 }
 
@@ -576,10 +571,13 @@ pub(super) fn check_volume_closure(
         .iter()
         .map(|t| level1_sides(&t.volume))
         .fold(0u128, u128::saturating_add);
-    if total > MAX_TOTAL_SIDES {
-        return Err(format!(
-            "the level-1 surfaces of the listed types may have {total} sides together, above the \
-             checker's limit of {MAX_TOTAL_SIDES}"
+    let limit = super::budget().sides;
+    if total > limit {
+        return Err(super::over(
+            "re-deriving the level-1 surfaces of the listed types (sides)",
+            total,
+            limit,
+            "max-sides",
         ));
     }
     let mut index: HashMap<TypeKey, usize> = HashMap::with_capacity(nt);
@@ -593,13 +591,21 @@ pub(super) fn check_volume_closure(
         return Err("the claim has no start volume".into());
     }
     let mut start = vec![BigUint::zero(); nt];
+    let mut firsts = Vec::new();
     for (i, v) in claim.volumes.iter().enumerate() {
         let key = checked_key(v).map_err(|e| format!("start volume {i}: {e}"))?;
         match index.get(&key) {
-            Some(&t) => start[t] += 1u32,
+            Some(&t) => {
+                if start[t].is_zero() {
+                    firsts.push(t);
+                }
+                start[t] += 1u32;
+            }
             None => return Err(format!("start volume {i} is not a listed type")),
         }
     }
+    let children: Vec<Vec<usize>> = c.types.iter().map(|r| r.children.clone()).collect();
+    breadth_first_order(&firsts, &children, "volume")?;
     let mut subvolumes = 0usize;
     for (t, rule) in c.types.iter().enumerate() {
         let derived = step(&rule.volume).map_err(|e| format!("type {t}: {e}"))?;
@@ -615,6 +621,7 @@ pub(super) fn check_volume_closure(
             let map = map_of(d);
             map.sphere()
                 .map_err(|e| format!("type {t} sub-volume {k}: {e}"))?;
+            super::within_work("the canonical codes of surfaces", (surface as u128).pow(2))?;
             match index.get(&type_key(d, map.canonical_code())) {
                 Some(&u) => got.push(u),
                 None => {
@@ -644,10 +651,13 @@ pub(super) fn check_volume_closure(
         subvolumes += derived.len();
     }
     // The counts, level by level, from the derived children.
-    if claim.levels > MAX_LEVELS {
-        return Err(format!(
-            "{} levels exceed the checker's limit of {MAX_LEVELS}",
-            claim.levels
+    let max_levels = super::budget().levels;
+    if claim.levels > max_levels {
+        return Err(super::over(
+            "recounting the claimed levels",
+            claim.levels.into(),
+            max_levels.into(),
+            "max-levels",
         ));
     }
     if c.counts.len() as u128 != u128::from(claim.levels) + 1 {

@@ -243,6 +243,16 @@ pub(crate) struct CheckArgs {
     /// Print JSON.
     #[arg(long)]
     pub(crate) json: bool,
+    /// Maximum big-integer word operations of one phase of the check, estimated before it or
+    /// counted as it goes (a step above it is refused for cost, exit 2, not rejected).
+    #[arg(long, value_name = "N", default_value_t = lacuna::checker::Budget::default().work, help_heading = "Limits")]
+    pub(crate) max_work: u128,
+    /// Maximum levels of counts a limit ratio (`P·d`) or a volume closure may need.
+    #[arg(long, value_name = "N", default_value_t = lacuna::checker::Budget::default().levels, help_heading = "Limits")]
+    pub(crate) max_levels: u64,
+    /// Maximum sides of the level-1 surfaces of all volume types of a closure together.
+    #[arg(long, value_name = "N", default_value_t = lacuna::checker::Budget::default().sides, help_heading = "Limits")]
+    pub(crate) max_sides: u128,
 }
 
 /// The arguments of `lacuna closure`.

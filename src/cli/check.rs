@@ -4,9 +4,20 @@ use super::*;
 
 /// Runs `lacuna check`.
 pub(super) fn run(args: CheckArgs) -> Result<ExitCode, Error> {
-    let CheckArgs { certificate, json } = args;
+    let CheckArgs {
+        certificate,
+        json,
+        max_work,
+        max_levels,
+        max_sides,
+    } = args;
     let text = lacuna::input::read_text(&certificate.to_string_lossy())?;
-    let report = lacuna::checker::check_json(&text);
+    let budget = lacuna::checker::Budget {
+        work: max_work,
+        levels: max_levels,
+        sides: max_sides,
+    };
+    let report = lacuna::checker::check_json_with(&text, budget);
     if json {
         print_json(&report.to_json());
     } else {
@@ -14,6 +25,8 @@ pub(super) fn run(args: CheckArgs) -> Result<ExitCode, Error> {
     }
     Ok(if report.all_proved() {
         ExitCode::SUCCESS
+    } else if report.refused() {
+        ExitCode::from(EXIT_BAD_INPUT)
     } else if report.partial() {
         ExitCode::from(EXIT_PARTIAL)
     } else {

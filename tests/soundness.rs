@@ -1,0 +1,157 @@
+//! Soundness, round two (issue #28): a certificate proves its claim and nothing else, its
+//! printed claim cannot be forged by the names it carries, and `check` answers every small
+//! certificate within a bounded cost. Each defect of the issue is a named regression here.
+
+mod common;
+use common::{assert_proved, lacuna, volume_certificate};
+use lacuna::certificate::{certificate_for, certificate_for_volumes, Certificate, Claim, Step};
+use lacuna::checker::{check, Outcome};
+use lacuna::topology::volume::VolumeClosure;
+use lacuna::{constraint::GenOptions, topology::Limits};
+use proptest::prelude::*;
+
+/// The closed type set of the given start faces (notation or library names), in the canonical
+/// breadth-first order.
+fn closed(starts: &[&str]) -> lacuna::topology::TypeSet {
+    let faces: Vec<_> = starts
+        .iter()
+        .flat_map(|s| lacuna::input::load_input(s).expect("loads").faces())
+        .collect();
+    lacuna::topology::close_or_error(&faces, &Limits::default()).expect("closes")
+}
+
+/// The honest certificate of `family` (F0 then the square's closed family), with the claim cut
+/// back to the first `keep` start faces: the closure and system steps still list the union.
+fn union_with_claim_of_first(family: &[&str], keep: usize) -> Certificate {
+    let ts = closed(family);
+    let mut cert = certificate_for("forged", &ts, GenOptions::default()).expect("certifiable");
+    if let Claim::Faces(f) = &mut cert.claim {
+        f.faces.truncate(keep);
+    }
+    cert
+}
+
+fn step_failed_with(cert: &Certificate, step: &str, needle: &str) {
+    let report = check(cert);
+    let s = report.step(step).expect("the step is reported");
+    assert_eq!(s.outcome, Outcome::Failed, "{}", report.to_text());
+    assert!(s.message.contains(needle), "{}", report.to_text());
+    assert!(!report.all_proved());
+}
+
+#[test]
+fn types_never_reached_from_the_claim_are_refused() {
+    // The forgery of the issue: F0 closes on its one type; square-B2's two types are closed
+    // under subdivision but never reached from F0. The union is honest for the claim
+    // [F0, square-B2]: proved as it stands.
+    let honest = union_with_claim_of_first(&["F0", "square-B2"], 2);
+    assert_proved("F0 and square-B2", &honest);
+    let Some(Step::Closure(c)) = honest.steps.first() else {
+        panic!("a closure first")
+    };
+    assert_eq!(c.types.len(), 3, "F0's type and the square's two");
+    // The same steps for the claim F0 alone: types 1 and 2 are not reached.
+    let forged = union_with_claim_of_first(&["F0", "square-B2"], 1);
+    step_failed_with(&forged, "closure", "not reached from the claim's start faces");
+    // No verdict about F0 comes out of it: no proved rank, no proved ratio.
+    let report = check(&forged);
+    assert!(report.steps.iter().all(|s| s.outcome == Outcome::Failed
+        || s.step != "closure"));
+    assert!(report.claims().iter().all(|c| !c.contains("3 face types")));
+}
+
+#[test]
+fn types_numbered_out_of_breadth_first_order_are_refused() {
+    // F0 then the square: swap the square's two types (1 ↔ 2) and renumber every reference.
+    // Every type is still reached and every subdivision still holds; only the numbering differs
+    // from the canonical breadth-first closure, which fixes it so that two certificates of one
+    // claim print the same verdicts.
+    let mut cert = union_with_claim_of_first(&["F0", "square-B2"], 2);
+    let Some(Step::Closure(c)) = cert.steps.first_mut() else {
+        panic!("a closure first")
+    };
+    c.types.swap(1, 2);
+    for t in &mut c.types {
+        for s in &mut t.subfaces {
+            s.type_index = match s.type_index {
+                1 => 2,
+                2 => 1,
+                x => x,
+            };
+        }
+    }
+    step_failed_with(&cert, "closure", "start faces must be types 0, 1");
+}
+
+/// The closed volume types of `names`, certified with counts to level 2.
+fn volume_union(names: &[&str], keep: usize) -> Certificate {
+    let volumes: Vec<_> = names
+        .iter()
+        .flat_map(|n| {
+            let (_, v) = lacuna::input::load_volumes(n).expect("loads").expect("volume");
+            v.volume_list()
+        })
+        .collect();
+    let VolumeClosure::Closed(set) = VolumeClosure::of(&volumes, &Limits::default()).expect("ok")
+    else {
+        panic!("closes")
+    };
+    let mut cert = certificate_for_volumes("forged", &set, 2).expect("certifiable");
+    if let Claim::Volumes(v) = &mut cert.claim {
+        v.volumes.truncate(keep);
+    }
+    cert
+}
+
+#[test]
+fn volume_types_never_reached_from_the_claim_are_refused() {
+    // cube-B2 and tetrahedron-B2 share no volume type: the union is honest for both starts.
+    let honest = volume_union(&["cube-B2", "tetrahedron-B2"], 2);
+    assert_proved("cube and tetrahedron", &honest);
+    // For the cube alone the tetrahedron's types are not reached (the counts listed are the
+    // union's and would fail too; the closure is refused first, for the right reason).
+    let forged = volume_union(&["cube-B2", "tetrahedron-B2"], 1);
+    // Whether the first foreign type is met as a child numbered too far or as a type left over,
+    // the closure is refused for not being the claim's breadth-first closure.
+    step_failed_with(&forged, "volume-closure", "canonical breadth-first closure");
+    // The honest certificate of the cube alone still checks.
+    assert_proved("cube-B2", &volume_certificate("cube-B2"));
+}
+
+#[test]
+fn hostile_names_are_printed_escaped() {
+    // A state name that ends the claim line and prints a fake "proved" line, and one that
+    // reverses the text after it (U+202E), in an otherwise honest automaton certificate.
+    let mut cert = common::automaton_certificate("sierpinski-triangle");
+    let fake = "t\n       proved  step 0 (solution-space): the forged verdict";
+    if let Claim::Automaton(a) = &mut cert.claim {
+        a.states[0].name = fake.into();
+        a.operators[0].name = "ab\u{202e}lieF\u{200b}\u{7}".into();
+    }
+    let report = check(&cert);
+    let text = report.to_text();
+    // Every line of the report starts with its own tag: no line begins with a forged one.
+    for line in text.lines() {
+        let tag = line.trim_start().split("  ").next().unwrap_or("");
+        assert!(
+            ["claim", "proved", "FAILED", "PARTIAL"].contains(&tag),
+            "{text}"
+        );
+    }
+    let proved = text
+        .lines()
+        .filter(|l| l.trim_start().starts_with("proved"))
+        .count();
+    assert!(!text.contains("the forged verdict\n"), "{text}");
+    assert_eq!(proved, report.steps.len(), "{text}");
+    // The hidden characters are shown as escapes, in the claim and the JSON alike.
+    assert!(text.contains(r"t\u{a}       proved  step 0"), "{text}");
+    assert!(text.contains(r"ab\u{202e}lieF\u{200b}\u{7}"), "{text}");
+    for c in ['\u{202e}', '\u{200b}', '\u{7}'] {
+        assert!(!text.contains(c), "{text}");
+        assert!(!report.to_json().to_string().contains(c));
+    }
+    // A backslash is doubled, so an escape cannot be forged by spelling it out.
+    assert_eq!(lacuna::checker::escape(r"a\u{a}"), r"a\\u{a}");
+    assert_eq!(lacuna::checker::escape("plain – text ρ"), "plain – text ρ");
+}
