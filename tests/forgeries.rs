@@ -564,7 +564,7 @@ fn a_dense_300_type_class_is_refused_by_its_cost() {
     let step = step_with(vec![perron_ones((0..n).collect(), 1)], rational_root("300"));
     let report = quick("dense 300", &ratio_certificate(matrix, step));
     assert!(
-        report.failed() && report.to_text().contains("beyond the checker's limit"),
+        report.refused() && report.to_text().contains("E0501 refused for cost"),
         "{}",
         report.to_text()
     );
@@ -580,7 +580,8 @@ fn multiplicities_of_2_pow_64_minus_1_are_refused_by_their_cost() {
     let rho = (BigInt::from(u64::MAX) * BigInt::from(40)).to_string();
     let step = step_with(vec![perron_ones((0..n).collect(), 1)], rational_root(&rho));
     let report = quick("2^64 − 1 on 40 types", &ratio_certificate(matrix, step));
-    assert!(report.failed(), "{}", report.to_text());
+    assert!(report.failed() || report.refused(), "{}", report.to_text());
+    assert!(!report.all_proved());
 }
 
 #[test]

@@ -127,9 +127,15 @@ fn a_wrong_type_is_rejected() {
     // A child listed as the wrong type.
     let mut cert = volume_certificate("cube-B2");
     let c = closure_of(&mut cert);
-    let child = c.types[0].children[0];
-    c.types[0].children[0] = (child + 1) % c.types.len();
+    // Type 0 (the cube itself) is already numbered, so the breadth-first order still holds and
+    // the comparison with the derived sub-volumes is what rejects it.
+    c.types[0].children[0] = 0;
     refused("child", &cert, "are not the derived sub-volumes");
+    // A child numbered past the next new type: out of breadth-first order.
+    let mut cert = volume_certificate("cube-B2");
+    let c = closure_of(&mut cert);
+    c.types[0].children[0] = 2;
+    refused("order", &cert, "canonical breadth-first closure");
     // A listed type whose rule is changed: the cube's corner pieces (rule V1) are then not
     // listed.
     let mut cert = volume_certificate("cube-B2");

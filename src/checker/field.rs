@@ -20,15 +20,45 @@ pub(super) fn trim(mut p: P) -> P {
     p
 }
 
+/// The words of a rational (numerator and denominator), for the work meter.
+fn words(x: &Q) -> u128 {
+    u128::from((x.numer().bits() + x.denom().bits()) / 64 + 1)
+}
+
+/// The largest words of a polynomial's coefficients.
+fn widest(p: &[Q]) -> u128 {
+    p.iter().map(words).max().unwrap_or(1)
+}
+
+/// Meters arithmetic in Q and Q[x]/(p) (Sturm sequences, remainders, gcds, Horner): every
+/// operation on numbers read from, or grown out of, a certificate is charged to the check's work
+/// budget (`super::charge`); once it is spent the loops below stop early and the step is refused
+/// for cost, whatever they return.
+fn charge(work: u128) -> bool {
+    super::charge("arithmetic over Q(ρ)", work)
+}
+
 pub(super) fn eval(p: &[Q], x: &Q) -> Q {
-    p.iter().rev().fold(Q::zero(), |acc, c| acc * x + c)
+    let mut acc = Q::zero();
+    for c in p.iter().rev() {
+        if !charge(3 * words(&acc) * words(x)) {
+            break;
+        }
+        acc = acc * x + c;
+    }
+    acc
 }
 
 pub(super) fn rem(a: &[Q], d: &[Q]) -> P {
     let mut r = trim(a.to_vec());
     let lead = d.last().expect("divisor is nonzero");
+    let wd = widest(d);
     while r.len() >= d.len() {
         let q = r.last().expect("nonzero") / lead;
+        if !charge(3 * d.len() as u128 * words(&q) * wd + widest(&r)) {
+            r.truncate(d.len() - 1);
+            return trim(r);
+        }
         let shift = r.len() - d.len();
         for (i, c) in d.iter().enumerate() {
             r[shift + i] -= &q * c;
@@ -39,6 +69,9 @@ pub(super) fn rem(a: &[Q], d: &[Q]) -> P {
 }
 
 pub(super) fn mul(a: &[Q], b: &[Q]) -> P {
+    if !charge(3 * (a.len() * b.len()) as u128 * widest(a) * widest(b)) {
+        return P::new();
+    }
     let mut c = vec![Q::zero(); (a.len() + b.len()).saturating_sub(1)];
     for (i, x) in a.iter().enumerate() {
         for (j, y) in b.iter().enumerate() {

@@ -91,6 +91,8 @@ thread_local! {
     /// Set when the current step was refused for cost: kept out of the messages, so that no
     /// text read from a certificate can make a rejection look like a refusal or the reverse.
     static OVER: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    /// The first refusal for cost of the current step.
+    static REFUSAL: std::cell::RefCell<String> = const { std::cell::RefCell::new(String::new()) };
     /// The word operations charged to the check running on this thread.
     static SPENT: std::cell::Cell<u128> = const { std::cell::Cell::new(0) };
 }
@@ -103,11 +105,21 @@ pub(super) fn budget() -> Budget {
 /// Refuses the current step for cost: `what` needs about `figure` (of the unit the flag
 /// counts), above `limit`. Returns the message (E0501, the figure, the flag).
 pub(super) fn over(what: &str, figure: u128, limit: u128, flag: &str) -> String {
-    OVER.with(|o| o.set(true));
-    format!(
+    let m = format!(
         "E0501 refused for cost, not a verdict: {what} needs about {figure}, above the budget of \
          {limit} (raise it with `lacuna check --{flag} N`)"
-    )
+    );
+    if !OVER.with(|o| o.replace(true)) {
+        REFUSAL.with(|r| *r.borrow_mut() = m.clone());
+    }
+    m
+}
+
+/// Charges `work` word operations where a phase cannot stop with an error (arithmetic in
+/// Q[x]/(p)): false once the budget is exceeded, and the loop that asked stops early. Whatever
+/// the step then returns, it is refused for cost (the checker reads the mark, not the result).
+pub(super) fn charge(what: &str, work: u128) -> bool {
+    within_work(what, work).is_ok()
 }
 
 /// Charges `work` word operations to the certificate's account (an estimate before a phase, or
@@ -417,11 +429,12 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
             },
         };
         let (outcome, message, verdict) = match result {
-            Ok((m, v)) => (Outcome::Proved, m, Some(v)),
-            Err(m) if OVER.with(|o| o.replace(false)) => {
+            _ if OVER.with(|o| o.replace(false)) => {
                 refused_at = Some(i);
+                let m = REFUSAL.with(|r| std::mem::take(&mut *r.borrow_mut()));
                 (Outcome::Refused, m, None)
             }
+            Ok((m, v)) => (Outcome::Proved, m, Some(v)),
             Err(m) => (Outcome::Failed, m, None),
         };
         steps.push(StepReport {

@@ -179,6 +179,17 @@ pub fn volume_automaton(
         embeds.push(bs);
         frames.push(fr);
     }
+    // The unknowns are known now, from the state dimensions alone: a system above the limit is
+    // refused before its constraints are built (they cost seconds on a prism of 64 sides).
+    let state_dim = |v: usize| g.automaton.states[volume_state[v]].dim;
+    let sub_unknowns: usize = set
+        .types
+        .iter()
+        .enumerate()
+        .flat_map(|(v, ty)| ty.children.iter().map(move |&w| (v, w)))
+        .map(|(v, w)| state_dim(v).saturating_mul(state_dim(w)))
+        .fold(0, usize::saturating_add);
+    limits.check_unknowns(g.automaton.unknown_count().saturating_add(sub_unknowns))?;
     // Sub-volume operators and their constraints.
     for (v, ty) in set.types.iter().enumerate() {
         let ops: Vec<usize> = ty

@@ -83,6 +83,7 @@ impl VolumeClosure {
             start_idx.push(id);
         }
         while let Some(t) = queue.pop_front() {
+            refuse_before_the_step(&types[t].volume, limits)?;
             let sub = subdivide_volume(&types[t].volume)?;
             let mut children = Vec::with_capacity(sub.subvolumes.len());
             for s in &sub.subvolumes {
@@ -126,6 +127,49 @@ impl VolumeClosure {
             start: start_idx,
         }))
     }
+}
+
+/// Refuses, before the work, a subdivision step whose size its notation already puts past a
+/// limit. The single sub-volume of a delayed volume is bounded by every sub-face of its
+/// surface, so their number (each face's spokes, counted by the face subdivision, linear in its
+/// sub-edges) is the sub-volume's face count: above `--max-boundary` it is refused at once,
+/// instead of after building a surface of thousands of faces (seconds, then the same refusal).
+/// The level-1 sub-edges of the surface (what the step's work is linear in, and its canonical
+/// code quadratic) are held to `--max-boundary · --max-subedges`.
+fn refuse_before_the_step(v: &Volume, limits: &Limits) -> Result<()> {
+    let pieces: usize = v
+        .surface
+        .faces
+        .iter()
+        .flat_map(|f| &f.boundary)
+        .map(|e| if e.delay >= 2 { 1 } else { e.n as usize })
+        .fold(0, usize::saturating_add);
+    let cap = limits
+        .max_boundary
+        .saturating_mul(limits.max_subedges as usize);
+    if pieces > cap {
+        return Err(crate::error::Error::limit(
+            "the sub-edges of a volume's level-1 surface (at most --max-boundary × --max-subedges)",
+            pieces,
+            cap,
+            "--max-boundary",
+        ));
+    }
+    if v.delay >= 2 {
+        let mut faces = 0usize;
+        for f in &v.surface.faces {
+            faces += crate::topology::subdivision::subdivide(f)?.subfaces.len();
+        }
+        if faces > limits.max_boundary {
+            return Err(crate::error::Error::limit(
+                "the faces of the sub-volume of a delayed volume",
+                faces,
+                limits.max_boundary,
+                "--max-boundary",
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The counts of volumes at one level.
