@@ -52,11 +52,17 @@ fn types_never_reached_from_the_claim_are_refused() {
     assert_eq!(c.types.len(), 3, "F0's type and the square's two");
     // The same steps for the claim F0 alone: types 1 and 2 are not reached.
     let forged = union_with_claim_of_first(&["F0", "square-B2"], 1);
-    step_failed_with(&forged, "closure", "not reached from the claim's start faces");
+    step_failed_with(
+        &forged,
+        "closure",
+        "not reached from the claim's start faces",
+    );
     // No verdict about F0 comes out of it: no proved rank, no proved ratio.
     let report = check(&forged);
-    assert!(report.steps.iter().all(|s| s.outcome == Outcome::Failed
-        || s.step != "closure"));
+    assert!(report
+        .steps
+        .iter()
+        .all(|s| s.outcome == Outcome::Failed || s.step != "closure"));
     assert!(report.claims().iter().all(|c| !c.contains("3 face types")));
 }
 
@@ -88,7 +94,9 @@ fn volume_union(names: &[&str], keep: usize) -> Certificate {
     let volumes: Vec<_> = names
         .iter()
         .flat_map(|n| {
-            let (_, v) = lacuna::input::load_volumes(n).expect("loads").expect("volume");
+            let (_, v) = lacuna::input::load_volumes(n)
+                .expect("loads")
+                .expect("volume");
             v.volume_list()
         })
         .collect();
@@ -154,4 +162,146 @@ fn hostile_names_are_printed_escaped() {
     // A backslash is doubled, so an escape cannot be forged by spelling it out.
     assert_eq!(lacuna::checker::escape(r"a\u{a}"), r"a\\u{a}");
     assert_eq!(lacuna::checker::escape("plain – text ρ"), "plain – text ρ");
+}
+
+/// A chain of cycles: a cycle of each length in `lengths`, every arc of weight `w`, the first
+/// type of each cycle feeding the first of the next; contributions 1/2, 1, 3/2 in turn. Every
+/// cycle has radius `w` (its block is `w` times a cyclic permutation) and period its length, so
+/// all are dominant and the period is the lcm of the lengths.
+fn chain_of_cycles(w: u64, lengths: &[usize]) -> (Vec<Vec<(usize, u64)>>, Vec<u64>) {
+    let (mut m, mut halves): (Vec<Vec<(usize, u64)>>, Vec<u64>) = (Vec::new(), Vec::new());
+    let mut previous: Option<usize> = None;
+    for &len in lengths {
+        let first = m.len();
+        if let Some(p) = previous {
+            m[p].push((first, 1));
+        }
+        for i in 0..len {
+            let next = if i + 1 == len { first } else { first + i + 1 };
+            m.push(vec![(next, w)]);
+            halves.push(i as u64 % 3 + 1);
+        }
+        previous = Some(first);
+    }
+    (m, halves)
+}
+
+#[test]
+fn an_honest_certificate_of_a_long_period_checks_within_the_default_budget() {
+    // Cycles of lengths 4, 5, 7 of weight 5 in a chain: ρ = 5 on each, P = lcm(4, 5, 7) = 140,
+    // d = 16 + 1. Before the residues were computed in integers this took 7.5 s in a release
+    // build (the gcds of counts of 5^(140·17) ≈ 2^5500); it now takes 0.1 s there.
+    let (m, h) = chain_of_cycles(5, &[4, 5, 7]);
+    let cert =
+        lacuna::certificate::certificate_for_substitution("cycles", &m, &h, &[(0, 1)]).unwrap();
+    let Some(Step::LimitRatio(r)) = cert.steps.first() else {
+        panic!("a ratio step")
+    };
+    assert_eq!(r.period, 140, "lcm(4, 5, 7)");
+    assert_eq!(r.points.len(), 140);
+    assert_proved("cycles 4, 5, 7", &cert);
+    // A forgery that is right for every residue but the last costs no more than the honest
+    // certificate before it is rejected.
+    let mut forged = cert.clone();
+    if let Some(Step::LimitRatio(r)) = forged.steps.first_mut() {
+        let last = r.points.last_mut().unwrap();
+        last.value = vec!["1/7".into()];
+    }
+    let report = check(&forged);
+    assert!(report.failed(), "{}", report.to_text());
+    assert!(
+        report.to_text().contains("residue 139"),
+        "{}",
+        report.to_text()
+    );
+}
+
+#[test]
+fn a_small_budget_refuses_for_cost_and_never_as_a_verdict() {
+    // The same honest certificate with a budget of 10⁵ word operations: refused (E0501, the
+    // flag named), neither proved nor failed; through the command line, exit 2.
+    let (m, h) = chain_of_cycles(5, &[4, 5, 7]);
+    let cert =
+        lacuna::certificate::certificate_for_substitution("cycles", &m, &h, &[(0, 1)]).unwrap();
+    let budget = lacuna::checker::Budget {
+        work: 100_000,
+        ..Default::default()
+    };
+    let report = lacuna::checker::check_with(&cert, budget);
+    assert!(report.refused() && !report.failed() && !report.all_proved());
+    let text = report.to_text();
+    assert!(text.contains("REFUSED") && text.contains("E0501"), "{text}");
+    assert!(text.contains("--max-work"), "{text}");
+    let dir = std::env::temp_dir().join(format!("lacuna-soundness-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("cycles.json");
+    std::fs::write(&file, cert.to_json()).unwrap();
+    let path = file.to_string_lossy().to_string();
+    let (code, out, _) = lacuna(&["check", &path, "--max-work", "100000"]);
+    assert_eq!(code, 2, "{out}");
+    assert!(out.contains("REFUSED"), "{out}");
+    let (code, out, _) = lacuna(&["check", &path]);
+    assert_eq!(code, 0, "{out}");
+    // P·d = 140·17 = 2380 levels of counts, refused by --max-levels 1000 before any count.
+    let (code, out, _) = lacuna(&["check", &path, "--max-levels", "1000"]);
+    assert_eq!(code, 2, "{out}");
+    assert!(
+        out.contains("2380") && out.contains("--max-levels"),
+        "{out}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn oversized_volume_inputs_are_refused_before_the_work() {
+    // The two inputs of the issue: the truncated tetrahedron with B64 edges under a delay of 64
+    // (its delayed sub-volume has a face for every spoke of every face: 4·3·64 + 4·6·64 edges'
+    // worth, far above --max-boundary 256), and a 64-prism of B64 edges under V1: its level-1
+    // surface has (2·64 + 4·64)·64 = 24 576 sub-edges, above --max-boundary × --max-subedges =
+    // 256·64 (and its system about 1.25·10⁸ unknowns, above --max-unknowns, were it built).
+    // Both: E0501, exit 2, the flag named.
+    let (code, _, err) = lacuna(&[
+        "verify",
+        "truncated-tetrahedron B64 | B64 B64 B64 | A1 | B64 B64 | V2 | 64",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("E0501") && err.contains("--max-boundary"),
+        "{err}"
+    );
+    let (code, _, err) = lacuna(&["verify", "prism-64 B64 | B2 B2 B2 | A1 | B2 B2 | V1"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("E0501") && err.contains("24576"), "{err}");
+}
+
+/// A library face or a random short face of B2/C2/B3 edges under A1 or A2.
+fn family() -> impl Strategy<Value = String> {
+    let edge = prop::sample::select(vec!["B2", "C2", "B3"]);
+    let algorithm = prop::sample::select(vec!["A1", "A2"]);
+    (prop::collection::vec(edge, 3..=5), algorithm)
+        .prop_map(|(b, a)| format!("{} | B2 B2 B2 | {a}", b.join(" ")))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 12, ..ProptestConfig::default() })]
+
+    /// An honest closure with another closed family appended (types renumbered after it, the
+    /// system of the union): the claim still names only the first family, so the checker must
+    /// reject it, whatever the families are.
+    #[test]
+    fn appended_closed_families_are_rejected(a in family(), b in family()) {
+        let first = closed(&[&a]);
+        let union = closed(&[&a, &b]);
+        prop_assume!(union.types.len() > first.types.len());
+        let mut cert = certificate_for("appended", &union, GenOptions::default()).unwrap();
+        if let Claim::Faces(f) = &mut cert.claim {
+            f.faces.truncate(1);
+        }
+        let report = check(&cert);
+        prop_assert!(!report.all_proved(), "{}", report.to_text());
+        let s = report.step("closure").unwrap();
+        prop_assert_eq!(s.outcome, Outcome::Failed);
+        prop_assert!(s.message.contains("canonical") || s.message.contains("breadth-first"),
+            "{}", report.to_text());
+    }
 }

@@ -81,7 +81,10 @@ impl Sparse {
                     ));
                 }
                 // A product of rationals costs a few word operations and gcds: charged as 16.
-                super::within_work("the products of known factors", 16 * b.data[*k].len() as u128)?;
+                super::within_work(
+                    "the products of known factors",
+                    16 * b.data[*k].len() as u128,
+                )?;
                 for (c, x) in &b.data[*k] {
                     *acc.entry(*c).or_insert_with(Q::zero) += a * x;
                 }

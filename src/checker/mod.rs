@@ -380,9 +380,7 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
             steps.push(StepReport {
                 step: name.into(),
                 outcome: Outcome::Refused,
-                message: format!(
-                    "step {i} ({name}): not checked, step {j} was refused for cost"
-                ),
+                message: format!("step {i} ({name}): not checked, step {j} was refused for cost"),
                 verdict: None,
             });
             continue;

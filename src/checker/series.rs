@@ -107,11 +107,7 @@ impl Powers {
             .fold(BigInt::one(), |acc, c| acc.lcm(c.denom()));
         let vecs = rational
             .iter()
-            .map(|v| {
-                v.iter()
-                    .map(|c| c.numer() * (&den / c.denom()))
-                    .collect()
-            })
+            .map(|v| v.iter().map(|c| c.numer() * (&den / c.denom())).collect())
             .collect();
         Powers { vecs }
     }
@@ -122,7 +118,10 @@ impl Powers {
     /// whatever the certificate claims.
     pub(super) fn spend(&self, a: u64, b: u64) -> Result<(), String> {
         let words = |x: u64| u128::from(x / 64 + 1);
-        within_work("the residues of the generating functions", words(a) * words(b))
+        within_work(
+            "the residues of the generating functions",
+            words(a) * words(b),
+        )
     }
 
     /// `D·f^(j)(y₀)/(j!)·j!`, i.e. `Σ_(i ≥ j) f_i·i!/(i − j)!·vecs[i − j]`: the `j`-th
@@ -156,8 +155,16 @@ impl Powers {
 /// and ratios with elements of the same scale are used).
 fn element(v: Vec<BigInt>) -> P {
     let content = v.iter().fold(BigInt::zero(), |g, c| g.gcd(c));
-    let content = if content.is_zero() { BigInt::one() } else { content };
-    trim(v.into_iter().map(|c| Q::from_integer(c / &content)).collect())
+    let content = if content.is_zero() {
+        BigInt::one()
+    } else {
+        content
+    };
+    trim(
+        v.into_iter()
+            .map(|c| Q::from_integer(c / &content))
+            .collect(),
+    )
 }
 
 /// The multiplicity `j < cap` of `y₀` as a root of `f` and `D·f^(j)(y₀)` (up to a positive
