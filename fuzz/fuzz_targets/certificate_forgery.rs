@@ -4,9 +4,10 @@
 //! The input is a mutation script applied to a valid certificate (faces, automata and
 //! substitutions of the library): numbers near 2^64, rationals and decimals respelled, array
 //! elements repeated or dropped (repeated pairs, missing types, missing rows), steps reordered,
-//! duplicated or deleted, and the claim of another certificate. Whenever the checker accepts
-//! the result, the target recomputes the certificate of its claim with the producer
-//! (`certify::recertify`) and panics if what `check` prints differs.
+//! duplicated or deleted, the claim of another certificate, and a claim cut back to a prefix
+//! of its start faces (so that the closure lists families the claim never reaches). Whenever
+//! the checker accepts the result, the target recomputes the certificate of its claim with the
+//! producer (`certify::recertify`) and panics if what `check` prints differs.
 #![no_main]
 use lacuna::certificate::Certificate;
 use lacuna::checker::{check, check_json};
@@ -26,6 +27,16 @@ fn seeds() -> &'static [Value] {
             let opts = lacuna::constraint::GenOptions::default();
             certs.push(lacuna::certificate::certificate_for(name, &ts, opts).expect("certifies"));
         }
+        // F0 and square-B2 closed together: honest for both starts; cutting its claim back to F0
+        // (the mutation below, or another seed's claim) appends a closed family F0 never
+        // reaches, the forgery of issue #28.
+        let union: Vec<_> = ["F0", "square-B2"]
+            .iter()
+            .flat_map(|n| lacuna::input::load_input(n).expect("a library face").faces())
+            .collect();
+        let ts = lacuna::topology::close_or_error(&union, &limits).expect("closes");
+        let opts = lacuna::constraint::GenOptions::default();
+        certs.push(lacuna::certificate::certificate_for("union", &ts, opts).expect("certifies"));
         for name in ["spec-edge", "spec-edge-incidence", "chaikin-known"] {
             if let Ok(lacuna::input::Loaded::Automaton { automaton, .. }) = lacuna::input::load_any(name) {
                 certs.push(
@@ -105,7 +116,17 @@ fn mutate(json: &mut Value, ops: &mut impl Iterator<Item = u8>) {
     let (mut leaves, mut arrays) = (Vec::new(), Vec::new());
     nodes(json, &mut Vec::new(), &mut leaves, &mut arrays);
     let pick = |n: usize, r: usize| (r * 251 + r / 7) % n.max(1);
-    match next() % 9 {
+    match next() % 10 {
+        9 => {
+            // The claim's start faces (or volumes) cut back to a prefix: the steps still list
+            // the closure of all of them.
+            let keep = next();
+            for k in ["faces", "volumes"] {
+                if let Some(Value::Array(a)) = json["claim"].get_mut(k).and_then(|c| c.get_mut(k)) {
+                    a.truncate(keep % a.len().max(1));
+                }
+            }
+        }
         0 if !leaves.is_empty() => {
             let (p, k) = (pick(leaves.len(), next() * 256 + next()), next());
             let leaf = at(json, &leaves[p]);
