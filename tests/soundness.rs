@@ -305,3 +305,25 @@ proptest! {
             "{}", report.to_text());
     }
 }
+
+#[test]
+fn an_explored_family_too_costly_to_measure_is_refused_before_the_work() {
+    // Boundaries of length ≤ 2 over the default edges B2, C2: 2 + 3 = 5 necklaces (B2, C2,
+    // B2 B2, B2 C2, C2 C2) times 2³ = 8 choices of E: 40 faces; at level 6 the holes property
+    // would measure about 40·4⁶ = 163 840 cells (a minute of work): refused at once, naming the
+    // flag; level 2 (40·16 = 640) is within the default.
+    let (code, _, err) = lacuna(&[
+        "explore",
+        "--max-length",
+        "2",
+        "--properties",
+        "holes",
+        "--holes-level",
+        "6",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("E0501") && err.contains("163840") && err.contains("--max-holes-cells"),
+        "{err}"
+    );
+}

@@ -816,6 +816,14 @@ pub fn explore(
     Ok(s)
 }
 
+impl ExploreSpec {
+    /// The number of faces of the family (boundaries × E); call after [`ExploreSpec::check`],
+    /// which bounds the enumeration.
+    pub fn size(&self) -> u64 {
+        family_size(self)
+    }
+}
+
 /// The number of faces of the family (boundaries × E), for the progress bar: the necklaces are
 /// counted by enumerating them (at most [`MAX_FAMILY`] cheap steps, as checked before).
 fn family_size(spec: &ExploreSpec) -> u64 {

@@ -61,11 +61,13 @@ pub enum Outcome {
 /// the sizes it has already read (matrix dimension, degree, period, number of residues, boundary
 /// lengths, pivots) and refuses the step for cost when an estimate exceeds its budget; phases
 /// whose cost cannot be foreseen (elimination with fill-in, products of operators) count their
-/// work as they go and stop at the budget. At the defaults every certificate of at most 100 KB is
-/// answered within seconds; `lacuna check --max-work`, `--max-levels`, `--max-sides` raise them.
+/// work as they go and stop at the budget. The default work budget is about one to two seconds
+/// of a release build (`docs/CERTIFICATES.md` gives what was measured); `lacuna check
+/// --max-work`, `--max-levels`, `--max-sides` raise the budgets.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Budget {
-    /// The most (estimated) big-integer word operations of one phase (`--max-work`).
+    /// The most big-integer word operations of the whole check, estimated or metered
+    /// (`--max-work`).
     pub work: u128,
     /// The most levels of counts: `P·d` for a limit ratio, the claimed levels of a volume
     /// closure (`--max-levels`).

@@ -87,7 +87,8 @@ pub(crate) enum Command {
     /// Verify a face, an assembly file or a library entry (default: the built-in F0).
     Verify(Limited<VerifyArgs>),
     /// Run only the independent checker on a certificate: prints its claim, then every step; exit
-    /// 0 when every step the claim needs is proved, 1 when one fails, 3 when steps are missing.
+    /// 0 when every step the claim needs is proved, 1 when one fails, 2 when one is refused for
+    /// cost (a budget, not a verdict), 3 when steps are missing.
     Check(CheckArgs),
     /// The closure: every face type with its sub-faces and contribution.
     Closure(Limited<ClosureArgs>),
@@ -207,6 +208,16 @@ pub(crate) struct ExploreArgs {
     /// The last level at which the `holes` property compares observed and exact holes (1 to 6).
     #[arg(long, default_value_t = 2)]
     pub(crate) holes_level: u32,
+    /// Maximum estimated work of the `holes` property, in cells: the faces of the family times
+    /// 4^--holes-level (the cells of a four-spoke face at that level), checked before any face
+    /// is measured.
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 8192,
+        help_heading = "Limits"
+    )]
+    pub(crate) max_holes_cells: u64,
     /// JSON lines: one per boundary, then a summary line.
     #[arg(long)]
     pub(crate) json: bool,
@@ -243,7 +254,7 @@ pub(crate) struct CheckArgs {
     /// Print JSON.
     #[arg(long)]
     pub(crate) json: bool,
-    /// Maximum big-integer word operations of one phase of the check, estimated before it or
+    /// Maximum big-integer word operations of the whole check, estimated before each phase or
     /// counted as it goes (a step above it is refused for cost, exit 2, not rejected).
     #[arg(long, value_name = "N", default_value_t = lacuna::checker::Budget::default().work, help_heading = "Limits")]
     pub(crate) max_work: u128,

@@ -108,6 +108,7 @@ pub(super) fn run(args: ExploreArgs, limits: &Limits) -> Result<ExitCode, Error>
         shard,
         shrink_budget,
         holes_level,
+        max_holes_cells,
         threads,
         json,
     } = args;
@@ -142,6 +143,21 @@ pub(super) fn run(args: ExploreArgs, limits: &Limits) -> Result<ExitCode, Error>
             6,
             "--holes-level",
         ));
+    }
+    // The holes property measures every face on a raster refined until its smallest hole is
+    // resolved (up to 4096² pixels a level): seconds a face at level 6. Its work is estimated
+    // from the family's size before anything is measured.
+    if spec.properties.contains(&lacuna::analysis::Property::Holes) {
+        spec.check()?;
+        let cells = spec.size().saturating_mul(4u64.saturating_pow(holes_level));
+        if cells > max_holes_cells {
+            return Err(Error::limit(
+                "the estimated cells of the holes property (faces × 4^level)",
+                cells,
+                max_holes_cells,
+                "--max-holes-cells",
+            ));
+        }
     }
     // The certificate layer and the geometry sit above the analysis: their checks are supplied
     // here.
