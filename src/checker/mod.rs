@@ -61,7 +61,7 @@ pub enum Outcome {
 /// the sizes it has already read (matrix dimension, degree, period, number of residues, boundary
 /// lengths, pivots) and refuses the step for cost when an estimate exceeds its budget; phases
 /// whose cost cannot be foreseen (elimination with fill-in, products of operators) count their
-/// work as they go and stop at the budget. The default work budget is about one to two seconds
+/// work as they go and stop at the budget. The default work budget is two to four seconds
 /// of a release build (`docs/CERTIFICATES.md` gives what was measured); `lacuna check
 /// --max-work`, `--max-levels`, `--max-sides` raise the budgets.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -80,7 +80,7 @@ pub struct Budget {
 impl Default for Budget {
     fn default() -> Self {
         Budget {
-            work: 2_000_000_000,
+            work: 10_000_000_000,
             levels: 20_000,
             sides: 400_000,
         }
