@@ -327,3 +327,34 @@ fn an_explored_family_too_costly_to_measure_is_refused_before_the_work() {
         "{err}"
     );
 }
+
+#[test]
+fn a_degenerate_face_is_not_drawn_without_a_word() {
+    // The digon B2 B2 under A1 (issue #36): at the default point of its solution space the two
+    // spoke curves of level 1 coincide, a lacuna of zero width. Every output of `render`
+    // checks the level it draws as the solid does: E1041, exit 1, nothing written.
+    let dir = std::env::temp_dir().join(format!("lacuna-digon-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for flag in ["--svg", "--png", "--json-out"] {
+        let out = dir.join("digon.out");
+        let path = out.to_string_lossy().to_string();
+        let (code, _, err) = lacuna(&[
+            "render",
+            "B2 B2 | B2 B2 B2 | A1",
+            "--level",
+            "1",
+            flag,
+            &path,
+        ]);
+        assert_eq!(code, 1, "{flag}: {err}");
+        assert!(err.contains("E1041"), "{flag}: {err}");
+        assert!(!out.exists(), "{flag}: a picture was written");
+    }
+    // A face that embeds is drawn as before.
+    let out = dir.join("f0.svg");
+    let path = out.to_string_lossy().to_string();
+    let (code, _, err) = lacuna(&["render", "F0", "--level", "2", "--svg", &path]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.exists());
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -3,6 +3,10 @@
 use super::*;
 
 /// Runs `lacuna render`.
+/// The most cells of a face's level that `render` checks for overlaps before drawing it (the
+/// constrained triangulation of their outline takes about a second per million cells).
+const CHECKED_CELLS: u64 = 2_000_000;
+
 pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> {
     let RenderArgs {
         geo,
@@ -125,6 +129,19 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         let text = inst.default_template(&lacuna::geometry::InstantiateOptions::default());
         outputs.write(p, |w| w.write_all(text.as_bytes()))?;
         wrote(&outputs, p);
+    }
+    // Every level drawn is checked as the solid is (E1041 with the place, nothing written): a
+    // picture of overlapping or self-touching cells would show a structure the topology does not
+    // have. The solid itself is checked below when a mesh is written.
+    let drawn = svg.is_some() || json_out.is_some() || png.is_some() || density.is_some();
+    if drawn && !mesh.any() {
+        match lacuna::measure::check_cells(&inst, level, CHECKED_CELLS) {
+            Ok(()) => lacuna::mesh::embedded(&inst, level, segs, solid_size).map_err(mesh_error)?,
+            Err(_) => outputs.say(&format!(
+                "note: level {level} has more than {CHECKED_CELLS} cells: drawn without the \
+                 check that no two cells overlap\n"
+            )),
+        }
     }
     let picture = lacuna::export::PictureOptions {
         width: size as u32,

@@ -51,7 +51,7 @@ mod below {
     pub(crate) use crate::topology::component::{components_by_induction, start_components};
 }
 pub use printability::{printability, Printability};
-pub use solid::{build, Part, Solid};
+pub use solid::{build, embedded, Part, Solid};
 pub use surface::{
     automaton_mesh, automaton_surface, exact_automaton_surface, thicken, AutomatonSolid, Surface,
     EXACT_LEAVES,

@@ -208,6 +208,17 @@ fn material(o: &Outline, level: u32) -> Result<Vec<Vec<[u32; 3]>>, MeshError> {
     Ok(parts)
 }
 
+/// Checks that the level-`level` cells of a face embed, as the solid would (the outline and
+/// the winding numbers of its constrained triangulation, no mesh built): no two cells overlap,
+/// and the boundary of their union neither touches nor crosses itself. Fails with E1041 and the
+/// place. `render` runs it before drawing a face's level in any format, so that a degenerate
+/// point of the solution space (two spoke curves on top of each other, a lacuna of zero width)
+/// is never drawn as a picture without a word.
+pub fn embedded(inst: &Instance, level: u32, segments: usize, size: Size) -> Result<(), MeshError> {
+    let o = outline(inst, level, segments, size)?;
+    material(&o, level).map(|_| ())
+}
+
 /// Builds the solid of the level-`level` cells and checks it (see the module documentation and
 /// `crate::mesh::check`). Fails with E1041 when cells overlap, E1040 when the mesh is not a
 /// closed oriented manifold with the exact topology.
