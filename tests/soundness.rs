@@ -330,17 +330,24 @@ fn an_explored_family_too_costly_to_measure_is_refused_before_the_work() {
 
 #[test]
 fn a_degenerate_face_is_not_drawn_without_a_word() {
-    // The digon B2 B2 under A1 (issue #36): at the default point of its solution space the two
-    // spoke curves of level 1 coincide, a lacuna of zero width. Every output of `render`
-    // checks the level it draws as the solid does: E1041, exit 1, nothing written.
+    // `B2 B2 | B2 C2 B2 | A1` (issue #36): a two-edge face with two spokes whose lacuna sides
+    // are Cantor edges C2, segments between the same two points — a lacuna of zero width on
+    // every solution. `verify` states it as a forced collapse; every output of `render` checks
+    // the level it draws as the solid does: E1041, exit 1, nothing written.
+    let (code, out, _) = lacuna(&["verify", "B2 B2 | B2 C2 B2 | A1"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(
+        out.contains("FORCED COLLAPSE: T0: its lacuna has two sides"),
+        "{out}"
+    );
     let dir = std::env::temp_dir().join(format!("lacuna-digon-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     for flag in ["--svg", "--png", "--json-out"] {
-        let out = dir.join("digon.out");
+        let out = dir.join("flat.out");
         let path = out.to_string_lossy().to_string();
         let (code, _, err) = lacuna(&[
             "render",
-            "B2 B2 | B2 B2 B2 | A1",
+            "B2 B2 | B2 C2 B2 | A1",
             "--level",
             "1",
             flag,
@@ -350,11 +357,60 @@ fn a_degenerate_face_is_not_drawn_without_a_word() {
         assert!(err.contains("E1041"), "{flag}: {err}");
         assert!(!out.exists(), "{flag}: a picture was written");
     }
-    // A face that embeds is drawn as before.
-    let out = dir.join("f0.svg");
-    let path = out.to_string_lossy().to_string();
-    let (code, _, err) = lacuna(&["render", "F0", "--level", "2", "--svg", &path]);
-    assert_eq!(code, 0, "{err}");
-    assert!(out.exists());
+    // The digon of Bézier sides is not forced flat: its default placement bulges the two lacuna
+    // sides into a lens, and every level to 3 is drawn, checked, and measured as verified.
+    for level in ["1", "2", "3"] {
+        let out = dir.join(format!("digon-{level}.svg"));
+        let path = out.to_string_lossy().to_string();
+        let (code, _, err) = lacuna(&[
+            "render",
+            "B2 B2 | B2 B2 B2 | A1",
+            "--level",
+            level,
+            "--svg",
+            &path,
+        ]);
+        assert_eq!(code, 0, "level {level}: {err}");
+        assert!(out.exists());
+    }
+    let (code, out, err) = lacuna(&["measure", "B2 B2 | B2 B2 B2 | A1", "--level", "2"]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("verdict: VERIFIED"), "{out}");
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Every Cantor edge `{"kind": "C", "n": …}` of a JSON value set to `n`.
+fn cantor_edges_to(v: &mut serde_json::Value, n: u64) {
+    match v {
+        serde_json::Value::Object(o) => {
+            if o.get("kind").and_then(|k| k.as_str()) == Some("C") && o.contains_key("n") {
+                o.insert("n".into(), n.into());
+            }
+            o.values_mut().for_each(|x| cantor_edges_to(x, n));
+        }
+        serde_json::Value::Array(a) => a.iter_mut().for_each(|x| cantor_edges_to(x, n)),
+        _ => {}
+    }
+}
+
+#[test]
+fn a_small_volume_certificate_of_long_edges_is_refused_before_its_surface_is_built() {
+    // cube-C2's certificate with every Cantor edge C20000: the cube's level-1 surface alone would
+    // have 6 faces · 4 edges · 4·20 000 = 1 920 000 sides (a 4.7 KB certificate of this kind took
+    // 23 s and 1.5 GB before it was rejected). Refused for cost by --max-sides (400 000) before
+    // anything is subdivided.
+    let cert = volume_certificate("cube-C2");
+    let mut json: serde_json::Value = serde_json::from_str(&cert.to_json()).unwrap();
+    cantor_edges_to(&mut json, 20_000);
+    let text = json.to_string();
+    assert!(text.len() < 100_000);
+    let start = std::time::Instant::now();
+    let report = lacuna::checker::check_json(&text);
+    assert!(report.refused(), "{}", report.to_text());
+    assert!(
+        report.to_text().contains("--max-sides"),
+        "{}",
+        report.to_text()
+    );
+    assert!(start.elapsed() < std::time::Duration::from_secs(2));
 }

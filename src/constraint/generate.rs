@@ -268,8 +268,9 @@ pub fn automaton_of(ts: &TypeSet, opts: GenOptions) -> Generated {
 
 /// An unknown as an affine function of the free parameters (see `Parametrization::expression`).
 /// The degeneracy check (THEORY §6): for every face type, the corner points of its level-1
-/// complex that are combinatorially distinct must not be forced to coincide by the constraints.
-/// Returns one message per forced collapse.
+/// complex that are combinatorially distinct must not be forced to coincide by the constraints,
+/// and no cell may be forced to zero area by two Cantor sides on one segment
+/// ([`TypeSet::flat_cells`]). Returns one message per forced collapse.
 pub fn degeneracies(
     ts: &TypeSet,
     g: &Generated,
@@ -279,13 +280,16 @@ pub fn degeneracies(
     let param = space.parametrize();
     // Two points coincide on every solution exactly when each coordinate has the same affine
     // expression in the free parameters.
-    coinciding(
+    let mut out = coinciding(
         ts,
         g,
         offsets,
         |x| param.expression(x),
         "are forced to coincide",
-    )
+    );
+    // Cells whose two sides are segments between the same two points (issue #36).
+    out.extend(ts.flat_cells());
+    out
 }
 
 /// The same check at one point of the solution space (THEORY §13, a frame of a morph): with the

@@ -54,6 +54,11 @@ pub fn control_points(face: &Face, corners: &[Point], q: usize) -> Vec<Point> {
 /// the middle of the edge; less towards its ends).
 pub const DIGON_BULGE: f64 = 0.5;
 
+/// How far the inner points of the two sides of a two-sided lacuna are pushed apart, relative to
+/// the chord: less than a digon face's bulge, so that the lens's tips, where the spokes meet it,
+/// are not so sharp that the cells around them fold a few levels down.
+pub const LENS_BULGE: f64 = 0.25;
+
 /// The corners of a regular n-gon of circumradius 1 centred at the origin, edge 0 at the bottom.
 /// For n = 2 (a digon, see [`control_points`]) the chord is raised by a quarter so that the origin
 /// lies inside the face once its Bézier edge bulges downwards.
@@ -153,6 +158,10 @@ pub(crate) fn template(
         let wface = &types.types[w].face;
         let mut pts = Vec::new();
         for (l, o) in sf.origins.iter().enumerate() {
+            // A lacuna of two sides (two spokes) would be a slit between two straight sides on
+            // one chord: its sides bulge away from each other, like a digon's edges, so that the
+            // fitted point of the solution space has a lacuna of positive area (issue #36).
+            let lens = s == 2 && matches!(o, Origin::Lacuna { .. });
             let (a, b) = match *o {
                 Origin::Piece { edge, piece } => {
                     let (s0, s1) = piece_range(&face.boundary[edge], piece, g);
@@ -179,7 +188,16 @@ pub(crate) fn template(
             };
             let d = dim_of(&wface.boundary[l], q);
             for c in 0..d - 1 {
-                pts.push(lerp(a, b, c as f64 / (d - 1) as f64));
+                let t = c as f64 / (d - 1) as f64;
+                let mut p = lerp(a, b, t);
+                if lens && c > 0 {
+                    // The sub-face lies on the left of its lacuna side a → b, the lacuna on the
+                    // right: the side's inner points move left, into the sub-face.
+                    let h = LENS_BULGE * 4.0 * t * (1.0 - t);
+                    p[0] -= h * (b[1] - a[1]);
+                    p[1] += h * (b[0] - a[0]);
+                }
+                pts.push(p);
             }
         }
         targets.push(pts);

@@ -66,6 +66,38 @@ pub struct TypeSet {
     pub bound: Option<Bound>,
 }
 
+impl TypeSet {
+    /// The cells forced to zero area by the combinatorics alone: a Cantor edge `Cn` (delayed or
+    /// not) has two control points, and every control point of its pieces is a barycentric
+    /// combination of them, so its attractor lies on the segment between its ends. A cycle of
+    /// two Cantor edges between the same two points therefore encloses no area, whatever the
+    /// solution: a face type of two Cantor edges, and the lacuna of a face type with two spokes
+    /// when `El` is a Cantor edge (its two sides join the inner ends of the two spokes). Each is a
+    /// forced collapse (THEORY §6), with its witness; a two-sided cell of Bézier edges is not
+    /// forced flat (its edges may bulge apart) and is not listed.
+    pub fn flat_cells(&self) -> Vec<String> {
+        use crate::topology::EdgeKind;
+        let mut out = Vec::new();
+        for (t, ty) in self.types.iter().enumerate() {
+            let f = &ty.face;
+            if f.boundary.len() == 2 && f.boundary.iter().all(|e| e.kind == EdgeKind::C) {
+                out.push(format!(
+                    "T{t}: its two edges are Cantor edges between the same two corners: the face \
+                     has area 0"
+                ));
+            }
+            if f.delay == 1 && ty.subdivision.spokes.len() == 2 && f.params.el.kind == EdgeKind::C {
+                out.push(format!(
+                    "T{t}: its lacuna has two sides, both Cantor edges ({}) between the inner \
+                     ends of its two spokes: the lacuna has area 0",
+                    f.params.el
+                ));
+            }
+        }
+        out
+    }
+}
+
 /// A closure that did not close within the limits: the chain of types from a start face to the
 /// type that broke a limit.
 #[derive(Clone, Debug, Serialize)]
