@@ -551,6 +551,17 @@ fn pictures_for_the_docs() {
         lacuna::export::write_png_picture(&i, level, &opts, &mut png).unwrap();
         std::fs::write(dir.join(format!("{name}-level{level}.png")), png).unwrap();
     }
+    // The digon of Bézier edges under A1 (issue #36): its two-sided lacuna is a lens.
+    for level in [1, 3] {
+        let i = inst("B2 B2 | B2 B2 B2 | A1");
+        let opts = lacuna::export::PictureOptions {
+            width: 480,
+            ..Default::default()
+        };
+        let mut png = Vec::new();
+        lacuna::export::write_png_picture(&i, level, &opts, &mut png).unwrap();
+        std::fs::write(dir.join(format!("digon-B2-A1-level{level}.png")), png).unwrap();
+    }
     let i = inst("F0");
     let map = lacuna::measure::density_map(&i, 4, 64, 4);
     let pic = lacuna::export::DensityPicture {
