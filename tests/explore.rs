@@ -302,7 +302,11 @@ fn two_edge_faces_measure_their_holes_or_are_refused_with_a_reason() {
         ]);
         assert_eq!(code, 0, "{algorithm}: {lines:?}");
         let faces: Vec<&Value> = lines.iter().filter(|l| l.get("face").is_some()).collect();
-        assert_eq!(faces.len(), 72, "{algorithm}: (2 + 3 + 4) boundaries × 2³ E");
+        assert_eq!(
+            faces.len(),
+            72,
+            "{algorithm}: (2 + 3 + 4) boundaries × 2³ E"
+        );
         let outcome = |l: &Value| l["properties"]["holes"].as_str().unwrap_or("").to_string();
         for l in &faces {
             let o = outcome(l);
