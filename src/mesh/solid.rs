@@ -143,7 +143,9 @@ fn material(o: &Outline, level: u32) -> Result<Vec<Vec<[u32; 3]>>, MeshError> {
     // Winding numbers from the outer face.
     let directed: HashSet<(u32, u32)> = o.segments.iter().map(|s| (s[0], s[1])).collect();
     let faces = cdt.num_all_faces();
-    let mut adj: Vec<Vec<(usize, i32)>> = vec![Vec::new(); faces];
+    // Per face: the face across each edge, the winding step, and the edge's midpoint (the place
+    // named when the windings disagree).
+    let mut adj: Vec<Vec<(usize, i32, [f64; 2])>> = vec![Vec::new(); faces];
     for e in cdt.directed_edges() {
         let (a, b) = (e.from().fix().index() as u32, e.to().fix().index() as u32);
         let (f, g) = (e.face().fix().index(), e.rev().face().fix().index());
@@ -155,7 +157,8 @@ fn material(o: &Outline, level: u32) -> Result<Vec<Vec<[u32; 3]>>, MeshError> {
         } else {
             0
         };
-        adj[g].push((f, step));
+        let (p, q) = (e.from().position(), e.to().position());
+        adj[g].push((f, step, [(p.x + q.x) / 2.0, (p.y + q.y) / 2.0]));
     }
     let outer = cdt.outer_face().fix().index();
     let mut winding: Vec<Option<i32>> = vec![None; faces];
@@ -163,14 +166,18 @@ fn material(o: &Outline, level: u32) -> Result<Vec<Vec<[u32; 3]>>, MeshError> {
     let mut queue = VecDeque::from([outer]);
     while let Some(g) = queue.pop_front() {
         let w = winding[g].expect("set when queued");
-        for &(f, step) in &adj[g] {
+        for &(f, step, at) in &adj[g] {
             match winding[f] {
                 None => {
                     winding[f] = Some(w + step);
                     queue.push_back(f);
                 }
                 Some(x) if x != w + step => {
-                    return Err(overlap("the boundary is not a set of closed curves".into()));
+                    return Err(overlap(format!(
+                        "the boundary is not a set of closed curves near ({:.4}, {:.4}) mm (two \
+                         boundary segments on top of each other, or a cell of zero area)",
+                        at[0], at[1]
+                    )));
                 }
                 Some(_) => {}
             }
