@@ -157,3 +157,20 @@ def test_an_output_never_overwrites_the_input(tmp_path):
     assert e.value.code == "E0504" and src.read_text() == lacuna.library_text("F0")
     with pytest.raises(UsageError):
         lacuna.load("F0").render(1, svg=tmp_path / "x", png=tmp_path / "x")
+
+
+@pytest.mark.parametrize("call", [
+    lambda f: f.counts(-1),
+    lambda f: f.counts(2**64),
+    lambda f: f.counts("three"),
+    lambda f: f.ratio(digits=-5),
+    lambda f: f.verify(levels=-1),
+])
+def test_a_negative_or_huge_number_is_a_lacuna_error_not_an_overflow(call):
+    # Issue #33: counts(-1) raised Python's OverflowError from the conversion to an unsigned
+    # integer; it is bad input, so a LacunaError (E0503) like every other.
+    f0 = lacuna.Face("C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1")
+    with pytest.raises(LacunaError) as e:
+        call(f0)
+    assert e.value.code == "E0503"
+    assert not isinstance(e.value, OverflowError)

@@ -114,6 +114,19 @@ def _params(params: Params) -> List[Tuple[str, str]]:
     return out
 
 
+def _natural(name: str, value) -> int:
+    """A level, a number of digits or a size as the native module takes it: an int ≥ 0, else a
+    :class:`UsageError` (E0503) — never Python's ``OverflowError`` from the conversion."""
+    if isinstance(value, bool) or not isinstance(value, int):
+        try:
+            value = int(value)
+        except (TypeError, ValueError):
+            raise UsageError("E0503", f"{name} = {value!r}: give a whole number ≥ 0") from None
+    if value < 0 or value >= 2**63:
+        raise UsageError("E0503", f"{name} = {value}: give a whole number from 0 to 2^63 − 1")
+    return value
+
+
 def _limits(limits: Limits) -> Optional[Dict[str, int]]:
     return None if limits is None else {str(k): int(v) for k, v in limits.items()}
 
@@ -619,7 +632,7 @@ class Structure:
 
     def counts(self, levels: int, *, limits: Limits = None) -> List[LevelCount]:
         """Exact counts for levels 0..levels: N^C_i (int), N^L_i and R_i (Fractions)."""
-        d = json.loads(_lacuna.counts(self.source, int(levels), _limits(limits)))
+        d = json.loads(_lacuna.counts(self.source, _natural("levels", levels), _limits(limits)))
         return [
             LevelCount(int(r["level"]), int(r["faces"]), Fraction(r["lacunas"]), Fraction(r["ratio"]))
             for r in d["levels"]
@@ -627,7 +640,7 @@ class Structure:
 
     def ratio(self, digits: int = 30, *, limits: Limits = None) -> Ratio:
         """The exact limit ratio R by eigen analysis, with ``digits`` certified decimals."""
-        return _ratio(json.loads(_lacuna.ratio(self.source, int(digits), _limits(limits))))
+        return _ratio(json.loads(_lacuna.ratio(self.source, _natural("digits", digits), _limits(limits))))
 
     def solve(self, degree: int = 2, cantor_gap: Union[str, int, Fraction] = 1, *, limits: Limits = None) -> Solution:
         """The exact BC-IFS constraint system of the closure with Bézier degree ``degree`` and
@@ -639,7 +652,7 @@ class Structure:
     def verify(self, levels: int = 5, *, limits: Limits = None) -> Record:
         """The whole verification (closure, bound, identities, classes, counts, R, solver) as
         ``lacuna verify --json`` reports it; ``.verified`` is the verdict."""
-        return Record(json.loads(_lacuna.verify(self.source, int(levels), _limits(limits))))
+        return Record(json.loads(_lacuna.verify(self.source, _natural("levels", levels), _limits(limits))))
 
     def certificate(self, path: Optional[PathLike] = None, *, limits: Limits = None) -> Certificate:
         """The certificate of every verdict; written to ``path`` when given."""
