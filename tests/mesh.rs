@@ -773,3 +773,38 @@ mod placed_anywhere {
         }
     }
 }
+
+/// Issue #30: the build volume. F0 at --width 250 is 250 mm wide (and 250·√3/2 ≈ 216.5 mm
+/// deep): on the default 200 × 200 × 200 mm bed it fits scaled by min(200/250, 200/216.5) = 0.8,
+/// i.e. --width 200. two-cubes is exactly 200 mm along y: it fits, with no room for a brim.
+#[test]
+fn a_solid_that_does_not_fit_the_bed_gets_a_warning_with_the_width_that_fits() {
+    let dir = std::env::temp_dir().join(format!("lacuna-bed-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let stl = dir.join("f0.stl").to_string_lossy().to_string();
+    let (code, _, err) = common::lacuna(&[
+        "render", "F0", "--level", "1", "--stl", &stl, "--width", "250",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("larger than the bed 200.0 × 200.0 × 200.0 mm")
+            && err.contains("scaled by 0.8000")
+            && err.contains("--width 200.00 mm"),
+        "{err}"
+    );
+    let (code, _, err) = common::lacuna(&["render", "F0", "--level", "1", "--stl", &stl]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("bed"), "the default width fits: {err}");
+    let stl = dir.join("two-cubes.stl").to_string_lossy().to_string();
+    let (code, _, err) = common::lacuna(&["render", "two-cubes", "--level", "1", "--stl", &stl]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("within 1 mm of the bed") && err.contains("in y"),
+        "{err}"
+    );
+    let (code, _, err) = common::lacuna(&[
+        "render", "F0", "--level", "1", "--stl", &stl, "--bed", "100x100",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}

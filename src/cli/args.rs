@@ -493,6 +493,26 @@ pub(crate) struct PrintArgs {
     /// A hole or ligament below --resolution is a failure (E1042, exit 1), not a warning.
     #[arg(long)]
     pub(crate) strict: bool,
+    /// The printer's build volume in mm, `XxYxZ`: a solid that does not fit it, or fills it to
+    /// within 1 mm, gets a warning (with the --width that would fit).
+    #[arg(long, default_value = "200x200x200", value_name = "XxYxZ", value_parser = parse_bed)]
+    pub(crate) bed: [f64; 3],
+}
+
+/// `--bed XxYxZ`: three positive sizes in mm, separated by `x` (or `×`).
+fn parse_bed(s: &str) -> Result<[f64; 3], String> {
+    let parts: Vec<&str> = s.split(['x', '×', 'X']).map(str::trim).collect();
+    let sizes: Vec<f64> = parts
+        .iter()
+        .filter_map(|p| p.parse::<f64>().ok())
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .collect();
+    match sizes.as_slice() {
+        [x, y, z] if parts.len() == 3 => Ok([*x, *y, *z]),
+        _ => Err(format!(
+            "`{s}` is not a build volume: give three positive sizes in mm, such as 200x200x200"
+        )),
+    }
 }
 
 /// The background of a picture.

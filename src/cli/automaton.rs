@@ -92,6 +92,8 @@ pub(super) struct MeshOut {
     pub(super) size: lacuna::mesh::Size,
     /// Whether `--thickness` was given: a closed shell instead of the open surface.
     pub(super) thick: bool,
+    /// The build volume (`--bed`), in mm.
+    pub(super) bed: [f64; 3],
 }
 
 /// Writes the STL, 3MF and (with a thickness) OBJ meshes of the level's polygon leaves: the
@@ -147,6 +149,9 @@ fn write_meshes(p: &Prepared, level: u32, m: &MeshOut, outputs: &mut Outputs) ->
                 p.name
             );
         }
+    }
+    if let Some(w) = solid.bed_advice(m.bed, m.size.width) {
+        eprintln!("{w}");
     }
     let wrote = |o: &Outputs, path: &std::path::Path| o.say(&format!("wrote {}\n", path.display()));
     if let Some(path) = &t.stl {

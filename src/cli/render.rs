@@ -108,6 +108,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             targets: mesh,
             size: solid_size,
             thick,
+            bed: print.bed,
         };
         return automaton::render(
             &geo,
@@ -174,6 +175,9 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         pr.enforce(print.strict).map_err(mesh_error)?;
         let solid = lacuna::mesh::build(&inst, level, segs, solid_size).map_err(mesh_error)?;
         outputs.say(&solid.summary());
+        if let Some(w) = solid.bed_advice(print.bed, print.width) {
+            eprintln!("{w}");
+        }
         if let Some(p) = &stl {
             outputs.write(p, |w| match stl_ascii {
                 true => lacuna::mesh::stl::write_ascii(&solid, w),

@@ -302,6 +302,11 @@ pub(super) fn render(
     }
     let wrote = |o: &Outputs, p: &std::path::Path| o.say(&format!("wrote {}\n", p.display()));
     let solid = &vs.solid;
+    if t.mesh.any() {
+        if let Some(w) = solid.bed_advice(print.bed, print.width) {
+            eprintln!("{w}");
+        }
+    }
     if let Some(p) = &t.mesh.stl {
         outputs.write(p, |w| match t.mesh.stl_ascii {
             true => lacuna::mesh::stl::write_ascii(solid, w),

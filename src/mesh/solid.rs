@@ -55,6 +55,56 @@ pub struct Solid {
 }
 
 impl Solid {
+    /// The extent of all parts in mm (x, y, z), from the written (`f32`) coordinates.
+    pub fn extent(&self) -> [f64; 3] {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for v in self.parts.iter().flat_map(|p| &p.vertices) {
+            for k in 0..3 {
+                lo[k] = lo[k].min(f64::from(v[k]));
+                hi[k] = hi[k].max(f64::from(v[k]));
+            }
+        }
+        std::array::from_fn(|k| if hi[k] >= lo[k] { hi[k] - lo[k] } else { 0.0 })
+    }
+
+    /// Whether the solid fits a printer's build volume `bed` (mm): a warning when it does not
+    /// (with the largest uniform scale that would fit, as a `--width`), or when it fills the bed
+    /// to within 1 mm in some direction, where a brim, a skirt or the bed's margin no longer fit.
+    /// `width` is the `--width` the solid was made with. Orientation is not changed: the extent
+    /// is the solid's as written.
+    pub fn bed_advice(&self, bed: [f64; 3], width: f64) -> Option<String> {
+        let e = self.extent();
+        let shown = |x: [f64; 3]| format!("{:.1} × {:.1} × {:.1} mm", x[0], x[1], x[2]);
+        let scale = (0..3)
+            .filter(|&k| e[k] > 0.0)
+            .map(|k| bed[k] / e[k])
+            .fold(f64::INFINITY, f64::min);
+        if scale < 1.0 {
+            return Some(format!(
+                "warning: the object is {}, larger than the bed {} (--bed): it fits scaled by \
+                 {:.4} or less, --width {:.2} mm",
+                shown(e),
+                shown(bed),
+                scale,
+                (width * scale * 1e2).floor() / 1e2
+            ));
+        }
+        let tight: Vec<&str> = (0..3)
+            .filter(|&k| bed[k] - e[k] < 1.0)
+            .map(|k| ["x", "y", "z"][k])
+            .collect();
+        (!tight.is_empty()).then(|| {
+            format!(
+                "warning: the object is {}, within 1 mm of the bed {} in {} (--bed): no room \
+                 for a brim or the bed's margin",
+                shown(e),
+                shown(bed),
+                tight.join(", ")
+            )
+        })
+    }
+
     /// The number of triangles of all parts.
     pub fn triangle_count(&self) -> usize {
         self.parts.iter().map(|p| p.triangles.len()).sum()
