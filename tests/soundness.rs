@@ -186,14 +186,23 @@ fn chain_of_cycles(w: u64, lengths: &[usize]) -> (Vec<Vec<(usize, u64)>>, Vec<u6
     (m, halves)
 }
 
+/// The honest certificate of cycles of lengths 4, 5, 7 of weight 5 in a chain, made once for
+/// the tests that use it (lacuna's producer takes seconds on it in a debug build).
+fn cycles_4_5_7() -> Certificate {
+    static CERT: std::sync::OnceLock<Certificate> = std::sync::OnceLock::new();
+    CERT.get_or_init(|| {
+        let (m, h) = chain_of_cycles(5, &[4, 5, 7]);
+        lacuna::certificate::certificate_for_substitution("cycles", &m, &h, &[(0, 1)]).unwrap()
+    })
+    .clone()
+}
+
 #[test]
 fn an_honest_certificate_of_a_long_period_checks_within_the_default_budget() {
     // Cycles of lengths 4, 5, 7 of weight 5 in a chain: ρ = 5 on each, P = lcm(4, 5, 7) = 140,
     // d = 16 + 1. Before the residues were computed in integers this took 7.5 s in a release
     // build (the gcds of counts of 5^(140·17) ≈ 2^5500); it now takes 0.1 s there.
-    let (m, h) = chain_of_cycles(5, &[4, 5, 7]);
-    let cert =
-        lacuna::certificate::certificate_for_substitution("cycles", &m, &h, &[(0, 1)]).unwrap();
+    let cert = cycles_4_5_7();
     let Some(Step::LimitRatio(r)) = cert.steps.first() else {
         panic!("a ratio step")
     };
@@ -220,9 +229,7 @@ fn an_honest_certificate_of_a_long_period_checks_within_the_default_budget() {
 fn a_small_budget_refuses_for_cost_and_never_as_a_verdict() {
     // The same honest certificate with a budget of 10⁵ word operations: refused (E0501, the
     // flag named), neither proved nor failed; through the command line, exit 2.
-    let (m, h) = chain_of_cycles(5, &[4, 5, 7]);
-    let cert =
-        lacuna::certificate::certificate_for_substitution("cycles", &m, &h, &[(0, 1)]).unwrap();
+    let cert = cycles_4_5_7();
     let budget = lacuna::checker::Budget {
         work: 100_000,
         ..Default::default()

@@ -151,38 +151,35 @@ impl Powers {
     }
 }
 
-/// An integer vector as an element of Q[x]/(p) (its content divided out: only its zero test
-/// and ratios with elements of the same scale are used).
-fn element(v: Vec<BigInt>) -> P {
-    let content = v.iter().fold(BigInt::zero(), |g, c| g.gcd(c));
-    let content = if content.is_zero() {
-        BigInt::one()
-    } else {
-        content
-    };
-    trim(
-        v.into_iter()
-            .map(|c| Q::from_integer(c / &content))
-            .collect(),
-    )
+/// An integer vector as an element of Q[x]/(p).
+fn as_element(v: &[BigInt]) -> P {
+    trim(v.iter().cloned().map(Q::from_integer).collect())
 }
 
-/// The multiplicity `j < cap` of `y₀` as a root of `f` and `D·f^(j)(y₀)` (up to a positive
-/// factor common to every polynomial evaluated with the same `j`), or `None` when
-/// `f^(j)(y₀) = 0` for every `j < cap`.
+/// Whether the integer vector `v` vanishes at ρ: its content is divided out first, so that the
+/// exact zero test (a gcd with `p` when `p` has degree above 1) works on the smallest numbers.
+fn vanishes(root: &Root, v: &[BigInt]) -> bool {
+    let content = v.iter().fold(BigInt::zero(), |g, c| g.gcd(c));
+    if content.is_zero() {
+        return true;
+    }
+    root.is_zero(&trim(
+        v.iter().map(|c| Q::from_integer(c / &content)).collect(),
+    ))
+}
+
+/// The multiplicity `j < cap` of `y₀` as a root of `f` and `D·f^(j)(y₀)`, the `j`-th derivative
+/// at `y₀` times the positive constant `D` common to every polynomial evaluated with these
+/// powers (as an integer vector), or `None` when `f^(j)(y₀) = 0` for every `j < cap`.
 fn order(
     root: &Root,
     powers: &Powers,
     f: &[BigInt],
     cap: usize,
-) -> Result<Option<(usize, P)>, String> {
+) -> Result<Option<(usize, Vec<BigInt>)>, String> {
     for j in 0..cap.min(f.len()) {
         let v = powers.derivative_at(f, j)?;
-        if v.iter().all(Zero::is_zero) {
-            continue;
-        }
-        let v = element(v);
-        if !root.is_zero(&v) {
+        if !vanishes(root, &v) {
             return Ok(Some((j, v)));
         }
     }
@@ -222,7 +219,7 @@ pub(super) fn residue(
     if m == 0 {
         return Err("y₀ = ρ^P is not an eigenvalue of A^P".into());
     }
-    let Some((jc, _)) = order(root, powers, nc, m)? else {
+    let Some((jc, ac)) = order(root, powers, nc, m)? else {
         return Err("the face counts have no pole at w₀ = ρ^(−P)".into());
     };
     let one = vec![Q::one()];
@@ -244,22 +241,10 @@ pub(super) fn residue(
             one.clone(),
             format!("pole orders: lacunas {} > {kc} = faces: R = 1", m - jl),
         ),
-        Some((_, _)) => {
-            // Both at order jc: the unscaled vectors, with the same factor D·jc!.
-            let al = trim(
-                powers
-                    .derivative_at(nl, jc)?
-                    .into_iter()
-                    .map(Q::from_integer)
-                    .collect(),
-            );
-            let ac = trim(
-                powers
-                    .derivative_at(nc, jc)?
-                    .into_iter()
-                    .map(Q::from_integer)
-                    .collect(),
-            );
+        Some((_, al)) => {
+            // Both at order jc (the search above stops at jc): the same factor D, which
+            // cancels in the ratio.
+            let (al, ac) = (as_element(&al), as_element(&ac));
             let den = add(&al, &scale(&ac, &int(unit)));
             if root.is_zero(&den) {
                 return Err("the leading coefficients cancel".into());
