@@ -15,6 +15,7 @@
 //! | [`measure`] | areas, perimeters, dimensions, holes and components against the exact counts |
 //! | [`mesh`] | printable solids: one checked watertight mesh per component, STL, 3MF, OBJ |
 //! | [`export`] | SVG, PNG, OBJ, STL, JSON, the text reports and the HTML report |
+//! | [`meshcheck`] | the independent mesh checker: reads STL and 3MF alone, shares nothing with [`mesh`] |
 //!
 //! [`error`] and [`progress`] sit under every layer. The [`prelude`] holds the common path: parse a
 //! face, close it, count, compute R, solve.
@@ -44,6 +45,8 @@ pub mod measure;
 pub mod mesh;
 
 pub mod export;
+
+pub mod meshcheck;
 
 pub mod prelude;
 

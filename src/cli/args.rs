@@ -90,6 +90,12 @@ pub(crate) enum Command {
     /// 0 when every step the claim needs is proved, 1 when one fails, 2 when one is refused for
     /// cost (a budget, not a verdict), 3 when steps are missing.
     Check(CheckArgs),
+    /// Re-check a printable mesh (binary or ASCII STL, 3MF) from the file alone, sharing no code
+    /// with lacuna's mesh writer: exact coordinates, no degenerate triangle, closed and oriented
+    /// (every edge in two triangles of opposite directions), every vertex link one cycle, no two
+    /// triangles crossing, and per part V, E, F, χ, genus and the enclosed volume; exit 0 when
+    /// every check passes and every expectation holds, 1 when one fails, 2 for bad input.
+    CheckMesh(CheckMeshArgs),
     /// The closure: every face type with its sub-faces and contribution.
     Closure(Limited<ClosureArgs>),
     /// Exact counts of faces and lacunas per level.
@@ -219,6 +225,30 @@ pub(crate) struct ExploreArgs {
     )]
     pub(crate) max_holes_cells: u64,
     /// JSON lines: one per boundary, then a summary line.
+    #[arg(long)]
+    pub(crate) json: bool,
+}
+
+/// The arguments of `lacuna check-mesh`.
+#[derive(Args)]
+pub(crate) struct CheckMeshArgs {
+    /// The mesh: binary or ASCII STL, or 3MF (told apart by content; `-` reads standard input).
+    #[arg(value_name = "FILE.stl|FILE.3mf")]
+    pub(crate) file: std::path::PathBuf,
+    /// The expected Euler characteristic (the sum over the parts of V − E + F).
+    #[arg(long, value_name = "X", allow_hyphen_values = true)]
+    pub(crate) expect_euler: Option<i64>,
+    /// The expected number of parts (connected surfaces).
+    #[arg(long, value_name = "P")]
+    pub(crate) expect_parts: Option<u64>,
+    /// Compare with the claims file `render --claims` wrote (triangles, parts, χ and genus).
+    #[arg(long, value_name = "CLAIMS.json")]
+    pub(crate) claims: Option<std::path::PathBuf>,
+    /// Refuse a mesh of more triangles than this before the work (exit 2: a limit, not a
+    /// verdict).
+    #[arg(long, value_name = "N", help_heading = "Limits", default_value_t = lacuna::meshcheck::DEFAULT_MAX_TRIANGLES)]
+    pub(crate) max_triangles: u64,
+    /// Print JSON.
     #[arg(long)]
     pub(crate) json: bool,
 }
@@ -447,6 +477,10 @@ pub(crate) struct RenderArgs {
     /// Write --stl as ASCII instead of binary.
     #[arg(long, requires = "stl")]
     pub(crate) stl_ascii: bool,
+    /// With --stl or --3mf: write what the mesh is claimed to be (triangles, parts, χ and genus
+    /// from the exact topology) as JSON, for `lacuna check-mesh MESH --claims CLAIMS.json`.
+    #[arg(long, value_name = "OUT.json")]
+    pub(crate) claims: Option<std::path::PathBuf>,
     /// Write the solid as 3MF (core specification, unit millimetre, one object per component).
     #[arg(long = "3mf", value_name = "OUT.3mf")]
     pub(crate) threemf: Option<std::path::PathBuf>,

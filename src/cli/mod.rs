@@ -9,6 +9,7 @@ mod output;
 
 mod census;
 mod check;
+mod check_mesh;
 mod classify;
 mod closure;
 mod counts;
@@ -55,6 +56,7 @@ pub(crate) fn main() -> ExitCode {
         Command::Solve(a) => a.args.json,
         Command::Ratio(a) => a.args.json,
         Command::Check(a) => a.json,
+        Command::CheckMesh(a) => a.json,
         Command::Measure(a) => a.args.json,
         Command::Operators(a) => a.args.json,
         Command::Design(a) => a.json,
@@ -110,6 +112,7 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
     match cli.command {
         Command::Verify(a) => verify::run(a.args, &a.limits.limits()),
         Command::Check(a) => check::run(a),
+        Command::CheckMesh(a) => check_mesh::run(a),
         Command::Closure(a) => closure::run(a.args, &a.limits.limits()),
         Command::Counts(a) => counts::run(a.args, &a.limits.limits()),
         Command::Ratio(a) => ratio::run(a.args, &a.limits.limits()),

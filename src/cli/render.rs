@@ -15,6 +15,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         obj,
         stl,
         stl_ascii,
+        claims,
         threemf,
         thickness,
         print,
@@ -33,6 +34,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         ("--obj", &obj),
         ("--stl", &stl),
         ("--3mf", &threemf),
+        ("--claims", &claims),
         ("--png", &png),
         ("--density", &density),
     ]
@@ -43,6 +45,11 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         return Err(Error::Usage(
             "nothing to write: give --svg, --json-out, --obj, --stl, --3mf, --png, --density or --write-template"
                 .into(),
+        ));
+    }
+    if claims.is_some() && stl.is_none() && threemf.is_none() {
+        return Err(Error::Usage(
+            "--claims describes the mesh written with --stl or --3mf: give one of them".into(),
         ));
     }
     check_density_grid(density_grid, 1)?;
@@ -84,6 +91,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         let targets = volume::VolumeTargets {
             svg: svg.as_deref(),
             png: png.as_deref(),
+            claims: claims.as_deref(),
             mesh: &mesh,
             size,
             transparent: background == BackgroundArg::Transparent,
@@ -91,6 +99,11 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         return volume::render(&name, &v, &geo, &print, targets, &mut outputs, limits);
     }
     if let Some((name, model)) = automaton::automaton_input(&geo)? {
+        if claims.is_some() {
+            return Err(Error::Usage(
+                "--claims is written for faces and volumes; an automaton's mesh has no exact topology to claim yet (check it with `lacuna check-mesh` alone)".into(),
+            ));
+        }
         if density.is_some() || write_template.is_some() {
             return Err(Error::Usage(
                 "--density and --write-template apply to faces; an automaton is written with --svg, --png, --json-out, --obj, --stl or --3mf".into(),
@@ -199,6 +212,32 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             outputs.write(p, |w| lacuna::mesh::obj::write(&solid, w))?;
             wrote(&outputs, p);
         }
+        if let Some(p) = &claims {
+            let e = &solid.expected;
+            let holds = |h: &num_bigint::BigUint| num_traits::ToPrimitive::to_i64(h);
+            let per_part: Option<Vec<lacuna::meshcheck::PartClaim>> = solid
+                .parts
+                .iter()
+                .map(|part| {
+                    let h = i64::try_from(part.holes?).ok()?;
+                    Some(lacuna::meshcheck::PartClaim {
+                        euler: 2 - 2 * h,
+                        genus: h,
+                    })
+                })
+                .collect();
+            let genus = holds(&e.holes);
+            let c = mesh_claims(
+                format!("{} level {level}", geo.input),
+                &mesh,
+                solid.triangle_count(),
+                Some(e.components),
+                genus.and_then(|h| (2 * e.components as i64).checked_sub(2 * h)),
+                genus,
+                per_part,
+            );
+            write_claims(&mut outputs, p, &c)?;
+        }
     }
     if let Some(p) = &png {
         outputs.write(p, |w| {
@@ -217,6 +256,50 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         wrote(&outputs, p);
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// What a mesh written to `targets` is claimed to be.
+pub(super) fn mesh_claims(
+    source: String,
+    targets: &lacuna::mesh::Targets,
+    triangles: usize,
+    parts: Option<u64>,
+    euler: Option<i64>,
+    genus: Option<i64>,
+    per_part: Option<Vec<lacuna::meshcheck::PartClaim>>,
+) -> lacuna::meshcheck::Claims {
+    let meshes = [&targets.stl, &targets.threemf]
+        .into_iter()
+        .flatten()
+        .map(|p| {
+            p.file_name().map_or_else(
+                || p.display().to_string(),
+                |f| f.to_string_lossy().to_string(),
+            )
+        })
+        .collect();
+    lacuna::meshcheck::Claims {
+        format: lacuna::meshcheck::CLAIMS_FORMAT.into(),
+        version: lacuna::meshcheck::CLAIMS_VERSION,
+        source,
+        meshes,
+        triangles: triangles as u64,
+        parts,
+        euler,
+        genus,
+        per_part,
+    }
+}
+
+/// Writes a claims file (`render --claims`).
+pub(super) fn write_claims(
+    outputs: &mut Outputs,
+    path: &std::path::Path,
+    claims: &lacuna::meshcheck::Claims,
+) -> Result<(), Error> {
+    outputs.write(path, |w| w.write_all(claims.to_json().as_bytes()))?;
+    outputs.say(&format!("wrote {}\n", path.display()));
+    Ok(())
 }
 
 /// A positive exact number given on the command line (an integer, a decimal or a fraction, as

@@ -267,6 +267,7 @@ fn checked_solid(
 pub(super) struct VolumeTargets<'a> {
     pub(super) svg: Option<&'a std::path::Path>,
     pub(super) png: Option<&'a std::path::Path>,
+    pub(super) claims: Option<&'a std::path::Path>,
     pub(super) mesh: &'a lacuna::mesh::Targets,
     pub(super) size: usize,
     pub(super) transparent: bool,
@@ -326,6 +327,23 @@ pub(super) fn render(
     if let Some(p) = &t.mesh.obj {
         outputs.write(p, |w| lacuna::mesh::obj::write(solid, w))?;
         wrote(outputs, p);
+    }
+    if let Some(p) = t.claims {
+        // The surface pieces are the components and the voids; Σχ of the surface is 2χ of the
+        // solid; its genus is the number of tunnels (THEORY §10).
+        let x = &vs.exact;
+        let euler = num_traits::ToPrimitive::to_i64(&(num_bigint::BigInt::from(2) * &x.euler));
+        let genus = x.tunnels.as_ref().and_then(num_traits::ToPrimitive::to_i64);
+        let c = super::render::mesh_claims(
+            format!("{} level {}", geo.input, geo.level),
+            t.mesh,
+            solid.triangle_count(),
+            x.components.zip(x.voids).map(|(b0, b2)| b0 + b2),
+            euler,
+            genus,
+            None,
+        );
+        super::render::write_claims(outputs, p, &c)?;
     }
     if let Some(p) = t.svg {
         outputs.write(p, |w| {
