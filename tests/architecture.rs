@@ -19,6 +19,7 @@ const LAYERS: &[(&str, u32)] = &[
     ("certificate", 5),
     ("geometry", 5),
     ("checker", 6),
+    ("meshcheck", 6),
     ("measure", 6),
     ("mesh", 7),
     ("export", 8),
@@ -225,6 +226,93 @@ fn the_checker_and_the_certificate_format_stand_alone() {
         .collect();
     let lines: Vec<&str> = bad.iter().map(|i| i.at.as_str()).collect();
     assert!(bad.is_empty(), "{}", lines.join("\n"));
+}
+
+/// The mesh checker shares no code with the mesh writer (`mesh`, `export`) nor anything else of
+/// lacuna: its `crate::` paths name only `error` and itself, and its `use` lines only std, the
+/// crates it reads with, `crate::error` and its own files (`super::`, `self::` in `mod.rs`).
+#[test]
+fn the_mesh_checker_imports_nothing_of_the_producer() {
+    let (found, _) = imports();
+    let bad: Vec<&str> = found
+        .iter()
+        .filter(|i| layer(&i.from) == "meshcheck" && !matches!(layer(&i.to), "error" | "meshcheck"))
+        .map(|i| i.at.as_str())
+        .collect();
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/meshcheck");
+    let roots = [
+        "std::",
+        "crate::error",
+        "num_bigint",
+        "num_rational",
+        "num_traits",
+        "serde",
+        "serde_json",
+        "zip",
+        "quick_xml",
+        "super::",
+        "self::",
+    ];
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .expect("src/meshcheck/ exists")
+        .map(|e| e.expect("entry").path())
+        .collect();
+    files.sort();
+    assert!(files.len() >= 5, "the scan is broken: {files:?}");
+    let mut seen_use = 0;
+    for f in &files {
+        assert!(
+            f.extension().is_some_and(|e| e == "rs"),
+            "{}: meshcheck is one folder of .rs files",
+            f.display()
+        );
+        let name = f.file_name().unwrap().to_string_lossy().to_string();
+        let text = std::fs::read_to_string(f).unwrap();
+        for (n, line) in text.lines().enumerate() {
+            let code = line.split("//").next().unwrap_or("").trim();
+            let at = format!("src/meshcheck/{name}:{}: {}", n + 1, line.trim());
+            for banned in [
+                "lacuna::",
+                "extern crate",
+                "#[path",
+                "super::super",
+                "include!",
+            ] {
+                assert!(!code.contains(banned), "`{banned}` in {at}");
+            }
+            for producer in [
+                "crate::mesh",
+                "crate::export",
+                "crate::geometry",
+                "crate::measure",
+            ] {
+                // `crate::mesh` but not `crate::meshcheck`.
+                let named = code.match_indices(producer).any(|(i, _)| {
+                    !code[i + producer.len()..]
+                        .starts_with(|c: char| c.is_alphanumeric() || c == '_')
+                });
+                assert!(!named, "the producer `{producer}` in {at}");
+            }
+            if name == "mod.rs" {
+                assert!(
+                    !code.contains("super::"),
+                    "the module root reaches outside: {at}"
+                );
+            }
+            if let Some(path) = code.strip_prefix("use ").or(code.strip_prefix("pub use ")) {
+                seen_use += 1;
+                assert!(
+                    roots.iter().any(|r| path.starts_with(r)),
+                    "`use {path}` is not allowed in the mesh checker: {at}"
+                );
+            }
+        }
+    }
+    assert!(
+        seen_use > 10,
+        "too few `use` lines found: the scan is broken"
+    );
 }
 
 #[test]

@@ -41,6 +41,9 @@ mod report;
 mod stl;
 mod threemf;
 
+#[cfg(test)]
+mod tests;
+
 pub use self::claim::{Claims, PartClaim, CLAIMS_FORMAT, CLAIMS_VERSION};
 pub use self::input::Format;
 pub use self::part::Part;
