@@ -110,7 +110,8 @@ pub(crate) enum Command {
     /// Instantiate the verified model (default parameters: a template fit rounded to an exact point
     /// of the solution space) and export level N: SVG, JSON polygons, PNG, and printable solids (STL,
     /// 3MF, OBJ) checked against the exact topology.
-    Render(Limited<RenderArgs>),
+    // Boxed: its many flags make it the largest variant by far.
+    Render(Box<Limited<RenderArgs>>),
     /// Measure the instantiated structure per level: area, perimeter and their factors, box-counting
     /// dimension, holes and components compared with the exact counts (a mismatch fails, exit 1).
     Measure(Limited<MeasureArgs>),

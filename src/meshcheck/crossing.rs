@@ -40,14 +40,9 @@ struct Box3 {
 
 impl Box3 {
     fn of(p: [Point; 3]) -> Box3 {
-        let mut b = Box3 { lo: p[0], hi: p[0] };
-        for q in &p[1..] {
-            for k in 0..3 {
-                b.lo[k] = b.lo[k].min(q[k]);
-                b.hi[k] = b.hi[k].max(q[k]);
-            }
-        }
-        b
+        let lo = [0, 1, 2].map(|k| p[0][k].min(p[1][k]).min(p[2][k]));
+        let hi = [0, 1, 2].map(|k| p[0][k].max(p[1][k]).max(p[2][k]));
+        Box3 { lo, hi }
     }
 
     fn meets(&self, o: &Box3) -> bool {
