@@ -246,7 +246,7 @@ pub(crate) struct CheckMeshArgs {
     #[arg(long, value_name = "CLAIMS.json")]
     pub(crate) claims: Option<std::path::PathBuf>,
     /// Refuse a mesh of more triangles than this before the work (exit 2: a limit, not a
-    /// verdict).
+    /// verdict; at most 2^30).
     #[arg(long, value_name = "N", help_heading = "Limits", default_value_t = lacuna::meshcheck::DEFAULT_MAX_TRIANGLES)]
     pub(crate) max_triangles: u64,
     /// Print JSON.

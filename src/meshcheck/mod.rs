@@ -55,6 +55,10 @@ use crate::error::Error;
 /// The default `--max-triangles`.
 pub const DEFAULT_MAX_TRIANGLES: u64 = 20_000_000;
 
+/// The most triangles `--max-triangles` can allow: indices are `u32`, and a triangle's index
+/// carries a direction bit beside it.
+pub const MAX_TRIANGLES_CAP: u64 = 1 << 30;
+
 /// What to check the mesh against, and the limit.
 #[derive(Clone, Debug)]
 pub struct Options {
@@ -83,7 +87,13 @@ impl Default for Options {
 /// is not a mesh, a malformed one, the limit exceeded); a mesh that fails a check is a [`Report`]
 /// that does not pass.
 pub fn check(bytes: &[u8], name: &str, options: &Options) -> Result<Report, Error> {
-    let mesh = input::read(bytes, name, options.max_triangles)?;
+    let mesh = input::read(bytes, name, options.max_triangles.min(MAX_TRIANGLES_CAP))?;
+    if mesh.triangles.is_empty() {
+        return Err(input::malformed(
+            "E1501",
+            format!("`{name}` holds no triangle: there is nothing to check"),
+        ));
+    }
     let mut report = Report {
         file: name.to_string(),
         format: mesh.format,

@@ -340,6 +340,8 @@ fn bad_input_is_an_error_not_a_verdict() {
     let e = check(&good[..good.len() - 10], "t.stl", &Options::default()).unwrap_err();
     assert_eq!(e.code(), "E1501");
     assert!(e.to_string().contains("4 triangles"), "{e}");
+    let e = check(&binary_stl(&TETRA_V, &[]), "t.stl", &Options::default()).unwrap_err();
+    assert_eq!(e.code(), "E1501", "no triangle: nothing to check");
     let e = check(b"PK\x03\x04 nothing", "t.3mf", &Options::default()).unwrap_err();
     assert_eq!(e.code(), "E1503");
     let mut nan = good.clone();
