@@ -388,10 +388,20 @@ fn face_options_are_refused_on_automata() {
     assert_eq!(code, 2, "{err}");
     let (code, _, err) = lacuna(&["render", "cantor-set", "--stl", "/dev/null"]);
     assert_eq!(code, 2, "{err}");
-    // `verify` reads faces only, and says which commands read automata.
-    let (code, _, err) = lacuna(&["verify", "cantor-set"]);
+    // `counts` reads faces only, and says which commands read automata (`verify` among them).
+    let (code, _, err) = lacuna(&["counts", "cantor-set", "--levels", "2"]);
     assert_eq!(code, 2);
-    assert!(err.contains("render") && err.contains("E0601"), "{err}");
+    assert!(
+        err.contains("render") && err.contains("verify") && err.contains("E0601"),
+        "{err}"
+    );
+    // `verify` reads an automaton: two maps of ratio 1/3, s = log 2 / log 3.
+    let (code, out, err) = lacuna(&["verify", "cantor-set"]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(
+        out.contains("similarity dimension = log 2 / log 3 = 0.630929753571457437099527114342"),
+        "{out}"
+    );
 }
 
 #[test]

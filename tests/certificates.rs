@@ -489,11 +489,11 @@ fn wrong_versions_are_rejected() {
     cert.version = 99;
     assert_rejected("version 99", &cert, "header");
     assert!(check_json("{").failed());
-    // Files of versions 1 to 3 (other step forms: version 2 had no recipe, version 3 no claim)
-    // are refused by their version, not by a parse error.
-    for old in ["1", "2", "3"] {
+    // Files of versions 1 to 4 (other step forms: version 2 had no recipe, version 3 no claim,
+    // version 4 no attractor steps) are refused by their version, not by a parse error.
+    for old in ["1", "2", "3", "4"] {
         let json = face_certificate("F0").to_json().replacen(
-            "\"version\":4",
+            "\"version\":5",
             &format!("\"version\":{old}"),
             1,
         );

@@ -142,7 +142,7 @@ fn hostile_names_are_printed_escaped() {
     for line in text.lines() {
         let tag = line.trim_start().split("  ").next().unwrap_or("");
         assert!(
-            ["claim", "proved", "FAILED", "PARTIAL"].contains(&tag),
+            ["claim", "proved", "verdict", "FAILED", "PARTIAL"].contains(&tag),
             "{text}"
         );
     }

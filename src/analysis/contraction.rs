@@ -64,6 +64,10 @@ pub struct ContractionReport {
     pub depth: usize,
     /// The products formed by the proof.
     pub products: usize,
+    /// The closed walks of the proof (operator indices), from every reachable state: a
+    /// complete prefix code whose products have norm below 1 (the certificate's witness).
+    #[serde(skip)]
+    pub walks: Vec<Vec<usize>>,
 }
 
 impl ContractionReport {
@@ -226,7 +230,7 @@ pub fn check_contraction_within(
     let mut used = 0usize;
     for norm in [Norm::Inf, Norm::One] {
         match prove(m, ops, norm, &mut budget)? {
-            Proof::Proven { depth } => {
+            Proof::Proven { depth, walks } => {
                 used += max_products - budget;
                 return Ok(ContractionReport {
                     cycles: names,
@@ -237,6 +241,7 @@ pub fn check_contraction_within(
                     .into(),
                     depth,
                     products: used,
+                    walks,
                 });
             }
             Proof::Open => {}
@@ -260,7 +265,10 @@ enum Norm {
 }
 
 enum Proof {
-    Proven { depth: usize },
+    Proven {
+        depth: usize,
+        walks: Vec<Vec<usize>>,
+    },
     Open,
 }
 
@@ -344,6 +352,7 @@ fn prove(m: &AutomatonModel, ops: &[KMatrix], norm: Norm, budget: &mut usize) ->
         .map(|(o, t)| (a.operators[o].kind == OpKind::Sub).then(|| difference_restriction(k, t)))
         .collect();
     let mut deepest = 0usize;
+    let mut closed: Vec<Vec<usize>> = Vec::new();
     // Walks back to their first state that did not close: tested for a refusal only when the
     // budget runs out (the test, a characteristic polynomial, costs more than the products).
     let mut returns: Vec<(Vec<usize>, usize, KMatrix)> = Vec::new();
@@ -372,6 +381,9 @@ fn prove(m: &AutomatonModel, ops: &[KMatrix], norm: Norm, budget: &mut usize) ->
                     let prod = p.mul(k, r).expect("a walk's shapes chain");
                     if norm_below_one(k, &prod, norm) {
                         deepest = deepest.max(depth);
+                        let mut w = walk.clone();
+                        w.push(o);
+                        closed.push(w);
                         continue;
                     }
                     let mut w = walk.clone();
@@ -386,7 +398,10 @@ fn prove(m: &AutomatonModel, ops: &[KMatrix], norm: Norm, budget: &mut usize) ->
             open = next;
         }
     }
-    Ok(Proof::Proven { depth: deepest })
+    Ok(Proof::Proven {
+        depth: deepest,
+        walks: closed,
+    })
 }
 
 #[cfg(test)]

@@ -52,6 +52,11 @@ pub struct OpenSetVerdict {
     pub holds: Option<bool>,
     /// The criterion that decided, or why none did.
     pub reason: String,
+    /// When a family of convex sets decided it (the hulls or the squares): one per state of
+    /// the part, in part order, its vertices counter-clockwise in the state's chart (the
+    /// certificate's witness).
+    #[serde(skip)]
+    pub witness: Option<Vec<Vec<Vec<FieldElement>>>>,
 }
 
 /// A point of a chart (1 or 2 coordinates).
@@ -358,6 +363,7 @@ pub(crate) fn part_verdict(
     let undecided = |r: String| OpenSetVerdict {
         holds: None,
         reason: r,
+        witness: None,
     };
     let mut raw = Vec::new();
     for &q in part {
@@ -378,6 +384,7 @@ pub(crate) fn part_verdict(
         for y in &raw[i + 1..] {
             if x.0 == y.0 && x.1 == y.1 && ops[x.2] == ops[y.2] {
                 return OpenSetVerdict {
+                    witness: None,
                     holds: Some(false),
                     reason: format!(
                         "fails: `{}` and `{}` are the same map, so their pieces coincide",
@@ -407,6 +414,7 @@ pub(crate) fn part_verdict(
                 return OpenSetVerdict {
                     holds: Some(true),
                     reason: format!("holds: the interiors of the convex hulls of the attractors (exact, {} vertices, found in {rounds} rounds) are a feasible open set", sets.iter().map(Vec::len).sum::<usize>()),
+                    witness: Some(sets),
                 };
             }
         }
@@ -427,6 +435,7 @@ pub(crate) fn part_verdict(
     let sets = vec![cell; part.len()];
     if feasible(k, part, &edges, &sets, true) {
         return OpenSetVerdict {
+            witness: Some(sets),
             holds: Some(true),
             reason: if d == 1 {
                 "holds: the open segment between each state's two points is a feasible open set"
@@ -441,12 +450,14 @@ pub(crate) fn part_verdict(
         Ok((centres, kedges)) => match search(k, &centres, &kedges) {
             Search::Closed(n) => {
                 return OpenSetVerdict {
+                    witness: None,
                     holds: Some(true),
                     reason: format!("holds: the neighbour maps (Bandt–Graf, exact) form a finite set of {n} maps without the identity"),
                 }
             }
             Search::Identity(i, j) => {
                 return OpenSetVerdict {
+                    witness: None,
                     holds: Some(false),
                     reason: format!(
                         "fails: the identity is a neighbour map (two words starting with `{}` and `{}` give the same map, so their pieces coincide)",

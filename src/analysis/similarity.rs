@@ -40,6 +40,28 @@ pub struct SimilarityDimension {
     pub upper_bound: bool,
     /// What the open-set check found (the criterion that decided, or why none did).
     pub open_set: String,
+    /// Each part's exact data, for the certificate: its states, σ, the exponent of every
+    /// operator inside it, u* and the rational value when there is one.
+    #[serde(skip)]
+    pub witness: Vec<PartWitness>,
+}
+
+/// One cyclic part's exact data (the certificate's `similarity-dimension` witness).
+#[derive(Clone, Debug)]
+pub struct PartWitness {
+    /// The part's states, increasing.
+    pub states: Vec<usize>,
+    /// σ: every squared ratio inside the part is `σ^k`.
+    pub sigma: FieldElement,
+    /// `(operator, k)` for every operator inside the part, by operator index.
+    pub exponents: Vec<(usize, u32)>,
+    /// u*, the smallest root of `det(I − M(u))` in (0, 1].
+    pub u: RealAlgebraic,
+    /// The dimension when it is rational.
+    pub rational: Option<BigRational>,
+    /// The open-set condition's witness, when convex sets decided it: per state of the part,
+    /// the vertices of a convex polygon (an interval in one dimension) in the state's chart.
+    pub open_set: Option<Vec<Vec<Vec<FieldElement>>>>,
 }
 
 /// Why there is no similarity dimension.
@@ -331,6 +353,7 @@ pub fn similarity_dimension(
     }
     let g = control_graph(m);
     let mut values = Vec::new();
+    let mut exponent_lists = Vec::new();
     for part in &parts {
         let names: Vec<String> = part.iter().map(|&s| a.states[s].name.clone()).collect();
         // Squared ratios of the operators inside the part.
@@ -411,9 +434,12 @@ pub fn similarity_dimension(
             return Err(format!("the squared ratio of `{}` is not a power σ^k (k ≤ 16) of the smallest one σ = {}, nor of a rational root of it", a.operators[o].name, k.render(&sigma)));
         };
         let mut entries = vec![vec![Vec::new(); n]; n];
-        for ((i, j, _, _), e) in inside.iter().zip(exps) {
+        let mut exponents: Vec<(usize, u32)> = Vec::new();
+        for ((i, j, _, o), e) in inside.iter().zip(exps) {
             entries[*i][*j].push(e);
+            exponents.push((*o, e as u32));
         }
+        exponents.sort_unstable();
         let p = part_polynomial(n, &entries);
         let factors = crate::algebra::factor::factor(&p.square_free_part())
             .map_err(|_| "the part's polynomial could not be factored".to_string())?;
@@ -443,6 +469,7 @@ pub fn similarity_dimension(
                 rational,
             },
         ));
+        exponent_lists.push(exponents);
     }
     // The largest part's value (certified comparison of enclosures).
     let mut best = 0;
@@ -467,7 +494,26 @@ pub fn similarity_dimension(
             .collect::<Vec<_>>()
             .join("; ")
     };
+    let witness = parts
+        .iter()
+        .zip(&values)
+        .zip(exponent_lists)
+        .zip(&verdicts)
+        .map(|(((states, (_, v)), exponents), verdict)| {
+            let mut u = v.u.clone();
+            u.refine_to(&BigRational::new(BigInt::one(), BigInt::one() << 64));
+            PartWitness {
+                states: states.clone(),
+                sigma: v.sigma.clone(),
+                exponents,
+                u,
+                rational: v.rational.clone(),
+                open_set: verdict.witness.clone(),
+            }
+        })
+        .collect();
     Ok(SimilarityDimension {
+        witness,
         upper_bound,
         open_set,
         exact: values[best].1.exact.clone(),

@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 pub const FORMAT: &str = "lacuna-certificate";
 
 /// The format version this code writes and checks.
-pub const VERSION: u32 = 4;
+pub const VERSION: u32 = 5;
 
 /// A certificate: the claim (what was given, in canonical form) and the steps that prove every
 /// verdict about it.
@@ -186,6 +186,29 @@ pub struct AutomatonClaim {
     pub constraints: Vec<WordEquation>,
     /// Operators whose every column sums to 1.
     pub barycentric: Vec<usize>,
+    /// The real number field K = Q(α) of the entries given outside Q (`None`: every given entry
+    /// is rational). Coordinates of elements of K are on the power basis `1, α, α², …`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub field: Option<Algebraic>,
+    /// The modelling of the attractor (`None` for an automaton that is only a constraint
+    /// system): the start state, its control points and the subdivision operators.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub attractor: Option<AttractorClaim>,
+}
+
+/// What an automaton's attractor is built from: the control graph has one edge `q → w` per
+/// subdivision operator `T: q ← w`; the attractor of the start state is drawn from its control
+/// points.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AttractorClaim {
+    /// The start state.
+    pub start: usize,
+    /// The control points of the start state: one row of coordinates (in K) per point, each
+    /// of the modelling space's dimension (2 or 3).
+    pub points: Vec<Vec<FieldCoords>>,
+    /// The subdivision operators, by index, increasing.
+    pub subdivision: Vec<usize>,
 }
 
 /// A state of an automaton.
@@ -208,8 +231,12 @@ pub struct AutomatonOperator {
     pub to: usize,
     /// Column state.
     pub from: usize,
-    /// The matrix (rows of rationals), or `None` when unknown.
+    /// The matrix (rows of rationals), or `None` when unknown or given in the field.
     pub value: Option<Vec<Vec<String>>>,
+    /// The matrix given in the claim's field K (rows of coordinates), when its entries are not
+    /// all rational; `value` is then `None`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub field_value: Option<Vec<Vec<FieldCoords>>>,
 }
 
 /// A factor of a word.
@@ -282,6 +309,94 @@ pub enum Step {
     /// volumes must be listed types. Then it recounts N^C and N^L level by level from the derived
     /// children and its own contributions and compares every listed count.
     VolumeClosure(VolumeClosureStep),
+    /// **Every constraint of an automaton holds** (every operator given, in Q or in the
+    /// claim's field K). Justification: the checker multiplies out both words of every
+    /// constraint and the column sums of every barycentric operator in K and compares them
+    /// exactly (reduction modulo the field's polynomial, an exact zero test at α).
+    ConstraintsHold(ConstraintsHoldStep),
+    /// **Every infinite walk of the control graph contracts** (the attractor is defined).
+    /// Justification: the operators of the instance (the claim's values, the step's values for
+    /// the unknown ones, which must satisfy every constraint) are barycentric, so each maps the
+    /// differences of points into the differences; the listed walks form, from every reachable
+    /// state, a complete prefix code of the control graph (every infinite walk from that state
+    /// starts with exactly one of them); and the product of each walk, restricted to the
+    /// differences, has induced norm below 1, computed exactly in K. Every infinite walk is then
+    /// a concatenation of listed walks, and its products tend to 0.
+    Contraction(ContractionStep),
+    /// **The similarity dimension** s (Mauldin–Williams) of every cyclic strongly connected
+    /// part of the control graph, and of the attractor (their largest). Justification: the
+    /// checker rebuilds the frames of the states (the start points, then `F_w = F_q·T` along the
+    /// first operator reaching w breadth first), checks that each operator of a part is a
+    /// similitude of the claimed squared ratio `σ^k` on those frames (Gram matrices, exactly in
+    /// K), builds `D(u) = det(I − M(u))` with `M(u)_(q,w) = Σ u^k`, and checks by Sturm counts
+    /// that the claimed `u*` is the smallest root of D in (0, 1]; then `ρ(M(u*)) = 1` and
+    /// `s = 2·ln u*/ln σ`. The decimal digits are re-derived from enclosures of logarithms.
+    SimilarityDimension(SimilarityStep),
+}
+
+/// The step `constraints-hold`: no data, the claim has everything.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ConstraintsHoldStep {
+    /// How many constraints the claim has (a cross-check for people).
+    pub constraints: usize,
+}
+
+/// The step `contraction`.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContractionStep {
+    /// The values of the claim's unknown operators in the instance that is drawn (by operator
+    /// index, coordinates in K); an operator the claim gives is not repeated here.
+    pub instance: Vec<(usize, Vec<Vec<FieldCoords>>)>,
+    /// The induced norm: `inf` (max row sum) or `1` (max column sum).
+    pub norm: String,
+    /// The walks, each a non-empty list of subdivision operators `T1, T2, …` with
+    /// `T_(i+1)`'s row state the column state of `T_i`; the walks from one state are a
+    /// complete prefix code.
+    pub walks: Vec<Vec<usize>>,
+}
+
+/// One cyclic strongly connected part of the control graph and its similarity dimension.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SimilarityPart {
+    /// The part's states, increasing.
+    pub states: Vec<usize>,
+    /// σ ∈ (0, 1) in K: every squared ratio of the part is a power of it.
+    pub sigma: FieldCoords,
+    /// Each operator inside the part (row and column state in the part) with the exponent k
+    /// of its squared ratio `σ^k`, by operator index, increasing (0 for ratio 1: the operator
+    /// that first reaches a state fixes that state's frame; those must form no cycle).
+    pub exponents: Vec<(usize, u32)>,
+    /// `u*`, the smallest root of `det(I − M(u))` in (0, 1].
+    pub u: Algebraic,
+    /// `s` when it is rational (`u*^(2b) = σ^a` for `s = a/b`), else `None`.
+    pub rational: Option<String>,
+    /// u* as an element of K, when it is one and irrational (`s = 2j` with `u* = σ^j`): the
+    /// checker then compares `u*^(2b)` with `σ^a` in K.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub u_field: Option<FieldCoords>,
+    /// A witness of the open-set condition: for every state of the part, in order, a convex
+    /// polygon in the state's chart (the barycentric coordinates `x ↦ (1 − Σx, x)` of its
+    /// control points: 2 coordinates for 3 points, 1 for 2 points), its vertices
+    /// counter-clockwise (in one dimension: the two ends, increasing).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub open_set: Option<Vec<Vec<Vec<FieldCoords>>>>,
+}
+
+/// The step `similarity-dimension`.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SimilarityStep {
+    /// The instance, as in [`ContractionStep::instance`].
+    pub instance: Vec<(usize, Vec<Vec<FieldCoords>>)>,
+    /// Every cyclic strongly connected part reachable from the start, ordered by smallest state.
+    pub parts: Vec<SimilarityPart>,
+    /// The number of decimal digits of `decimal`.
+    pub digits: usize,
+    /// The largest part's s, truncated: `decimal ≤ s < decimal + 10^(−digits)`.
+    pub decimal: String,
 }
 
 /// `B` (connected) or `C` (Cantor-like).
@@ -613,6 +728,9 @@ impl Step {
             Step::Inconsistent(_) => "inconsistent",
             Step::LimitRatio(_) => "limit-ratio",
             Step::VolumeClosure(_) => "volume-closure",
+            Step::ConstraintsHold(_) => "constraints-hold",
+            Step::Contraction(_) => "contraction",
+            Step::SimilarityDimension(_) => "similarity-dimension",
         }
     }
 }

@@ -14,6 +14,10 @@ use crate::certificate::format::{
     SubstitutionClaim, System, TypeRule, Volume, VolumeClosureStep, VolumeCount, VolumeRule,
     VolumeTypeRule, VolumesClaim, WordEquation, WordFactor,
 };
+use crate::certificate::format::{
+    AttractorClaim, ConstraintsHoldStep, ContractionStep, FieldCoords, SimilarityPart,
+    SimilarityStep,
+};
 use num_rational::BigRational;
 use num_traits::{One, Zero};
 use std::cmp::Ordering;
@@ -277,6 +281,7 @@ pub fn automaton_claim(a: &crate::constraint::Automaton) -> AutomatonClaim {
                 to: o.to,
                 from: o.from,
                 value: o.value.as_ref().map(matrix_strings),
+                field_value: None,
             })
             .collect(),
         constraints: a
@@ -288,7 +293,188 @@ pub fn automaton_claim(a: &crate::constraint::Automaton) -> AutomatonClaim {
             })
             .collect(),
         barycentric: a.barycentric.clone(),
+        field: None,
+        attractor: None,
     }
+}
+
+fn coords(x: &crate::algebra::algebraic::FieldElement) -> FieldCoords {
+    strings(x.coords())
+}
+
+fn kmatrix_coords(m: &crate::algebra::kmatrix::KMatrix) -> Vec<Vec<FieldCoords>> {
+    (0..m.rows)
+        .map(|r| (0..m.cols).map(|c| coords(m.get(r, c))).collect())
+        .collect()
+}
+
+/// An automaton with its modelling lines as certificate data: the automaton of
+/// [`automaton_claim`], the field K and the operators given in it, and the attractor (start
+/// state, its control points — the default zigzag when the file gives none — and the
+/// subdivision operators).
+pub fn model_claim(m: &crate::input::AutomatonModel) -> AutomatonClaim {
+    let mut claim = automaton_claim(&m.automaton);
+    if m.field.degree() > 1 {
+        claim.field = Some(algebraic(m.field.generator()));
+    }
+    for &o in &m.field_ops {
+        if let Some(v) = &m.kvalues[o] {
+            claim.operators[o].field_value = Some(kmatrix_coords(v));
+        }
+    }
+    let points = m.points.clone().unwrap_or_else(|| {
+        crate::analysis::similarity::default_points(
+            m.automaton.states[m.start].dim,
+            m.space,
+            &m.field,
+        )
+    });
+    claim.attractor = Some(AttractorClaim {
+        start: m.start,
+        points: points
+            .iter()
+            .map(|p| p.iter().map(coords).collect())
+            .collect(),
+        subdivision: m
+            .automaton
+            .operators
+            .iter()
+            .enumerate()
+            .filter(|(_, o)| o.kind == crate::constraint::OpKind::Sub)
+            .map(|(i, _)| i)
+            .collect(),
+    });
+    claim
+}
+
+/// Everything `lacuna verify` proves about an automaton, as a certificate: the operators
+/// resolved (free parameters 0), the contraction of that instance when it is proven (a cycle
+/// that does not contract leaves the step out), and its similarity dimension (30 digits) when it
+/// applies. `max_unknowns` and `max_products` are the limits of `resolve` and of the
+/// contraction search.
+pub fn certify_model(
+    name: &str,
+    m: &crate::input::AutomatonModel,
+    max_unknowns: usize,
+    max_products: usize,
+) -> Result<Certificate, CertifyError> {
+    let resolved = crate::analysis::resolve(m, &[], max_unknowns)?;
+    let contraction =
+        match crate::analysis::check_contraction_within(m, &resolved.ops, max_products) {
+            Ok(c) => Some(c),
+            Err(crate::Error::Syntax(d)) if d.code == "E0715" || d.code == "E0716" => None,
+            Err(e) => return Err(e.into()),
+        };
+    let similarity = contraction
+        .as_ref()
+        .and_then(|_| crate::analysis::similarity_dimension(m, &resolved.ops, 30).ok());
+    certificate_for_model(
+        name,
+        m,
+        &resolved.ops,
+        contraction.as_ref(),
+        similarity.as_ref(),
+    )
+}
+
+/// u* as an element of K when it is irrational and the dimension is an even integer 2j
+/// (`u* = σ^j`), so that the checker can compare powers in K.
+fn u_in_field(
+    m: &crate::input::AutomatonModel,
+    p: &crate::analysis::similarity::PartWitness,
+) -> Option<FieldCoords> {
+    let r = p.rational.as_ref()?;
+    if p.u.as_rational().is_some() || p.sigma.as_rational().is_some() || !r.is_integer() {
+        return None;
+    }
+    let two = num_bigint::BigInt::from(2);
+    let s = r.to_integer();
+    if (&s % &two) != num_bigint::BigInt::from(0) {
+        return None;
+    }
+    let j: usize = (&s / &two).try_into().ok()?;
+    let mut y = m.field.rational(BigRational::one());
+    for _ in 0..j {
+        y = m.field.mul(&y, &p.sigma);
+    }
+    Some(coords(&y))
+}
+
+/// The certificate of an automaton file (or a compiled rule) with what `verify` proved about
+/// it: its constraints (`constraints-hold` when every operator is given, else the solution
+/// space over Q), then the contraction of the resolved instance and its similarity dimension
+/// when lacuna decided them.
+pub fn certificate_for_model(
+    name: &str,
+    m: &crate::input::AutomatonModel,
+    ops: &[crate::algebra::kmatrix::KMatrix],
+    contraction: Option<&crate::analysis::ContractionReport>,
+    similarity: Option<&crate::analysis::SimilarityDimension>,
+) -> Result<Certificate, CertifyError> {
+    let claim = model_claim(m);
+    let all_given = claim
+        .operators
+        .iter()
+        .all(|o| o.value.is_some() || o.field_value.is_some());
+    let instance: Vec<(usize, Vec<Vec<FieldCoords>>)> = claim
+        .operators
+        .iter()
+        .enumerate()
+        .filter(|(_, o)| o.value.is_none() && o.field_value.is_none())
+        .map(|(i, _)| (i, kmatrix_coords(&ops[i])))
+        .collect();
+    let mut cert = Certificate::new(name, Claim::Automaton(claim.clone()));
+    if all_given && claim.field.is_some() {
+        cert.steps.push(Step::ConstraintsHold(ConstraintsHoldStep {
+            constraints: claim.constraints.len(),
+        }));
+    } else {
+        let (_, lin, solution) = crate::constraint::solve_automaton(&m.automaton)?;
+        let source = format!("the constraints of the automaton `{name}`");
+        cert.steps.push(step_of_system(
+            system(&source, &lin.system, None),
+            &solution,
+        ));
+    }
+    if let Some(c) = contraction {
+        cert.steps.push(Step::Contraction(ContractionStep {
+            instance: instance.clone(),
+            norm: c.norm.clone(),
+            walks: c.walks.clone(),
+        }));
+    }
+    if let Some(sd) = similarity {
+        if !sd.witness.is_empty() {
+            let digits = sd.decimal.split('.').nth(1).map_or(0, str::len);
+            cert.steps.push(Step::SimilarityDimension(SimilarityStep {
+                instance,
+                parts: sd
+                    .witness
+                    .iter()
+                    .map(|p| SimilarityPart {
+                        states: p.states.clone(),
+                        sigma: coords(&p.sigma),
+                        exponents: p.exponents.clone(),
+                        u: algebraic(&p.u),
+                        rational: p.rational.as_ref().map(|r| r.to_string()),
+                        u_field: u_in_field(m, p),
+                        open_set: p.open_set.as_ref().map(|sets| {
+                            sets.iter()
+                                .map(|poly| {
+                                    poly.iter()
+                                        .map(|v| v.iter().map(coords).collect())
+                                        .collect()
+                                })
+                                .collect()
+                        }),
+                    })
+                    .collect(),
+                digits,
+                decimal: sd.decimal.clone(),
+            }));
+        }
+    }
+    Ok(cert)
 }
 
 /// The certificate of an explicit linear system and lacuna's solution of it: the claim is the
@@ -852,6 +1038,95 @@ pub fn lacuna_automaton(a: &AutomatonClaim) -> Result<crate::constraint::Automat
     Ok(out)
 }
 
+/// A claimed automaton with an attractor as lacuna's model: the operators (subdivision ones
+/// of kind `Sub`), the field, the values given in it, the start state and its points; every
+/// state drawn as nothing (certificates do not carry primitives).
+pub fn model_of_claim(a: &AutomatonClaim) -> Result<crate::input::AutomatonModel, CertifyError> {
+    use crate::algebra::algebraic::{NumberField, RealAlgebraic};
+    let bad = |m: String| CertifyError::Lacuna(crate::Error::Usage(m));
+    let at = a
+        .attractor
+        .as_ref()
+        .ok_or_else(|| bad("the claim has no attractor".into()))?;
+    let mut automaton = lacuna_automaton(a)?;
+    for &o in &at.subdivision {
+        automaton
+            .operators
+            .get_mut(o)
+            .ok_or_else(|| bad(format!("subdivision operator {o} out of range")))?
+            .kind = crate::constraint::OpKind::Sub;
+    }
+    let field = match &a.field {
+        None => NumberField::new(RealAlgebraic::rational(BigRational::zero())),
+        Some(k) => {
+            let poly = crate::algebra::poly::Poly::new(
+                k.poly
+                    .iter()
+                    .map(|c| rational(c))
+                    .collect::<Result<_, _>>()?,
+            );
+            let (lo, hi) = (rational(&k.lo)?, rational(&k.hi)?);
+            let gen = match lo == hi {
+                true => RealAlgebraic::rational(lo),
+                false => RealAlgebraic::root_in(&poly, &lo, &hi)
+                    .ok_or_else(|| bad("the field's interval isolates no root".into()))?,
+            };
+            NumberField::new(gen)
+        }
+    };
+    let element =
+        |c: &FieldCoords| -> Result<crate::algebra::algebraic::FieldElement, CertifyError> {
+            let p = crate::algebra::poly::Poly::new(
+                c.iter().map(|x| rational(x)).collect::<Result<_, _>>()?,
+            );
+            Ok(field.element(&p))
+        };
+    let mut kvalues = Vec::with_capacity(a.operators.len());
+    let mut field_ops = Vec::new();
+    for (i, o) in a.operators.iter().enumerate() {
+        kvalues.push(match (&o.value, &o.field_value) {
+            (Some(v), _) => Some(crate::algebra::kmatrix::KMatrix::from_rational(
+                &field,
+                &lacuna_matrix(v)?,
+            )),
+            (None, Some(v)) => {
+                field_ops.push(i);
+                let rows = v.len();
+                let cols = v.first().map_or(0, Vec::len);
+                let data = v
+                    .iter()
+                    .flatten()
+                    .map(&element)
+                    .collect::<Result<Vec<_>, _>>()?;
+                if data.len() != rows * cols {
+                    return Err(bad(format!("operator {}: a ragged matrix", o.name)));
+                }
+                Some(crate::algebra::kmatrix::KMatrix { rows, cols, data })
+            }
+            (None, None) => None,
+        });
+    }
+    let points = at
+        .points
+        .iter()
+        .map(|p| p.iter().map(&element).collect::<Result<Vec<_>, _>>())
+        .collect::<Result<Vec<_>, _>>()?;
+    let space = points.first().map_or(2, Vec::len);
+    let states = automaton.states.len();
+    Ok(crate::input::AutomatonModel {
+        automaton,
+        field,
+        field_decl: None,
+        kvalues,
+        field_ops,
+        space,
+        start: at.start,
+        points: Some(points),
+        primitives: vec![crate::input::automaton_model::Primitive::Nothing; states],
+        params: Vec::new(),
+    })
+}
+
 /// The certificate lacuna itself produces for a claim: the independent recomputation of
 /// everything a checked certificate states (used by the forgery fuzz target and tests: a
 /// certificate the checker accepts must state what this one states).
@@ -869,6 +1144,10 @@ pub fn recertify(
                 cantor_gap: rational(&f.cantor_gap)?,
             };
             certificate_for(label, &ts, opts)
+        }
+        Claim::Automaton(a) if a.attractor.is_some() => {
+            let m = model_of_claim(a)?;
+            certify_model(label, &m, limits.max_unknowns, limits.max_products)
         }
         Claim::Automaton(a) => certificate_for_automaton(label, &lacuna_automaton(a)?),
         Claim::Substitution(s) => {

@@ -201,6 +201,33 @@ fn matrix_text(m: &[Vec<String>]) -> String {
     format!("[{}]", rows.join(", "))
 }
 
+/// A polynomial in `var` from its coefficients, constant term first, written from the lowest
+/// power (`1/2 + 3·α + -1·α^2`) or from the highest (`1·x^2 + -3`).
+pub(super) fn power_text(c: &[String], var: &str, descending: bool) -> String {
+    let mut terms: Vec<String> = c
+        .iter()
+        .enumerate()
+        .filter(|(_, x)| x.as_str() != "0")
+        .map(|(i, x)| match i {
+            0 => x.clone(),
+            1 => format!("{x}·{var}"),
+            _ => format!("{x}·{var}^{i}"),
+        })
+        .collect();
+    if descending {
+        terms.reverse();
+    }
+    match terms.is_empty() {
+        true => "0".into(),
+        false => terms.join(" + "),
+    }
+}
+
+/// An element of K from its coordinates on `1, α, α², …`.
+pub(super) fn field_text(c: &[String]) -> String {
+    power_text(c, "α", false)
+}
+
 fn automaton_lines(a: &AutomatonClaim) -> Vec<String> {
     let mut o = Vec::new();
     let states: Vec<String> = a
@@ -212,9 +239,21 @@ fn automaton_lines(a: &AutomatonClaim) -> Vec<String> {
     let name = |i: usize| a.operators.get(i).map_or("?", |o| o.name.as_str());
     let state = |i: usize| a.states.get(i).map_or("?", |s| s.name.as_str());
     for op in &a.operators {
-        let value = match &op.value {
-            Some(m) => format!("= {}", matrix_text(m)),
-            None => "unknown".into(),
+        let value = match (&op.value, &op.field_value) {
+            (Some(m), _) => format!("= {}", matrix_text(m)),
+            (None, Some(m)) => {
+                let rows: Vec<String> = m
+                    .iter()
+                    .map(|r| {
+                        r.iter()
+                            .map(|x| field_text(x))
+                            .collect::<Vec<_>>()
+                            .join(" ")
+                    })
+                    .collect();
+                format!("= [{}] (in K)", rows.join("; "))
+            }
+            (None, None) => "unknown".into(),
         };
         o.push(format!(
             "operator {}: {} → {} {value}",
@@ -241,6 +280,31 @@ fn automaton_lines(a: &AutomatonClaim) -> Vec<String> {
         "barycentric (columns sum to 1): {}",
         bary.join(", ")
     ));
+    if let Some(k) = &a.field {
+        o.push(format!(
+            "field K = Q(α), α the root of {} in [{}, {}]",
+            power_text(&k.poly, "x", true),
+            k.lo,
+            k.hi
+        ));
+    }
+    if let Some(at) = &a.attractor {
+        let points: Vec<String> = at
+            .points
+            .iter()
+            .map(|p| {
+                let c: Vec<String> = p.iter().map(|x| field_text(x)).collect();
+                format!("({})", c.join(", "))
+            })
+            .collect();
+        o.push(format!(
+            "attractor of state {} with control points {}",
+            state(at.start),
+            points.join(" ")
+        ));
+        let subs: Vec<&str> = at.subdivision.iter().map(|&i| name(i)).collect();
+        o.push(format!("subdivision operators: {}", subs.join(", ")));
+    }
     o
 }
 
@@ -357,23 +421,41 @@ fn volume_lines(c: &VolumesClaim) -> Vec<String> {
 }
 
 /// The steps a complete certificate of this claim has, in order: each slot lists the step
-/// names that may fill it.
-fn slots(c: &Claim) -> &'static [&'static [&'static str]] {
+/// names that may fill it, and whether the claim needs it (an optional slot states a further
+/// verdict: an automaton's contraction and similarity dimension are certified where lacuna
+/// decides them, and a certificate without them proves the rest).
+fn slots(c: &Claim) -> &'static [(&'static [&'static str], bool)] {
     const SYSTEM: &[&str] = &["solution-space", "inconsistent"];
+    const AUTOMATON: &[&str] = &["solution-space", "inconsistent", "constraints-hold"];
     match c {
-        Claim::Faces(_) => &[&["closure"], SYSTEM, &["limit-ratio"]],
-        Claim::Automaton(_) | Claim::System(_) => &[SYSTEM],
-        Claim::Substitution(_) => &[&["limit-ratio"]],
-        Claim::Volumes(_) => &[&["volume-closure"], &["limit-ratio"]],
+        Claim::Faces(_) => &[
+            (&["closure"], true),
+            (SYSTEM, true),
+            (&["limit-ratio"], true),
+        ],
+        Claim::Automaton(_) => &[
+            (AUTOMATON, true),
+            (&["contraction"], false),
+            (&["similarity-dimension"], false),
+        ],
+        Claim::System(_) => &[(SYSTEM, true)],
+        Claim::Substitution(_) => &[(&["limit-ratio"], true)],
+        Claim::Volumes(_) => &[(&["volume-closure"], true), (&["limit-ratio"], true)],
     }
 }
 
 /// Checks the fixed structure: the steps fill the claim's slots in order, each at most once,
-/// the closure first for faces. Returns the slots left empty (a partial certificate), or why
-/// the certificate is refused as a whole.
+/// the closure first for faces. Returns the needed slots left empty (a partial certificate),
+/// or why the certificate is refused as a whole.
 pub(super) fn structure(c: &Claim, steps: &[Step]) -> Result<Vec<String>, String> {
     let slots = slots(c);
-    let expected: Vec<String> = slots.iter().map(|s| s.join(" or ")).collect();
+    let expected: Vec<String> = slots
+        .iter()
+        .map(|(s, needed)| match needed {
+            true => s.join(" or "),
+            false => format!("optionally {}", s.join(" or ")),
+        })
+        .collect();
     let shape = || {
         format!(
             "a certificate of this claim has, in this order, {}",
@@ -387,7 +469,7 @@ pub(super) fn structure(c: &Claim, steps: &[Step]) -> Result<Vec<String>, String
     let mut next = 0;
     for (i, s) in steps.iter().enumerate() {
         let name = s.name();
-        match (next..slots.len()).find(|&j| slots[j].contains(&name)) {
+        match (next..slots.len()).find(|&j| slots[j].0.contains(&name)) {
             Some(j) => {
                 filled[j] = true;
                 next = j + 1;
@@ -406,11 +488,12 @@ pub(super) fn structure(c: &Claim, steps: &[Step]) -> Result<Vec<String>, String
             shape()
         ));
     }
-    Ok(expected
-        .into_iter()
+    Ok(slots
+        .iter()
+        .zip(expected)
         .zip(filled)
-        .filter(|(_, f)| !f)
-        .map(|(e, _)| e)
+        .filter(|(((_, needed), _), f)| *needed && !f)
+        .map(|((_, e), _)| e)
         .collect())
 }
 

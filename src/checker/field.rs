@@ -70,6 +70,27 @@ pub(super) fn rem(a: &[Q], d: &[Q]) -> P {
     r
 }
 
+/// The quotient and remainder of `a` by a nonzero `d`.
+pub(super) fn divide(a: &[Q], d: &[Q]) -> (P, P) {
+    let mut r = trim(a.to_vec());
+    let d = trim(d.to_vec());
+    let lead = d.last().expect("divisor is nonzero").clone();
+    let mut q = vec![Q::zero(); r.len().saturating_sub(d.len()) + 1];
+    while r.len() >= d.len() {
+        if !charge(3 * (d.len() as u128) * widest(&d) * widest(&r)) {
+            break;
+        }
+        let c = r.last().expect("nonzero") / &lead;
+        let shift = r.len() - d.len();
+        for (i, x) in d.iter().enumerate() {
+            r[shift + i] -= &c * x;
+        }
+        q[shift] = c;
+        r = trim(r);
+    }
+    (trim(q), r)
+}
+
 pub(super) fn mul(a: &[Q], b: &[Q]) -> P {
     if !charge(3 * (a.len() * b.len()) as u128 * widest(a) * widest(b)) {
         return P::new();
@@ -99,7 +120,7 @@ pub(super) fn scale(a: &[Q], k: &Q) -> P {
 }
 
 /// The monic gcd over Q (Euclid).
-fn gcd(a: &[Q], b: &[Q]) -> P {
+pub(super) fn gcd(a: &[Q], b: &[Q]) -> P {
     let (mut a, mut b) = (trim(a.to_vec()), trim(b.to_vec()));
     while !b.is_empty() {
         let r = rem(&a, &b);
@@ -109,7 +130,8 @@ fn gcd(a: &[Q], b: &[Q]) -> P {
     a.iter().map(|c| c / &lead).collect()
 }
 
-fn sign_changes(chain: &[P], x: &Q) -> usize {
+/// The sign changes of a Sturm chain at `x` (zeros skipped).
+pub(super) fn sign_changes(chain: &[P], x: &Q) -> usize {
     let signs: Vec<bool> = chain
         .iter()
         .map(|p| eval(p, x))

@@ -9,6 +9,8 @@
 //! - `automaton.rs`: the linear system of a hand-written automaton, rebuilt from its words;
 //! - `system.rs`: the constraint system of a closure (THEORY §6) rebuilt from the closure step;
 //! - `linear.rs`: exact linear checks and elimination modulo primes;
+//! - `ifs.rs`: an automaton's constraints in its field K, the contraction of every walk of its
+//!   control graph (a complete prefix code of walks of norm below 1), its similarity dimension;
 //! - `field.rs`: polynomials over Q, Sturm isolation, exact zero and sign tests in Q[x]/(p);
 //! - `ratio.rs`: strongly connected classes and periods, Perron–Frobenius witnesses, the verdict;
 //! - `series.rs`: the counts, the characteristic polynomial of `A^P` (Faddeev–LeVerrier, Newton)
@@ -27,6 +29,7 @@ mod automaton;
 mod claim;
 mod closure;
 mod field;
+mod ifs;
 mod linear;
 mod ratio;
 mod series;
@@ -222,6 +225,12 @@ impl CheckReport {
             };
             o += &format!("{v:>13}  {}\n", s.message);
         }
+        // What is proved, in one line each, once every step is.
+        if !self.failed() && !self.refused() {
+            for v in self.steps.iter().filter_map(|s| s.verdict.as_deref()) {
+                o += &format!("{:>13}  {v}\n", "verdict");
+            }
+        }
         if self.partial() {
             o += &format!(
                 "{:>13}  the certificate proves only part of its claim: no {} step\n",
@@ -415,6 +424,23 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
                 _ => {
                     Err("a volume-closure step in a certificate whose claim has no volumes".into())
                 }
+            },
+            Step::ConstraintsHold(s) => match &cert.claim {
+                Claim::Automaton(a) => self::ifs::check_constraints_hold(a, s.constraints),
+                _ => Err(
+                    "a constraints-hold step in a certificate whose claim is no automaton".into(),
+                ),
+            },
+            Step::Contraction(s) => match &cert.claim {
+                Claim::Automaton(a) => self::ifs::check_contraction(a, s),
+                _ => Err("a contraction step in a certificate whose claim is no automaton".into()),
+            },
+            Step::SimilarityDimension(s) => match &cert.claim {
+                Claim::Automaton(a) => self::ifs::check_similarity(a, s),
+                _ => Err(
+                    "a similarity-dimension step in a certificate whose claim is no automaton"
+                        .into(),
+                ),
             },
             Step::SolutionSpace(s) => check_solution(s, tie),
             Step::Inconsistent(c) => check_conflict(c, tie),

@@ -409,3 +409,164 @@ fn report_curves(p: &Prepared) -> Vec<(String, Result<lacuna::analysis::CurveCur
     }
     out
 }
+
+/// What `verify` says about an automaton file or a rule.
+#[derive(serde::Serialize)]
+struct AutomatonVerdict {
+    input: String,
+    /// The constraints: consistent (with the free parameters left), or the failing ones.
+    solver: lacuna::analysis::ResolveVerdict,
+    /// Whether the instance's attractor is proven defined, and how.
+    contraction: Option<String>,
+    /// Why contraction was not proven (a cycle that does not contract).
+    contraction_fails: Option<String>,
+    /// The similarity dimension, when it applies.
+    similarity_dimension: Option<lacuna::analysis::SimilarityDimension>,
+    /// Why there is no similarity dimension.
+    similarity_note: Option<String>,
+    /// The verdict.
+    verified: bool,
+}
+
+/// `lacuna verify` on an automaton file, a library automaton or a rule (compiled): the
+/// constraints, the contraction of the instance drawn (free parameters 0, `param` lines), the
+/// similarity dimension and the open-set condition; `--certificate` writes the steps that
+/// prove them (`constraints-hold` or `solution-space`, `contraction`, `similarity-dimension`).
+pub(super) fn verify(
+    arg: &str,
+    name: &str,
+    model: &AutomatonModel,
+    json: bool,
+    certificate: Option<&std::path::Path>,
+    limits: &Limits,
+) -> Result<ExitCode, Error> {
+    let mut outputs = match certificate {
+        Some(path) => Outputs::check(&[std::path::Path::new(arg)], &[("--certificate", path)])?,
+        None => Outputs::check(&[], &[])?,
+    };
+    if json && outputs.to_stdout {
+        return Err(Error::Usage(
+            "--json and --certificate - would both write to standard output".into(),
+        ));
+    }
+    limits.check_unknowns(model.automaton.unknown_count())?;
+    let resolved = lacuna::analysis::resolve(model, &[], limits.max_unknowns)?;
+    let free = !resolved.verdict.free_left.is_empty();
+    let (contraction, fails) =
+        match lacuna::analysis::check_contraction_within(model, &resolved.ops, limits.max_products)
+        {
+            Ok(c) => (Some(c), None),
+            Err(Error::Syntax(d)) if d.code == "E0715" || d.code == "E0716" => {
+                (None, Some(format!("{}: {}", d.code, d.message)))
+            }
+            Err(e) => return Err(e),
+        };
+    let (similarity, note) = match &contraction {
+        Some(_) => match lacuna::analysis::similarity_dimension(model, &resolved.ops, 30) {
+            Ok(s) => (Some(s), None),
+            Err(n) => (None, Some(n)),
+        },
+        None => (
+            None,
+            Some("the attractor is not proven to exist".to_string()),
+        ),
+    };
+    let consistent = resolved.verdict.consistent;
+    // A cycle of the instance that does not contract is a negative verdict when the file
+    // leaves no parameter free; with free parameters (set to 0) it is about that choice only.
+    let verified = consistent && (contraction.is_some() || free);
+    let mut o = format!(
+        "lacuna verify: {name} (automaton in space {})\n\n",
+        model.space
+    );
+    o += &format!(
+        "constraints ({}): {}\n",
+        resolved.verdict.field,
+        match consistent {
+            true => "consistent: every constraint holds".to_string(),
+            false => format!("INCONSISTENT: {}", resolved.verdict.failed.join("; ")),
+        }
+    );
+    if free {
+        o += &format!(
+            "  free parameters set to 0 in the instance: {}\n",
+            resolved.verdict.free_left.join(", ")
+        );
+    }
+    match (&contraction, &fails) {
+        (Some(c), _) => o += &format!("{}\n", c.text()),
+        (None, Some(f)) if free => {
+            o += &format!("contraction: the instance with the free parameters at 0 does not contract ({f}); choose them with `lacuna render --param`\n")
+        }
+        (None, Some(f)) => o += &format!("contraction: FAILS — {f}\n"),
+        (None, None) => {}
+    }
+    match (&similarity, &note) {
+        (Some(s), _) if s.upper_bound => o += &format!(
+            "similarity dimension = {} = {}… — an upper bound of the Hausdorff dimension only: {}\n",
+            s.exact, s.decimal, s.open_set
+        ),
+        (Some(s), _) => o += &format!(
+            "similarity dimension = {} = {}… (the Hausdorff dimension: {})\n",
+            s.exact, s.decimal, s.open_set
+        ),
+        (None, Some(n)) => o += &format!("similarity dimension: not applicable ({n})\n"),
+        (None, None) => {}
+    }
+    o += &format!(
+        "\nverdict: {}\n",
+        match verified {
+            true => "VERIFIED",
+            false => "NOT VERIFIED",
+        }
+    );
+    if !json && !outputs.to_stdout {
+        out(&o);
+    }
+    if let Some(path) = certificate {
+        use lacuna::certificate::CertifyError;
+        let cert = lacuna::certificate::certificate_for_model(
+            name,
+            model,
+            &resolved.ops,
+            contraction.as_ref(),
+            similarity.as_ref(),
+        )
+        .map_err(|e| match e {
+            CertifyError::Lacuna(e) => e,
+            e => Error::Analysis(e.to_string()),
+        })?;
+        outputs.write(path, |w| w.write_all(cert.to_json().as_bytes()))?;
+        if !json {
+            let osc = similarity.as_ref().is_some_and(|s| {
+                !s.witness.is_empty() && s.witness.iter().all(|p| p.open_set.is_some())
+            });
+            outputs.say(&format!(
+                "certificate written to {}{}\n",
+                path.display(),
+                match (osc, &similarity) {
+                    (true, _) => " (with the open-set condition's witness: convex sets)",
+                    (false, Some(_)) => " (the open-set condition is not certified: only convex-set witnesses are, see docs/CERTIFICATES.md)",
+                    (false, None) => "",
+                }
+            ));
+        }
+    }
+    if json {
+        print_json(&AutomatonVerdict {
+            input: name.to_string(),
+            solver: resolved.verdict.clone(),
+            contraction: contraction.as_ref().map(|c| c.text()),
+            contraction_fails: fails,
+            similarity_dimension: similarity,
+            similarity_note: note,
+            verified,
+        });
+    } else if outputs.to_stdout {
+        eprint!("{o}");
+    }
+    Ok(match verified {
+        true => ExitCode::SUCCESS,
+        false => ExitCode::from(EXIT_FAILED),
+    })
+}

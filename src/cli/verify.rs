@@ -16,6 +16,12 @@ pub(super) fn run(args: VerifyArgs, limits: &Limits) -> Result<ExitCode, Error> 
     }
     limits.check_level(levels)?;
     let arg = input.as_deref().unwrap_or("F0");
+    if !arg.contains('|') && !arg.trim().is_empty() {
+        if let lacuna::input::Loaded::Automaton { name, model, .. } = lacuna::input::load_any(arg)?
+        {
+            return automaton::verify(arg, &name, &model, json, certificate.as_deref(), limits);
+        }
+    }
     let mut outputs = match &certificate {
         Some(path) => Outputs::check(&[std::path::Path::new(arg)], &[("--certificate", path)])?,
         None => Outputs::check(&[], &[])?,

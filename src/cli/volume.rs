@@ -62,7 +62,7 @@ pub(super) fn counts(
             if n == 1 { "" } else { "s" }
         ));
         out(&lacuna::export::volume_counts_table(&c));
-        out("\nthe level-n solid (exact cell counts; – where not derived)\n");
+        out("\nthe level-n solid (exact cell counts, derived by lacuna, not in the certificate; – where not derived)\n");
         out(&lacuna::export::solid_table(&solid));
     }
     Ok(ExitCode::SUCCESS)
@@ -168,12 +168,12 @@ pub(super) fn verify(
             t += &format!("  {f}\n");
         }
         t += &lacuna::export::volume_counts_table(&counts);
-        t += "\nthe level-n solid (exact cell counts; – where not derived)\n";
+        t += "\nthe level-n solid (exact cell counts, derived by lacuna, not in the certificate; – where not derived)\n";
         t += &lacuna::export::solid_table(&solid);
         t += "\n";
         t += &lacuna::export::ratio_text(&r);
         t += &format!(
-            "\nconstraints (faces and volumes, Bézier degree 2): {} unknowns, {} equations, {}\n",
+            "\nconstraints (faces and volumes, Bézier degree 2; exact, not in the certificate): {} unknowns, {} equations, {}\n",
             solver.unknowns,
             solver.equations,
             if solver.consistent {

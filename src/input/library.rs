@@ -237,7 +237,7 @@ pub fn load_input(arg: &str) -> Result<Input> {
         Loaded::Faces(input) => Ok(input),
         Loaded::Automaton { name, .. } => Err(Error::Io {
             path: name,
-            reason: "this is an automaton, not faces: `solve`, `operators`, `render`, `measure` and `report` read automata; this command reads faces only".into(),
+            reason: "this is an automaton, not faces: `verify`, `solve`, `operators`, `render`, `measure` and `report` read automata; this command reads faces only".into(),
         }),
     }
 }

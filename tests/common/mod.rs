@@ -28,7 +28,7 @@ pub fn assert_certified(name: &str, ts: &lacuna::topology::TypeSet) {
 
 // ---- certificates ----
 
-use lacuna::certificate::{certificate_for, certificate_for_automaton};
+use lacuna::certificate::certificate_for;
 use lacuna::certificate::{Certificate, Step};
 use lacuna::checker::{check, check_json, Outcome};
 use lacuna::{constraint::GenOptions, topology::Limits};
@@ -42,8 +42,15 @@ pub fn face_certificate(name: &str) -> Certificate {
 
 pub fn automaton_certificate(name: &str) -> Certificate {
     match lacuna::input::load_any(name).expect("loads") {
-        lacuna::input::Loaded::Automaton { automaton, .. } => {
-            certificate_for_automaton(name, &automaton).expect("certifiable")
+        lacuna::input::Loaded::Automaton { model, .. } => {
+            let limits = Limits::default();
+            lacuna::certificate::certify_model(
+                name,
+                &model,
+                limits.max_unknowns,
+                limits.max_products,
+            )
+            .expect("certifiable")
         }
         lacuna::input::Loaded::Faces(_) => panic!("{name} is not an automaton"),
     }

@@ -1,0 +1,295 @@
+//! Certificates of what `verify` proves about an automaton's attractor (issue #29): the
+//! constraints in the automaton's field, the contraction of every walk of its control graph and
+//! its similarity dimension. Expected values are derived by hand below; every forgery must be
+//! rejected with a message naming its step.
+
+use lacuna::certificate::{Certificate, Step};
+use lacuna::checker::{check, check_json};
+
+mod common;
+use common::{assert_proved, assert_rejected, automaton_certificate, lacuna};
+
+/// The 30 digits of log 3 / log 2 = log₂ 3 (a mathematical constant, not lacuna's output:
+/// 1.584962500721156181453738943947816508759814…).
+const LOG2_3: &str = "1.584962500721156181453738943947";
+/// log 4 / log 3 = log₃ 4 = 1.261859507142914874199054228685521…
+const LOG3_4: &str = "1.261859507142914874199054228685";
+
+fn step<'a>(cert: &'a mut Certificate, name: &str) -> &'a mut Step {
+    cert.steps
+        .iter_mut()
+        .find(|s| s.name() == name)
+        .unwrap_or_else(|| panic!("no {name} step"))
+}
+
+fn contraction(cert: &mut Certificate) -> &mut lacuna::certificate::ContractionStep {
+    match step(cert, "contraction") {
+        Step::Contraction(c) => c,
+        _ => unreachable!(),
+    }
+}
+
+fn similarity(cert: &mut Certificate) -> &mut lacuna::certificate::SimilarityStep {
+    match step(cert, "similarity-dimension") {
+        Step::SimilarityDimension(s) => s,
+        _ => unreachable!(),
+    }
+}
+
+#[test]
+fn sierpinski_triangle_is_certified_as_derived_by_hand() {
+    // Three maps of ratio 1/2 towards the corners: squared ratio σ = 1/4, each of exponent 1;
+    // M(u) = [3u], det(I − M(u)) = 1 − 3u, u* = 1/3; s = 2·ln(1/3)/ln(1/4) = log 3 / log 2.
+    // Every map's restriction to the differences has ∞-norm 1/2: the three one-letter walks
+    // are a complete prefix code.
+    let mut cert = automaton_certificate("sierpinski-triangle");
+    assert_proved("sierpinski-triangle", &cert);
+    let names: Vec<&str> = cert.steps.iter().map(Step::name).collect();
+    assert_eq!(
+        names,
+        ["solution-space", "contraction", "similarity-dimension"]
+    );
+    let c = contraction(&mut cert);
+    assert_eq!(c.walks, vec![vec![0], vec![1], vec![2]]);
+    let s = similarity(&mut cert);
+    assert_eq!(s.parts.len(), 1);
+    let p = &s.parts[0];
+    assert_eq!(p.sigma, vec!["1/4".to_string()]);
+    assert_eq!(p.exponents, vec![(0, 1), (1, 1), (2, 1)]);
+    assert_eq!((p.u.lo.as_str(), p.u.hi.as_str()), ("1/3", "1/3"));
+    assert_eq!(s.decimal, LOG2_3);
+    let report = check(&cert);
+    assert!(report
+        .claims()
+        .iter()
+        .any(|c| c.contains(&format!("similarity dimension = {LOG2_3}"))));
+}
+
+#[test]
+fn koch_curve_in_q_sqrt3_is_certified() {
+    // Four maps of ratio 1/3 (two of them rotations by ±60°, entries in Q(√3)): σ = 1/9,
+    // M(u) = [4u], u* = 1/4, s = log 4 / log 3.
+    let mut cert = automaton_certificate("koch");
+    assert_proved("koch", &cert);
+    let names: Vec<&str> = cert.steps.iter().map(Step::name).collect();
+    assert_eq!(
+        names,
+        ["constraints-hold", "contraction", "similarity-dimension"]
+    );
+    let s = similarity(&mut cert);
+    assert_eq!(s.parts[0].sigma, vec!["1/9".to_string()]);
+    assert_eq!(
+        (s.parts[0].u.lo.as_str(), s.parts[0].u.hi.as_str()),
+        ("1/4", "1/4")
+    );
+    assert_eq!(s.decimal, LOG3_4);
+}
+
+#[test]
+fn contraction_forgeries_are_rejected() {
+    let base = automaton_certificate("sierpinski-triangle");
+    let mut c = base.clone();
+    contraction(&mut c).walks.pop();
+    assert_rejected("a walk dropped (incomplete code)", &c, "contraction");
+    let mut c = base.clone();
+    contraction(&mut c).walks.push(vec![0]);
+    assert_rejected("a walk repeated", &c, "contraction");
+    let mut c = base.clone();
+    contraction(&mut c).walks.push(vec![0, 1]);
+    assert_rejected(
+        "a walk extending another (not prefix-free)",
+        &c,
+        "contraction",
+    );
+    let mut c = base.clone();
+    contraction(&mut c).walks[0] = vec![7];
+    assert_rejected("an operator out of range", &c, "contraction");
+    let mut c = base.clone();
+    contraction(&mut c).norm = "2".into();
+    assert_rejected("an unknown norm", &c, "contraction");
+    let mut c = base.clone();
+    contraction(&mut c)
+        .instance
+        .push((0, vec![vec![vec!["1".into()]]]));
+    assert_rejected("an instance for a given operator", &c, "contraction");
+    // A claim whose first map is the identity: its walk's norm is 1, not below.
+    let mut c = base.clone();
+    if let lacuna::certificate::Claim::Automaton(a) = &mut c.claim {
+        a.operators[0].value = Some(
+            [["1", "0", "0"], ["0", "1", "0"], ["0", "0", "1"]]
+                .iter()
+                .map(|r| r.iter().map(|x| x.to_string()).collect())
+                .collect(),
+        );
+    }
+    assert_rejected("a map of ratio 1", &c, "contraction");
+}
+
+#[test]
+fn similarity_forgeries_are_rejected() {
+    let base = automaton_certificate("sierpinski-triangle");
+    let mut c = base.clone();
+    similarity(&mut c).parts[0].sigma = vec!["1/9".into()];
+    assert_rejected("σ changed (ratios 1/3)", &c, "similarity-dimension");
+    let mut c = base.clone();
+    similarity(&mut c).parts[0].exponents[1].1 = 2;
+    assert_rejected("an exponent changed", &c, "similarity-dimension");
+    let mut c = base.clone();
+    similarity(&mut c).parts[0].u = lacuna::certificate::Algebraic {
+        poly: vec!["-1".into(), "2".into()],
+        lo: "1/2".into(),
+        hi: "1/2".into(),
+    };
+    assert_rejected("u* changed", &c, "similarity-dimension");
+    let mut c = base.clone();
+    similarity(&mut c).decimal = "1.584962500721156181453738943948".into();
+    assert_rejected("the last digit changed", &c, "similarity-dimension");
+    let mut c = base.clone();
+    similarity(&mut c).parts[0].rational = Some("3/2".into());
+    assert_rejected("a rational dimension claimed", &c, "similarity-dimension");
+    let mut c = base.clone();
+    similarity(&mut c).parts.clear();
+    assert_rejected("the part dropped", &c, "similarity-dimension");
+    // monkeys-tree: u* irrational (a root of 5u² + u − 1), σ = 1/3.
+    let base = automaton_certificate("monkeys-tree");
+    assert_proved("monkeys-tree", &base);
+    let mut c = base.clone();
+    let s = similarity(&mut c);
+    s.parts[0].u.poly = vec!["-1".into(), "1".into(), "4".into()];
+    assert_rejected("u*'s polynomial changed", &c, "similarity-dimension");
+    // kite-dart: s = 2 with u* = σ irrational, given in K; another element is refused.
+    let base = automaton_certificate("kite-dart");
+    assert_proved("kite-dart", &base);
+    let mut c = base.clone();
+    let s = similarity(&mut c);
+    assert!(s.parts[0].u_field.is_some(), "kite-dart gives u* in K");
+    s.parts[0].u_field = Some(vec!["1/2".into()]);
+    assert_rejected("u* in K changed", &c, "similarity-dimension");
+}
+
+#[test]
+fn constraints_hold_forgeries_are_rejected() {
+    let base = automaton_certificate("koch");
+    let mut c = base.clone();
+    if let lacuna::certificate::Claim::Automaton(a) = &mut c.claim {
+        let at = a.operators.len() - 2;
+        let m = a.operators[at]
+            .field_value
+            .as_mut()
+            .expect("koch.T2 is given in Q(√3)");
+        m[0][0] = vec!["1/2".into(), "1/7".into()];
+    }
+    // The changed operator no longer has columns summing to 1.
+    assert_rejected("an entry in K changed", &c, "constraints-hold");
+    let mut c = base.clone();
+    if let Step::ConstraintsHold(s) = step(&mut c, "constraints-hold") {
+        s.constraints += 1;
+    }
+    assert_rejected("the count of constraints", &c, "constraints-hold");
+}
+
+#[test]
+fn the_producer_recertifies_every_attractor_claim_alike() {
+    // What the checker prints for lacuna's certificate equals what it prints for the producer's
+    // certificate of the same claim, recomputed from the claim alone (the forgery fuzz target
+    // relies on it).
+    for name in [
+        "sierpinski-triangle",
+        "koch",
+        "kite-dart",
+        "spec-edge",
+        "pythagoras-tree",
+    ] {
+        let cert = automaton_certificate(name);
+        let again =
+            lacuna::certificate::recertify(name, &cert.claim, &lacuna::topology::Limits::default())
+                .expect("recertifies");
+        assert_eq!(check(&cert).claims(), check(&again).claims(), "{name}");
+    }
+}
+
+#[test]
+fn verify_and_check_from_the_command_line() {
+    let dir = std::env::temp_dir().join(format!("lacuna-attractor-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("koch.json");
+    let p = path.to_str().unwrap();
+    let (code, out, err) = lacuna(&["verify", "koch", "--certificate", p]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("verdict: VERIFIED"), "{out}");
+    let (code, out, err) = lacuna(&["check", p]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(
+        out.contains(&format!("similarity dimension = {LOG3_4}")),
+        "{out}"
+    );
+    assert!(out.contains("the attractor is defined"), "{out}");
+    // A hand-edited digit is caught by `check` (exit 1).
+    let text = std::fs::read_to_string(&path).unwrap();
+    let forged = text.replace(LOG3_4, "1.261859507142914874199054228686");
+    std::fs::write(&path, forged).unwrap();
+    let (code, out, _) = lacuna(&["check", p]);
+    assert_eq!(code, 1, "{out}");
+    assert!(check_json(&std::fs::read_to_string(&path).unwrap()).failed());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn open_set_witnesses_make_the_dimension_hausdorff_and_forgeries_fail() {
+    // The Sierpinski triangle's hull is the triangle of its three points: in the chart (the
+    // barycentric coordinates of points 1 and 2) the triangle (0, 0), (1, 0), (0, 1); its three
+    // images are the corner triangles of half size, which meet only at points.
+    let base = automaton_certificate("sierpinski-triangle");
+    let report = check(&base);
+    assert!(
+        report.claims().iter().any(|c| c.contains(&format!(
+            "so the Hausdorff dimension of the attractor is {LOG2_3}"
+        ))),
+        "{}",
+        report.to_text()
+    );
+    let mut c = base.clone();
+    let set = similarity(&mut c).parts[0]
+        .open_set
+        .as_mut()
+        .expect("a witness");
+    set[0].reverse();
+    assert_rejected("a clockwise polygon", &c, "similarity-dimension");
+    let mut c = base.clone();
+    let set = similarity(&mut c).parts[0]
+        .open_set
+        .as_mut()
+        .expect("a witness");
+    set[0].pop();
+    assert_rejected("a polygon of two vertices", &c, "similarity-dimension");
+    let mut c = base.clone();
+    let set = similarity(&mut c).parts[0]
+        .open_set
+        .as_mut()
+        .expect("a witness");
+    // Half the triangle towards its first vertex: the other corners' images leave it.
+    for v in set[0].iter_mut() {
+        for x in v.iter_mut().filter(|x| !x.is_empty()) {
+            // Rational coordinates (zero is the empty list).
+            let q = lacuna::checker::parse_rational(&x[0]).expect("rational");
+            x[0] = (q / num_rational::BigRational::from_integer(2.into())).to_string();
+        }
+    }
+    assert_rejected("a set the images leave", &c, "similarity-dimension");
+    // Without a witness the verdict is only an upper bound.
+    let mut c = base.clone();
+    similarity(&mut c).parts[0].open_set = None;
+    let report = check(&c);
+    assert!(report.all_proved());
+    assert!(report
+        .claims()
+        .iter()
+        .any(|c| c.contains("an upper bound of the Hausdorff dimension")));
+    // The Heighway dragon's condition is decided by neighbour maps, which are not certified:
+    // its certificate states an upper bound only.
+    let dragon = automaton_certificate("heighway-dragon");
+    assert!(check(&dragon)
+        .claims()
+        .iter()
+        .any(|c| c.contains("similarity dimension = 2.000") && c.contains("an upper bound")));
+}
