@@ -47,7 +47,7 @@ fn sierpinski_triangle_is_certified_as_derived_by_hand() {
     let names: Vec<&str> = cert.steps.iter().map(Step::name).collect();
     assert_eq!(
         names,
-        ["solution-space", "contraction", "similarity-dimension"]
+        ["constraints-hold", "contraction", "similarity-dimension"]
     );
     let c = contraction(&mut cert);
     assert_eq!(c.walks, vec![vec![0], vec![1], vec![2]]);
@@ -292,4 +292,41 @@ fn open_set_witnesses_make_the_dimension_hausdorff_and_forgeries_fail() {
         .claims()
         .iter()
         .any(|c| c.contains("similarity dimension = 2.000") && c.contains("an upper bound")));
+}
+
+#[test]
+fn a_failing_constraint_of_given_operators_is_certified_and_cannot_be_forged() {
+    // chaikin-known with T0 replaced by T1: the first constraint, T0·[0 0; 1 0; 0 1] =
+    // T1·[1 0; 0 1; 0 0], then compares T1's last two columns with its first two, which differ
+    // (T1's columns are (1/4, 3/4, 0), (0, 3/4, 1/4), (0, 1/4, 3/4)).
+    let honest = automaton_certificate("chaikin-known");
+    assert_eq!(honest.steps[0].name(), "constraints-hold");
+    let mut claim = match &honest.claim {
+        lacuna::certificate::Claim::Automaton(a) => a.clone(),
+        _ => unreachable!(),
+    };
+    claim.operators[0].value = claim.operators[1].value.clone();
+    let automaton = lacuna::certificate::lacuna_automaton(&claim).expect("an automaton");
+    let cert = lacuna::certificate::certificate_for_automaton("broken", &automaton).unwrap();
+    let Step::ConstraintFails(f) = &cert.steps[0] else {
+        panic!("expected constraint-fails, got {:?}", cert.steps[0].name())
+    };
+    assert_eq!((f.constraint, f.barycentric), (Some(0), None));
+    let report = check(&cert);
+    assert!(report.all_proved(), "{}", report.to_text());
+    assert!(report
+        .claims()
+        .iter()
+        .any(|c| c.contains("INCONSISTENT: constraint 0 fails")));
+    // The honest automaton's constraint 0 holds: claiming it fails is rejected.
+    let mut forged = honest.clone();
+    forged.steps[0] = Step::ConstraintFails(lacuna::certificate::ConstraintFailsStep {
+        constraint: Some(0),
+        barycentric: None,
+    });
+    assert_rejected("a constraint that holds", &forged, "constraint-fails");
+    // A solution-space step is foreign to a claim whose operators are all given.
+    let mut foreign = honest.clone();
+    foreign.steps[0] = automaton_certificate("spec-edge").steps[0].clone();
+    assert!(check(&foreign).failed());
 }

@@ -314,6 +314,10 @@ pub enum Step {
     /// constraint and the column sums of every barycentric operator in K and compares them
     /// exactly (reduction modulo the field's polynomial, an exact zero test at α).
     ConstraintsHold(ConstraintsHoldStep),
+    /// **A constraint of an automaton fails** (every operator given). Justification: the
+    /// checker evaluates the named constraint's two words (or the named barycentric operator's
+    /// column sums) exactly in K and finds them different.
+    ConstraintFails(ConstraintFailsStep),
     /// **Every infinite walk of the control graph contracts** (the attractor is defined).
     /// Justification: the operators of the instance (the claim's values, the step's values for
     /// the unknown ones, which must satisfy every constraint) are barycentric, so each maps the
@@ -340,6 +344,16 @@ pub enum Step {
 pub struct ConstraintsHoldStep {
     /// How many constraints the claim has (a cross-check for people).
     pub constraints: usize,
+}
+
+/// The step `constraint-fails`: exactly one of the two fields is given.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ConstraintFailsStep {
+    /// The index of a constraint whose two words differ.
+    pub constraint: Option<usize>,
+    /// The index of an operator listed barycentric whose columns do not all sum to 1.
+    pub barycentric: Option<usize>,
 }
 
 /// The step `contraction`.
@@ -729,6 +743,7 @@ impl Step {
             Step::LimitRatio(_) => "limit-ratio",
             Step::VolumeClosure(_) => "volume-closure",
             Step::ConstraintsHold(_) => "constraints-hold",
+            Step::ConstraintFails(_) => "constraint-fails",
             Step::Contraction(_) => "contraction",
             Step::SimilarityDimension(_) => "similarity-dimension",
         }

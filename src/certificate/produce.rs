@@ -15,8 +15,8 @@ use crate::certificate::format::{
     VolumeTypeRule, VolumesClaim, WordEquation, WordFactor,
 };
 use crate::certificate::format::{
-    AttractorClaim, ConstraintsHoldStep, ContractionStep, FieldCoords, SimilarityPart,
-    SimilarityStep,
+    AttractorClaim, ConstraintFailsStep, ConstraintsHoldStep, ContractionStep, FieldCoords,
+    SimilarityPart, SimilarityStep,
 };
 use num_rational::BigRational;
 use num_traits::{One, Zero};
@@ -233,19 +233,84 @@ pub fn certificate_for_substitution(
 }
 
 /// The certificate of a hand-written automaton: the claim is the automaton itself (states,
-/// operators, words), the one step the solution space or conflict of its system.
+/// operators, words), the one step the solution space or conflict of its system — or, when
+/// every operator is given, `constraints-hold` or the first constraint that fails.
 pub fn certificate_for_automaton(
     name: &str,
     automaton: &crate::constraint::Automaton,
 ) -> Result<Certificate, CertifyError> {
+    let mut cert = Certificate::new(name, Claim::Automaton(automaton_claim(automaton)));
+    if automaton.operators.iter().all(|o| o.value.is_some()) {
+        let k = crate::algebra::algebraic::NumberField::new(
+            crate::algebra::RealAlgebraic::rational(BigRational::zero()),
+        );
+        let values: Vec<crate::algebra::kmatrix::KMatrix> = automaton
+            .operators
+            .iter()
+            .map(|o| {
+                crate::algebra::kmatrix::KMatrix::from_rational(
+                    &k,
+                    o.value.as_ref().expect("given"),
+                )
+            })
+            .collect();
+        cert.steps.push(given_step(automaton, &k, &values));
+        return Ok(cert);
+    }
     let (_, lin, solution) = crate::constraint::solve_automaton(automaton)?;
     let source = format!("the constraints of the automaton `{name}`");
-    let mut cert = Certificate::new(name, Claim::Automaton(automaton_claim(automaton)));
     cert.steps.push(step_of_system(
         system(&source, &lin.system, None),
         &solution,
     ));
     Ok(cert)
+}
+
+/// For an automaton whose every operator is given (`values`, in K): `constraints-hold`, or
+/// `constraint-fails` naming the first constraint (then barycentric operator) that fails.
+fn given_step(
+    a: &crate::constraint::Automaton,
+    k: &crate::algebra::algebraic::NumberField,
+    values: &[crate::algebra::kmatrix::KMatrix],
+) -> Step {
+    use crate::algebra::kmatrix::KMatrix;
+    let word = |w: &[crate::constraint::Factor]| -> Option<KMatrix> {
+        let mut acc: Option<KMatrix> = None;
+        for f in w {
+            let m = match f {
+                crate::constraint::Factor::Op(o) => values.get(*o)?.clone(),
+                crate::constraint::Factor::Literal(m) => KMatrix::from_rational(k, m),
+            };
+            acc = Some(match acc {
+                None => m,
+                Some(p) => p.mul(k, &m)?,
+            });
+        }
+        acc
+    };
+    for (n, c) in a.constraints.iter().enumerate() {
+        let holds = match (word(&c.lhs), word(&c.rhs)) {
+            (Some(l), Some(r)) => l.rows == r.rows && l.cols == r.cols && l.data == r.data,
+            _ => false,
+        };
+        if !holds {
+            return Step::ConstraintFails(ConstraintFailsStep {
+                constraint: Some(n),
+                barycentric: None,
+            });
+        }
+    }
+    for &o in &a.barycentric {
+        if !values[o].is_barycentric(k) {
+            return Step::ConstraintFails(ConstraintFailsStep {
+                constraint: None,
+                barycentric: Some(o),
+            });
+        }
+    }
+    Step::ConstraintsHold(ConstraintsHoldStep {
+        constraints: a.constraints.len(),
+    })
 }
 
 fn matrix_strings(m: &crate::algebra::Matrix) -> Vec<Vec<String>> {
@@ -424,10 +489,14 @@ pub fn certificate_for_model(
         .map(|(i, _)| (i, kmatrix_coords(&ops[i])))
         .collect();
     let mut cert = Certificate::new(name, Claim::Automaton(claim.clone()));
-    if all_given && claim.field.is_some() {
-        cert.steps.push(Step::ConstraintsHold(ConstraintsHoldStep {
-            constraints: claim.constraints.len(),
-        }));
+    if all_given {
+        let values: Vec<crate::algebra::kmatrix::KMatrix> = m
+            .kvalues
+            .iter()
+            .zip(ops)
+            .map(|(v, o)| v.clone().unwrap_or_else(|| o.clone()))
+            .collect();
+        cert.steps.push(given_step(&m.automaton, &m.field, &values));
     } else {
         let (_, lin, solution) = crate::constraint::solve_automaton(&m.automaton)?;
         let source = format!("the constraints of the automaton `{name}`");

@@ -426,15 +426,27 @@ fn volume_lines(c: &VolumesClaim) -> Vec<String> {
 /// decides them, and a certificate without them proves the rest).
 fn slots(c: &Claim) -> &'static [(&'static [&'static str], bool)] {
     const SYSTEM: &[&str] = &["solution-space", "inconsistent"];
-    const AUTOMATON: &[&str] = &["solution-space", "inconsistent", "constraints-hold"];
+    const GIVEN: &[&str] = &["constraints-hold", "constraint-fails"];
     match c {
         Claim::Faces(_) => &[
             (&["closure"], true),
             (SYSTEM, true),
             (&["limit-ratio"], true),
         ],
+        // Every operator given: the constraints are evaluated, there is no system to solve.
+        Claim::Automaton(a)
+            if a.operators
+                .iter()
+                .all(|o| o.value.is_some() || o.field_value.is_some()) =>
+        {
+            &[
+                (GIVEN, true),
+                (&["contraction"], false),
+                (&["similarity-dimension"], false),
+            ]
+        }
         Claim::Automaton(_) => &[
-            (AUTOMATON, true),
+            (SYSTEM, true),
             (&["contraction"], false),
             (&["similarity-dimension"], false),
         ],

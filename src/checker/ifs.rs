@@ -249,30 +249,51 @@ fn instance(
     Ok(out)
 }
 
+/// A word's product in K (an error when an operator is out of range or the shapes do not
+/// chain).
+fn word(k: &Field, ops: &[KMat], w: &[WordFactor], which: &str, n: usize) -> Result<KMat, String> {
+    let mut acc: Option<KMat> = None;
+    for f in w {
+        let m = match f {
+            WordFactor::Op(o) => ops
+                .get(*o)
+                .cloned()
+                .ok_or_else(|| format!("constraint {n}: operator {o} out of range"))?,
+            WordFactor::Literal(m) => parse_rational_matrix(m, "a literal")?,
+        };
+        acc = Some(match acc {
+            None => m,
+            Some(p) => k
+                .matmul(&p, &m)
+                .map_err(|e| format!("constraint {n}, {which} side: {e}"))?,
+        });
+    }
+    acc.ok_or_else(|| format!("constraint {n}: the {which} side is an empty word"))
+}
+
+/// Whether constraint n's two words are equal in K (an error when they are malformed or of
+/// different shapes).
+fn constraint_holds(k: &Field, a: &AutomatonClaim, ops: &[KMat], n: usize) -> Result<bool, String> {
+    let c = a
+        .constraints
+        .get(n)
+        .ok_or_else(|| format!("constraint {n} is out of range"))?;
+    let (l, r) = (
+        word(k, ops, &c.lhs, "left", n)?,
+        word(k, ops, &c.rhs, "right", n)?,
+    );
+    if (l.rows, l.cols) != (r.rows, r.cols) {
+        return Err(format!(
+            "constraint {n}: its two words have different shapes"
+        ));
+    }
+    Ok(k.equal(&l, &r))
+}
+
 /// Evaluates every constraint and barycentric condition on the operators, exactly in K.
 fn constraints_hold(k: &Field, a: &AutomatonClaim, ops: &[KMat]) -> Result<(), String> {
-    let word = |w: &[WordFactor], which: &str, n: usize| -> Result<KMat, String> {
-        let mut acc: Option<KMat> = None;
-        for f in w {
-            let m = match f {
-                WordFactor::Op(o) => ops
-                    .get(*o)
-                    .cloned()
-                    .ok_or_else(|| format!("constraint {n}: operator {o} out of range"))?,
-                WordFactor::Literal(m) => parse_rational_matrix(m, "a literal")?,
-            };
-            acc = Some(match acc {
-                None => m,
-                Some(p) => k
-                    .matmul(&p, &m)
-                    .map_err(|e| format!("constraint {n}, {which} side: {e}"))?,
-            });
-        }
-        acc.ok_or_else(|| format!("constraint {n}: the {which} side is an empty word"))
-    };
-    for (n, c) in a.constraints.iter().enumerate() {
-        let (l, r) = (word(&c.lhs, "left", n)?, word(&c.rhs, "right", n)?);
-        if !k.equal(&l, &r) {
+    for n in 0..a.constraints.len() {
+        if !constraint_holds(k, a, ops, n)? {
             return Err(format!(
                 "constraint {n} does not hold: its two words differ in K"
             ));
@@ -322,6 +343,41 @@ pub(super) fn check_constraints_hold(a: &AutomatonClaim, claimed: usize) -> Chec
         ),
         "consistent: every constraint holds".into(),
     ))
+}
+
+/// The step `constraint-fails`.
+pub(super) fn check_constraint_fails(
+    a: &AutomatonClaim,
+    s: &crate::certificate::ConstraintFailsStep,
+) -> Checked {
+    let k = Field::of(a)?;
+    let ops = instance(&k, a, &[])?;
+    let (what, failed) = match (s.constraint, s.barycentric) {
+        (Some(n), None) => (
+            format!("constraint {n}"),
+            !constraint_holds(&k, a, &ops, n)?,
+        ),
+        (None, Some(o)) => {
+            if !a.barycentric.contains(&o) {
+                return Err(format!("operator {o} is not listed barycentric"));
+            }
+            let m = ops
+                .get(o)
+                .ok_or_else(|| format!("operator {o} out of range"))?;
+            (
+                format!("the column sums of {}", a.operators[o].name),
+                !barycentric(&k, m),
+            )
+        }
+        _ => return Err("exactly one of `constraint` and `barycentric` must be given".into()),
+    };
+    match failed {
+        true => Ok((
+            format!("{what} evaluated exactly in K: it does not hold"),
+            format!("INCONSISTENT: {what} fails"),
+        )),
+        false => Err(format!("{what} holds: it is no counterexample")),
+    }
 }
 
 /// The control graph: for each state, its subdivision operators `T: q ← w` (edges q → w).
@@ -876,32 +932,51 @@ fn enclose_root(u: &Root, bits: u64) -> Result<(Q, Q), String> {
     Ok((lo, hi))
 }
 
-/// `(lo, hi)` integers with `lo·2^−b ≤ atanh(p/q) ≤ hi·2^−b`, for `|p/q| ≤ 1/2`: the series
-/// `Σ y^(2n+1)/(2n+1)`, each term rounded down and up, stopped at the first term below
-/// `2^−b`, whose tail is at most `|y|^m/(m·(1 − y²)) ≤ 4/3·2^−b`.
+/// `(lo, hi)` integers with `lo·2^−b ≤ atanh(p/q) ≤ hi·2^−b`, for `|p/q| ≤ 1/2`. atanh is odd,
+/// so the series `Σ a^(2n+1)/(2n+1)` is summed for `a = |p/q|` in fixed point with `b + 8`
+/// bits, every number kept to that width: `a` between `A/2^B` and `(A + 1)/2^B`, every term
+/// positive and increasing in `a`; the lower sum truncates the series with powers and terms
+/// rounded down, the upper sum rounds them up and adds the tail after the first term below one
+/// unit, at most `term/(1 − a²) ≤ 4/3` units.
 fn atanh_bounds(p: &BigInt, q: &BigInt, b: u64) -> (BigInt, BigInt) {
-    let scale = BigInt::one() << b;
-    let (mut lo, mut hi) = (BigInt::zero(), BigInt::zero());
-    let (mut num, mut den) = (p.clone(), q.clone());
-    let (p2, q2) = (p * p, q * q);
-    let mut m = 1u64;
-    loop {
-        // term = num / (den·m) · 2^b, rounded both ways.
-        let t = &num * &scale;
-        let d = &den * BigInt::from(m);
-        if t.abs() < d {
-            // |term| < 2^−b: the tail from here is at most |y|^m/(m·(1 − y²)) ≤ 4/3 units.
-            lo -= 2;
-            hi += 2;
-            break;
+    let guard = b + 8;
+    let a_lo = (p.abs() << guard).div_floor(q);
+    let a_hi = &a_lo + 1;
+    let sum = |a: &BigInt, up: bool| -> BigInt {
+        let a2 = a * a;
+        let mut power = a.clone();
+        let mut total = BigInt::zero();
+        let mut m = 1u64;
+        loop {
+            let d = BigInt::from(m);
+            let term = match up {
+                true => -((-&power).div_floor(&d)),
+                false => power.div_floor(&d),
+            };
+            if term.is_zero() || (up && term <= BigInt::one()) {
+                total += match up {
+                    true => BigInt::from(2),
+                    false => BigInt::zero(),
+                };
+                break;
+            }
+            total += term;
+            let next = &power * &a2;
+            power = match up {
+                true => -((-next) >> (2 * guard)),
+                false => next >> (2 * guard),
+            };
+            m += 2;
         }
-        lo += t.div_floor(&d);
-        hi += -((-&t).div_floor(&d));
-        num *= &p2;
-        den *= &q2;
-        m += 2;
+        total
+    };
+    let (lo, hi) = (sum(&a_lo, false), sum(&a_hi, true));
+    // Back from b + 8 bits to b, outward.
+    let (lo, hi) = (lo >> 8u32, -((-hi) >> 8u32));
+    match p.is_negative() {
+        true => (-hi, -lo),
+        false => (lo, hi),
     }
-    (lo, hi)
 }
 
 /// Bounds of `ln x` for a rational `x > 0`, as `(lo, hi)` rationals with width about

@@ -431,6 +431,12 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
                     "a constraints-hold step in a certificate whose claim is no automaton".into(),
                 ),
             },
+            Step::ConstraintFails(s) => match &cert.claim {
+                Claim::Automaton(a) => self::ifs::check_constraint_fails(a, s),
+                _ => Err(
+                    "a constraint-fails step in a certificate whose claim is no automaton".into(),
+                ),
+            },
             Step::Contraction(s) => match &cert.claim {
                 Claim::Automaton(a) => self::ifs::check_contraction(a, s),
                 _ => Err("a contraction step in a certificate whose claim is no automaton".into()),

@@ -507,8 +507,14 @@ pub(super) fn verify(
             s.exact, s.decimal, s.open_set
         ),
         (Some(s), _) => o += &format!(
-            "similarity dimension = {} = {}… (the Hausdorff dimension: {})\n",
-            s.exact, s.decimal, s.open_set
+            "similarity dimension = {} = {}… (the Hausdorff dimension: {}{})\n",
+            s.exact,
+            s.decimal,
+            s.open_set,
+            match s.witness.iter().all(|p| p.open_set.is_some()) {
+                true => "",
+                false => "; decided by lacuna, not certified: the certificate states an upper bound",
+            }
         ),
         (None, Some(n)) => o += &format!("similarity dimension: not applicable ({n})\n"),
         (None, None) => {}
