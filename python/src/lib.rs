@@ -347,6 +347,35 @@ fn certificate(
     })
 }
 
+/// The certificate of an automaton or a rule as JSON text, the file `lacuna verify NAME
+/// --certificate` writes: its constraints, the contraction of every walk and the similarity
+/// dimension (with the open-set witness where convex sets decide it).
+#[pyfunction]
+#[pyo3(signature = (input, limits=None))]
+fn automaton_certificate(
+    py: Python<'_>,
+    input: String,
+    limits: Option<&Bound<'_, PyDict>>,
+) -> PyResult<String> {
+    let l = self::limits(limits)?;
+    run(py, move || {
+        let (name, model) = match load_any(&input)? {
+            Loaded::Automaton { name, model, .. } => (name, model),
+            Loaded::Faces(_) => {
+                return Err(Error::Usage(format!("`{input}` is not an automaton")));
+            }
+        };
+        l.check_unknowns(model.automaton.unknown_count())?;
+        let cert =
+            lacuna::certificate::certify_model(&name, &model, l.max_unknowns, l.max_products)
+                .map_err(|e| match e {
+                    lacuna::certificate::CertifyError::Lacuna(e) => e,
+                    e => Error::Analysis(e.to_string()),
+                })?;
+        Ok(cert.to_json())
+    })
+}
+
 /// The independent checker on a certificate's text: `(report JSON, all proved, partial)`.
 #[pyfunction]
 fn check_text(py: Python<'_>, text: String) -> (String, bool, bool) {
@@ -808,6 +837,7 @@ fn _lacuna(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(solve, m)?)?;
     m.add_function(wrap_pyfunction!(verify, m)?)?;
     m.add_function(wrap_pyfunction!(certificate, m)?)?;
+    m.add_function(wrap_pyfunction!(automaton_certificate, m)?)?;
     m.add_function(wrap_pyfunction!(check_text, m)?)?;
     m.add_function(wrap_pyfunction!(read_text, m)?)?;
     m.add_function(wrap_pyfunction!(polygons, m)?)?;

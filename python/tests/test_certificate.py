@@ -44,3 +44,21 @@ def test_a_forged_ratio_fails(cli, tmp_path):
     assert not report.all_proved and not report.partial
     code, cli_data = cli("check", path, "--json")
     assert code == 1 and report.data == cli_data
+
+
+def test_an_automaton_certificate_checks_here_and_on_the_command_line(cli, tmp_path):
+    # The Koch curve: four maps of ratio 1/3 (entries in Q(sqrt 3)), s = log 4 / log 3
+    # = 1.2618595071429148741990542286855... (a published constant).
+    path = tmp_path / "koch.json"
+    cert = lacuna.load("koch").certificate(path)
+    assert [s["step"] for s in cert.data["steps"]] == [
+        "constraints-hold",
+        "contraction",
+        "similarity-dimension",
+    ]
+    report = lacuna.check(path)
+    assert report.all_proved and not report.partial
+    verdicts = [s.verdict for s in report.steps]
+    assert any("similarity dimension = 1.261859507142914874199054228685" in v for v in verdicts)
+    code, data = cli("check", path, "--json")
+    assert code == 0 and report.data == data

@@ -807,6 +807,15 @@ class Automaton:
         in a number field and every operator is given)."""
         return _solution(json.loads(_lacuna.solve(self.source, 2, "1", _limits(limits))))
 
+    def certificate(self, path: Optional[PathLike] = None, *, limits: Limits = None) -> Certificate:
+        """The certificate of what ``lacuna verify`` proves about it (constraints, contraction of
+        every walk, similarity dimension and, where convex sets decide it, the open-set
+        condition); written to ``path`` when given."""
+        c = Certificate(_lacuna.automaton_certificate(self.source, _limits(limits)))
+        if path is not None:
+            c.write(path)
+        return c
+
     def render(
         self,
         level: int,

@@ -42,6 +42,9 @@ def verify(input: str, levels: int = 5, limits: _Limits = None) -> str:
 def certificate(input: str, limits: _Limits = None) -> str:
     """The certificate's JSON text."""
 
+def automaton_certificate(input: str, limits: _Limits = None) -> str:
+    """An automaton's or a rule's certificate, as JSON text."""
+
 def check_text(text: str) -> Tuple[str, bool, bool]:
     """The checker's report JSON, whether all is proved, whether the certificate is partial."""
 
