@@ -330,3 +330,31 @@ fn a_failing_constraint_of_given_operators_is_certified_and_cannot_be_forged() {
     foreign.steps[0] = automaton_certificate("spec-edge").steps[0].clone();
     assert!(check(&foreign).failed());
 }
+
+#[test]
+fn a_malformed_attractor_claim_is_refused_whatever_the_steps() {
+    // Found by the forgery fuzz target: a claim whose start state lost a control point, with
+    // its similarity step dropped, was accepted (the contraction step does not read the points)
+    // while the producer could not even build the frames. The claim itself is now checked.
+    let mut c = automaton_certificate("sierpinski-triangle");
+    c.steps.truncate(2);
+    if let lacuna::certificate::Claim::Automaton(a) = &mut c.claim {
+        a.attractor.as_mut().expect("an attractor").points.pop();
+    }
+    let report = check(&c);
+    assert!(report.failed(), "{}", report.to_text());
+    assert!(
+        report.steps[0]
+            .message
+            .contains("the attractor needs 3 points"),
+        "{}",
+        report.to_text()
+    );
+    // An operator given both in Q and in K is refused too.
+    let mut c = automaton_certificate("koch");
+    if let lacuna::certificate::Claim::Automaton(a) = &mut c.claim {
+        let at = a.operators.len() - 1;
+        a.operators[at].field_value = Some(vec![vec![vec!["1".into()]]]);
+    }
+    assert!(check(&c).failed());
+}

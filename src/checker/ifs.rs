@@ -200,6 +200,66 @@ fn check_sizes(a: &AutomatonClaim) -> Result<(), String> {
     Ok(())
 }
 
+/// The claim's field isolates a root; every operator joins existing states; every given operator
+/// (rational or in K, not both) has its states' shape and parses; the attractor's start state
+/// exists, has as many points as its dimension, all of 2 or all of 3 coordinates, in K;
+/// its subdivision operators exist, increasing.
+pub(super) fn well_formed(a: &AutomatonClaim) -> Result<(), String> {
+    for o in &a.operators {
+        if o.to >= a.states.len() || o.from >= a.states.len() {
+            return Err(format!("operator {}: a state out of range", o.name));
+        }
+    }
+    let k = Field::of(a)?;
+    for o in &a.operators {
+        let shape = (a.states[o.to].dim, a.states[o.from].dim);
+        let m = match (&o.value, &o.field_value) {
+            (Some(_), Some(_)) => {
+                return Err(format!(
+                    "operator {} is given twice (in Q and in K)",
+                    o.name
+                ))
+            }
+            (Some(v), None) => parse_rational_matrix(v, &o.name)?,
+            (None, Some(v)) => parse_field_matrix(&k, v, &o.name)?,
+            (None, None) => continue,
+        };
+        if (m.rows, m.cols) != shape {
+            return Err(format!(
+                "operator {} is {}×{}, its states need {}×{}",
+                o.name, m.rows, m.cols, shape.0, shape.1
+            ));
+        }
+    }
+    if let Some(at) = &a.attractor {
+        let dim = a
+            .states
+            .get(at.start)
+            .ok_or_else(|| format!("the start state {} is out of range", at.start))?
+            .dim;
+        let space = at.points.first().map_or(0, Vec::len);
+        if at.points.len() != dim
+            || !(2..=3).contains(&space)
+            || at.points.iter().any(|p| p.len() != space)
+        {
+            return Err(format!(
+                "the attractor needs {dim} points, all in the plane or all in space"
+            ));
+        }
+        for p in &at.points {
+            for x in p {
+                k.element(x)?;
+            }
+        }
+        if at.subdivision.windows(2).any(|w| w[0] >= w[1])
+            || at.subdivision.iter().any(|&o| o >= a.operators.len())
+        {
+            return Err("the subdivision operators are not increasing indices of operators".into());
+        }
+    }
+    Ok(())
+}
+
 /// Every operator's value: the claim's (rational or in K), else the instance's. Shapes are
 /// checked against the states.
 fn instance(

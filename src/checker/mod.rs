@@ -377,6 +377,13 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
         Ok(m) => m,
         Err(e) => return refused("structure", claim, e),
     };
+    // An automaton's field, values in it and attractor must be well formed whatever steps
+    // follow: no step may be accepted about a claim that names nothing.
+    if let Claim::Automaton(a) = &cert.claim {
+        if let Err(e) = self::ifs::well_formed(a) {
+            return refused("structure", claim, format!("the claimed automaton: {e}"));
+        }
+    }
     let mut steps = Vec::new();
     let mut closure: Option<(Substitution, &crate::certificate::ClosureStep)> = None;
     let mut volumes: Option<Substitution> = None;
