@@ -330,7 +330,6 @@ fn certificate(
 ) -> PyResult<String> {
     let l = self::limits(limits)?;
     run(py, move || {
-        use lacuna::certificate::CertifyError;
         let input = load_input(&input)?;
         let ts = lacuna::topology::close_or_error(&input.faces(), &l)?;
         let cert = lacuna::certificate::certificate_for(
@@ -338,11 +337,7 @@ fn certificate(
             &ts,
             lacuna::constraint::GenOptions::default(),
         )
-        .map_err(|e| match e {
-            CertifyError::Lacuna(e) => e,
-            e @ CertifyError::CustomAlgorithm { .. } => Error::Usage(format!("certificate: {e}")),
-            e => Error::Analysis(e.to_string()),
-        })?;
+        .map_err(|e| e.into_error("certificate"))?;
         Ok(cert.to_json())
     })
 }
@@ -368,10 +363,7 @@ fn automaton_certificate(
         l.check_unknowns(model.automaton.unknown_count())?;
         let cert =
             lacuna::certificate::certify_model(&name, &model, l.max_unknowns, l.max_products)
-                .map_err(|e| match e {
-                    lacuna::certificate::CertifyError::Lacuna(e) => e,
-                    e => Error::Analysis(e.to_string()),
-                })?;
+                .map_err(|e| e.into_error("certificate"))?;
         Ok(cert.to_json())
     })
 }

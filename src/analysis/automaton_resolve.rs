@@ -7,7 +7,7 @@
 use crate::algebra::algebraic::NumberField;
 use crate::algebra::kmatrix::KMatrix;
 use crate::algebra::matrix::Matrix;
-use crate::constraint::automaton::Factor;
+use crate::constraint::automaton::{Automaton, Factor};
 use crate::constraint::linsys::{self, Equation, Solution};
 use crate::error::{Diagnostic, Error, Result};
 use crate::input::automaton_model::AutomatonModel;
@@ -229,6 +229,33 @@ pub fn constraints_failing(m: &AutomatonModel, ops: &[KMatrix]) -> Result<Vec<St
 
 fn check_in_field(m: &AutomatonModel, k: &NumberField, ops: &[KMatrix]) -> Result<Vec<String>> {
     let a = &m.automaton;
+    Ok(failures(a, k, ops)?
+        .into_iter()
+        .map(|f| match f {
+            Failing::Constraint(i) => {
+                format!("{}: {}", a.constraints[i].label, a.constraint_text(i))
+            }
+            Failing::Barycentric(o) => format!(
+                "barycentric: a column of {} does not sum to 1",
+                a.operators[o].name
+            ),
+        })
+        .collect())
+}
+
+/// A condition of an automaton that fails with given operator values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Failing {
+    /// The constraint of this index: its two words differ.
+    Constraint(usize),
+    /// The operator of this index, listed barycentric: a column does not sum to 1.
+    Barycentric(usize),
+}
+
+/// The constraints (in order), then the barycentric operators, that fail with the operator
+/// values `ops`, exactly in `k`; E0703 when a constraint's words do not multiply out to one
+/// shape.
+pub fn failures(a: &Automaton, k: &NumberField, ops: &[KMatrix]) -> Result<Vec<Failing>> {
     let mut failed = Vec::new();
     let word = |w: &[Factor]| -> Option<KMatrix> {
         let mut acc: Option<KMatrix> = None;
@@ -249,7 +276,7 @@ fn check_in_field(m: &AutomatonModel, k: &NumberField, ops: &[KMatrix]) -> Resul
         match (l, r) {
             (Some(l), Some(r)) if (l.rows, l.cols) == (r.rows, r.cols) => {
                 if l != r {
-                    failed.push(format!("{}: {}", c.label, a.constraint_text(i)));
+                    failed.push(Failing::Constraint(i));
                 }
             }
             _ => {
@@ -266,11 +293,63 @@ fn check_in_field(m: &AutomatonModel, k: &NumberField, ops: &[KMatrix]) -> Resul
     }
     for &o in &a.barycentric {
         if !ops[o].is_barycentric(k) {
-            failed.push(format!(
-                "barycentric: a column of {} does not sum to 1",
-                a.operators[o].name
-            ));
+            failed.push(Failing::Barycentric(o));
         }
     }
     Ok(failed)
+}
+
+/// What `lacuna verify` decides about an automaton's attractor: the operators resolved (free
+/// parameters 0), the contraction of that instance or the cycle that does not contract, and the
+/// similarity dimension (`digits` certified digits) or why there is none.
+#[derive(Clone, Debug)]
+pub struct Attractor {
+    /// The resolved operators and the verdict on the constraints.
+    pub resolved: Resolved,
+    /// The contraction proof, when every walk contracts.
+    pub contraction: Option<crate::analysis::ContractionReport>,
+    /// The refusal (E0715, E0716: a cycle that does not contract, an operator on a cycle that is
+    /// not barycentric), coded, when contraction fails.
+    pub contraction_fails: Option<String>,
+    /// The similarity dimension, when it applies.
+    pub similarity: Option<crate::analysis::SimilarityDimension>,
+    /// Why there is no similarity dimension.
+    pub similarity_note: Option<String>,
+}
+
+/// Resolves `m`, proves contraction (within `max_products` products) and computes the
+/// similarity dimension of a contracting instance. A cycle that does not contract is a result,
+/// not an error; an undecided contraction (E0721) and every other failure are errors.
+pub fn analyse_attractor(
+    m: &AutomatonModel,
+    max_unknowns: usize,
+    max_products: usize,
+    digits: usize,
+) -> Result<Attractor> {
+    let resolved = resolve(m, &[], max_unknowns)?;
+    let (contraction, contraction_fails) =
+        match crate::analysis::check_contraction_within(m, &resolved.ops, max_products) {
+            Ok(c) => (Some(c), None),
+            Err(Error::Syntax(d)) if d.code == "E0715" || d.code == "E0716" => {
+                (None, Some(format!("{}: {}", d.code, d.message)))
+            }
+            Err(e) => return Err(e),
+        };
+    let (similarity, similarity_note) = match &contraction {
+        Some(_) => match crate::analysis::similarity_dimension(m, &resolved.ops, digits) {
+            Ok(s) => (Some(s), None),
+            Err(n) => (None, Some(n)),
+        },
+        None => (
+            None,
+            Some("the attractor is not proven to exist".to_string()),
+        ),
+    };
+    Ok(Attractor {
+        resolved,
+        contraction,
+        contraction_fails,
+        similarity,
+        similarity_note,
+    })
 }

@@ -20,7 +20,10 @@ pub(crate) mod ratio;
 pub(crate) mod shares;
 pub(crate) mod similarity;
 
-pub use automaton_resolve::{constraints_failing, resolve, ResolveVerdict, Resolved};
+pub use automaton_resolve::{
+    analyse_attractor, constraints_failing, failures, resolve, Attractor, Failing, ResolveVerdict,
+    Resolved,
+};
 pub use census::{census, CensusFace, CensusReport, CensusSpec};
 pub use classes::{
     automaton_invariants, classify, face_invariants, levels_for, levels_needed, volume_invariants,

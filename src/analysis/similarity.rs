@@ -46,6 +46,14 @@ pub struct SimilarityDimension {
     pub witness: Vec<PartWitness>,
 }
 
+impl SimilarityDimension {
+    /// Whether every part's open-set condition was decided by convex sets, the witness a
+    /// certificate can carry (the neighbour maps' verdicts are not certified).
+    pub fn open_set_witnessed(&self) -> bool {
+        !self.witness.is_empty() && self.witness.iter().all(|p| p.open_set.is_some())
+    }
+}
+
 /// One cyclic part's exact data (the certificate's `similarity-dimension` witness).
 #[derive(Clone, Debug)]
 pub struct PartWitness {

@@ -44,6 +44,20 @@ pub enum CertifyError {
     Witness(String),
 }
 
+impl CertifyError {
+    /// As lacuna's error: lacuna's own failure as it is, a custom algorithm as a usage error
+    /// (`context` names what asked for the certificate), anything else as a failed analysis.
+    pub fn into_error(self, context: &str) -> crate::Error {
+        match self {
+            CertifyError::Lacuna(e) => e,
+            e @ CertifyError::CustomAlgorithm { .. } => {
+                crate::Error::Usage(format!("{context}: {e}"))
+            }
+            e => crate::Error::Analysis(e.to_string()),
+        }
+    }
+}
+
 /// The full certificate of a closed type set: the claim (its start faces and the options of
 /// THEORY §6), the closure, the solution space (or conflict) of the generated constraint system,
 /// and the limit ratio. `input` is a label for people.
@@ -254,7 +268,7 @@ pub fn certificate_for_automaton(
                 )
             })
             .collect();
-        cert.steps.push(given_step(automaton, &k, &values));
+        cert.steps.push(given_step(automaton, &k, &values)?);
         return Ok(cert);
     }
     let (_, lin, solution) = crate::constraint::solve_automaton(automaton)?;
@@ -272,44 +286,20 @@ fn given_step(
     a: &crate::constraint::Automaton,
     k: &crate::algebra::algebraic::NumberField,
     values: &[crate::algebra::kmatrix::KMatrix],
-) -> Step {
-    use crate::algebra::kmatrix::KMatrix;
-    let word = |w: &[crate::constraint::Factor]| -> Option<KMatrix> {
-        let mut acc: Option<KMatrix> = None;
-        for f in w {
-            let m = match f {
-                crate::constraint::Factor::Op(o) => values.get(*o)?.clone(),
-                crate::constraint::Factor::Literal(m) => KMatrix::from_rational(k, m),
-            };
-            acc = Some(match acc {
-                None => m,
-                Some(p) => p.mul(k, &m)?,
-            });
-        }
-        acc
-    };
-    for (n, c) in a.constraints.iter().enumerate() {
-        let holds = match (word(&c.lhs), word(&c.rhs)) {
-            (Some(l), Some(r)) => l.rows == r.rows && l.cols == r.cols && l.data == r.data,
-            _ => false,
-        };
-        if !holds {
-            return Step::ConstraintFails(ConstraintFailsStep {
-                constraint: Some(n),
-                barycentric: None,
-            });
-        }
-    }
-    for &o in &a.barycentric {
-        if !values[o].is_barycentric(k) {
-            return Step::ConstraintFails(ConstraintFailsStep {
-                constraint: None,
-                barycentric: Some(o),
-            });
-        }
-    }
-    Step::ConstraintsHold(ConstraintsHoldStep {
-        constraints: a.constraints.len(),
+) -> Result<Step, CertifyError> {
+    use crate::analysis::Failing;
+    Ok(match crate::analysis::failures(a, k, values)?.first() {
+        Some(Failing::Constraint(n)) => Step::ConstraintFails(ConstraintFailsStep {
+            constraint: Some(*n),
+            barycentric: None,
+        }),
+        Some(Failing::Barycentric(o)) => Step::ConstraintFails(ConstraintFailsStep {
+            constraint: None,
+            barycentric: Some(*o),
+        }),
+        None => Step::ConstraintsHold(ConstraintsHoldStep {
+            constraints: a.constraints.len(),
+        }),
     })
 }
 
@@ -423,23 +413,8 @@ pub fn certify_model(
     max_unknowns: usize,
     max_products: usize,
 ) -> Result<Certificate, CertifyError> {
-    let resolved = crate::analysis::resolve(m, &[], max_unknowns)?;
-    let contraction =
-        match crate::analysis::check_contraction_within(m, &resolved.ops, max_products) {
-            Ok(c) => Some(c),
-            Err(crate::Error::Syntax(d)) if d.code == "E0715" || d.code == "E0716" => None,
-            Err(e) => return Err(e.into()),
-        };
-    let similarity = contraction
-        .as_ref()
-        .and_then(|_| crate::analysis::similarity_dimension(m, &resolved.ops, 30).ok());
-    certificate_for_model(
-        name,
-        m,
-        &resolved.ops,
-        contraction.as_ref(),
-        similarity.as_ref(),
-    )
+    let a = crate::analysis::analyse_attractor(m, max_unknowns, max_products, 30)?;
+    certificate_for_model(name, m, &a)
 }
 
 /// u* as an element of K when it is irrational and the dimension is an even integer 2j
@@ -468,14 +443,17 @@ fn u_in_field(
 /// The certificate of an automaton file (or a compiled rule) with what `verify` proved about
 /// it: its constraints (`constraints-hold` when every operator is given, else the solution
 /// space over Q), then the contraction of the resolved instance and its similarity dimension
-/// when lacuna decided them.
+/// when `attractor` (from [`crate::analysis::analyse_attractor`]) decided them.
 pub fn certificate_for_model(
     name: &str,
     m: &crate::input::AutomatonModel,
-    ops: &[crate::algebra::kmatrix::KMatrix],
-    contraction: Option<&crate::analysis::ContractionReport>,
-    similarity: Option<&crate::analysis::SimilarityDimension>,
+    attractor: &crate::analysis::Attractor,
 ) -> Result<Certificate, CertifyError> {
+    let ops = &attractor.resolved.ops;
+    let (contraction, similarity) = (
+        attractor.contraction.as_ref(),
+        attractor.similarity.as_ref(),
+    );
     let claim = model_claim(m);
     let all_given = claim
         .operators
@@ -490,13 +468,8 @@ pub fn certificate_for_model(
         .collect();
     let mut cert = Certificate::new(name, Claim::Automaton(claim.clone()));
     if all_given {
-        let values: Vec<crate::algebra::kmatrix::KMatrix> = m
-            .kvalues
-            .iter()
-            .zip(ops)
-            .map(|(v, o)| v.clone().unwrap_or_else(|| o.clone()))
-            .collect();
-        cert.steps.push(given_step(&m.automaton, &m.field, &values));
+        // Every operator given: the resolved values are the given ones.
+        cert.steps.push(given_step(&m.automaton, &m.field, ops)?);
     } else {
         let (_, lin, solution) = crate::constraint::solve_automaton(&m.automaton)?;
         let source = format!("the constraints of the automaton `{name}`");

@@ -130,6 +130,29 @@ pub(super) fn gcd(a: &[Q], b: &[Q]) -> P {
     a.iter().map(|c| c / &lead).collect()
 }
 
+/// The derivative.
+pub(super) fn derivative(p: &[Q]) -> P {
+    trim(
+        (1..p.len())
+            .map(|i| &p[i] * Q::from_integer(i.into()))
+            .collect(),
+    )
+}
+
+/// The Sturm chain of a squarefree `p` of degree at least 1 (`p`, `p′`, then negated
+/// remainders), or `None` when `p` is not squarefree (a remainder vanishes before a constant).
+pub(super) fn sturm_chain(p: &[Q]) -> Option<Vec<P>> {
+    let mut chain = vec![trim(p.to_vec()), derivative(p)];
+    while chain.last().is_some_and(|q| q.len() > 1) {
+        let r = rem(&chain[chain.len() - 2], &chain[chain.len() - 1]);
+        if r.is_empty() {
+            return None;
+        }
+        chain.push(r.into_iter().map(|c| -c).collect());
+    }
+    Some(chain)
+}
+
 /// The sign changes of a Sturm chain at `x` (zeros skipped).
 pub(super) fn sign_changes(chain: &[P], x: &Q) -> usize {
     let signs: Vec<bool> = chain
@@ -181,15 +204,8 @@ impl Root {
         if lo >= hi || eval(&p, &lo).is_zero() || eval(&p, &hi).is_zero() {
             return Err(format!("{what}: [{lo}, {hi}] is empty or ends at a root"));
         }
-        let derivative = (1..p.len()).map(|i| &p[i] * Q::from_integer(i.into()));
-        let mut chain = vec![p.clone(), trim(derivative.collect())];
-        while chain.last().is_some_and(|q| q.len() > 1) {
-            let r = rem(&chain[chain.len() - 2], &chain[chain.len() - 1]);
-            if r.is_empty() {
-                return Err(format!("{what}'s polynomial is not squarefree"));
-            }
-            chain.push(r.into_iter().map(|c| -c).collect());
-        }
+        let chain =
+            sturm_chain(&p).ok_or_else(|| format!("{what}'s polynomial is not squarefree"))?;
         match sign_changes(&chain, &lo).checked_sub(sign_changes(&chain, &hi)) {
             Some(1) => Ok(Root { p, lo, hi, chain }),
             _ => Err(format!(

@@ -141,17 +141,17 @@ impl Field {
     }
 }
 
-fn parse_rational_matrix(m: &[Vec<String>], what: &str) -> Result<KMat, String> {
+/// A nonempty rectangular matrix, each entry read by `entry`.
+fn parse_matrix<T>(
+    m: &[Vec<T>],
+    what: &str,
+    entry: impl Fn(&T) -> Result<P, String>,
+) -> Result<KMat, String> {
     let cols = m.first().map_or(0, Vec::len);
     if m.is_empty() || cols == 0 || m.iter().any(|r| r.len() != cols) {
         return Err(format!("{what}: not a nonempty rectangular matrix"));
     }
-    let mut data = Vec::with_capacity(m.len() * cols);
-    for r in m {
-        for x in r {
-            data.push(Field::rational(rat(x)?));
-        }
-    }
+    let data = m.iter().flatten().map(entry).collect::<Result<_, _>>()?;
     Ok(KMat {
         rows: m.len(),
         cols,
@@ -159,22 +159,12 @@ fn parse_rational_matrix(m: &[Vec<String>], what: &str) -> Result<KMat, String> 
     })
 }
 
+fn parse_rational_matrix(m: &[Vec<String>], what: &str) -> Result<KMat, String> {
+    parse_matrix(m, what, |x| Ok(Field::rational(rat(x)?)))
+}
+
 fn parse_field_matrix(k: &Field, m: &[Vec<FieldCoords>], what: &str) -> Result<KMat, String> {
-    let cols = m.first().map_or(0, Vec::len);
-    if m.is_empty() || cols == 0 || m.iter().any(|r| r.len() != cols) {
-        return Err(format!("{what}: not a nonempty rectangular matrix"));
-    }
-    let mut data = Vec::with_capacity(m.len() * cols);
-    for r in m {
-        for x in r {
-            data.push(k.element(x)?);
-        }
-    }
-    Ok(KMat {
-        rows: m.len(),
-        cols,
-        data,
-    })
+    parse_matrix(m, what, |x| k.element(x))
 }
 
 /// Sizes read before anything is built.
@@ -921,29 +911,12 @@ fn det(mut m: Vec<Vec<Q>>) -> Q {
 
 /// The number of distinct roots of `p` in `(a, b]` (Sturm, on the squarefree part).
 fn roots_in(p: &[Q], a: &Q, b: &Q) -> usize {
-    let d: P = field::trim(
-        (1..p.len())
-            .map(|i| &p[i] * Q::from_integer(i.into()))
-            .collect(),
-    );
-    let g = field::gcd(p, &d);
-    let (sq, _) = field::divide(p, &g);
-    if sq.len() < 2 {
+    let (squarefree, _) = field::divide(p, &field::gcd(p, &field::derivative(p)));
+    if squarefree.len() < 2 {
         return 0;
     }
-    let d: P = field::trim(
-        (1..sq.len())
-            .map(|i| &sq[i] * Q::from_integer(i.into()))
-            .collect(),
-    );
-    let mut chain = vec![sq, d];
-    while chain.last().is_some_and(|q| q.len() > 1) {
-        let r = field::rem(&chain[chain.len() - 2], &chain[chain.len() - 1]);
-        if r.is_empty() {
-            break;
-        }
-        chain.push(r.into_iter().map(|c| -c).collect());
-    }
+    // A squarefree polynomial always has its chain; an empty one counts no root.
+    let chain = field::sturm_chain(&squarefree).unwrap_or_default();
     field::sign_changes(&chain, a).saturating_sub(field::sign_changes(&chain, b))
 }
 

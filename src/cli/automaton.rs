@@ -412,18 +412,18 @@ fn report_curves(p: &Prepared) -> Vec<(String, Result<lacuna::analysis::CurveCur
 
 /// What `verify` says about an automaton file or a rule.
 #[derive(serde::Serialize)]
-struct AutomatonVerdict {
-    input: String,
+struct AutomatonVerdict<'a> {
+    input: &'a str,
     /// The constraints: consistent (with the free parameters left), or the failing ones.
-    solver: lacuna::analysis::ResolveVerdict,
+    solver: &'a lacuna::analysis::ResolveVerdict,
     /// Whether the instance's attractor is proven defined, and how.
     contraction: Option<String>,
     /// Why contraction was not proven (a cycle that does not contract).
-    contraction_fails: Option<String>,
+    contraction_fails: &'a Option<String>,
     /// The similarity dimension, when it applies.
-    similarity_dimension: Option<lacuna::analysis::SimilarityDimension>,
+    similarity_dimension: &'a Option<lacuna::analysis::SimilarityDimension>,
     /// Why there is no similarity dimension.
-    similarity_note: Option<String>,
+    similarity_note: &'a Option<String>,
     /// The verdict.
     verified: bool,
 }
@@ -450,27 +450,16 @@ pub(super) fn verify(
         ));
     }
     limits.check_unknowns(model.automaton.unknown_count())?;
-    let resolved = lacuna::analysis::resolve(model, &[], limits.max_unknowns)?;
+    let analysis =
+        lacuna::analysis::analyse_attractor(model, limits.max_unknowns, limits.max_products, 30)?;
+    let lacuna::analysis::Attractor {
+        resolved,
+        contraction,
+        contraction_fails: fails,
+        similarity,
+        similarity_note: note,
+    } = &analysis;
     let free = !resolved.verdict.free_left.is_empty();
-    let (contraction, fails) =
-        match lacuna::analysis::check_contraction_within(model, &resolved.ops, limits.max_products)
-        {
-            Ok(c) => (Some(c), None),
-            Err(Error::Syntax(d)) if d.code == "E0715" || d.code == "E0716" => {
-                (None, Some(format!("{}: {}", d.code, d.message)))
-            }
-            Err(e) => return Err(e),
-        };
-    let (similarity, note) = match &contraction {
-        Some(_) => match lacuna::analysis::similarity_dimension(model, &resolved.ops, 30) {
-            Ok(s) => (Some(s), None),
-            Err(n) => (None, Some(n)),
-        },
-        None => (
-            None,
-            Some("the attractor is not proven to exist".to_string()),
-        ),
-    };
     let consistent = resolved.verdict.consistent;
     // A cycle of the instance that does not contract is a negative verdict when the file
     // leaves no parameter free; with free parameters (set to 0) it is about that choice only.
@@ -511,7 +500,7 @@ pub(super) fn verify(
             s.exact,
             s.decimal,
             s.open_set,
-            match s.witness.iter().all(|p| p.open_set.is_some()) {
+            match s.open_set_witnessed() {
                 true => "",
                 false => "; decided by lacuna, not certified: the certificate states an upper bound",
             }
@@ -530,23 +519,13 @@ pub(super) fn verify(
         out(&o);
     }
     if let Some(path) = certificate {
-        use lacuna::certificate::CertifyError;
-        let cert = lacuna::certificate::certificate_for_model(
-            name,
-            model,
-            &resolved.ops,
-            contraction.as_ref(),
-            similarity.as_ref(),
-        )
-        .map_err(|e| match e {
-            CertifyError::Lacuna(e) => e,
-            e => Error::Analysis(e.to_string()),
-        })?;
+        let cert = lacuna::certificate::certificate_for_model(name, model, &analysis)
+            .map_err(|e| e.into_error("--certificate"))?;
         outputs.write(path, |w| w.write_all(cert.to_json().as_bytes()))?;
         if !json {
-            let osc = similarity.as_ref().is_some_and(|s| {
-                !s.witness.is_empty() && s.witness.iter().all(|p| p.open_set.is_some())
-            });
+            let osc = similarity
+                .as_ref()
+                .is_some_and(lacuna::analysis::SimilarityDimension::open_set_witnessed);
             outputs.say(&format!(
                 "certificate written to {}{}\n",
                 path.display(),
@@ -560,8 +539,8 @@ pub(super) fn verify(
     }
     if json {
         print_json(&AutomatonVerdict {
-            input: name.to_string(),
-            solver: resolved.verdict.clone(),
+            input: name,
+            solver: &resolved.verdict,
             contraction: contraction.as_ref().map(|c| c.text()),
             contraction_fails: fails,
             similarity_dimension: similarity,

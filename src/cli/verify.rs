@@ -42,19 +42,12 @@ pub(super) fn run(args: VerifyArgs, limits: &Limits) -> Result<ExitCode, Error> 
     if let Some(path) = &certificate {
         match &closure {
             Closure::Closed(ts) => {
-                use lacuna::certificate::CertifyError;
                 let cert = lacuna::certificate::certificate_for(
                     &input.name,
                     ts,
                     lacuna::constraint::GenOptions::default(),
                 )
-                .map_err(|e| match e {
-                    CertifyError::Lacuna(e) => e,
-                    e @ CertifyError::CustomAlgorithm { .. } => {
-                        Error::Usage(format!("--certificate: {e}"))
-                    }
-                    e => Error::Analysis(e.to_string()),
-                })?;
+                .map_err(|e| e.into_error("--certificate"))?;
                 outputs.write(path, |w| w.write_all(cert.to_json().as_bytes()))?;
                 if !json {
                     outputs.say(&format!("certificate written to {}\n", path.display()));
