@@ -490,10 +490,11 @@ fn wrong_versions_are_rejected() {
     assert_rejected("version 99", &cert, "header");
     assert!(check_json("{").failed());
     // Files of versions 1 to 4 (other step forms: version 2 had no recipe, version 3 no claim,
-    // version 4 no attractor steps) are refused by their version, not by a parse error.
-    for old in ["1", "2", "3", "4"] {
+    // version 4 no attractor steps, version 5 no solid-homology step nor shared faces) are
+    // refused by their version, not by a parse error.
+    for old in ["1", "2", "3", "4", "5"] {
         let json = face_certificate("F0").to_json().replacen(
-            "\"version\":5",
+            "\"version\":6",
             &format!("\"version\":{old}"),
             1,
         );

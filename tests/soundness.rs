@@ -104,7 +104,11 @@ fn volume_union(names: &[&str], keep: usize) -> Certificate {
     else {
         panic!("closes")
     };
-    let mut cert = certificate_for_volumes("forged", &set, 2).expect("certifiable");
+    let assembly = lacuna::topology::volume::VolumeAssembly {
+        volumes: volumes.clone(),
+        shared: Vec::new(),
+    };
+    let mut cert = certificate_for_volumes("forged", &set, 2, &assembly).expect("certifiable");
     if let Claim::Volumes(v) = &mut cert.claim {
         v.volumes.truncate(keep);
     }

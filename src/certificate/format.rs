@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 pub const FORMAT: &str = "lacuna-certificate";
 
 /// The format version this code writes and checks.
-pub const VERSION: u32 = 5;
+pub const VERSION: u32 = 6;
 
 /// A certificate: the claim (what was given, in canonical form) and the steps that prove every
 /// verdict about it.
@@ -47,7 +47,7 @@ pub struct Certificate {
 ///   `solution-space` or `inconsistent`;
 /// - a substitution ([`Claim::Substitution`]) needs `limit-ratio`;
 /// - volumes ([`Claim::Volumes`]) need `volume-closure`, then `limit-ratio` (lacunas in
-///   quarters).
+///   quarters), and may have `solid-homology` after them.
 ///
 /// A certificate whose steps are a proper part of that sequence (in order, the closure present
 /// for faces) is *partial*: what it has is checked, but it proves less than the claim.
@@ -77,6 +77,55 @@ pub struct VolumesClaim {
     pub volumes: Vec<Volume>,
     /// The counts are certified at levels 0 to `levels`.
     pub levels: u64,
+    /// The faces two start volumes share (a 3D assembly); none for volumes apart. They matter
+    /// to the level-n solid only (`solid-homology`): counts and the limit ratio are those of
+    /// the volumes apart.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub shared: Vec<SharedFaceClaim>,
+}
+
+/// Two start volumes sharing a face: edge `a[2]` of face `a[1]` of volume `a[0]` lies on edge
+/// `b[2]` of face `b[1]` of volume `b[0]`, traversed the other way; then edge `a[2] + k` lies on
+/// edge `b[2] − k`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SharedFaceClaim {
+    /// (volume, face, edge) on one side.
+    pub a: [usize; 3],
+    /// (volume, face, edge) on the other side.
+    pub b: [usize; 3],
+}
+
+/// The topology of the level-n solid of the claim's volumes at levels 0 to `rows.len() − 1`.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolidHomologyStep {
+    /// One row per level, from level 0.
+    pub rows: Vec<SolidRow>,
+}
+
+/// The cells and Betti numbers of the solid at one level.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolidRow {
+    /// The level.
+    pub level: u64,
+    /// Volumes (3-cells).
+    pub volumes: u64,
+    /// Faces (2-cells).
+    pub faces: u64,
+    /// Edges (1-cells).
+    pub edges: u64,
+    /// Corners (0-cells).
+    pub corners: u64,
+    /// χ = corners − edges + faces − volumes.
+    pub euler: i64,
+    /// b0: connected components.
+    pub components: u64,
+    /// b2: enclosed cavities.
+    pub voids: u64,
+    /// b1: tunnels.
+    pub tunnels: u64,
 }
 
 /// The volume rule: which sub-face edges are spoke edges (THEORY §10).
@@ -309,6 +358,18 @@ pub enum Step {
     /// volumes must be listed types. Then it recounts N^C and N^L level by level from the derived
     /// children and its own contributions and compares every listed count.
     VolumeClosure(VolumeClosureStep),
+    /// **The topology of the level-n solid** (THEORY §10) at the listed levels. Justification:
+    /// the checker builds the solid cell by cell from the claim's volumes with its own one-step
+    /// subdivision: every edge cut into its pieces once, every face subdivided once in its own
+    /// orientation and matched, piece by piece, with the sub-faces each volume reading it
+    /// derives (from both sides of a shared face), the sub-volumes' side and inner faces and
+    /// the radial and inner edges identified through the gluing of their surfaces, corners as
+    /// the classes of edge ends joined around every face. It counts the cells, takes χ, b0 from
+    /// the 1-skeleton, and the ranks of the boundary matrices over F2. A rank over F2 is at
+    /// most the rank over Q, so the F2 Betti numbers bound the rational ones from above; with
+    /// b3 = b2 = 0 over F2 and χ the same over every field, b1 over Q equals b1 over F2. Rows
+    /// whose F2 b2 or b3 is not 0 are refused.
+    SolidHomology(SolidHomologyStep),
     /// **Every constraint of an automaton holds** (every operator given, in Q or in the
     /// claim's field K). Justification: the checker multiplies out both words of every
     /// constraint and the column sums of every barycentric operator in K and compares them
@@ -742,6 +803,7 @@ impl Step {
             Step::Inconsistent(_) => "inconsistent",
             Step::LimitRatio(_) => "limit-ratio",
             Step::VolumeClosure(_) => "volume-closure",
+            Step::SolidHomology(_) => "solid-homology",
             Step::ConstraintsHold(_) => "constraints-hold",
             Step::ConstraintFails(_) => "constraint-fails",
             Step::Contraction(_) => "contraction",

@@ -10,9 +10,10 @@
 use crate::certificate::format::{
     Adjacency, Algebraic, AutomatonClaim, AutomatonOperator, AutomatonState, Certificate, Claim,
     ClassClaim, ClosureStep, ConflictStep, Edge, Face, FacesClaim, Kind, Origin, Params, Pattern,
-    PointClaim, RadiusWitness, RatioStep, Recipe, Row, SolutionStep, SpokeItem, Step, SubFace,
-    SubstitutionClaim, System, TypeRule, Volume, VolumeClosureStep, VolumeCount, VolumeRule,
-    VolumeTypeRule, VolumesClaim, WordEquation, WordFactor,
+    PointClaim, RadiusWitness, RatioStep, Recipe, Row, SharedFaceClaim, SolidHomologyStep,
+    SolidRow, SolutionStep, SpokeItem, Step, SubFace, SubstitutionClaim, System, TypeRule, Volume,
+    VolumeClosureStep, VolumeCount, VolumeRule, VolumeTypeRule, VolumesClaim, WordEquation,
+    WordFactor,
 };
 use crate::certificate::format::{
     AttractorClaim, ConstraintFailsStep, ConstraintsHoldStep, ContractionStep, FieldCoords,
@@ -102,13 +103,22 @@ pub fn certificate_for(
     Ok(cert)
 }
 
+/// The most cells (volumes, faces, edges and corners) of a level of the solid that
+/// [`certificate_for_volumes`] puts in its `solid-homology` step: the checker builds every
+/// listed level cell by cell and reduces its boundary matrices.
+pub const SOLID_CELLS: u64 = 250_000;
+
 /// The certificate of a closed set of volume types (THEORY §10): the claim is the start volumes
-/// and the number of levels; the steps are the closure of volume types with the counts of the
-/// start volumes from level 0 to `levels`, and the limit ratio of its substitution.
+/// of `assembly` (with the faces they share) and the number of levels; the steps are the closure
+/// of volume types with the counts of the start volumes from level 0 to `levels`, the limit
+/// ratio of its substitution, and the topology of the level-n solid from level 0 while its
+/// levels have at most [`SOLID_CELLS`] cells and lacuna derives no cavity (the checker proves
+/// Betti numbers where F2 shows none).
 pub fn certificate_for_volumes(
     input: &str,
     set: &crate::topology::volume::VolumeTypeSet,
     levels: u64,
+    assembly: &crate::topology::volume::VolumeAssembly,
 ) -> Result<Certificate, CertifyError> {
     let types = set
         .types
@@ -148,11 +158,69 @@ pub fn certificate_for_volumes(
     }
     let start: Vec<(usize, u64)> = start.into_iter().collect();
     let ratio = ratio_step_in(&matrix, &quarters, &start, 4)?;
-    let mut cert = Certificate::new(input, Claim::Volumes(VolumesClaim { volumes, levels }));
+    // Volumes glued face to face are written as they were given, so that the shared faces'
+    // edge numbers hold; volumes apart in their canonical form.
+    let (volumes, shared) = match assembly.shared.is_empty() {
+        true => (volumes, Vec::new()),
+        false => (
+            assembly
+                .volumes
+                .iter()
+                .map(volume)
+                .collect::<Result<Vec<_>, _>>()?,
+            assembly
+                .shared
+                .iter()
+                .map(|s| SharedFaceClaim {
+                    a: [s.a.0, s.a.1, s.a.2],
+                    b: [s.b.0, s.b.1, s.b.2],
+                })
+                .collect(),
+        ),
+    };
+    let solid = crate::topology::volume::solid_topology_of(set, levels, &assembly.start_cells())?;
+    let rows = solid_rows(&solid);
+    let claim = VolumesClaim {
+        volumes,
+        levels,
+        shared,
+    };
+    let mut cert = Certificate::new(input, Claim::Volumes(claim));
     cert.steps
         .push(Step::VolumeClosure(VolumeClosureStep { types, counts }));
     cert.steps.push(Step::LimitRatio(ratio));
+    if !rows.is_empty() {
+        cert.steps
+            .push(Step::SolidHomology(SolidHomologyStep { rows }));
+    }
     Ok(cert)
+}
+
+/// The rows of the `solid-homology` step for the table `solid` (from level 0): every level
+/// while lacuna derives its Betti numbers, it has no cavity (the checker proves Betti numbers
+/// where F2 shows none) and at most [`SOLID_CELLS`] cells.
+pub fn solid_rows(solid: &[crate::topology::volume::SolidLevel]) -> Vec<SolidRow> {
+    use num_traits::ToPrimitive;
+    solid
+        .iter()
+        .map_while(|l| {
+            let row = SolidRow {
+                level: l.level,
+                volumes: l.volumes.to_u64()?,
+                faces: l.faces.to_u64()?,
+                edges: l.edges.to_u64()?,
+                corners: l.corners.to_u64()?,
+                euler: l.euler.to_i64()?,
+                components: l.components?,
+                voids: l.voids.filter(|&v| v == 0)?,
+                tunnels: l.tunnels.as_ref()?.to_u64()?,
+            };
+            let cells = [row.volumes, row.faces, row.edges, row.corners]
+                .iter()
+                .try_fold(0u64, |a, &x| a.checked_add(x))?;
+            (cells <= SOLID_CELLS).then_some(row)
+        })
+        .collect()
 }
 
 /// A volume as certificate data.
@@ -1221,9 +1289,20 @@ pub fn recertify(
             for v in &volumes {
                 v.surface.check().map_err(crate::Error::Usage)?;
             }
+            let assembly = crate::topology::volume::VolumeAssembly {
+                volumes: volumes.clone(),
+                shared: c
+                    .shared
+                    .iter()
+                    .map(|s| crate::topology::volume::SharedFace {
+                        a: (s.a[0], s.a[1], s.a[2]),
+                        b: (s.b[0], s.b[1], s.b[2]),
+                    })
+                    .collect(),
+            };
             match crate::topology::volume::VolumeClosure::of(&volumes, limits)? {
                 crate::topology::volume::VolumeClosure::Closed(set) => {
-                    certificate_for_volumes(label, &set, c.levels)
+                    certificate_for_volumes(label, &set, c.levels, &assembly)
                 }
                 crate::topology::volume::VolumeClosure::Runaway(r) => {
                     Err(CertifyError::Lacuna(crate::Error::Usage(format!(

@@ -416,6 +416,12 @@ fn volume_lines(c: &VolumesClaim) -> Vec<String> {
             ));
         }
     }
+    for s in &c.shared {
+        o.push(format!(
+            "shared face: volume {} face {} edge {} lies on volume {} face {} edge {}",
+            s.a[0], s.a[1], s.a[2], s.b[0], s.b[1], s.b[2]
+        ));
+    }
     o.push(format!("counts certified at levels 0 to {}", c.levels));
     o
 }
@@ -452,7 +458,11 @@ fn slots(c: &Claim) -> &'static [(&'static [&'static str], bool)] {
         ],
         Claim::System(_) => &[(SYSTEM, true)],
         Claim::Substitution(_) => &[(&["limit-ratio"], true)],
-        Claim::Volumes(_) => &[(&["volume-closure"], true), (&["limit-ratio"], true)],
+        Claim::Volumes(_) => &[
+            (&["volume-closure"], true),
+            (&["limit-ratio"], true),
+            (&["solid-homology"], false),
+        ],
     }
 }
 

@@ -88,7 +88,7 @@ fn gap_side((edge, gap): (usize, usize), after: bool) -> Origin {
 }
 
 /// Pieces of a subdivided edge and their type: one `X^(d−1)` when delayed, else n copies.
-fn piece_type(e: &Edge) -> (usize, Edge) {
+pub(super) fn piece_type(e: &Edge) -> (usize, Edge) {
     match e.delay >= 2 {
         true => (
             1,

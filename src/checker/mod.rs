@@ -17,6 +17,8 @@
 //!   and the pole of the generating functions at `ρ^(−P)`;
 //! - `volume.rs`: oriented maps (sphere check, canonical code) and one subdivision step of a
 //!   volume (THEORY §10), the volume types and their counts.
+//! - `solid.rs`: the level-n solid built cell by cell, its cells, χ and Betti numbers (ranks
+//!   of boundary matrices over F2).
 //!
 //! What each step proves is documented on [`Step`] and in `docs/CERTIFICATES.md`. No value read
 //! from a certificate, or derived from one, is held in a fixed-width integer that could wrap:
@@ -33,6 +35,7 @@ mod ifs;
 mod linear;
 mod ratio;
 mod series;
+mod solid;
 mod system;
 mod volume;
 
@@ -430,6 +433,12 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
                 }),
                 _ => {
                     Err("a volume-closure step in a certificate whose claim has no volumes".into())
+                }
+            },
+            Step::SolidHomology(s) => match &cert.claim {
+                Claim::Volumes(v) => self::solid::check_solid(s, v),
+                _ => {
+                    Err("a solid-homology step in a certificate whose claim has no volumes".into())
                 }
             },
             Step::ConstraintsHold(s) => match &cert.claim {

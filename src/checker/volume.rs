@@ -26,20 +26,35 @@ const MAX_SIDES: u128 = 2_000_000;
 const MAX_SURFACE_SIDES: usize = 20_000;
 
 /// A face as compared: boundary as read from a root, E, the spoke items as a set, delay.
-type FaceKey = (Vec<Edge>, [Edge; 3], Vec<SpokeItem>, u32);
+pub(super) type FaceKey = (Vec<Edge>, [Edge; 3], Vec<SpokeItem>, u32);
 
 /// One item of a traversal code.
 #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-enum Tok {
+pub(super) enum Tok {
     Face(FaceKey),
     Glue(usize, usize),
 }
 
 /// What identifies a volume type: the surface's code, G, E, A, rule and delay.
-type TypeKey = (Vec<Tok>, Edge, Edge, FaceKey, VolumeRule, u32);
+pub(super) type TypeKey = (Vec<Tok>, Edge, Edge, FaceKey, VolumeRule, u32);
 
 /// A side of the level-1 surface: (face of S, sub-face, position).
-type Side = (usize, usize, usize);
+pub(super) type Side = (usize, usize, usize);
+
+/// A sub-volume with where each of its faces comes from.
+pub(super) type Traced = (Volume, Vec<Prov>);
+
+/// Where a face of a sub-volume comes from ([`step_traced`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Prov {
+    /// Sub-face `k` of face `f` of the level-1 surface, with the same boundary positions.
+    Sub(usize, usize),
+    /// The side face over a rim side of the patch (edge 0 against it).
+    Side(Side),
+    /// A face created inside that no other sub-volume reads: the inner face of a patch, or the
+    /// cap over a hole of a delayed volume.
+    Inner,
+}
 
 /// A closed surface: faces and gluing.
 struct Map {
@@ -224,7 +239,7 @@ fn type_key(v: &Volume, code: Vec<Tok>) -> TypeKey {
 
 /// The sides the level-1 surface of `v` may have: at most 4·n per edge side (n pieces, gap
 /// sides, spokes and lacuna sides), saturating.
-fn level1_sides(v: &Volume) -> u128 {
+pub(super) fn level1_sides(v: &Volume) -> u128 {
     v.faces
         .iter()
         .flat_map(|f| &f.boundary)
@@ -233,7 +248,7 @@ fn level1_sides(v: &Volume) -> u128 {
 }
 
 /// Checks a volume's own fields and its surface; returns its type key.
-fn checked_key(v: &Volume) -> Result<TypeKey, String> {
+pub(super) fn checked_key(v: &Volume) -> Result<TypeKey, String> {
     let p = v.params;
     let fields_ok = [v.radial, v.inner, p.ea, p.el, p.ec].iter().all(edge_ok);
     if !fields_ok || v.delay < 1 || v.algorithm.is_empty() {
@@ -261,9 +276,11 @@ fn checked_key(v: &Volume) -> Result<TypeKey, String> {
 /// The level-1 surface: every face subdivided (as it lies on the surface), and the pairing of
 /// sides: the two sides of a spoke edge inside a face, and piece `j` of an edge of `n` pieces
 /// with piece `n − 1 − j` of the edge glued to it.
-struct Level1 {
-    subs: Vec<Vec<(Face, Vec<Origin>)>>,
-    partner: HashMap<Side, Side>,
+pub(super) struct Level1 {
+    /// `subs[f][k]`: sub-face `k` of face `f`, as the volume reads it, with its origins.
+    pub(super) subs: Vec<Vec<(Face, Vec<Origin>)>>,
+    /// The side glued to each side (none for the sides of lacunas and gaps).
+    pub(super) partner: HashMap<Side, Side>,
 }
 
 impl Level1 {
@@ -387,6 +404,12 @@ fn union(parent: &mut [usize], a: usize, b: usize) {
 
 /// The sub-volumes of one step of `v`, each as a volume.
 fn step(v: &Volume) -> Result<Vec<Volume>, String> {
+    Ok(step_traced(v)?.1.into_iter().map(|(s, _)| s).collect())
+}
+
+/// One step of `v`: its level-1 surface, and the sub-volumes, each with where every one of its
+/// faces comes from.
+pub(super) fn step_traced(v: &Volume) -> Result<(Level1, Vec<Traced>), String> {
     let l1 = Level1::of(v)?;
     let all: Vec<(usize, usize)> = l1
         .subs
@@ -422,7 +445,9 @@ fn step(v: &Volume) -> Result<Vec<Volume>, String> {
             .flat_map(|&sf| l1.sides_of(sf))
             .filter(|&s| !paired(s))
             .collect();
+        let mut prov: Vec<Prov> = all.iter().map(|&(f, k)| Prov::Sub(f, k)).collect();
         for hole in l1.loops(&holes, &paired)? {
+            prov.push(Prov::Inner);
             let m = hole.len();
             let cap = faces.len();
             // The cap runs round the hole the other way: its edge c lies on hole side m − 1 − c.
@@ -441,7 +466,8 @@ fn step(v: &Volume) -> Result<Vec<Volume>, String> {
                 glue[index[&(s.0, s.1)]][s.2] = (cap, c);
             }
         }
-        return Ok(vec![child(faces, glue, v.delay - 1)]);
+        let one = vec![(child(faces, glue, v.delay - 1), prov)];
+        return Ok((l1, one));
     }
     // Patches: sub-faces joined across paired sides that are not spoke edges.
     let mut parent: Vec<usize> = (0..all.len()).collect();
@@ -512,6 +538,9 @@ fn step(v: &Volume) -> Result<Vec<Volume>, String> {
             .iter()
             .map(|&(f, k)| l1.subs[f][k].0.clone())
             .collect();
+        let mut prov: Vec<Prov> = patch.iter().map(|&(f, k)| Prov::Sub(f, k)).collect();
+        prov.extend(rim.iter().map(|&r| Prov::Side(r)));
+        prov.push(Prov::Inner);
         let mut glue: Vec<Vec<(usize, usize)>> = patch
             .iter()
             .map(|&sf| vec![(usize::MAX, 0); l1.len(sf)])
@@ -542,9 +571,9 @@ fn step(v: &Volume) -> Result<Vec<Volume>, String> {
         }
         faces.push(inside_face(v, vec![v.inner; m]));
         glue.push((0..m).map(|k| (first + m - 1 - k, 2)).collect());
-        out.push(child(faces, glue, 1));
+        out.push((child(faces, glue, 1), prov));
     }
-    Ok(out)
+    Ok((l1, out))
 }
 
 /// Lacunas of one step in quarters: 4 for the cavity plus the halves of every face's
@@ -747,11 +776,11 @@ pub(super) fn check_volume_closure(
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::certificate::{Kind, Params};
 
-    fn b2() -> Edge {
+    pub fn b2() -> Edge {
         Edge {
             kind: Kind::B,
             n: 2,
@@ -759,7 +788,7 @@ mod tests {
         }
     }
 
-    fn square() -> Face {
+    pub fn square() -> Face {
         Face {
             boundary: vec![b2(); 4],
             params: Params {
@@ -774,7 +803,7 @@ mod tests {
 
     /// The cube: faces as corner lists (corner x + 2y + 4z), counter-clockwise from outside,
     /// glued where one face runs a → b and another b → a.
-    fn cube() -> Volume {
+    pub fn cube() -> Volume {
         let polys: [[usize; 4]; 6] = [
             [0, 2, 3, 1],
             [4, 5, 7, 6],

@@ -129,16 +129,24 @@ pub(super) fn verify(
     let solid = lacuna::topology::volume::solid_topology_of(&set, levels, &v.start_cells())?;
     let r = lacuna::export::volume_ratio(&set, 30)?;
     // The constraints of THEORY §10, with the faces shared between volumes read from both sides.
-    let solver = lacuna::constraint::solve_volumes(
+    // A limit on the solve leaves the constraints undecided; the rest is still reported (and
+    // certified: the constraints of volumes are not in the certificate).
+    let solver = match lacuna::constraint::solve_volumes(
         &set,
         &lacuna::constraint::shared_readings(v),
         Default::default(),
         limits,
-    )?;
-    let verified = failures.is_empty() && solver.ok();
+    ) {
+        Ok(s) => Ok(s),
+        Err(e @ (Error::Limit { .. } | Error::ProvedAboveLimit { .. })) => Err(e),
+        Err(e) => return Err(e),
+    };
+    let decided = solver.is_ok();
+    let verified = failures.is_empty() && solver.as_ref().is_ok_and(|s| s.ok());
+    let certified = lacuna::certificate::solid_rows(&solid).len();
     let cert = match certificate {
         Some(_) => Some(
-            lacuna::certificate::certificate_for_volumes(name, &set, levels).map_err(
+            lacuna::certificate::certificate_for_volumes(name, &set, levels, v).map_err(
                 |e| match e {
                     lacuna::certificate::CertifyError::Lacuna(e) => e,
                     e => Error::Usage(format!("--certificate: {e}")),
@@ -156,7 +164,9 @@ pub(super) fn verify(
             "counts": counts,
             "solid": solid,
             "ratio": r,
-            "solver": solver,
+            "solver": solver.as_ref().ok(),
+            "constraints_undecided": solver.as_ref().err().map(|e| e.to_string()),
+            "solid_certified_levels": certified,
         }));
     } else {
         let mut t = lacuna::export::volume_closure_text(name, &VolumeClosure::Closed(set));
@@ -168,32 +178,49 @@ pub(super) fn verify(
             t += &format!("  {f}\n");
         }
         t += &lacuna::export::volume_counts_table(&counts);
-        t += "\nthe level-n solid (exact cell counts, derived by lacuna, not in the certificate; – where not derived)\n";
+        t += &match certified {
+            0 => "\nthe level-n solid (exact, derived by lacuna's recurrence, not in the certificate; – where not derived)\n".to_string(),
+            n => format!(
+                "\nthe level-n solid (exact; levels 0–{} certified by cells and ranks over F2 (solid-homology), the rest derived by lacuna's recurrence, not in the certificate; – where not derived)\n",
+                n - 1
+            ),
+        };
         t += &lacuna::export::solid_table(&solid);
         t += "\n";
         t += &lacuna::export::ratio_text(&r);
-        t += &format!(
-            "\nconstraints (faces and volumes, Bézier degree 2; exact, not in the certificate): {} unknowns, {} equations, {}\n",
-            solver.unknowns,
-            solver.equations,
-            if solver.consistent {
-                format!("consistent, {} degrees of freedom", solver.dof)
-            } else {
-                "INCONSISTENT (see `lacuna solve`)".into()
+        match &solver {
+            Ok(solver) => {
+                t += &format!(
+                    "\nconstraints (faces and volumes, Bézier degree 2; exact, not in the certificate): {} unknowns, {} equations, {}\n",
+                    solver.unknowns,
+                    solver.equations,
+                    if solver.consistent {
+                        format!("consistent, {} degrees of freedom", solver.dof)
+                    } else {
+                        "INCONSISTENT (see `lacuna solve`)".into()
+                    }
+                );
+                t += &format!(
+                    "degeneracy: {}\n",
+                    if solver.degenerate.is_empty() {
+                        "no two distinct corner points of a face's level-1 complex are forced to coincide"
+                            .to_string()
+                    } else {
+                        solver.degenerate.join("; ")
+                    }
+                );
             }
-        );
-        t += &format!(
-            "degeneracy: {}\n",
-            if solver.degenerate.is_empty() {
-                "no two distinct corner points of a face's level-1 complex are forced to coincide"
-                    .to_string()
-            } else {
-                solver.degenerate.join("; ")
+            Err(e) => {
+                t += &format!("\nconstraints: NOT DECIDED (a limit, not a verdict): {e}\n");
             }
-        );
+        }
         t += &format!(
             "\nverdict: {}\n",
-            if verified { "VERIFIED" } else { "NOT VERIFIED" }
+            match (verified, decided) {
+                (true, _) => "VERIFIED",
+                (false, true) => "NOT VERIFIED",
+                (false, false) => "NOT DECIDED (the constraints were not solved within the limits)",
+            }
         );
         match outputs.to_stdout {
             true => eprint!("{t}"),
@@ -206,10 +233,13 @@ pub(super) fn verify(
             outputs.say(&format!("certificate written to {}\n", path.display()));
         }
     }
+    // A failure found or a solve that decided against is a verdict; a limit alone is not.
     Ok(if verified {
         ExitCode::SUCCESS
-    } else {
+    } else if decided || !failures.is_empty() {
         ExitCode::from(EXIT_FAILED)
+    } else {
+        ExitCode::from(EXIT_BAD_INPUT)
     })
 }
 

@@ -71,7 +71,7 @@ pub fn volume_certificate(name: &str) -> Certificate {
         lacuna::topology::volume::VolumeClosure::Closed(set) => set,
         lacuna::topology::volume::VolumeClosure::Runaway(r) => panic!("{name}: {}", r.reason),
     };
-    lacuna::certificate::certificate_for_volumes(name, &set, 3).expect("certifiable")
+    lacuna::certificate::certificate_for_volumes(name, &set, 3, &volumes).expect("certifiable")
 }
 
 /// Emits, round-trips and checks a certificate (STYLE rule 5): every step must be proved.
