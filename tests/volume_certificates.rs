@@ -319,6 +319,50 @@ fn forged_solids_are_rejected() {
     solid_refused("a shared face of no face", &bad, "no such volume or face");
 }
 
+#[test]
+fn the_face_complex_rows_agree_with_measure_and_forgeries_fail() {
+    // `measure` counts holes as central lacunas plus closed gaps, by a flag recurrence; the
+    // checker by the rank of ∂2 over F2 on the complex it builds: two derivations that must meet.
+    for name in ["F0", "delayed-B2-C2", "triangle-C2"] {
+        let cert = common::face_certificate(name);
+        let rows = match cert.steps.last() {
+            Some(Step::FaceHomology(h)) => h.rows.clone(),
+            _ => panic!("{name}: no face-homology step"),
+        };
+        assert_proved(name, &cert);
+        let (code, out, err) = lacuna(&["measure", name, "--level", "3", "--json"]);
+        assert_eq!(code, 0, "{err}");
+        let m: serde_json::Value = serde_json::from_str(&out).unwrap();
+        for level in 0..=3usize {
+            let exact = &m["levels"][level]["exact"];
+            assert_eq!(
+                exact["holes"].as_str().unwrap(),
+                rows[level].holes.to_string(),
+                "{name} level {level}"
+            );
+            assert_eq!(exact["components"], rows[level].components, "{name}");
+            assert_eq!(
+                exact["faces"].as_str().unwrap(),
+                rows[level].faces.to_string()
+            );
+        }
+        // One hole more (χ kept): refused at the step.
+        let mut bad = cert.clone();
+        if let Some(Step::FaceHomology(h)) = bad.steps.last_mut() {
+            h.rows[2].holes += 1;
+        }
+        failed_at("face-homology", name, &bad, "the row says");
+        // One corner more and χ with it, the holes lowered to match: refused.
+        let mut bad = cert.clone();
+        if let Some(Step::FaceHomology(h)) = bad.steps.last_mut() {
+            h.rows[1].corners += 1;
+            h.rows[1].euler += 1;
+            h.rows[1].holes -= 1;
+        }
+        failed_at("face-homology", name, &bad, "the row says");
+    }
+}
+
 mod random {
     //! The certificate of random small volumes checks, and a changed count is caught.
     use super::*;

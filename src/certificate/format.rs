@@ -42,7 +42,7 @@ pub struct Certificate {
 /// certificate has, in this order:
 ///
 /// - faces ([`Claim::Faces`]) need `closure`, then `solution-space` or `inconsistent`, then
-///   `limit-ratio`;
+///   `limit-ratio`, and may have `face-homology` after them (one start face);
 /// - an automaton ([`Claim::Automaton`]) or a system ([`Claim::System`]) needs
 ///   `solution-space` or `inconsistent`;
 /// - a substitution ([`Claim::Substitution`]) needs `limit-ratio`;
@@ -102,6 +102,34 @@ pub struct SharedFaceClaim {
 pub struct SolidHomologyStep {
     /// One row per level, from level 0.
     pub rows: Vec<SolidRow>,
+}
+
+/// The topology of the level-n complex of one start face at levels 0 to `rows.len() − 1`.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FaceHomologyStep {
+    /// One row per level, from level 0.
+    pub rows: Vec<FaceRow>,
+}
+
+/// The cells, components and holes of a face's complex at one level.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FaceRow {
+    /// The level.
+    pub level: u64,
+    /// Cells (2-cells: the level-n sub-faces).
+    pub faces: u64,
+    /// Edges (1-cells).
+    pub edges: u64,
+    /// Corners (0-cells).
+    pub corners: u64,
+    /// χ = corners − edges + faces.
+    pub euler: i64,
+    /// b0: connected components.
+    pub components: u64,
+    /// b1: holes (lacunas and closed gaps).
+    pub holes: u64,
 }
 
 /// The cells and Betti numbers of the solid at one level.
@@ -370,6 +398,12 @@ pub enum Step {
     /// b3 = b2 = 0 over F2 and χ the same over every field, b1 over Q equals b1 over F2. Rows
     /// whose F2 b2 or b3 is not 0 are refused.
     SolidHomology(SolidHomologyStep),
+    /// **The topology of a face's level-n complex** (one start face). Justification: as for
+    /// `solid-homology`, without volumes: the checker builds the complex from the claim's face
+    /// (edges' pieces, sub-faces, spokes, lacuna and gap sides, corners), checks ∂∂ = 0 over F2,
+    /// and takes b0 from the 1-skeleton and the rank of ∂2 over F2; with b2 = 0 over F2, b1 (the
+    /// holes) over Q equals b1 over F2.
+    FaceHomology(FaceHomologyStep),
     /// **Every constraint of an automaton holds** (every operator given, in Q or in the
     /// claim's field K). Justification: the checker multiplies out both words of every
     /// constraint and the column sums of every barycentric operator in K and compares them
@@ -804,6 +838,7 @@ impl Step {
             Step::LimitRatio(_) => "limit-ratio",
             Step::VolumeClosure(_) => "volume-closure",
             Step::SolidHomology(_) => "solid-homology",
+            Step::FaceHomology(_) => "face-homology",
             Step::ConstraintsHold(_) => "constraints-hold",
             Step::ConstraintFails(_) => "constraint-fails",
             Step::Contraction(_) => "contraction",

@@ -9,11 +9,11 @@
 
 use crate::certificate::format::{
     Adjacency, Algebraic, AutomatonClaim, AutomatonOperator, AutomatonState, Certificate, Claim,
-    ClassClaim, ClosureStep, ConflictStep, Edge, Face, FacesClaim, Kind, Origin, Params, Pattern,
-    PointClaim, RadiusWitness, RatioStep, Recipe, Row, SharedFaceClaim, SolidHomologyStep,
-    SolidRow, SolutionStep, SpokeItem, Step, SubFace, SubstitutionClaim, System, TypeRule, Volume,
-    VolumeClosureStep, VolumeCount, VolumeRule, VolumeTypeRule, VolumesClaim, WordEquation,
-    WordFactor,
+    ClassClaim, ClosureStep, ConflictStep, Edge, Face, FaceHomologyStep, FaceRow, FacesClaim, Kind,
+    Origin, Params, Pattern, PointClaim, RadiusWitness, RatioStep, Recipe, Row, SharedFaceClaim,
+    SolidHomologyStep, SolidRow, SolutionStep, SpokeItem, Step, SubFace, SubstitutionClaim, System,
+    TypeRule, Volume, VolumeClosureStep, VolumeCount, VolumeRule, VolumeTypeRule, VolumesClaim,
+    WordEquation, WordFactor,
 };
 use crate::certificate::format::{
     AttractorClaim, ConstraintFailsStep, ConstraintsHoldStep, ContractionStep, FieldCoords,
@@ -100,7 +100,63 @@ pub fn certificate_for(
     let (matrix, c, start) = substitution_of(ts);
     cert.steps
         .push(Step::LimitRatio(ratio_step(&matrix, &c, &start)?));
+    let rows = face_rows(ts)?;
+    if !rows.is_empty() {
+        cert.steps
+            .push(Step::FaceHomology(FaceHomologyStep { rows }));
+    }
     Ok(cert)
+}
+
+/// The most levels of a face's complex in its `face-homology` step.
+pub const FACE_LEVELS: u64 = 6;
+
+/// The rows of the `face-homology` step of a closure with one start face: cells by birth
+/// ([`crate::topology::volume::face_cells`]), components as `measure` derives them, and holes
+/// b1 = b0 − χ (a complex of cells in the plane encloses no surface: b2 = 0), from level 0 while
+/// a level has at most [`SOLID_CELLS`] cells, up to [`FACE_LEVELS`]. None for an assembly of faces
+/// (the claim does not carry their gluing).
+pub fn face_rows(ts: &crate::topology::TypeSet) -> Result<Vec<FaceRow>, CertifyError> {
+    use num_traits::ToPrimitive;
+    let [start] = ts.start[..] else {
+        return Ok(Vec::new());
+    };
+    let cells = crate::topology::volume::face_cells(&ts.types[start].face, FACE_LEVELS)?;
+    let components: Vec<u64> = match crate::topology::component::components_by_induction(ts, &[]) {
+        Ok(c) => vec![c as u64; cells.len()],
+        Err(_) => match crate::topology::component::components_by_cells(
+            ts,
+            &[],
+            FACE_LEVELS as u32,
+            SOLID_CELLS as usize,
+        ) {
+            Some(Ok(v)) => v.into_iter().map(|c| c as u64).collect(),
+            _ => return Ok(Vec::new()),
+        },
+    };
+    let mut rows = Vec::new();
+    for (level, ([f, e, c], b0)) in cells.iter().zip(components).enumerate() {
+        let (Some(f), Some(e), Some(c)) = (f.to_u64(), e.to_u64(), c.to_u64()) else {
+            break;
+        };
+        if f.saturating_add(e).saturating_add(c) > SOLID_CELLS {
+            break;
+        }
+        let euler = c as i64 - e as i64 + f as i64;
+        let Ok(holes) = u64::try_from(b0 as i64 - euler) else {
+            break;
+        };
+        rows.push(FaceRow {
+            level: level as u64,
+            faces: f,
+            edges: e,
+            corners: c,
+            euler,
+            components: b0,
+            holes,
+        });
+    }
+    Ok(rows)
 }
 
 /// The most cells (volumes, faces, edges and corners) of a level of the solid that

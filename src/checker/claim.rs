@@ -438,6 +438,7 @@ fn slots(c: &Claim) -> &'static [(&'static [&'static str], bool)] {
             (&["closure"], true),
             (SYSTEM, true),
             (&["limit-ratio"], true),
+            (&["face-homology"], false),
         ],
         // Every operator given: the constraints are evaluated, there is no system to solve.
         Claim::Automaton(a)

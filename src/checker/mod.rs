@@ -435,6 +435,10 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
                     Err("a volume-closure step in a certificate whose claim has no volumes".into())
                 }
             },
+            Step::FaceHomology(s) => match &cert.claim {
+                Claim::Faces(f) => self::solid::check_face(s, f),
+                _ => Err("a face-homology step in a certificate whose claim has no faces".into()),
+            },
             Step::SolidHomology(s) => match &cert.claim {
                 Claim::Volumes(v) => self::solid::check_solid(s, v),
                 _ => {

@@ -338,3 +338,49 @@ pub fn solid_topology_of(
     }
     Ok(out)
 }
+
+/// The cells of the level-n complex of one face (its sub-faces, edges and corners; the
+/// lacunas are holes, not cells), from level 0 to `levels`, by birth as for solids: `(faces,
+/// edges, corners)` per level.
+pub fn face_cells(face: &Face, levels: u64) -> Result<Vec<[BigUint; 3]>> {
+    let mut cells = Cells::default();
+    let f0 = cells.face(face)?;
+    let start_edges: Vec<usize> = face.boundary.iter().map(|&e| cells.edge(e)).collect();
+    let mut fac = vec![BigUint::zero(); cells.faces.len()];
+    let mut edg = vec![BigUint::zero(); cells.edges.len()];
+    fac[f0] += 1u32;
+    for e in start_edges {
+        edg[e] += 1u32;
+    }
+    let mut corners = BigUint::from(face.boundary.len());
+    let mut out = Vec::new();
+    for level in 0..=levels {
+        let sum = |v: &[BigUint]| v.iter().sum::<BigUint>();
+        out.push([sum(&fac), sum(&edg), corners.clone()]);
+        if level == levels {
+            break;
+        }
+        let mut nfac = vec![BigUint::zero(); cells.faces.len()];
+        let mut nedg = vec![BigUint::zero(); cells.edges.len()];
+        for (t, k) in fac.iter().enumerate().filter(|(_, k)| !k.is_zero()) {
+            let (subs, inner, born) = &cells.face_birth[t];
+            for &x in subs {
+                nfac[x] += k;
+            }
+            for &x in inner {
+                nedg[x] += k;
+            }
+            corners += k * born;
+        }
+        for (t, k) in edg.iter().enumerate().filter(|(_, k)| !k.is_zero()) {
+            let (pieces, born) = &cells.edge_birth[t];
+            for &x in pieces {
+                nedg[x] += k;
+            }
+            corners += k * born;
+        }
+        fac = nfac;
+        edg = nedg;
+    }
+    Ok(out)
+}
