@@ -22,6 +22,7 @@
 //! equal to `2 − 2·holes` with `holes` from the exact counts. The geometric tests (no cell crossing
 //! another, no zero-area triangle) use exact predicates (`robust`) on those `f32` coordinates.
 
+pub mod bvh;
 pub mod check;
 pub mod expect;
 pub mod obj;
@@ -32,6 +33,7 @@ pub mod stl;
 pub mod surface;
 pub mod threemf;
 pub mod volume;
+pub mod wall;
 
 pub use check::{check_part, PartCheck};
 
