@@ -25,6 +25,7 @@
 pub mod bvh;
 pub mod check;
 pub mod expect;
+pub mod feature;
 pub mod obj;
 pub mod outline;
 pub mod printability;
@@ -48,7 +49,6 @@ mod below {
     pub(crate) use crate::geometry::point::{bezier_point, distance, Point};
     pub(crate) use crate::geometry::raster::bounds;
     pub(crate) use crate::input::automaton_model::AutomatonModel;
-    pub(crate) use crate::measure::hole::{polygon_size, smallest_holes};
     pub(crate) use crate::measure::measurement::exact_topology;
     pub(crate) use crate::topology::component::{components_by_induction, start_components};
 }
