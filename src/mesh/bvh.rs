@@ -42,9 +42,9 @@ impl Aabb {
 
     /// Grows the box to contain `p`.
     pub fn add(&mut self, p: [f64; 3]) {
-        for k in 0..3 {
-            self.lo[k] = self.lo[k].min(p[k]);
-            self.hi[k] = self.hi[k].max(p[k]);
+        for (k, x) in p.into_iter().enumerate() {
+            self.lo[k] = self.lo[k].min(x);
+            self.hi[k] = self.hi[k].max(x);
         }
     }
 

@@ -654,10 +654,9 @@ mod cube_tests {
                 let qq = cross(s, e1);
                 let w = dot(d, qq) / a;
                 let dist = dot(e2, qq) / a;
-                if (0.0..=1.0).contains(&u) && w >= 0.0 && u + w <= 1.0 && dist > 1e-9 {
-                    if first.is_none_or(|(f, _)| dist < f) {
-                        first = Some((dist, j));
-                    }
+                let hit = (0.0..=1.0).contains(&u) && w >= 0.0 && u + w <= 1.0 && dist > 1e-9;
+                if hit && first.is_none_or(|(f, _)| dist < f) {
+                    first = Some((dist, j));
                 }
             }
             if let Some((dist, j)) = first {
