@@ -808,3 +808,43 @@ fn a_solid_that_does_not_fit_the_bed_gets_a_warning_with_the_width_that_fits() {
     assert_eq!(code, 2, "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn feature_sizes_of_f0_and_delayed_b2_c2_are_the_printed_widths() {
+    // Level 3 at the default width (100 mm), the default 4 segments per Bézier edge. Expected
+    // widths come from an independent measure of the same union of cells (the `render
+    // --json-out` polygons, unioned and buffered with shapely, round joins of 64 segments per
+    // quarter circle) — not from lacuna's output:
+    // - F0: its narrowest hole closes under dilation at 2r = 1.050 mm; under erosion the hole
+    //   count first drops (97 → 91: walls between holes, or a hole and the outside, are cut)
+    //   between 2r = 1.78 and 1.80 mm, and the first component splits between 2.24 and 2.26 mm.
+    // - delayed-B2-C2: narrowest hole 0.44 mm wide (0.441 by the inscribed disc); holes first
+    //   merge (37 → 35) between 2r = 0.535 and 0.54 mm.
+    // Tolerances: the hole is bracketed within 2e-4 mm; the ligament is the bisection's upper
+    // end, within 1e-3 mm of the change, plus the offset's chord error (1.3e-4·r): 0.01 mm is
+    // ample and still separates the candidates (1.78 against 2.25).
+    let size = Size::default();
+    let f0 = lacuna::mesh::printability(&inst("F0"), 3, 4, size, 0.4).unwrap();
+    let hole = f0.smallest_hole_mm.unwrap();
+    assert!((hole - 1.05).abs() < 0.005, "F0 hole {hole}");
+    let lig = f0.thinnest_ligament_mm.unwrap();
+    assert!(
+        (1.78 - 0.01..=1.80 + 0.01).contains(&lig),
+        "F0 ligament {lig}"
+    );
+    assert!(f0.below().is_empty(), "{:?}", f0.below());
+
+    let d = lacuna::mesh::printability(&inst("delayed-B2-C2"), 3, 4, size, 0.4).unwrap();
+    let hole = d.smallest_hole_mm.unwrap();
+    assert!((hole - 0.44).abs() < 0.005, "delayed-B2-C2 hole {hole}");
+    let lig = d.thinnest_ligament_mm.unwrap();
+    assert!(
+        (0.535 - 0.01..=0.54 + 0.01).contains(&lig),
+        "delayed-B2-C2 ligament {lig}"
+    );
+    // 0.441 mm is above the 0.4 mm nozzle: no false warning any more.
+    assert!(d.below().is_empty(), "{:?}", d.below());
+    // At a 0.45 mm nozzle the hole is below it.
+    let d = lacuna::mesh::printability(&inst("delayed-B2-C2"), 3, 4, size, 0.45).unwrap();
+    assert_eq!(d.below().len(), 1, "{:?}", d.below());
+}

@@ -22,8 +22,10 @@
 //! equal to `2 − 2·holes` with `holes` from the exact counts. The geometric tests (no cell crossing
 //! another, no zero-area triangle) use exact predicates (`robust`) on those `f32` coordinates.
 
+pub mod bvh;
 pub mod check;
 pub mod expect;
+pub mod feature;
 pub mod obj;
 pub mod outline;
 pub mod printability;
@@ -32,6 +34,7 @@ pub mod stl;
 pub mod surface;
 pub mod threemf;
 pub mod volume;
+pub mod wall;
 
 pub use check::{check_part, PartCheck};
 
@@ -46,7 +49,6 @@ mod below {
     pub(crate) use crate::geometry::point::{bezier_point, distance, Point};
     pub(crate) use crate::geometry::raster::bounds;
     pub(crate) use crate::input::automaton_model::AutomatonModel;
-    pub(crate) use crate::measure::hole::{polygon_size, smallest_holes};
     pub(crate) use crate::measure::measurement::exact_topology;
     pub(crate) use crate::topology::component::{components_by_induction, start_components};
 }

@@ -1,0 +1,102 @@
+// Benchmark of issue #30: the checks of the cube-B2 level-3 solid (91,200 triangles, as
+// `render cube-B2 --level 3 --stl`) against writing its triangles as binary STL, in one run:
+// wall-clock time of each phase and its ratio to the write. The phases:
+// - build: evaluate, triangulate and check the solid (`volume_solid`: exact counts, manifold,
+//   Euler characteristic, and the self-intersection test);
+// - crossing: the self-intersection test alone (candidate pairs from the BVH of `mesh::bvh`);
+// - sweep: the candidate pairs as the sweep along x before the BVH found them (pairs whose boxes
+//   overlap in x, filtered on y and z; no triangle test), for comparison with the BVH;
+// - wall: the wall-thickness bound (`mesh::wall`);
+// - write: binary STL into memory.
+// `LEVEL=2 cargo bench --bench mesh_checks` runs a smaller level.
+
+use lacuna::mesh::bvh::{Aabb, Bvh};
+use lacuna::mesh::{self_intersection, stl, volume_solid, Part};
+use lacuna::topology::volume::{parse_volume, VolumeClosure};
+use lacuna::topology::Limits;
+use std::time::Instant;
+
+fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
+    let t = Instant::now();
+    let r = f();
+    (r, t.elapsed().as_secs_f64())
+}
+
+/// The candidate pairs of the sweep along x that the BVH replaced.
+fn sweep_pairs(parts: &[Part]) -> u64 {
+    let mut boxes: Vec<Aabb> = parts
+        .iter()
+        .flat_map(|p| {
+            p.triangles
+                .iter()
+                .map(|t| Aabb::of(&t.map(|v| p.vertices[v as usize].map(f64::from))))
+        })
+        .collect();
+    boxes.sort_by(|a, b| a.lo[0].total_cmp(&b.lo[0]));
+    let mut n = 0u64;
+    for i in 0..boxes.len() {
+        for b in &boxes[i + 1..] {
+            if b.lo[0] > boxes[i].hi[0] {
+                break;
+            }
+            if b.overlaps(&boxes[i]) {
+                n += 1;
+            }
+        }
+    }
+    n
+}
+
+fn main() {
+    let level: u32 = std::env::var("LEVEL")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(3);
+    let v = parse_volume("cube B2 | B2 B2 B2 | A1 | B2 B2 | V1").expect("cube-B2 parses");
+    let VolumeClosure::Closed(set) =
+        VolumeClosure::of(std::slice::from_ref(&v), &Limits::default()).expect("closure")
+    else {
+        panic!("cube-B2 closes")
+    };
+    let (vs, build) = timed(|| volume_solid("cube-B2", &v, &set, level, 100.0).expect("builds"));
+    let parts = &vs.solid.parts;
+    let ((crossing, tested), crossing_s) = timed(|| self_intersection(parts));
+    assert!(crossing.is_none());
+    let (swept, sweep_s) = timed(|| sweep_pairs(parts));
+    let (bvh_pairs, bvh_s) = timed(|| {
+        let boxes: Vec<Aabb> = parts
+            .iter()
+            .flat_map(|p| {
+                p.triangles
+                    .iter()
+                    .map(|t| Aabb::of(&t.map(|v| p.vertices[v as usize].map(f64::from))))
+            })
+            .collect();
+        let mut n = 0u64;
+        Bvh::new(boxes).overlapping_pairs(|_, _| n += 1);
+        n
+    });
+    assert_eq!(swept, bvh_pairs, "the BVH finds the sweep's pairs");
+    let (wall, wall_s) = timed(|| lacuna::mesh::wall::wall_bound(parts));
+    let (bytes, write_s) = timed(|| {
+        let mut out = Vec::new();
+        stl::write_binary(&vs.solid, &mut out).expect("writes");
+        out.len()
+    });
+    println!(
+        "cube-B2 level {level}: {} triangles, {tested} pairs tested, {bytes} bytes of STL, wall ≥ {:.3} mm",
+        vs.solid.triangle_count(),
+        wall.map_or(f64::NAN, |w| w.thickness)
+    );
+    println!("{:<34} {:>10} {:>12}", "phase", "seconds", "÷ write");
+    for (name, s) in [
+        ("build and check (volume_solid)", build),
+        ("crossing test (BVH)", crossing_s),
+        ("candidate pairs, BVH", bvh_s),
+        ("candidate pairs, x sweep (before)", sweep_s),
+        ("wall bound (BVH)", wall_s),
+        ("write binary STL", write_s),
+    ] {
+        println!("{name:<34} {s:>10.4} {:>12.1}", s / write_s);
+    }
+}
