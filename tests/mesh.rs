@@ -848,3 +848,72 @@ fn feature_sizes_of_f0_and_delayed_b2_c2_are_the_printed_widths() {
     let d = lacuna::mesh::printability(&inst("delayed-B2-C2"), 3, 4, size, 0.45).unwrap();
     assert_eq!(d.below().len(), 1, "{:?}", d.below());
 }
+
+/// Debian's PrusaSlicer (the `prusa-slicer` command line, installed by `.ci/run`) slices every
+/// library solid at level 2 without repair, as lacuna orients it with `--orient auto`; where
+/// lacuna says that no face rests on the bed, with supports (`--support-material`), as it
+/// advises. The thickened quad-patch shell is one of them: it slices only that way.
+#[test]
+#[ignore]
+fn prusa_slicer_slices_every_library_solid_at_level_2() {
+    let dir = std::env::temp_dir().join(format!("lacuna-prusa-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let cases: &[(&str, &[&str])] = &[
+        ("F0", &[]),
+        ("square-B2", &[]),
+        ("triangle-C2", &[]),
+        ("delayed-B2-C2", &[]),
+        ("two-quads", &[]),
+        ("cube-B2", &[]),
+        ("tetrahedron-B2", &[]),
+        ("cube-C2", &[]),
+        ("truncated-tetrahedron", &[]),
+        ("two-cubes", &[]),
+        ("quad-patch-3d", &["--thickness", "1"]),
+    ];
+    for (name, extra) in cases {
+        let stl = dir.join(format!("{name}.stl"));
+        let gcode = dir.join(format!("{name}.gcode"));
+        let mut args = vec!["render", name, "--level", "2", "--orient", "auto", "--stl"];
+        args.push(stl.to_str().unwrap());
+        args.extend_from_slice(extra);
+        let (code, out, err) = common::lacuna(&args);
+        assert_eq!(code, 0, "{name}: {out}{err}");
+        assert!(out.contains("orientation: "), "{name}: {out}");
+        let supports = err.contains("no face rests on the bed");
+        let mut slicer = std::process::Command::new("prusa-slicer");
+        if supports {
+            slicer.arg("--support-material");
+        }
+        let o = slicer
+            .arg("--export-gcode")
+            .arg(&stl)
+            .arg("-o")
+            .arg(&gcode)
+            .output()
+            .expect("prusa-slicer runs (Debian package prusa-slicer)");
+        let text = format!(
+            "{}{}",
+            String::from_utf8_lossy(&o.stdout),
+            String::from_utf8_lossy(&o.stderr)
+        );
+        assert!(o.status.success(), "{name} (supports: {supports}): {text}");
+        assert!(
+            !text.contains("no extrusions in the first layer"),
+            "{name}: {text}"
+        );
+        let g = std::fs::read_to_string(&gcode).unwrap();
+        assert!(g.contains("G1"), "{name}: no moves in the G-code");
+    }
+    // The shell needs the supports lacuna asked for: without them PrusaSlicer refuses it.
+    let stl = dir.join("quad-patch-3d.stl");
+    let o = std::process::Command::new("prusa-slicer")
+        .arg("--export-gcode")
+        .arg(&stl)
+        .arg("-o")
+        .arg(dir.join("bare.gcode"))
+        .output()
+        .expect("prusa-slicer runs");
+    assert!(!o.status.success(), "the shell sliced without supports");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -532,6 +532,20 @@ pub(crate) struct PrintArgs {
     /// within 1 mm, gets a warning (with the --width that would fit).
     #[arg(long, default_value = "200x200x200", value_name = "XxYxZ", value_parser = parse_bed)]
     pub(crate) bed: [f64; 3],
+    /// The orientation of the mesh written: `keep` (as built, z up) or `auto` (the axis
+    /// direction down with the least overhang that rests a face on the bed). Both report the
+    /// overhang beyond 45° and the area on the bed.
+    #[arg(long, value_enum, default_value = "keep")]
+    pub(crate) orient: OrientArg,
+}
+
+/// How the mesh written is oriented (`--orient`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub(crate) enum OrientArg {
+    /// As built: z up.
+    Keep,
+    /// The best of the six axis directions down (GEOMETRY §5).
+    Auto,
 }
 
 /// `--bed XxYxZ`: three positive sizes in mm, separated by `x` (or `×`).

@@ -94,6 +94,8 @@ pub(super) struct MeshOut {
     pub(super) thick: bool,
     /// The build volume (`--bed`), in mm.
     pub(super) bed: [f64; 3],
+    /// The orientation (`--orient`).
+    pub(super) orient: super::args::OrientArg,
 }
 
 /// Writes the STL, 3MF and (with a thickness) OBJ meshes of the level's polygon leaves: the
@@ -124,14 +126,14 @@ fn write_meshes(p: &Prepared, level: u32, m: &MeshOut, outputs: &mut Outputs) ->
                 source: None,
             }))
         })?;
-    let solid = &built.solid;
+    let mut built = built;
     let how = if built.exact_vertices {
         "vertices identified exactly"
     } else {
         "vertices welded within 1e-9 of the size"
     };
-    let part = &solid.parts[0];
-    match solid.checks.first() {
+    let part = &built.solid.parts[0];
+    match built.solid.checks.first() {
         Some(c) => outputs.say(&format!(
             "mesh: {} level {level}, width {} mm, shell {} mm thick: {} vertices, {} triangles ({how}); closed oriented manifold, Euler characteristic {}\n",
             p.name, m.size.width, m.size.thickness, c.vertices, c.triangles, c.euler
@@ -150,6 +152,10 @@ fn write_meshes(p: &Prepared, level: u32, m: &MeshOut, outputs: &mut Outputs) ->
             );
         }
     }
+    if built.solid.checks.first().is_some() {
+        super::render::orient(&mut built.solid.parts, m.orient, outputs);
+    }
+    let solid = &built.solid;
     if let Some(w) = solid.bed_advice(m.bed, m.size.width) {
         eprintln!("{w}");
     }

@@ -122,6 +122,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             size: solid_size,
             thick,
             bed: print.bed,
+            orient: print.orient,
         };
         return automaton::render(
             &geo,
@@ -186,8 +187,9 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             .map_err(mesh_error)?;
         outputs.say(&pr.text());
         pr.enforce(print.strict).map_err(mesh_error)?;
-        let solid = lacuna::mesh::build(&inst, level, segs, solid_size).map_err(mesh_error)?;
+        let mut solid = lacuna::mesh::build(&inst, level, segs, solid_size).map_err(mesh_error)?;
         outputs.say(&solid.summary());
+        orient(&mut solid.parts, print.orient, &outputs);
         if let Some(w) = solid.bed_advice(print.bed, print.width) {
             eprintln!("{w}");
         }
@@ -315,5 +317,18 @@ fn positive_number(flag: &'static str, text: &str) -> Result<f64, Error> {
             what: "the thickness of the solid in mm",
             range: "a positive number: an integer, a decimal or a fraction (2, 0.8, 1/2)".into(),
         }),
+    }
+}
+
+/// Chooses the orientation (`--orient`), turns the parts to it and reports the overhang and
+/// the area on the bed; a warning when nothing rests on the bed.
+pub(super) fn orient(parts: &mut [lacuna::mesh::Part], how: OrientArg, outputs: &Outputs) {
+    let o = lacuna::mesh::orient::choose(parts, how == OrientArg::Auto);
+    lacuna::mesh::orient::turn(parts, o.chosen);
+    for line in o.text().lines() {
+        match line.starts_with("warning:") {
+            true => eprintln!("{line}"),
+            false => outputs.say(&format!("{line}\n")),
+        }
     }
 }

@@ -315,7 +315,7 @@ pub(super) fn render(
     limits: &Limits,
 ) -> Result<ExitCode, Error> {
     lacuna::mesh::check_size("--resolution", print.resolution).map_err(mesh_error)?;
-    let vs = checked_solid(name, v, geo, print.width, limits)?;
+    let mut vs = checked_solid(name, v, geo, print.width, limits)?;
     outputs.say(&vs.summary());
     let sizes = vs.sizes();
     outputs.say(&sizes.text(print.resolution));
@@ -332,6 +332,9 @@ pub(super) fn render(
         failed = true;
     }
     let wrote = |o: &Outputs, p: &std::path::Path| o.say(&format!("wrote {}\n", p.display()));
+    if t.mesh.any() {
+        super::render::orient(&mut vs.solid.parts, print.orient, outputs);
+    }
     let solid = &vs.solid;
     if t.mesh.any() {
         if let Some(w) = solid.bed_advice(print.bed, print.width) {

@@ -27,6 +27,7 @@ pub mod check;
 pub mod expect;
 pub mod feature;
 pub mod obj;
+pub mod orient;
 pub mod outline;
 pub mod printability;
 pub mod solid;
