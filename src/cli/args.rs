@@ -542,9 +542,10 @@ pub(crate) struct PrintArgs {
 /// How the mesh written is oriented (`--orient`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub(crate) enum OrientArg {
-    /// As built: z up.
+    // As built: z up. (Plain comments: documented variants would turn every help text that
+    // shows this flag into the long layout.)
     Keep,
-    /// The best of the six axis directions down (GEOMETRY §5).
+    // The best of the six axis directions down (GEOMETRY §5).
     Auto,
 }
 

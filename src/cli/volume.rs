@@ -201,7 +201,7 @@ pub(super) fn verify(
                     }
                 );
                 t += &format!(
-                    "degeneracy: {}\n",
+                    "degeneracy (exact, not in the certificate): {}\n",
                     if solver.degenerate.is_empty() {
                         "no two distinct corner points of a face's level-1 complex are forced to coincide"
                             .to_string()

@@ -387,7 +387,10 @@ impl VerifyReport {
             if sv.consistent {
                 let _ = writeln!(o, "  consistent: {} degrees of freedom", sv.dof);
                 if sv.degenerate.is_empty() {
-                    let _ = writeln!(o, "  no forced collapse of distinct corner points");
+                    let _ = writeln!(
+                        o,
+                        "  no forced collapse of distinct corner points (exact, not in the certificate)"
+                    );
                 } else {
                     for d in &sv.degenerate {
                         let _ = writeln!(o, "  FORCED COLLAPSE: {d}");

@@ -445,7 +445,7 @@ impl MeasureReport {
         }
         let _ = writeln!(
             s,
-            "\nF_A = {:.6} (fit residual {:.4}), F_P = {:.6} (fit residual {:.4})",
+            "\nF_A = {:.6} (estimate: fit residual {:.4}), F_P = {:.6} (estimate: fit residual {:.4})",
             self.area_factor,
             self.area_fit.residual,
             self.perimeter_factor,
@@ -453,7 +453,7 @@ impl MeasureReport {
         );
         let _ = writeln!(
             s,
-            "box-counting dimension {:.4} (fit residual {:.4}, boxes 1/{} to 1/{})",
+            "box-counting dimension {:.4} (estimate: fit residual {:.4}, boxes 1/{} to 1/{})",
             self.box_dimension,
             self.box_fit.residual,
             self.box_counts.first().map_or(0, |b| 1u64 << b.0),
