@@ -917,3 +917,44 @@ fn prusa_slicer_slices_every_library_solid_at_level_2() {
     assert!(!o.status.success(), "the shell sliced without supports");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The printability object of a plate and of a volume: the plate's area on the bed, from the
+/// union of its cells' polygons, equals the area of the downward triangles on the bed of the
+/// mesh built from them (two derivations); a plate has no overhang; a volume's figures say what
+/// kind they are, and its overhang is the mesh's as built.
+#[test]
+fn the_printability_object_of_a_plate_and_of_a_volume() {
+    let i = inst("F0");
+    let size = Size::default();
+    let p = lacuna::mesh::printability(&i, 2, 4, size, 0.4).unwrap();
+    let r = lacuna::mesh::printability::PrintReport::of_plate(&p, lacuna::mesh::DEFAULT_BED);
+    let s = solid(&i, 2);
+    let (o, _) = lacuna::mesh::orient::overhangs(&s.parts);
+    let from_mesh = o[0].bed_contact_mm2;
+    let from_polygons = r.bed_contact_mm2.unwrap();
+    assert!(
+        (from_mesh - from_polygons).abs() < 1e-6 * from_mesh,
+        "{from_mesh} against {from_polygons}"
+    );
+    assert_eq!((r.overhang_mm2, o[0].overhang_mm2), (Some(0.0), 0.0));
+    // The plate: 100 mm wide, the hexagon's height √3/2 of it, 2 mm thick; it fits 200³.
+    assert!(
+        (r.extent_mm[1] - 50.0 * 3f64.sqrt()).abs() < 1e-9,
+        "{:?}",
+        r.extent_mm
+    );
+    assert_eq!((r.extent_mm[2], r.wall_thickness_mm), (2.0, Some(2.0)));
+    assert!(r.fits_bed);
+    let v = volume("cube-C2", 1);
+    let sizes = v.sizes();
+    let vr = sizes.report(&v.solid.parts, 1, 0.4, [50.0, 200.0, 200.0]);
+    assert_eq!(
+        vr.kinds["wall_thickness"].0,
+        lacuna::mesh::printability::FigureKind::LowerBound
+    );
+    assert_eq!(vr.wall_thickness_mm, sizes.wall_bound_mm);
+    // 100 mm wide: it does not fit a bed 50 mm wide.
+    assert!(!vr.fits_bed);
+    let (o, _) = lacuna::mesh::orient::overhangs(&v.solid.parts);
+    assert_eq!(vr.overhang_mm2, Some(o[0].overhang_mm2));
+}

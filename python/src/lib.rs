@@ -811,7 +811,10 @@ fn measure(
             .map_err(mesh_error)?;
         Ok(json(&lacuna::mesh::printability::WithPrintability {
             report: &r,
-            printability: &p,
+            printability: &lacuna::mesh::printability::PrintReport::of_plate(
+                &p,
+                lacuna::mesh::DEFAULT_BED,
+            ),
         }))
     })
 }

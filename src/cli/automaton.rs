@@ -152,7 +152,7 @@ fn write_meshes(p: &Prepared, level: u32, m: &MeshOut, outputs: &mut Outputs) ->
             );
         }
     }
-    if built.solid.checks.first().is_some() {
+    if !built.solid.checks.is_empty() {
         super::render::orient(&mut built.solid.parts, m.orient, outputs);
     }
     let solid = &built.solid;

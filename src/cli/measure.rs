@@ -61,7 +61,7 @@ pub(super) fn run(args: MeasureArgs, limits: &Limits) -> Result<ExitCode, Error>
     if json {
         print_json(&lacuna::mesh::printability::WithPrintability {
             report: &r,
-            printability: &p,
+            printability: &lacuna::mesh::printability::PrintReport::of_plate(&p, print.bed),
         });
     } else {
         out(&r.to_text());

@@ -429,6 +429,7 @@ pub(super) fn measure(
                 "crossing": vs.crossing,
             },
             "sizes": sizes,
+            "printability": sizes.report(&vs.solid.parts, geo.level, print.resolution, print.bed),
             "resolution_mm": print.resolution,
             "below_resolution": below,
         }));

@@ -16,7 +16,7 @@
 //! outside) merge because the wall between them is cut. The erosion is `i_overlay`'s polygon
 //! offset by `−r` with round joins (arcs cut in chords of at most 0.01π rad: the eroded outline
 //! is within `1.3e-4·r` of the true one, and `i_overlay` snaps to an integer grid of about
-//! `extent / 2³⁰`); `r` grows by factors of 1.25 from [`LIGAMENT_TOLERANCE`] until the numbers
+//! `extent / 2³⁰`); `r` doubles from [`LIGAMENT_TOLERANCE`] until the numbers
 //! of components or holes differ from the material's, then is bisected to
 //! [`LIGAMENT_TOLERANCE`]. An estimate, not a bound: a change that reverses within one step of
 //! the scan is not seen, and the offset is approximate.
@@ -303,6 +303,9 @@ pub fn thinnest_ligament(shapes: &Shapes) -> Option<(f64, f64)> {
         );
     let reach = (b[2] - b[0]).max(b[3] - b[1]);
     let changed = |r: f64| betti(&erode(shapes, r)) != base;
+    // Doubling, then bisection: each erosion of a large level costs a polygon offset of the
+    // whole union, and doubling takes about half the erosions a finer growth would (measured:
+    // F0 level 5, 7 776 cells, 23 erosions with steps of ×1.25 against 13).
     let (mut lo, mut hi) = (0.0, LIGAMENT_TOLERANCE);
     while !changed(hi) {
         if hi > reach {
@@ -311,7 +314,7 @@ pub fn thinnest_ligament(shapes: &Shapes) -> Option<(f64, f64)> {
             return Some((2.0 * hi, f64::INFINITY));
         }
         lo = hi;
-        hi *= 1.25;
+        hi *= 2.0;
     }
     while hi - lo > LIGAMENT_TOLERANCE {
         let mid = 0.5 * (lo + hi);

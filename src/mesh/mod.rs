@@ -86,6 +86,9 @@ pub const DEFAULT_THICKNESS: f64 = 2.0;
 /// Default printer resolution in mm (`--resolution`): a common nozzle width.
 pub const DEFAULT_RESOLUTION: f64 = 0.4;
 
+/// The default build volume (`--bed`), mm: a common 200 mm cube.
+pub const DEFAULT_BED: [f64; 3] = [200.0; 3];
+
 /// Errors of the mesh layer, each with a stable code (`E104x`). [`MeshError::is_failure`] tells a
 /// verification failure (exit 1: the mesh would not be the verified structure) from bad input
 /// (exit 2).

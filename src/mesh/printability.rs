@@ -34,6 +34,105 @@ pub struct Printability {
     pub not_measured: Option<String>,
     /// The printer resolution compared with.
     pub resolution_mm: f64,
+    /// The plate's extent: x, y (the level's cells at the scale) and z (the thickness), mm.
+    pub extent_mm: [f64; 3],
+    /// The area of the material (the union of the level's cells), mm²: what rests on the bed.
+    pub material_mm2: Option<f64>,
+}
+
+/// How far a figure of [`PrintReport`] can be trusted.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FigureKind {
+    /// Exact by construction (the plate's thickness, a flat plate's overhang).
+    Exact,
+    /// Within a stated bracket of the true value on the flattened polygons.
+    Bracket,
+    /// A proved lower bound (the wall thickness of a volume).
+    LowerBound,
+    /// An estimate (erosion by bisection, a hole seen from its mean point).
+    Estimate,
+}
+
+/// The printability of a printed object in one shape for faces and volumes (`measure --json`,
+/// `printability`): every figure in mm with what kind of figure it is, the extent against the
+/// build volume, the overhang as built, and the features below the resolution.
+#[derive(Clone, Debug, Serialize)]
+pub struct PrintReport {
+    /// The level.
+    pub level: u32,
+    /// The printer resolution compared with, mm.
+    pub resolution_mm: f64,
+    /// The smallest hole's width, mm.
+    pub smallest_hole_mm: Option<f64>,
+    /// The thinnest ligament, mm.
+    pub thinnest_ligament_mm: Option<f64>,
+    /// The wall thickness, mm.
+    pub wall_thickness_mm: Option<f64>,
+    /// What kind of figure each of the three is, and how close (`smallest_hole`,
+    /// `thinnest_ligament`, `wall_thickness`).
+    pub kinds: std::collections::BTreeMap<&'static str, (FigureKind, String)>,
+    /// The extent along x, y, z as written (z up), mm.
+    pub extent_mm: [f64; 3],
+    /// The build volume compared with (`--bed`), mm.
+    pub bed_mm: [f64; 3],
+    /// Whether the extent fits the build volume.
+    pub fits_bed: bool,
+    /// The overhang beyond 45° as built (z up), mm² ([`crate::mesh::orient`]).
+    pub overhang_mm2: Option<f64>,
+    /// The area resting on the bed as built, mm².
+    pub bed_contact_mm2: Option<f64>,
+    /// The features below the resolution, in words.
+    pub below_resolution: Vec<String>,
+    /// Why the features were not measured, if so.
+    pub not_measured: Option<String>,
+}
+
+impl PrintReport {
+    /// The report of a flat plate (a face structure extruded to its thickness).
+    pub fn of_plate(p: &Printability, bed: [f64; 3]) -> PrintReport {
+        let mut kinds = std::collections::BTreeMap::new();
+        kinds.insert(
+            "smallest_hole",
+            (
+                FigureKind::Bracket,
+                format!(
+                    "twice the largest inscribed radius, within {} mm",
+                    2.0 * HOLE_TOLERANCE
+                ),
+            ),
+        );
+        kinds.insert(
+            "thinnest_ligament",
+            (
+                FigureKind::Estimate,
+                format!("erosion by bisection, ±{} mm", 2.0 * LIGAMENT_TOLERANCE),
+            ),
+        );
+        kinds.insert(
+            "wall_thickness",
+            (
+                FigureKind::Exact,
+                "the plate's thickness (its widths in the plane are the ligaments)".into(),
+            ),
+        );
+        PrintReport {
+            level: p.level,
+            resolution_mm: p.resolution_mm,
+            smallest_hole_mm: p.smallest_hole_mm,
+            thinnest_ligament_mm: p.thinnest_ligament_mm,
+            wall_thickness_mm: Some(p.extent_mm[2]),
+            kinds,
+            extent_mm: p.extent_mm,
+            bed_mm: bed,
+            fits_bed: (0..3).all(|k| p.extent_mm[k] <= bed[k]),
+            // Vertical walls and a flat bottom on the bed: nothing overhangs, the material rests.
+            overhang_mm2: p.material_mm2.map(|_| 0.0),
+            bed_contact_mm2: p.material_mm2,
+            below_resolution: p.below(),
+            not_measured: p.not_measured.clone(),
+        }
+    }
 }
 
 /// Measures the smallest hole and the thinnest ligament of `level` at the size `size.width`.
@@ -56,10 +155,17 @@ pub fn printability(
         thinnest_ligament_mm: None,
         not_measured: None,
         resolution_mm: resolution,
+        extent_mm: [
+            size.width,
+            (bb.max[1] - bb.min[1]).max(0.0) * scale,
+            size.thickness,
+        ],
+        material_mm2: None,
     };
     match super::outline::outline(inst, level, segments, size) {
         Ok(o) => {
             let m = material(&o);
+            p.material_mm2 = Some(area(&m));
             p.smallest_hole_mm = smallest_hole(&m).map(|h| h.0);
             p.thinnest_ligament_mm = thinnest_ligament(&m).map(|l| l.1);
         }
@@ -68,6 +174,24 @@ pub fn printability(
         Err(e) => p.not_measured = Some(e.to_string()),
     }
     Ok(p)
+}
+
+/// The area of shapes (an outer contour and its holes each), mm².
+fn area(m: &super::feature::Shapes) -> f64 {
+    let ring = |c: &Vec<super::feature::P2>| {
+        let n = c.len();
+        (0..n)
+            .map(|i| c[i][0] * c[(i + 1) % n][1] - c[(i + 1) % n][0] * c[i][1])
+            .sum::<f64>()
+            .abs()
+            / 2.0
+    };
+    m.iter()
+        .map(|shape| match shape.split_first() {
+            Some((outer, holes)) => ring(outer) - holes.iter().map(ring).sum::<f64>(),
+            None => 0.0,
+        })
+        .sum()
 }
 
 impl Printability {
@@ -137,5 +261,5 @@ pub struct WithPrintability<'a, T: Serialize> {
     #[serde(flatten)]
     pub report: &'a T,
     /// The printability at its level.
-    pub printability: &'a Printability,
+    pub printability: &'a PrintReport,
 }

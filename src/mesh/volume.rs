@@ -772,7 +772,53 @@ impl VolumeSolid {
     }
 }
 
+use super::printability::PrintReport;
+
 impl VolumeSizes {
+    /// The printability in the shape faces have ([`super::printability::PrintReport`]): the
+    /// smallest hole an estimate, the wall thickness a lower bound, no ligament figure (the
+    /// wall bound stands for it in 3D), the overhang of `parts` as built.
+    pub fn report(
+        &self,
+        parts: &[super::solid::Part],
+        level: u32,
+        resolution: f64,
+        bed: [f64; 3],
+    ) -> super::printability::PrintReport {
+        use super::printability::FigureKind;
+        let mut kinds = std::collections::BTreeMap::new();
+        kinds.insert(
+            "smallest_hole",
+            (
+                FigureKind::Estimate,
+                "the inscribed circle of the last step's holes, seen from their mean point".into(),
+            ),
+        );
+        kinds.insert(
+            "wall_thickness",
+            (
+                FigureKind::LowerBound,
+                "the least distance of two facing triangles with material between them".into(),
+            ),
+        );
+        let (o, _) = super::orient::overhangs(parts);
+        PrintReport {
+            level,
+            resolution_mm: resolution,
+            smallest_hole_mm: self.smallest_hole_mm,
+            thinnest_ligament_mm: None,
+            wall_thickness_mm: self.wall_bound_mm,
+            kinds,
+            extent_mm: self.extent_mm,
+            bed_mm: bed,
+            fits_bed: (0..3).all(|k| self.extent_mm[k] <= bed[k]),
+            overhang_mm2: o.first().map(|x| x.overhang_mm2),
+            bed_contact_mm2: o.first().map(|x| x.bed_contact_mm2),
+            below_resolution: self.below(resolution),
+            not_measured: None,
+        }
+    }
+
     /// The features below a printer's resolution, in words.
     pub fn below(&self, resolution: f64) -> Vec<String> {
         let mut out = Vec::new();
