@@ -358,3 +358,84 @@ fn a_malformed_attractor_claim_is_refused_whatever_the_steps() {
     }
     assert!(check(&c).failed());
 }
+
+fn rule_of(c: &mut Certificate) -> &mut String {
+    match &mut c.claim {
+        lacuna::certificate::Claim::Automaton(a) => a.rule.as_mut().expect("a rule text"),
+        _ => panic!("an automaton claim"),
+    }
+}
+
+/// The rule → automaton compilation is certified for the plain rules: the checker compiles the
+/// rule text again. A changed coordinate in the rule, a changed flag, a field of another number
+/// or a changed matrix in the claim is refused at the step; rules with the age or random
+/// extensions have no such step.
+#[test]
+fn rule_compilations_are_certified_and_forgeries_fail() {
+    let with_rule = |name: &str| {
+        let c = automaton_certificate(name);
+        let has = c.steps.iter().any(|s| s.name() == "rule-compilation");
+        (c, has)
+    };
+    for name in [
+        "koch",
+        "quadric-koch",
+        "sierpinski-arrowhead",
+        "heighway-dragon",
+        "monkeys-tree",
+        "pythagoras-tree",
+        "self-seeding-square",
+    ] {
+        let (c, has) = with_rule(name);
+        assert!(has, "{name}: no rule-compilation step");
+        assert_proved(name, &c);
+    }
+    for name in ["vegetation", "random-tree"] {
+        assert!(!with_rule(name).1, "{name}: extensions are not re-compiled");
+    }
+    let (koch, _) = with_rule("koch");
+    // The tip of the Koch generator one sixth of √3 high: moved to one fifth.
+    let mut bad = koch.clone();
+    let r = rule_of(&mut bad);
+    assert!(r.contains("1/2,1/6s"));
+    *r = r.replace("1/2,1/6s", "1/2,1/5s");
+    assert_rejected("a moved tip", &bad, "rule-compilation");
+    // A segment laid mirrored.
+    let mut bad = koch.clone();
+    let r = rule_of(&mut bad);
+    *r = r.replace("koch 1/3,0 koch 1/2", "koch 1/3,0 koch/y 1/2");
+    assert_rejected("a mirrored piece", &bad, "rule-compilation");
+    // The field of √2 instead of √3 (the same interval holds one root of x² − 2).
+    let mut bad = koch.clone();
+    let r = rule_of(&mut bad);
+    *r = r.replace("x^2 - 3", "x^2 - 2");
+    assert_rejected("another field", &bad, "rule-compilation");
+    // The claim's matrix changed in one entry (the rule kept).
+    let mut bad = koch.clone();
+    if let lacuna::certificate::Claim::Automaton(a) = &mut bad.claim {
+        let v = a.operators[13].field_value.as_mut().expect("in K");
+        v[0][0] = vec!["7/8".into()];
+    }
+    assert_rejected("a changed matrix", &bad, "rule-compilation");
+    // The heighway dragon (rationals): its two generators swapped on a segment.
+    let (h, _) = with_rule("heighway-dragon");
+    let mut bad = h.clone();
+    let r = rule_of(&mut bad);
+    assert!(r.contains("generator left 0,0 left 1/2,1/2 right 1,0"));
+    *r = r.replace(
+        "generator left 0,0 left 1/2,1/2 right 1,0",
+        "generator left 0,0 right 1/2,1/2 left 1,0",
+    );
+    assert_rejected("swapped generators", &bad, "rule-compilation");
+    // An age line: not re-compiled, said so.
+    let mut bad = h;
+    let r = rule_of(&mut bad);
+    r.push_str("\nage a left right\n");
+    let report = check(&bad);
+    let s = report.step("rule-compilation").expect("the step");
+    assert!(
+        s.message.contains("age and random extensions"),
+        "{}",
+        s.message
+    );
+}

@@ -271,7 +271,16 @@ pub struct AutomatonClaim {
     /// system): the start state, its control points and the subdivision operators.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub attractor: Option<AttractorClaim>,
+    /// The rule text the automaton was compiled from (`None`: written by hand); the
+    /// `rule-compilation` step compiles it again.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rule: Option<String>,
 }
+
+/// The automaton is the compilation of the claim's rule text (no data: the checker compiles it).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RuleCompilationStep {}
 
 /// What an automaton's attractor is built from: the control graph has one edge `q → w` per
 /// subdivision operator `T: q ← w`; the attractor of the start state is drawn from its control
@@ -404,6 +413,13 @@ pub enum Step {
     /// and takes b0 from the 1-skeleton and the rank of ∂2 over F2; with b2 = 0 over F2, b1 (the
     /// holes) over Q equals b1 over F2.
     FaceHomology(FaceHomologyStep),
+    /// **The automaton is its rule's compilation.** Justification: the checker reads the
+    /// claim's rule text with its own parser (field line, initiator, generators, flags), compiles
+    /// it with its own code (states, one operator per fertile or drawn segment, the similitudes
+    /// with their reflections in the frames of their states) and compares states, operators,
+    /// matrices (exactly in K), barycentric operators, constraints and attractor with the claim.
+    /// Rules with the age or random extensions are not re-compiled.
+    RuleCompilation(RuleCompilationStep),
     /// **Every constraint of an automaton holds** (every operator given, in Q or in the
     /// claim's field K). Justification: the checker multiplies out both words of every
     /// constraint and the column sums of every barycentric operator in K and compares them
@@ -839,6 +855,7 @@ impl Step {
             Step::VolumeClosure(_) => "volume-closure",
             Step::SolidHomology(_) => "solid-homology",
             Step::FaceHomology(_) => "face-homology",
+            Step::RuleCompilation(_) => "rule-compilation",
             Step::ConstraintsHold(_) => "constraints-hold",
             Step::ConstraintFails(_) => "constraint-fails",
             Step::Contraction(_) => "contraction",

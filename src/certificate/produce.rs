@@ -10,10 +10,10 @@
 use crate::certificate::format::{
     Adjacency, Algebraic, AutomatonClaim, AutomatonOperator, AutomatonState, Certificate, Claim,
     ClassClaim, ClosureStep, ConflictStep, Edge, Face, FaceHomologyStep, FaceRow, FacesClaim, Kind,
-    Origin, Params, Pattern, PointClaim, RadiusWitness, RatioStep, Recipe, Row, SharedFaceClaim,
-    SolidHomologyStep, SolidRow, SolutionStep, SpokeItem, Step, SubFace, SubstitutionClaim, System,
-    TypeRule, Volume, VolumeClosureStep, VolumeCount, VolumeRule, VolumeTypeRule, VolumesClaim,
-    WordEquation, WordFactor,
+    Origin, Params, Pattern, PointClaim, RadiusWitness, RatioStep, Recipe, Row,
+    RuleCompilationStep, SharedFaceClaim, SolidHomologyStep, SolidRow, SolutionStep, SpokeItem,
+    Step, SubFace, SubstitutionClaim, System, TypeRule, Volume, VolumeClosureStep, VolumeCount,
+    VolumeRule, VolumeTypeRule, VolumesClaim, WordEquation, WordFactor,
 };
 use crate::certificate::format::{
     AttractorClaim, ConstraintFailsStep, ConstraintsHoldStep, ContractionStep, FieldCoords,
@@ -474,6 +474,7 @@ pub fn automaton_claim(a: &crate::constraint::Automaton) -> AutomatonClaim {
         barycentric: a.barycentric.clone(),
         field: None,
         attractor: None,
+        rule: None,
     }
 }
 
@@ -493,6 +494,7 @@ fn kmatrix_coords(m: &crate::algebra::kmatrix::KMatrix) -> Vec<Vec<FieldCoords>>
 /// subdivision operators).
 pub fn model_claim(m: &crate::input::AutomatonModel) -> AutomatonClaim {
     let mut claim = automaton_claim(&m.automaton);
+    claim.rule = m.rule.clone();
     if m.field.degree() > 1 {
         claim.field = Some(algebraic(m.field.generator()));
     }
@@ -638,6 +640,19 @@ pub fn certificate_for_model(
                 digits,
                 decimal: sd.decimal.clone(),
             }));
+        }
+    }
+    // A rule without the age and random extensions: the checker compiles it again.
+    if let Some(text) = &m.rule {
+        let src = crate::error::Source {
+            name: name.to_string(),
+            text: text.clone(),
+        };
+        let plain = crate::input::rule::parse_rule(&src)
+            .is_ok_and(|r| r.ages.is_empty() && r.randoms.is_empty());
+        if plain {
+            cert.steps
+                .push(Step::RuleCompilation(RuleCompilationStep {}));
         }
     }
     Ok(cert)
@@ -1290,6 +1305,7 @@ pub fn model_of_claim(a: &AutomatonClaim) -> Result<crate::input::AutomatonModel
         points: Some(points),
         primitives: vec![crate::input::automaton_model::Primitive::Nothing; states],
         params: Vec::new(),
+        rule: a.rule.clone(),
     })
 }
 

@@ -305,6 +305,13 @@ fn automaton_lines(a: &AutomatonClaim) -> Vec<String> {
         let subs: Vec<&str> = at.subdivision.iter().map(|&i| name(i)).collect();
         o.push(format!("subdivision operators: {}", subs.join(", ")));
     }
+    if let Some(r) = &a.rule {
+        // The count only: the text is the certificate's, printed nowhere.
+        o.push(format!(
+            "compiled from a rule text of {} lines (in the certificate)",
+            r.lines().count()
+        ));
+    }
     o
 }
 
@@ -450,12 +457,14 @@ fn slots(c: &Claim) -> &'static [(&'static [&'static str], bool)] {
                 (GIVEN, true),
                 (&["contraction"], false),
                 (&["similarity-dimension"], false),
+                (&["rule-compilation"], false),
             ]
         }
         Claim::Automaton(_) => &[
             (SYSTEM, true),
             (&["contraction"], false),
             (&["similarity-dimension"], false),
+            (&["rule-compilation"], false),
         ],
         Claim::System(_) => &[(SYSTEM, true)],
         Claim::Substitution(_) => &[(&["limit-ratio"], true)],

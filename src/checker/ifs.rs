@@ -34,19 +34,19 @@ const MAX_BITS: u64 = 1 << 14;
 
 /// A matrix over K, row-major.
 #[derive(Clone)]
-struct KMat {
-    rows: usize,
-    cols: usize,
-    data: Vec<P>,
+pub(super) struct KMat {
+    pub(super) rows: usize,
+    pub(super) cols: usize,
+    pub(super) data: Vec<P>,
 }
 
 /// K with its arithmetic.
-struct Field {
+pub(super) struct Field {
     root: Root,
 }
 
 impl Field {
-    fn of(a: &AutomatonClaim) -> Result<Field, String> {
+    pub(super) fn of(a: &AutomatonClaim) -> Result<Field, String> {
         let root = match &a.field {
             Some(k) => Root::isolate(&k.poly, &k.lo, &k.hi, "the field's generator α")?,
             None => Root::isolate(&["0".into(), "1".into()], "0", "0", "α")?,
@@ -54,20 +54,35 @@ impl Field {
         Ok(Field { root })
     }
 
-    fn element(&self, c: &FieldCoords) -> Result<P, String> {
+    pub(super) fn element(&self, c: &FieldCoords) -> Result<P, String> {
         self.root.element(c)
     }
 
-    fn mul(&self, a: &[Q], b: &[Q]) -> P {
+    /// `p` reduced modulo α's polynomial.
+    pub(super) fn reduce(&self, p: &[Q]) -> P {
+        self.root.reduce(p)
+    }
+
+    pub(super) fn mul(&self, a: &[Q], b: &[Q]) -> P {
         self.root.mul(a, b)
     }
 
-    fn sub(&self, a: &[Q], b: &[Q]) -> P {
+    pub(super) fn sub(&self, a: &[Q], b: &[Q]) -> P {
         field::add(a, &field::scale(b, &-Q::one()))
     }
 
-    fn is_zero(&self, a: &[Q]) -> bool {
+    pub(super) fn is_zero(&self, a: &[Q]) -> bool {
         self.root.is_zero(a)
+    }
+
+    /// Whether `p` (coefficients over Q, in the generator's variable) vanishes at α.
+    pub(super) fn vanishes(&self, p: &[Q]) -> bool {
+        self.root.is_zero(&self.root.reduce(p))
+    }
+
+    /// α's isolating interval.
+    pub(super) fn interval(&self) -> (Q, Q) {
+        (self.root.lo.clone(), self.root.hi.clone())
     }
 
     /// The sign of `a`, or an error when the bisection gives up.
@@ -84,7 +99,7 @@ impl Field {
         })
     }
 
-    fn rational(q: Q) -> P {
+    pub(super) fn rational(q: Q) -> P {
         field::trim(vec![q])
     }
 
@@ -131,7 +146,7 @@ impl Field {
         }
     }
 
-    fn equal(&self, a: &KMat, b: &KMat) -> bool {
+    pub(super) fn equal(&self, a: &KMat, b: &KMat) -> bool {
         a.rows == b.rows
             && a.cols == b.cols
             && a.data
@@ -159,11 +174,15 @@ fn parse_matrix<T>(
     })
 }
 
-fn parse_rational_matrix(m: &[Vec<String>], what: &str) -> Result<KMat, String> {
+pub(super) fn parse_rational_matrix(m: &[Vec<String>], what: &str) -> Result<KMat, String> {
     parse_matrix(m, what, |x| Ok(Field::rational(rat(x)?)))
 }
 
-fn parse_field_matrix(k: &Field, m: &[Vec<FieldCoords>], what: &str) -> Result<KMat, String> {
+pub(super) fn parse_field_matrix(
+    k: &Field,
+    m: &[Vec<FieldCoords>],
+    what: &str,
+) -> Result<KMat, String> {
     parse_matrix(m, what, |x| k.element(x))
 }
 

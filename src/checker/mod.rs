@@ -17,6 +17,7 @@
 //!   and the pole of the generating functions at `ρ^(−P)`;
 //! - `volume.rs`: oriented maps (sphere check, canonical code) and one subdivision step of a
 //!   volume (THEORY §10), the volume types and their counts.
+//! - `rule.rs`: a rule text read and compiled again, compared with the claim's automaton.
 //! - `solid.rs`: the level-n solid built cell by cell, its cells, χ and Betti numbers (ranks
 //!   of boundary matrices over F2).
 //!
@@ -34,6 +35,7 @@ mod field;
 mod ifs;
 mod linear;
 mod ratio;
+mod rule;
 mod series;
 mod solid;
 mod system;
@@ -434,6 +436,12 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
                 _ => {
                     Err("a volume-closure step in a certificate whose claim has no volumes".into())
                 }
+            },
+            Step::RuleCompilation(_) => match &cert.claim {
+                Claim::Automaton(a) => self::rule::check_rule_compilation(a),
+                _ => Err(
+                    "a rule-compilation step in a certificate whose claim is no automaton".into(),
+                ),
             },
             Step::FaceHomology(s) => match &cert.claim {
                 Claim::Faces(f) => self::solid::check_face(s, f),

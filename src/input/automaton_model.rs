@@ -62,6 +62,8 @@ pub struct AutomatonModel {
     pub primitives: Vec<Primitive>,
     /// Entry values from `param` lines: (entry name, value, span).
     pub params: Vec<(String, BigRational, Span)>,
+    /// The rule text the automaton was compiled from (`None`: an automaton file).
+    pub rule: Option<String>,
 }
 
 fn err(
@@ -632,6 +634,7 @@ pub fn parse_model(src: &Source) -> Result<AutomatonModel> {
         points,
         primitives,
         params,
+        rule: None,
     })
 }
 

@@ -943,10 +943,11 @@ fn render(k: &NumberField, v: &FieldElement, gen: Option<&str>) -> String {
 pub fn compile_rule(src: &Source) -> Result<(Rule, AutomatonModel)> {
     let rule = parse_rule(src)?;
     let text = rule.automaton_text();
-    let model = parse_model(&Source {
+    let mut model = parse_model(&Source {
         name: format!("{} (compiled)", src.name),
         text,
     })?;
+    model.rule = Some(src.text.clone());
     Ok((rule, model))
 }
 
