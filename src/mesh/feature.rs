@@ -182,6 +182,11 @@ pub fn largest_disc(ring: &[P2], islands: &[&[P2]], tol: f64) -> (f64, f64) {
             max: d + h * std::f64::consts::SQRT_2,
         }
     };
+    // Cells of the thinner side's size, but at most 1024 along the longer side: a long thin
+    // hole must not seed billions of cells (any size is sound: a cell's bound holds for every
+    // point in it).
+    let longest = (hi_c[0] - lo_c[0]).max(hi_c[1] - lo_c[1]);
+    let size = size.max(longest / 1024.0);
     let mut heap = BinaryHeap::new();
     let h = size / 2.0;
     let mut x = lo_c[0];
