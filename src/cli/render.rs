@@ -323,8 +323,13 @@ fn positive_number(flag: &'static str, text: &str) -> Result<f64, Error> {
 /// Chooses the orientation (`--orient`), turns the parts to it and reports the overhang and
 /// the area on the bed; a warning when nothing rests on the bed.
 pub(super) fn orient(parts: &mut [lacuna::mesh::Part], how: OrientArg, outputs: &Outputs) {
-    let o = lacuna::mesh::orient::choose(parts, how == OrientArg::Auto);
-    lacuna::mesh::orient::turn(parts, o.chosen);
+    let mut o = lacuna::mesh::orient::choose(parts, how == OrientArg::Auto);
+    if let Err(why) = lacuna::mesh::orient::turn_checked(parts, &o) {
+        // The rounded turn did not pass the mesh check: the best axis direction instead.
+        eprintln!("note: {why}; the best axis direction instead");
+        o = lacuna::mesh::orient::choose_axis(parts);
+        let _ = lacuna::mesh::orient::turn_checked(parts, &o);
+    }
     for line in o.text().lines() {
         match line.starts_with("warning:") {
             true => eprintln!("{line}"),

@@ -10,11 +10,15 @@
 //! the bed at points or edges only: a slicer finds nothing to extrude in the first layer
 //! without supports or a raft.
 //!
-//! **The choice** (`auto`): among the directions with a bed contact, the least overhang (ties:
-//! the lower object); when none has a contact, the solid as built (the least overhang would
-//! often stand a shell on an edge), and the advice to print with supports or a raft. Only the six axis directions are tried: the turn is then a permutation of the
-//! coordinates with signs, exact in `f32`, so the mesh checked before is the mesh written (a
-//! rotation by another angle would round the vertices and would have to be checked again).
+//! **The choice** (`auto`): the candidates are the six axis directions and the outward normals
+//! of the largest flat faces (up to 8, triangles grouped by normal); among those with a bed
+//! contact, the least overhang (ties: the lower object); when none has a contact, the solid as
+//! built (the least overhang would often stand a shell on an edge), and the advice to print with
+//! supports or a raft. An axis turn is a signed permutation of the coordinates, exact in `f32`.
+//! Any other turn rounds the vertices: the turned mesh is read back by the independent mesh
+//! checker ([`crate::meshcheck`], exact predicates on the rounded coordinates) and kept only if
+//! it passes with the same parts and χ ([`turn_checked`]); otherwise the best axis direction is
+//! used and the reason said.
 //! These are floating-point figures that advise; they decide no verdict.
 
 use super::solid::Part;
@@ -36,11 +40,18 @@ const DOWN: [(&str, [f64; 3]); 6] = [
     ("+x", [1.0, 0.0, 0.0]),
 ];
 
-/// The overhang and bed contact with one axis direction down.
+/// The most face-normal directions tried besides the six axes.
+const MAX_FACE_DIRECTIONS: usize = 8;
+
+/// The overhang and bed contact with one direction down.
 #[derive(Clone, Debug, Serialize)]
 pub struct Overhang {
-    /// The direction that points down (`-z` is the solid as built).
-    pub down: &'static str,
+    /// The direction that points down (`-z` is the solid as built; a face normal is written
+    /// `n(x, y, z)`).
+    pub down: String,
+    /// The unit vector that points down.
+    #[serde(skip)]
+    pub vector: [f64; 3],
     /// The area of the downward surfaces steeper than [`OVERHANG_DEGREES`], mm².
     pub overhang_mm2: f64,
     /// The area resting on the bed, mm².
@@ -55,7 +66,10 @@ pub struct Orientation {
     /// Each direction's figures, as built (`-z`) first.
     pub candidates: Vec<Overhang>,
     /// The direction down in the file written.
-    pub chosen: &'static str,
+    pub chosen: String,
+    /// Its unit vector.
+    #[serde(skip)]
+    pub vector: [f64; 3],
     /// The total surface area, mm².
     pub surface_mm2: f64,
     /// Why it was chosen (or that it was kept).
@@ -81,12 +95,43 @@ fn normal_area(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> ([f64; 3], f64) {
     }
 }
 
-/// The figures of every axis direction, as built first.
+/// The outward normals of the largest flat faces of the surface that are not along an axis
+/// (triangles grouped by their normal to 1e-9), largest area first: resting one of them on the bed
+/// needs a turn by another angle than a right one.
+fn face_directions(parts: &[Part]) -> Vec<[f64; 3]> {
+    let mut area: std::collections::HashMap<[i64; 3], (f64, [f64; 3])> = Default::default();
+    for p in parts {
+        for t in &p.triangles {
+            let [a, b, c] = t.map(|i| p.vertices[i as usize].map(f64::from));
+            let (n, ar) = normal_area(a, b, c);
+            if ar == 0.0 || n.iter().filter(|x| x.abs() > 1e-9).count() < 2 {
+                continue;
+            }
+            let key = n.map(|x| (x * 1e9).round() as i64);
+            area.entry(key).or_insert((0.0, n)).0 += ar;
+        }
+    }
+    let mut v: Vec<(f64, [f64; 3])> = area.into_values().collect();
+    v.sort_by(|x, y| y.0.partial_cmp(&x.0).unwrap_or(std::cmp::Ordering::Equal));
+    v.into_iter()
+        .take(MAX_FACE_DIRECTIONS)
+        .map(|x| x.1)
+        .collect()
+}
+
+/// The figures of every candidate direction down: the six axes, as built first, then the
+/// outward normals of the largest faces that are not along an axis.
 pub fn overhangs(parts: &[Part]) -> (Vec<Overhang>, f64) {
     let cos = OVERHANG_DEGREES.to_radians().cos();
-    let mut out = Vec::with_capacity(DOWN.len());
+    let mut dirs: Vec<(String, [f64; 3])> = DOWN.iter().map(|(n, d)| (n.to_string(), *d)).collect();
+    dirs.extend(
+        face_directions(parts)
+            .into_iter()
+            .map(|n| (format!("n({:.3}, {:.3}, {:.3})", n[0], n[1], n[2]), n)),
+    );
+    let mut out = Vec::with_capacity(dirs.len());
     let mut surface = 0.0;
-    for (k, (name, d)) in DOWN.iter().enumerate() {
+    for (k, (name, d)) in dirs.iter().enumerate() {
         let depth = |p: [f64; 3]| p[0] * d[0] + p[1] * d[1] + p[2] * d[2];
         // The bed is at the greatest depth along d (the lowest point).
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
@@ -117,7 +162,8 @@ pub fn overhangs(parts: &[Part]) -> (Vec<Overhang>, f64) {
             }
         }
         out.push(Overhang {
-            down: name,
+            down: name.clone(),
+            vector: *d,
             overhang_mm2: overhang,
             bed_contact_mm2: contact,
             height_mm: if hi >= lo { hi - lo } else { 0.0 },
@@ -129,10 +175,21 @@ pub fn overhangs(parts: &[Part]) -> (Vec<Overhang>, f64) {
 /// The least contact area that counts as resting on the bed, mm² (a square of a nozzle's width).
 const MIN_CONTACT: f64 = 0.16;
 
-/// Decides the orientation: with `auto`, the best axis direction (see the module documentation),
+/// Decides the orientation: with `auto`, the best direction (see the module documentation),
 /// else the solid as built.
 pub fn choose(parts: &[Part], auto: bool) -> Orientation {
     let (candidates, surface) = overhangs(parts);
+    choose_among(candidates, surface, auto)
+}
+
+/// [`choose`] among the six axis directions only (exact turns).
+pub fn choose_axis(parts: &[Part]) -> Orientation {
+    let (mut candidates, surface) = overhangs(parts);
+    candidates.truncate(DOWN.len());
+    choose_among(candidates, surface, true)
+}
+
+fn choose_among(candidates: Vec<Overhang>, surface: f64, auto: bool) -> Orientation {
     let rests = |o: &Overhang| o.bed_contact_mm2 >= MIN_CONTACT;
     let key = |o: &Overhang| (o.overhang_mm2, o.height_mm);
     let best = |pool: Vec<usize>| {
@@ -150,20 +207,22 @@ pub fn choose(parts: &[Part], auto: bool) -> Orientation {
             Some(i) => (
                 i,
                 format!(
-                    "the least overhang of the {} axis directions that rest a face on the bed",
-                    resting.len()
+                    "the least overhang of the {} directions (of {}: the axes and the largest faces) that rest a face on the bed",
+                    resting.len(),
+                    candidates.len()
                 ),
             ),
             // Standing a shell on an edge would overhang less and topple: keep it as built.
             None => (
                 0,
-                "no axis direction rests a face on the bed: kept as built".to_string(),
+                "no direction tried rests a face on the bed: kept as built".to_string(),
             ),
         },
     };
     let needs_support = !rests(&candidates[chosen]);
     Orientation {
-        chosen: candidates[chosen].down,
+        chosen: candidates[chosen].down.clone(),
+        vector: candidates[chosen].vector,
         candidates,
         surface_mm2: surface,
         reason,
@@ -171,7 +230,84 @@ pub fn choose(parts: &[Part], auto: bool) -> Orientation {
     }
 }
 
-/// Turns the solid so that the direction `down` (one of the six names) points to −z: a
+/// Turns the parts so that the chosen direction points to −z. An axis direction is a signed
+/// permutation of the coordinates, exact in `f32`. Another direction is a rotation rounded to
+/// `f32`: the turned mesh is then written as STL and read back by the independent mesh checker
+/// ([`crate::meshcheck`], exact predicates on the rounded coordinates), and kept only when it is
+/// still a closed oriented manifold without crossing or degenerate triangles, with the same
+/// parts and χ; otherwise the parts are left as they were and the reason is returned.
+pub fn turn_checked(parts: &mut [Part], o: &Orientation) -> Result<(), String> {
+    if DOWN.iter().any(|(n, _)| *n == o.chosen) {
+        turn(parts, &o.chosen);
+        return Ok(());
+    }
+    let before = check_parts(parts)?;
+    let kept: Vec<Part> = parts.to_vec();
+    rotate(parts, o.vector);
+    match check_parts(parts) {
+        Ok(after) if after == before => Ok(()),
+        Ok(_) | Err(_) => {
+            parts.clone_from_slice(&kept);
+            Err(format!(
+                "turned to {} down, the rounded mesh did not pass the independent mesh check",
+                o.chosen
+            ))
+        }
+    }
+}
+
+/// The parts as a binary STL read by the independent checker: (parts, χ) when every check
+/// passes.
+fn check_parts(parts: &[Part]) -> Result<(usize, i64), String> {
+    let n: usize = parts.iter().map(|p| p.triangles.len()).sum();
+    let mut bytes = vec![b' '; 80];
+    bytes.extend_from_slice(&(n as u32).to_le_bytes());
+    for p in parts {
+        for t in &p.triangles {
+            bytes.extend_from_slice(&[0u8; 12]);
+            for &i in t {
+                for x in p.vertices[i as usize] {
+                    bytes.extend_from_slice(&x.to_le_bytes());
+                }
+            }
+            bytes.extend_from_slice(&[0u8; 2]);
+        }
+    }
+    let r = crate::meshcheck::check(&bytes, "turned mesh", &Default::default())
+        .map_err(|e| e.to_string())?;
+    match r.checks_pass() {
+        true => Ok((r.parts.len(), r.euler())),
+        false => Err("the turned mesh fails the mesh check".into()),
+    }
+}
+
+/// Rotates the parts so that the unit vector `d` points to −z (Rodrigues), rounded to `f32`.
+fn rotate(parts: &mut [Part], d: [f64; 3]) {
+    let t = [0.0, 0.0, -1.0];
+    let v = [
+        d[1] * t[2] - d[2] * t[1],
+        d[2] * t[0] - d[0] * t[2],
+        d[0] * t[1] - d[1] * t[0],
+    ];
+    let c = d[0] * t[0] + d[1] * t[1] + d[2] * t[2];
+    // R = I + [v]× + [v]×² / (1 + c); d is no axis here, so c > −1.
+    let k = [[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]];
+    let mut r = [[0.0; 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            let k2: f64 = (0..3).map(|m| k[i][m] * k[m][j]).sum();
+            r[i][j] = f64::from(u8::from(i == j)) + k[i][j] + k2 / (1.0 + c);
+        }
+    }
+    for p in parts.iter_mut() {
+        for x in &mut p.vertices {
+            let y = x.map(f64::from);
+            *x = [0, 1, 2].map(|i| (r[i][0] * y[0] + r[i][1] * y[1] + r[i][2] * y[2]) as f32);
+        }
+    }
+}
+
+/// Turns the solid so that the direction `down` (one of the six axis names) points to −z: a
 /// permutation of the coordinates with signs (a proper rotation, so triangles keep their
 /// orientation), exact in `f32`.
 pub fn turn(parts: &mut [Part], down: &str) {
@@ -344,22 +480,43 @@ mod tests {
         assert_eq!(choose(&parts, false).chosen, "-z");
     }
 
-    #[test]
-    fn a_tilted_sheet_touching_the_bed_on_an_edge_needs_support() {
-        // One triangle pair, a square sheet tilted 60° from the bed, its lower edge on the bed
-        // (no area on the bed): every direction of the six sees no face resting.
-        let h = 3f32.sqrt() / 2.0;
-        let part = Part {
-            vertices: vec![
-                [0.0, 0.0, 0.0],
-                [1.0, 0.0, 0.0],
-                [1.0, 0.5, h],
-                [0.0, 0.5, h],
-            ],
-            triangles: vec![[0, 1, 2], [0, 2, 3], [0, 2, 1], [0, 3, 2]],
+    /// A regular tetrahedron of edge `a` with corners (1,1,1), (1,−1,−1), (−1,1,−1), (−1,−1,1)
+    /// scaled, triangles counter-clockwise from outside.
+    fn tetrahedron(a: f32) -> Vec<Part> {
+        let s = a / (2.0 * 2f32.sqrt());
+        let v = vec![[s, s, s], [s, -s, -s], [-s, s, -s], [-s, -s, s]];
+        vec![Part {
+            vertices: v,
+            triangles: vec![[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]],
             holes: None,
-        };
-        let o = choose(&[part], true);
+        }]
+    }
+
+    #[test]
+    fn a_tetrahedron_is_turned_onto_a_face_and_checked() {
+        // No axis direction rests a face of the tetrahedron (every face normal has three
+        // non-zero coordinates ±1/√3); its faces' normals do. Edge 10 mm: a face has area
+        // (√3/4)·100 = 43.30 mm², and after the turn (checked by the independent mesh checker) it
+        // lies on the bed, nothing overhanging (the other faces lean outwards at 19.5° from
+        // vertical).
+        let mut parts = tetrahedron(10.0);
+        let o = choose(&parts, true);
+        assert!(o.chosen.starts_with("n("), "{}", o.text());
+        assert!(!o.needs_support);
+        turn_checked(&mut parts, &o).unwrap();
+        let (after, _) = overhangs(&parts);
+        let face = 3f64.sqrt() / 4.0 * 100.0;
+        assert!(
+            (after[0].bed_contact_mm2 - face).abs() < 1e-3,
+            "{}",
+            after[0].bed_contact_mm2
+        );
+        assert!(after[0].overhang_mm2 < 1e-9);
+        // A tetrahedron of edge 0.3 mm: every face (0.039 mm²) is below the contact that
+        // counts (0.16 mm²): kept as built, supports advised.
+        let tiny = tetrahedron(0.3);
+        let o = choose(&tiny, true);
+        assert_eq!(o.chosen, "-z");
         assert!(o.needs_support, "{}", o.text());
     }
 }
