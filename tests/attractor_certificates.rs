@@ -74,7 +74,12 @@ fn koch_curve_in_q_sqrt3_is_certified() {
     let names: Vec<&str> = cert.steps.iter().map(Step::name).collect();
     assert_eq!(
         names,
-        ["constraints-hold", "contraction", "similarity-dimension"]
+        [
+            "constraints-hold",
+            "contraction",
+            "similarity-dimension",
+            "rule-compilation"
+        ]
     );
     let s = similarity(&mut cert);
     assert_eq!(s.parts[0].sigma, vec!["1/9".to_string()]);

@@ -96,26 +96,40 @@ fn normal_area(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> ([f64; 3], f64) {
 }
 
 /// The outward normals of the largest flat faces of the surface that are not along an axis
-/// (triangles grouped by their normal to 1e-9), largest area first: resting one of them on the bed
-/// needs a turn by another angle than a right one.
+/// (triangles grouped by their normal to 1e-4: the `f32` vertices of one flat face give normals
+/// that differ by rounding), largest area first, ties by the normal: resting one of them on the
+/// bed needs a turn by another angle than a right one.
 fn face_directions(parts: &[Part]) -> Vec<[f64; 3]> {
-    let mut area: std::collections::HashMap<[i64; 3], (f64, [f64; 3])> = Default::default();
+    let mut area: std::collections::BTreeMap<[i64; 3], (f64, [f64; 3])> = Default::default();
     for p in parts {
         for t in &p.triangles {
             let [a, b, c] = t.map(|i| p.vertices[i as usize].map(f64::from));
             let (n, ar) = normal_area(a, b, c);
-            if ar == 0.0 || n.iter().filter(|x| x.abs() > 1e-9).count() < 2 {
+            let key = n.map(|x| (x * 1e4).round() as i64);
+            if ar == 0.0 || key.iter().filter(|&&x| x != 0).count() < 2 {
                 continue;
             }
-            let key = n.map(|x| (x * 1e9).round() as i64);
-            area.entry(key).or_insert((0.0, n)).0 += ar;
+            let e = area.entry(key).or_insert((0.0, [0.0; 3]));
+            e.0 += ar;
+            for k in 0..3 {
+                e.1[k] += ar * n[k];
+            }
         }
     }
-    let mut v: Vec<(f64, [f64; 3])> = area.into_values().collect();
-    v.sort_by(|x, y| y.0.partial_cmp(&x.0).unwrap_or(std::cmp::Ordering::Equal));
+    let mut v: Vec<([i64; 3], f64, [f64; 3])> =
+        area.into_iter().map(|(k, (a, n))| (k, a, n)).collect();
+    v.sort_by(|x, y| {
+        y.1.partial_cmp(&x.1)
+            .unwrap_or(std::cmp::Ordering::Equal)
+            .then(x.0.cmp(&y.0))
+    });
     v.into_iter()
         .take(MAX_FACE_DIRECTIONS)
-        .map(|x| x.1)
+        .filter_map(|(_, _, n)| {
+            // The area-weighted mean normal of the group, made a unit vector again.
+            let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            (len > 0.0).then(|| n.map(|x| x / len))
+        })
         .collect()
 }
 
