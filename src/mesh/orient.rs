@@ -111,8 +111,8 @@ fn face_directions(parts: &[Part]) -> Vec<[f64; 3]> {
             }
             let e = area.entry(key).or_insert((0.0, [0.0; 3]));
             e.0 += ar;
-            for k in 0..3 {
-                e.1[k] += ar * n[k];
+            for (acc, x) in e.1.iter_mut().zip(n) {
+                *acc += ar * x;
             }
         }
     }
