@@ -19,7 +19,11 @@ fuzz_target!(|data: &[u8]| {
         return;
     }
     match lacuna::constraint::solve(&lin.system) {
-        lacuna::constraint::Solution::Consistent(s) => s.check(&lin.system).expect("solution re-checks"),
-        lacuna::constraint::Solution::Inconsistent(c) => c.check(&lin.system).expect("conflict re-checks"),
+        lacuna::constraint::Solution::Consistent(s) => {
+            s.check(&lin.system).expect("solution re-checks")
+        }
+        lacuna::constraint::Solution::Inconsistent(c) => {
+            c.check(&lin.system).expect("conflict re-checks")
+        }
     }
 });

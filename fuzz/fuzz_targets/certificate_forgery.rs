@@ -34,13 +34,19 @@ fn seeds() -> &'static [Value] {
         // reaches, the forgery of issue #28.
         let union: Vec<_> = ["F0", "square-B2"]
             .iter()
-            .flat_map(|n| lacuna::input::load_input(n).expect("a library face").faces())
+            .flat_map(|n| {
+                lacuna::input::load_input(n)
+                    .expect("a library face")
+                    .faces()
+            })
             .collect();
         let ts = lacuna::topology::close_or_error(&union, &limits).expect("closes");
         let opts = lacuna::constraint::GenOptions::default();
         certs.push(lacuna::certificate::certificate_for("union", &ts, opts).expect("certifies"));
         for name in ["spec-edge", "spec-edge-incidence", "chaikin-known"] {
-            if let Ok(lacuna::input::Loaded::Automaton { automaton, .. }) = lacuna::input::load_any(name) {
+            if let Ok(lacuna::input::Loaded::Automaton { automaton, .. }) =
+                lacuna::input::load_any(name)
+            {
                 certs.push(
                     lacuna::certificate::certificate_for_automaton(name, &automaton)
                         .expect("certifies"),
@@ -50,10 +56,17 @@ fn seeds() -> &'static [Value] {
         // Automata with their attractor steps (contraction, similarity dimension), the claim
         // carrying the field and the attractor.
         for name in ["sierpinski-triangle", "koch", "kite-dart"] {
-            if let Ok(lacuna::input::Loaded::Automaton { model, .. }) = lacuna::input::load_any(name) {
+            if let Ok(lacuna::input::Loaded::Automaton { model, .. }) =
+                lacuna::input::load_any(name)
+            {
                 certs.push(
-                    lacuna::certificate::certify_model(name, &model, limits.max_unknowns, limits.max_products)
-                        .expect("certifies"),
+                    lacuna::certificate::certify_model(
+                        name,
+                        &model,
+                        limits.max_unknowns,
+                        limits.max_products,
+                    )
+                    .expect("certifies"),
                 );
             }
         }
@@ -252,21 +265,15 @@ fuzz_target!(|data: &[u8]| {
         "the producer's certificate fails:\n{}",
         want.to_text()
     );
-    // Every verdict the accepted certificate proves is one the producer states (an automaton's
-    // contraction and similarity dimension are optional steps: a certificate may prove less).
+    // Every verdict the accepted certificate proves is one the producer states. Optional steps
+    // (an automaton's contraction, similarity dimension and rule compilation, the cells and
+    // Betti numbers of a face's complex or of a solid) may be left out: a certificate may prove
+    // less, never something else. Every step the claim needs is there (`all_proved`).
     let want_claims = want.claims();
-    if matches!(cert.claim, lacuna::certificate::Claim::Automaton(_)) {
-        for c in report.claims() {
-            assert!(
-                want_claims.contains(&c),
-                "FORGERY: the checker accepted a certificate stating something else ({c}):\n{text}"
-            );
-        }
-    } else {
-        assert_eq!(
-            report.claims(),
-            want_claims,
-            "FORGERY: the checker accepted a certificate stating something else:\n{text}"
+    for c in report.claims() {
+        assert!(
+            want_claims.contains(&c),
+            "FORGERY: the checker accepted a certificate stating something else ({c}):\n{text}"
         );
     }
 });

@@ -9,7 +9,8 @@ fuzz_target!(|data: &[u8]| {
     };
     match lacuna::topology::Face::parse(text) {
         Ok(face) => {
-            let again = lacuna::topology::Face::parse(&face.to_string()).expect("printed notation parses");
+            let again =
+                lacuna::topology::Face::parse(&face.to_string()).expect("printed notation parses");
             assert_eq!(again, face);
         }
         Err(e) => {
