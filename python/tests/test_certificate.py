@@ -51,10 +51,12 @@ def test_an_automaton_certificate_checks_here_and_on_the_command_line(cli, tmp_p
     # = 1.2618595071429148741990542286855... (a published constant).
     path = tmp_path / "koch.json"
     cert = lacuna.load("koch").certificate(path)
+    # The rule's compilation is re-derived too (the claim carries the rule text).
     assert [s["step"] for s in cert.data["steps"]] == [
         "constraints-hold",
         "contraction",
         "similarity-dimension",
+        "rule-compilation",
     ]
     report = lacuna.check(path)
     assert report.all_proved and not report.partial
