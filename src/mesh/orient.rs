@@ -80,7 +80,7 @@ pub struct Orientation {
 }
 
 /// Unit normal and area of a triangle.
-fn normal_area(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> ([f64; 3], f64) {
+pub(super) fn normal_area(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> ([f64; 3], f64) {
     let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
     let w = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
     let n = [
@@ -95,25 +95,25 @@ fn normal_area(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> ([f64; 3], f64) {
     }
 }
 
+/// A triangle of the parts: its corners, unit normal and area (computed once for every
+/// direction tried).
+type Tri = ([[f64; 3]; 3], [f64; 3], f64);
+
 /// The outward normals of the largest flat faces of the surface that are not along an axis
 /// (triangles grouped by their normal to 1e-4: the `f32` vertices of one flat face give normals
 /// that differ by rounding), largest area first, ties by the normal: resting one of them on the
 /// bed needs a turn by another angle than a right one.
-fn face_directions(parts: &[Part]) -> Vec<[f64; 3]> {
+fn face_directions(tris: &[Tri]) -> Vec<[f64; 3]> {
     let mut area: std::collections::BTreeMap<[i64; 3], (f64, [f64; 3])> = Default::default();
-    for p in parts {
-        for t in &p.triangles {
-            let [a, b, c] = t.map(|i| p.vertices[i as usize].map(f64::from));
-            let (n, ar) = normal_area(a, b, c);
-            let key = n.map(|x| (x * 1e4).round() as i64);
-            if ar == 0.0 || key.iter().filter(|&&x| x != 0).count() < 2 {
-                continue;
-            }
-            let e = area.entry(key).or_insert((0.0, [0.0; 3]));
-            e.0 += ar;
-            for (acc, x) in e.1.iter_mut().zip(n) {
-                *acc += ar * x;
-            }
+    for &(_, n, ar) in tris {
+        let key = n.map(|x| (x * 1e4).round() as i64);
+        if ar == 0.0 || key.iter().filter(|&&x| x != 0).count() < 2 {
+            continue;
+        }
+        let e = area.entry(key).or_insert((0.0, [0.0; 3]));
+        e.0 += ar;
+        for (acc, x) in e.1.iter_mut().zip(n) {
+            *acc += ar * x;
         }
     }
     let mut v: Vec<([i64; 3], f64, [f64; 3])> =
@@ -137,15 +137,25 @@ fn face_directions(parts: &[Part]) -> Vec<[f64; 3]> {
 /// outward normals of the largest faces that are not along an axis.
 pub fn overhangs(parts: &[Part]) -> (Vec<Overhang>, f64) {
     let cos = OVERHANG_DEGREES.to_radians().cos();
+    let tris: Vec<Tri> = parts
+        .iter()
+        .flat_map(|p| {
+            p.triangles.iter().map(move |t| {
+                let [a, b, c] = t.map(|i| p.vertices[i as usize].map(f64::from));
+                let (n, area) = normal_area(a, b, c);
+                ([a, b, c], n, area)
+            })
+        })
+        .collect();
+    let surface = tris.iter().map(|t| t.2).sum();
     let mut dirs: Vec<(String, [f64; 3])> = DOWN.iter().map(|(n, d)| (n.to_string(), *d)).collect();
     dirs.extend(
-        face_directions(parts)
+        face_directions(&tris)
             .into_iter()
             .map(|n| (format!("n({:.3}, {:.3}, {:.3})", n[0], n[1], n[2]), n)),
     );
     let mut out = Vec::with_capacity(dirs.len());
-    let mut surface = 0.0;
-    for (k, (name, d)) in dirs.iter().enumerate() {
+    for (name, d) in &dirs {
         let depth = |p: [f64; 3]| p[0] * d[0] + p[1] * d[1] + p[2] * d[2];
         // The bed is at the greatest depth along d (the lowest point).
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
@@ -157,22 +167,14 @@ pub fn overhangs(parts: &[Part]) -> (Vec<Overhang>, f64) {
             }
         }
         let (mut overhang, mut contact) = (0.0, 0.0);
-        for p in parts {
-            for t in &p.triangles {
-                let [a, b, c] = t.map(|i| p.vertices[i as usize].map(f64::from));
-                let (n, area) = normal_area(a, b, c);
-                if k == 0 {
-                    surface += area;
-                }
-                let facing = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
-                if facing < cos {
-                    continue;
-                }
-                let on_bed = [a, b, c].iter().all(|&v| hi - depth(v) <= BED_TOLERANCE);
-                match on_bed {
-                    true => contact += area,
-                    false => overhang += area,
-                }
+        for (corners, n, area) in &tris {
+            let facing = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+            if facing < cos {
+                continue;
+            }
+            match corners.iter().all(|&v| hi - depth(v) <= BED_TOLERANCE) {
+                true => contact += area,
+                false => overhang += area,
             }
         }
         out.push(Overhang {

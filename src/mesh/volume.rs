@@ -740,14 +740,7 @@ impl VolumeSolid {
             }
             for t in &p.triangles {
                 let [a, b, c] = t.map(|v| p.vertices[v as usize].map(f64::from));
-                let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-                let w = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-                let n = [
-                    u[1] * w[2] - u[2] * w[1],
-                    u[2] * w[0] - u[0] * w[2],
-                    u[0] * w[1] - u[1] * w[0],
-                ];
-                area2 += (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+                area2 += 2.0 * super::orient::normal_area(a, b, c).1;
                 volume6 += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
                     + a[2] * (b[0] * c[1] - b[1] * c[0]);
             }
