@@ -215,8 +215,14 @@ fn every_fixture_round_trips_and_checks() {
         // (whose gluing the claim does not carry) has no face-homology step.
         let assemblies = ["two-quads", "autofrac-two-quads", "shared-radius-pentagons"];
         let expected: &[&str] = match assemblies.contains(&name) {
-            true => &["closure", "solution-space", "limit-ratio"],
-            false => &["closure", "solution-space", "limit-ratio", "face-homology"],
+            true => &["closure", "solution-space", "degeneracy", "limit-ratio"],
+            false => &[
+                "closure",
+                "solution-space",
+                "degeneracy",
+                "limit-ratio",
+                "face-homology",
+            ],
         };
         assert_eq!(names, expected, "{name}");
         assert_proved(name, &cert);
@@ -494,11 +500,11 @@ fn wrong_versions_are_rejected() {
     assert_rejected("version 99", &cert, "header");
     assert!(check_json("{").failed());
     // Files of versions 1 to 4 (other step forms: version 2 had no recipe, version 3 no claim,
-    // version 4 no attractor steps, version 5 no solid-homology step nor shared faces) are
+    // version 4 no attractor steps, version 5 no solid-homology step nor shared faces, version 6 no degeneracy step) are
     // refused by their version, not by a parse error.
-    for old in ["1", "2", "3", "4", "5"] {
+    for old in ["1", "2", "3", "4", "5", "6"] {
         let json = face_certificate("F0").to_json().replacen(
-            "\"version\":6",
+            "\"version\":7",
             &format!("\"version\":{old}"),
             1,
         );
@@ -548,15 +554,19 @@ fn face() -> impl Strategy<Value = Face> {
 
 /// One semantic change per kind; each one must be caught by the named step.
 fn mutate(cert: &mut Certificate, which: usize) -> &'static str {
-    // Steps 0–2: closure, system, limit ratio (a face-homology step may follow: not mutated
-    // here, see tests/volume_certificates.rs).
-    let n_steps = cert.steps.len().min(3);
-    match (which % 4, &mut cert.steps[(which % 4).min(n_steps - 1)]) {
-        (0, Step::Closure(c)) if c.types[0].subfaces[0].origins.len() >= 2 => {
+    // The closure, the system, the degeneracy step and the limit ratio (a face-homology step
+    // may follow: not mutated here, see tests/volume_certificates.rs).
+    let names = ["closure", "solution-space", "degeneracy", "limit-ratio"];
+    let wanted = names[which % 4];
+    let Some(step) = cert.steps.iter_mut().find(|s| s.name() == wanted) else {
+        return "none";
+    };
+    match step {
+        Step::Closure(c) if c.types[0].subfaces[0].origins.len() >= 2 => {
             c.types[0].subfaces[0].origins.rotate_left(1);
             "closure"
         }
-        (1, Step::SolutionSpace(s)) if !s.system.rows.is_empty() => {
+        Step::SolutionSpace(s) if !s.system.rows.is_empty() => {
             let rhs = s.system.rows[0]
                 .rhs
                 .parse::<BigRational>()
@@ -568,12 +578,99 @@ fn mutate(cert: &mut Certificate, which: usize) -> &'static str {
             }
             "solution-space"
         }
-        (2 | 3, Step::LimitRatio(r)) => {
+        // A flat face listed, or unlisted: either way the lists differ from the derived ones.
+        Step::Degeneracy(d) => {
+            match d.flat_faces.pop() {
+                Some(_) => {}
+                None => d.flat_faces.push(0),
+            }
+            "degeneracy"
+        }
+        Step::LimitRatio(r) => {
             r.exists = !r.exists;
             "limit-ratio"
         }
         _ => "none",
     }
+}
+
+/// A faces certificate of a notation, as `verify --certificate` writes it.
+fn notation_certificate(text: &str) -> Certificate {
+    let f = Face::parse(text).expect("a face");
+    let ts = lacuna::topology::close_or_error(std::slice::from_ref(&f), &Limits::default())
+        .expect("closes");
+    certificate_for(text, &ts, GenOptions::default()).expect("certifiable")
+}
+
+fn degeneracy_of(cert: &mut Certificate) -> &mut lacuna::certificate::DegeneracyStep {
+    cert.steps
+        .iter_mut()
+        .find_map(|s| match s {
+            Step::Degeneracy(d) => Some(d),
+            _ => None,
+        })
+        .expect("a degeneracy step")
+}
+
+#[test]
+fn forced_collapses_are_certified_and_forgeries_rejected() {
+    // `C2 | B2 B2 B2 | A1`: one Cantor edge from a corner back to itself. The face state has
+    // m = Σ (m_e − 1) = 2 − 1 = 1 control point, so every column of every sub-face operator is
+    // the single unknown that the barycentric row sets to 1: every corner of the level-1
+    // complex is the same point. All of type 0's corners form one class, joined by pairs.
+    let mut loop_ = notation_certificate("C2 | B2 B2 B2 | A1");
+    assert_proved("C2 loop", &loop_);
+    let d = degeneracy_of(&mut loop_).clone();
+    assert!(!d.coincide.is_empty() && d.coincide.iter().all(|p| p[0] == 0));
+    let report = check(&loop_);
+    let v = report.step("degeneracy").unwrap().verdict.clone().unwrap();
+    assert!(v.starts_with("FORCED COLLAPSE"), "{v}");
+    // Drop a pair: that collapse would go unlisted.
+    let mut bad = loop_.clone();
+    degeneracy_of(&mut bad).coincide.pop();
+    assert_rejected("a pair dropped", &bad, "degeneracy");
+    // A pair naming one corner twice is not a pair of distinct corners.
+    let mut bad = loop_.clone();
+    let [t, k, p, _, _] = d.coincide[0];
+    degeneracy_of(&mut bad).coincide.push([t, k, p, k, p]);
+    assert_rejected("one corner twice", &bad, "degeneracy");
+    // A corner that does not exist.
+    let mut bad = loop_.clone();
+    degeneracy_of(&mut bad).coincide.push([t, k, 999, k, p]);
+    assert_rejected("no such corner", &bad, "degeneracy");
+
+    // `B2 B2 | B2 B2 B2 | A1` (the digon of issue #36): the corners are free, nothing collapses;
+    // claiming that two of its distinct corners coincide must fail.
+    let mut digon = notation_certificate("B2 B2 | B2 B2 B2 | A1");
+    assert_proved("digon", &digon);
+    assert!(degeneracy_of(&mut digon).coincide.is_empty());
+    let v = check(&digon)
+        .step("degeneracy")
+        .unwrap()
+        .verdict
+        .clone()
+        .unwrap();
+    assert!(v.starts_with("no forced collapse"), "{v}");
+    let mut bad = digon.clone();
+    degeneracy_of(&mut bad).coincide.push([0, 0, 0, 0, 1]);
+    assert_rejected("an invented collapse", &bad, "degeneracy");
+
+    // Flat cells: two Cantor edges enclose no area; a two-spoke lacuna with `El = C2` neither.
+    let mut flat = notation_certificate("C2 C2 | B2 B2 B2 | A1");
+    assert_proved("Cantor digon", &flat);
+    assert_eq!(degeneracy_of(&mut flat).flat_faces, vec![0]);
+    degeneracy_of(&mut flat).flat_faces.clear();
+    assert_rejected("the flat face dropped", &flat, "degeneracy");
+    let mut lens = notation_certificate("B2 B2 | B2 C2 B2 | A1");
+    assert_proved("Cantor lacuna", &lens);
+    assert_eq!(degeneracy_of(&mut lens).flat_lacunas, vec![0]);
+    degeneracy_of(&mut lens).flat_lacunas.clear();
+    assert_rejected("the flat lacuna dropped", &lens, "degeneracy");
+    // Without the solution space the step has nothing to stand on.
+    let mut alone = notation_certificate("B2 B2 | B2 B2 B2 | A1");
+    alone.steps.retain(|s| s.name() != "solution-space");
+    let report = check(&alone);
+    assert!(!report.all_proved(), "{}", report.to_text());
 }
 
 proptest! {

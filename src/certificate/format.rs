@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 pub const FORMAT: &str = "lacuna-certificate";
 
 /// The format version this code writes and checks.
-pub const VERSION: u32 = 6;
+pub const VERSION: u32 = 7;
 
 /// A certificate: the claim (what was given, in canonical form) and the steps that prove every
 /// verdict about it.
@@ -41,8 +41,9 @@ pub struct Certificate {
 /// The claim of a certificate: the input, in canonical form. It fixes which steps a complete
 /// certificate has, in this order:
 ///
-/// - faces ([`Claim::Faces`]) need `closure`, then `solution-space` or `inconsistent`, then
-///   `limit-ratio`, and may have `face-homology` after them (one start face);
+/// - faces ([`Claim::Faces`]) need `closure`, then `solution-space` or `inconsistent`, may have
+///   `degeneracy` (after `solution-space`), then need `limit-ratio`, and may have
+///   `face-homology` after them (one start face);
 /// - an automaton ([`Claim::Automaton`]) or a system ([`Claim::System`]) needs
 ///   `solution-space` or `inconsistent`;
 /// - a substitution ([`Claim::Substitution`]) needs `limit-ratio`;
@@ -374,6 +375,17 @@ pub enum Step {
     /// Justification: `Σ m_i·row_i` has every coefficient 0
     /// and right-hand side `c ≠ 0`; any solution would satisfy `0 = c`.
     Inconsistent(ConflictStep),
+    /// **The forced collapses of the level-1 complexes** (THEORY §6), after a proved
+    /// `solution-space` step. Justification: the checker builds the level-1 complex of every
+    /// listed face type with its own subdivision (the cells of `face-homology`), takes each
+    /// corner's coordinates — the column of the sub-face operator that picks it, as unknowns of
+    /// the proved system — and their affine expressions `particular + Σ t_j·basis_j` on the
+    /// proved solution set. Two corners coincide on every solution exactly when their
+    /// expressions are equal; the classes of such corners must be exactly the listed pairs'. The
+    /// flat cells (a face of two Cantor edges, a two-sided lacuna whose sides are Cantor edges)
+    /// are re-derived from the types and must be exactly the listed ones. An empty step proves
+    /// that no forced collapse exists.
+    Degeneracy(DegeneracyStep),
     /// **The limit ratio R** (every case: shared radii, periodic classes, ρ = 1) of the closure's
     /// substitution, the volume closure's (lacunas in quarters) or the claimed matrix. Justification: the checker recomputes the classes reached from the start and their periods, isolates ρ
     /// (Sturm), and checks per class a positive Perron eigenvector for ρ or a Collatz–Wielandt
@@ -447,6 +459,21 @@ pub enum Step {
     /// that the claimed `u*` is the smallest root of D in (0, 1]; then `ρ(M(u*)) = 1` and
     /// `s = 2·ln u*/ln σ`. The decimal digits are re-derived from enclosures of logarithms.
     SimilarityDimension(SimilarityStep),
+}
+
+/// The step `degeneracy`: what the constraints force to collapse (empty lists: nothing).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DegeneracyStep {
+    /// Two combinatorially distinct corners of a face type's level-1 complex that coincide on
+    /// every solution: `[type, sub-face, corner, sub-face, corner]` (corner `i` of a sub-face is
+    /// the start of its boundary edge `i`). A class of more than two such corners is listed as
+    /// pairs that join it.
+    pub coincide: Vec<[usize; 5]>,
+    /// Face types of two Cantor edges: the face has area 0 on every solution.
+    pub flat_faces: Vec<usize>,
+    /// Face types whose lacuna has two sides, both Cantor edges: the lacuna has area 0.
+    pub flat_lacunas: Vec<usize>,
 }
 
 /// The step `constraints-hold`: no data, the claim has everything.
@@ -851,6 +878,7 @@ impl Step {
             Step::Closure(_) => "closure",
             Step::SolutionSpace(_) => "solution-space",
             Step::Inconsistent(_) => "inconsistent",
+            Step::Degeneracy(_) => "degeneracy",
             Step::LimitRatio(_) => "limit-ratio",
             Step::VolumeClosure(_) => "volume-closure",
             Step::SolidHomology(_) => "solid-homology",

@@ -9,8 +9,8 @@
 
 use crate::certificate::format::{
     Adjacency, Algebraic, AutomatonClaim, AutomatonOperator, AutomatonState, Certificate, Claim,
-    ClassClaim, ClosureStep, ConflictStep, Edge, Face, FaceHomologyStep, FaceRow, FacesClaim, Kind,
-    Origin, Params, Pattern, PointClaim, RadiusWitness, RatioStep, Recipe, Row,
+    ClassClaim, ClosureStep, ConflictStep, DegeneracyStep, Edge, Face, FaceHomologyStep, FaceRow,
+    FacesClaim, Kind, Origin, Params, Pattern, PointClaim, RadiusWitness, RatioStep, Recipe, Row,
     RuleCompilationStep, SharedFaceClaim, SolidHomologyStep, SolidRow, SolutionStep, SpokeItem,
     Step, SubFace, SubstitutionClaim, System, TypeRule, Volume, VolumeClosureStep, VolumeCount,
     VolumeRule, VolumeTypeRule, VolumesClaim, WordEquation, WordFactor,
@@ -97,6 +97,14 @@ pub fn certificate_for(
         system(&source, &lin.system, Some(recipe)),
         &solution,
     ));
+    if let crate::constraint::Solution::Consistent(space) = &solution {
+        let found = crate::constraint::collapses(ts, &generated, &lin.offsets, space);
+        cert.steps.push(Step::Degeneracy(DegeneracyStep {
+            coincide: found.coincide,
+            flat_faces: found.flat_faces,
+            flat_lacunas: found.flat_lacunas,
+        }));
+    }
     let (matrix, c, start) = substitution_of(ts);
     cert.steps
         .push(Step::LimitRatio(ratio_step(&matrix, &c, &start)?));

@@ -444,6 +444,7 @@ fn slots(c: &Claim) -> &'static [(&'static [&'static str], bool)] {
         Claim::Faces(_) => &[
             (&["closure"], true),
             (SYSTEM, true),
+            (&["degeneracy"], false),
             (&["limit-ratio"], true),
             (&["face-homology"], false),
         ],

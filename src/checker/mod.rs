@@ -9,6 +9,8 @@
 //! - `automaton.rs`: the linear system of a hand-written automaton, rebuilt from its words;
 //! - `system.rs`: the constraint system of a closure (THEORY §6) rebuilt from the closure step;
 //! - `linear.rs`: exact linear checks and elimination modulo primes;
+//! - `degeneracy.rs`: the corners of every type's level-1 complex that the proved solution set
+//!   forces to coincide, and the cells forced flat;
 //! - `ifs.rs`: an automaton's constraints in its field K, the contraction of every walk of its
 //!   control graph (a complete prefix code of walks of norm below 1), its similarity dimension;
 //! - `field.rs`: polynomials over Q, Sturm isolation, exact zero and sign tests in Q[x]/(p);
@@ -31,6 +33,7 @@
 mod automaton;
 mod claim;
 mod closure;
+mod degeneracy;
 mod field;
 mod ifs;
 mod linear;
@@ -392,6 +395,7 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
     let mut steps = Vec::new();
     let mut closure: Option<(Substitution, &crate::certificate::ClosureStep)> = None;
     let mut volumes: Option<Substitution> = None;
+    let mut solution: Option<&crate::certificate::SolutionStep> = None;
     let given = match &cert.claim {
         Claim::Substitution(s) => Some(Substitution::of_claim(s)),
         Claim::Faces(_) | Claim::Automaton(_) | Claim::System(_) | Claim::Volumes(_) => None,
@@ -476,7 +480,16 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
                         .into(),
                 ),
             },
-            Step::SolutionSpace(s) => check_solution(s, tie),
+            Step::SolutionSpace(s) => check_solution(s, tie).inspect(|_| solution = Some(s)),
+            Step::Degeneracy(d) => match (&cert.claim, &closure, solution) {
+                (Claim::Faces(f), Some((_, c)), Some(s)) => {
+                    self::degeneracy::check_degeneracy(d, c, f.degree, s)
+                }
+                (Claim::Faces(_), _, _) => Err(
+                    "no proved closure and solution-space steps to take the corners from".into(),
+                ),
+                _ => Err("a degeneracy step in a certificate whose claim has no faces".into()),
+            },
             Step::Inconsistent(c) => check_conflict(c, tie),
             Step::LimitRatio(r) => match (&given, &closure, &volumes) {
                 (Some(Ok(sub)), _, _) => check_ratio(r, sub, "the claim's substitution"),

@@ -708,6 +708,25 @@ fn start_face(face: &Face) -> Result<Complex, String> {
     Ok(c)
 }
 
+/// The corners of the level-1 complex of one face: `[k][i]` is the corner at the start of side
+/// `i` of sub-face `k` (sub-faces in the order of the checker's subdivision), and the number of
+/// corners.
+pub(super) fn level_one_corners(face: &Face) -> Result<(Vec<Vec<usize>>, usize), String> {
+    let c = next(&start_face(face)?)?;
+    let (corner, n) = c.corners();
+    let at = c
+        .faces
+        .iter()
+        .map(|f| {
+            f.bnd
+                .iter()
+                .map(|&(e, fwd)| corner[2 * e + usize::from(!fwd)])
+                .collect()
+        })
+        .collect();
+    Ok((at, n))
+}
+
 /// Checks the face-homology step against the claim's (one) start face.
 pub(super) fn check_face(
     s: &FaceHomologyStep,

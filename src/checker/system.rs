@@ -260,56 +260,18 @@ pub(super) fn rebuild(
         .iter()
         .flat_map(|(&(kind, n), &d)| (1..=d).map(move |delay| Edge { kind, n, delay }))
         .collect();
-    // Face states: dimension, and the offset of each boundary edge's first point.
-    let mut dims = Vec::new();
-    let mut offsets = Vec::new();
-    for rule in &c.types {
-        let ds: Vec<usize> = rule.face.boundary.iter().map(|e| dim(q, e) - 1).collect();
-        offsets.push(
-            ds.iter()
-                .scan(0, |s, d| Some(std::mem::replace(s, *s + d)))
-                .collect(),
-        );
-        dims.push(ds.iter().sum::<usize>().max(1));
-    }
+    let Layout {
+        dims,
+        offsets,
+        base,
+        names,
+    } = layout(c, q, recipe.unknowns.len())?;
     let embed = |t: usize, i: usize| -> Option<Mat> {
         let e = c.types.get(t)?.face.boundary.get(i)?;
         let o: usize = *offsets.get(t).and_then(|o: &Vec<usize>| o.get(i))?;
         let pick: Vec<usize> = (0..dim(q, e)).map(|x| (o + x) % dims[t]).collect();
         Some(select(dims[t], &pick))
     };
-    // The unknowns: sub-face operator k of type t, entries in row-major order. Counted first.
-    let mut count: usize = 0;
-    for (t, rule) in c.types.iter().enumerate() {
-        for sf in &rule.subfaces {
-            let w = *dims
-                .get(sf.type_index)
-                .ok_or("a sub-face type is out of range")?;
-            count = dims[t]
-                .checked_mul(w)
-                .and_then(|x| count.checked_add(x))
-                .ok_or("the number of unknowns overflows")?;
-        }
-    }
-    if count != recipe.unknowns.len() {
-        return Err(format!(
-            "the recipe names {} unknowns, the closure has {count}",
-            recipe.unknowns.len()
-        ));
-    }
-    let mut names = Vec::with_capacity(count);
-    let mut base = Vec::new();
-    for (t, rule) in c.types.iter().enumerate() {
-        let mut bs = Vec::new();
-        for (k, sf) in rule.subfaces.iter().enumerate() {
-            let w = dims[sf.type_index];
-            bs.push(names.len());
-            for (r, col) in (0..dims[t]).flat_map(|r| (0..w).map(move |col| (r, col))) {
-                names.push(format!("T{t}.T{k}[{r}][{col}]"));
-            }
-        }
-        base.push(bs);
-    }
     let column = columns(&names, &recipe.unknowns)?;
     // The vertex and every edge type, with all lower delays.
     b.barycentric(&identity(1));
@@ -365,9 +327,78 @@ pub(super) fn rebuild(
     Ok(b.rows.into_iter().map(renumber).collect())
 }
 
+/// Where the unknowns of a closure's system sit: per face type its number of control points
+/// (`dims`), the position of each boundary edge's first point (`offsets`), the first unknown of
+/// each sub-face operator (`base`) and every unknown's name, in the checker's own order.
+pub(super) struct Layout {
+    /// `m_t`, the control points of face type t.
+    pub dims: Vec<usize>,
+    /// `offsets[t][i]`: the first point of boundary edge i of type t.
+    pub offsets: Vec<Vec<usize>>,
+    /// `base[t][k]`: the unknown of entry `[0][0]` of sub-face operator k of type t.
+    pub base: Vec<Vec<usize>>,
+    /// `T<t>.T<k>[r][c]`, row-major per operator.
+    pub names: Vec<String>,
+}
+
+/// The layout of the unknowns of a closure's system for Bézier degree `q`; the number of
+/// unknowns is counted (checked arithmetic) and compared with `expected` before a name is
+/// built.
+pub(super) fn layout(c: &ClosureStep, q: usize, expected: usize) -> Result<Layout, String> {
+    // Face states: dimension, and the offset of each boundary edge's first point.
+    let mut dims = Vec::new();
+    let mut offsets = Vec::new();
+    for rule in &c.types {
+        let ds: Vec<usize> = rule.face.boundary.iter().map(|e| dim(q, e) - 1).collect();
+        offsets.push(
+            ds.iter()
+                .scan(0, |s, d| Some(std::mem::replace(s, *s + d)))
+                .collect(),
+        );
+        dims.push(ds.iter().sum::<usize>().max(1));
+    }
+    // The unknowns: sub-face operator k of type t, entries in row-major order. Counted first.
+    let mut count: usize = 0;
+    for (t, rule) in c.types.iter().enumerate() {
+        for sf in &rule.subfaces {
+            let w = *dims
+                .get(sf.type_index)
+                .ok_or("a sub-face type is out of range")?;
+            count = dims[t]
+                .checked_mul(w)
+                .and_then(|x| count.checked_add(x))
+                .ok_or("the number of unknowns overflows")?;
+        }
+    }
+    if count != expected {
+        return Err(format!(
+            "the recipe names {expected} unknowns, the closure has {count}"
+        ));
+    }
+    let mut names = Vec::with_capacity(count);
+    let mut base = Vec::new();
+    for (t, rule) in c.types.iter().enumerate() {
+        let mut bs = Vec::new();
+        for (k, sf) in rule.subfaces.iter().enumerate() {
+            let w = dims[sf.type_index];
+            bs.push(names.len());
+            for (r, col) in (0..dims[t]).flat_map(|r| (0..w).map(move |col| (r, col))) {
+                names.push(format!("T{t}.T{k}[{r}][{col}]"));
+            }
+        }
+        base.push(bs);
+    }
+    Ok(Layout {
+        dims,
+        offsets,
+        base,
+        names,
+    })
+}
+
 /// For each rebuilt unknown, the certificate's column with the same name; the names must be a
 /// permutation of the rebuilt ones.
-fn columns(rebuilt: &[String], given: &[String]) -> Result<Vec<usize>, String> {
+pub(super) fn columns(rebuilt: &[String], given: &[String]) -> Result<Vec<usize>, String> {
     if rebuilt.len() != given.len() {
         return Err(format!(
             "the recipe names {} unknowns, the closure has {}",

@@ -189,7 +189,13 @@ pub(super) fn run(args: ExploreArgs, limits: &Limits) -> Result<ExitCode, Error>
     let holes = |face: &lacuna::topology::Face, ts: &lacuna::topology::TypeSet| -> Outcome {
         // A cell forced to zero area has no geometry whose holes could be counted: refused with
         // the reason (the no-collapse property reports it as the failure it is).
-        match ts.flat_cells().first() {
+        let (flat_faces, flat_lacunas) = ts.flat_cells();
+        let flat = lacuna::constraint::Collapses {
+            flat_faces,
+            flat_lacunas,
+            ..Default::default()
+        };
+        match flat.messages("").first() {
             Some(why) => Outcome::Skip(format!("forced collapse: {why}")),
             None => holes_outcome(face, holes_level, limits),
         }

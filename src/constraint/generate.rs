@@ -266,30 +266,77 @@ pub fn automaton_of(ts: &TypeSet, opts: GenOptions) -> Generated {
     }
 }
 
-/// An unknown as an affine function of the free parameters (see `Parametrization::expression`).
+/// The forced collapses of a closure's level-1 complexes (THEORY §6), as data: what the
+/// certificate's `degeneracy` step lists.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Collapses {
+    /// `[type, sub-face, corner, sub-face, corner]`: two combinatorially distinct corners that
+    /// coincide on every solution (each later corner paired with the first of its class).
+    pub coincide: Vec<[usize; 5]>,
+    /// Face types of two Cantor edges (area 0).
+    pub flat_faces: Vec<usize>,
+    /// Face types whose two-sided lacuna has Cantor sides (area 0).
+    pub flat_lacunas: Vec<usize>,
+}
+
+impl Collapses {
+    /// True when nothing collapses.
+    pub fn is_empty(&self) -> bool {
+        self.coincide.is_empty() && self.flat_faces.is_empty() && self.flat_lacunas.is_empty()
+    }
+
+    /// One message per forced collapse, in the words `verify` prints.
+    pub fn messages(&self, verb: &str) -> Vec<String> {
+        let mut out: Vec<String> = self
+            .coincide
+            .iter()
+            .map(|[t, k1, p1, k2, p2]| {
+                format!(
+                    "T{t}: corner {p1} of sub-face {k1} and corner {p2} of sub-face {k2} {verb}"
+                )
+            })
+            .collect();
+        out.extend(self.flat_faces.iter().map(|t| {
+            format!("T{t}: its two edges are Cantor edges between the same two corners: the face has area 0")
+        }));
+        out.extend(self.flat_lacunas.iter().map(|t| {
+            format!(
+                "T{t}: its lacuna has two sides, both Cantor edges between the inner ends of its \
+                 two spokes: the lacuna has area 0"
+            )
+        }));
+        out
+    }
+}
+
 /// The degeneracy check (THEORY §6): for every face type, the corner points of its level-1
-/// complex that are combinatorially distinct must not be forced to coincide by the constraints,
-/// and no cell may be forced to zero area by two Cantor sides on one segment
-/// ([`TypeSet::flat_cells`]). Returns one message per forced collapse.
+/// complex that are combinatorially distinct must not be forced to coincide by the constraints
+/// (each coordinate has the same affine expression in the free parameters, see
+/// `Parametrization::expression`), and no cell may be forced to zero area by two Cantor sides
+/// on one segment ([`TypeSet::flat_cells`]).
+pub fn collapses(
+    ts: &TypeSet,
+    g: &Generated,
+    offsets: &[Option<usize>],
+    space: &SolutionSpace,
+) -> Collapses {
+    let param = space.parametrize();
+    let (flat_faces, flat_lacunas) = ts.flat_cells();
+    Collapses {
+        coincide: coinciding(ts, g, offsets, |x| param.expression(x)),
+        flat_faces,
+        flat_lacunas,
+    }
+}
+
+/// [`collapses`] as messages, one per forced collapse.
 pub fn degeneracies(
     ts: &TypeSet,
     g: &Generated,
     offsets: &[Option<usize>],
     space: &SolutionSpace,
 ) -> Vec<String> {
-    let param = space.parametrize();
-    // Two points coincide on every solution exactly when each coordinate has the same affine
-    // expression in the free parameters.
-    let mut out = coinciding(
-        ts,
-        g,
-        offsets,
-        |x| param.expression(x),
-        "are forced to coincide",
-    );
-    // Cells whose two sides are segments between the same two points (issue #36).
-    out.extend(ts.flat_cells());
-    out
+    collapses(ts, g, offsets, space).messages("are forced to coincide")
 }
 
 /// The same check at one point of the solution space (THEORY §13, a frame of a morph): with the
@@ -302,18 +349,22 @@ pub fn collapses_at(
     offsets: &[Option<usize>],
     values: &[BigRational],
 ) -> Vec<String> {
-    coinciding(ts, g, offsets, |x| values[x].clone(), "coincide")
+    Collapses {
+        coincide: coinciding(ts, g, offsets, |x| values[x].clone()),
+        ..Collapses::default()
+    }
+    .messages("coincide")
 }
 
 /// For every face type, the pairs of distinct level-1 corner points whose coordinates (unknown
-/// indices, mapped by `key`) are equal, as messages ending in `verb`.
+/// indices, mapped by `key`) are equal: `[type, sub-face, corner, sub-face, corner]`, the first
+/// corner of the class first.
 fn coinciding<K: std::hash::Hash + Eq>(
     ts: &TypeSet,
     g: &Generated,
     offsets: &[Option<usize>],
     key: impl Fn(usize) -> K,
-    verb: &str,
-) -> Vec<String> {
+) -> Vec<[usize; 5]> {
     let a = &g.automaton;
     let mut out = Vec::new();
     for (t, ty) in ts.types.iter().enumerate() {
@@ -340,10 +391,7 @@ fn coinciding<K: std::hash::Hash + Eq>(
             let Some(xs) = coords(rep) else { continue };
             let k: Vec<K> = xs.iter().map(|&x| key(x)).collect();
             match seen.get(&k) {
-                Some(&first) => out.push(format!(
-                    "T{t}: corner {} of sub-face {} and corner {} of sub-face {} {verb}",
-                    first.1, first.0, rep.1, rep.0
-                )),
+                Some(&first) => out.push([t, first.0, first.1, rep.0, rep.1]),
                 None => {
                     seen.insert(k, rep);
                 }

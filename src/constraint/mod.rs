@@ -16,7 +16,8 @@ pub use automaton::{
     RowOrigin, SolveReport, State,
 };
 pub use generate::{
-    automaton_of, collapses_at, degeneracies, solve_closure, GenOptions, Generated,
+    automaton_of, collapses, collapses_at, degeneracies, solve_closure, Collapses, GenOptions,
+    Generated,
 };
 pub use linsys::{
     forced_equal, solve, write_text, Conflict, Equation, LinearSystem, Parametrization, Solution,

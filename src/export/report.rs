@@ -389,7 +389,7 @@ impl VerifyReport {
                 if sv.degenerate.is_empty() {
                     let _ = writeln!(
                         o,
-                        "  no forced collapse of distinct corner points (exact, not in the certificate)"
+                        "  no forced collapse of distinct corner points or cells (exact; certified by the degeneracy step)"
                     );
                 } else {
                     for d in &sv.degenerate {

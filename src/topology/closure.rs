@@ -73,28 +73,22 @@ impl TypeSet {
     /// two Cantor edges between the same two points therefore encloses no area, whatever the
     /// solution: a face type of two Cantor edges, and the lacuna of a face type with two spokes
     /// when `El` is a Cantor edge (its two sides join the inner ends of the two spokes). Each is a
-    /// forced collapse (THEORY §6), with its witness; a two-sided cell of Bézier edges is not
-    /// forced flat (its edges may bulge apart) and is not listed.
-    pub fn flat_cells(&self) -> Vec<String> {
+    /// forced collapse (THEORY §6); a two-sided cell of Bézier edges is not forced flat (its
+    /// edges may bulge apart) and is not listed. Returns the types of the flat faces and of the
+    /// flat lacunas.
+    pub fn flat_cells(&self) -> (Vec<usize>, Vec<usize>) {
         use crate::topology::EdgeKind;
-        let mut out = Vec::new();
+        let (mut faces, mut lacunas) = (Vec::new(), Vec::new());
         for (t, ty) in self.types.iter().enumerate() {
             let f = &ty.face;
             if f.boundary.len() == 2 && f.boundary.iter().all(|e| e.kind == EdgeKind::C) {
-                out.push(format!(
-                    "T{t}: its two edges are Cantor edges between the same two corners: the face \
-                     has area 0"
-                ));
+                faces.push(t);
             }
             if f.delay == 1 && ty.subdivision.spokes.len() == 2 && f.params.el.kind == EdgeKind::C {
-                out.push(format!(
-                    "T{t}: its lacuna has two sides, both Cantor edges ({}) between the inner \
-                     ends of its two spokes: the lacuna has area 0",
-                    f.params.el
-                ));
+                lacunas.push(t);
             }
         }
-        out
+        (faces, lacunas)
     }
 }
 
