@@ -321,3 +321,58 @@ fn an_infeasible_goal_is_an_error_naming_it() {
     assert_eq!(code, 2);
     assert!(err.contains("error[E1030]"), "{err}");
 }
+
+/// Issue #36: the chosen point is checked exactly at level 1 before anything is drawn. A
+/// template whose two lacuna sides of the digon `B2 B2 | B2 B2 B2 | A1` have the same middle
+/// control point makes the lacuna a slit: its control polygon (the two sides' points, both on
+/// the segment x = 0 from (0, −0.1125) to (0, 0.3375)) has area 0, so the choice is refused with
+/// E1012 (exit 2) and nothing is written. The default template bulges the sides into a lens,
+/// and the check passes: `measure` says so.
+#[test]
+fn a_choice_that_flattens_a_level_one_cell_is_refused_before_drawing() {
+    let digon = "B2 B2 | B2 B2 B2 | A1";
+    let written = scratch("digon-template.txt");
+    let (code, _, err) = lacuna(&["render", digon, "--write-template", s(&written)]);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&written).unwrap();
+    // Sub-face 0's lacuna side is points 6, 7, 8 ((0, 0.3375), (0.1125, 0.1125), (0, −0.1125)),
+    // sub-face 1's runs back ((0, −0.1125), (−0.1125, 0.1125), (0, 0.3375)): move both middle
+    // points onto the segment between the ends.
+    let slit = text
+        .replace(
+            "0 0.3375; 0.1125 0.1125; 0 -0.1125",
+            "0 0.3375; 0 0.1125; 0 -0.1125",
+        )
+        .replace(
+            "0 -0.1125; -0.1125 0.1125; 0 0.3375",
+            "0 -0.1125; 0 0.1125; 0 0.3375",
+        );
+    assert_ne!(slit, text, "the template's lacuna sides moved");
+    let edited = scratch("digon-slit.txt");
+    std::fs::write(&edited, slit).unwrap();
+    let svg = scratch("digon-slit.svg");
+    let (code, _, err) = lacuna(&[
+        "render",
+        digon,
+        "--template",
+        s(&edited),
+        "--level",
+        "2",
+        "--svg",
+        s(&svg),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("E1012") && err.contains("the lacuna of T0"),
+        "{err}"
+    );
+    assert!(!svg.exists(), "a degenerate choice was drawn");
+    // Two types: T0 (the digon, 2 sub-faces of type T1) and T1 (`B2 B2 B2 B2 B2`, 5 sub-faces
+    // of type T1), each with a central lacuna: 2 + 5 sub-faces and 2 lacunas are checked.
+    let (code, out, err) = lacuna(&["measure", digon, "--level", "1"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("level-1 cells: 7 sub-faces and 2 lacunas over all types, every control polygon of positive area"),
+        "{out}"
+    );
+}

@@ -343,8 +343,9 @@ fn an_explored_family_too_costly_to_measure_is_refused_before_the_work() {
 fn a_degenerate_face_is_not_drawn_without_a_word() {
     // `B2 B2 | B2 C2 B2 | A1` (issue #36): a two-edge face with two spokes whose lacuna sides
     // are Cantor edges C2, segments between the same two points — a lacuna of zero width on
-    // every solution. `verify` states it as a forced collapse; every output of `render` checks
-    // the level it draws as the solid does: E1041, exit 1, nothing written.
+    // every solution. `verify` states it as a forced collapse; `render` checks the chosen point
+    // exactly at level 1 before any output (the lacuna's control polygon, its two chords, has
+    // area 0) and refuses it as forced: E1013, exit 1, nothing written.
     let (code, out, _) = lacuna(&["verify", "B2 B2 | B2 C2 B2 | A1"]);
     assert_eq!(code, 1, "{out}");
     assert!(
@@ -365,7 +366,7 @@ fn a_degenerate_face_is_not_drawn_without_a_word() {
             &path,
         ]);
         assert_eq!(code, 1, "{flag}: {err}");
-        assert!(err.contains("E1041"), "{flag}: {err}");
+        assert!(err.contains("E1013"), "{flag}: {err}");
         assert!(!out.exists(), "{flag}: a picture was written");
     }
     // The digon of Bézier sides is not forced flat: its default placement bulges the two lacuna

@@ -78,9 +78,11 @@ pub(crate) fn main() -> ExitCode {
                 print_json(&e.to_json());
             }
             eprint!("{}", e.render());
-            // Goals that no parameters meet are a negative answer, not bad input.
+            // Goals that no parameters meet, and a collapse that every choice has, are negative
+            // answers, not bad input.
             ExitCode::from(
-                if e.code() == "E1031" || lacuna::mesh::is_failure_code(e.code()) {
+                if matches!(e.code(), "E1031" | "E1013") || lacuna::mesh::is_failure_code(e.code())
+                {
                     EXIT_FAILED
                 } else {
                     EXIT_BAD_INPUT

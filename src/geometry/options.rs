@@ -59,6 +59,21 @@ pub enum GeometryError {
         /// The face, in notation.
         face: String,
     },
+    /// The chosen point of the solution space gives a level-1 cell a control polygon of zero
+    /// or negative area in its type's template: a degenerate choice (E1012), or a collapse that
+    /// every choice has (E1013); nothing is drawn.
+    #[error("the chosen parameters make {cell} degenerate: its control polygon has signed area {area} in the type's template ({advice})")]
+    Degenerate {
+        /// The cell.
+        cell: String,
+        /// Its signed area, exactly.
+        area: String,
+        /// What to do: other parameters, or nothing when the collapse is forced.
+        advice: String,
+        /// The constraints force the collapse (E1013, a negative verdict: exit 1); else the
+        /// choice is at fault (E1012, exit 2).
+        forced: bool,
+    },
     /// An output file could not be written.
     #[error("cannot write `{path}`: {reason}")]
     Write {
@@ -80,6 +95,8 @@ impl GeometryError {
             GeometryError::NotExact { .. } => "E1004",
             GeometryError::Write { .. } => "E1005",
             GeometryError::OneEdge { .. } => "E1009",
+            GeometryError::Degenerate { forced: false, .. } => "E1012",
+            GeometryError::Degenerate { forced: true, .. } => "E1013",
             GeometryError::Topology(_) => "E1006",
             GeometryError::Goal { code, .. } => code,
         }

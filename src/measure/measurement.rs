@@ -248,6 +248,9 @@ pub struct MeasureReport {
     pub raster: usize,
     /// RMS distance of the chosen control points to the template (instantiation quality).
     pub template_residual: f64,
+    /// The exact level-1 check of the chosen point: every cell's control polygon has positive
+    /// area (issue #36).
+    pub level_one: crate::geometry::LevelOne,
     /// Every level's holes and components match the exact counts.
     pub verified: bool,
     /// One line per failure, starting with its code (E1010 mismatch, E1011 below resolution).
@@ -408,6 +411,7 @@ pub fn measure(inst: &Instance, opts: &MeasureOptions) -> Result<MeasureReport, 
         density,
         raster: opts.raster,
         template_residual: inst.fit_residual,
+        level_one: inst.level_one.clone(),
         verified: failures.is_empty(),
         failures,
         levels,
@@ -467,6 +471,7 @@ impl MeasureReport {
             );
         }
         let _ = writeln!(s, "components derived by {}", self.components_by);
+        let _ = writeln!(s, "{}", self.level_one.describe());
         if self.verified {
             s += "verdict: VERIFIED (observed holes and components equal the exact counts)\n";
         } else {
