@@ -251,16 +251,17 @@ pub struct LevelOne {
     pub cells: usize,
     /// Central lacunas checked.
     pub lacunas: usize,
-    /// Twice the smallest signed area of a sub-face's control polygon, in its type's frame.
+    /// The smallest signed area of a sub-face's control polygon, in its type's template,
+    /// exactly.
     #[serde(serialize_with = "crate::geometry::instantiate::rational_str")]
-    pub smallest: Option<BigRational>,
+    pub smallest_area: Option<BigRational>,
 }
 
 impl LevelOne {
     /// The line `render` and `measure` print.
     pub fn describe(&self) -> String {
         format!(
-            "level-1 cells: {} sub-faces and {} lacunas over all types, every control polygon of positive area (exact, in each type's template)",
+            "level-1 cells: {} sub-face(s) and {} lacuna(s) over all types, every control polygon of positive area (exact, in each type's template)",
             self.cells, self.lacunas
         )
     }
@@ -346,7 +347,8 @@ impl Instance {
                         forced: flat_faces.contains(&t) || flat_faces.contains(&w),
                     });
                 }
-                out.smallest = Some(match out.smallest.take() {
+                let a = a / BigRational::from_integer(2.into());
+                out.smallest_area = Some(match out.smallest_area.take() {
                     Some(s) if s <= a => s,
                     _ => a,
                 });
