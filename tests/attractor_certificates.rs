@@ -204,6 +204,8 @@ fn the_producer_recertifies_every_attractor_claim_alike() {
         "kite-dart",
         "spec-edge",
         "pythagoras-tree",
+        "heighway-dragon",
+        "self-seeding-square",
     ] {
         let cert = automaton_certificate(name);
         let again =
@@ -290,13 +292,249 @@ fn open_set_witnesses_make_the_dimension_hausdorff_and_forgeries_fail() {
         .claims()
         .iter()
         .any(|c| c.contains("an upper bound of the Hausdorff dimension")));
-    // The Heighway dragon's condition is decided by neighbour maps, which are not certified:
-    // its certificate states an upper bound only.
-    let dragon = automaton_certificate("heighway-dragon");
-    assert!(check(&dragon)
+}
+
+fn neighbour_maps(cert: &mut Certificate) -> &mut lacuna::certificate::NeighbourMaps {
+    similarity(cert).parts[0]
+        .neighbour_maps
+        .as_mut()
+        .expect("a neighbour-map witness")
+}
+
+fn holds(cert: &mut Certificate) -> &mut lacuna::certificate::NeighbourHolds {
+    match neighbour_maps(cert) {
+        lacuna::certificate::NeighbourMaps::Holds(h) => h,
+        lacuna::certificate::NeighbourMaps::Fails(_) => panic!("a failure"),
+    }
+}
+
+fn fails(cert: &mut Certificate) -> &mut lacuna::certificate::NeighbourFails {
+    match neighbour_maps(cert) {
+        lacuna::certificate::NeighbourMaps::Fails(f) => f,
+        lacuna::certificate::NeighbourMaps::Holds(_) => panic!("a closed set"),
+    }
+}
+
+#[test]
+fn neighbour_maps_certify_the_dimension_of_the_dragon_and_the_tree() {
+    // Both have two pieces of ratio 1/√2 (σ = 1/2, exponent 1), so s = 2; their pieces' hulls
+    // overlap, and the neighbour maps decide the condition. The certificate carries the closed
+    // set: every map of it is needed, so each one dropped is missed.
+    for (name, count) in [("heighway-dragon", 172), ("pythagoras-tree", 266)] {
+        let mut cert = automaton_certificate(name);
+        assert_proved(name, &cert);
+        let report = check(&cert);
+        assert!(
+            report.claims().iter().any(|c| c.contains(
+                "the open-set condition holds (neighbour maps, Bandt–Graf: a finite set closed under refinement, without the identity, checked exactly), so the Hausdorff dimension of the attractor is 2.000"
+            )),
+            "{name}: {}",
+            report.to_text()
+        );
+        let s = report.step("similarity-dimension").expect("the step");
+        assert!(
+            s.message
+                .contains(&format!("by {count} neighbour maps in the charts")),
+            "{}",
+            s.message
+        );
+        let h = holds(&mut cert);
+        assert_eq!(h.maps.len(), count, "{name}");
+        assert_eq!(h.coordinates, "charts");
+    }
+}
+
+#[test]
+fn neighbour_map_forgeries_are_rejected_at_the_similarity_step() {
+    let base = automaton_certificate("heighway-dragon");
+    let step = "similarity-dimension";
+    // A map dropped: the first (an initial map), one from the middle, the last.
+    let n = holds(&mut base.clone()).maps.len();
+    for i in [0, n / 2, n - 1] {
+        let mut c = base.clone();
+        holds(&mut c).maps.remove(i);
+        assert_rejected(&format!("map {i} dropped"), &c, step);
+    }
+    // The radius halved: the balls no longer hold the attractors.
+    let mut c = base.clone();
+    let h = holds(&mut c);
+    let r = lacuna::checker::parse_rational(&h.radius).expect("rational");
+    h.radius = (r / num_rational::BigRational::from_integer(2.into())).to_string();
+    assert_rejected("the radius halved", &c, step);
+    // A larger margin lets more maps pass the ball test: the set is no longer closed.
+    let mut c = base.clone();
+    let h = holds(&mut c);
+    h.margin = h.radius.clone();
+    assert_rejected("the margin raised to R", &c, step);
+    // A zero margin proves nothing.
+    let mut c = base.clone();
+    holds(&mut c).margin = "0".into();
+    assert_rejected("a zero margin", &c, step);
+    // The identity of a state put in.
+    let mut c = base.clone();
+    let h = holds(&mut c);
+    let mut id = h.maps[0].clone();
+    id.r = id.q;
+    id.a = vec![vec!["1".into()], vec![], vec![], vec!["1".into()]];
+    id.b = vec![vec![], vec![]];
+    h.maps.push(id);
+    assert_rejected("the identity in the set", &c, step);
+    // A map of the set moved: its translation changed (then it is missed where it is needed).
+    let mut c = base.clone();
+    holds(&mut c).maps[3].b[0] = vec!["1/3".into()];
+    assert_rejected("a moved map", &c, step);
+    // Unknown coordinates, a centre moved far away (the radius no longer bounds).
+    let mut c = base.clone();
+    holds(&mut c).coordinates = "polar".into();
+    assert_rejected("unknown coordinates", &c, step);
+    let mut c = base.clone();
+    holds(&mut c).centres[0] = vec![vec!["7".into()], vec![]];
+    assert_rejected("a centre moved", &c, step);
+    // Both witnesses at once.
+    let mut c = base.clone();
+    similarity(&mut c).parts[0].open_set = Some(vec![
+        vec![
+            vec![vec![], vec![]],
+            vec![vec!["1".into()], vec![]],
+            vec![vec![], vec!["1".into()]],
+        ];
+        2
+    ]);
+    assert_rejected("two witnesses", &c, step);
+    // A failure claimed for the dragon: left.T0 · left.T1 and left.T1 · right.T1 both go from
+    // `left` to `right`, with different first operators, but their maps differ.
+    let mut c = base.clone();
+    *neighbour_maps(&mut c) =
+        lacuna::certificate::NeighbourMaps::Fails(lacuna::certificate::NeighbourFails {
+            u: vec![2, 3],
+            v: vec![3, 5],
+        });
+    let report = check(&c);
+    assert!(
+        report.to_text().contains("have different maps"),
+        "{}",
+        report.to_text()
+    );
+    assert_rejected("a failure of the dragon", &c, step);
+    // Without the witness the step still checks, as an upper bound.
+    let mut c = base.clone();
+    similarity(&mut c).parts[0].neighbour_maps = None;
+    let report = check(&c);
+    assert!(report.all_proved(), "{}", report.to_text());
+    assert!(report
         .claims()
         .iter()
         .any(|c| c.contains("similarity dimension = 2.000") && c.contains("an upper bound")));
+}
+
+#[test]
+fn verify_says_the_neighbour_maps_are_certified() {
+    let dir = std::env::temp_dir().join(format!("lacuna-neighbour-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, note) in [
+        (
+            "heighway-dragon",
+            "(with the open-set condition's witness: neighbour maps)",
+        ),
+        (
+            "self-seeding-square",
+            "(with the witness that the open-set condition fails: two words with one map)",
+        ),
+    ] {
+        let path = dir.join(format!("{name}.json"));
+        let p = path.to_str().unwrap();
+        let (code, out, err) = lacuna(&["verify", name, "--certificate", p]);
+        assert_eq!(code, 0, "{out}{err}");
+        assert!(!out.contains("not certified"), "{out}");
+        assert!(format!("{out}{err}").contains(note), "{out}{err}");
+        let (code, out, err) = lacuna(&["check", p]);
+        assert_eq!(code, 0, "{out}{err}");
+        assert!(out.contains("the open-set condition"), "{out}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_dragon_on_a_skew_frame_is_certified_in_the_drawing() {
+    // The Heighway dragon f0(z) = (1 + i)/2·z, f1(z) = 1 − (1 − i)/2·z on the points (0, 0),
+    // (1, 0), (1/2, 1): column j of T_i is the barycentric coordinates of f_i(P_j), e.g.
+    // f0(P_2) = (1 + i)(1/2 + i)/2 = (−1/4, 3/4) = −5/8·P_1 + 3/4·P_2 + 7/8·P_0. In the skew
+    // chart the maps are no similitudes, so the producer works in the drawing and the
+    // certificate says so.
+    let dir = std::env::temp_dir().join(format!("lacuna-skew-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let aut = dir.join("skew-dragon.aut");
+    std::fs::write(
+        &aut,
+        "state t 3\n\
+         sub t.T0 : t <- t = [1 1/4 7/8; 0 1/4 -5/8; 0 1/2 3/4]\n\
+         sub t.T1 : t <- t = [0 1/4 7/8; 1 1/4 3/8; 0 1/2 -1/4]\n\
+         barycentric\nspace 2\npoints [0 0; 1 0; 1/2 1]\nprimitive t polygon\n",
+    )
+    .unwrap();
+    let json = dir.join("skew.json");
+    let (code, out, err) = lacuna(&[
+        "verify",
+        aut.to_str().unwrap(),
+        "--certificate",
+        json.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    let mut cert = Certificate::from_json(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_proved("skew-dragon", &cert);
+    assert_eq!(holds(&mut cert).coordinates, "drawing");
+    assert!(check(&cert)
+        .claims()
+        .iter()
+        .any(|c| c.contains("the open-set condition holds (neighbour maps")));
+    // Read in the charts, the same maps are refused: the operators are no similitudes there.
+    holds(&mut cert).coordinates = "charts".into();
+    assert_rejected(
+        "charts instead of the drawing",
+        &cert,
+        "similarity-dimension",
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn an_exact_overlap_is_certified_and_forged_failures_are_rejected() {
+    // The self-seeding square: two words from its state with different first operators give
+    // the same map (the producer's witness), so two pieces coincide and the condition fails.
+    let base = automaton_certificate("self-seeding-square");
+    assert_proved("self-seeding-square", &base);
+    let report = check(&base);
+    assert!(
+        report.claims().iter().any(|c| c.contains(
+            "an upper bound of the Hausdorff dimension; the open-set condition fails in part {q}"
+        )),
+        "{}",
+        report.to_text()
+    );
+    let step = "similarity-dimension";
+    let (u, v) = {
+        let f = fails(&mut base.clone()).clone();
+        (f.u, f.v)
+    };
+    // The same first operator: both words are u.
+    let mut c = base.clone();
+    fails(&mut c).v = u.clone();
+    assert_rejected("the same first operator", &c, step);
+    // Words whose maps differ: u and v each cut to their first operator.
+    let mut c = base.clone();
+    fails(&mut c).v = vec![v[0]];
+    fails(&mut c).u = vec![u[0]];
+    assert_rejected("first operators only", &c, step);
+    // One more operator on each (q's operators start and end at q, so the words chain): the
+    // maps then differ.
+    let mut c = base.clone();
+    fails(&mut c).u.push(u[0]);
+    fails(&mut c).v.push(v[0]);
+    assert_rejected("one more operator on each", &c, step);
+    // An empty word.
+    let mut c = base.clone();
+    fails(&mut c).u.clear();
+    assert_rejected("an empty word", &c, step);
 }
 
 #[test]

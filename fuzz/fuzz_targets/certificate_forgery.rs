@@ -54,8 +54,15 @@ fn seeds() -> &'static [Value] {
             }
         }
         // Automata with their attractor steps (contraction, similarity dimension), the claim
-        // carrying the field and the attractor.
-        for name in ["sierpinski-triangle", "koch", "kite-dart"] {
+        // carrying the field and the attractor; the dragon's open-set condition is witnessed by
+        // neighbour maps, the self-seeding square's failure by two words with one map.
+        for name in [
+            "sierpinski-triangle",
+            "koch",
+            "kite-dart",
+            "heighway-dragon",
+            "self-seeding-square",
+        ] {
             if let Ok(lacuna::input::Loaded::Automaton { model, .. }) =
                 lacuna::input::load_any(name)
             {

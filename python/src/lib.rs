@@ -344,7 +344,7 @@ fn certificate(
 
 /// The certificate of an automaton or a rule as JSON text, the file `lacuna verify NAME
 /// --certificate` writes: its constraints, the contraction of every walk and the similarity
-/// dimension (with the open-set witness where convex sets decide it).
+/// dimension (with the open-set witness where convex sets or neighbour maps decide it).
 #[pyfunction]
 #[pyo3(signature = (input, limits=None))]
 fn automaton_certificate(

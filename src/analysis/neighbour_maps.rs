@@ -24,6 +24,11 @@
 //!   by the prefix's ratio (at least `r_u`), so the prefixes pass the test; the refinement cannot
 //!   stop early because a finished larger side would leave a ratio at most `r_max`. A finite
 //!   closed set without the identity keeps the neighbour maps away from the identity.
+//! - Both verdicts are certified: [`Search::Closed`] carries R, μ and the kept maps,
+//!   [`Search::Identity`] the two words, which the certificate writes and the independent checker
+//!   (`src/checker/neighbour.rs`) re-derives with the exact ball test (no rational bound of a
+//!   square root: the kept set, found with the more permissive bounded test, holds every map the
+//!   exact test asks for).
 //! - **Undecided** when the search reaches [`MAX_NEIGHBOUR_MAPS`] maps or
 //!   [`MAX_NEIGHBOUR_TESTS`] tested candidates (limits, never a verdict), or an operator is not
 //!   a contracting similitude in the coordinates.
@@ -196,16 +201,32 @@ fn dist2(k: &NumberField, x: &[FieldElement], y: &[FieldElement]) -> FieldElemen
 /// The outcome of the neighbour-map search.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub(crate) enum Search {
-    /// The worklist closed without the identity: this many maps.
-    Closed(usize),
-    /// The identity appeared: the operators that start the two words (indices into the edges).
-    Identity(usize, usize),
+    /// The worklist closed without the identity: the certificate's witness.
+    Closed(Closed),
+    /// The identity appeared: two words of operators (indices into the edges) from one state,
+    /// with different first letters, ending in one state, whose maps are equal.
+    Identity(Vec<usize>, Vec<usize>),
     /// Undecided, and why.
     Undecided(String),
 }
 
-/// A kept map waiting to be refined: `(q, r, h, ratio(h)², the two first operators)`.
-type Pending = (usize, usize, KAffine, FieldElement, (usize, usize));
+/// A closed set of neighbour maps: the radius R and margin μ of the ball test and every kept
+/// map `(q, r, h)` (`h: chart r → chart q`), in the order the search found them.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct Closed {
+    /// The common radius R of the balls `B(c_q, R)` that hold the attractors.
+    pub radius: BigRational,
+    /// The margin μ of the ball test.
+    pub margin: BigRational,
+    /// The kept maps.
+    pub maps: Vec<(usize, usize, KAffine)>,
+}
+
+/// A kept map waiting to be refined: `(q, r, h, ratio(h)², the two words)`.
+type Pending = (usize, usize, KAffine, FieldElement, Words);
+
+/// The two words `(u, v)` of a neighbour map `g_u⁻¹ ∘ g_v` (indices into the edges).
+type Words = (Vec<usize>, Vec<usize>);
 
 /// One operator of the part: `(q, w, g)` with `g: chart w → chart q` a similitude.
 pub(crate) type KEdge = (usize, usize, KAffine);
@@ -256,6 +277,7 @@ pub(crate) fn search(k: &NumberField, centres: &[Vec<FieldElement>], edges: &[KE
         k.sign(&k.sub(&d2, &k.rational(&bound * &bound))) != Ordering::Greater
     };
     let mut seen: HashSet<(usize, usize, KAffine)> = HashSet::new();
+    let mut kept: Vec<(usize, usize, KAffine)> = Vec::new();
     let mut queue: VecDeque<Pending> = VecDeque::new();
     for (i, (p, qa, _)) in edges.iter().enumerate() {
         for (j, (p2, rb, gb)) in edges.iter().enumerate() {
@@ -267,14 +289,15 @@ pub(crate) fn search(k: &NumberField, centres: &[Vec<FieldElement>], edges: &[KE
                 continue;
             };
             if passes(*qa, *rb, &h, &h_r2) && seen.insert((*qa, *rb, h.clone())) {
-                queue.push_back((*qa, *rb, h, h_r2, (i, j)));
+                kept.push((*qa, *rb, h.clone()));
+                queue.push_back((*qa, *rb, h, h_r2, (vec![i], vec![j])));
             }
         }
     }
     let mut tests = 0usize;
-    while let Some((q, r, h, h_r2, first)) = queue.pop_front() {
+    while let Some((q, r, h, h_r2, words)) = queue.pop_front() {
         if q == r && h.is_identity(k) {
-            return Search::Identity(first.0, first.1);
+            return Search::Identity(words.0, words.1);
         }
         if seen.len() > MAX_NEIGHBOUR_MAPS {
             return Search::Undecided(format!(
@@ -301,14 +324,24 @@ pub(crate) fn search(k: &NumberField, centres: &[Vec<FieldElement>], edges: &[KE
                 (q, *w, h.then(k, g), k.mul(&h_r2, &ratio2[e]))
             };
             if passes(nq, nr, &nh, &n_r2) && seen.insert((nq, nr, nh.clone())) {
-                if nq == nr && nh.is_identity(k) {
-                    return Search::Identity(first.0, first.1);
+                let (mut u, mut v) = words.clone();
+                match refine_u {
+                    true => u.push(e),
+                    false => v.push(e),
                 }
-                queue.push_back((nq, nr, nh, n_r2, first));
+                if nq == nr && nh.is_identity(k) {
+                    return Search::Identity(u, v);
+                }
+                kept.push((nq, nr, nh.clone()));
+                queue.push_back((nq, nr, nh, n_r2, (u, v)));
             }
         }
     }
-    Search::Closed(seen.len())
+    Search::Closed(Closed {
+        radius,
+        margin,
+        maps: kept,
+    })
 }
 
 #[cfg(test)]
@@ -370,7 +403,15 @@ mod tests {
             (0, 0, line(r(1, 3), r(0, 1))),
             (0, 0, line(r(1, 3), r(2, 3))),
         ];
-        assert_eq!(search(&qk(), &c, &cantor), Search::Closed(0));
+        match search(&qk(), &c, &cantor) {
+            Search::Closed(w) => {
+                assert!(w.maps.is_empty());
+                // R is 1/2 rounded up through the rational bounds of 1/3 = √(1/9).
+                assert!(w.radius >= q(1, 2) && w.radius < q(500_001, 1_000_000));
+                assert_eq!(w.margin, &w.radius / q(16, 1));
+            }
+            other => panic!("{other:?}"),
+        }
         // f1 = x/2, f2 = x/2 + 1/4, f3 = x/2 + 1/2: f2∘f1 = (x/2)/2 + 1/4 = x/4 + 1/4 and
         // f1∘f3 = (x/2 + 1/2)/2 = x/4 + 1/4, words with first letters 2 and 1: the identity
         // f3⁻¹∘f1⁻¹∘f2∘f1 is a neighbour map, and the search must find it.
@@ -379,10 +420,19 @@ mod tests {
             (0, 0, line(r(1, 2), r(1, 4))),
             (0, 0, line(r(1, 2), r(1, 2))),
         ];
-        assert!(matches!(
-            search(&qk(), &c, &overlap),
-            Search::Identity(_, _)
-        ));
+        match search(&qk(), &c, &overlap) {
+            Search::Identity(u, v) => {
+                // The words start with different operators and compose to the same map.
+                assert_ne!(u[0], v[0]);
+                let word = |w: &[usize]| {
+                    w.iter().fold(line(r(1, 1), r(0, 1)), |acc, &e| {
+                        acc.then(&qk(), &overlap[e].2)
+                    })
+                };
+                assert_eq!(word(&u), word(&v), "{u:?} {v:?}");
+            }
+            other => panic!("{other:?}"),
+        }
     }
 
     #[test]
@@ -400,7 +450,10 @@ mod tests {
             (0, 0, half((0, 1))),
         ];
         let got = search(&qk(), &[vec![r(1, 3), r(1, 3)]], &e);
-        assert!(matches!(got, Search::Closed(n) if n > 0), "{got:?}");
+        assert!(
+            matches!(&got, Search::Closed(w) if !w.maps.is_empty()),
+            "{got:?}"
+        );
     }
 
     #[test]

@@ -57,6 +57,60 @@ pub struct OpenSetVerdict {
     /// certificate's witness).
     #[serde(skip)]
     pub witness: Option<Vec<Vec<Vec<FieldElement>>>>,
+    /// When the neighbour maps decided it: the certificate's witness (the closed set of maps,
+    /// or the two words with the same map).
+    #[serde(skip)]
+    pub neighbour: Option<NeighbourWitness>,
+}
+
+/// The coordinates of each state in which the neighbour maps are computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Coordinates {
+    /// The state's chart (the barycentric coordinates of its control points).
+    Charts,
+    /// The drawing, through the state's frame `E_q(y) = P_0 + (P_1 − P_0, P_2 − P_0)·y`.
+    Drawing,
+}
+
+/// One kept neighbour map `h: x ↦ A·x + b` from the chart of the part's state `r` to that of
+/// `q` (positions in the part), `A` row-major.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct NeighbourMap {
+    /// The position in the part of the state whose coordinates h maps into.
+    pub q: usize,
+    /// The position in the part of the state whose coordinates h maps from.
+    pub r: usize,
+    /// The linear part, `d × d` row-major.
+    pub a: Vec<FieldElement>,
+    /// The translation.
+    pub b: Vec<FieldElement>,
+}
+
+/// The witness of a verdict decided by neighbour maps ([`crate::analysis::neighbour_maps`]).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum NeighbourWitness {
+    /// The condition holds: the coordinates, one centre per state of the part (in part order),
+    /// the common radius R and margin μ of the ball test, and the closed set of maps.
+    Holds {
+        /// The coordinates of the states.
+        coordinates: Coordinates,
+        /// The centres `c_q`.
+        centres: Vec<Vec<FieldElement>>,
+        /// The radius R.
+        radius: BigRational,
+        /// The margin μ.
+        margin: BigRational,
+        /// The kept maps.
+        maps: Vec<NeighbourMap>,
+    },
+    /// The condition fails: two words of operators (operator indices) from one state, with
+    /// different first operators and one end state, whose maps are equal.
+    Fails {
+        /// The first word.
+        u: Vec<usize>,
+        /// The second word.
+        v: Vec<usize>,
+    },
 }
 
 /// A point of a chart (1 or 2 coordinates).
@@ -364,6 +418,7 @@ pub(crate) fn part_verdict(
         holds: None,
         reason: r,
         witness: None,
+        neighbour: None,
     };
     let mut raw = Vec::new();
     for &q in part {
@@ -385,6 +440,10 @@ pub(crate) fn part_verdict(
             if x.0 == y.0 && x.1 == y.1 && ops[x.2] == ops[y.2] {
                 return OpenSetVerdict {
                     witness: None,
+                    neighbour: Some(NeighbourWitness::Fails {
+                        u: vec![x.2],
+                        v: vec![y.2],
+                    }),
                     holds: Some(false),
                     reason: format!(
                         "fails: `{}` and `{}` are the same map, so their pieces coincide",
@@ -415,6 +474,7 @@ pub(crate) fn part_verdict(
                     holds: Some(true),
                     reason: format!("holds: the interiors of the convex hulls of the attractors (exact, {} vertices, found in {rounds} rounds) are a feasible open set", sets.iter().map(Vec::len).sum::<usize>()),
                     witness: Some(sets),
+                    neighbour: None,
                 };
             }
         }
@@ -436,6 +496,7 @@ pub(crate) fn part_verdict(
     if feasible(k, part, &edges, &sets, true) {
         return OpenSetVerdict {
             witness: Some(sets),
+            neighbour: None,
             holds: Some(true),
             reason: if d == 1 {
                 "holds: the open segment between each state's two points is a feasible open set"
@@ -447,22 +508,38 @@ pub(crate) fn part_verdict(
     }
     let why = match neighbour_edges(k, part, &edges, frames, d) {
         Err(why) => why,
-        Ok((centres, kedges)) => match search(k, &centres, &kedges) {
-            Search::Closed(n) => {
+        Ok((coordinates, centres, kedges)) => match search(k, &centres, &kedges) {
+            Search::Closed(closed) => {
                 return OpenSetVerdict {
                     witness: None,
                     holds: Some(true),
-                    reason: format!("holds: the neighbour maps (Bandt–Graf, exact) form a finite set of {n} maps without the identity"),
+                    reason: format!("holds: the neighbour maps (Bandt–Graf, exact) form a finite set of {} maps without the identity", closed.maps.len()),
+                    neighbour: Some(NeighbourWitness::Holds {
+                        coordinates,
+                        centres,
+                        radius: closed.radius,
+                        margin: closed.margin,
+                        maps: closed
+                            .maps
+                            .into_iter()
+                            .map(|(q, r, h)| NeighbourMap { q, r, a: h.a, b: h.b })
+                            .collect(),
+                    }),
                 }
             }
-            Search::Identity(i, j) => {
+            Search::Identity(u, v) => {
+                let op = |e: &usize| edges[*e].3;
                 return OpenSetVerdict {
                     witness: None,
                     holds: Some(false),
                     reason: format!(
                         "fails: the identity is a neighbour map (two words starting with `{}` and `{}` give the same map, so their pieces coincide)",
-                        a.operators[edges[i].3].name, a.operators[edges[j].3].name
+                        a.operators[op(&u[0])].name, a.operators[op(&v[0])].name
                     ),
+                    neighbour: Some(NeighbourWitness::Fails {
+                        u: u.iter().map(op).collect(),
+                        v: v.iter().map(op).collect(),
+                    }),
                 }
             }
             Search::Undecided(why) => why,
@@ -470,6 +547,9 @@ pub(crate) fn part_verdict(
     };
     undecided(format!("undecided: neither the convex hulls of the attractors nor the square on the segment is a feasible open set, and the neighbour maps decide nothing: {why} (the condition may still hold)"))
 }
+
+/// The coordinates chosen, the centre of each state in them and the operators as maps in them.
+type Neighbourhood = (Coordinates, Vec<Vec<FieldElement>>, Vec<KEdge>);
 
 /// The part's operators as similitudes over K between per-state coordinates, for the
 /// neighbour-map search: in one dimension the charts themselves (every affine map of the line is
@@ -484,7 +564,7 @@ fn neighbour_edges(
     edges: &[Edge],
     frames: &[Option<KMatrix>],
     d: usize,
-) -> Result<(Vec<Vec<FieldElement>>, Vec<KEdge>), String> {
+) -> Result<Neighbourhood, String> {
     let pos = |s: usize| part.binary_search(&s).expect("in part");
     let chart = |m: &Map| KAffine {
         a: m.a.clone(),
@@ -508,7 +588,7 @@ fn neighbour_edges(
         } else {
             vec![half, q0(k)]
         };
-        return Ok((vec![centre; part.len()], in_charts));
+        return Ok((Coordinates::Charts, vec![centre; part.len()], in_charts));
     }
     let mut embed = Vec::with_capacity(part.len());
     let mut centres = Vec::with_capacity(part.len());
@@ -544,7 +624,7 @@ fn neighbour_edges(
             (i, j, embed[i].0.then(k, &chart(m)).then(k, &embed[j].1))
         })
         .collect();
-    Ok((centres, q))
+    Ok((Coordinates::Drawing, centres, q))
 }
 
 #[cfg(test)]

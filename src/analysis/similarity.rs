@@ -18,6 +18,7 @@ use crate::algebra::kmatrix::KMatrix;
 use crate::algebra::poly::Poly;
 use crate::algebra::reallog::{log_ratio_bounds, round_out};
 use crate::analysis::contraction::{control_graph, reachable};
+use crate::analysis::open_set::NeighbourWitness;
 use crate::input::automaton_model::AutomatonModel;
 use num_bigint::BigInt;
 use num_rational::BigRational;
@@ -47,10 +48,30 @@ pub struct SimilarityDimension {
 }
 
 impl SimilarityDimension {
-    /// Whether every part's open-set condition was decided by convex sets, the witness a
-    /// certificate can carry (the neighbour maps' verdicts are not certified).
+    /// Whether every part's open-set condition was proved with a witness the certificate
+    /// carries: convex sets, or a closed set of neighbour maps.
     pub fn open_set_witnessed(&self) -> bool {
-        !self.witness.is_empty() && self.witness.iter().all(|p| p.open_set.is_some())
+        !self.witness.is_empty()
+            && self.witness.iter().all(|p| {
+                p.open_set.is_some()
+                    || matches!(p.neighbour_maps, Some(NeighbourWitness::Holds { .. }))
+            })
+    }
+
+    /// Whether some part's open-set condition was proved by neighbour maps (the others by
+    /// convex sets).
+    pub fn open_set_by_neighbour_maps(&self) -> bool {
+        self.witness
+            .iter()
+            .any(|p| matches!(p.neighbour_maps, Some(NeighbourWitness::Holds { .. })))
+    }
+
+    /// Whether some part's open-set condition was refuted with a witness the certificate
+    /// carries: two words with different first operators and the same map.
+    pub fn open_set_refuted(&self) -> bool {
+        self.witness
+            .iter()
+            .any(|p| matches!(p.neighbour_maps, Some(NeighbourWitness::Fails { .. })))
     }
 }
 
@@ -70,6 +91,8 @@ pub struct PartWitness {
     /// The open-set condition's witness, when convex sets decided it: per state of the part,
     /// the vertices of a convex polygon (an interval in one dimension) in the state's chart.
     pub open_set: Option<Vec<Vec<Vec<FieldElement>>>>,
+    /// The witness when the neighbour maps decided the condition (holds or fails).
+    pub neighbour_maps: Option<NeighbourWitness>,
 }
 
 /// Why there is no similarity dimension.
@@ -517,6 +540,7 @@ pub fn similarity_dimension(
                 u,
                 rational: v.rational.clone(),
                 open_set: verdict.witness.clone(),
+                neighbour_maps: verdict.neighbour.clone(),
             }
         })
         .collect();

@@ -535,6 +535,66 @@ pub struct SimilarityPart {
     /// counter-clockwise (in one dimension: the two ends, increasing).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub open_set: Option<Vec<Vec<Vec<FieldCoords>>>>,
+    /// The other witness of the open-set condition (never given with `open_set`): the
+    /// neighbour maps of the part (Bandt–Graf), a finite set closed under refinement without
+    /// the identity; or two words with the same map, a witness that the condition fails.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub neighbour_maps: Option<NeighbourMaps>,
+}
+
+/// The open-set condition of a part decided by its neighbour maps `h = g_u⁻¹ ∘ g_v` (words u,
+/// v of the part's operators from one state with different first operators; `g_e` the map of
+/// the operator `e: q ← w` from w's coordinates to q's).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", deny_unknown_fields)]
+pub enum NeighbourMaps {
+    /// The condition holds: a finite set of neighbour maps, closed under refinement, without the
+    /// identity.
+    Holds(NeighbourHolds),
+    /// The condition fails: two words whose maps are equal.
+    Fails(NeighbourFails),
+}
+
+/// The witness that the open-set condition holds.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NeighbourHolds {
+    /// The coordinates of every state: `charts` (the barycentric coordinates of its control
+    /// points) or `drawing` (the plane, through the state's frame
+    /// `E_q(y) = P_0 + (P_1 − P_0, P_2 − P_0)·y`).
+    pub coordinates: String,
+    /// The centre `c_q` of every state of the part, in order, in its coordinates.
+    pub centres: Vec<Vec<FieldCoords>>,
+    /// The common radius R > 0 (rational): every attractor `A_q` lies in `B(c_q, R)`.
+    pub radius: String,
+    /// The margin μ > 0 (rational) of the ball test `|h(c_r) − c_q| ≤ R + ρ(h)·R + μ`.
+    pub margin: String,
+    /// The maps of the set.
+    pub maps: Vec<NeighbourMap>,
+}
+
+/// One neighbour map `h: x ↦ A·x + b` from state r's coordinates to state q's.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NeighbourMap {
+    /// The state (index) h maps into: the end of the word u.
+    pub q: usize,
+    /// The state (index) h maps from: the end of the word v.
+    pub r: usize,
+    /// The linear part, `d × d` row-major.
+    pub a: Vec<FieldCoords>,
+    /// The translation.
+    pub b: Vec<FieldCoords>,
+}
+
+/// The witness that the open-set condition fails.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NeighbourFails {
+    /// The first word (operator indices, each starting where the previous one ends).
+    pub u: Vec<usize>,
+    /// The second word, from the same state, with another first operator, to the same end.
+    pub v: Vec<usize>,
 }
 
 /// The step `similarity-dimension`.

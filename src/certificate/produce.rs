@@ -17,7 +17,7 @@ use crate::certificate::format::{
 };
 use crate::certificate::format::{
     AttractorClaim, ConstraintFailsStep, ConstraintsHoldStep, ContractionStep, FieldCoords,
-    SimilarityPart, SimilarityStep,
+    NeighbourFails, NeighbourHolds, NeighbourMap, NeighbourMaps, SimilarityPart, SimilarityStep,
 };
 use num_rational::BigRational;
 use num_traits::{One, Zero};
@@ -574,6 +574,48 @@ fn u_in_field(
     Some(coords(&y))
 }
 
+/// The neighbour-map witness of a part (its states in order) as certificate data.
+fn neighbour_maps(
+    states: &[usize],
+    w: &crate::analysis::open_set::NeighbourWitness,
+) -> NeighbourMaps {
+    use crate::analysis::open_set::{Coordinates, NeighbourWitness};
+    match w {
+        NeighbourWitness::Holds {
+            coordinates,
+            centres,
+            radius,
+            margin,
+            maps,
+        } => NeighbourMaps::Holds(NeighbourHolds {
+            coordinates: match coordinates {
+                Coordinates::Charts => "charts",
+                Coordinates::Drawing => "drawing",
+            }
+            .to_string(),
+            centres: centres
+                .iter()
+                .map(|c| c.iter().map(coords).collect())
+                .collect(),
+            radius: radius.to_string(),
+            margin: margin.to_string(),
+            maps: maps
+                .iter()
+                .map(|m| NeighbourMap {
+                    q: states[m.q],
+                    r: states[m.r],
+                    a: m.a.iter().map(coords).collect(),
+                    b: m.b.iter().map(coords).collect(),
+                })
+                .collect(),
+        }),
+        NeighbourWitness::Fails { u, v } => NeighbourMaps::Fails(NeighbourFails {
+            u: u.clone(),
+            v: v.clone(),
+        }),
+    }
+}
+
 /// The certificate of an automaton file (or a compiled rule) with what `verify` proved about
 /// it: its constraints (`constraints-hold` when every operator is given, else the solution
 /// space over Q), then the contraction of the resolved instance and its similarity dimension
@@ -643,6 +685,10 @@ pub fn certificate_for_model(
                                 })
                                 .collect()
                         }),
+                        neighbour_maps: p
+                            .neighbour_maps
+                            .as_ref()
+                            .map(|w| neighbour_maps(&p.states, w)),
                     })
                     .collect(),
                 digits,

@@ -309,6 +309,36 @@ impl Root {
         None
     }
 
+    /// The inverse of `z` in `Q[x]/(p)` by the extended Euclidean algorithm, confirmed: `y·z − 1`
+    /// vanishes at ρ. `None` when z shares a factor with p (then z may vanish at ρ, or p is
+    /// reducible and z a unit of the real field but not of `Q[x]/(p)`).
+    pub(super) fn inverse(&self, z: &[Q]) -> Option<P> {
+        let z = self.reduce(z);
+        if z.is_empty() {
+            return None;
+        }
+        // s_i·z ≡ r_i (mod p): the remainders' degrees fall at every round, so p's degree
+        // bounds the rounds (an exhausted work budget stops `divide` early; the bound stops
+        // the loop).
+        let (mut r0, mut r1) = (self.p.clone(), z.clone());
+        let (mut s0, mut s1) = (P::new(), vec![Q::one()]);
+        for _ in 0..self.p.len() {
+            if r1.len() <= 1 {
+                break;
+            }
+            let (q, r) = divide(&r0, &r1);
+            let s = add(&s0, &scale(&mul(&q, &s1), &-Q::one()));
+            r0 = std::mem::replace(&mut r1, r);
+            s0 = std::mem::replace(&mut s1, s);
+        }
+        if r1.len() != 1 {
+            return None;
+        }
+        let y = self.reduce(&scale(&s1, &(Q::one() / &r1[0])));
+        let one = add(&self.mul(&y, &z), &[-Q::one()]);
+        self.is_zero(&one).then_some(y)
+    }
+
     /// An element of Q[x]/(p) from certificate coordinates.
     pub(super) fn element(&self, coords: &[String]) -> Result<P, String> {
         let p = trim(coords.iter().map(|s| rat(s)).collect::<Result<_, _>>()?);
@@ -336,5 +366,23 @@ mod tests {
         assert_eq!(root.sign(&[q(-2), q(0), q(1)]), Some(1)); // ρ² − 2 = 2
         assert_eq!(root.sign(&[q(1), q(-1)]), Some(-1)); // 1 − ρ
         assert!(Root::isolate(&["4", "-2", "-2", "1"].map(String::from), "1", "3", "ρ").is_err());
+    }
+
+    #[test]
+    fn inverses_in_a_quadratic_field_and_in_q() {
+        // ρ = √2 (x² − 2 on [1, 2]): 1/(1 + √2) = √2 − 1, since (1 + √2)(√2 − 1) = 2 − 1.
+        let root = Root::isolate(&["-2", "0", "1"].map(String::from), "1", "2", "ρ").unwrap();
+        assert_eq!(root.inverse(&[q(1), q(1)]), Some(vec![q(-1), q(1)]));
+        assert_eq!(root.inverse(&[]), None);
+        // In Q (ρ = 0, the root of x): 1/(−4) = −1/4.
+        let zero = Root::isolate(&["0", "1"].map(String::from), "0", "0", "ρ").unwrap();
+        assert_eq!(
+            zero.inverse(&[q(-4)]),
+            Some(vec![Q::new((-1).into(), 4.into())])
+        );
+        // Modulo (x − 2)(x² − 2) with ρ = 2, x² − 2 is 2 at ρ but no unit of Q[x]/(p).
+        let red =
+            Root::isolate(&["4", "-2", "-2", "1"].map(String::from), "3/2", "5/2", "ρ").unwrap();
+        assert_eq!(red.inverse(&[q(-2), q(0), q(1)]), None);
     }
 }

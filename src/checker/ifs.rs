@@ -9,6 +9,7 @@
 //! rigorous tail bounds (`ln_bounds`).
 
 use super::field::{self, Root, P};
+use super::neighbour::{self, Decided};
 use super::{rat, Q};
 use crate::certificate::{
     AutomatonClaim, ContractionStep, FieldCoords, SimilarityPart, SimilarityStep, WordFactor,
@@ -86,7 +87,7 @@ impl Field {
     }
 
     /// The sign of `a`, or an error when the bisection gives up.
-    fn sign(&self, a: &[Q]) -> Result<i32, String> {
+    pub(super) fn sign(&self, a: &[Q]) -> Result<i32, String> {
         self.root
             .sign(a)
             .ok_or_else(|| "a sign in K was not decided within 4000 bisections".to_string())
@@ -101,6 +102,14 @@ impl Field {
 
     pub(super) fn rational(q: Q) -> P {
         field::trim(vec![q])
+    }
+
+    /// `1/a` in K, or an error when `a` is no unit of `Q[x]/(p)` (zero at α, or sharing a factor
+    /// with a reducible p).
+    pub(super) fn inv(&self, a: &[Q]) -> Result<P, String> {
+        self.root
+            .inverse(a)
+            .ok_or_else(|| "an element of K could not be inverted".to_string())
     }
 
     fn matmul(&self, a: &KMat, b: &KMat) -> Result<KMat, String> {
@@ -382,7 +391,7 @@ fn constraints_hold(k: &Field, a: &AutomatonClaim, ops: &[KMat]) -> Result<(), S
     Ok(())
 }
 
-fn barycentric(k: &Field, m: &KMat) -> bool {
+pub(super) fn barycentric(k: &Field, m: &KMat) -> bool {
     (0..m.cols).all(|c| {
         let s = (0..m.rows).fold(P::new(), |acc, r| field::add(&acc, &m.data[r * m.cols + c]));
         k.is_zero(&k.sub(&s, &Field::rational(Q::one())))
@@ -823,7 +832,7 @@ fn frames(
 
 /// The Gram matrix of the differences `P_j − P_0` of a frame's points after `t` (or of the
 /// frame itself).
-fn gram(k: &Field, f: &KMat) -> KMat {
+pub(super) fn gram(k: &Field, f: &KMat) -> KMat {
     let m = f.cols;
     let d = |r: usize, j: usize| k.sub(&f.data[r * m + j + 1], &f.data[r * m]);
     let diffs: Vec<Vec<P>> = (0..m - 1)
@@ -1065,8 +1074,21 @@ struct PartValue {
     sigma: P,
     u: Root,
     rational: Option<Q>,
-    /// Whether the step's open-set witness was given and holds.
-    open_set: bool,
+    /// What the step's open-set witness proves.
+    open_set: OpenSet,
+}
+
+/// The open-set condition of a part, as its witness proves it.
+enum OpenSet {
+    /// No witness: not proved either way.
+    Unproved,
+    /// Holds: convex sets in the charts.
+    Convex,
+    /// Holds: a closed set of this many neighbour maps without the identity, in these
+    /// coordinates.
+    Neighbour(usize, &'static str),
+    /// Fails: the two words (named) with the same map.
+    Fails(String, String),
 }
 
 fn check_part(
@@ -1272,12 +1294,26 @@ fn check_part(
             Some(v)
         }
     };
-    let open_set = match &p.open_set {
-        None => false,
-        Some(sets) => {
+    let open_set = match (&p.open_set, &p.neighbour_maps) {
+        (None, None) => OpenSet::Unproved,
+        (Some(sets), None) => {
             check_open_set(k, a, ops, frames, members, &inside, sets)
                 .map_err(|e| format!("part {{{}}}: the open-set witness: {e}", label()))?;
-            true
+            OpenSet::Convex
+        }
+        (None, Some(w)) => {
+            match neighbour::check_neighbour_maps(k, a, ops, frames, members, &inside, w)
+                .map_err(|e| format!("part {{{}}}: the neighbour maps: {e}", label()))?
+            {
+                Decided::Holds(n, coordinates) => OpenSet::Neighbour(n, coordinates),
+                Decided::Fails(u, v) => OpenSet::Fails(u, v),
+            }
+        }
+        (Some(_), Some(_)) => {
+            return Err(format!(
+                "part {{{}}}: two open-set witnesses (convex sets and neighbour maps): give one",
+                label()
+            ))
         }
     };
     Ok(PartValue {
@@ -1580,18 +1616,19 @@ pub(super) fn check_similarity(a: &AutomatonClaim, s: &SimilarityStep) -> Checke
                     coords_line(&v.sigma)
                 ),
             };
-            format!("{{{}}}: s = {value}", states.join(", "))
+            let witness = match &v.open_set {
+                OpenSet::Neighbour(n, coordinates) => format!(
+                    ", the open-set condition by {n} neighbour maps in the {coordinates} (a set closed under refinement, without the identity)"
+                ),
+                OpenSet::Fails(u, w) => format!(
+                    ", the open-set condition fails: the words {u} and {w} have the same map"
+                ),
+                OpenSet::Convex | OpenSet::Unproved => String::new(),
+            };
+            format!("{{{}}}: s = {value}{witness}", states.join(", "))
         })
         .collect();
-    let all_open = values.iter().all(|v| v.open_set);
-    let hausdorff = match (all_open, parts.len()) {
-        (true, 1) => format!(
-            "the open-set condition holds (convex sets in the charts, checked exactly), so the Hausdorff dimension of the attractor is {}…",
-            s.decimal
-        ),
-        (true, _) => "the open-set condition holds in every part (convex sets in the charts, checked exactly): each part's attractor has Hausdorff dimension equal to its similarity dimension; the attractor's is at most the largest".to_string(),
-        (false, _) => "an upper bound of the Hausdorff dimension; equal to it under the open-set condition, which this step does not prove".to_string(),
-    };
+    let hausdorff = hausdorff(a, &parts, &values, &s.decimal);
     Ok((
         format!(
             "{} cyclic part(s); every operator inside a part is a similitude of squared ratio σ^k on the frames, exactly in {}; u* is the smallest root of det(I − M(u)) in (0, 1] (Sturm), so ρ(M(u*)) = 1; {}; the largest is {}… ({} digits re-derived)",
@@ -1610,6 +1647,68 @@ pub(super) fn check_similarity(a: &AutomatonClaim, s: &SimilarityStep) -> Checke
             }
         ),
     ))
+}
+
+/// What the parts' open-set witnesses make of the similarity dimension.
+fn hausdorff(
+    a: &AutomatonClaim,
+    parts: &[Vec<usize>],
+    values: &[PartValue],
+    decimal: &str,
+) -> String {
+    let label = |m: &[usize]| {
+        m.iter()
+            .map(|&q| a.states[q].name.as_str())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let fails: Vec<String> = values
+        .iter()
+        .zip(parts)
+        .filter(|(v, _)| matches!(v.open_set, OpenSet::Fails(..)))
+        .map(|(_, m)| format!("part {{{}}}", label(m)))
+        .collect();
+    if !fails.is_empty() {
+        return format!(
+            "an upper bound of the Hausdorff dimension; the open-set condition fails in {} (two words from one state with different first operators have the same map, so their pieces coincide; checked exactly)",
+            fails.join(", ")
+        );
+    }
+    let means: Vec<&str> = values
+        .iter()
+        .map(|v| match v.open_set {
+            OpenSet::Convex => Some("convex sets in the charts"),
+            OpenSet::Neighbour(..) => Some(
+                "neighbour maps, Bandt–Graf: a finite set closed under refinement, without the identity",
+            ),
+            _ => None,
+        })
+        .collect::<Option<Vec<_>>>()
+        .unwrap_or_default();
+    if means.is_empty() {
+        return "an upper bound of the Hausdorff dimension; equal to it under the open-set condition, which this step does not prove".to_string();
+    }
+    let mut distinct = means.clone();
+    distinct.sort_unstable();
+    distinct.dedup();
+    match parts.len() {
+        1 => format!(
+            "the open-set condition holds ({}, checked exactly), so the Hausdorff dimension of the attractor is {decimal}…",
+            means[0]
+        ),
+        _ => format!(
+            "the open-set condition holds in every part ({}, checked exactly): each part's attractor has Hausdorff dimension equal to its similarity dimension; the attractor's is at most the largest",
+            match distinct.len() {
+                1 => distinct[0].to_string(),
+                _ => means
+                    .iter()
+                    .zip(parts)
+                    .map(|(w, m)| format!("part {{{}}}: {w}", label(m)))
+                    .collect::<Vec<_>>()
+                    .join("; "),
+            }
+        ),
+    }
 }
 
 fn decimal(x: &Q, digits: usize) -> String {

@@ -13,6 +13,8 @@
 //!   forces to coincide, and the cells forced flat;
 //! - `ifs.rs`: an automaton's constraints in its field K, the contraction of every walk of its
 //!   control graph (a complete prefix code of walks of norm below 1), its similarity dimension;
+//! - `neighbour.rs`: the open-set condition of a part decided by neighbour maps (a closed set
+//!   without the identity, or two words with one map), exactly in the automaton's field;
 //! - `field.rs`: polynomials over Q, Sturm isolation, exact zero and sign tests in Q[x]/(p);
 //! - `ratio.rs`: strongly connected classes and periods, Perron–Frobenius witnesses, the verdict;
 //! - `series.rs`: the counts, the characteristic polynomial of `A^P` (Faddeev–LeVerrier, Newton)
@@ -37,6 +39,7 @@ mod degeneracy;
 mod field;
 mod ifs;
 mod linear;
+mod neighbour;
 mod ratio;
 mod rule;
 mod series;

@@ -529,16 +529,19 @@ pub(super) fn verify(
             .map_err(|e| e.into_error("--certificate"))?;
         outputs.write(path, |w| w.write_all(cert.to_json().as_bytes()))?;
         if !json {
-            let osc = similarity
-                .as_ref()
-                .is_some_and(lacuna::analysis::SimilarityDimension::open_set_witnessed);
             outputs.say(&format!(
                 "certificate written to {}{}\n",
                 path.display(),
-                match (osc, &similarity) {
-                    (true, _) => " (with the open-set condition's witness: convex sets)",
-                    (false, Some(_)) => " (the open-set condition is not certified: only convex-set witnesses are, see docs/CERTIFICATES.md)",
-                    (false, None) => "",
+                match &similarity {
+                    Some(s) if s.open_set_refuted() => {
+                        " (with the witness that the open-set condition fails: two words with one map)"
+                    }
+                    Some(s) if s.open_set_witnessed() => match s.open_set_by_neighbour_maps() {
+                        false => " (with the open-set condition's witness: convex sets)",
+                        true => " (with the open-set condition's witness: neighbour maps)",
+                    },
+                    Some(_) => " (the open-set condition is not certified: it is undecided, see docs/CERTIFICATES.md)",
+                    None => "",
                 }
             ));
         }
