@@ -29,6 +29,7 @@ pub mod feature;
 pub mod obj;
 pub mod orient;
 pub mod outline;
+pub mod polygon;
 pub mod printability;
 pub mod solid;
 pub mod stl;
@@ -53,6 +54,7 @@ mod below {
     pub(crate) use crate::measure::measurement::exact_topology;
     pub(crate) use crate::topology::component::{components_by_induction, start_components};
 }
+pub use polygon::triangulate;
 pub use printability::{printability, Printability};
 pub use solid::{build, embedded, Part, Solid};
 pub use surface::{

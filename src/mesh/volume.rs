@@ -4,7 +4,8 @@
 //!
 //! **Which faces.** A face of the level-n complex held by two sub-volumes is inside the solid and
 //! gives no triangle; a face held by one is on the boundary and is triangulated as a fan around its
-//! centre (a triangle as itself), wound as its volume reads it (counter-clockwise from outside).
+//! centre (a triangle as itself), wound as its volume reads it (counter-clockwise from outside); a
+//! face that is not star-shaped from its centre is triangulated by ear clipping in its plane.
 //! Vertices are the points of the complex, one per point: nothing is welded by distance.
 //!
 //! **The verdict.** Integer checks only, against [`solid_topology`]: the cells built by the
@@ -18,6 +19,7 @@
 use super::check::{check_part, PartCheck};
 use super::expect::Expected;
 use super::outline::segments_meet;
+use super::polygon::triangulate;
 use super::solid::{Part, Solid};
 use super::Size;
 use crate::error::{Diagnostic, Error, Result};
@@ -107,13 +109,86 @@ pub fn boundary_triangles(g: &SolidGeometry) -> (Vec<[f64; 3]>, Vec<Vec<[usize; 
             parts[c].push([r.corners[0], r.corners[1], r.corners[2]]);
             continue;
         }
-        points.push(g.faces[f].center);
-        let centre = points.len() - 1;
-        for i in 0..n {
-            parts[c].push([centre, r.corners[i], r.corners[(i + 1) % n]]);
+        let corners: Vec<[f64; 3]> = r.corners.iter().map(|&c| points[c]).collect();
+        match star_fan(&corners, g.faces[f].center) {
+            true => {
+                points.push(g.faces[f].center);
+                let centre = points.len() - 1;
+                for i in 0..n {
+                    parts[c].push([centre, r.corners[i], r.corners[(i + 1) % n]]);
+                }
+            }
+            // Not star-shaped from its centre (issue #31: an L-shaped sub-face whose centre lies
+            // on the line of two sides gave triangles of zero area): ear clipping in its plane.
+            false => {
+                for [i, j, k] in triangulate(&in_plane(&corners)) {
+                    parts[c].push([r.corners[i], r.corners[j], r.corners[k]]);
+                }
+            }
         }
     }
     (points, parts)
+}
+
+/// The Newell normal of a polygon in space (twice its vector area).
+fn newell(poly: &[[f64; 3]]) -> [f64; 3] {
+    let mut n = [0.0; 3];
+    for (i, a) in poly.iter().enumerate() {
+        let b = poly[(i + 1) % poly.len()];
+        n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    n
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Whether the fan of `poly` around `centre` is a good triangulation: every triangle turns the
+/// way of the polygon's normal with at least a millionth of the polygon's mean share of area.
+fn star_fan(poly: &[[f64; 3]], centre: [f64; 3]) -> bool {
+    let nrm = newell(poly);
+    let total = dot(nrm, nrm).sqrt();
+    if total == 0.0 {
+        return true; // nothing better to do for a flat polygon: the check names it
+    }
+    let n = poly.len();
+    (0..n).all(|i| {
+        let (a, b) = (poly[i], poly[(i + 1) % n]);
+        let u = [a[0] - centre[0], a[1] - centre[1], a[2] - centre[2]];
+        let v = [b[0] - centre[0], b[1] - centre[1], b[2] - centre[2]];
+        let c = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        dot(c, nrm) / total > 1e-6 * total / n as f64
+    })
+}
+
+/// The polygon in coordinates of its own plane (the one orthogonal to its Newell normal), so
+/// that counter-clockwise about the normal is counter-clockwise in the plane.
+fn in_plane(poly: &[[f64; 3]]) -> Vec<[f64; 2]> {
+    let nrm = newell(poly);
+    let len = dot(nrm, nrm).sqrt().max(f64::MIN_POSITIVE);
+    let w = [nrm[0] / len, nrm[1] / len, nrm[2] / len];
+    // Any axis not along w, made orthogonal to it; then v = w × u.
+    let axis = match w[0].abs() < 0.9 {
+        true => [1.0, 0.0, 0.0],
+        false => [0.0, 1.0, 0.0],
+    };
+    let d = dot(axis, w);
+    let u = [axis[0] - d * w[0], axis[1] - d * w[1], axis[2] - d * w[2]];
+    let ul = dot(u, u).sqrt();
+    let u = [u[0] / ul, u[1] / ul, u[2] / ul];
+    let v = [
+        w[1] * u[2] - w[2] * u[1],
+        w[2] * u[0] - w[0] * u[2],
+        w[0] * u[1] - w[1] * u[0],
+    ];
+    poly.iter().map(|p| [dot(*p, u), dot(*p, v)]).collect()
 }
 
 /// Builds, scales and checks the level-`level` solid of a start volume of `set` (the closure of
@@ -150,21 +225,27 @@ pub fn assembly_solid(
         .pop()
         .expect("one row per level");
     let mut first: Option<VolumeSolid> = None;
+    let mut first_error: Option<Error> = None;
     for fan in InnerFan::ALL {
-        // The first rule's failures are the verdict; a later rule is only a fallback for a solid
-        // that folds, and one it cannot build (e.g. a fan centre in line with a side, a triangle of
-        // zero area) leaves the first rule's result standing.
-        let s = match solid_with(name, a, placement, &exact, level, width, fan) {
-            Ok(s) => s,
-            Err(_) if first.is_some() => continue,
-            Err(e) => return Err(e),
-        };
-        if s.crossing.is_none() {
-            return Ok(s);
+        // A rule that cannot build the mesh (a fan centre in line with a side gives a triangle of
+        // zero area, issue #31) or whose solid folds leaves the next rule to try; the result is
+        // the first solid that embeds, else the first that was built (its fold is the verdict),
+        // else the first rule's error.
+        match solid_with(name, a, placement, &exact, level, width, fan) {
+            Ok(s) if s.crossing.is_none() => return Ok(s),
+            Ok(s) => {
+                first.get_or_insert(s);
+            }
+            Err(e) => {
+                first_error.get_or_insert(e);
+            }
         }
-        first.get_or_insert(s);
     }
-    Ok(first.expect("at least one rule"))
+    match (first, first_error) {
+        (Some(s), _) => Ok(s),
+        (None, Some(e)) => Err(e),
+        (None, None) => unreachable!("InnerFan::ALL is not empty"),
+    }
 }
 
 /// [`assembly_solid`] with one rule for the inner faces.
