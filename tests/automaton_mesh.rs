@@ -235,3 +235,59 @@ fn exact_and_tolerance_identities_agree_on_the_patch() {
         assert_eq!(s.boundary_edges().len(), 32);
     }
 }
+
+/// `render --claims` on a thickened automaton shell (issue #29): the claims are the figures of
+/// lacuna's own check of the shell — the patch's shell is one sphere (a disc thickened: χ 2,
+/// genus 0) — and `check-mesh`, which shares no code with the writer, re-derives them from the
+/// file. The open surface is no solid: `--claims` without `--thickness` is refused (exit 2).
+#[test]
+fn a_shell_checks_with_the_claims_render_writes() {
+    let d = dir("claims");
+    let (stl, claims) = (d.join("patch.stl"), d.join("patch.json"));
+    let p = |x: &std::path::Path| x.to_string_lossy().to_string();
+    let (code, out, err) = lacuna(&[
+        "render",
+        "quad-patch-3d",
+        "--level",
+        "2",
+        "--thickness",
+        "1",
+        "--stl",
+        &p(&stl),
+        "--claims",
+        &p(&claims),
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&claims).unwrap()).unwrap();
+    assert_eq!(json["parts"], 1);
+    assert_eq!(json["euler"], 2);
+    assert_eq!(json["genus"], 0);
+    let m = read_stl(&stl);
+    assert_eq!(json["triangles"], m.triangles.len());
+    let (code, out, err) = lacuna(&["check-mesh", &p(&stl), "--claims", &p(&claims)]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("expected χ (claims): 2, found 2"), "{out}");
+    // A forged claim (a handle the shell does not have) is caught.
+    let forged = d.join("forged.json");
+    std::fs::write(
+        &forged,
+        std::fs::read_to_string(&claims)
+            .unwrap()
+            .replace("\"genus\": 0,", "\"genus\": 1,"),
+    )
+    .unwrap();
+    let (code, out, _) = lacuna(&["check-mesh", &p(&stl), "--claims", &p(&forged)]);
+    assert_eq!(code, 1, "{out}");
+    let (code, _, err) = lacuna(&[
+        "render",
+        "quad-patch-3d",
+        "--stl",
+        &p(&d.join("open.stl")),
+        "--claims",
+        &p(&d.join("open.json")),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--thickness"), "{err}");
+    let _ = std::fs::remove_dir_all(&d);
+}

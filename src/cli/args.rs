@@ -479,7 +479,8 @@ pub(crate) struct RenderArgs {
     #[arg(long, requires = "stl")]
     pub(crate) stl_ascii: bool,
     /// With --stl or --3mf: write what the mesh is claimed to be (triangles, parts, χ and genus
-    /// from the exact topology) as JSON, for `lacuna check-mesh MESH --claims CLAIMS.json`.
+    /// from the exact topology; for an automaton's shell, from lacuna's check of it) as JSON, for
+    /// `lacuna check-mesh MESH --claims CLAIMS.json`.
     #[arg(long, value_name = "OUT.json")]
     pub(crate) claims: Option<std::path::PathBuf>,
     /// Write the solid as 3MF (core specification, unit millimetre, one object per component).

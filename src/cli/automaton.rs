@@ -88,6 +88,8 @@ fn warn(p: &Prepared) {
 pub(super) struct MeshOut {
     /// The paths (STL, 3MF, OBJ).
     pub(super) targets: lacuna::mesh::Targets,
+    /// The claims file of the shell (`--claims`).
+    pub(super) claims: Option<std::path::PathBuf>,
     /// Width and thickness in mm.
     pub(super) size: lacuna::mesh::Size,
     /// Whether `--thickness` was given: a closed shell instead of the open surface.
@@ -179,6 +181,36 @@ fn write_meshes(p: &Prepared, level: u32, m: &MeshOut, outputs: &mut Outputs) ->
     if let (Some(path), true) = (&t.obj, m.thick) {
         outputs.write(path, |w| lacuna::mesh::obj::write(solid, w))?;
         wrote(outputs, path);
+    }
+    if let Some(path) = &m.claims {
+        // An automaton has no exact topology to derive the figures from: the claims are the
+        // figures of lacuna's own check of the shell it writes (a closed oriented manifold per
+        // part), for a reader that shares none of lacuna's code to re-derive from the file.
+        let parts: usize = solid.checks.iter().map(|c| c.components).sum();
+        let euler: i64 = solid.checks.iter().map(|c| c.euler).sum();
+        let per_part: Option<Vec<lacuna::meshcheck::PartClaim>> = solid
+            .checks
+            .iter()
+            .map(|c| {
+                (c.components == 1).then_some(lacuna::meshcheck::PartClaim {
+                    euler: c.euler,
+                    genus: (2 - c.euler) / 2,
+                })
+            })
+            .collect();
+        let claims = super::render::mesh_claims(
+            format!(
+                "{} level {level} (shell {} mm thick; figures from lacuna's check of the written mesh, not from an exact topology)",
+                p.name, m.size.thickness
+            ),
+            t,
+            solid.triangle_count(),
+            Some(parts as u64),
+            Some(euler),
+            Some(parts as i64 - euler / 2),
+            per_part,
+        );
+        super::render::write_claims(outputs, path, &claims)?;
     }
     Ok(())
 }

@@ -99,9 +99,9 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         return volume::render(&name, &v, &geo, &print, targets, &mut outputs, limits);
     }
     if let Some((name, model)) = automaton::automaton_input(&geo)? {
-        if claims.is_some() {
+        if claims.is_some() && !thick {
             return Err(Error::Usage(
-                "--claims is written for faces and volumes; an automaton's mesh has no exact topology to claim yet (check it with `lacuna check-mesh` alone)".into(),
+                "--claims describes a closed solid; an automaton's open surface is none: give --thickness T (mm) for a closed shell".into(),
             ));
         }
         if density.is_some() || write_template.is_some() {
@@ -119,6 +119,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         )?;
         let meshes = automaton::MeshOut {
             targets: mesh,
+            claims,
             size: solid_size,
             thick,
             bed: print.bed,
