@@ -5,7 +5,7 @@
 //! **Which faces.** A face of the level-n complex held by two sub-volumes is inside the solid and
 //! gives no triangle; a face held by one is on the boundary and is triangulated as a fan around its
 //! centre (a triangle as itself), wound as its volume reads it (counter-clockwise from outside); a
-//! face that is not star-shaped from its centre is triangulated by ear clipping in its plane.
+//! face that is not star-shaped from its centre is fanned around another point of it that it is.
 //! Vertices are the points of the complex, one per point: nothing is welded by distance.
 //!
 //! **The verdict.** Integer checks only, against [`solid_topology`]: the cells built by the
@@ -19,7 +19,6 @@
 use super::check::{check_part, PartCheck};
 use super::expect::Expected;
 use super::outline::segments_meet;
-use super::polygon::triangulate;
 use super::solid::{Part, Solid};
 use super::Size;
 use crate::error::{Diagnostic, Error, Result};
@@ -110,21 +109,15 @@ pub fn boundary_triangles(g: &SolidGeometry) -> (Vec<[f64; 3]>, Vec<Vec<[usize; 
             continue;
         }
         let corners: Vec<[f64; 3]> = r.corners.iter().map(|&c| points[c]).collect();
-        match star_fan(&corners, g.faces[f].center) {
-            true => {
-                points.push(g.faces[f].center);
-                let centre = points.len() - 1;
-                for i in 0..n {
-                    parts[c].push([centre, r.corners[i], r.corners[(i + 1) % n]]);
-                }
-            }
-            // Not star-shaped from its centre (issue #31: an L-shaped sub-face whose centre lies
-            // on the line of two sides gave triangles of zero area): ear clipping in its plane.
-            false => {
-                for [i, j, k] in triangulate(&in_plane(&corners)) {
-                    parts[c].push([r.corners[i], r.corners[j], r.corners[k]]);
-                }
-            }
+        // The fan's centre: the face's centre, or, when the fan around it has a triangle of no
+        // area or turned over (issue #31: an L-shaped sub-face whose centre lies on the lines
+        // of two of its sides), the first point of a few candidates inside the face from which
+        // it is star-shaped; failing all, the face's centre (the mesh check then names it).
+        let centre = fan_centre(&corners, g.faces[f].center);
+        points.push(centre);
+        let centre = points.len() - 1;
+        for i in 0..n {
+            parts[c].push([centre, r.corners[i], r.corners[(i + 1) % n]]);
         }
     }
     (points, parts)
@@ -168,27 +161,38 @@ fn star_fan(poly: &[[f64; 3]], centre: [f64; 3]) -> bool {
     })
 }
 
-/// The polygon in coordinates of its own plane (the one orthogonal to its Newell normal), so
-/// that counter-clockwise about the normal is counter-clockwise in the plane.
-fn in_plane(poly: &[[f64; 3]]) -> Vec<[f64; 2]> {
-    let nrm = newell(poly);
-    let len = dot(nrm, nrm).sqrt().max(f64::MIN_POSITIVE);
-    let w = [nrm[0] / len, nrm[1] / len, nrm[2] / len];
-    // Any axis not along w, made orthogonal to it; then v = w × u.
-    let axis = match w[0].abs() < 0.9 {
-        true => [1.0, 0.0, 0.0],
-        false => [0.0, 1.0, 0.0],
+/// The centre of a boundary face's fan: `centre` when the polygon is star-shaped from it (see
+/// [`star_fan`]), else the first such point among the points a quarter and half way from the
+/// centre to each corner and the centroids of the triangles of consecutive corners; `centre`
+/// when none is. A new point of the face's own: no diagonal joins two of its corners, so the
+/// face stays a disc of the mesh whatever its neighbours share.
+fn fan_centre(poly: &[[f64; 3]], centre: [f64; 3]) -> [f64; 3] {
+    if star_fan(poly, centre) {
+        return centre;
+    }
+    let lerp = |a: [f64; 3], b: [f64; 3], t: f64| {
+        [
+            a[0] + t * (b[0] - a[0]),
+            a[1] + t * (b[1] - a[1]),
+            a[2] + t * (b[2] - a[2]),
+        ]
     };
-    let d = dot(axis, w);
-    let u = [axis[0] - d * w[0], axis[1] - d * w[1], axis[2] - d * w[2]];
-    let ul = dot(u, u).sqrt();
-    let u = [u[0] / ul, u[1] / ul, u[2] / ul];
-    let v = [
-        w[1] * u[2] - w[2] * u[1],
-        w[2] * u[0] - w[0] * u[2],
-        w[0] * u[1] - w[1] * u[0],
-    ];
-    poly.iter().map(|p| [dot(*p, u), dot(*p, v)]).collect()
+    let n = poly.len();
+    let towards = [0.25, 0.5]
+        .into_iter()
+        .flat_map(|t| poly.iter().map(move |&p| lerp(centre, p, t)));
+    let ears = (0..n).map(|i| {
+        let (a, b, c) = (poly[(i + n - 1) % n], poly[i], poly[(i + 1) % n]);
+        [
+            (a[0] + b[0] + c[0]) / 3.0,
+            (a[1] + b[1] + c[1]) / 3.0,
+            (a[2] + b[2] + c[2]) / 3.0,
+        ]
+    });
+    towards
+        .chain(ears)
+        .find(|&p| star_fan(poly, p))
+        .unwrap_or(centre)
 }
 
 /// Builds, scales and checks the level-`level` solid of a start volume of `set` (the closure of
