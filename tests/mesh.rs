@@ -958,3 +958,57 @@ fn the_printability_object_of_a_plate_and_of_a_volume() {
     let (o, _) = lacuna::mesh::orient::overhangs(&v.solid.parts);
     assert_eq!(vr.overhang_mm2, Some(o[0].overhang_mm2));
 }
+
+/// `render --3mf-colours` (issue #30): the coloured 3MF is one closed manifold with the exact
+/// topology (read back by `check-mesh`, which ignores materials), with a base material per face
+/// type — delayed-B2-C2 closes with 5 types — and every triangle naming one of them; volumes and
+/// automata have no face types to colour by and are refused (exit 2).
+#[test]
+fn the_coloured_3mf_names_a_material_per_type_on_every_triangle() {
+    let dir = std::env::temp_dir().join(format!("lacuna-colours-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mf = dir.join("d.3mf");
+    let path = mf.to_string_lossy().to_string();
+    let (code, out, err) = common::lacuna(&[
+        "render",
+        "delayed-B2-C2",
+        "--level",
+        "3",
+        "--3mf",
+        &path,
+        "--3mf-colours",
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    let (code, out, _) = common::lacuna(&["check-mesh", &path, "--expect-euler", "-72"]);
+    assert_eq!(code, 0, "{out}");
+    let mut zip = zip::ZipArchive::new(std::fs::File::open(&mf).unwrap()).unwrap();
+    let mut xml = String::new();
+    std::io::Read::read_to_string(&mut zip.by_name("3D/3dmodel.model").unwrap(), &mut xml).unwrap();
+    assert_eq!(xml.matches("<base ").count(), 5);
+    let triangles = xml.matches("<triangle ").count();
+    assert!(triangles > 0);
+    let coloured = xml
+        .match_indices("<triangle ")
+        .filter(|(i, _)| {
+            let t = &xml[*i..*i + xml[*i..].find("/>").unwrap()];
+            let p1 = t.split("p1=\"").nth(1).and_then(|r| r.split('"').next());
+            t.contains("pid=\"1\"")
+                && p1
+                    .and_then(|k| k.parse::<u32>().ok())
+                    .is_some_and(|k| k < 5)
+        })
+        .count();
+    assert_eq!(coloured, triangles);
+    for input in ["cube-B2", "quad-patch-3d"] {
+        let (code, _, err) = common::lacuna(&[
+            "render",
+            input,
+            "--3mf",
+            &dir.join("x.3mf").to_string_lossy(),
+            "--3mf-colours",
+        ]);
+        assert_eq!(code, 2, "{input}: {err}");
+        assert!(err.contains("--3mf-colours"), "{input}: {err}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

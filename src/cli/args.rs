@@ -486,6 +486,11 @@ pub(crate) struct RenderArgs {
     /// Write the solid as 3MF (core specification, unit millimetre, one object per component).
     #[arg(long = "3mf", value_name = "OUT.3mf")]
     pub(crate) threemf: Option<std::path::PathBuf>,
+    /// For faces: colour the 3MF by face type (a base material per type, the picture's colours;
+    /// every triangle lies in one cell, the top and bottom triangulated cell by cell). The same
+    /// checked solid is written to --stl and --obj.
+    #[arg(long = "3mf-colours", requires = "threemf")]
+    pub(crate) threemf_colours: bool,
     /// Thickness of the solid in mm for --stl, --3mf and --obj (exact: 2, 1/2, 0.8; default 2).
     /// For an automaton's surface: thicken it into a closed shell (without it, --stl and --3mf
     /// write the open surface).

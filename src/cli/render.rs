@@ -17,6 +17,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         stl_ascii,
         claims,
         threemf,
+        threemf_colours,
         thickness,
         print,
         png,
@@ -82,7 +83,15 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         lacuna::mesh::check_size("--resolution", print.resolution).map_err(mesh_error)?;
     }
     let mut outputs = Outputs::check(&geo.inputs(), &wanted)?;
+    let faces_only = |what: &str| {
+        Error::Usage(format!(
+            "--3mf-colours colours a face's cells by type; {what} has no cells of face types"
+        ))
+    };
     if let Some((name, v)) = lacuna::input::load_volume_file(&geo.input)? {
+        if threemf_colours {
+            return Err(faces_only("a volume"));
+        }
         if json_out.is_some() || density.is_some() || write_template.is_some() {
             return Err(Error::Usage(
                 "--json-out, --density and --write-template apply to faces; a volume is written with --svg, --png, --stl, --3mf or --obj".into(),
@@ -99,6 +108,9 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         return volume::render(&name, &v, &geo, &print, targets, &mut outputs, limits);
     }
     if let Some((name, model)) = automaton::automaton_input(&geo)? {
+        if threemf_colours {
+            return Err(faces_only("an automaton"));
+        }
         if claims.is_some() && !thick {
             return Err(Error::Usage(
                 "--claims describes a closed solid; an automaton's open surface is none: give --thickness T (mm) for a closed shell".into(),
@@ -188,7 +200,28 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             .map_err(mesh_error)?;
         outputs.say(&pr.text());
         pr.enforce(print.strict).map_err(mesh_error)?;
-        let mut solid = lacuna::mesh::build(&inst, level, segs, solid_size).map_err(mesh_error)?;
+        let (mut solid, colours) = match threemf_colours {
+            false => (
+                lacuna::mesh::build(&inst, level, segs, solid_size).map_err(mesh_error)?,
+                None,
+            ),
+            true => {
+                let t = lacuna::mesh::build_typed(&inst, level, segs, solid_size)
+                    .map_err(mesh_error)?;
+                let materials = inst
+                    .types
+                    .types
+                    .iter()
+                    .enumerate()
+                    .map(|(k, ty)| (format!("T{k} {}", ty.face), lacuna::export::type_colour(k)))
+                    .collect();
+                let colours = lacuna::mesh::threemf::Colours {
+                    materials,
+                    per_triangle: t.types,
+                };
+                (t.solid, Some(colours))
+            }
+        };
         outputs.say(&solid.summary());
         orient(&mut solid.parts, print.orient, &outputs);
         if let Some(w) = solid.bed_advice(print.bed, print.width) {
@@ -204,9 +237,11 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         if let Some(p) = &threemf {
             // A ZIP package is written with seeks: build it in memory, then write it out.
             let mut zip = std::io::Cursor::new(Vec::new());
-            lacuna::mesh::threemf::write(&solid, &mut zip).map_err(|e| Error::Write {
-                path: p.display().to_string(),
-                reason: e.to_string(),
+            lacuna::mesh::threemf::write_with(&solid, colours.as_ref(), &mut zip).map_err(|e| {
+                Error::Write {
+                    path: p.display().to_string(),
+                    reason: e.to_string(),
+                }
             })?;
             outputs.write(p, |w| w.write_all(zip.get_ref()))?;
             wrote(&outputs, p);

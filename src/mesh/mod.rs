@@ -56,7 +56,7 @@ mod below {
 }
 pub use polygon::triangulate;
 pub use printability::{printability, Printability};
-pub use solid::{build, embedded, Part, Solid};
+pub use solid::{build, build_typed, embedded, Part, Solid, TypedSolid};
 pub use surface::{
     automaton_mesh, automaton_surface, exact_automaton_surface, thicken, AutomatonSolid, Surface,
     EXACT_LEAVES,

@@ -53,6 +53,27 @@ pub struct Outline {
     pub component_start: Vec<usize>,
     /// The number of level-n cells.
     pub cells: u64,
+    /// With [`outline_with_cells`]: every cell as a polygon over [`Outline::cell_points`] (its
+    /// type, its component and its points counter-clockwise); empty otherwise.
+    pub cell_polygons: Vec<CellPolygon>,
+    /// With [`outline_with_cells`]: every identified point of the level-n complex (corners and
+    /// the inner points of flattened Bézier edges), one position each.
+    pub cell_points: Vec<[f64; 2]>,
+    /// With [`outline_with_cells`]: the cell point of each boundary point.
+    pub boundary_cell_point: Vec<u32>,
+    /// With [`outline_with_cells`]: the type of the cell on the left of each boundary segment.
+    pub segment_type: Vec<u32>,
+}
+
+/// A level-n cell as a polygon over the identified points.
+#[derive(Clone, Debug, Default)]
+pub struct CellPolygon {
+    /// The cell's face type.
+    pub ty: u32,
+    /// Its component.
+    pub component: u32,
+    /// Its points, counter-clockwise (indices into [`Outline::cell_points`]).
+    pub points: Vec<u32>,
 }
 
 /// The next fresh key identity.
@@ -226,6 +247,27 @@ pub fn outline(
     segments: usize,
     size: Size,
 ) -> Result<Outline, MeshError> {
+    outline_of(inst, level, segments, size, false)
+}
+
+/// [`outline`] that also keeps every cell as a polygon over the identified points (for a mesh
+/// whose top and bottom are triangulated cell by cell, each triangle in one cell).
+pub fn outline_with_cells(
+    inst: &Instance,
+    level: u32,
+    segments: usize,
+    size: Size,
+) -> Result<Outline, MeshError> {
+    outline_of(inst, level, segments, size, true)
+}
+
+fn outline_of(
+    inst: &Instance,
+    level: u32,
+    segments: usize,
+    size: Size,
+    keep_cells: bool,
+) -> Result<Outline, MeshError> {
     let bb = bounds(inst, segments);
     let extent = bb.max[0] - bb.min[0];
     let scale = size.width / if extent > 0.0 { extent } else { 1.0 };
@@ -348,6 +390,11 @@ pub fn outline(
     let mut boundary_of_class: Vec<u32> = Vec::new();
     let mut cell = 0usize;
     let mut poly: Vec<[f64; 2]> = Vec::new();
+    // With `keep_cells`: the cell point of each corner class and of each sample, and the cell
+    // point of each entry of `poly`.
+    let mut cell_of_class: Vec<u32> = Vec::new();
+    let mut cell_of_sample: Vec<u32> = Vec::new();
+    let mut poly_ids: Vec<u32> = Vec::new();
     walk_keyed(inst, level, |c, keys, _| {
         if error.is_some() {
             return;
@@ -355,6 +402,7 @@ pub fn outline(
         let me = cell;
         cell += 1;
         poly.clear();
+        poly_ids.clear();
         let comp = cell_comp[me];
         let mut first_of_edge: Vec<usize> = Vec::with_capacity(keys.len());
         for (e, k) in keys.iter().enumerate() {
@@ -373,6 +421,14 @@ pub fn outline(
             first_of_edge.push(poly.len());
             let s = corners.find(2 * k.id + k.reversed as u32);
             poly.push(class_pos[s as usize]);
+            if keep_cells {
+                let id = slot(&mut cell_of_class, s as usize, NONE);
+                if *id == NONE {
+                    *id = out.cell_points.len() as u32;
+                    out.cell_points.push(class_pos[s as usize]);
+                }
+                poly_ids.push(*id);
+            }
             let (at, m) = sample_at.get(k.id as usize).copied().unwrap_or((NONE, 0));
             if at != NONE {
                 let inner = &samples[at as usize..(at + m) as usize];
@@ -381,11 +437,34 @@ pub fn outline(
                 } else {
                     poly.extend(inner.iter());
                 }
+                if keep_cells {
+                    let mut ids: Vec<u32> = (at..at + m)
+                        .map(|j| {
+                            let id = slot(&mut cell_of_sample, j as usize, NONE);
+                            if *id == NONE {
+                                *id = out.cell_points.len() as u32;
+                                out.cell_points.push(samples[j as usize]);
+                            }
+                            *id
+                        })
+                        .collect();
+                    if k.reversed {
+                        ids.reverse();
+                    }
+                    poly_ids.extend(ids);
+                }
             }
         }
         if let Err(why) = simple_ccw(&poly) {
             error = Some(overlap(format!("cell {me} (type T{}) {why}", c.ty)));
             return;
+        }
+        if keep_cells {
+            out.cell_polygons.push(CellPolygon {
+                ty: c.ty as u32,
+                component: comp,
+                points: poly_ids.clone(),
+            });
         }
         // Free edges: boundary points and directed segments.
         let n = poly.len();
@@ -405,6 +484,9 @@ pub fn outline(
                     *b = out.points.len() as u32;
                     out.points.push(class_pos[r]);
                     out.component.push(comp);
+                    if keep_cells {
+                        out.boundary_cell_point.push(cell_of_class[r]);
+                    }
                 }
                 *b
             };
@@ -413,10 +495,13 @@ pub fn outline(
                 &mut out,
                 &mut boundary_of_class,
             ));
-            for p in &poly[from + 1..to] {
+            for (j, p) in poly.iter().enumerate().take(to).skip(from + 1) {
                 ids.push(out.points.len() as u32);
                 out.points.push(*p);
                 out.component.push(comp);
+                if keep_cells {
+                    out.boundary_cell_point.push(poly_ids[j]);
+                }
             }
             ids.push(corner_id(
                 2 * k.id + !k.reversed as u32,
@@ -424,6 +509,10 @@ pub fn outline(
                 &mut boundary_of_class,
             ));
             out.segments.extend(ids.windows(2).map(|w| [w[0], w[1]]));
+            if keep_cells {
+                out.segment_type
+                    .extend(std::iter::repeat_n(c.ty as u32, ids.len() - 1));
+            }
         }
     });
     if let Some(e) = error {

@@ -341,6 +341,113 @@ pub fn build(inst: &Instance, level: u32, segments: usize, size: Size) -> Result
     })
 }
 
+/// A solid whose triangles each lie in one level-n cell, with the cell's face type: for a
+/// 3MF coloured by type (`render --3mf-colours`).
+#[derive(Clone, Debug)]
+pub struct TypedSolid {
+    /// The solid, checked as [`build`]'s is.
+    pub solid: Solid,
+    /// Per part, the face type of each triangle (top and bottom: the cell's; a wall: the cell
+    /// whose free edge it stands on).
+    pub types: Vec<Vec<u32>>,
+}
+
+/// [`build`] with the top and bottom triangulated cell by cell (ear clipping of each cell's
+/// polygon over the exactly identified points, so two cells meet along the same points) instead
+/// of as the union's outline, so that every triangle lies in one cell and carries its type. The
+/// cells are first shown not to overlap exactly as [`build`] does ([`embedded`]'s outline and
+/// winding numbers); the mesh is then checked against the exact topology by the same
+/// [`verdict`].
+pub fn build_typed(
+    inst: &Instance,
+    level: u32,
+    segments: usize,
+    size: Size,
+) -> Result<TypedSolid, MeshError> {
+    let expected = expected(inst, level).map_err(MeshError::Topology)?;
+    let o = super::outline::outline_with_cells(inst, level, segments, size)?;
+    if o.components as u64 != expected.components {
+        return Err(MeshError::Check {
+            level,
+            reason: format!(
+                "{} components of cells, the exact topology says {}",
+                o.components, expected.components
+            ),
+        });
+    }
+    material(&o, level)?;
+    // Local vertex numbers per component, over the cell points.
+    let mut comp_of_point = vec![u32::MAX; o.cell_points.len()];
+    for c in &o.cell_polygons {
+        for &p in &c.points {
+            comp_of_point[p as usize] = c.component;
+        }
+    }
+    let mut local = vec![u32::MAX; o.cell_points.len()];
+    let mut members: Vec<Vec<u32>> = vec![Vec::new(); o.components];
+    for (i, &c) in comp_of_point.iter().enumerate() {
+        if c != u32::MAX {
+            local[i] = members[c as usize].len() as u32;
+            members[c as usize].push(i as u32);
+        }
+    }
+    let z = size.thickness as f32;
+    let mut parts: Vec<Part> = members
+        .iter()
+        .map(|m| {
+            let mut vertices = Vec::with_capacity(2 * m.len());
+            for h in [0.0f32, z] {
+                vertices.extend(m.iter().map(|&i| {
+                    let p = o.cell_points[i as usize];
+                    [p[0] as f32, p[1] as f32, h]
+                }));
+            }
+            Part {
+                vertices,
+                triangles: Vec::new(),
+                holes: None,
+            }
+        })
+        .collect();
+    let mut types: Vec<Vec<u32>> = vec![Vec::new(); o.components];
+    for cell in &o.cell_polygons {
+        let c = cell.component as usize;
+        let n = members[c].len() as u32;
+        let poly: Vec<[f64; 2]> = cell
+            .points
+            .iter()
+            .map(|&p| o.cell_points[p as usize])
+            .collect();
+        for t in super::polygon::triangulate(&poly) {
+            let [a, b, d] = t.map(|i| local[cell.points[i] as usize]);
+            parts[c].triangles.push([a + n, b + n, d + n]);
+            parts[c].triangles.push([a, d, b]);
+            types[c].extend([cell.ty, cell.ty]);
+        }
+    }
+    for (s, &ty) in o.segments.iter().zip(&o.segment_type) {
+        let c = o.component[s[0] as usize] as usize;
+        let n = members[c].len() as u32;
+        let [a, b] = s.map(|i| local[o.boundary_cell_point[i as usize] as usize]);
+        parts[c].triangles.push([a, b, b + n]);
+        parts[c].triangles.push([a, b + n, a + n]);
+        types[c].extend([ty, ty]);
+    }
+    let checks = verdict(level, &mut parts, &expected, &o.component_start)?;
+    Ok(TypedSolid {
+        solid: Solid {
+            name: inst.name.clone(),
+            level,
+            size,
+            parts,
+            checks,
+            expected,
+            cells: o.cells,
+        },
+        types,
+    })
+}
+
 /// Checks every part ([`check_part`]) and compares it with the exact topology: one connected
 /// surface per component, Euler characteristic `2 − 2·holes` per component when the holes of each
 /// are known (`component_start[c]` is the start face of component `c`), and in any case

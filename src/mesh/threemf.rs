@@ -1,6 +1,8 @@
 //! 3MF writer (3MF Core Specification 1.x): a ZIP package (the `zip` crate, deflate) with the
 //! content types, the package relationship and one model part, `unit="millimeter"`, one
-//! `<object type="model">` per component and a build item for each. Written by hand over the zip
+//! `<object type="model">` per component and a build item for each; with [`Colours`], one base
+//! material per face type (`<basematerials>`, its colour as `displaycolor`) and every triangle
+//! naming its type's material (`pid`, `p1`). Written by hand over the zip
 //! crate: the core model is a few elements, and no well-kept MIT/Apache 3MF writer crate fits
 //! better than these lines.
 
@@ -32,8 +34,29 @@ fn zip_error(e: zip::result::ZipError) -> io::Error {
     io::Error::other(e.to_string())
 }
 
+/// The colour of every triangle of a solid: a base material per face type.
+#[derive(Clone, Debug)]
+pub struct Colours {
+    /// Per material (face type): its name and colour (RGB).
+    pub materials: Vec<(String, [u8; 3])>,
+    /// Per part, the material of each triangle.
+    pub per_triangle: Vec<Vec<u32>>,
+}
+
+/// The id of the base materials resource (objects are numbered from 1).
+const MATERIALS_ID: usize = 1;
+
 /// Writes a solid as a 3MF package.
 pub fn write<W: Write + Seek>(solid: &Solid, out: W) -> io::Result<()> {
+    write_with(solid, None, out)
+}
+
+/// Writes a solid as a 3MF package, its triangles coloured by `colours` when given.
+pub fn write_with<W: Write + Seek>(
+    solid: &Solid,
+    colours: Option<&Colours>,
+    out: W,
+) -> io::Result<()> {
     let mut z = zip::ZipWriter::new(out);
     // Fast deflate: level 1 makes the model about as small as level 6 in a fraction of the time
     // (the XML is repetitive).
@@ -61,28 +84,52 @@ pub fn write<W: Write + Seek>(solid: &Solid, out: W) -> io::Result<()> {
         )?;
         writeln!(w, r#" <metadata name="Application">lacuna</metadata>"#)?;
         writeln!(w, " <resources>")?;
+        // With colours the materials take id 1 and the objects follow.
+        let first = usize::from(colours.is_some()) + 1;
+        if let Some(c) = colours {
+            writeln!(w, r#"  <basematerials id="{MATERIALS_ID}">"#)?;
+            for (name, [r, g, b]) in &c.materials {
+                writeln!(
+                    w,
+                    r##"   <base name="{}" displaycolor="#{r:02X}{g:02X}{b:02X}FF"/>"##,
+                    xml_escape(name)
+                )?;
+            }
+            writeln!(w, "  </basematerials>")?;
+        }
         for (i, p) in solid.parts.iter().enumerate() {
+            let material = colours.map_or(String::new(), |c| {
+                let m = c.per_triangle[i].first().copied().unwrap_or(0);
+                format!(r#" pid="{MATERIALS_ID}" pindex="{m}""#)
+            });
             writeln!(
                 w,
-                r#"  <object id="{}" type="model" name="component {i}"><mesh><vertices>"#,
-                i + 1
+                r#"  <object id="{}" type="model" name="component {i}"{material}><mesh><vertices>"#,
+                i + first
             )?;
             for v in &p.vertices {
                 writeln!(w, r#"<vertex x="{}" y="{}" z="{}"/>"#, v[0], v[1], v[2])?;
             }
             writeln!(w, "</vertices><triangles>")?;
-            for t in &p.triangles {
-                writeln!(
-                    w,
-                    r#"<triangle v1="{}" v2="{}" v3="{}"/>"#,
-                    t[0], t[1], t[2]
-                )?;
+            for (k, t) in p.triangles.iter().enumerate() {
+                match colours {
+                    Some(c) => writeln!(
+                        w,
+                        r#"<triangle v1="{}" v2="{}" v3="{}" pid="{MATERIALS_ID}" p1="{}"/>"#,
+                        t[0], t[1], t[2], c.per_triangle[i][k]
+                    )?,
+                    None => writeln!(
+                        w,
+                        r#"<triangle v1="{}" v2="{}" v3="{}"/>"#,
+                        t[0], t[1], t[2]
+                    )?,
+                }
             }
             writeln!(w, "</triangles></mesh></object>")?;
         }
         writeln!(w, " </resources>\n <build>")?;
         for i in 0..solid.parts.len() {
-            writeln!(w, r#"  <item objectid="{}"/>"#, i + 1)?;
+            writeln!(w, r#"  <item objectid="{}"/>"#, i + first)?;
         }
         writeln!(w, " </build>\n</model>")?;
         w.flush()?;

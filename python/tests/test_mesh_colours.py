@@ -1,0 +1,54 @@
+"""`render --3mf-colours` read back by lib3mf (the 3MF Consortium's reader, strict mode), which
+shares nothing with lacuna's writer: one base material per face type, every triangle naming one,
+and each type's share of the top surface equal to its share of the cells' area computed from the
+polygons `render --json-out` writes (issue #30)."""
+
+import json
+from collections import defaultdict
+
+import lib3mf
+
+
+def _shoelace(poly):
+    return 0.5 * sum(a[0] * b[1] - b[0] * a[1] for a, b in zip(poly, poly[1:] + poly[:1]))
+
+
+def test_the_coloured_3mf_gives_each_cell_its_types_material(cli, tmp_path):
+    mf, js = tmp_path / "d.3mf", tmp_path / "d.json"
+    code, _ = cli(
+        "render", "delayed-B2-C2", "--level", "3", "--3mf", mf, "--3mf-colours", "--json-out", js
+    )
+    assert code == 0
+    wrapper = lib3mf.get_wrapper()
+    model = wrapper.CreateModel()
+    reader = model.QueryReader("3mf")
+    reader.SetStrictModeActive(True)
+    reader.ReadFromFile(str(mf))
+    assert reader.GetWarningCount() == 0
+    groups = model.GetBaseMaterialGroups()
+    assert groups.MoveNext()
+    group = groups.GetCurrentBaseMaterialGroup()
+    names = {pid: group.GetName(pid) for pid in group.GetAllPropertyIDs()}
+    # delayed-B2-C2 closes with 5 face types (T0 … T4): one material each, named by its type.
+    assert sorted(n.split()[0] for n in names.values()) == [f"T{k}" for k in range(5)]
+    assert not groups.MoveNext()
+    # Each type's area on the top (z = thickness) against its cells' area in the JSON.
+    top = defaultdict(float)
+    objects = model.GetMeshObjects()
+    while objects.MoveNext():
+        obj = objects.GetCurrentMeshObject()
+        verts = [v.Coordinates for v in obj.GetVertices()]
+        zmax = max(v[2] for v in verts)
+        for tri, prop in zip(obj.GetTriangleIndices(), obj.GetAllTriangleProperties()):
+            assert prop.ResourceID == group.GetResourceID()
+            ty = int(names[prop.PropertyIDs[0]].split()[0][1:])
+            a, b, c = (verts[i] for i in tri.Indices)
+            if a[2] == b[2] == c[2] == zmax:
+                top[ty] += _shoelace([a[:2], b[:2], c[:2]])
+    cells = defaultdict(float)
+    for cell in json.loads(js.read_text())["cells"]:
+        cells[int(cell["type"])] += _shoelace(cell["polygon"])
+    assert set(top) == set(cells)
+    total_top, total_cells = sum(top.values()), sum(cells.values())
+    for ty in cells:
+        assert abs(top[ty] / total_top - cells[ty] / total_cells) < 0.01, (ty, top, cells)
