@@ -291,3 +291,51 @@ fn a_shell_checks_with_the_claims_render_writes() {
     assert!(err.contains("--thickness"), "{err}");
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// The thickened shell's walls against the printer (issue #30): its two sides are the surface
+/// moved by ± T/2 along the normals, so facing triangles lie about T apart and the wall bound
+/// is at most T; the patch bends gently, so it is not far below (above T/2). With T below the
+/// resolution, `--strict` fails with E1042 (exit 1) and nothing is written.
+#[test]
+fn the_shells_wall_bound_is_its_thickness_and_strict_refuses_a_thin_one() {
+    let d = dir("walls");
+    let stl = d.join("patch.stl").to_string_lossy().to_string();
+    let (code, out, err) = lacuna(&[
+        "render",
+        "quad-patch-3d",
+        "--level",
+        "3",
+        "--thickness",
+        "1",
+        "--stl",
+        &stl,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let line = out
+        .lines()
+        .find(|l| l.starts_with("printability: wall thickness ≥ "))
+        .unwrap_or_else(|| panic!("{out}"));
+    let w: f64 = line["printability: wall thickness ≥ ".len()..]
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(w <= 1.0 && w > 0.5, "{line}");
+    let _ = std::fs::remove_file(&stl);
+    let (code, _, err) = lacuna(&[
+        "render",
+        "quad-patch-3d",
+        "--level",
+        "3",
+        "--thickness",
+        "0.3",
+        "--stl",
+        &stl,
+        "--strict",
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("E1042"), "{err}");
+    assert!(!std::path::Path::new(&stl).exists());
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -528,10 +528,10 @@ pub(crate) struct PrintArgs {
     /// Width in mm of the level-0 faces (x extent): the structure is scaled to it.
     #[arg(long, default_value_t = lacuna::mesh::DEFAULT_WIDTH, value_name = "MM")]
     pub(crate) width: f64,
-    /// The printer's smallest feature in mm: smaller holes and ligaments get a warning.
+    /// The printer's smallest feature in mm: smaller holes, ligaments and walls get a warning.
     #[arg(long, default_value_t = lacuna::mesh::DEFAULT_RESOLUTION, value_name = "MM")]
     pub(crate) resolution: f64,
-    /// A hole or ligament below --resolution is a failure (E1042, exit 1), not a warning.
+    /// A hole, ligament or wall below --resolution is a failure (E1042, exit 1), not a warning.
     #[arg(long)]
     pub(crate) strict: bool,
     /// The printer's build volume in mm, `XxYxZ`: a solid that does not fit it, or fills it to

@@ -98,6 +98,9 @@ pub(super) struct MeshOut {
     pub(super) bed: [f64; 3],
     /// The orientation (`--orient`).
     pub(super) orient: super::args::OrientArg,
+    /// The printer's resolution in mm (`--resolution`) and whether a wall below it fails
+    /// (`--strict`).
+    pub(super) resolution: (f64, bool),
 }
 
 /// Writes the STL, 3MF and (with a thickness) OBJ meshes of the level's polygon leaves: the
@@ -155,6 +158,23 @@ fn write_meshes(p: &Prepared, level: u32, m: &MeshOut, outputs: &mut Outputs) ->
         }
     }
     if !built.solid.checks.is_empty() {
+        // The shell's walls: a lower bound of every wall thickness (the shell's own thickness,
+        // or less where two pieces come close), against the printer's resolution.
+        let (resolution, strict) = m.resolution;
+        let wall = lacuna::mesh::wall::wall_bound(&built.solid.parts).map(|w| w.thickness);
+        outputs.say(&format!(
+            "printability: wall thickness {} (lower bound: the least distance of two facing triangles with material between them), resolution {resolution} mm\n",
+            wall.map_or("none".to_string(), |w| format!("≥ {w:.3} mm"))
+        ));
+        if let Some(w) = wall.filter(|&w| w < resolution) {
+            let why = format!(
+                "the wall thickness bound ({w:.3} mm: two facing walls that close) is below the resolution {resolution} mm"
+            );
+            match strict {
+                true => return Err(mesh_error(lacuna::mesh::MeshError::Resolution(why))),
+                false => eprintln!("warning: {why}"),
+            }
+        }
         super::render::orient(&mut built.solid.parts, m.orient, outputs);
     }
     let solid = &built.solid;

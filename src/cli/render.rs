@@ -136,6 +136,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             thick,
             bed: print.bed,
             orient: print.orient,
+            resolution: (print.resolution, print.strict),
         };
         return automaton::render(
             &geo,
