@@ -534,3 +534,36 @@ fn hardening_17_autofrac_numbers_sections_and_utf8() {
     assert!(err.contains("error[E0602]"), "{err}");
     assert!(!Path::new(&svg).exists());
 }
+
+/// Issue #32: face notation on standard input (`-`), "did you mean" for a misspelt library
+/// name, and `check` on a file that is no certificate (bad input, exit 2, not a failed proof).
+#[test]
+fn standard_input_notation_misspelt_names_and_files_that_are_no_certificate() {
+    let d = folder("stdin-names");
+    // N^C_1 = 6 sub-faces and N^L_1 = 5/2 lacunas for this face (the same as its notation on
+    // the command line gives; the two must agree).
+    let face = "C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1";
+    let (code, piped, err) = run_in(&d, &["counts", "--levels", "2", "-"], face.as_bytes());
+    assert_eq!(code, 0, "{err}");
+    let (code, direct, err) = lacuna(&["counts", "--levels", "2", face]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(String::from_utf8(piped).unwrap(), direct);
+    // A comment and a blank line around it change nothing.
+    let (code, _, err) = run_in(
+        &d,
+        &["verify", "-"],
+        format!("# the face\n\n{face}\n").as_bytes(),
+    );
+    assert_eq!(code, 0, "{err}");
+    for (typed, meant) in [("sierpinsky-triangle", "sierpinski-triangle"), ("f0", "F0")] {
+        let (code, _, err) = lacuna(&["verify", typed]);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains(&format!("did you mean `{meant}`?")), "{err}");
+    }
+    let html = d.join("F0.html");
+    std::fs::write(&html, "<html></html>").unwrap();
+    let (code, out, _) = lacuna(&["check", &s(&html)]);
+    assert_eq!(code, 2, "{out}");
+    assert!(out.contains("not a certificate"), "{out}");
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -202,6 +202,29 @@ pub fn load_any(arg: &str) -> Result<Loaded> {
         }));
     }
     let (name, src) = read_source(arg)?;
+    // Face notation piped in: one line with `|` (comments and blank lines aside) that is no
+    // line of a file format (those name a face with `face NAME:`).
+    if arg == "-" {
+        let lines: Vec<&str> = src
+            .text
+            .lines()
+            .map(|l| l.split('#').next().unwrap_or("").trim())
+            .filter(|l| !l.is_empty())
+            .collect();
+        if let [line] = lines[..] {
+            if line.contains('|') && !line.contains(':') {
+                let face = Face::parse(line)?;
+                return Ok(Loaded::Faces(Input {
+                    name: line.to_string(),
+                    assembly: Assembly {
+                        faces: vec![("0".into(), face)],
+                        shared: Vec::new(),
+                        coords: Default::default(),
+                    },
+                }));
+            }
+        }
+    }
     if crate::input::volume_file::is_volume_text(&src.text) {
         return Err(Error::Io {
             path: name,
@@ -305,12 +328,21 @@ pub fn load_volume_file(arg: &str) -> Result<Option<(String, crate::input::Volum
 /// is not part of the text). A file that cannot be read is E0601.
 pub fn read_text(path: &str) -> Result<String> {
     let bytes = if path == "-" {
-        let mut b = Vec::new();
-        std::io::Read::read_to_end(&mut std::io::stdin(), &mut b).map_err(|e| Error::Io {
-            path: "<standard input>".into(),
-            reason: e.to_string(),
-        })?;
-        b
+        // Standard input is read once and kept: a command may look at its input more than once
+        // (its kind, then its content).
+        static STDIN: std::sync::OnceLock<Result<Vec<u8>, String>> = std::sync::OnceLock::new();
+        STDIN
+            .get_or_init(|| {
+                let mut b = Vec::new();
+                std::io::Read::read_to_end(&mut std::io::stdin(), &mut b)
+                    .map(|_| b)
+                    .map_err(|e| e.to_string())
+            })
+            .clone()
+            .map_err(|reason| Error::Io {
+                path: "<standard input>".into(),
+                reason,
+            })?
     } else {
         std::fs::read(path).map_err(|e| Error::Io {
             path: path.into(),
@@ -356,18 +388,67 @@ fn read_source(arg: &str) -> Result<(String, Source)> {
         ));
     }
     let names: Vec<&str> = library().iter().map(|(n, _)| *n).collect();
-    Err(Error::Io {
-        path: arg.into(),
-        reason: format!(
+    let reason = match did_you_mean(arg, &names) {
+        Some(best) => format!(
+            "no such file, and not face notation (no `|`) nor a library name: did you mean \
+             `{best}`? (`lacuna library` lists the {} entries)",
+            names.len()
+        ),
+        None => format!(
             "no such file, and not face notation (no `|`) nor a library name ({})",
             names.join(", ")
         ),
+    };
+    Err(Error::Io {
+        path: arg.into(),
+        reason,
     })
+}
+
+/// The library name closest to `arg` (case-insensitive edit distance), when it is close: at
+/// most a third of the name's length, and at least one edit for names of three letters.
+fn did_you_mean<'a>(arg: &str, names: &[&'a str]) -> Option<&'a str> {
+    let a: Vec<char> = arg.to_lowercase().chars().collect();
+    let distance = |b: &str| {
+        let b: Vec<char> = b.to_lowercase().chars().collect();
+        // Levenshtein distance, one row at a time.
+        let mut row: Vec<usize> = (0..=b.len()).collect();
+        for (i, ca) in a.iter().enumerate() {
+            let mut prev = row[0];
+            row[0] = i + 1;
+            for (j, cb) in b.iter().enumerate() {
+                let cur = row[j + 1];
+                row[j + 1] = (prev + usize::from(ca != cb)).min(row[j] + 1).min(cur + 1);
+                prev = cur;
+            }
+        }
+        row[b.len()]
+    };
+    names
+        .iter()
+        .map(|n| (distance(n), *n))
+        .min()
+        .filter(|(d, n)| *d <= (n.chars().count() / 3).max(1))
+        .map(|(_, n)| n)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn misspelt_names_are_matched_to_the_closest_entry() {
+        let names = ["F0", "sierpinski-triangle", "koch", "cube-B2"];
+        // One letter swapped (y for i), case only, one letter missing.
+        assert_eq!(
+            did_you_mean("sierpinsky-triangle", &names),
+            Some("sierpinski-triangle")
+        );
+        assert_eq!(did_you_mean("f0", &names), Some("F0"));
+        assert_eq!(did_you_mean("cube-b", &names), Some("cube-B2"));
+        // Nothing near: no guess.
+        assert_eq!(did_you_mean("dragon", &names), None);
+    }
 
     #[test]
     fn kinds_by_content() {
