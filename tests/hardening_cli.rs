@@ -567,3 +567,28 @@ fn standard_input_notation_misspelt_names_and_files_that_are_no_certificate() {
     assert!(out.contains("not a certificate"), "{out}");
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// Issue #32: an output named for another format is refused (E0504, exit 2, nothing written)
+/// rather than written with a misleading name; a name of no known format is left to the user.
+#[test]
+fn an_output_named_for_another_format_is_refused() {
+    let d = folder("extensions");
+    for (flag, name) in [
+        ("--png", "out.jpg"),
+        ("--svg", "out.png"),
+        ("--stl", "out.obj"),
+    ] {
+        let path = s(&d.join(name));
+        let (code, _, err) = lacuna(&["render", "F0", "--level", "1", flag, &path]);
+        assert_eq!(code, 2, "{flag} {name}: {err}");
+        assert!(
+            err.contains("E0504") && err.contains("is named for"),
+            "{err}"
+        );
+        assert!(!d.join(name).exists());
+    }
+    let path = s(&d.join("picture.out"));
+    let (code, _, err) = lacuna(&["render", "F0", "--level", "1", "--png", &path]);
+    assert_eq!(code, 0, "{err}");
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -53,6 +53,34 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             "--claims describes the mesh written with --stl or --3mf: give one of them".into(),
         ));
     }
+    // The format is the flag's: a file named for another format (`--png out.jpg`) is refused
+    // rather than written with a misleading name.
+    for (flag, p) in &wanted {
+        let format = match *flag {
+            "--svg" => "svg",
+            "--png" | "--density" => "png",
+            "--stl" => "stl",
+            "--3mf" => "3mf",
+            "--obj" => "obj",
+            "--json-out" | "--claims" => "json",
+            _ => continue,
+        };
+        let ext = p
+            .extension()
+            .map(|e| e.to_string_lossy().to_lowercase())
+            .unwrap_or_default();
+        let known = [
+            "svg", "png", "jpg", "jpeg", "gif", "bmp", "tif", "tiff", "webp", "pdf", "stl", "3mf",
+            "obj", "ply", "json", "html", "txt",
+        ];
+        if known.contains(&ext.as_str()) && ext != format {
+            return Err(Error::Usage(format!(
+                "{flag} writes {}, but `{}` is named for .{ext}: name it .{format}",
+                format.to_uppercase(),
+                p.display()
+            )));
+        }
+    }
     check_density_grid(density_grid, 1)?;
     if !(1..=8192).contains(&size) {
         return Err(Error::OutOfRange {

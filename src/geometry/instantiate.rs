@@ -122,6 +122,18 @@ fn to_f64(r: &BigRational) -> f64 {
 /// Instantiates an input: closes it, solves its constraint system exactly, chooses the free
 /// parameters (see the module documentation) and places the start faces.
 pub fn instantiate(input: &Input, opt: &InstantiateOptions) -> Result<Instance, GeometryError> {
+    let inst = instantiate_unchecked(input, opt)?;
+    let level_one = inst.level_one(opt)?;
+    Ok(Instance { level_one, ..inst })
+}
+
+/// [`instantiate`] without the exact level-1 check of the chosen point ([`Instance::level_one`]):
+/// for a caller that reports a degenerate choice as a finding of its own (a frame of a morph
+/// that passes through a collapse), not as an error.
+pub fn instantiate_unchecked(
+    input: &Input,
+    opt: &InstantiateOptions,
+) -> Result<Instance, GeometryError> {
     let q = opt.degree.max(1);
     let faces = input.faces();
     // A one-edge face has no placement with area (issue #20 item 3): refused before the work.
@@ -228,20 +240,7 @@ pub fn instantiate(input: &Input, opt: &InstantiateOptions) -> Result<Instance, 
         flags,
     };
     inst.check_exact()?;
-    let frames: Vec<Vec<QPoint>> = inst
-        .types
-        .types
-        .iter()
-        .map(|ty| {
-            crate::geometry::template::template(ty, &inst.types, q, opt)
-                .points
-                .iter()
-                .map(|p| [dyadic(p[0], 40), dyadic(p[1], 40)])
-                .collect()
-        })
-        .collect();
-    let level_one = inst.check_level_one(&frames)?;
-    Ok(Instance { level_one, ..inst })
+    Ok(inst)
 }
 
 /// What the exact level-1 check found: every cell's control polygon has positive area.
@@ -297,6 +296,25 @@ impl Instance {
             .collect();
         let exact = ExactTemplate::rounded(&self.types, &floats, q);
         write_template(&self.name, &self.types, q, &exact)
+    }
+
+    /// The exact level-1 check of the chosen point in each type's default template under `opt`
+    /// (its control points rounded to dyadic rationals): see [`Instance::check_level_one`].
+    pub fn level_one(&self, opt: &InstantiateOptions) -> Result<LevelOne, GeometryError> {
+        let q = opt.degree.max(1);
+        let frames: Vec<Vec<QPoint>> = self
+            .types
+            .types
+            .iter()
+            .map(|ty| {
+                crate::geometry::template::template(ty, &self.types, q, opt)
+                    .points
+                    .iter()
+                    .map(|p| [dyadic(p[0], 40), dyadic(p[1], 40)])
+                    .collect()
+            })
+            .collect();
+        self.check_level_one(&frames)
     }
 
     /// The exact level-1 check of the chosen point (THEORY §7, issue #36): in each type's

@@ -24,7 +24,7 @@ pub use automaton_eval::{
 };
 pub use choose::{project_exact, Choice, ExactColumn, Projection};
 pub use flatten::flatten_bezier;
-pub use instantiate::{instantiate, Cell, EdgeSlot, Instance, LevelOne};
+pub use instantiate::{instantiate, instantiate_unchecked, Cell, EdgeSlot, Instance, LevelOne};
 pub use lp::{parse_goal, Goal};
 pub use options::{GeometryError, InstantiateOptions};
 pub use placement::StartFace;
