@@ -119,25 +119,13 @@ fn the_drawn_pieces_are_homotheties_towards_the_corners() {
         let v = corners(n);
         let pieces = level_one(e.name);
         assert_eq!(pieces.len(), n, "{}", e.name);
+        let near = |a: [f64; 2], b: [f64; 2]| close(a[0], b[0], 1e-12) && close(a[1], b[1], 1e-12);
+        let scaled = |s: f64, a: [f64; 2]| [s * a[0], s * a[1]];
+        let minus = |a: [f64; 2], b: [f64; 2]| [a[0] - b[0], a[1] - b[1]];
         for (k, p) in pieces.iter().enumerate() {
-            let at = |i: usize, j: usize| p[i][j];
-            for j in 0..2 {
-                assert!(
-                    close(at(0, j), (1.0 - r) * v[k][j], 1e-12),
-                    "{}: T{k}",
-                    e.name
-                );
-                assert!(
-                    close(at(1, j) - at(0, j), r * v[0][j], 1e-12),
-                    "{}: T{k}",
-                    e.name
-                );
-                assert!(
-                    close(at(2, j) - at(0, j), r * v[1][j], 1e-12),
-                    "{}: T{k}",
-                    e.name
-                );
-            }
+            assert!(near(p[0], scaled(1.0 - r, v[k])), "{}: T{k}", e.name);
+            assert!(near(minus(p[1], p[0]), scaled(r, v[0])), "{}: T{k}", e.name);
+            assert!(near(minus(p[2], p[0]), scaled(r, v[1])), "{}: T{k}", e.name);
         }
     }
     // The carpet's frame is (0, 0), (1, 0), (0, 1); piece k is x/3 + t_k, the t_k counter-clockwise
