@@ -11,3 +11,12 @@ $L render bspline-quadratic-4 --level 3 --svg docs/images/bspline-quadratic-4.sv
 $L render bspline-cubic --level 3 --svg docs/images/bspline-cubic.svg
 $L render half-tangent-edge --level 4 --svg docs/images/half-tangent-edge.svg
 $L render quad-patch-3d --level 3 --svg docs/images/quad-patch-3d.svg
+# Seed 002's Sierpinski carpet and gasket family (docs/GALLERY.md): PNG, the levels have thousands
+# of pieces.
+$L render sierpinski-carpet --level 4 --png docs/images/sierpinski-carpet.png
+$L render gasket-3 --level 6 --png docs/images/gasket-3.png
+$L render gasket-4 --level 3 --png docs/images/gasket-4.png
+$L render gasket-5 --level 5 --png docs/images/gasket-5.png
+$L render gasket-6 --level 5 --png docs/images/gasket-6.png
+$L render gasket-7 --level 5 --png docs/images/gasket-7.png
+$L render gasket-8 --level 4 --png docs/images/gasket-8.png

@@ -31,7 +31,7 @@ const FACE_FIXTURES: [&str; 8] = [
     "two-quads",
     "autofrac-two-quads",
 ];
-const AUTOMATON_FIXTURES: [&str; 23] = [
+const AUTOMATON_FIXTURES: [&str; 30] = [
     "de-casteljau-edge",
     "chaikin-known",
     "spec-edge",
@@ -46,6 +46,14 @@ const AUTOMATON_FIXTURES: [&str; 23] = [
     "sierpinski-triangle",
     "cantor-set",
     "kite-dart",
+    // Seed 002: the Sierpinski carpet and the gasket family (issue #37).
+    "sierpinski-carpet",
+    "gasket-3",
+    "gasket-4",
+    "gasket-5",
+    "gasket-6",
+    "gasket-7",
+    "gasket-8",
     // Production rules (issue #17), compiled to automata.
     "quadric-koch",
     "koch",

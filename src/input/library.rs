@@ -90,6 +90,16 @@ pub fn library() -> &'static [(&'static str, &'static str)] {
         ("two-cubes", include_str!("../../fixtures/two-cubes.txt")),
         ("kite-dart", include_str!("../../fixtures/kite-dart.aut")),
         (
+            "sierpinski-carpet",
+            include_str!("../../fixtures/sierpinski-carpet.aut"),
+        ),
+        ("gasket-3", include_str!("../../fixtures/gasket-3.aut")),
+        ("gasket-4", include_str!("../../fixtures/gasket-4.aut")),
+        ("gasket-5", include_str!("../../fixtures/gasket-5.aut")),
+        ("gasket-6", include_str!("../../fixtures/gasket-6.aut")),
+        ("gasket-7", include_str!("../../fixtures/gasket-7.aut")),
+        ("gasket-8", include_str!("../../fixtures/gasket-8.aut")),
+        (
             "quadric-koch",
             include_str!("../../fixtures/quadric-koch.rule"),
         ),

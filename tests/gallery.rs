@@ -1,0 +1,374 @@
+//! Seed 002's gasket family and the Sierpinski carpet (issue #37), and `docs/GALLERY.md` kept
+//! true: every entry's ratio derived by hand and checked against the drawn pieces, its certified
+//! dimension against `ln n / ln(1/r)` computed here in f64, the open-set verdict, the count of
+//! pieces per level, the certificate checked by `lacuna check`; then every command of the gallery
+//! run again and compared with the numbers and pictures the page shows.
+
+mod common;
+use common::lacuna;
+use std::f64::consts::PI;
+
+/// A library entry of the family: name, number of maps, and its ratio written by hand.
+struct Entry {
+    name: &'static str,
+    maps: usize,
+    /// The ratio's closed form, evaluated in f64.
+    ratio: f64,
+}
+
+/// The hand values (fixtures/gasket-N.aut derive them): the copies at neighbouring corners touch
+/// when r = L/(L + W), W the polygon's width along a side; n = 3, 4: W = L; n = 5: W = φ·L (a
+/// diagonal); n = 6: W = 2L; n = 7: W = (1 + 2cos 2π/7)·L; n = 8: W = (1 + √2)·L (across flats).
+/// The carpet keeps eight ninths of the square.
+fn entries() -> Vec<Entry> {
+    let sqrt5 = 5f64.sqrt();
+    let e = |name, maps, ratio| Entry { name, maps, ratio };
+    vec![
+        e("gasket-3", 3, 0.5),
+        e("gasket-4", 4, 0.5),
+        e("gasket-5", 5, (3.0 - sqrt5) / 2.0),
+        e("gasket-6", 6, 1.0 / 3.0),
+        e("gasket-7", 7, 1.0 / (2.0 + 2.0 * (2.0 * PI / 7.0).cos())),
+        e("gasket-8", 8, 1.0 - 2f64.sqrt() / 2.0),
+        e("sierpinski-carpet", 8, 1.0 / 3.0),
+    ]
+}
+
+/// The family's formula, `1 / (2 + 2 Σ_(k=1..⌊n/4⌋) cos(2πk/n))`.
+fn formula(n: usize) -> f64 {
+    let sum: f64 = (1..=n / 4)
+        .map(|k| (2.0 * PI * k as f64 / n as f64).cos())
+        .sum();
+    1.0 / (2.0 + 2.0 * sum)
+}
+
+/// The corners of the regular n-gon of circumradius 1 with `v_0 = (1, 0)`.
+fn corners(n: usize) -> Vec<[f64; 2]> {
+    (0..n)
+        .map(|k| {
+            let t = 2.0 * PI * k as f64 / n as f64;
+            [t.cos(), t.sin()]
+        })
+        .collect()
+}
+
+fn close(a: f64, b: f64, tol: f64) -> bool {
+    (a - b).abs() <= tol
+}
+
+#[test]
+fn the_hand_ratios_are_the_formula_and_neighbouring_copies_touch() {
+    for e in entries().iter().filter(|e| e.name.starts_with("gasket-")) {
+        let n = e.maps;
+        assert!(
+            close(formula(n), e.ratio, 1e-15),
+            "{}: the formula gives {}, the hand value {}",
+            e.name,
+            formula(n),
+            e.ratio
+        );
+        // The shadows on the side v_k v_(k+1), computed from the corners: the copy about v_k
+        // reaches r·(max − p) past p = v_k·u, the copy about v_(k+1) starts r·(q − min) before
+        // q = v_(k+1)·u. They meet: the gap is zero; with a ratio 1% smaller it is positive.
+        let v = corners(n);
+        for k in 0..n {
+            let (a, b) = (v[k], v[(k + 1) % n]);
+            let l = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
+            let u = [(b[0] - a[0]) / l, (b[1] - a[1]) / l];
+            let proj: Vec<f64> = v.iter().map(|c| c[0] * u[0] + c[1] * u[1]).collect();
+            let (lo, hi) = proj
+                .iter()
+                .fold((f64::MAX, f64::MIN), |(lo, hi), &x| (lo.min(x), hi.max(x)));
+            let (p, q) = (proj[k], proj[(k + 1) % n]);
+            let gap = |r: f64| (q - r * (q - lo)) - (p + r * (hi - p));
+            assert!(close(gap(e.ratio), 0.0, 1e-12), "{}: side {k}", e.name);
+            assert!(gap(0.99 * e.ratio) > 1e-3, "{}: side {k}", e.name);
+            // The width along a side is the formula's W = L·(1 + 2 Σ cos 2πk/n).
+            let w = l * (1.0 / formula(n) - 1.0);
+            assert!(close(hi - lo, w, 1e-12), "{}: width", e.name);
+        }
+    }
+}
+
+/// The level-1 pieces as `render --json-out` writes them: each piece's three points.
+fn level_one(name: &str) -> Vec<Vec<[f64; 2]>> {
+    let (code, out, err) = lacuna(&["render", name, "--level", "1", "--json-out", "-"]);
+    assert_eq!(code, 0, "{name}: {err}");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("JSON");
+    v["shapes"]
+        .as_array()
+        .expect("shapes")
+        .iter()
+        .map(|s| {
+            s["points"]
+                .as_array()
+                .expect("points")
+                .iter()
+                .map(|p| [p[0].as_f64().unwrap(), p[1].as_f64().unwrap()])
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn the_drawn_pieces_are_homotheties_towards_the_corners() {
+    // A gasket's frame is (O, v_0, v_1); piece k is f_k of it, f_k(x) = r·x + (1 − r)·v_k: its
+    // first point is (1 − r)·v_k and its sides are r times the frame's (no rotation).
+    for e in entries().iter().filter(|e| e.name.starts_with("gasket-")) {
+        let (n, r) = (e.maps, e.ratio);
+        let v = corners(n);
+        let pieces = level_one(e.name);
+        assert_eq!(pieces.len(), n, "{}", e.name);
+        let near = |a: [f64; 2], b: [f64; 2]| close(a[0], b[0], 1e-12) && close(a[1], b[1], 1e-12);
+        let scaled = |s: f64, a: [f64; 2]| [s * a[0], s * a[1]];
+        let minus = |a: [f64; 2], b: [f64; 2]| [a[0] - b[0], a[1] - b[1]];
+        for (k, p) in pieces.iter().enumerate() {
+            assert!(near(p[0], scaled(1.0 - r, v[k])), "{}: T{k}", e.name);
+            assert!(near(minus(p[1], p[0]), scaled(r, v[0])), "{}: T{k}", e.name);
+            assert!(near(minus(p[2], p[0]), scaled(r, v[1])), "{}: T{k}", e.name);
+        }
+    }
+    // The carpet's frame is (0, 0), (1, 0), (0, 1); piece k is x/3 + t_k, the t_k counter-clockwise
+    // from the lower left corner, the middle ninth left out.
+    let pieces = level_one("sierpinski-carpet");
+    let t = [
+        (0, 0),
+        (1, 0),
+        (2, 0),
+        (2, 1),
+        (2, 2),
+        (1, 2),
+        (0, 2),
+        (0, 1),
+    ];
+    assert_eq!(pieces.len(), t.len());
+    for (p, (a, b)) in pieces.iter().zip(t) {
+        let o = [a as f64 / 3.0, b as f64 / 3.0];
+        let want = [o, [o[0] + 1.0 / 3.0, o[1]], [o[0], o[1] + 1.0 / 3.0]];
+        for (got, want) in p.iter().zip(want) {
+            assert!(close(got[0], want[0], 1e-15) && close(got[1], want[1], 1e-15));
+        }
+    }
+}
+
+/// The similarity line of `lacuna verify NAME`.
+fn similarity_line(name: &str) -> String {
+    let (code, out, err) = lacuna(&["verify", name]);
+    assert_eq!(code, 0, "{name}: {err}");
+    assert!(out.contains("verdict: VERIFIED"), "{name}: {out}");
+    out.lines()
+        .find(|l| l.starts_with("similarity dimension = "))
+        .unwrap_or_else(|| panic!("{name}: no similarity dimension in\n{out}"))
+        .to_string()
+}
+
+/// The certified decimal of a similarity line: the digits before `…`.
+fn certified_decimal(line: &str) -> &str {
+    let end = line.find('…').expect("certified digits end with …");
+    let start = line[..end].rfind("= ").expect("`= ` before the digits") + 2;
+    &line[start..end]
+}
+
+#[test]
+fn the_certified_dimension_is_log_n_over_log_one_over_r_and_the_open_set_condition_holds() {
+    for e in entries() {
+        let line = similarity_line(e.name);
+        let decimal = certified_decimal(&line);
+        assert!(decimal.len() >= 30, "{}: {decimal}", e.name);
+        let got: f64 = decimal.parse().expect("a decimal");
+        let want = (e.maps as f64).ln() / (1.0 / e.ratio).ln();
+        assert!(
+            close(got, want, 1e-12),
+            "{}: verify says {decimal}, ln {} / ln(1/r) = {want}",
+            e.name,
+            e.maps
+        );
+        assert!(
+            line.contains("(the Hausdorff dimension: holds: the interiors of the convex hulls"),
+            "{}: {line}",
+            e.name
+        );
+    }
+    // The exact forms lacuna prints where the ratio is rational.
+    for (name, exact) in [
+        ("gasket-3", "log 3 / log 2"),
+        ("gasket-4", "2"),
+        ("gasket-6", "log 6 / log 3"),
+        ("sierpinski-carpet", "log 8 / log 3"),
+    ] {
+        let line = similarity_line(name);
+        assert!(
+            line.starts_with(&format!("similarity dimension = {exact} = ")),
+            "{name}: {line}"
+        );
+    }
+}
+
+#[test]
+fn level_k_has_n_to_the_k_pieces() {
+    for e in entries() {
+        let (code, out, err) = lacuna(&["measure", e.name, "--level", "3", "--json"]);
+        assert_eq!(code, 0, "{}: {err}", e.name);
+        let v: serde_json::Value = serde_json::from_str(&out).expect("JSON");
+        let levels = v["levels"].as_array().expect("levels");
+        assert_eq!(levels.len(), 4, "{}", e.name);
+        for (k, l) in levels.iter().enumerate() {
+            assert_eq!(l["level"].as_u64(), Some(k as u64), "{}", e.name);
+            assert_eq!(
+                l["pieces"].as_u64(),
+                Some(e.maps.pow(k as u32) as u64),
+                "{}: level {k}",
+                e.name
+            );
+        }
+        let sd = &v["similarity_dimension"];
+        assert_eq!(sd["upper_bound"].as_bool(), Some(false), "{}", e.name);
+        assert!(
+            sd["open_set"].as_str().unwrap_or("").starts_with("holds"),
+            "{}",
+            e.name
+        );
+    }
+}
+
+#[test]
+fn every_certificate_is_checked_by_lacuna_check() {
+    let dir = std::env::temp_dir().join(format!("lacuna-gallery-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for e in entries() {
+        let c = dir.join(format!("{}.json", e.name));
+        let c = c.to_str().unwrap();
+        let (code, _, err) = lacuna(&["verify", e.name, "--certificate", c]);
+        assert_eq!(code, 0, "{}: {err}", e.name);
+        let (code, out, err) = lacuna(&["check", c]);
+        assert_eq!(code, 0, "{}: {out}{err}", e.name);
+        assert!(
+            out.contains("the open-set condition holds"),
+            "{}: {out}",
+            e.name
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+// ---- docs/GALLERY.md stays true ----
+
+/// One figure of the gallery: the commands of its console block and the first row of the table
+/// after them.
+struct Figure {
+    verify: Option<String>,
+    render: Option<Vec<String>>,
+    row: Vec<String>,
+}
+
+fn gallery_figures() -> Vec<Figure> {
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/GALLERY.md"))
+        .expect("docs/GALLERY.md");
+    let mut figures = Vec::new();
+    let mut current: Option<Figure> = None;
+    let mut lines = text.lines().peekable();
+    while let Some(line) = lines.next() {
+        if let Some(rest) = line.strip_prefix("lacuna verify ") {
+            figures.extend(current.take());
+            current = Some(Figure {
+                verify: Some(rest.trim().to_string()),
+                render: None,
+                row: Vec::new(),
+            });
+        } else if let Some(rest) = line.strip_prefix("lacuna render ") {
+            let f = current
+                .as_mut()
+                .expect("a render line follows a verify line");
+            f.render = Some(rest.split_whitespace().map(String::from).collect());
+        } else if line.starts_with("|---") {
+            if let Some(f) = current.as_mut().filter(|f| f.row.is_empty()) {
+                let row = lines.next().expect("a row under the table's header");
+                f.row = row
+                    .trim_matches('|')
+                    .split('|')
+                    .map(|c| c.trim().to_string())
+                    .collect();
+            }
+        }
+    }
+    figures.extend(current);
+    figures
+}
+
+#[test]
+fn the_gallery_lists_every_new_entry() {
+    let names: Vec<String> = gallery_figures()
+        .into_iter()
+        .filter_map(|f| f.verify)
+        .collect();
+    for e in entries() {
+        assert!(
+            names.iter().any(|n| n == e.name),
+            "{} is not in docs/GALLERY.md",
+            e.name
+        );
+    }
+}
+
+#[test]
+fn the_gallery_numbers_are_what_verify_prints_now() {
+    for f in gallery_figures() {
+        let name = f.verify.expect("a verify command");
+        assert_eq!(
+            f.row.len(),
+            4,
+            "{name}: maps | ratio | dimension | open set"
+        );
+        let line = similarity_line(&name);
+        // The dimension cell ends with the certified digits, cut short: verify prints them.
+        let cell = &f.row[2];
+        let shown = certified_decimal(cell);
+        assert!(shown.len() >= 12, "{name}: {cell}");
+        assert!(
+            certified_decimal(&line).starts_with(shown),
+            "docs/GALLERY.md says {shown}… for {name}; verify prints: {line}"
+        );
+        // The open-set cell: holds exactly when verify says so.
+        assert_eq!(
+            f.row[3].starts_with("holds"),
+            line.contains("(the Hausdorff dimension: holds"),
+            "{name}: {} against {line}",
+            f.row[3]
+        );
+        // The number of maps: the pieces of level 1.
+        let (code, out, _) = lacuna(&["measure", &name, "--level", "1", "--json"]);
+        assert_eq!(code, 0);
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        assert_eq!(
+            v["levels"][1]["pieces"].as_u64().map(|p| p.to_string()),
+            Some(f.row[0].clone()),
+            "{name}: maps"
+        );
+    }
+}
+
+#[test]
+fn the_gallery_pictures_are_what_render_draws_now() {
+    let dir = std::env::temp_dir().join(format!("lacuna-gallery-png-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for f in gallery_figures() {
+        let args = f.render.expect("a render command");
+        let png = args.iter().position(|a| a == "--png").expect("--png") + 1;
+        let committed = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(&args[png]);
+        let fresh = dir.join("fresh.png");
+        let mut run: Vec<&str> = vec!["render"];
+        run.extend(args.iter().map(String::as_str));
+        run[png + 1] = fresh.to_str().unwrap();
+        let (code, _, err) = lacuna(&run);
+        assert_eq!(code, 0, "{run:?}: {err}");
+        let want = std::fs::read(&committed)
+            .unwrap_or_else(|_| panic!("{} is missing", committed.display()));
+        assert!(
+            std::fs::read(&fresh).unwrap() == want,
+            "{} differs from `lacuna render {}`: run docs/make-automaton-images.sh",
+            committed.display(),
+            args.join(" ")
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
