@@ -247,10 +247,9 @@ fn read(text: &str) -> Result<Read<'_>, String> {
                         r.depth = Some(d as usize)
                     }
                     _ => {
-                        return Err(format!(
-                        "{}: not `seed N` (0 to 2^64 − 1) or `depth D` (1 to {MAX_DEPTH}), once",
-                        at()
-                    ))
+                        let line =
+                            format!("`seed N` (0 to 2^64 − 1) or `depth D` (1 to {MAX_DEPTH})");
+                        return Err(format!("{}: not {line}, once", at()));
                     }
                 }
             }
