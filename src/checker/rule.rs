@@ -448,8 +448,15 @@ struct Compiled {
 }
 
 /// Compiles a rule read (see the module documentation) in K; `var` names α in the rule's
-/// coordinates, `degree` is K's degree (for the work estimate).
-fn compile(r: &Read, k: &Field, var: Option<&str>, degree: usize) -> Result<Compiled, String> {
+/// coordinates, `degree` is K's degree (for the work estimate), `claimed` the claim's numbers of
+/// states and operators, past which compiling stops.
+fn compile(
+    r: &Read,
+    k: &Field,
+    var: Option<&str>,
+    degree: usize,
+    claimed: (usize, usize),
+) -> Result<Compiled, String> {
     let init_words = r.initiator.as_ref().ok_or("the rule has no initiator")?;
     let initiator = path(init_words, k, var, r)?;
     let gens = r
@@ -480,40 +487,53 @@ fn compile(r: &Read, k: &Field, var: Option<&str>, degree: usize) -> Result<Comp
             .map(|(_, e)| e.len() as u128)
             .sum::<u128>()
         + u128::from(occurrences);
+    // Each piece is a few dozen products in K: charge the most pieces there can be.
     let longest = gens.iter().map(|p| p.flags.len()).max().unwrap_or(0) as u128;
+    let laid = (bound + initiator.flags.len() as u128) * (longest + 1);
     let d = degree.max(1) as u128;
-    super::within_work("unrolling the rule", bound * (longest + 1) * d * d * 256)?;
+    super::within_work("unrolling the rule", laid * d * d * 2048)?;
+    // Compiling stops as soon as it passes the claim's states or operators: the claim is then
+    // not the compilation, and a short certificate cannot make the checker build a large one.
+    let (claim_states, claim_operators) = claimed;
+    let mut count = 0usize;
+    let mut past_claim = |ps: &[Piece], nodes: usize| {
+        count += ps.len();
+        match (count > claim_operators, nodes + 2 > claim_states) {
+            (true, _) => Err(format!(
+                "the compilation has more operators than the claim's {claim_operators}"
+            )),
+            (_, true) => Err(format!(
+                "the compilation has more states than the claim's {claim_states}"
+            )),
+            _ => Ok(()),
+        }
+    };
     let mut order = Order::default();
     // The initiator's pieces: fertile segments already replaced by their generator.
     let mut init = Vec::new();
     for (i, f) in initiator.flags.iter().enumerate() {
         let (p, q) = (&initiator.points[i], &initiator.points[i + 1]);
-        match *f {
-            Flag::Gap => {}
-            Flag::Drawn => init.push(Piece::Drawn(p.clone(), q.clone())),
+        let ps = match *f {
+            Flag::Gap => Vec::new(),
+            Flag::Drawn => vec![Piece::Drawn(p.clone(), q.clone())],
             Flag::Fertile(t, flip) => {
                 let node = choices.child(t, None, i);
                 let m = onto(k, p, q, flip);
-                init.extend(pieces(
-                    k,
-                    &gens[node.generator],
-                    &m,
-                    &node,
-                    &choices,
-                    &mut order,
-                ));
+                let g = &gens[node.generator];
+                pieces(k, g, &m, &node, &choices, &mut order)
             }
-        }
+        };
+        past_claim(&ps, order.nodes.len())?;
+        init.extend(ps);
     }
     // The nodes' pieces, breadth first (a node's children are numbered after it).
     let mut all = Vec::new();
     while all.len() < order.nodes.len() {
-        if order.nodes.len() as u128 > bound {
-            return Err(format!("the rule unrolls to more than {bound} states"));
-        }
         let node = order.nodes[all.len()].clone();
         let g = &gens[node.generator];
-        all.push(pieces(k, g, &identity(), &node, &choices, &mut order));
+        let ps = pieces(k, g, &identity(), &node, &choices, &mut order);
+        past_claim(&ps, order.nodes.len())?;
+        all.push(ps);
     }
     let names: Vec<String> = r.generators.iter().map(|(n, _)| n.clone()).collect();
     let mut states: Vec<(String, usize)> = vec![("initiator".into(), 3 + initiator.points.len())];
@@ -598,7 +618,7 @@ pub(super) fn check_rule_compilation(a: &AutomatonClaim) -> Result<(String, Stri
         .field
         .as_ref()
         .map_or(1, |f| f.poly.len().saturating_sub(1));
-    let c = compile(&r, &k, var, degree)?;
+    let c = compile(&r, &k, var, degree, (a.states.len(), a.operators.len()))?;
     let got: Vec<(String, usize)> = a.states.iter().map(|s| (s.name.clone(), s.dim)).collect();
     if got != c.states {
         // Name the first state that differs.
@@ -725,7 +745,13 @@ mod tests {
 
     /// A rule over Q compiled by the checker.
     fn compiled(text: &str) -> Result<Compiled, String> {
-        compile(&read(text)?, &rationals(), None, 1)
+        compile(
+            &read(text)?,
+            &rationals(),
+            None,
+            1,
+            (usize::MAX, usize::MAX),
+        )
     }
 
     /// The compiled states' names and each operator's (name, row state, column state).
@@ -909,5 +935,20 @@ mod tests {
         // `/yx` is `/xy`; `seed` up to 2^64 − 1.
         assert!(compiled(&base.replace("g 1,0\n", "g/yx 1,0\n")).is_ok());
         assert!(compiled(&format!("seed 18446744073709551615\n{base}")).is_ok());
+    }
+
+    #[test]
+    fn compiling_stops_past_the_claims_size() {
+        // The age rule above compiles to 4 states and 6 operators: a claim of 3 states or 5
+        // operators stops it before the rest is built.
+        let text = "age t a b\ninitiator 0,0 t 1,0\ngenerator a 0,0 t 1/2,1/2 t 1,0\n\
+                    generator b 0,0 t! 1/2,0 - 1,0\n";
+        let r = read(text).unwrap();
+        let k = rationals();
+        let e = compile(&r, &k, None, 1, (3, 100)).err().unwrap();
+        assert!(e.contains("more states than the claim's 3"), "{e}");
+        let e = compile(&r, &k, None, 1, (100, 5)).err().unwrap();
+        assert!(e.contains("more operators than the claim's 5"), "{e}");
+        assert!(compile(&r, &k, None, 1, (4, 6)).is_ok());
     }
 }
