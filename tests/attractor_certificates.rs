@@ -609,10 +609,9 @@ fn rule_of(c: &mut Certificate) -> &mut String {
     }
 }
 
-/// The rule → automaton compilation is certified for the plain rules: the checker compiles the
-/// rule text again. A changed coordinate in the rule, a changed flag, a field of another number
-/// or a changed matrix in the claim is refused at the step; rules with the age or random
-/// extensions have no such step.
+/// The rule → automaton compilation is certified for every rule of the library: the checker
+/// compiles the rule text again. A changed coordinate in the rule, a changed flag, a field of
+/// another number or a changed matrix in the claim is refused at the step.
 #[test]
 fn rule_compilations_are_certified_and_forgeries_fail() {
     let with_rule = |name: &str| {
@@ -628,13 +627,12 @@ fn rule_compilations_are_certified_and_forgeries_fail() {
         "monkeys-tree",
         "pythagoras-tree",
         "self-seeding-square",
+        "vegetation",
+        "random-tree",
     ] {
         let (c, has) = with_rule(name);
         assert!(has, "{name}: no rule-compilation step");
         assert_proved(name, &c);
-    }
-    for name in ["vegetation", "random-tree"] {
-        assert!(!with_rule(name).1, "{name}: extensions are not re-compiled");
     }
     let (koch, _) = with_rule("koch");
     // The tip of the Koch generator one sixth of √3 high: moved to one fifth.
@@ -670,15 +668,185 @@ fn rule_compilations_are_certified_and_forgeries_fail() {
         "generator left 0,0 right 1/2,1/2 left 1,0",
     );
     assert_rejected("swapped generators", &bad, "rule-compilation");
-    // An age line: not re-compiled, said so.
-    let mut bad = h;
-    let r = rule_of(&mut bad);
-    r.push_str("\nage a left right\n");
-    let report = check(&bad);
+    // An age line naming a choice no flag uses changes nothing: still the compilation.
+    let mut same = h;
+    rule_of(&mut same).push_str("\nage a left right\n");
+    assert_proved("an unused age choice", &same);
+}
+
+fn automaton_of(c: &mut Certificate) -> &mut lacuna::certificate::AutomatonClaim {
+    match &mut c.claim {
+        lacuna::certificate::Claim::Automaton(a) => a,
+        _ => panic!("an automaton claim"),
+    }
+}
+
+/// The `age` extension re-compiled (fixtures/vegetation.rule): `age plant grow grow grow seed`.
+/// By hand: the initiator's `plant` is age 0, grow laid into the initiator; grow's two `plant`
+/// branches are age 1 (grow.plant1), theirs age 2 (grow.plant2), then age 3 (seed.plant3), whose
+/// three `plant!` restart at age 0 (grow.plant0), whose branches are age 1 again. Operators: the
+/// initiator's 3 (grow's trunk and branches), 3 per grow state and 4 for seed's trunk and plants:
+/// 3 + 3·3 + 4 = 16. A reordered age list, states swapped or a changed entry is refused.
+#[test]
+fn an_age_rule_is_recompiled_and_forgeries_fail() {
+    let mut veg = automaton_certificate("vegetation");
+    let names: Vec<&str> = veg.steps.iter().map(Step::name).collect();
+    assert_eq!(names.last(), Some(&"rule-compilation"));
+    assert_proved("vegetation", &veg);
+    let a = automaton_of(&mut veg);
+    let states: Vec<&str> = a.states.iter().map(|s| s.name.as_str()).collect();
+    assert_eq!(
+        states,
+        [
+            "initiator",
+            "grow.plant1",
+            "grow.plant2",
+            "seed.plant3",
+            "grow.plant0",
+            "segment"
+        ]
+    );
+    assert_eq!(a.operators.len(), 16);
+    let report = check(&veg);
     let s = report.step("rule-compilation").expect("the step");
     assert!(
-        s.message.contains("age and random extensions"),
+        s.message.contains("age choice plant: 4 ages"),
         "{}",
         s.message
     );
+    // The ages reordered: seed first, so the initiator lays seed.
+    let mut bad = veg.clone();
+    let r = rule_of(&mut bad);
+    assert!(r.contains("age plant grow grow grow seed"));
+    *r = r.replace(
+        "age plant grow grow grow seed",
+        "age plant seed grow grow grow",
+    );
+    assert_rejected("the age list reordered", &bad, "rule-compilation");
+    // grow.plant1 and grow.plant2 swapped, every operator's states renumbered with them: the
+    // same automaton up to the order of its states, which is not the compilation's.
+    let mut bad = veg.clone();
+    let a = automaton_of(&mut bad);
+    a.states.swap(1, 2);
+    let swap = |i: usize| match i {
+        1 => 2,
+        2 => 1,
+        i => i,
+    };
+    for o in &mut a.operators {
+        (o.to, o.from) = (swap(o.to), swap(o.from));
+    }
+    assert_rejected("two states swapped", &bad, "rule-compilation");
+    // One entry of seed.plant3.T1 (a plant of ratio 1/2) changed.
+    let mut bad = veg.clone();
+    let a = automaton_of(&mut bad);
+    let o = a
+        .operators
+        .iter_mut()
+        .find(|o| o.name == "seed.plant3.T1")
+        .expect("seed's first plant");
+    let v = o.value.as_mut().expect("rational");
+    v[1][1] = if v[1][1] == "1/3" { "1/4" } else { "1/3" }.into();
+    assert_rejected("an operator entry changed", &bad, "rule-compilation");
+}
+
+/// The `random` extension re-compiled (fixtures/random-tree.rule: `random branch both left
+/// right`, seed 17, depth 6). By hand (hashes by Python's integers, `h = 17`, then
+/// `h = splitmix64(h ^ x)`, entry h mod 3): place [0] hashes to 0x808475F02EE37363 ≡ 0: both is
+/// laid into the initiator; its branches are segments 1 and 3, places [0, 1] →
+/// 0x7FC9967EA25EA21C ≡ 0 (both) and [0, 3] → 0xEABC74434623261C ≡ 2 (right): the first states
+/// are both.at0_1 and right.at0_3. A changed seed, a changed depth or a changed entry is refused.
+#[test]
+fn a_random_rule_is_recompiled_and_forgeries_fail() {
+    let mut tree = automaton_certificate("random-tree");
+    assert_proved("random-tree", &tree);
+    let a = automaton_of(&mut tree);
+    let states: Vec<&str> = a.states.iter().map(|s| s.name.as_str()).collect();
+    assert_eq!(states[..3], ["initiator", "both.at0_1", "right.at0_3"]);
+    // Places of 2 to 5 entries are states of their own, deeper ones share a state per generator.
+    let deep = states.iter().filter(|s| !s.contains(".at")).count();
+    assert_eq!(
+        deep,
+        2 + 3,
+        "initiator, segment and one state per generator"
+    );
+    let report = check(&tree);
+    let s = report.step("rule-compilation").expect("the step");
+    assert!(
+        s.message.contains("seed 17") && s.message.contains("depth 6"),
+        "{}",
+        s.message
+    );
+    // Seed 18: place [0] hashes to 0x1120B3D00955F032 ≡ 1, left is laid into the initiator.
+    let mut bad = tree.clone();
+    let r = rule_of(&mut bad);
+    assert!(r.contains("seed 17\n"));
+    *r = r.replace("seed 17\n", "seed 18\n");
+    assert_rejected("the seed changed", &bad, "rule-compilation");
+    // Depth 5: places of 5 entries are no longer states of their own.
+    let mut bad = tree.clone();
+    let r = rule_of(&mut bad);
+    *r = r.replace("depth 6\n", "depth 5\n");
+    assert_rejected("the depth changed", &bad, "rule-compilation");
+    // One entry of the first operator changed.
+    let mut bad = tree.clone();
+    let a = automaton_of(&mut bad);
+    let v = a.operators[1].value.as_mut().expect("rational");
+    v[0][0] = if v[0][0] == "7" { "8" } else { "7" }.into();
+    assert_rejected("an operator entry changed", &bad, "rule-compilation");
+}
+
+/// lacuna's compiler and the checker's agree on rules mixing both extensions and plain flags:
+/// ages with a restart, a random choice over three generators (one laid backwards, one mirrored
+/// after a gap), a generator named directly, for several seeds and every depth from 1 to 4: each
+/// certificate's rule-compilation step is proved, with states of occurrences from depth 3 on.
+#[test]
+fn lacuna_and_the_checker_compile_mixed_rules_alike() {
+    let rule = |seed: u64, depth: u64| {
+        format!(
+            "age t a b\nrandom r a b c\nseed {seed}\ndepth {depth}\n\
+             initiator 0,0 r 1,0 t 1,1/2\n\
+             generator a 0,0 r 1/2,1/2 t! 1,0\n\
+             generator b 0,0 t 1/2,-1/2 - 1/2,0 r/x 1,0\n\
+             generator c 0,0 . 1/4,0 r/y 3/4,0 a 1,0\n"
+        )
+    };
+    let limits = lacuna::topology::Limits::default();
+    for seed in [0, 1, 17, u64::MAX] {
+        for depth in 1..=4 {
+            let text = rule(seed, depth);
+            let src = lacuna::Source {
+                name: "mixed.rule".into(),
+                text: text.clone(),
+            };
+            let (_, model) = lacuna::input::compile_rule(&src).expect("compiles");
+            // Only the constraints and the compilation: contraction and dimension are not
+            // what this test is about.
+            let attractor = lacuna::analysis::Attractor {
+                resolved: lacuna::analysis::resolve(&model, &[], limits.max_unknowns)
+                    .expect("resolves"),
+                contraction: None,
+                contraction_fails: None,
+                similarity: None,
+                similarity_note: None,
+            };
+            let cert = lacuna::certificate::certificate_for_model("mixed", &model, &attractor)
+                .expect("certifiable");
+            let report = check(&cert);
+            let s = report.step("rule-compilation").expect("the step");
+            assert_eq!(
+                s.outcome,
+                lacuna::checker::Outcome::Proved,
+                "seed {seed}, depth {depth}: {}",
+                s.message
+            );
+            let occurrences = model
+                .automaton
+                .states
+                .iter()
+                .filter(|s| s.name.contains(".at"))
+                .count();
+            assert_eq!(occurrences > 0, depth >= 3, "seed {seed}, depth {depth}");
+        }
+    }
 }

@@ -426,11 +426,12 @@ pub enum Step {
     /// holes) over Q equals b1 over F2.
     FaceHomology(FaceHomologyStep),
     /// **The automaton is its rule's compilation.** Justification: the checker reads the
-    /// claim's rule text with its own parser (field line, initiator, generators, flags), compiles
-    /// it with its own code (states, one operator per fertile or drawn segment, the similitudes
-    /// with their reflections in the frames of their states) and compares states, operators,
-    /// matrices (exactly in K), barycentric operators, constraints and attractor with the claim.
-    /// Rules with the age or random extensions are not re-compiled.
+    /// claim's rule text with its own parser (field line, initiator, generators, flags, age and
+    /// random choices, `seed`, `depth`), compiles it with its own code (states, one per
+    /// generator, age and occurrence above the depth with its own seeded SplitMix64 draws; one
+    /// operator per fertile or drawn segment, the similitudes with their reflections in the
+    /// frames of their states) and compares states, operators, matrices (exactly in K),
+    /// barycentric operators, constraints and attractor with the claim.
     RuleCompilation(RuleCompilationStep),
     /// **Every constraint of an automaton holds** (every operator given, in Q or in the
     /// claim's field K). Justification: the checker multiplies out both words of every

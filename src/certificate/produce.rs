@@ -696,18 +696,11 @@ pub fn certificate_for_model(
             }));
         }
     }
-    // A rule without the age and random extensions: the checker compiles it again.
-    if let Some(text) = &m.rule {
-        let src = crate::error::Source {
-            name: name.to_string(),
-            text: text.clone(),
-        };
-        let plain = crate::input::rule::parse_rule(&src)
-            .is_ok_and(|r| r.ages.is_empty() && r.randoms.is_empty());
-        if plain {
-            cert.steps
-                .push(Step::RuleCompilation(RuleCompilationStep {}));
-        }
+    // A compiled rule, with or without the age and random extensions: the checker compiles its
+    // text again.
+    if m.rule.is_some() {
+        cert.steps
+            .push(Step::RuleCompilation(RuleCompilationStep {}));
     }
     Ok(cert)
 }

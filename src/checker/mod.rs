@@ -22,6 +22,8 @@
 //! - `volume.rs`: oriented maps (sphere check, canonical code) and one subdivision step of a
 //!   volume (THEORY §10), the volume types and their counts.
 //! - `rule.rs`: a rule text read and compiled again, compared with the claim's automaton.
+//! - `choice.rs`: a rule's age and random choices (ages, seeded SplitMix64 draws, the states
+//!   of occurrences above the depth and their bound);
 //! - `solid.rs`: the level-n solid built cell by cell, its cells, χ and Betti numbers (ranks
 //!   of boundary matrices over F2).
 //!
@@ -33,6 +35,7 @@
 //! [`Step`]: crate::certificate::Step
 
 mod automaton;
+mod choice;
 mod claim;
 mod closure;
 mod degeneracy;
