@@ -71,7 +71,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             .unwrap_or_default();
         let known = [
             "svg", "png", "jpg", "jpeg", "gif", "bmp", "tif", "tiff", "webp", "pdf", "stl", "3mf",
-            "obj", "ply", "json", "html", "txt",
+            "obj", "ply", "json", "html",
         ];
         if known.contains(&ext.as_str()) && ext != format {
             return Err(Error::Usage(format!(
