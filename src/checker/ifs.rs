@@ -1324,6 +1324,44 @@ fn check_part(
     })
 }
 
+/// The dimension d of a part's charts: every state of the part has m = d + 1 points, 2 or 3.
+pub(super) fn chart_dimension(a: &AutomatonClaim, members: &[usize]) -> Result<usize, String> {
+    let m = a.states[members[0]].dim;
+    if !(2..=3).contains(&m) || members.iter().any(|&q| a.states[q].dim != m) {
+        return Err("the charts need every state of the part with 2 or with 3 points".into());
+    }
+    Ok(m - 1)
+}
+
+/// Every state's frame is non-degenerate (its d + 1 points affinely independent: the Gram
+/// determinant of its edge vectors is not 0), so its chart is an affine bijection onto the
+/// affine hull of its points.
+pub(super) fn independent_frames(
+    k: &Field,
+    a: &AutomatonClaim,
+    frames: &[Option<KMat>],
+    members: &[usize],
+    d: usize,
+) -> Result<(), String> {
+    for &q in members {
+        let g = gram(k, frames[q].as_ref().expect("reachable"));
+        let det = match d {
+            1 => g.data[0].clone(),
+            _ => k.sub(
+                &k.mul(&g.data[0], &g.data[3]),
+                &k.mul(&g.data[1], &g.data[2]),
+            ),
+        };
+        if k.is_zero(&det) {
+            return Err(format!(
+                "the points of state {} are affinely dependent",
+                a.states[q].name
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The sign of `(b − a) × (c − a)` in K.
 fn turn(k: &Field, a: &[P], b: &[P], c: &[P]) -> Result<i32, String> {
     let l = k.mul(&k.sub(&b[0], &a[0]), &k.sub(&c[1], &a[1]));
@@ -1346,30 +1384,11 @@ fn check_open_set(
     inside: &[usize],
     sets: &[Vec<Vec<FieldCoords>>],
 ) -> Result<(), String> {
-    let m = a.states[members[0]].dim;
-    if !(2..=3).contains(&m) || members.iter().any(|&q| a.states[q].dim != m) {
-        return Err("the charts need every state of the part with 2 or with 3 points".into());
-    }
-    let d = m - 1;
+    let d = chart_dimension(a, members)?;
     if sets.len() != members.len() {
         return Err(format!("{} sets for {} states", sets.len(), members.len()));
     }
-    for &q in members {
-        let g = gram(k, frames[q].as_ref().expect("reachable"));
-        let det = match d {
-            1 => g.data[0].clone(),
-            _ => k.sub(
-                &k.mul(&g.data[0], &g.data[3]),
-                &k.mul(&g.data[1], &g.data[2]),
-            ),
-        };
-        if k.is_zero(&det) {
-            return Err(format!(
-                "the points of state {} are affinely dependent",
-                a.states[q].name
-            ));
-        }
-    }
+    independent_frames(k, a, frames, members, d)?;
     let mut polys: Vec<Vec<Vec<P>>> = Vec::with_capacity(sets.len());
     for (set, &q) in sets.iter().zip(members) {
         if set.len() > 4096 || set.iter().any(|v| v.len() != d) {

@@ -64,7 +64,7 @@
 #[cfg(test)]
 use super::check_json;
 use super::field::{self, P};
-use super::ifs::{barycentric, gram, Field, KMat};
+use super::ifs::{barycentric, chart_dimension, independent_frames, Field, KMat};
 use super::{rat, Q};
 use crate::certificate::{
     AutomatonClaim, FieldCoords, NeighbourFails, NeighbourHolds, NeighbourMap, NeighbourMaps,
@@ -229,33 +229,15 @@ fn charts(
     members: &[usize],
     inside: &[usize],
 ) -> Result<usize, String> {
-    let m = a.states[members[0]].dim;
-    if !(2..=3).contains(&m) || members.iter().any(|&q| a.states[q].dim != m) {
-        return Err("the charts need every state of the part with 2 or with 3 points".into());
-    }
-    for &q in members {
-        let g = gram(k, frames[q].as_ref().expect("reachable"));
-        let det = match m - 1 {
-            1 => g.data[0].clone(),
-            _ => k.sub(
-                &k.mul(&g.data[0], &g.data[3]),
-                &k.mul(&g.data[1], &g.data[2]),
-            ),
-        };
-        if k.is_zero(&det) {
-            return Err(format!(
-                "the points of state {} are affinely dependent",
-                a.states[q].name
-            ));
-        }
-    }
+    let d = chart_dimension(a, members)?;
+    independent_frames(k, a, frames, members, d)?;
     if let Some(&o) = inside.iter().find(|&&o| !barycentric(k, &ops[o])) {
         return Err(format!(
             "operator {} is not barycentric (a column does not sum to 1): it has no chart map",
             a.operators[o].name
         ));
     }
-    Ok(m - 1)
+    Ok(d)
 }
 
 /// The chart map of an operator: `A[r−1][j−1] = T[r][j] − T[r][0]`, `b[r−1] = T[r][0]`.

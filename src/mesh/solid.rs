@@ -280,16 +280,7 @@ pub fn embedded(inst: &Instance, level: u32, segments: usize, size: Size) -> Res
 /// `crate::mesh::check`). Fails with E1041 when cells overlap, E1040 when the mesh is not a
 /// closed oriented manifold with the exact topology.
 pub fn build(inst: &Instance, level: u32, segments: usize, size: Size) -> Result<Solid, MeshError> {
-    let expected = expected(inst, level).map_err(MeshError::Topology)?;
-    let o = outline(inst, level, segments, size)?;
-    let failed = |reason: String| MeshError::Check { level, reason };
-    if o.components as u64 != expected.components {
-        return Err(failed(format!(
-            "{} components of cells, the exact topology says {}",
-            o.components, expected.components
-        )));
-    }
-    let tops = material(&o, level)?;
+    let (expected, o, tops) = checked_outline(inst, level, segments, size, false)?;
     // Local vertex numbers per component.
     let mut local = vec![u32::MAX; o.points.len()];
     let mut members: Vec<Vec<u32>> = vec![Vec::new(); o.components];
@@ -306,29 +297,86 @@ pub fn build(inst: &Instance, level: u32, segments: usize, size: Size) -> Result
     let mut parts = Vec::with_capacity(o.components);
     for (c, top) in tops.into_iter().enumerate() {
         let n = members[c].len() as u32;
-        let mut vertices: Vec<[f32; 3]> = Vec::with_capacity(2 * n as usize);
-        for h in [0.0f32, z] {
-            vertices.extend(members[c].iter().map(|&i| {
-                let p = o.points[i as usize];
-                [p[0] as f32, p[1] as f32, h]
-            }));
-        }
         let mut triangles = Vec::with_capacity(2 * top.len() + 2 * walls[c].len());
         for t in &top {
-            let [a, b, d] = t.map(|i| local[i as usize]);
-            triangles.push([a + n, b + n, d + n]);
-            triangles.push([a, d, b]);
+            push_caps(&mut triangles, t.map(|i| local[i as usize]), n);
         }
-        for &[a, b] in &walls[c] {
-            triangles.push([a, b, b + n]);
-            triangles.push([a, b + n, a + n]);
+        for &w in &walls[c] {
+            push_wall(&mut triangles, w, n);
         }
         parts.push(Part {
-            vertices,
+            vertices: layers(&o.points, &members[c], z),
             triangles,
             holes: None,
         });
     }
+    checked_solid(inst, level, size, parts, expected, &o)
+}
+
+/// The outline of the level's cells (with the cells' polygons when `keep_cells`), its
+/// components compared with the exact topology, and the triangles of its material (the
+/// winding numbers that show the cells do not overlap, [`material`]).
+#[allow(clippy::type_complexity)]
+fn checked_outline(
+    inst: &Instance,
+    level: u32,
+    segments: usize,
+    size: Size,
+    keep_cells: bool,
+) -> Result<(Expected, Outline, Vec<Vec<[u32; 3]>>), MeshError> {
+    let expected = expected(inst, level).map_err(MeshError::Topology)?;
+    let o = match keep_cells {
+        false => outline(inst, level, segments, size)?,
+        true => super::outline::outline_with_cells(inst, level, segments, size)?,
+    };
+    if o.components as u64 != expected.components {
+        return Err(MeshError::Check {
+            level,
+            reason: format!(
+                "{} components of cells, the exact topology says {}",
+                o.components, expected.components
+            ),
+        });
+    }
+    let tops = material(&o, level)?;
+    Ok((expected, o, tops))
+}
+
+/// The vertices of one component's prism: its points `members` (of `points`) at z = 0, then
+/// the same at z = `z`.
+fn layers(points: &[[f64; 2]], members: &[u32], z: f32) -> Vec<[f32; 3]> {
+    let mut vertices = Vec::with_capacity(2 * members.len());
+    for h in [0.0f32, z] {
+        vertices.extend(members.iter().map(|&i| {
+            let p = points[i as usize];
+            [p[0] as f32, p[1] as f32, h]
+        }));
+    }
+    vertices
+}
+
+/// A counter-clockwise triangle of the plane as the prism's top (its copy at `+ n`) and bottom
+/// (reversed, so both face outwards).
+fn push_caps(triangles: &mut Vec<[u32; 3]>, [a, b, d]: [u32; 3], n: u32) {
+    triangles.push([a + n, b + n, d + n]);
+    triangles.push([a, d, b]);
+}
+
+/// The wall on a boundary segment `a → b` (material on its left): two triangles facing right.
+fn push_wall(triangles: &mut Vec<[u32; 3]>, [a, b]: [u32; 2], n: u32) {
+    triangles.push([a, b, b + n]);
+    triangles.push([a, b + n, a + n]);
+}
+
+/// The parts checked against the exact topology ([`verdict`]) as the level's solid.
+fn checked_solid(
+    inst: &Instance,
+    level: u32,
+    size: Size,
+    mut parts: Vec<Part>,
+    expected: Expected,
+    o: &Outline,
+) -> Result<Solid, MeshError> {
     let checks = verdict(level, &mut parts, &expected, &o.component_start)?;
     Ok(Solid {
         name: inst.name.clone(),
@@ -364,18 +412,7 @@ pub fn build_typed(
     segments: usize,
     size: Size,
 ) -> Result<TypedSolid, MeshError> {
-    let expected = expected(inst, level).map_err(MeshError::Topology)?;
-    let o = super::outline::outline_with_cells(inst, level, segments, size)?;
-    if o.components as u64 != expected.components {
-        return Err(MeshError::Check {
-            level,
-            reason: format!(
-                "{} components of cells, the exact topology says {}",
-                o.components, expected.components
-            ),
-        });
-    }
-    material(&o, level)?;
+    let (expected, o, _) = checked_outline(inst, level, segments, size, true)?;
     // Local vertex numbers per component, over the cell points.
     let mut comp_of_point = vec![u32::MAX; o.cell_points.len()];
     for c in &o.cell_polygons {
@@ -394,19 +431,10 @@ pub fn build_typed(
     let z = size.thickness as f32;
     let mut parts: Vec<Part> = members
         .iter()
-        .map(|m| {
-            let mut vertices = Vec::with_capacity(2 * m.len());
-            for h in [0.0f32, z] {
-                vertices.extend(m.iter().map(|&i| {
-                    let p = o.cell_points[i as usize];
-                    [p[0] as f32, p[1] as f32, h]
-                }));
-            }
-            Part {
-                vertices,
-                triangles: Vec::new(),
-                holes: None,
-            }
+        .map(|m| Part {
+            vertices: layers(&o.cell_points, m, z),
+            triangles: Vec::new(),
+            holes: None,
         })
         .collect();
     let mut types: Vec<Vec<u32>> = vec![Vec::new(); o.components];
@@ -419,31 +447,26 @@ pub fn build_typed(
             .map(|&p| o.cell_points[p as usize])
             .collect();
         for t in super::polygon::triangulate(&poly) {
-            let [a, b, d] = t.map(|i| local[cell.points[i] as usize]);
-            parts[c].triangles.push([a + n, b + n, d + n]);
-            parts[c].triangles.push([a, d, b]);
+            push_caps(
+                &mut parts[c].triangles,
+                t.map(|i| local[cell.points[i] as usize]),
+                n,
+            );
             types[c].extend([cell.ty, cell.ty]);
         }
     }
     for (s, &ty) in o.segments.iter().zip(&o.segment_type) {
         let c = o.component[s[0] as usize] as usize;
         let n = members[c].len() as u32;
-        let [a, b] = s.map(|i| local[o.boundary_cell_point[i as usize] as usize]);
-        parts[c].triangles.push([a, b, b + n]);
-        parts[c].triangles.push([a, b + n, a + n]);
+        push_wall(
+            &mut parts[c].triangles,
+            s.map(|i| local[o.boundary_cell_point[i as usize] as usize]),
+            n,
+        );
         types[c].extend([ty, ty]);
     }
-    let checks = verdict(level, &mut parts, &expected, &o.component_start)?;
     Ok(TypedSolid {
-        solid: Solid {
-            name: inst.name.clone(),
-            level,
-            size,
-            parts,
-            checks,
-            expected,
-            cells: o.cells,
-        },
+        solid: checked_solid(inst, level, size, parts, expected, &o)?,
         types,
     })
 }

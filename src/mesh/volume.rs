@@ -140,9 +140,9 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
 }
 
 /// Whether the fan of `poly` around `centre` is a good triangulation: every triangle turns the
-/// way of the polygon's normal with at least a millionth of the polygon's mean share of area.
-fn star_fan(poly: &[[f64; 3]], centre: [f64; 3]) -> bool {
-    let nrm = newell(poly);
+/// way of the polygon's normal `nrm` ([`newell`]) with at least a millionth of the polygon's mean
+/// share of area.
+fn star_fan(poly: &[[f64; 3]], nrm: [f64; 3], centre: [f64; 3]) -> bool {
     let total = dot(nrm, nrm).sqrt();
     if total == 0.0 {
         return true; // nothing better to do for a flat polygon: the check names it
@@ -167,7 +167,8 @@ fn star_fan(poly: &[[f64; 3]], centre: [f64; 3]) -> bool {
 /// when none is. A new point of the face's own: no diagonal joins two of its corners, so the
 /// face stays a disc of the mesh whatever its neighbours share.
 fn fan_centre(poly: &[[f64; 3]], centre: [f64; 3]) -> [f64; 3] {
-    if star_fan(poly, centre) {
+    let nrm = newell(poly);
+    if star_fan(poly, nrm, centre) {
         return centre;
     }
     let lerp = |a: [f64; 3], b: [f64; 3], t: f64| {
@@ -191,7 +192,7 @@ fn fan_centre(poly: &[[f64; 3]], centre: [f64; 3]) -> [f64; 3] {
     });
     towards
         .chain(ears)
-        .find(|&p| star_fan(poly, p))
+        .find(|&p| star_fan(poly, nrm, p))
         .unwrap_or(centre)
 }
 
