@@ -283,6 +283,28 @@ fn open_set_witnesses_make_the_dimension_hausdorff_and_forgeries_fail() {
         }
     }
     assert_rejected("a set the images leave", &c, "similarity-dimension");
+    // An operator whose first row is changed is no longer barycentric: its columns sum to 3/2
+    // and its action on control points is no affine map of the charts, though rows 1 and 2 —
+    // all the chart map reads — are untouched. Dropped from the barycentric list so that only
+    // the steps that need it can notice.
+    let mut c = base.clone();
+    if let lacuna::certificate::Claim::Automaton(a) = &mut c.claim {
+        let m = a.operators[0].value.as_mut().expect("a rational operator");
+        for x in m[0].iter_mut() {
+            let q = lacuna::checker::parse_rational(x).expect("rational");
+            *x = (q + num_rational::BigRational::new(1.into(), 2.into())).to_string();
+        }
+        a.barycentric.retain(|&o| o != 0);
+    } else {
+        panic!("an automaton claim");
+    }
+    let report = check(&c);
+    let s = report.step("similarity-dimension").expect("the step");
+    assert!(
+        s.outcome == lacuna::checker::Outcome::Failed && s.message.contains("not barycentric"),
+        "{}",
+        report.to_text()
+    );
     // Without a witness the verdict is only an upper bound.
     let mut c = base.clone();
     similarity(&mut c).parts[0].open_set = None;

@@ -1325,7 +1325,7 @@ fn check_part(
 }
 
 /// The dimension d of a part's charts: every state of the part has m = d + 1 points, 2 or 3.
-pub(super) fn chart_dimension(a: &AutomatonClaim, members: &[usize]) -> Result<usize, String> {
+fn chart_dimension(a: &AutomatonClaim, members: &[usize]) -> Result<usize, String> {
     let m = a.states[members[0]].dim;
     if !(2..=3).contains(&m) || members.iter().any(|&q| a.states[q].dim != m) {
         return Err("the charts need every state of the part with 2 or with 3 points".into());
@@ -1336,7 +1336,7 @@ pub(super) fn chart_dimension(a: &AutomatonClaim, members: &[usize]) -> Result<u
 /// Every state's frame is non-degenerate (its d + 1 points affinely independent: the Gram
 /// determinant of its edge vectors is not 0), so its chart is an affine bijection onto the
 /// affine hull of its points.
-pub(super) fn independent_frames(
+fn independent_frames(
     k: &Field,
     a: &AutomatonClaim,
     frames: &[Option<KMat>],
@@ -1362,6 +1362,26 @@ pub(super) fn independent_frames(
     Ok(())
 }
 
+/// The part's frames are non-degenerate and its operators barycentric; returns d.
+pub(super) fn charts(
+    k: &Field,
+    a: &AutomatonClaim,
+    ops: &[KMat],
+    frames: &[Option<KMat>],
+    members: &[usize],
+    inside: &[usize],
+) -> Result<usize, String> {
+    let d = chart_dimension(a, members)?;
+    independent_frames(k, a, frames, members, d)?;
+    if let Some(&o) = inside.iter().find(|&&o| !barycentric(k, &ops[o])) {
+        return Err(format!(
+            "operator {} is not barycentric (a column does not sum to 1): it has no chart map",
+            a.operators[o].name
+        ));
+    }
+    Ok(d)
+}
+
 /// The sign of `(b − a) × (c − a)` in K.
 fn turn(k: &Field, a: &[P], b: &[P], c: &[P]) -> Result<i32, String> {
     let l = k.mul(&k.sub(&b[0], &a[0]), &k.sub(&c[1], &a[1]));
@@ -1371,7 +1391,8 @@ fn turn(k: &Field, a: &[P], b: &[P], c: &[P]) -> Result<i32, String> {
 
 /// The open-set condition for one part, from convex sets given in the states' charts: each
 /// state's frame is non-degenerate (its chart is an affine bijection onto the affine hull of its
-/// points), each set is a strictly convex polygon (an interval in one dimension), every
+/// points), every operator of the part is barycentric (only then is its action on control points
+/// an affine map of the charts, read off rows 1..d), each set is a strictly convex polygon (an interval in one dimension), every
 /// operator's chart map is injective and maps its column state's set into its row state's set
 /// (closed, vertex by vertex: then the open interiors go into the open interiors), and the
 /// images out of one state have disjoint interiors (a separating edge line).
@@ -1384,11 +1405,10 @@ fn check_open_set(
     inside: &[usize],
     sets: &[Vec<Vec<FieldCoords>>],
 ) -> Result<(), String> {
-    let d = chart_dimension(a, members)?;
+    let d = charts(k, a, ops, frames, members, inside)?;
     if sets.len() != members.len() {
         return Err(format!("{} sets for {} states", sets.len(), members.len()));
     }
-    independent_frames(k, a, frames, members, d)?;
     let mut polys: Vec<Vec<Vec<P>>> = Vec::with_capacity(sets.len());
     for (set, &q) in sets.iter().zip(members) {
         if set.len() > 4096 || set.iter().any(|v| v.len() != d) {

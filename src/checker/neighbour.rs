@@ -64,7 +64,7 @@
 #[cfg(test)]
 use super::check_json;
 use super::field::{self, P};
-use super::ifs::{barycentric, chart_dimension, independent_frames, Field, KMat};
+use super::ifs::{charts, Field, KMat};
 use super::{rat, Q};
 use crate::certificate::{
     AutomatonClaim, FieldCoords, NeighbourFails, NeighbourHolds, NeighbourMap, NeighbourMaps,
@@ -218,26 +218,6 @@ fn within_radius(k: &Field, d2: &P, r2: &P, radius: &Q) -> Result<bool, String> 
     }
     let four = Field::rational(Q::from_integer(4.into()) * radius * radius * radius * radius);
     Ok(k.sign(&k.sub(&k.mul(&x, &x), &k.mul(&four, r2)))? >= 0)
-}
-
-/// The part's frames are non-degenerate and its operators barycentric; returns d.
-fn charts(
-    k: &Field,
-    a: &AutomatonClaim,
-    ops: &[KMat],
-    frames: &[Option<KMat>],
-    members: &[usize],
-    inside: &[usize],
-) -> Result<usize, String> {
-    let d = chart_dimension(a, members)?;
-    independent_frames(k, a, frames, members, d)?;
-    if let Some(&o) = inside.iter().find(|&&o| !barycentric(k, &ops[o])) {
-        return Err(format!(
-            "operator {} is not barycentric (a column does not sum to 1): it has no chart map",
-            a.operators[o].name
-        ));
-    }
-    Ok(d)
 }
 
 /// The chart map of an operator: `A[r−1][j−1] = T[r][j] − T[r][0]`, `b[r−1] = T[r][0]`.
