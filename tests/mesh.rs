@@ -999,16 +999,207 @@ fn the_coloured_3mf_names_a_material_per_type_on_every_triangle() {
         })
         .count();
     assert_eq!(coloured, triangles);
-    for input in ["cube-B2", "quad-patch-3d"] {
-        let (code, _, err) = common::lacuna(&[
-            "render",
-            input,
-            "--3mf",
-            &dir.join("x.3mf").to_string_lossy(),
-            "--3mf-colours",
-        ]);
-        assert_eq!(code, 2, "{input}: {err}");
-        assert!(err.contains("--3mf-colours"), "{input}: {err}");
+    // A volume's triangles each lie on one sub-volume: cube-B2 closes with 3 volume types (the
+    // cube, and the corner pieces W3 and W4 of THEORY §10), so 3 materials; at level 2 only the
+    // corner pieces are left, so only materials 1 and 2 are named.
+    let cube = dir.join("cube.3mf");
+    let (code, out, err) = common::lacuna(&[
+        "render",
+        "cube-B2",
+        "--level",
+        "2",
+        "--3mf",
+        &cube.to_string_lossy(),
+        "--3mf-colours",
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    let xml = model_xml(&cube);
+    assert_eq!(xml.matches("<base ").count(), 3);
+    let used: std::collections::BTreeSet<&str> = xml
+        .match_indices(" p1=\"")
+        .map(|(i, _)| {
+            let r = &xml[i + 5..];
+            &r[..r.find('"').unwrap()]
+        })
+        .collect();
+    assert_eq!(used, ["1", "2"].into_iter().collect());
+    // An automaton's surface has no cells of types.
+    let (code, _, err) = common::lacuna(&[
+        "render",
+        "quad-patch-3d",
+        "--3mf",
+        &dir.join("x.3mf").to_string_lossy(),
+        "--3mf-colours",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--3mf-colours"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The model part of a 3MF package.
+fn model_xml(path: &std::path::Path) -> String {
+    let mut zip = zip::ZipArchive::new(std::fs::File::open(path).unwrap()).unwrap();
+    let mut xml = String::new();
+    std::io::Read::read_to_string(&mut zip.by_name("3D/3dmodel.model").unwrap(), &mut xml).unwrap();
+    xml
+}
+
+/// The value of attribute `name` in the element text `el`.
+fn attribute<'a>(el: &'a str, name: &str) -> Option<&'a str> {
+    let key = format!(" {name}=\"");
+    let at = el.find(&key)? + key.len();
+    Some(&el[at..at + el[at..].find('"')?])
+}
+
+/// Reads the mesh objects of a 3MF model on its own (no lacuna code): for each, its name,
+/// material index and its closed shells — every directed edge of its triangles must occur once
+/// and its reverse once (closed and oriented), the shells are the connected pieces, and each
+/// must have V − E + F = 2 (a sphere). Returns (name, pindex, shells).
+fn closed_shells(xml: &str) -> Vec<(String, Option<u32>, usize)> {
+    let mut out = Vec::new();
+    for chunk in xml.split("<object ").skip(1) {
+        let head = &chunk[..chunk.find('>').unwrap()];
+        let Some(body) = chunk.split("<mesh>").nth(1) else {
+            continue;
+        };
+        let name = attribute(&format!(" {head}"), "name").unwrap().to_string();
+        let pindex = attribute(&format!(" {head}"), "pindex").map(|p| p.parse().unwrap());
+        let nv = body.matches("<vertex ").count();
+        let tris: Vec<[usize; 3]> = body
+            .split("<triangle ")
+            .skip(1)
+            .map(|t| {
+                let t = format!(" {t}");
+                ["v1", "v2", "v3"].map(|k| attribute(&t, k).unwrap().parse().unwrap())
+            })
+            .collect();
+        let mut edges = std::collections::HashMap::new();
+        for t in &tris {
+            for i in 0..3 {
+                *edges.entry((t[i], t[(i + 1) % 3])).or_insert(0u32) += 1;
+            }
+        }
+        for (&(a, b), &n) in &edges {
+            assert_eq!(n, 1, "{name}: edge {a}→{b} used {n} times");
+            assert_eq!(
+                edges.get(&(b, a)),
+                Some(&1),
+                "{name}: edge {a}→{b} has no twin"
+            );
+        }
+        let mut parent: Vec<usize> = (0..nv).collect();
+        fn find(p: &mut [usize], mut x: usize) -> usize {
+            while p[x] != x {
+                p[x] = p[p[x]];
+                x = p[x];
+            }
+            x
+        }
+        for t in &tris {
+            let a = find(&mut parent, t[0]);
+            for &v in &t[1..] {
+                let b = find(&mut parent, v);
+                parent[b] = a;
+            }
+        }
+        let mut shell: std::collections::HashMap<usize, (i64, i64, i64)> = Default::default();
+        let used: std::collections::BTreeSet<usize> = tris.iter().flatten().copied().collect();
+        for &v in &used {
+            shell.entry(find(&mut parent, v)).or_default().0 += 1;
+        }
+        for &(a, _) in edges.keys() {
+            shell.entry(find(&mut parent, a)).or_default().1 += 1;
+        }
+        for t in &tris {
+            shell.entry(find(&mut parent, t[0])).or_default().2 += 1;
+        }
+        for (v, e2, f) in shell.values() {
+            // Each edge was counted once per direction.
+            assert_eq!(v - e2 / 2 + f, 2, "{name}: a shell is no sphere");
+        }
+        out.push((name, pindex, shell.len()));
     }
+    out
+}
+
+/// `render --3mf-parts` (issue #30): one object per type, each of its own material, gathered as
+/// the components of one object, every level-n cell a closed sphere of its own. Expected counts
+/// by hand. delayed-B2-C2 (tests/fixtures.rs): X → 2 S4 + U, S4 → 4 G6, U → 2 G6 + 2 V7,
+/// V7 → 6 G6 + V7, G6 → 6 G6; level 2 is 10 G6 + 2 V7, level 3 is 60 + 12 = 72 G6 (six edges)
+/// and 2 V7 (seven). cube-B2 (THEORY §10): the cube's 8 corner pieces are W3 (13 faces), each
+/// → 16 W3 + 3 W4, so level 2 is 128 W3 and 24 W4 (17 faces).
+#[test]
+fn the_3mf_parts_hold_each_type_s_cells_as_closed_shells() {
+    let dir = std::env::temp_dir().join(format!("lacuna-parts-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let faces = dir.join("d.3mf");
+    let (code, out, err) = common::lacuna(&[
+        "render",
+        "delayed-B2-C2",
+        "--level",
+        "3",
+        "--3mf",
+        &faces.to_string_lossy(),
+        "--3mf-parts",
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    let xml = model_xml(&faces);
+    let objects = closed_shells(&xml);
+    let mut by_edges: Vec<(usize, usize)> = objects
+        .iter()
+        .map(|(name, _, shells)| {
+            // "T3 B2 C2 … | C2 B2 B2 | A3": the edges before the first bar, less the name.
+            let edges = name.split('|').next().unwrap().split_whitespace().count() - 1;
+            (edges, *shells)
+        })
+        .collect();
+    by_edges.sort();
+    assert_eq!(by_edges, [(6, 72), (7, 2)], "{objects:?}");
+    // Distinct materials, one per part, and one object made of the parts, built once.
+    let materials: std::collections::BTreeSet<_> = objects.iter().map(|o| o.1.unwrap()).collect();
+    assert_eq!(materials.len(), 2);
+    assert_eq!(xml.matches("<base ").count(), 2);
+    assert_eq!(xml.matches("<component ").count(), 2);
+    assert_eq!(xml.matches("<item ").count(), 1);
+    assert!(out.contains("3MF parts: 2 part(s)"), "{out}");
+
+    let cube = dir.join("cube.3mf");
+    let (code, out, err) = common::lacuna(&[
+        "render",
+        "cube-B2",
+        "--level",
+        "2",
+        "--3mf",
+        &cube.to_string_lossy(),
+        "--3mf-parts",
+        "--orient",
+        "auto",
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    let (_, closure, _) = common::lacuna(&["closure", "cube-B2"]);
+    let faces_of = |v: &str| -> usize {
+        let line = closure
+            .lines()
+            .find(|l| l.trim_start().starts_with(&format!("{v} ")))
+            .unwrap();
+        line.split_whitespace().nth(1).unwrap().parse().unwrap()
+    };
+    let mut got: Vec<(usize, usize)> = closed_shells(&model_xml(&cube))
+        .iter()
+        .map(|(name, _, shells)| (faces_of(name), *shells))
+        .collect();
+    got.sort();
+    assert_eq!(got, [(13, 128), (17, 24)]);
+    // The parts are not one solid: --claims (which describes one) is refused with them.
+    let (code, _, err) = common::lacuna(&[
+        "render",
+        "cube-B2",
+        "--3mf",
+        &cube.to_string_lossy(),
+        "--3mf-parts",
+        "--claims",
+        &dir.join("c.json").to_string_lossy(),
+    ]);
+    assert_eq!(code, 2, "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }

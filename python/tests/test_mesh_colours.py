@@ -52,3 +52,72 @@ def test_the_coloured_3mf_gives_each_cell_its_types_material(cli, tmp_path):
     total_top, total_cells = sum(top.values()), sum(cells.values())
     for ty in cells:
         assert abs(top[ty] / total_top - cells[ty] / total_cells) < 0.01, (ty, top, cells)
+
+
+def test_the_3mf_parts_are_one_object_of_closed_parts_per_type(cli, tmp_path):
+    """`render --3mf-parts` read back by lib3mf in strict mode: one mesh object per volume type
+    with cells at the level, each of its own base material and manifold, and one components
+    object made of them. cube-B2 at level 2 (THEORY §10): 8 corner pieces W3, each → 16 W3 +
+    3 W4, so 128 shells of W3 and 24 of W4; the parts' volumes add up to the solid's."""
+    mf, stl = tmp_path / "c.3mf", tmp_path / "c.stl"
+    code, _ = cli("render", "cube-B2", "--level", "2", "--3mf", mf, "--3mf-parts", "--stl", stl)
+    assert code == 0
+    wrapper = lib3mf.get_wrapper()
+    model = wrapper.CreateModel()
+    reader = model.QueryReader("3mf")
+    reader.SetStrictModeActive(True)
+    reader.ReadFromFile(str(mf))
+    assert reader.GetWarningCount() == 0
+    groups = model.GetBaseMaterialGroups()
+    assert groups.MoveNext()
+    group = groups.GetCurrentBaseMaterialGroup()
+    colours = {group.GetName(p) for p in group.GetAllPropertyIDs()}
+    assert colours == {"V1", "V2"}
+
+    def volume(verts, tris):
+        return sum(
+            (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+             + a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0
+            for a, b, c in ((verts[i] for i in t) for t in tris)
+        )
+
+    shells, total = {}, 0.0
+    objects = model.GetMeshObjects()
+    while objects.MoveNext():
+        obj = objects.GetCurrentMeshObject()
+        assert obj.IsManifoldAndOriented(), obj.GetName()
+        verts = [v.Coordinates for v in obj.GetVertices()]
+        tris = [t.Indices for t in obj.GetTriangleIndices()]
+        # Shells: connected pieces of the triangles' vertices.
+        parent = list(range(len(verts)))
+
+        def find(x):
+            while parent[x] != x:
+                parent[x] = parent[parent[x]]
+                x = parent[x]
+            return x
+
+        for a, b, c in tris:
+            parent[find(b)] = find(a)
+            parent[find(c)] = find(a)
+        shells[obj.GetName()] = len({find(i) for t in tris for i in t})
+        total += volume(verts, tris)
+    assert sorted(shells.values()) == [24, 128], shells
+    components = model.GetComponentsObjects()
+    assert components.MoveNext()
+    assert components.GetCurrentComponentsObject().GetComponentCount() == 2
+    # The solid written beside it encloses the same volume (its cells are the parts' shells).
+    data = stl.read_bytes()
+    n = int.from_bytes(data[80:84], "little")
+    import struct
+
+    solid = []
+    for k in range(n):
+        v = struct.unpack_from("<9f", data, 84 + 50 * k + 12)
+        solid.append((v[0:3], v[3:6], v[6:9]))
+    whole = sum(
+        (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+         + a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0
+        for a, b, c in solid
+    )
+    assert abs(total - whole) < 1e-3 * abs(whole), (total, whole)

@@ -486,11 +486,22 @@ pub(crate) struct RenderArgs {
     /// Write the solid as 3MF (core specification, unit millimetre, one object per component).
     #[arg(long = "3mf", value_name = "OUT.3mf")]
     pub(crate) threemf: Option<std::path::PathBuf>,
-    /// For faces: colour the 3MF by face type (a base material per type, the picture's colours;
-    /// every triangle lies in one cell, the top and bottom triangulated cell by cell). The same
-    /// checked solid is written to --stl and --obj.
+    /// Colour the 3MF by type (a base material per face or volume type, the picture's colours):
+    /// for faces every triangle lies in one cell (the top and bottom triangulated cell by
+    /// cell), for volumes on one sub-volume. The same checked solid is written to --stl and
+    /// --obj.
     #[arg(long = "3mf-colours", requires = "threemf")]
     pub(crate) threemf_colours: bool,
+    /// Write the 3MF as one part per face or volume type, each of its type's colour, together
+    /// one object (for a multi-material slicer: one extruder per part). Every cell is a closed
+    /// shell of its own, checked against the exact count of its type's cells; --stl and --obj
+    /// get the one checked solid.
+    #[arg(
+        long = "3mf-parts",
+        requires = "threemf",
+        conflicts_with_all = ["threemf_colours", "claims"]
+    )]
+    pub(crate) threemf_parts: bool,
     /// Thickness of the solid in mm for --stl, --3mf and --obj (exact: 2, 1/2, 0.8; default 2).
     /// For an automaton's surface: thicken it into a closed shell (without it, --stl and --3mf
     /// write the open surface).

@@ -18,6 +18,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         claims,
         threemf,
         threemf_colours,
+        threemf_parts,
         thickness,
         print,
         png,
@@ -111,15 +112,17 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         lacuna::mesh::check_size("--resolution", print.resolution).map_err(mesh_error)?;
     }
     let mut outputs = Outputs::check(&geo.inputs(), &wanted)?;
-    let faces_only = |what: &str| {
+    let by_type = |what: &str| {
         Error::Usage(format!(
-            "--3mf-colours colours a face's cells by type; {what} has no cells of face types"
+            "--3mf-colours and --3mf-parts show the cells of faces and volumes by type; {what} has no cells of types"
         ))
     };
+    let style = match (threemf_colours, threemf_parts) {
+        (true, _) => lacuna::mesh::threemf::Style::Colours,
+        (_, true) => lacuna::mesh::threemf::Style::Parts,
+        _ => lacuna::mesh::threemf::Style::Plain,
+    };
     if let Some((name, v)) = lacuna::input::load_volume_file(&geo.input)? {
-        if threemf_colours {
-            return Err(faces_only("a volume"));
-        }
         if json_out.is_some() || density.is_some() || write_template.is_some() {
             return Err(Error::Usage(
                 "--json-out, --density and --write-template apply to faces; a volume is written with --svg, --png, --stl, --3mf or --obj".into(),
@@ -132,12 +135,13 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             mesh: &mesh,
             size,
             transparent: background == BackgroundArg::Transparent,
+            style,
         };
         return volume::render(&name, &v, &geo, &print, targets, &mut outputs, limits);
     }
     if let Some((name, model)) = automaton::automaton_input(&geo)? {
-        if threemf_colours {
-            return Err(faces_only("an automaton"));
+        if style != lacuna::mesh::threemf::Style::Plain {
+            return Err(by_type("an automaton"));
         }
         if claims.is_some() && !thick {
             return Err(Error::Usage(
@@ -229,20 +233,13 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             .map_err(mesh_error)?;
         outputs.say(&pr.text());
         pr.enforce(print.strict).map_err(mesh_error)?;
-        let (mut solid, colours) = match threemf_colours {
-            false => (
-                lacuna::mesh::build(&inst, level, segs, solid_size).map_err(mesh_error)?,
-                None,
-            ),
-            true => {
+        let type_name = |k: usize| format!("T{k} {}", inst.types.types[k].face);
+        let (mut solid, colours) = match style {
+            lacuna::mesh::threemf::Style::Colours => {
                 let t = lacuna::mesh::build_typed(&inst, level, segs, solid_size)
                     .map_err(mesh_error)?;
-                let materials = inst
-                    .types
-                    .types
-                    .iter()
-                    .enumerate()
-                    .map(|(k, ty)| (format!("T{k} {}", ty.face), lacuna::export::type_colour(k)))
+                let materials = (0..inst.types.types.len())
+                    .map(|k| (type_name(k), lacuna::export::type_colour(k)))
                     .collect();
                 let colours = lacuna::mesh::threemf::Colours {
                     materials,
@@ -250,9 +247,19 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
                 };
                 (t.solid, Some(colours))
             }
+            _ => (
+                lacuna::mesh::build(&inst, level, segs, solid_size).map_err(mesh_error)?,
+                None,
+            ),
+        };
+        let mut parts = match style {
+            lacuna::mesh::threemf::Style::Parts => {
+                lacuna::mesh::face_parts(&inst, level, segs, solid_size).map_err(mesh_error)?
+            }
+            _ => Vec::new(),
         };
         outputs.say(&solid.summary());
-        orient(&mut solid.parts, print.orient, &outputs);
+        let o = orient(&mut solid.parts, print.orient, &outputs);
         if let Some(w) = solid.bed_advice(print.bed, print.width) {
             eprintln!("{w}");
         }
@@ -264,15 +271,15 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             wrote(&outputs, p);
         }
         if let Some(p) = &threemf {
-            // A ZIP package is written with seeks: build it in memory, then write it out.
-            let mut zip = std::io::Cursor::new(Vec::new());
-            lacuna::mesh::threemf::write_with(&solid, colours.as_ref(), &mut zip).map_err(|e| {
-                Error::Write {
-                    path: p.display().to_string(),
-                    reason: e.to_string(),
+            match style {
+                lacuna::mesh::threemf::Style::Parts => {
+                    let title = format!("{} level {level}", solid.name);
+                    write_type_parts(&mut outputs, p, &title, &mut parts, &o, type_name)?;
                 }
-            })?;
-            outputs.write(p, |w| w.write_all(zip.get_ref()))?;
+                _ => write_threemf(&mut outputs, p, |zip| {
+                    lacuna::mesh::threemf::write_with(&solid, colours.as_ref(), zip)
+                })?,
+            }
             wrote(&outputs, p);
         }
         if let Some(p) = &obj {
@@ -387,7 +394,11 @@ fn positive_number(flag: &'static str, text: &str) -> Result<f64, Error> {
 
 /// Chooses the orientation (`--orient`), turns the parts to it and reports the overhang and
 /// the area on the bed; a warning when nothing rests on the bed.
-pub(super) fn orient(parts: &mut [lacuna::mesh::Part], how: OrientArg, outputs: &Outputs) {
+pub(super) fn orient(
+    parts: &mut [lacuna::mesh::Part],
+    how: OrientArg,
+    outputs: &Outputs,
+) -> lacuna::mesh::orient::Orientation {
     let mut o = lacuna::mesh::orient::choose(parts, how == OrientArg::Auto);
     if let Err(why) = lacuna::mesh::orient::turn_checked(parts, &o) {
         // The rounded turn did not pass the mesh check: the best axis direction instead.
@@ -401,4 +412,52 @@ pub(super) fn orient(parts: &mut [lacuna::mesh::Part], how: OrientArg, outputs: 
             false => outputs.say(&format!("{line}\n")),
         }
     }
+    o
+}
+
+/// Writes a 3MF package built in memory (a ZIP is written with seeks) to `p`.
+pub(super) fn write_threemf(
+    outputs: &mut Outputs,
+    p: &std::path::Path,
+    f: impl FnOnce(&mut std::io::Cursor<Vec<u8>>) -> std::io::Result<()>,
+) -> Result<(), Error> {
+    let mut zip = std::io::Cursor::new(Vec::new());
+    f(&mut zip).map_err(|e| Error::Write {
+        path: p.display().to_string(),
+        reason: e.to_string(),
+    })?;
+    outputs.write(p, |w| w.write_all(zip.get_ref()))
+}
+
+/// `--3mf-parts`: the type parts turned as the solid was (`o`), each named by `name` and of its
+/// type's picture colour, written as the parts of one object; a line says what each holds.
+pub(super) fn write_type_parts(
+    outputs: &mut Outputs,
+    p: &std::path::Path,
+    title: &str,
+    parts: &mut [lacuna::mesh::TypePart],
+    o: &lacuna::mesh::orient::Orientation,
+    name: impl Fn(usize) -> String,
+) -> Result<(), Error> {
+    let mut meshes: Vec<lacuna::mesh::Part> = parts.iter().map(|t| t.part.clone()).collect();
+    lacuna::mesh::orient::apply(&mut meshes, o);
+    for (t, m) in parts.iter_mut().zip(meshes) {
+        t.part = m;
+    }
+    let named: Vec<(String, [u8; 3], &lacuna::mesh::Part)> = parts
+        .iter()
+        .map(|t| (name(t.ty), lacuna::export::type_colour(t.ty), &t.part))
+        .collect();
+    let summary: Vec<String> = parts
+        .iter()
+        .map(|t| format!("{} ×{}", name(t.ty), t.cells))
+        .collect();
+    outputs.say(&format!(
+        "3MF parts: {} part(s), one per type, every cell a closed shell (checked against the exact count of its type): {}\n",
+        parts.len(),
+        summary.join(", ")
+    ));
+    write_threemf(outputs, p, |zip| {
+        lacuna::mesh::threemf::write_parts(title, &named, zip)
+    })
 }

@@ -254,7 +254,13 @@ fn checked_solid(
     geo: &GeoArgs,
     width: f64,
     limits: &Limits,
-) -> Result<lacuna::mesh::VolumeSolid, Error> {
+) -> Result<
+    (
+        lacuna::mesh::VolumeSolid,
+        lacuna::topology::volume::VolumeTypeSet,
+    ),
+    Error,
+> {
     if u64::from(geo.level) > limits.max_level {
         return Err(Error::limit(
             "the level",
@@ -290,7 +296,8 @@ fn checked_solid(
     }
     lacuna::mesh::check_size("--width", width).map_err(mesh_error)?;
     let placement = lacuna::geometry::place_assembly(&v.assembly, &v.corners, &v.names)?;
-    lacuna::mesh::assembly_solid(name, &v.assembly, &placement, &set, geo.level, width)
+    let vs = lacuna::mesh::assembly_solid(name, &v.assembly, &placement, &set, geo.level, width)?;
+    Ok((vs, set))
 }
 
 /// What `render` writes for a volume.
@@ -301,6 +308,7 @@ pub(super) struct VolumeTargets<'a> {
     pub(super) mesh: &'a lacuna::mesh::Targets,
     pub(super) size: usize,
     pub(super) transparent: bool,
+    pub(super) style: lacuna::mesh::threemf::Style,
 }
 
 /// `lacuna render` of a volume: the mesh files only when the solid is embedded (no two triangles
@@ -315,7 +323,7 @@ pub(super) fn render(
     limits: &Limits,
 ) -> Result<ExitCode, Error> {
     lacuna::mesh::check_size("--resolution", print.resolution).map_err(mesh_error)?;
-    let mut vs = checked_solid(name, v, geo, print.width, limits)?;
+    let (mut vs, set) = checked_solid(name, v, geo, print.width, limits)?;
     outputs.say(&vs.summary());
     let sizes = vs.sizes();
     outputs.say(&sizes.text(print.resolution));
@@ -332,9 +340,14 @@ pub(super) fn render(
         failed = true;
     }
     let wrote = |o: &Outputs, p: &std::path::Path| o.say(&format!("wrote {}\n", p.display()));
-    if t.mesh.any() {
-        super::render::orient(&mut vs.solid.parts, print.orient, outputs);
-    }
+    let orientation = match t.mesh.any() {
+        true => Some(super::render::orient(
+            &mut vs.solid.parts,
+            print.orient,
+            outputs,
+        )),
+        false => None,
+    };
     let solid = &vs.solid;
     if t.mesh.any() {
         if let Some(w) = solid.bed_advice(print.bed, print.width) {
@@ -348,13 +361,30 @@ pub(super) fn render(
         })?;
         wrote(outputs, p);
     }
-    if let Some(p) = &t.mesh.threemf {
-        let mut zip = std::io::Cursor::new(Vec::new());
-        lacuna::mesh::threemf::write(solid, &mut zip).map_err(|e| Error::Write {
-            path: p.display().to_string(),
-            reason: e.to_string(),
-        })?;
-        outputs.write(p, |w| w.write_all(zip.get_ref()))?;
+    if let (Some(p), Some(o)) = (&t.mesh.threemf, &orientation) {
+        use lacuna::mesh::threemf::Style;
+        let type_name = |k: usize| format!("V{k}");
+        match t.style {
+            Style::Plain => super::render::write_threemf(outputs, p, |zip| {
+                lacuna::mesh::threemf::write(solid, zip)
+            })?,
+            Style::Colours => {
+                let colours = lacuna::mesh::threemf::Colours {
+                    materials: (0..set.types.len())
+                        .map(|k| (type_name(k), lacuna::export::type_colour(k)))
+                        .collect(),
+                    per_triangle: vs.triangle_types(&set)?,
+                };
+                super::render::write_threemf(outputs, p, |zip| {
+                    lacuna::mesh::threemf::write_with(solid, Some(&colours), zip)
+                })?;
+            }
+            Style::Parts => {
+                let mut parts = vs.type_parts(&set)?;
+                let title = format!("{} level {}", solid.name, solid.level);
+                super::render::write_type_parts(outputs, p, &title, &mut parts, o, type_name)?;
+            }
+        }
         wrote(outputs, p);
     }
     if let Some(p) = &t.mesh.obj {
@@ -408,7 +438,7 @@ pub(super) fn measure(
     limits: &Limits,
 ) -> Result<ExitCode, Error> {
     lacuna::mesh::check_size("--resolution", print.resolution).map_err(mesh_error)?;
-    let vs = checked_solid(name, v, geo, print.width, limits)?;
+    let (vs, _) = checked_solid(name, v, geo, print.width, limits)?;
     let sizes = vs.sizes();
     let below = sizes.below(print.resolution);
     let embedded = vs.crossing.is_none();
@@ -472,7 +502,7 @@ pub(super) fn report(
     let levels = u64::from(geo.level).max(3);
     let solid =
         lacuna::topology::volume::solid_topology_of(&set, levels, &v.assembly.start_cells())?;
-    let vs = checked_solid(name, v, geo, lacuna::mesh::DEFAULT_WIDTH, limits)?;
+    let (vs, _) = checked_solid(name, v, geo, lacuna::mesh::DEFAULT_WIDTH, limits)?;
     let sizes = vs.sizes();
     let mut check = vs.summary();
     check += &sizes.text(lacuna::mesh::DEFAULT_RESOLUTION);

@@ -53,10 +53,13 @@ mod below {
     pub(crate) use crate::input::automaton_model::AutomatonModel;
     pub(crate) use crate::measure::measurement::exact_topology;
     pub(crate) use crate::topology::component::{components_by_induction, start_components};
+    pub(crate) use crate::topology::count::population;
 }
 pub use polygon::triangulate;
 pub use printability::{printability, Printability};
-pub use solid::{build, build_typed, embedded, Part, Solid, TypedSolid};
+pub use solid::{
+    build, build_typed, check_type_part, embedded, face_parts, Part, Solid, TypePart, TypedSolid,
+};
 pub use surface::{
     automaton_mesh, automaton_surface, exact_automaton_surface, thicken, AutomatonSolid, Surface,
     EXACT_LEAVES,

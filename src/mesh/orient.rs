@@ -297,6 +297,15 @@ fn check_parts(parts: &[Part]) -> Result<(usize, i64), String> {
     }
 }
 
+/// Turns more parts as `o` turned the solid ([`turn_checked`] kept it): an axis direction as a
+/// permutation ([`turn`]), another as the same rounded rotation.
+pub fn apply(parts: &mut [Part], o: &Orientation) {
+    match DOWN.iter().any(|(n, _)| *n == o.chosen) {
+        true => turn(parts, &o.chosen),
+        false => rotate(parts, o.vector),
+    }
+}
+
 /// Rotates the parts so that the unit vector `d` points to −z (Rodrigues), rounded to `f32`.
 fn rotate(parts: &mut [Part], d: [f64; 3]) {
     let t = [0.0, 0.0, -1.0];

@@ -16,11 +16,13 @@
 //! a bottom one (reversed); each boundary segment `a → b` (material on its left) gives a wall of
 //! two triangles facing outwards. Nothing else: shared cell edges leave no wall.
 
-use super::below::Instance;
+use super::below::{population, Instance};
 use super::check::{check_part, PartCheck};
 use super::expect::{expected, Expected};
 use super::outline::{outline, Outline};
 use super::{MeshError, Size};
+use num_bigint::BigUint;
+use num_traits::Zero;
 use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 use std::collections::{HashMap, HashSet, VecDeque};
 
@@ -469,6 +471,88 @@ pub fn build_typed(
         solid: checked_solid(inst, level, size, parts, expected, &o)?,
         types,
     })
+}
+
+/// The mesh of one type's cells (`render --3mf-parts`): every level-n cell of the type as a
+/// closed shell of its own (its own vertices; cells that share an edge or a face touch along
+/// it, and a slicer merges the touching shells of a part), checked to be as many spheres as the
+/// exact count of the type's cells.
+#[derive(Clone, Debug)]
+pub struct TypePart {
+    /// The type's index in its closure.
+    pub ty: usize,
+    /// The number of cells (closed shells).
+    pub cells: u64,
+    /// The shells, in millimetres.
+    pub part: Part,
+}
+
+/// Checks that `part` is `cells` closed oriented spheres ([`check_part`]: every edge in two
+/// triangles with opposite orientations, every vertex link one cycle; then as many connected
+/// pieces as cells and Euler characteristic 2 per piece).
+pub fn check_type_part(ty: usize, part: Part, cells: &BigUint) -> Result<TypePart, String> {
+    let ck = check_part(&part).map_err(|e| format!("the cells of type {ty}: {e}"))?;
+    let n = ck.components as u64;
+    if BigUint::from(n) != *cells || ck.euler != 2 * ck.components as i64 {
+        return Err(format!(
+            "the cells of type {ty} give {} closed surface(s) of Euler characteristic {} in all; the exact count is {cells} cell(s), each a sphere",
+            ck.components, ck.euler
+        ));
+    }
+    Ok(TypePart { ty, cells: n, part })
+}
+
+/// One part per face type of the level-n cells ([`TypePart`]): each cell's polygon (the points
+/// [`build_typed`] identifies, triangulated the same way) extruded to the thickness, as a prism
+/// with its own vertices. The cells are first shown not to overlap as for [`build`]; the number
+/// of cells of each type is compared with the exact count (the start vector times the
+/// substitution matrix). Types with no cell at the level give no part.
+pub fn face_parts(
+    inst: &Instance,
+    level: u32,
+    segments: usize,
+    size: Size,
+) -> Result<Vec<TypePart>, MeshError> {
+    let (_, o, _) = checked_outline(inst, level, segments, size, true)?;
+    let want = population(&inst.types, u64::from(level));
+    let z = size.thickness as f32;
+    let mut parts: Vec<Part> = vec![Part::default(); want.len()];
+    for cell in &o.cell_polygons {
+        let ty = cell.ty as usize;
+        let part = parts.get_mut(ty).ok_or_else(|| MeshError::Check {
+            level,
+            reason: format!("a cell of type {ty}, which the closure does not have"),
+        })?;
+        let base = part.vertices.len() as u32;
+        let n = cell.points.len() as u32;
+        let own: Vec<u32> = (0..n).collect();
+        let points: Vec<[f64; 2]> = cell
+            .points
+            .iter()
+            .map(|&p| o.cell_points[p as usize])
+            .collect();
+        part.vertices.extend(layers(&points, &own, z));
+        let mut tris = Vec::new();
+        for t in super::polygon::triangulate(&points) {
+            push_caps(&mut tris, t.map(|i| i as u32), n);
+        }
+        for i in 0..n {
+            push_wall(&mut tris, [i, (i + 1) % n], n);
+        }
+        part.triangles
+            .extend(tris.into_iter().map(|t| t.map(|v| v + base)));
+    }
+    let mut out = Vec::new();
+    for (ty, (part, cells)) in parts.into_iter().zip(&want).enumerate() {
+        if part.triangles.is_empty() && cells.is_zero() {
+            continue;
+        }
+        out.push(
+            check_type_part(ty, part, cells)
+                .map_err(|reason| MeshError::Check { level, reason })?,
+        );
+    }
+    Ok(out)
 }
 
 /// Checks every part ([`check_part`]) and compares it with the exact topology: one connected

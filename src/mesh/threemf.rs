@@ -1,12 +1,13 @@
 //! 3MF writer (3MF Core Specification 1.x): a ZIP package (the `zip` crate, deflate) with the
 //! content types, the package relationship and one model part, `unit="millimeter"`, one
 //! `<object type="model">` per component and a build item for each; with [`Colours`], one base
-//! material per face type (`<basematerials>`, its colour as `displaycolor`) and every triangle
-//! naming its type's material (`pid`, `p1`). Written by hand over the zip
+//! material per face or volume type (`<basematerials>`, its colour as `displaycolor`) and every
+//! triangle naming its type's material (`pid`, `p1`); with [`write_parts`], one object per type
+//! of that type's material, put together as the components of one object. Written by hand over the zip
 //! crate: the core model is a few elements, and no well-kept MIT/Apache 3MF writer crate fits
 //! better than these lines.
 
-use super::solid::Solid;
+use super::solid::{Part, Solid};
 use std::io::{self, Seek, Write};
 use zip::write::SimpleFileOptions;
 
@@ -34,10 +35,21 @@ fn zip_error(e: zip::result::ZipError) -> io::Error {
     io::Error::other(e.to_string())
 }
 
-/// The colour of every triangle of a solid: a base material per face type.
+/// How a solid of cells of types is written as 3MF.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Style {
+    /// One object per component, no material.
+    Plain,
+    /// One object per component, every triangle of its cell's type's material ([`Colours`]).
+    Colours,
+    /// One part per type, each of its type's material ([`write_parts`]).
+    Parts,
+}
+
+/// The colour of every triangle of a solid: a base material per face or volume type.
 #[derive(Clone, Debug)]
 pub struct Colours {
-    /// Per material (face type): its name and colour (RGB).
+    /// Per material (a type): its name and colour (RGB).
     pub materials: Vec<(String, [u8; 3])>,
     /// Per part, the material of each triangle.
     pub per_triangle: Vec<Vec<u32>>,
@@ -55,6 +67,67 @@ pub fn write<W: Write + Seek>(solid: &Solid, out: W) -> io::Result<()> {
 pub fn write_with<W: Write + Seek>(
     solid: &Solid,
     colours: Option<&Colours>,
+    out: W,
+) -> io::Result<()> {
+    let objects: Vec<Object<'_>> = solid
+        .parts
+        .iter()
+        .enumerate()
+        .map(|(i, p)| Object {
+            name: format!("component {i}"),
+            part: p,
+            material: colours.map(|c| c.per_triangle[i].first().copied().unwrap_or(0)),
+            per_triangle: colours.map(|c| c.per_triangle[i].as_slice()),
+        })
+        .collect();
+    let materials = colours.map_or(&[][..], |c| &c.materials[..]);
+    write_model(
+        &format!("{} level {}", solid.name, solid.level),
+        materials,
+        &objects,
+        None,
+        out,
+    )
+}
+
+/// One object per type, each of its own colour, put together as the parts of one object
+/// (`render --3mf-parts`): a multi-material slicer loads one object whose parts it can give
+/// each an extruder. `parts` holds, per type, its name, colour and mesh.
+pub fn write_parts<W: Write + Seek>(
+    title: &str,
+    parts: &[(String, [u8; 3], &Part)],
+    out: W,
+) -> io::Result<()> {
+    let materials: Vec<(String, [u8; 3])> = parts.iter().map(|(n, c, _)| (n.clone(), *c)).collect();
+    let objects: Vec<Object<'_>> = parts
+        .iter()
+        .enumerate()
+        .map(|(i, (name, _, part))| Object {
+            name: name.clone(),
+            part,
+            material: Some(i as u32),
+            per_triangle: None,
+        })
+        .collect();
+    write_model(title, &materials, &objects, Some(title), out)
+}
+
+/// A mesh object of the model: its name, mesh, material (index into the base materials) and,
+/// optionally, a material per triangle.
+struct Object<'a> {
+    name: String,
+    part: &'a Part,
+    material: Option<u32>,
+    per_triangle: Option<&'a [u32]>,
+}
+
+/// The package: materials (none: no `<basematerials>`), the mesh objects, and either one build
+/// item per object or, with `group`, one object of that name made of them all as components.
+fn write_model<W: Write + Seek>(
+    title: &str,
+    materials: &[(String, [u8; 3])],
+    objects: &[Object<'_>],
+    group: Option<&str>,
     out: W,
 ) -> io::Result<()> {
     let mut z = zip::ZipWriter::new(out);
@@ -78,17 +151,16 @@ pub fn write_with<W: Write + Seek>(
         )?;
         writeln!(
             w,
-            r#" <metadata name="Title">{} level {}</metadata>"#,
-            xml_escape(&solid.name),
-            solid.level
+            r#" <metadata name="Title">{}</metadata>"#,
+            xml_escape(title)
         )?;
         writeln!(w, r#" <metadata name="Application">lacuna</metadata>"#)?;
         writeln!(w, " <resources>")?;
-        // With colours the materials take id 1 and the objects follow.
-        let first = usize::from(colours.is_some()) + 1;
-        if let Some(c) = colours {
+        // With materials they take id 1 and the objects follow.
+        let first = usize::from(!materials.is_empty()) + 1;
+        if !materials.is_empty() {
             writeln!(w, r#"  <basematerials id="{MATERIALS_ID}">"#)?;
-            for (name, [r, g, b]) in &c.materials {
+            for (name, [r, g, b]) in materials {
                 writeln!(
                     w,
                     r##"   <base name="{}" displaycolor="#{r:02X}{g:02X}{b:02X}FF"/>"##,
@@ -97,26 +169,26 @@ pub fn write_with<W: Write + Seek>(
             }
             writeln!(w, "  </basematerials>")?;
         }
-        for (i, p) in solid.parts.iter().enumerate() {
-            let material = colours.map_or(String::new(), |c| {
-                let m = c.per_triangle[i].first().copied().unwrap_or(0);
+        for (i, o) in objects.iter().enumerate() {
+            let material = o.material.map_or(String::new(), |m| {
                 format!(r#" pid="{MATERIALS_ID}" pindex="{m}""#)
             });
             writeln!(
                 w,
-                r#"  <object id="{}" type="model" name="component {i}"{material}><mesh><vertices>"#,
-                i + first
+                r#"  <object id="{}" type="model" name="{}"{material}><mesh><vertices>"#,
+                i + first,
+                xml_escape(&o.name)
             )?;
-            for v in &p.vertices {
+            for v in &o.part.vertices {
                 writeln!(w, r#"<vertex x="{}" y="{}" z="{}"/>"#, v[0], v[1], v[2])?;
             }
             writeln!(w, "</vertices><triangles>")?;
-            for (k, t) in p.triangles.iter().enumerate() {
-                match colours {
+            for (k, t) in o.part.triangles.iter().enumerate() {
+                match o.per_triangle {
                     Some(c) => writeln!(
                         w,
                         r#"<triangle v1="{}" v2="{}" v3="{}" pid="{MATERIALS_ID}" p1="{}"/>"#,
-                        t[0], t[1], t[2], c.per_triangle[i][k]
+                        t[0], t[1], t[2], c[k]
                     )?,
                     None => writeln!(
                         w,
@@ -127,9 +199,25 @@ pub fn write_with<W: Write + Seek>(
             }
             writeln!(w, "</triangles></mesh></object>")?;
         }
+        let items: Vec<usize> = match group {
+            None => (first..first + objects.len()).collect(),
+            Some(name) => {
+                let id = first + objects.len();
+                writeln!(
+                    w,
+                    r#"  <object id="{id}" type="model" name="{}"><components>"#,
+                    xml_escape(name)
+                )?;
+                for i in 0..objects.len() {
+                    writeln!(w, r#"   <component objectid="{}"/>"#, i + first)?;
+                }
+                writeln!(w, "  </components></object>")?;
+                vec![id]
+            }
+        };
         writeln!(w, " </resources>\n <build>")?;
-        for i in 0..solid.parts.len() {
-            writeln!(w, r#"  <item objectid="{}"/>"#, i + first)?;
+        for id in items {
+            writeln!(w, r#"  <item objectid="{id}"/>"#)?;
         }
         writeln!(w, " </build>\n</model>")?;
         w.flush()?;

@@ -75,6 +75,26 @@ pub fn counts_from(ts: &TypeSet, start: &[(usize, u64)], levels: u64) -> Vec<Lev
     out
 }
 
+/// The level-`level` faces of each type, the start faces of the type set taken together: the
+/// start vector times the substitution matrix `level` times.
+pub fn population(ts: &TypeSet, level: u64) -> Vec<BigUint> {
+    let matrix = ts.matrix();
+    let mut v = vec![BigUint::zero(); ts.types.len()];
+    for &t in &ts.start {
+        v[t] += 1u32;
+    }
+    for _ in 0..level {
+        let mut next = vec![BigUint::zero(); v.len()];
+        for (t, vt) in v.iter().enumerate().filter(|(_, x)| !x.is_zero()) {
+            for &(s, k) in &matrix[t] {
+                next[s] += vt * k;
+            }
+        }
+        v = next;
+    }
+    v
+}
+
 /// Counts for the start faces of the type set taken together (an assembly: the total).
 pub fn counts(ts: &TypeSet, levels: u64) -> Vec<LevelCount> {
     let start: Vec<(usize, u64)> = ts.start.iter().map(|&t| (t, 1)).collect();

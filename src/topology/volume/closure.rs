@@ -189,6 +189,25 @@ pub struct VolumeLevelCount {
 }
 
 /// Exact counts of the start volumes from level 0 to `levels`, on the vector of type
+/// The level-`level` sub-volumes of each type, from the start volumes: the start vector pushed
+/// through the children `level` times.
+pub fn volumes_by_type(set: &VolumeTypeSet, level: u64) -> Vec<BigUint> {
+    let mut v = vec![BigUint::zero(); set.types.len()];
+    for &t in &set.start {
+        v[t] += 1u32;
+    }
+    for _ in 0..level {
+        let mut next = vec![BigUint::zero(); v.len()];
+        for (t, vt) in v.iter().enumerate().filter(|(_, x)| !x.is_zero()) {
+            for &c in &set.types[t].children {
+                next[c] += vt;
+            }
+        }
+        v = next;
+    }
+    v
+}
+
 /// multiplicities with big integers (lacunas in quarters).
 pub fn volume_counts(set: &VolumeTypeSet, levels: u64) -> Vec<VolumeLevelCount> {
     let n = set.types.len();

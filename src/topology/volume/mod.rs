@@ -19,7 +19,9 @@ pub(crate) mod step;
 pub(crate) mod surface;
 
 pub use assembly::{mirror_consistent, reversed, SharedFace, StartCells, StartMap, VolumeAssembly};
-pub use closure::{volume_counts, VolumeClosure, VolumeLevelCount, VolumeType, VolumeTypeSet};
+pub use closure::{
+    volume_counts, volumes_by_type, VolumeClosure, VolumeLevelCount, VolumeType, VolumeTypeSet,
+};
 pub use complex::{face_cells, solid_topology, solid_topology_of, SolidLevel};
 pub use solid::{parse_volume, Solid};
 pub use step::{interior, subdivide_volume, Interior, Patch, Placed, SubVolume, VolumeSubdivision};
