@@ -5,7 +5,7 @@ set -e
 L=${LACUNA:-target/release/lacuna}
 $L render sierpinski-triangle --level 6 --svg docs/images/sierpinski-triangle.svg
 $L render cantor-set --level 6 --svg docs/images/cantor-set.svg
-$L render kite-dart --level 6 --svg docs/images/kite-dart.svg
+$L render penrose-robinson --level 6 --svg docs/images/penrose-robinson.svg
 $L render de-casteljau-cubic --level 3 --svg docs/images/de-casteljau-cubic.svg
 $L render bspline-quadratic-4 --level 3 --svg docs/images/bspline-quadratic-4.svg
 $L render bspline-cubic --level 3 --svg docs/images/bspline-cubic.svg
@@ -20,3 +20,5 @@ $L render gasket-5 --level 5 --png docs/images/gasket-5.png
 $L render gasket-6 --level 5 --png docs/images/gasket-6.png
 $L render gasket-7 --level 5 --png docs/images/gasket-7.png
 $L render gasket-8 --level 4 --png docs/images/gasket-8.png
+# Seed 004's fractal kite (docs/GALLERY.md, docs/GUIDE.md).
+$L render kite-dart --level 14 --png docs/images/kite-dart.png

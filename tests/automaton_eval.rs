@@ -209,18 +209,22 @@ fn sierpinski_and_cantor_dimensions_to_50_digits() {
 
 #[test]
 fn kite_and_dart_have_dimension_two_in_the_field() {
-    // Hand derivation (fixtures/kite-dart.aut): squared ratios 1 and r² = σ, det(I − M(u)) =
-    // (1 − u)² − u = u² − 3u + 1, smallest root u = (3 − √5)/2 = σ, so s = 2·ln σ/ln σ = 2.
-    let m = model("kite-dart");
-    assert_eq!(m.field.degree(), 4);
-    let r = resolve(&m, &[], 10_000).unwrap();
-    assert!(r.verdict.consistent, "{:?}", r.verdict.failed);
-    check_contraction(&m, &r.ops).unwrap();
-    let d = similarity_dimension(&m, &r.ops, 20).unwrap();
-    assert_eq!(
-        (d.exact.as_str(), d.decimal.as_str()),
-        ("2", "2.00000000000000000000")
-    );
+    // Hand derivation (fixtures/kite-dart.aut, and the same for penrose-robinson.aut): squared
+    // ratios 1 (T0a) and r² = σ (the other three), det(I − M(u)) = (1 − u)² − u = u² − 3u + 1,
+    // smallest root u = (3 − √5)/2 = σ, so s = 2·ln σ/ln σ = 2.
+    for name in ["kite-dart", "penrose-robinson"] {
+        let m = model(name);
+        assert_eq!(m.field.degree(), 4);
+        let r = resolve(&m, &[], 10_000).unwrap();
+        assert!(r.verdict.consistent, "{:?}", r.verdict.failed);
+        check_contraction(&m, &r.ops).unwrap();
+        let d = similarity_dimension(&m, &r.ops, 20).unwrap();
+        assert_eq!(
+            (d.exact.as_str(), d.decimal.as_str()),
+            ("2", "2.00000000000000000000"),
+            "{name}"
+        );
+    }
 }
 
 #[test]
@@ -309,7 +313,7 @@ fn parameters_fix_unknown_entries_exactly() {
     assert_eq!(e.code(), "E0717");
 }
 
-const NEW_ENTRIES: [&str; 8] = [
+const NEW_ENTRIES: [&str; 9] = [
     "de-casteljau-cubic",
     "bspline-quadratic-4",
     "bspline-cubic",
@@ -318,6 +322,7 @@ const NEW_ENTRIES: [&str; 8] = [
     "sierpinski-triangle",
     "cantor-set",
     "kite-dart",
+    "penrose-robinson",
 ];
 
 #[test]
@@ -468,15 +473,15 @@ fn rational_dimensions_are_exact() {
 }
 
 #[test]
-fn kite_and_dart_pieces_tile_their_parents_exactly() {
-    // Hand derivation (fixtures/kite-dart.aut): the half kite A = P Q R has legs φ and apex
+fn robinson_triangles_pieces_tile_their_parents_exactly() {
+    // Hand derivation (fixtures/penrose-robinson.aut): the half kite A = P Q R has legs φ and apex
     // angle π/5, so |A| = φ² sin(π/5) / 2 = s φ² / 2 with s = sin(π/5), φ = 3 − 4s²; the half
     // dart B = S P Q has legs 1 and angle 3π/5, so |B| = sin(3π/5)/2 = s cos(π/5) = s φ / 2 =
     // r |A| with r = 1/φ = 2 − 4s². A = T0a(B) ∪ T1a(A) and B = T0b(B) ∪ T1b(A): each piece lies in
     // its parent, the areas add up exactly, every piece vertex is on the parent's boundary or the
     // other piece's, and every piece but T0a(B) = B is similar to its prototile with ratio r,
     // orientation kept.
-    let m = model("kite-dart");
+    let m = model("penrose-robinson");
     let r = resolve(&m, &[], 10_000).unwrap();
     let k = &m.field;
     let s = k.generator_element();

@@ -31,7 +31,7 @@ const FACE_FIXTURES: [&str; 8] = [
     "two-quads",
     "autofrac-two-quads",
 ];
-const AUTOMATON_FIXTURES: [&str; 30] = [
+const AUTOMATON_FIXTURES: [&str; 31] = [
     "de-casteljau-edge",
     "chaikin-known",
     "spec-edge",
@@ -46,6 +46,7 @@ const AUTOMATON_FIXTURES: [&str; 30] = [
     "sierpinski-triangle",
     "cantor-set",
     "kite-dart",
+    "penrose-robinson",
     // Seed 002: the Sierpinski carpet and the gasket family (issue #37).
     "sierpinski-carpet",
     "gasket-3",

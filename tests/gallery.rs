@@ -372,3 +372,145 @@ fn the_gallery_pictures_are_what_render_draws_now() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+// ---- Seed 004: the kite and dart of Example 1 ----
+
+/// A similitude of the plane `z ↦ w·z + t` (complex numbers as pairs).
+#[derive(Clone, Copy)]
+struct Sim {
+    w: (f64, f64),
+    t: (f64, f64),
+}
+
+impl Sim {
+    fn apply(&self, z: (f64, f64)) -> (f64, f64) {
+        (
+            self.w.0 * z.0 - self.w.1 * z.1 + self.t.0,
+            self.w.0 * z.1 + self.w.1 * z.0 + self.t.1,
+        )
+    }
+}
+
+/// The paper's four maps (seed 004, Example 1) with T0b's y-translation `1 + sign·φ cos(4π/5)`:
+/// sign +1 as printed, −1 corrected. Returns (T0a, T1a, T0b, T1b).
+fn paper_maps(sign: f64) -> [Sim; 4] {
+    let phi = (1.0 + 5f64.sqrt()) / 2.0;
+    let r = 1.0 / phi;
+    let rot = |k: f64| (r * (k * PI / 5.0).cos(), r * (k * PI / 5.0).sin());
+    [
+        Sim {
+            w: (1.0, 0.0),
+            t: (0.0, 0.0),
+        },
+        Sim {
+            w: rot(3.0),
+            t: (0.0, 1.0),
+        },
+        Sim {
+            w: rot(4.0),
+            t: (
+                phi * (4.0 * PI / 5.0).sin(),
+                1.0 + sign * phi * (4.0 * PI / 5.0).cos(),
+            ),
+        },
+        Sim {
+            w: rot(7.0),
+            t: (0.0, 1.0),
+        },
+    ]
+}
+
+/// The frame of both states in fixtures/kite-dart.aut.
+const KITE_FRAME: [(f64, f64); 3] = [(-4.0, -0.5), (4.0, -0.5), (0.0, 5.0)];
+
+/// The level-2 pieces of an automaton as `render --json-out` writes them.
+fn level_two(input: &str) -> Vec<Vec<(f64, f64)>> {
+    let (code, out, err) = lacuna(&["render", input, "--level", "2", "--json-out", "-"]);
+    assert_eq!(code, 0, "{err}");
+    let json = &out[..out.rfind('}').expect("JSON") + 1];
+    let v: serde_json::Value = serde_json::from_str(json).expect("JSON");
+    v["shapes"]
+        .as_array()
+        .expect("shapes")
+        .iter()
+        .map(|s| {
+            s["points"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|p| (p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn the_kite_and_dart_are_the_paper_s_maps_with_one_sign_corrected() {
+    for (input, sign) in [
+        ("kite-dart", -1.0),
+        ("fixtures/kite-dart-as-printed.aut", 1.0),
+    ] {
+        let [_, t1a, t0b, t1b] = paper_maps(sign);
+        // The level-2 leaves from a, in the walk's order: a.T0 b.T0, a.T0 b.T1, a.T1 a.T0,
+        // a.T1 a.T1, each the image of the frame (T0a is the identity).
+        let want: [Vec<(f64, f64)>; 4] = [
+            KITE_FRAME.iter().map(|&p| t0b.apply(p)).collect(),
+            KITE_FRAME.iter().map(|&p| t1b.apply(p)).collect(),
+            KITE_FRAME.iter().map(|&p| t1a.apply(p)).collect(),
+            KITE_FRAME
+                .iter()
+                .map(|&p| t1a.apply(t1a.apply(p)))
+                .collect(),
+        ];
+        let got = level_two(input);
+        assert_eq!(got.len(), 4, "{input}");
+        for (g, w) in got.iter().zip(&want) {
+            for (a, b) in g.iter().zip(w) {
+                assert!(
+                    (a.0 - b.0).abs() < 1e-9 && (a.1 - b.1).abs() < 1e-9,
+                    "{input}: {g:?} against the paper's {w:?}"
+                );
+            }
+        }
+    }
+    // As printed, two words of different first letters give one map (composed here from the
+    // formulas alone): u = T0a T1b T0a T0b T0b T0b T1b T0a, v = T1a T1a T1a T1a T0a T0b. Corrected,
+    // they differ.
+    let word = |maps: &[Sim; 4], w: &[usize], z: (f64, f64)| {
+        w.iter().rev().fold(z, |z, &i| maps[i].apply(z))
+    };
+    let (u, v) = ([0, 3, 0, 2, 2, 2, 3, 0], [1, 1, 1, 1, 0, 2]);
+    for (sign, same) in [(1.0, true), (-1.0, false)] {
+        let maps = paper_maps(sign);
+        let apart = KITE_FRAME
+            .iter()
+            .map(|&p| {
+                let (a, b) = (word(&maps, &u, p), word(&maps, &v, p));
+                (a.0 - b.0).hypot(a.1 - b.1)
+            })
+            .fold(0.0, f64::max);
+        assert_eq!(apart < 1e-12, same, "sign {sign}: {apart}");
+    }
+    // lacuna proves both verdicts, and its checker accepts both certificates.
+    let dir = std::env::temp_dir().join(format!("lacuna-kite-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (input, verdict) in [
+        (
+            "kite-dart",
+            "(the Hausdorff dimension: holds: the neighbour maps",
+        ),
+        (
+            "fixtures/kite-dart-as-printed.aut",
+            "fails: the identity is a neighbour map (two words starting with `a.T0` and `a.T1`",
+        ),
+    ] {
+        let cert = dir.join("c.json");
+        let (code, out, err) = lacuna(&["verify", input, "--certificate", cert.to_str().unwrap()]);
+        assert_eq!(code, 0, "{input}: {err}");
+        assert!(out.contains("similarity dimension = 2 = 2.000"), "{out}");
+        assert!(out.contains(verdict), "{input}: {out}");
+        let (code, out, _) = lacuna(&["check", cert.to_str().unwrap()]);
+        assert_eq!(code, 0, "{input}: {out}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -202,3 +202,79 @@ fn svg_has_curves_a_legend_per_type_and_outlines_relative_to_the_cells() {
     assert!(w1 > 2.0 * w3 && w3 > 0.0, "{w1} {w3}");
     assert_eq!(stroke_width(&i, 7, f.scale), 0.0);
 }
+
+/// The box of the pixels of a picture that are not white, over its first `rows` rows (the
+/// picture above the legend): (x0, y0, x1, y1), and how many there are.
+fn ink(w: u32, px: &[[u8; 4]], rows: u32) -> ([u32; 4], usize) {
+    let mut b = [u32::MAX, u32::MAX, 0, 0];
+    let mut n = 0;
+    for y in 0..rows {
+        for x in 0..w {
+            let p = px[(y * w + x) as usize];
+            if p[..3] != [255, 255, 255] {
+                n += 1;
+                b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
+            }
+        }
+    }
+    (b, n)
+}
+
+/// An automaton's PNG (issue #32): colour, anti-aliased, the shapes centred with a margin, every
+/// state in its colour, the pieces visible at every level. The Heighway dragon is a polyline
+/// drawn in its states' colours; the Cantor set at level 5 is 32 segments of 1/243 on one line,
+/// centred in a picture a quarter as tall as wide; the fractal kite fills the middle of its
+/// picture (the frame triangle of every leaf contains its piece).
+#[test]
+fn automaton_pictures_are_coloured_centred_and_visible() {
+    let dir = std::env::temp_dir().join(format!("lacuna-apng-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let render = |name: &str, level: &str| {
+        let path = dir.join(format!("{name}.png"));
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_lacuna"))
+            .args(["render", name, "--level", level, "--png"])
+            .arg(&path)
+            .args(["--size", "400", "--no-legend"])
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{name}");
+        decode(&std::fs::read(&path).unwrap())
+    };
+    // The dragon: many colours (anti-aliasing and two states), ink centred within 2 % both ways
+    // and a margin on every side.
+    let (w, h, px) = render("heighway-dragon", "10");
+    let colours: std::collections::HashSet<[u8; 4]> = px.iter().copied().collect();
+    assert!(colours.len() > 16, "{} colours", colours.len());
+    let (b, _) = ink(w, &px, h);
+    let (mx, my) = (f64::from(b[0] + b[2]) / 2.0, f64::from(b[1] + b[3]) / 2.0);
+    assert!(
+        (mx - f64::from(w) / 2.0).abs() < 0.02 * f64::from(w),
+        "{b:?} in {w}×{h}"
+    );
+    assert!(
+        (my - f64::from(h) / 2.0).abs() < 0.02 * f64::from(h),
+        "{b:?} in {w}×{h}"
+    );
+    assert!(
+        b[0] > 4 && b[1] > 4 && b[2] < w - 5 && b[3] < h - 5,
+        "{b:?}"
+    );
+    // The Cantor set: a picture 100 pixels tall, its 32 pieces on the middle row, spread over
+    // the width less the margins (16 px each side), with a gap in the middle third.
+    let (w, h, px) = render("cantor-set", "5");
+    assert_eq!((w, h), (400, 100));
+    let (b, n) = ink(w, &px, h);
+    assert!(n >= 32, "{n} pixels");
+    assert!(b[1] >= 47 && b[3] <= 53, "{b:?}");
+    assert!(b[0] <= 17 && b[2] >= 382, "{b:?}");
+    let row = (b[1] + b[3]) / 2;
+    let middle = (180..220).all(|x| px[(row * w + x) as usize][..3] == [255, 255, 255]);
+    assert!(middle, "the middle third is empty");
+    // The kite: its middle is filled.
+    let (w, h, px) = render("kite-dart", "12");
+    let (b, n) = ink(w, &px, h);
+    let c = px[(((b[1] + b[3]) / 2) * w + (b[0] + b[2]) / 2) as usize];
+    assert_ne!(c[..3], [255, 255, 255], "the kite's middle");
+    assert!(n as f64 > 0.3 * f64::from(w * h), "{n} of {} pixels", w * h);
+    std::fs::remove_dir_all(&dir).ok();
+}

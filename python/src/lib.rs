@@ -663,8 +663,20 @@ fn render(
                 wrote.push(p.clone());
             }
             if let Some(p) = &png {
-                let raster = lacuna::export::automaton_raster(&ev, g.level, size);
-                write_file(p, |w| lacuna::export::write_png(&raster, w))?;
+                let background = match transparent {
+                    true => lacuna::export::Background::Transparent,
+                    false => lacuna::export::Background::White,
+                };
+                write_file(p, |w| {
+                    lacuna::export::write_automaton_png(
+                        &ev,
+                        g.level,
+                        size as u32,
+                        background,
+                        legend,
+                        w,
+                    )
+                })?;
                 wrote.push(p.clone());
             }
             return Ok(wrote);

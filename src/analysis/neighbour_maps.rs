@@ -42,10 +42,10 @@ use std::collections::{HashSet, VecDeque};
 
 /// The most neighbour maps the search keeps before it gives up (undecided): a documented limit
 /// (each map costs a few field elements), never a verdict.
-pub const MAX_NEIGHBOUR_MAPS: usize = 4096;
+pub const MAX_NEIGHBOUR_MAPS: usize = 16_384;
 /// The most candidate maps the search composes and tests (a part with many operators tries
 /// each one on every kept map); beyond it the search gives up (undecided).
-pub const MAX_NEIGHBOUR_TESTS: usize = 1 << 18;
+pub const MAX_NEIGHBOUR_TESTS: usize = 1 << 20;
 
 /// Bits of the rational upper bounds of square roots.
 const SQRT_BITS: u32 = 32;

@@ -102,6 +102,9 @@ pub enum NeighbourWitness {
         margin: BigRational,
         /// The kept maps.
         maps: Vec<NeighbourMap>,
+        /// The scale `c_q` of each state's coordinates (in part order), when rescaled so that
+        /// every operator contracts ([`balance`]); `None`: all 1.
+        scales: Option<Vec<BigRational>>,
     },
     /// The condition fails: two words of operators (operator indices) from one state, with
     /// different first operators and one end state, whose maps are equal.
@@ -508,7 +511,13 @@ pub(crate) fn part_verdict(
     }
     let why = match neighbour_edges(k, part, &edges, frames, d) {
         Err(why) => why,
-        Ok((coordinates, centres, kedges)) => match search(k, &centres, &kedges) {
+        Ok((coordinates, centres, kedges)) => {
+            let centres = attractor_centres(k, &centres, &kedges);
+            let (centres, kedges, scales) = match balance(k, &centres, &kedges) {
+                Some((c, e, x)) => (c, e, Some(x)),
+                None => (centres, kedges, None),
+            };
+            match search(k, &centres, &kedges) {
             Search::Closed(closed) => {
                 return OpenSetVerdict {
                     witness: None,
@@ -524,6 +533,7 @@ pub(crate) fn part_verdict(
                             .into_iter()
                             .map(|(q, r, h)| NeighbourMap { q, r, a: h.a, b: h.b })
                             .collect(),
+                        scales,
                     }),
                 }
             }
@@ -543,9 +553,181 @@ pub(crate) fn part_verdict(
                 }
             }
             Search::Undecided(why) => why,
-        },
+            }
+        }
     };
     undecided(format!("undecided: neither the convex hulls of the attractors nor the square on the segment is a feasible open set, and the neighbour maps decide nothing: {why} (the condition may still hold)"))
+}
+
+/// A float approximation of an element of K (for a choice only, never a verdict).
+fn approx(k: &NumberField, x: &FieldElement) -> f64 {
+    let w = BigRational::new(1.into(), num_bigint::BigInt::from(1u64) << 48);
+    let (lo, hi) = k.enclosure(x, &w);
+    num_traits::ToPrimitive::to_f64(&((lo + hi) / BigRational::from_integer(2.into())))
+        .unwrap_or(0.0)
+}
+
+/// Centres of the balls of the neighbour-map search near the middle of each state's attractor:
+/// the attractors are estimated in floating point (from `start`, twelve rounds of the operators,
+/// at most 4096 points kept per state) and each centre is the middle of its state's bounding box,
+/// rounded to a rational of denominator 1024. Any centres are sound — the search certifies its
+/// radius exactly for the centres it is given — but balls around the attractors' middles are
+/// smallest, and the fewer neighbour maps pass the ball test. `start` when the estimate is not
+/// finite.
+fn attractor_centres(
+    k: &NumberField,
+    start: &[Vec<FieldElement>],
+    edges: &[KEdge],
+) -> Vec<Vec<FieldElement>> {
+    let d = start.first().map_or(0, Vec::len);
+    let maps: Vec<(usize, usize, Vec<f64>, Vec<f64>)> = edges
+        .iter()
+        .map(|(q, w, g)| {
+            let a = g.a.iter().map(|x| approx(k, x)).collect();
+            let b = g.b.iter().map(|x| approx(k, x)).collect();
+            (*q, *w, a, b)
+        })
+        .collect();
+    let mut pts: Vec<Vec<Vec<f64>>> = start
+        .iter()
+        .map(|c| vec![c.iter().map(|x| approx(k, x)).collect()])
+        .collect();
+    for _ in 0..12 {
+        let mut next: Vec<Vec<Vec<f64>>> = vec![Vec::new(); start.len()];
+        for (q, w, a, b) in &maps {
+            for x in &pts[*w] {
+                let y: Vec<f64> = (0..d)
+                    .map(|r| b[r] + (0..d).map(|j| a[r * d + j] * x[j]).sum::<f64>())
+                    .collect();
+                next[*q].push(y);
+            }
+        }
+        for (q, v) in next.iter_mut().enumerate() {
+            if v.is_empty() {
+                v.clone_from(&pts[q]);
+            }
+            if v.len() > 4096 {
+                let step = v.len().div_ceil(4096);
+                *v = v.iter().step_by(step).cloned().collect();
+            }
+        }
+        pts = next;
+    }
+    pts.iter()
+        .zip(start)
+        .map(|(v, fallback)| {
+            let centre: Option<Vec<FieldElement>> = (0..d)
+                .map(|r| {
+                    let lo = v.iter().map(|x| x[r]).fold(f64::INFINITY, f64::min);
+                    let hi = v.iter().map(|x| x[r]).fold(f64::NEG_INFINITY, f64::max);
+                    let m = ((lo + hi) / 2.0 * 1024.0).round();
+                    (m.is_finite() && m.abs() < 1e15).then(|| {
+                        k.rational(BigRational::new(
+                            num_bigint::BigInt::from(m as i64),
+                            1024.into(),
+                        ))
+                    })
+                })
+                .collect();
+            centre.unwrap_or_else(|| fallback.clone())
+        })
+        .collect()
+}
+
+/// Centres, operators and the scales of the states' coordinates after [`balance`].
+type Rescaled = (Vec<Vec<FieldElement>>, Vec<KEdge>, Vec<BigRational>);
+
+/// Rescales the states' coordinates so that every operator contracts, when one does not as
+/// given (an identity from one state to another, as in the kite and dart of seed 004, THEORY §6):
+/// state q's coordinates are multiplied by a rational `c_q > 0`, so that `g: w → q` of ratio ρ
+/// becomes `x ↦ c_q·g(x/c_w)` of ratio `ρ·c_q/c_w`. The open-set condition does not depend on the
+/// coordinates; the neighbour maps are conjugated, not changed in number.
+///
+/// Such scales exist exactly when every cycle of the part has a product of ratios below 1 (what
+/// the contraction step proves): with `x_q = ln c_q` the conditions are the difference
+/// constraints `x_q − x_w ≤ −ln ρ_e − ε`, feasible (no negative cycle, Bellman–Ford) for every ε
+/// below the least mean of `−ln ρ` over the cycles. The scales are chosen in floating point at
+/// nine tenths of the largest feasible ε found by bisection and rounded to rationals of
+/// denominator 64; whether every scaled operator contracts is then decided exactly by the search
+/// itself (and by the checker). `None` when every operator contracts already, when the ratios are
+/// not those of similitudes, or when no scales are found.
+fn balance(k: &NumberField, centres: &[Vec<FieldElement>], edges: &[KEdge]) -> Option<Rescaled> {
+    let one = k.rational(BigRational::one());
+    let mut log_ratio = Vec::with_capacity(edges.len());
+    let mut all_contract = true;
+    for (_, _, g) in edges {
+        let r2 = g.similitude_ratio2(k)?;
+        all_contract &= cmp(k, &r2, &one) == Ordering::Less;
+        let w = BigRational::new(1.into(), num_bigint::BigInt::from(1u64) << 40);
+        let (lo, hi) = k.enclosure(&r2, &w);
+        let mid = (lo + hi) / BigRational::from_integer(2.into());
+        log_ratio.push(0.5 * num_traits::ToPrimitive::to_f64(&mid)?.ln());
+    }
+    if all_contract {
+        return None;
+    }
+    let n = centres.len();
+    // Bellman–Ford from a virtual source joined to every state by 0: the least x with
+    // x_q ≤ x_w + (−ln ρ_e − ε) for every edge, or None on a negative cycle.
+    let potentials = |eps: f64| -> Option<Vec<f64>> {
+        let mut x = vec![0.0f64; n];
+        for round in 0..=n {
+            let mut changed = false;
+            for ((q, w, _), l) in edges.iter().zip(&log_ratio) {
+                let via = x[*w] - l - eps;
+                if via < x[*q] - 1e-12 {
+                    x[*q] = via;
+                    changed = true;
+                }
+            }
+            if !changed {
+                return Some(x);
+            }
+            if round == n {
+                return None;
+            }
+        }
+        None
+    };
+    let top = log_ratio.iter().map(|l| -l).fold(0.0f64, f64::max);
+    potentials(0.0)?;
+    let (mut lo, mut hi) = (0.0f64, top);
+    for _ in 0..50 {
+        let mid = 0.5 * (lo + hi);
+        match potentials(mid) {
+            Some(_) => lo = mid,
+            None => hi = mid,
+        }
+    }
+    if lo <= 0.0 {
+        return None;
+    }
+    let x = potentials(0.9 * lo)?;
+    let scales: Vec<BigRational> = x
+        .iter()
+        .map(|&v| {
+            let c = (v.exp() * 64.0).round().max(1.0);
+            BigRational::new(num_bigint::BigInt::from(c as i64), 64.into())
+        })
+        .collect();
+    let scale = |q: usize| k.rational(scales[q].clone());
+    let centres = centres
+        .iter()
+        .enumerate()
+        .map(|(q, c)| c.iter().map(|v| k.mul(v, &scale(q))).collect())
+        .collect();
+    let edges = edges
+        .iter()
+        .map(|(q, w, g)| {
+            let f = k.rational(&scales[*q] / &scales[*w]);
+            let g = KAffine {
+                a: g.a.iter().map(|v| k.mul(v, &f)).collect(),
+                b: g.b.iter().map(|v| k.mul(v, &scale(*q))).collect(),
+            };
+            (*q, *w, g)
+        })
+        .collect();
+    Some((centres, edges, scales))
 }
 
 /// The coordinates chosen, the centre of each state in them and the operators as maps in them.

@@ -572,6 +572,12 @@ pub struct NeighbourHolds {
     pub margin: String,
     /// The maps of the set.
     pub maps: Vec<NeighbourMap>,
+    /// Positive rational scales `c_q`, one per state of the part in order, when the coordinates
+    /// are rescaled: state q's coordinates are multiplied by `c_q`, so an operator `q ← w`
+    /// becomes `x ↦ c_q·g(x/c_w)` (ratio `ρ·c_q/c_w`). Chosen so that every operator contracts
+    /// when one alone does not (an identity between two states, THEORY §6); absent: all 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scales: Option<Vec<String>>,
 }
 
 /// One neighbour map `h: x ↦ A·x + b` from state r's coordinates to state q's.

@@ -587,6 +587,7 @@ fn neighbour_maps(
             radius,
             margin,
             maps,
+            scales,
         } => NeighbourMaps::Holds(NeighbourHolds {
             coordinates: match coordinates {
                 Coordinates::Charts => "charts",
@@ -608,6 +609,9 @@ fn neighbour_maps(
                     b: m.b.iter().map(coords).collect(),
                 })
                 .collect(),
+            scales: scales
+                .as_ref()
+                .map(|c| c.iter().map(ToString::to_string).collect()),
         }),
         NeighbourWitness::Fails { u, v } => NeighbourMaps::Fails(NeighbourFails {
             u: u.clone(),

@@ -11,7 +11,10 @@
 //! map is T on the affine hulls) and every frame non-degenerate (the charts are affine bijections
 //! onto the affine hulls of the states' points), so the open-set condition in these coordinates
 //! is the condition in the drawing: a bijection per state carries open sets, inclusions and
-//! disjointness across.
+//! disjointness across. With `scales` (positive rationals `c_q`) state q's coordinates are
+//! further multiplied by `c_q`, so `g_e` becomes `x ↦ c_q·g_e(x/c_w)`: one more bijection per
+//! state, which lets an operator that does not contract as given (an identity between two
+//! states) contract when every cycle does.
 //!
 //! **Fails.** Words u, v of the part's operators from one state p, `u_1 ≠ v_1`, ending in one
 //! state q, with `g_u = g_v` (the compositions of the chart maps, compared exactly). Open sets
@@ -437,6 +440,20 @@ fn check_holds(part: &Part, h: &NeighbourHolds) -> Result<Decided, String> {
     )?;
     let pos = |q: usize| members.binary_search(&q).ok();
     let frame = |q: usize| frame_map(k, frames[q].as_ref().expect("reachable"));
+    // The scales of the coordinates: positive rationals, one per state (absent: all 1).
+    let scales: Vec<Q> = match &h.scales {
+        None => vec![Q::one(); members.len()],
+        Some(c) if c.len() != members.len() => {
+            return Err(format!("{} scales for {} states", c.len(), members.len()))
+        }
+        Some(c) => c
+            .iter()
+            .map(|x| match rat(x)? {
+                x if x.is_positive() => Ok(x),
+                x => Err(format!("the scale {x} is not positive")),
+            })
+            .collect::<Result<_, String>>()?,
+    };
     // 1. The operators, contracting similitudes in the coordinates.
     let mut operators = Vec::with_capacity(inside.len());
     for &o in inside {
@@ -444,6 +461,16 @@ fn check_holds(part: &Part, h: &NeighbourHolds) -> Result<Decided, String> {
         let mut g = chart_map(k, &ops[o], d);
         if drawing {
             g = frame(to)?.then(k, &g).then(k, &frame(from)?.inverse(k)?);
+        }
+        let (pq, pw) = (pos(to).expect("member"), pos(from).expect("member"));
+        if h.scales.is_some() {
+            // x ↦ c_q·g(x/c_w).
+            let f = Field::rational(&scales[pq] / &scales[pw]);
+            let c = Field::rational(scales[pq].clone());
+            g = Map {
+                a: g.a.iter().map(|x| k.mul(x, &f)).collect(),
+                b: g.b.iter().map(|x| k.mul(x, &c)).collect(),
+            };
         }
         let name = &a.operators[o].name;
         let r2 = g
@@ -453,7 +480,6 @@ fn check_holds(part: &Part, h: &NeighbourHolds) -> Result<Decided, String> {
             return Err(format!("{name} does not contract in the coordinates"));
         }
         // 2. The radius.
-        let (pq, pw) = (pos(to).expect("member"), pos(from).expect("member"));
         let d2 = dist2(k, &g.apply(k, &centres[pw]), &centres[pq]);
         if !within_radius(k, &d2, &r2, &radius)? {
             return Err(format!(

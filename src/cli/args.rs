@@ -591,6 +591,15 @@ pub(crate) enum BackgroundArg {
     Transparent,
 }
 
+impl From<BackgroundArg> for lacuna::export::Background {
+    fn from(b: BackgroundArg) -> Self {
+        match b {
+            BackgroundArg::White => lacuna::export::Background::White,
+            BackgroundArg::Transparent => lacuna::export::Background::Transparent,
+        }
+    }
+}
+
 /// The arguments of `lacuna measure`.
 #[derive(Args)]
 pub(crate) struct MeasureArgs {

@@ -245,7 +245,7 @@ pub(super) fn render(
     json_out: Option<&std::path::Path>,
     png: Option<&std::path::Path>,
     meshes: &MeshOut,
-    size: usize,
+    picture: (usize, lacuna::export::Background, bool),
 ) -> Result<ExitCode, Error> {
     warn(&p);
     let level = geo.level;
@@ -270,8 +270,10 @@ pub(super) fn render(
         wrote(outputs, path);
     }
     if let Some(path) = png {
-        let raster = lacuna::export::automaton_raster(&p.ev, level, size);
-        outputs.write(path, |w| lacuna::export::write_png(&raster, w))?;
+        let (size, background, legend) = picture;
+        outputs.write(path, |w| {
+            lacuna::export::write_automaton_png(&p.ev, level, size as u32, background, legend, w)
+        })?;
         wrote(outputs, path);
     }
     Ok(ExitCode::SUCCESS)

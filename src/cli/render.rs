@@ -178,7 +178,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             json_out.as_deref(),
             png.as_deref(),
             &meshes,
-            size,
+            (size, background.into(), !no_legend),
         );
     }
     let vector = svg.is_some() || json_out.is_some() || mesh.any();
@@ -206,10 +206,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
     }
     let picture = lacuna::export::PictureOptions {
         width: size as u32,
-        background: match background {
-            BackgroundArg::White => lacuna::export::Background::White,
-            BackgroundArg::Transparent => lacuna::export::Background::Transparent,
-        },
+        background: background.into(),
         legend: !no_legend,
         ..Default::default()
     };

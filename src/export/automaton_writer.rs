@@ -1,4 +1,4 @@
-//! Pictures and files of an automaton's attractor: SVG, PNG (1-bit), JSON and OBJ of the shapes of
+//! Pictures and files of an automaton's attractor: SVG, colour PNG, JSON and OBJ of the shapes of
 //! level n ([`crate::geometry::Evaluator`]), and the HTML report of an automaton. In space 3 the
 //! SVG and PNG show an axonometric view; OBJ keeps the coordinates.
 
@@ -81,6 +81,28 @@ pub fn automaton_svg(space: usize, shapes: &[Shape], width: f64) -> String {
     }
     s += "</svg>\n";
     s
+}
+
+/// Writes level n as a colour PNG `width` pixels wide ([`crate::export::write_shapes_png`]):
+/// polygons filled by state, polylines stroked, centred, with a legend of the states.
+pub fn write_automaton_png<W: Write>(
+    ev: &Evaluator,
+    level: u32,
+    width: u32,
+    background: crate::export::Background,
+    legend: bool,
+    out: W,
+) -> io::Result<()> {
+    let space = ev.space;
+    crate::export::write_shapes_png(
+        &ev.shapes(level),
+        |p| view(space, p),
+        &ev.names,
+        width,
+        background,
+        legend,
+        out,
+    )
 }
 
 /// Writes the SVG of level n.

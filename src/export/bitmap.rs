@@ -132,6 +132,57 @@ impl Canvas {
         }
     }
 
+    /// Strokes an open polyline given in pixel coordinates, `lw` pixels wide, round joins.
+    fn polyline(
+        &mut self,
+        scratch: &mut Scratch,
+        buf: &mut Vec<u8>,
+        pts: &[[f64; 2]],
+        c: Rgb,
+        lw: f64,
+    ) {
+        if pts.len() < 2 {
+            return;
+        }
+        let pad = lw + 1.0;
+        let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
+        for p in pts {
+            x0 = x0.min(p[0]);
+            y0 = y0.min(p[1]);
+            x1 = x1.max(p[0]);
+            y1 = y1.max(p[1]);
+        }
+        let x0 = ((x0 - pad).floor()).max(0.0);
+        let y0 = ((y0 - pad).floor()).max(0.0);
+        let x1 = ((x1 + pad).ceil()).min(f64::from(self.width));
+        let y1 = ((y1 + pad).ceil()).min(f64::from(self.height));
+        if !(x1 > x0 && y1 > y0) {
+            return;
+        }
+        let (w, h) = ((x1 - x0) as u32, (y1 - y0) as u32);
+        let mut path: Vec<Command> = Vec::with_capacity(pts.len() + 1);
+        path.move_to([(pts[0][0] - x0) as f32, (pts[0][1] - y0) as f32]);
+        for p in &pts[1..] {
+            path.line_to([(p[0] - x0) as f32, (p[1] - y0) as f32]);
+        }
+        let mut stroke = Stroke::new(lw as f32);
+        stroke.join(Join::Round);
+        stroke.cap(zeno::Cap::Round);
+        buf.clear();
+        buf.resize(w as usize * h as usize, 0);
+        Mask::with_scratch(&path, scratch)
+            .style(stroke)
+            .size(w, h)
+            .render_into(buf, None);
+        let place = zeno::Placement {
+            left: x0 as i32,
+            top: y0 as i32,
+            width: w,
+            height: h,
+        };
+        self.mask(buf, place, c);
+    }
+
     fn rect(&mut self, x: i64, y: i64, w: i64, h: i64, c: Rgb) {
         for yy in y..y + h {
             for xx in x..x + w {
@@ -343,6 +394,125 @@ pub fn write_png_picture<W: Write>(
         }
     }
     canvas.write_png(out)
+}
+
+/// Writes the shapes of an automaton's level (`Evaluator::shapes`, drawn in the plane: space 3
+/// through the SVG's axonometric view) as a colour PNG `width` pixels wide: the picture centred
+/// with a margin (its height follows the shapes' aspect, at least a quarter and at most twice the
+/// width), polygons filled by state with the face pictures' palette (one non-zero path per state,
+/// so no seam shows where two pieces of a state meet), polylines stroked in their state's
+/// colour, points as dots, and below, unless `legend` is false, each state's colour and name.
+pub fn write_shapes_png<W: Write>(
+    shapes: &[crate::geometry::Shape],
+    view: impl Fn(&[f64; 3]) -> (f64, f64),
+    names: &[String],
+    width: u32,
+    background: Background,
+    legend: bool,
+    out: W,
+) -> io::Result<()> {
+    let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
+    for p in shapes.iter().flat_map(|s| &s.points) {
+        let (x, y) = view(p);
+        x0 = x0.min(x);
+        y0 = y0.min(y);
+        x1 = x1.max(x);
+        y1 = y1.max(y);
+    }
+    if x0 > x1 {
+        (x0, y0, x1, y1) = (0.0, 0.0, 1.0, 1.0);
+    }
+    let (dx, dy) = ((x1 - x0).max(1e-12), (y1 - y0).max(0.0));
+    let w = f64::from(width.max(16));
+    let height = (w * dy / dx).clamp(w / 4.0, 2.0 * w).round();
+    let margin = (w * 0.04).max(2.0);
+    let scale = ((w - 2.0 * margin) / dx).min(if dy > 0.0 {
+        (height - 2.0 * margin) / dy
+    } else {
+        f64::INFINITY
+    });
+    // Centred both ways.
+    let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
+    let to_px = |p: &[f64; 3]| {
+        let (x, y) = view(p);
+        [w / 2.0 + (x - cx) * scale, height / 2.0 - (y - cy) * scale]
+    };
+    let size = text_size(width);
+    let ch = size.val() as f64;
+    let states: Vec<usize> = {
+        let mut v: Vec<usize> = shapes.iter().map(|s| s.state).collect();
+        v.sort_unstable();
+        v.dedup();
+        v
+    };
+    let legend_h = if legend && !states.is_empty() {
+        (ch * 2.0).round() as u32
+    } else {
+        0
+    };
+    let mut canvas = Canvas::new(w as u32, height as u32 + legend_h, background);
+    let mut scratch = Scratch::new();
+    let mut buf = Vec::new();
+    let line = (w / 700.0).max(1.0);
+    let n = names.len().max(1);
+    let mut fills: Vec<Batch> = (0..n).map(|_| Batch::new()).collect();
+    for s in shapes {
+        let pts: Vec<[f64; 2]> = s.points.iter().map(to_px).collect();
+        let colour = type_colour(s.state);
+        match s.kind {
+            crate::geometry::ShapeKind::Polygon => {
+                let b = &mut fills[s.state % n];
+                b.add(&pts);
+                if b.path.len() >= Batch::LIMIT {
+                    b.flush(&mut canvas, &mut scratch, &mut buf, colour);
+                }
+            }
+            crate::geometry::ShapeKind::Polyline if !below_pixel(&pts) => {
+                canvas.polyline(&mut scratch, &mut buf, &pts, colour, line * 1.5);
+            }
+            // A point, or a polyline shorter than a pixel: a dot.
+            _ => {
+                let r = line * 1.5;
+                let disc: Vec<[f64; 2]> = (0..12)
+                    .map(|k| {
+                        let t = std::f64::consts::TAU * f64::from(k) / 12.0;
+                        [pts[0][0] + r * t.cos(), pts[0][1] + r * t.sin()]
+                    })
+                    .collect();
+                canvas.polygon(&mut scratch, &mut buf, &disc, Some(colour), None);
+            }
+        }
+    }
+    for (q, b) in fills.iter_mut().enumerate() {
+        b.flush(&mut canvas, &mut scratch, &mut buf, type_colour(q));
+    }
+    if legend_h > 0 {
+        let cw = get_raster_width(FontWeight::Regular, size) as f64;
+        let swatch = (ch * 0.75).round() as i64;
+        let y = (height + ch * 0.5).round() as i64;
+        let mut x = (margin).round() as i64;
+        for &q in &states {
+            let colour = type_colour(q);
+            let sy = y + ((ch - swatch as f64) / 2.0).round() as i64;
+            canvas.rect(x, sy, swatch, swatch, darker(colour));
+            canvas.rect(x + 1, sy + 1, swatch - 2, swatch - 2, colour);
+            let label = format!("state {}", names.get(q).map_or("?", String::as_str));
+            let used = canvas.text(x + swatch + (cw * 0.6) as i64, y, &label, size, [0, 0, 0]);
+            x += swatch + (cw * 0.6) as i64 + used + (cw * 2.0) as i64;
+        }
+    }
+    canvas.write_png(out)
+}
+
+/// Whether the points span less than a pixel both ways (a piece too small to stroke).
+fn below_pixel(pts: &[[f64; 2]]) -> bool {
+    let span = |k: usize| {
+        let (lo, hi) = pts.iter().fold((f64::MAX, f64::MIN), |(lo, hi), p| {
+            (lo.min(p[k]), hi.max(p[k]))
+        });
+        hi - lo
+    };
+    span(0) < 1.0 && span(1) < 1.0
 }
 
 /// What the density picture states besides the map.

@@ -90,6 +90,10 @@ pub fn library() -> &'static [(&'static str, &'static str)] {
         ("two-cubes", include_str!("../../fixtures/two-cubes.txt")),
         ("kite-dart", include_str!("../../fixtures/kite-dart.aut")),
         (
+            "penrose-robinson",
+            include_str!("../../fixtures/penrose-robinson.aut"),
+        ),
+        (
             "sierpinski-carpet",
             include_str!("../../fixtures/sierpinski-carpet.aut"),
         ),
