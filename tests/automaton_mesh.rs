@@ -140,9 +140,32 @@ fn the_open_patch_is_a_disc_and_its_shell_a_sphere() {
         "closed, consistently oriented"
     );
     assert_eq!(162 - 480 + 320, 2);
-    // Outward, and the volume of a 2 mm shell is about 2 mm times the surface's area (the
+    // Outward, and the volume of a 2 mm shell is about 2 mm times its mid-surface's area (the
     // offset along normals changes it only by the curvature terms, small for a 100 mm patch).
-    let (v, a) = (signed_volume(&s), area(&o));
+    // The shell's two faces each have about that area; its rim is the patch's perimeter times
+    // 2 mm (the perimeter taken on the open patch, whose scale differs from the mid-surface's by
+    // the 2 % that --width leaves for the shell: a small error on a small term).
+    let perimeter: f64 = {
+        let mut count: HashMap<(usize, usize), usize> = HashMap::new();
+        for t in &o.triangles {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                *count.entry((a.min(b), a.max(b))).or_default() += 1;
+            }
+        }
+        count
+            .iter()
+            .filter(|(_, &n)| n == 1)
+            .map(|(&(a, b), _)| {
+                let (p, q) = (o.vertices[a], o.vertices[b]);
+                (0..3)
+                    .map(|d| (f64::from(p[d]) - f64::from(q[d])).powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+            })
+            .sum()
+    };
+    let (v, a) = (signed_volume(&s), (area(&s) - 2.0 * perimeter) / 2.0);
     assert!(v > 0.0, "outward: {v}");
     assert!(
         (v / (2.0 * a) - 1.0).abs() < 0.02,
@@ -338,4 +361,54 @@ fn the_shells_wall_bound_is_its_thickness_and_strict_refuses_a_thin_one() {
     assert!(err.contains("E1042"), "{err}");
     assert!(!std::path::Path::new(&stl).exists());
     let _ = std::fs::remove_dir_all(&d);
+}
+
+/// `--width` sizes what is printed (issue #30): the x extent of the thickened shell, read back
+/// from the STL, is the width asked for, as the open surface's is; the shell's mid-surface is
+/// then narrower. A shell wider than the width is refused.
+#[test]
+fn the_width_is_the_printed_shell_s_extent() {
+    let d = dir("width");
+    let extent = |m: &Mesh| {
+        let xs = m.vertices.iter().map(|v| f64::from(v[0]));
+        xs.clone().fold(f64::MIN, f64::max) - xs.fold(f64::MAX, f64::min)
+    };
+    for (thickness, width) in [(None, "80"), (Some("2"), "80"), (Some("5"), "60")] {
+        let path = d.join("w.stl");
+        let mut args = vec![
+            "render",
+            "quad-patch-3d",
+            "--level",
+            "3",
+            "--width",
+            width,
+            "--stl",
+            path.to_str().unwrap(),
+        ];
+        if let Some(t) = thickness {
+            args.extend(["--thickness", t]);
+        }
+        let (code, _, err) = lacuna(&args);
+        assert_eq!(code, 0, "{err}");
+        let x = extent(&read_stl(&path));
+        let want: f64 = width.parse().unwrap();
+        assert!(
+            (x - want).abs() < 1e-3,
+            "{thickness:?}: x extent {x} for --width {want}"
+        );
+    }
+    let (code, _, err) = lacuna(&[
+        "render",
+        "quad-patch-3d",
+        "--level",
+        "2",
+        "--width",
+        "1",
+        "--thickness",
+        "5",
+        "--stl",
+        d.join("x.stl").to_str().unwrap(),
+    ]);
+    assert_ne!(code, 0, "{err}");
+    std::fs::remove_dir_all(&d).ok();
 }

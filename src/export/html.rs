@@ -120,7 +120,10 @@ pub fn report_html(
                 .levels
                 .iter()
                 .find(|l| l.level == level)
-                .map(|l| format!(": {} cells", l.cells))
+                .map(|l| match l.cells {
+                    1 => ": 1 cell".to_string(),
+                    n => format!(": {n} cells"),
+                })
                 .unwrap_or_default();
             let _ = write!(
                 h,

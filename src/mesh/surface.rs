@@ -209,7 +209,8 @@ pub struct AutomatonSolid {
 /// The mesh of an automaton's level: a closed shell `size.thickness` mm thick when `thick`, else
 /// the open surface. Vertices are identified exactly when `exact` gives the model and its
 /// operators and the level has at most [`EXACT_LEAVES`] leaves. The model is scaled so that the
-/// surface's x extent is `size.width` mm and moved to the positive octant; coordinates are rounded
+/// x extent of what is printed — the shell, or the open surface — is `size.width` mm, and moved
+/// to the positive octant; coordinates are rounded
 /// once to `f32`. A shell is checked ([`check_part`]: closed, oriented, manifold, outward, χ = 2
 /// for a disc) before it is returned.
 pub fn automaton_mesh(
@@ -227,15 +228,38 @@ pub fn automaton_mesh(
     };
     let (lo, hi) = bounds(&surface.vertices);
     let dx = hi[0] - lo[0];
-    let scale = if dx > 0.0 { size.width / dx } else { 1.0 };
-    let mut mm = surface.clone();
-    for v in &mut mm.vertices {
-        *v = [0, 1, 2].map(|d| (v[d] - lo[d]) * scale);
-    }
-    let mesh = if thick {
-        thicken(&mm, size.thickness)
-    } else {
+    let scaled = |width: f64| {
+        let scale = if dx > 0.0 { width / dx } else { 1.0 };
+        let mut mm = surface.clone();
+        for v in &mut mm.vertices {
+            *v = [0, 1, 2].map(|d| (v[d] - lo[d]) * scale);
+        }
         mm
+    };
+    let mesh = if thick {
+        // `--width` is the printed object's x extent: the shell reaches past the mid-surface by
+        // what the offset along the normals adds, which a uniform scale of the mid-surface does
+        // not change (the normals stay the same); so the mid-surface is scaled again to leave
+        // that much room.
+        let first = thicken(&scaled(size.width), size.thickness);
+        let (l, h) = bounds(&first.vertices);
+        let extra = (h[0] - l[0]) - size.width;
+        if extra > 0.0 && dx > 0.0 {
+            if size.width - extra <= 0.0 {
+                return Err(MeshError::Check {
+                    level,
+                    reason: format!(
+                        "a shell {} mm thick is wider than --width {} mm: nothing is left of the surface",
+                        size.thickness, size.width
+                    ),
+                });
+            }
+            thicken(&scaled(size.width - extra), size.thickness)
+        } else {
+            first
+        }
+    } else {
+        scaled(size.width)
     };
     let (lo, _) = bounds(&mesh.vertices);
     let part = Part {
