@@ -167,6 +167,27 @@ class Record:
         return isinstance(other, Record) and other.data == self.data
 
 
+def _png_bytes(render, level: int, size: int) -> bytes:
+    """The PNG bytes of ``render(level, png=PATH, size=size)`` through a temporary file."""
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as d:
+        out = Path(d) / "picture.png"
+        render(level, png=out, size=size)
+        return out.read_bytes()
+
+
+def _html_table(head: List[str], rows: List[List[Any]]) -> str:
+    """A small HTML table (cells escaped)."""
+    import html
+
+    th = "".join(f"<th>{html.escape(str(h))}</th>" for h in head)
+    body = "".join(
+        "<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in row) + "</tr>" for row in rows
+    )
+    return f"<table><tr>{th}</tr>{body}</table>"
+
+
 def _short(v: Any) -> str:
     r = repr(v)
     return r if len(r) < 60 else r[:57] + "..."
@@ -250,6 +271,20 @@ class Closure:
             g.add_node(t.id, face=t.face, contribution=t.contribution)
         g.add_edges_from(self.edges)
         return g
+
+    def _repr_html_(self) -> str:
+        """A table of the face types in a notebook: notation, sub-faces by type, contribution."""
+        if not self.closed:
+            return f"<p>The closure does not close: {self.runaway!r}</p>"
+        rows = []
+        for t in self.types:
+            seen: Dict[str, int] = {}
+            for c in t.children:
+                seen[c] = seen.get(c, 0) + 1
+            kids = " + ".join(f"{k}×{c}" if k > 1 else c for c, k in seen.items())
+            rows.append([t.id, t.face, kids, t.contribution])
+        head = f"<p>closed: {len(self.types)} face type(s), start {', '.join(self.start)}</p>"
+        return head + _html_table(["type", "face", "sub-faces", "contribution"], rows)
 
     def matrix(self) -> List[List[int]]:
         """The substitution matrix: ``M[i][j]`` sub-faces of type j in type i."""
@@ -661,6 +696,15 @@ class Structure:
             c.write(path)
         return c
 
+    #: The level and width in pixels of the picture a notebook shows (``_repr_png_``).
+    display = (3, 480)
+
+    def _repr_png_(self) -> bytes:
+        """The picture a notebook shows: level ``display[0]``, ``display[1]`` pixels wide, cells
+        coloured by type with the legend (``render(..., png=...)``)."""
+        level, size = self.display
+        return _png_bytes(self.render, level, size)
+
     def render(
         self,
         level: int,
@@ -801,6 +845,15 @@ class Automaton:
 
     def __repr__(self) -> str:
         return f"Automaton({self.name!r})"
+
+    #: The level and width in pixels of the picture a notebook shows (``_repr_png_``).
+    display = (8, 480)
+
+    def _repr_png_(self) -> bytes:
+        """The picture a notebook shows: the attractor at level ``display[0]``, ``display[1]``
+        pixels wide, coloured by state with the legend."""
+        level, size = self.display
+        return _png_bytes(self.render, level, size)
 
     def solve(self, *, limits: Limits = None) -> Union[Solution, FieldVerdict]:
         """The exact solution of its constraint system (a :class:`FieldVerdict` when its entries lie
