@@ -59,7 +59,7 @@ fn seeds() -> &'static [Value] {
         for name in [
             "sierpinski-triangle",
             "koch",
-            "kite-dart",
+            "penrose-robinson",
             "heighway-dragon",
             "self-seeding-square",
         ] {
