@@ -92,7 +92,12 @@ fn the_hand_ratios_are_the_formula_and_neighbouring_copies_touch() {
 
 /// The level-1 pieces as `render --json-out` writes them: each piece's three points.
 fn level_one(name: &str) -> Vec<Vec<[f64; 2]>> {
-    let (code, out, err) = lacuna(&["render", name, "--level", "1", "--json-out", "-"]);
+    pieces(name, "1")
+}
+
+/// The pieces of a level as `render --json-out` writes them, in the walk's order.
+fn pieces(name: &str, level: &str) -> Vec<Vec<[f64; 2]>> {
+    let (code, out, err) = lacuna(&["render", name, "--level", level, "--json-out", "-"]);
     assert_eq!(code, 0, "{name}: {err}");
     let v: serde_json::Value = serde_json::from_str(&out).expect("JSON");
     v["shapes"]
@@ -423,27 +428,6 @@ fn paper_maps(sign: f64) -> [Sim; 4] {
 /// The frame of both states in fixtures/kite-dart.aut.
 const KITE_FRAME: [(f64, f64); 3] = [(-4.0, -0.5), (4.0, -0.5), (0.0, 5.0)];
 
-/// The level-2 pieces of an automaton as `render --json-out` writes them.
-fn level_two(input: &str) -> Vec<Vec<(f64, f64)>> {
-    let (code, out, err) = lacuna(&["render", input, "--level", "2", "--json-out", "-"]);
-    assert_eq!(code, 0, "{err}");
-    let json = &out[..out.rfind('}').expect("JSON") + 1];
-    let v: serde_json::Value = serde_json::from_str(json).expect("JSON");
-    v["shapes"]
-        .as_array()
-        .expect("shapes")
-        .iter()
-        .map(|s| {
-            s["points"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .map(|p| (p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
-                .collect()
-        })
-        .collect()
-}
-
 #[test]
 fn the_kite_and_dart_are_the_paper_s_maps_with_one_sign_corrected() {
     for (input, sign) in [
@@ -462,7 +446,10 @@ fn the_kite_and_dart_are_the_paper_s_maps_with_one_sign_corrected() {
                 .map(|&p| t1a.apply(t1a.apply(p)))
                 .collect(),
         ];
-        let got = level_two(input);
+        let got: Vec<Vec<(f64, f64)>> = pieces(input, "2")
+            .into_iter()
+            .map(|p| p.into_iter().map(|[x, y]| (x, y)).collect())
+            .collect();
         assert_eq!(got.len(), 4, "{input}");
         for (g, w) in got.iter().zip(&want) {
             for (a, b) in g.iter().zip(w) {

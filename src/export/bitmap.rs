@@ -82,34 +82,11 @@ impl Canvas {
         if poly.len() < 2 {
             return;
         }
-        let pad = line.map_or(0.0, |l| l.1) + 1.0;
-        let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
-        for p in poly {
-            x0 = x0.min(p[0]);
-            y0 = y0.min(p[1]);
-            x1 = x1.max(p[0]);
-            y1 = y1.max(p[1]);
-        }
-        let x0 = ((x0 - pad).floor()).max(0.0);
-        let y0 = ((y0 - pad).floor()).max(0.0);
-        let x1 = ((x1 + pad).ceil()).min(f64::from(self.width));
-        let y1 = ((y1 + pad).ceil()).min(f64::from(self.height));
-        if !(x1 > x0 && y1 > y0) {
+        let Some((mut path, place)) = self.local_path(poly, line.map_or(0.0, |l| l.1) + 1.0) else {
             return;
-        }
-        let (w, h) = ((x1 - x0) as u32, (y1 - y0) as u32);
-        let mut path: Vec<Command> = Vec::with_capacity(poly.len() + 2);
-        path.move_to([(poly[0][0] - x0) as f32, (poly[0][1] - y0) as f32]);
-        for p in &poly[1..] {
-            path.line_to([(p[0] - x0) as f32, (p[1] - y0) as f32]);
-        }
-        path.close();
-        let place = zeno::Placement {
-            left: x0 as i32,
-            top: y0 as i32,
-            width: w,
-            height: h,
         };
+        path.close();
+        let (w, h) = (place.width, place.height);
         let n = w as usize * h as usize;
         if let Some(c) = fill {
             buf.clear();
@@ -144,7 +121,25 @@ impl Canvas {
         if pts.len() < 2 {
             return;
         }
-        let pad = lw + 1.0;
+        let Some((path, place)) = self.local_path(pts, lw + 1.0) else {
+            return;
+        };
+        let (w, h) = (place.width, place.height);
+        let mut stroke = Stroke::new(lw as f32);
+        stroke.join(Join::Round);
+        stroke.cap(zeno::Cap::Round);
+        buf.clear();
+        buf.resize(w as usize * h as usize, 0);
+        Mask::with_scratch(&path, scratch)
+            .style(stroke)
+            .size(w, h)
+            .render_into(buf, None);
+        self.mask(buf, place, c);
+    }
+
+    /// The open path through `pts` (pixel coordinates) in the frame of their pixel box grown by
+    /// `pad` and clipped to the canvas, with that box; `None` when the box misses the canvas.
+    fn local_path(&self, pts: &[[f64; 2]], pad: f64) -> Option<(Vec<Command>, zeno::Placement)> {
         let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
         for p in pts {
             x0 = x0.min(p[0]);
@@ -157,30 +152,20 @@ impl Canvas {
         let x1 = ((x1 + pad).ceil()).min(f64::from(self.width));
         let y1 = ((y1 + pad).ceil()).min(f64::from(self.height));
         if !(x1 > x0 && y1 > y0) {
-            return;
+            return None;
         }
-        let (w, h) = ((x1 - x0) as u32, (y1 - y0) as u32);
-        let mut path: Vec<Command> = Vec::with_capacity(pts.len() + 1);
+        let mut path: Vec<Command> = Vec::with_capacity(pts.len() + 2);
         path.move_to([(pts[0][0] - x0) as f32, (pts[0][1] - y0) as f32]);
         for p in &pts[1..] {
             path.line_to([(p[0] - x0) as f32, (p[1] - y0) as f32]);
         }
-        let mut stroke = Stroke::new(lw as f32);
-        stroke.join(Join::Round);
-        stroke.cap(zeno::Cap::Round);
-        buf.clear();
-        buf.resize(w as usize * h as usize, 0);
-        Mask::with_scratch(&path, scratch)
-            .style(stroke)
-            .size(w, h)
-            .render_into(buf, None);
         let place = zeno::Placement {
             left: x0 as i32,
             top: y0 as i32,
-            width: w,
-            height: h,
+            width: (x1 - x0) as u32,
+            height: (y1 - y0) as u32,
         };
-        self.mask(buf, place, c);
+        Some((path, place))
     }
 
     fn rect(&mut self, x: i64, y: i64, w: i64, h: i64, c: Rgb) {
