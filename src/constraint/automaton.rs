@@ -319,16 +319,18 @@ impl Automaton {
                 Factor::Literal(m) => m.clone(),
             }
         };
-        let product = |fs: &[Factor], n: usize| -> Matrix {
-            fs.iter().fold(Matrix::identity(n), |acc, f| {
+        // The product of known factors; `None` for none (the identity, never built).
+        let product = |fs: &[Factor]| -> Option<Matrix> {
+            let (first, rest) = fs.split_first()?;
+            Some(rest.iter().fold(known(first), |acc, f| {
                 acc.mul(&known(f)).expect("shapes checked")
-            })
+            }))
         };
         let rows = self.shape(&w[0]).0;
         let cols = self.shape(w.last().expect("non-empty")).1;
         match unknown_at.first() {
             None => {
-                let m = product(w, rows);
+                let m = product(w).expect("non-empty");
                 Ok((
                     rows,
                     cols,
@@ -337,26 +339,41 @@ impl Automaton {
             }
             Some(&p) => {
                 let (xr, xc) = self.shape(&w[p]);
-                let k1 = product(&w[..p], rows);
-                let k2 = product(&w[p + 1..], xc);
+                // K1·X·K2 entry (r, c) = Σ K1[r][i]·X[i][j]·K2[j][c] over the nonzero entries
+                // only: K1's rows and K2's columns as sparse lists (an absent product is the
+                // identity, one entry per row), in increasing i and j as a dense loop visits them.
+                let one = BigRational::one();
+                let k1 = product(&w[..p]);
+                let k2 = product(&w[p + 1..]);
+                let k1_rows: Vec<Vec<(usize, &BigRational)>> = (0..rows)
+                    .map(|r| match &k1 {
+                        None => vec![(r, &one)],
+                        Some(m) => (0..xr)
+                            .map(|i| (i, m.get(r, i)))
+                            .filter(|(_, a)| !a.is_zero())
+                            .collect(),
+                    })
+                    .collect();
+                let k2_cols: Vec<Vec<(usize, &BigRational)>> = (0..cols)
+                    .map(|c| match &k2 {
+                        None => vec![(c, &one)],
+                        Some(m) => (0..xc)
+                            .map(|j| (j, m.get(j, c)))
+                            .filter(|(_, b)| !b.is_zero())
+                            .collect(),
+                    })
+                    .collect();
                 let Factor::Op(o) = &w[p] else {
                     unreachable!("unknowns are operators")
                 };
                 let base = offsets[*o].expect("unknown operators have offsets");
                 let mut forms = Vec::with_capacity(rows * cols);
-                for r in 0..rows {
-                    for c in 0..cols {
-                        let mut terms = Vec::new();
-                        for i in 0..xr {
-                            let a = k1.get(r, i);
-                            if a.is_zero() {
-                                continue;
-                            }
-                            for j in 0..xc {
-                                let b = k2.get(j, c);
-                                if !b.is_zero() {
-                                    terms.push((base + i * xc + j, a * b));
-                                }
+                for row in &k1_rows {
+                    for col in &k2_cols {
+                        let mut terms = Vec::with_capacity(row.len() * col.len());
+                        for &(i, a) in row {
+                            for &(j, b) in col {
+                                terms.push((base + i * xc + j, a * b));
                             }
                         }
                         forms.push((terms, BigRational::zero()));
