@@ -278,3 +278,55 @@ fn automaton_pictures_are_coloured_centred_and_visible() {
     assert!(n as f64 > 0.3 * f64::from(w * h), "{n} of {} pixels", w * h);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A volume's PNG (issue #32): the solid centred in the picture and filling it, and the three
+/// sides of a cube in view in three shades, none of them dark (the darkest at least half as
+/// bright as the brightest).
+#[test]
+fn volume_pictures_are_centred_and_every_side_in_view_is_lit() {
+    let dir = std::env::temp_dir().join(format!("lacuna-vpng-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let render = |name: &str, level: &str| {
+        let path = dir.join("v.png");
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_lacuna"))
+            .args(["render", name, "--level", level, "--png"])
+            .arg(&path)
+            .args(["--size", "300"])
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{name}");
+        decode(&std::fs::read(&path).unwrap())
+    };
+    for name in ["tetrahedron-B2", "two-cubes", "cube-B2"] {
+        let (w, h, px) = render(name, "1");
+        let (b, _) = ink(w, &px, h);
+        let (mx, my) = (f64::from(b[0] + b[2]) / 2.0, f64::from(b[1] + b[3]) / 2.0);
+        assert!(
+            (mx - 150.0).abs() < 6.0 && (my - 150.0).abs() < 6.0,
+            "{name}: {b:?}"
+        );
+        let side = (b[2] - b[0]).max(b[3] - b[1]);
+        assert!(side > 250, "{name}: the solid spans {side} of 300 pixels");
+    }
+    // The plain cube (level 0): the three most common colours of the solid are its three sides.
+    let (_, _, px) = render("cube-B2", "0");
+    let mut count: std::collections::HashMap<[u8; 3], usize> = Default::default();
+    for p in px
+        .iter()
+        .filter(|p| p[3] == 255 && p[..3] != [255, 255, 255])
+    {
+        *count.entry([p[0], p[1], p[2]]).or_default() += 1;
+    }
+    let mut by: Vec<([u8; 3], usize)> = count.into_iter().collect();
+    by.sort_by(|a, b| b.1.cmp(&a.1));
+    let ink: usize = by.iter().map(|c| c.1).sum();
+    let sides = &by[..3];
+    assert!(sides.iter().all(|c| c.1 * 10 > ink), "{sides:?} of {ink}");
+    let lum =
+        |c: [u8; 3]| 0.2126 * f64::from(c[0]) + 0.7152 * f64::from(c[1]) + 0.0722 * f64::from(c[2]);
+    let (lo, hi) = sides.iter().fold((f64::MAX, 0.0f64), |(lo, hi), c| {
+        (lo.min(lum(c.0)), hi.max(lum(c.0)))
+    });
+    assert!(lo >= 0.5 * hi, "a dark side: {sides:?}");
+    std::fs::remove_dir_all(&dir).ok();
+}

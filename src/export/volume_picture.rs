@@ -41,6 +41,8 @@ struct View {
     into: V3,
     centre: V3,
     radius: f64,
+    /// Half the side of the square the picture shows, in the solid's units.
+    half: f64,
 }
 
 impl View {
@@ -74,13 +76,36 @@ impl View {
             into,
             centre,
             radius,
+            half: 1.05 * radius,
         }
+    }
+
+    /// The view of a still picture: [`View::of`] re-centred on the solid's outline in this view
+    /// and scaled so that the outline's larger side fills 92 % of the picture (a rotating view
+    /// keeps [`View::of`], which holds the solid in every rotation).
+    fn framed(parts: &[Part]) -> View {
+        let mut v = View::of(parts);
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in parts.iter().flat_map(|p| p.vertices.iter()) {
+            let d = sub(p.map(f64::from), v.centre);
+            for (k, axis) in [v.right, v.up].iter().enumerate() {
+                lo[k] = lo[k].min(dot(d, *axis));
+                hi[k] = hi[k].max(dot(d, *axis));
+            }
+        }
+        if lo[0] > hi[0] {
+            return v;
+        }
+        let (mx, my) = ((lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0);
+        v.centre = [0, 1, 2].map(|k| v.centre[k] + mx * v.right[k] + my * v.up[k]);
+        v.half = ((hi[0] - lo[0]).max(hi[1] - lo[1]) / 2.0 / 0.92).max(1e-9);
+        v
     }
 
     /// Screen position in [0, size]² (y down) and depth (larger is farther).
     fn project(&self, p: V3, size: f64) -> (f64, f64, f64) {
         let d = sub(p, self.centre);
-        let s = size / (2.1 * self.radius);
+        let s = size / (2.0 * self.half);
         (
             size / 2.0 + dot(d, self.right) * s,
             size / 2.0 - dot(d, self.up) * s,
@@ -88,15 +113,20 @@ impl View {
         )
     }
 
-    /// Lambert shade of a face with outward normal `n`: ambient plus diffuse from a light above
-    /// the viewer's left shoulder.
+    /// Lambert shade of a face with outward normal `n`: ambient, a key light above the viewer's
+    /// left shoulder and a weaker fill light from the right, so that no side facing the viewer
+    /// goes dark (the three sides of a cube in view get three distinct, readable shades).
     fn shade(&self, n: V3) -> f64 {
-        let light = unit([
-            -self.into[0] + 0.6 * self.up[0] - 0.4 * self.right[0],
-            -self.into[1] + 0.6 * self.up[1] - 0.4 * self.right[1],
-            -self.into[2] + 0.6 * self.up[2] - 0.4 * self.right[2],
-        ]);
-        0.3 + 0.7 * dot(unit(n), light).max(0.0)
+        let towards = |a: f64, b: f64| {
+            unit([
+                -self.into[0] + a * self.up[0] + b * self.right[0],
+                -self.into[1] + a * self.up[1] + b * self.right[1],
+                -self.into[2] + a * self.up[2] + b * self.right[2],
+            ])
+        };
+        let (key, fill) = (towards(1.1, -0.5), towards(-0.2, 0.9));
+        let n = unit(n);
+        (0.42 + 0.5 * dot(n, key).max(0.0) + 0.28 * dot(n, fill).max(0.0)).min(1.0)
     }
 }
 
@@ -124,7 +154,7 @@ pub fn write_volume_png<W: Write>(
     transparent: bool,
     out: W,
 ) -> io::Result<()> {
-    let view = View::of(parts);
+    let view = View::framed(parts);
     // Supersampled, then averaged: smooth edges without a coverage rasterizer.
     let ss: u32 = if size <= 1400 { 3 } else { 1 };
     let n = (size * ss) as usize;
@@ -219,7 +249,7 @@ pub fn write_volume_png<W: Write>(
 /// The SVG projection as a string: the triangles facing the viewer, drawn far to near, each
 /// filled with its Lambert shade (and stroked with it, so that no seam shows between them).
 pub fn volume_svg(parts: &[Part], size: u32) -> String {
-    let view = View::of(parts);
+    let view = View::framed(parts);
     let c = base();
     // (farthest depth, screen corners, shade) of each triangle facing the viewer.
     type Flat = (f64, [(f64, f64); 3], Rgb);
