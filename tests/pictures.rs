@@ -318,7 +318,7 @@ fn volume_pictures_are_centred_and_every_side_in_view_is_lit() {
         *count.entry([p[0], p[1], p[2]]).or_default() += 1;
     }
     let mut by: Vec<([u8; 3], usize)> = count.into_iter().collect();
-    by.sort_by(|a, b| b.1.cmp(&a.1));
+    by.sort_by_key(|c| std::cmp::Reverse(c.1));
     let ink: usize = by.iter().map(|c| c.1).sum();
     let sides = &by[..3];
     assert!(sides.iter().all(|c| c.1 * 10 > ink), "{sides:?} of {ink}");
