@@ -270,6 +270,16 @@ fn automaton_pictures_are_coloured_centred_and_visible() {
     let row = (b[1] + b[3]) / 2;
     let middle = (180..220).all(|x| px[(row * w + x) as usize][..3] == [255, 255, 255]);
     assert!(middle, "the middle third is empty");
+    // A surface in space 3 is shaded: the quad patch's pieces face the light at many angles, so
+    // its ink has many colours (a flat fill would have its state's colour and anti-aliased
+    // edges only).
+    let (w, h, px) = render("quad-patch-3d", "4");
+    let shades: std::collections::HashSet<[u8; 4]> = px[..(w * h) as usize]
+        .iter()
+        .filter(|p| p[3] == 255 && p[..3] != [255, 255, 255])
+        .copied()
+        .collect();
+    assert!(shades.len() > 40, "{} colours", shades.len());
     // The kite: its middle is filled.
     let (w, h, px) = render("kite-dart", "12");
     let (b, n) = ink(w, &px, h);

@@ -94,9 +94,16 @@ pub fn write_automaton_png<W: Write>(
     out: W,
 ) -> io::Result<()> {
     let space = ev.space;
+    let to_plane = |p: &[f64; 3]| view(space, p);
+    // The axonometric view's line of sight: screen x = (x − y)·cos 30°, screen y = z +
+    // (x + y)/2, so points of larger x + y − z lie farther away.
+    let depth = |p: &[f64; 3]| p[0] + p[1] - p[2];
     crate::export::write_shapes_png(
         &ev.shapes(level),
-        |p| view(space, p),
+        crate::export::Projection {
+            to_plane: &to_plane,
+            depth: (space == 3).then_some(&depth as &crate::export::bitmap::Depth),
+        },
         &ev.names,
         width,
         background,

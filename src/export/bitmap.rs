@@ -389,13 +389,14 @@ pub fn write_png_picture<W: Write>(
 /// colour, points as dots, and below, unless `legend` is false, each state's colour and name.
 pub fn write_shapes_png<W: Write>(
     shapes: &[crate::geometry::Shape],
-    view: impl Fn(&[f64; 3]) -> (f64, f64),
+    projection: Projection<'_>,
     names: &[String],
     width: u32,
     background: Background,
     legend: bool,
     out: W,
 ) -> io::Result<()> {
+    let view = projection.to_plane;
     let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
     for p in shapes.iter().flat_map(|s| &s.points) {
         let (x, y) = view(p);
@@ -441,10 +442,17 @@ pub fn write_shapes_png<W: Write>(
     let line = (w / 700.0).max(1.0);
     let n = names.len().max(1);
     let mut fills: Vec<Batch> = (0..n).map(|_| Batch::new()).collect();
-    for s in shapes {
+    // In space 3, polygons are shaded and painted far to near (below).
+    let mut shaded: Vec<(f64, usize)> = Vec::new();
+    for (k, s) in shapes.iter().enumerate() {
         let pts: Vec<[f64; 2]> = s.points.iter().map(to_px).collect();
         let colour = type_colour(s.state);
         match s.kind {
+            crate::geometry::ShapeKind::Polygon if projection.depth.is_some() => {
+                let depth = projection.depth.expect("checked");
+                let d = s.points.iter().map(depth).sum::<f64>() / s.points.len().max(1) as f64;
+                shaded.push((d, k));
+            }
             crate::geometry::ShapeKind::Polygon => {
                 let b = &mut fills[s.state % n];
                 b.add(&pts);
@@ -471,6 +479,16 @@ pub fn write_shapes_png<W: Write>(
     for (q, b) in fills.iter_mut().enumerate() {
         b.flush(&mut canvas, &mut scratch, &mut buf, type_colour(q));
     }
+    // Far to near, each polygon lightened by how squarely it faces a light over the viewer's
+    // shoulder (two-sided: a surface has no outside), outlined in its own colour so that no
+    // background shows between neighbours.
+    shaded.sort_by(|a, b| b.0.total_cmp(&a.0));
+    for &(_, k) in &shaded {
+        let s = &shapes[k];
+        let pts: Vec<[f64; 2]> = s.points.iter().map(to_px).collect();
+        let c = lit(type_colour(s.state), facing(&s.points));
+        canvas.polygon(&mut scratch, &mut buf, &pts, Some(c), Some((c, 0.6)));
+    }
     if legend_h > 0 {
         let cw = get_raster_width(FontWeight::Regular, size) as f64;
         let swatch = (ch * 0.75).round() as i64;
@@ -487,6 +505,45 @@ pub fn write_shapes_png<W: Write>(
         }
     }
     canvas.write_png(out)
+}
+
+/// How a picture of shapes maps space to the plane: `to_plane` gives the picture's coordinates (y
+/// up); `depth`, for shapes in space 3, the distance along the line of sight (larger is farther),
+/// with which polygons are shaded and painted far to near.
+pub struct Projection<'a> {
+    /// Space to picture plane.
+    pub to_plane: &'a dyn Fn(&[f64; 3]) -> (f64, f64),
+    /// Depth along the line of sight (space 3), or `None` (flat pictures).
+    pub depth: Option<&'a Depth>,
+}
+
+/// The depth of a point of space along the line of sight.
+pub type Depth = dyn Fn(&[f64; 3]) -> f64;
+
+/// |cos| of the angle between a polygon's normal (Newell) and a light from the viewer's side,
+/// above and to the left, in the axonometric view of space 3.
+fn facing(points: &[[f64; 3]]) -> f64 {
+    let mut n = [0.0f64; 3];
+    for (k, p) in points.iter().enumerate() {
+        let q = points[(k + 1) % points.len()];
+        n[0] += (p[1] - q[1]) * (p[2] + q[2]);
+        n[1] += (p[2] - q[2]) * (p[0] + q[0]);
+        n[2] += (p[0] - q[0]) * (p[1] + q[1]);
+    }
+    let light = [-0.5f64, -1.1, 1.6];
+    let (ln, nn) = (
+        light.iter().map(|x| x * x).sum::<f64>().sqrt(),
+        n.iter().map(|x| x * x).sum::<f64>().sqrt(),
+    );
+    if nn == 0.0 {
+        return 0.0;
+    }
+    (n.iter().zip(light).map(|(a, b)| a * b).sum::<f64>() / (nn * ln)).abs()
+}
+
+/// A colour lightened towards white by up to 55 % as `t` goes from 0 to 1.
+fn lit(c: Rgb, t: f64) -> Rgb {
+    c.map(|x| (f64::from(x) + (255.0 - f64::from(x)) * 0.55 * t).round() as u8)
 }
 
 /// Whether the points span less than a pixel both ways (a piece too small to stroke).

@@ -26,7 +26,9 @@ pub use automaton_writer::{
     automaton_raster, automaton_report_html, automaton_svg, write_automaton_json,
     write_automaton_obj, write_automaton_png, write_automaton_svg,
 };
-pub use bitmap::{write_density_picture, write_png_picture, write_shapes_png, DensityPicture};
+pub use bitmap::{
+    write_density_picture, write_png_picture, write_shapes_png, DensityPicture, Projection,
+};
 pub use html::{report_html, report_html_unverified};
 pub use moditere::moditere_text;
 pub use morph::{write_morph_svg, FrameCells};
