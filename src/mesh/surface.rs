@@ -238,14 +238,20 @@ pub fn automaton_mesh(
     };
     let mesh = if thick {
         // `--width` is the printed object's x extent: the shell reaches past the mid-surface by
-        // what the offset along the normals adds, which a uniform scale of the mid-surface does
-        // not change (the normals stay the same); so the mid-surface is scaled again to leave
-        // that much room.
-        let first = thicken(&scaled(size.width), size.thickness);
-        let (l, h) = bounds(&first.vertices);
-        let extra = (h[0] - l[0]) - size.width;
-        if extra > 0.0 && dx > 0.0 {
-            if size.width - extra <= 0.0 {
+        // what the offset along the normals adds. A uniform scale of the mid-surface keeps the
+        // normals, so that excess stays the same as long as the same vertices are the extreme
+        // ones: the mid-surface is narrowed by the excess measured, and measured again, until
+        // the shell's extent is the width (one narrowing in practice, at most eight).
+        let mut mid = size.width;
+        let mut shell = thicken(&scaled(mid), size.thickness);
+        for _ in 0..8 {
+            let (l, h) = bounds(&shell.vertices);
+            let excess = (h[0] - l[0]) - size.width;
+            if dx <= 0.0 || excess.abs() <= 1e-9 * size.width {
+                break;
+            }
+            mid -= excess;
+            if mid <= 0.0 {
                 return Err(MeshError::Check {
                     level,
                     reason: format!(
@@ -254,10 +260,9 @@ pub fn automaton_mesh(
                     ),
                 });
             }
-            thicken(&scaled(size.width - extra), size.thickness)
-        } else {
-            first
+            shell = thicken(&scaled(mid), size.thickness);
         }
+        shell
     } else {
         scaled(size.width)
     };
