@@ -981,9 +981,7 @@ fn the_coloured_3mf_names_a_material_per_type_on_every_triangle() {
     assert_eq!(code, 0, "{out}{err}");
     let (code, out, _) = common::lacuna(&["check-mesh", &path, "--expect-euler", "-72"]);
     assert_eq!(code, 0, "{out}");
-    let mut zip = zip::ZipArchive::new(std::fs::File::open(&mf).unwrap()).unwrap();
-    let mut xml = String::new();
-    std::io::Read::read_to_string(&mut zip.by_name("3D/3dmodel.model").unwrap(), &mut xml).unwrap();
+    let xml = model_xml(&mf);
     assert_eq!(xml.matches("<base ").count(), 5);
     let triangles = xml.matches("<triangle ").count();
     assert!(triangles > 0);

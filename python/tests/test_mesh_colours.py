@@ -4,9 +4,32 @@ and each type's share of the top surface equal to its share of the cells' area c
 polygons `render --json-out` writes (issue #30)."""
 
 import json
+import struct
 from collections import defaultdict
 
 import lib3mf
+
+
+def _read_strict(path):
+    """The 3MF at ``path`` read by lib3mf in strict mode, with no warning; returns the model and
+    its base-material groups, moved to the first (which must exist)."""
+    model = lib3mf.get_wrapper().CreateModel()
+    reader = model.QueryReader("3mf")
+    reader.SetStrictModeActive(True)
+    reader.ReadFromFile(str(path))
+    assert reader.GetWarningCount() == 0
+    groups = model.GetBaseMaterialGroups()
+    assert groups.MoveNext()
+    return model, groups
+
+
+def _signed_volume(triangles):
+    """The volume enclosed by triangles given as three points each (the divergence theorem)."""
+    return sum(
+        (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+         + a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0
+        for a, b, c in triangles
+    )
 
 
 def _shoelace(poly):
@@ -19,14 +42,7 @@ def test_the_coloured_3mf_gives_each_cell_its_types_material(cli, tmp_path):
         "render", "delayed-B2-C2", "--level", "3", "--3mf", mf, "--3mf-colours", "--json-out", js
     )
     assert code == 0
-    wrapper = lib3mf.get_wrapper()
-    model = wrapper.CreateModel()
-    reader = model.QueryReader("3mf")
-    reader.SetStrictModeActive(True)
-    reader.ReadFromFile(str(mf))
-    assert reader.GetWarningCount() == 0
-    groups = model.GetBaseMaterialGroups()
-    assert groups.MoveNext()
+    model, groups = _read_strict(mf)
     group = groups.GetCurrentBaseMaterialGroup()
     names = {pid: group.GetName(pid) for pid in group.GetAllPropertyIDs()}
     # delayed-B2-C2 closes with 5 face types (T0 … T4): one material each, named by its type.
@@ -62,24 +78,10 @@ def test_the_3mf_parts_are_one_object_of_closed_parts_per_type(cli, tmp_path):
     mf, stl = tmp_path / "c.3mf", tmp_path / "c.stl"
     code, _ = cli("render", "cube-B2", "--level", "2", "--3mf", mf, "--3mf-parts", "--stl", stl)
     assert code == 0
-    wrapper = lib3mf.get_wrapper()
-    model = wrapper.CreateModel()
-    reader = model.QueryReader("3mf")
-    reader.SetStrictModeActive(True)
-    reader.ReadFromFile(str(mf))
-    assert reader.GetWarningCount() == 0
-    groups = model.GetBaseMaterialGroups()
-    assert groups.MoveNext()
+    model, groups = _read_strict(mf)
     group = groups.GetCurrentBaseMaterialGroup()
     colours = {group.GetName(p) for p in group.GetAllPropertyIDs()}
     assert colours == {"V1", "V2"}
-
-    def volume(verts, tris):
-        return sum(
-            (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
-             + a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0
-            for a, b, c in ((verts[i] for i in t) for t in tris)
-        )
 
     shells, total = {}, 0.0
     objects = model.GetMeshObjects()
@@ -101,7 +103,7 @@ def test_the_3mf_parts_are_one_object_of_closed_parts_per_type(cli, tmp_path):
             parent[find(b)] = find(a)
             parent[find(c)] = find(a)
         shells[obj.GetName()] = len({find(i) for t in tris for i in t})
-        total += volume(verts, tris)
+        total += _signed_volume([[verts[i] for i in t] for t in tris])
     assert sorted(shells.values()) == [24, 128], shells
     components = model.GetComponentsObjects()
     assert components.MoveNext()
@@ -109,15 +111,9 @@ def test_the_3mf_parts_are_one_object_of_closed_parts_per_type(cli, tmp_path):
     # The solid written beside it encloses the same volume (its cells are the parts' shells).
     data = stl.read_bytes()
     n = int.from_bytes(data[80:84], "little")
-    import struct
-
     solid = []
     for k in range(n):
         v = struct.unpack_from("<9f", data, 84 + 50 * k + 12)
         solid.append((v[0:3], v[3:6], v[6:9]))
-    whole = sum(
-        (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
-         + a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0
-        for a, b, c in solid
-    )
+    whole = _signed_volume(solid)
     assert abs(total - whole) < 1e-3 * abs(whole), (total, whole)

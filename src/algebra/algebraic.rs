@@ -629,6 +629,21 @@ impl NumberField {
         Some(FieldElement(Poly::new(c)))
     }
 
+    /// A float approximation of `a` (the middle of an enclosure 2^-64 wide; exact rationals
+    /// converted directly), for drawing and for choices a later exact step checks — never for a
+    /// verdict. NaN when it does not fit an `f64`.
+    pub fn approx(&self, a: &FieldElement) -> f64 {
+        use num_traits::ToPrimitive;
+        if let Some(q) = a.as_rational() {
+            return q.to_f64().unwrap_or(f64::NAN);
+        }
+        let width = BigRational::new(1.into(), BigInt::from(1u8) << 64u32);
+        let (lo, hi) = self.enclosure(a, &width);
+        ((lo + hi) / BigRational::from_integer(2.into()))
+            .to_f64()
+            .unwrap_or(f64::NAN)
+    }
+
     /// An interval `[lo, hi]` holding `a`, no wider than `width`.
     pub fn enclosure(&self, a: &FieldElement, width: &BigRational) -> (BigRational, BigRational) {
         self.refine_until(a, |lo, hi| {

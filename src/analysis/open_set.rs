@@ -559,14 +559,6 @@ pub(crate) fn part_verdict(
     undecided(format!("undecided: neither the convex hulls of the attractors nor the square on the segment is a feasible open set, and the neighbour maps decide nothing: {why} (the condition may still hold)"))
 }
 
-/// A float approximation of an element of K (for a choice only, never a verdict).
-fn approx(k: &NumberField, x: &FieldElement) -> f64 {
-    let w = BigRational::new(1.into(), num_bigint::BigInt::from(1u64) << 48);
-    let (lo, hi) = k.enclosure(x, &w);
-    num_traits::ToPrimitive::to_f64(&((lo + hi) / BigRational::from_integer(2.into())))
-        .unwrap_or(0.0)
-}
-
 /// Centres of the balls of the neighbour-map search near the middle of each state's attractor:
 /// the attractors are estimated in floating point (from `start`, twelve rounds of the operators,
 /// at most 4096 points kept per state) and each centre is the middle of its state's bounding box,
@@ -583,14 +575,14 @@ fn attractor_centres(
     let maps: Vec<(usize, usize, Vec<f64>, Vec<f64>)> = edges
         .iter()
         .map(|(q, w, g)| {
-            let a = g.a.iter().map(|x| approx(k, x)).collect();
-            let b = g.b.iter().map(|x| approx(k, x)).collect();
+            let a = g.a.iter().map(|x| k.approx(x)).collect();
+            let b = g.b.iter().map(|x| k.approx(x)).collect();
             (*q, *w, a, b)
         })
         .collect();
     let mut pts: Vec<Vec<Vec<f64>>> = start
         .iter()
-        .map(|c| vec![c.iter().map(|x| approx(k, x)).collect()])
+        .map(|c| vec![c.iter().map(|x| k.approx(x)).collect()])
         .collect();
     for _ in 0..12 {
         let mut next: Vec<Vec<Vec<f64>>> = vec![Vec::new(); start.len()];
@@ -658,10 +650,11 @@ fn balance(k: &NumberField, centres: &[Vec<FieldElement>], edges: &[KEdge]) -> O
     for (_, _, g) in edges {
         let r2 = g.similitude_ratio2(k)?;
         all_contract &= cmp(k, &r2, &one) == Ordering::Less;
-        let w = BigRational::new(1.into(), num_bigint::BigInt::from(1u64) << 40);
-        let (lo, hi) = k.enclosure(&r2, &w);
-        let mid = (lo + hi) / BigRational::from_integer(2.into());
-        log_ratio.push(0.5 * num_traits::ToPrimitive::to_f64(&mid)?.ln());
+        let r2 = k.approx(&r2);
+        if !(r2.is_finite() && r2 > 0.0) {
+            return None;
+        }
+        log_ratio.push(0.5 * r2.ln());
     }
     if all_contract {
         return None;

@@ -168,6 +168,12 @@ impl Canvas {
         Some((path, place))
     }
 
+    /// A legend's swatch: an `s`-pixel square of colour `c` with a darker rim.
+    fn swatch(&mut self, x: i64, y: i64, s: i64, c: Rgb) {
+        self.rect(x, y, s, s, darker(c));
+        self.rect(x + 1, y + 1, s - 2, s - 2, c);
+    }
+
     fn rect(&mut self, x: i64, y: i64, w: i64, h: i64, c: Rgb) {
         for yy in y..y + h {
             for xx in x..x + w {
@@ -371,8 +377,7 @@ pub fn write_png_picture<W: Write>(
             let y = (f64::from(f.height) + ch * 0.4 + r as f64 * row_h).round() as i64;
             let s = swatch.round() as i64;
             let sy = y + ((ch - swatch) / 2.0).round() as i64;
-            canvas.rect(x, sy, s, s, darker(*colour));
-            canvas.rect(x + 1, sy + 1, s - 2, s - 2, *colour);
+            canvas.swatch(x, sy, s, *colour);
             let tx = x + (swatch * 1.6).round() as i64;
             let used = canvas.text(tx, y, id, size, [0, 0, 0]);
             canvas.text(tx + used + cw as i64, y, face, size, [0x33, 0x33, 0x33]);
@@ -497,8 +502,7 @@ pub fn write_shapes_png<W: Write>(
         for &q in &states {
             let colour = type_colour(q);
             let sy = y + ((ch - swatch as f64) / 2.0).round() as i64;
-            canvas.rect(x, sy, swatch, swatch, darker(colour));
-            canvas.rect(x + 1, sy + 1, swatch - 2, swatch - 2, colour);
+            canvas.swatch(x, sy, swatch, colour);
             let label = format!("state {}", names.get(q).map_or("?", String::as_str));
             let used = canvas.text(x + swatch + (cw * 0.6) as i64, y, &label, size, [0, 0, 0]);
             x += swatch + (cw * 0.6) as i64 + used + (cw * 2.0) as i64;

@@ -36,15 +36,7 @@ pub struct Shape {
 
 /// A float approximation of a field element (for drawing only: never for a verdict).
 pub fn approx(k: &NumberField, v: &FieldElement) -> f64 {
-    use num_traits::ToPrimitive;
-    if let Some(q) = v.as_rational() {
-        return q.to_f64().unwrap_or(f64::NAN);
-    }
-    let width = num_rational::BigRational::new(1.into(), num_bigint::BigInt::from(1u8) << 64u32);
-    let (lo, hi) = k.enclosure(v, &width);
-    ((lo + hi) / num_rational::BigRational::from_integer(2.into()))
-        .to_f64()
-        .unwrap_or(f64::NAN)
+    k.approx(v)
 }
 
 /// A subdivision operator out of a state: its value row-major, rows, columns, target state.

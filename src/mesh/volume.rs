@@ -23,7 +23,7 @@ use super::solid::{check_type_part, Part, Solid, TypePart};
 use super::Size;
 use crate::error::{Diagnostic, Error, Result};
 use crate::geometry::{
-    evaluate_assembly, place_assembly, GeoEdge, InnerFan, Placement, SolidGeometry,
+    evaluate_assembly, place_assembly, GeoEdge, InnerFan, Placement, Reading, SolidGeometry,
 };
 use crate::topology::component::Dsu;
 use crate::topology::volume::{
@@ -109,25 +109,36 @@ pub fn boundary_triangles(g: &SolidGeometry) -> BoundaryTriangles {
         }
         let r = &g.volumes[vi].faces[k];
         let n = r.corners.len();
-        if n == 3 {
-            parts[c].push([r.corners[0], r.corners[1], r.corners[2]]);
-            of_volume[c].push(vi as u32);
-            continue;
+        let (centre, tris) = face_fan(g, r);
+        if let Some(p) = centre {
+            points.push(p);
         }
-        let corners: Vec<[f64; 3]> = r.corners.iter().map(|&c| points[c]).collect();
-        // The fan's centre: the face's centre, or, when the fan around it has a triangle of no
-        // area or turned over (issue #31: an L-shaped sub-face whose centre lies on the lines
-        // of two of its sides), the first point of a few candidates inside the face from which
-        // it is star-shaped; failing all, the face's centre (the mesh check then names it).
-        let centre = fan_centre(&corners, g.faces[f].center);
-        points.push(centre);
-        let centre = points.len() - 1;
-        for i in 0..n {
-            parts[c].push([centre, r.corners[i], r.corners[(i + 1) % n]]);
-        }
-        of_volume[c].extend(std::iter::repeat_n(vi as u32, n));
+        let at = |i: usize| match i == n {
+            true => points.len() - 1,
+            false => r.corners[i],
+        };
+        parts[c].extend(tris.iter().map(|t| t.map(at)));
+        of_volume[c].extend(std::iter::repeat_n(vi as u32, tris.len()));
+        debug_assert_eq!(r.face, f);
     }
     (points, parts, of_volume)
+}
+
+/// How a face, as a volume reads it (counter-clockwise from outside), is triangulated: itself
+/// when it is a triangle, else a fan around a new point of its own (returned), the triangles
+/// over the reading's corners `0..n` with `n` standing for that point. The fan's centre is the
+/// face's centre or, when the fan around it has a triangle of no area or turned over (issue
+/// #31: an L-shaped sub-face whose centre lies on the lines of two of its sides), the first of a
+/// few candidates inside the face from which it is star-shaped ([`fan_centre`]; failing all, the
+/// face's centre, which the mesh check then names).
+fn face_fan(g: &SolidGeometry, r: &Reading) -> (Option<[f64; 3]>, Vec<[usize; 3]>) {
+    let n = r.corners.len();
+    if n == 3 {
+        return (None, vec![[0, 1, 2]]);
+    }
+    let corners: Vec<[f64; 3]> = r.corners.iter().map(|&c| g.points[c]).collect();
+    let centre = fan_centre(&corners, g.faces[r.face].center);
+    (Some(centre), (0..n).map(|i| [n, i, (i + 1) % n]).collect())
 }
 
 /// What [`boundary_triangles`] returns: positions, the triangles of each component, and the
@@ -495,25 +506,24 @@ impl VolumeSolid {
             let part = &mut parts[ty[vi]];
             let mut local: HashMap<usize, u32> = HashMap::new();
             for r in &v.faces {
-                let mut at = |p: usize, part: &mut Part| -> u32 {
-                    *local.entry(p).or_insert_with(|| {
-                        part.vertices.push(scale(g.points[p]));
-                        (part.vertices.len() - 1) as u32
+                // The corners' vertices, shared by the shell's faces, then the fan's centre.
+                let mut ids: Vec<u32> = r
+                    .corners
+                    .iter()
+                    .map(|&p| {
+                        *local.entry(p).or_insert_with(|| {
+                            part.vertices.push(scale(g.points[p]));
+                            (part.vertices.len() - 1) as u32
+                        })
                     })
-                };
-                let n = r.corners.len();
-                let c: Vec<u32> = r.corners.iter().map(|&p| at(p, part)).collect();
-                if n == 3 {
-                    part.triangles.push([c[0], c[1], c[2]]);
-                    continue;
+                    .collect();
+                let (centre, tris) = face_fan(g, r);
+                if let Some(p) = centre {
+                    part.vertices.push(scale(p));
+                    ids.push((part.vertices.len() - 1) as u32);
                 }
-                let corners: Vec<[f64; 3]> = r.corners.iter().map(|&p| g.points[p]).collect();
-                part.vertices
-                    .push(scale(fan_centre(&corners, g.faces[r.face].center)));
-                let centre = (part.vertices.len() - 1) as u32;
-                for i in 0..n {
-                    part.triangles.push([centre, c[i], c[(i + 1) % n]]);
-                }
+                part.triangles
+                    .extend(tris.iter().map(|t| t.map(|i| ids[i])));
             }
         }
         let want = volumes_by_type(set, u64::from(self.solid.level));

@@ -27,10 +27,9 @@ pub struct LevelCount {
 
 /// Counts from levels 0 to `levels` starting from the given multiplicities of types.
 pub fn counts_from(ts: &TypeSet, start: &[(usize, u64)], levels: u64) -> Vec<LevelCount> {
-    let n = ts.types.len();
     let matrix = ts.matrix();
     let halves: Vec<u64> = ts.types.iter().map(|t| t.contribution_halves()).collect();
-    let mut v = vec![BigUint::zero(); n];
+    let mut v = vec![BigUint::zero(); ts.types.len()];
     for &(t, k) in start {
         v[t] += k;
     }
@@ -60,19 +59,24 @@ pub fn counts_from(ts: &TypeSet, start: &[(usize, u64)], levels: u64) -> Vec<Lev
         if level == levels {
             break;
         }
-        let mut next = vec![BigUint::zero(); n];
-        for (t, vt) in v.iter().enumerate() {
-            if vt.is_zero() {
-                continue;
-            }
-            lacuna_halves += vt * halves[t];
-            for &(s, k) in &matrix[t] {
-                next[s] += vt * k;
-            }
+        for (vt, h) in v.iter().zip(&halves) {
+            lacuna_halves += vt * h;
         }
-        v = next;
+        v = next_level(&matrix, &v);
     }
     out
+}
+
+/// One level down: the faces of each type that the faces counted in `v` give (`matrix` as
+/// [`TypeSet::matrix`] returns it).
+fn next_level(matrix: &[Vec<(usize, u64)>], v: &[BigUint]) -> Vec<BigUint> {
+    let mut next = vec![BigUint::zero(); v.len()];
+    for (t, vt) in v.iter().enumerate().filter(|(_, x)| !x.is_zero()) {
+        for &(s, k) in &matrix[t] {
+            next[s] += vt * k;
+        }
+    }
+    next
 }
 
 /// The level-`level` faces of each type, the start faces of the type set taken together: the
@@ -83,16 +87,7 @@ pub fn population(ts: &TypeSet, level: u64) -> Vec<BigUint> {
     for &t in &ts.start {
         v[t] += 1u32;
     }
-    for _ in 0..level {
-        let mut next = vec![BigUint::zero(); v.len()];
-        for (t, vt) in v.iter().enumerate().filter(|(_, x)| !x.is_zero()) {
-            for &(s, k) in &matrix[t] {
-                next[s] += vt * k;
-            }
-        }
-        v = next;
-    }
-    v
+    (0..level).fold(v, |v, _| next_level(&matrix, &v))
 }
 
 /// Counts for the start faces of the type set taken together (an assembly: the total).

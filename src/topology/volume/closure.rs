@@ -188,38 +188,41 @@ pub struct VolumeLevelCount {
     pub ratio: BigRational,
 }
 
-/// Exact counts of the start volumes from level 0 to `levels`, on the vector of type
-/// The level-`level` sub-volumes of each type, from the start volumes: the start vector pushed
-/// through the children `level` times.
-pub fn volumes_by_type(set: &VolumeTypeSet, level: u64) -> Vec<BigUint> {
+/// The start vector: how many start volumes each type has.
+fn start_vector(set: &VolumeTypeSet) -> Vec<BigUint> {
     let mut v = vec![BigUint::zero(); set.types.len()];
     for &t in &set.start {
         v[t] += 1u32;
     }
-    for _ in 0..level {
-        let mut next = vec![BigUint::zero(); v.len()];
-        for (t, vt) in v.iter().enumerate().filter(|(_, x)| !x.is_zero()) {
-            for &c in &set.types[t].children {
-                next[c] += vt;
-            }
-        }
-        v = next;
-    }
     v
 }
 
+/// One level down: the sub-volumes of each type that the volumes counted in `v` give.
+fn next_level(set: &VolumeTypeSet, v: &[BigUint]) -> Vec<BigUint> {
+    let mut next = vec![BigUint::zero(); v.len()];
+    for (t, vt) in v.iter().enumerate().filter(|(_, x)| !x.is_zero()) {
+        for &c in &set.types[t].children {
+            next[c] += vt;
+        }
+    }
+    next
+}
+
+/// The level-`level` sub-volumes of each type, from the start volumes: the start vector pushed
+/// through the children `level` times.
+pub fn volumes_by_type(set: &VolumeTypeSet, level: u64) -> Vec<BigUint> {
+    (0..level).fold(start_vector(set), |v, _| next_level(set, &v))
+}
+
+/// Exact counts of the start volumes from level 0 to `levels`, on the vector of type
 /// multiplicities with big integers (lacunas in quarters).
 pub fn volume_counts(set: &VolumeTypeSet, levels: u64) -> Vec<VolumeLevelCount> {
-    let n = set.types.len();
     let quarters: Vec<u64> = set
         .types
         .iter()
         .map(|t| t.volume.contribution_quarters())
         .collect();
-    let mut v = vec![BigUint::zero(); n];
-    for &t in &set.start {
-        v[t] += 1u32;
-    }
+    let mut v = start_vector(set);
     let mut lacuna_quarters = BigUint::zero();
     let mut out = Vec::new();
     for level in 0..=levels {
@@ -240,17 +243,10 @@ pub fn volume_counts(set: &VolumeTypeSet, levels: u64) -> Vec<VolumeLevelCount> 
         if level == levels {
             break;
         }
-        let mut next = vec![BigUint::zero(); n];
-        for (t, vt) in v.iter().enumerate() {
-            if vt.is_zero() {
-                continue;
-            }
-            lacuna_quarters += vt * quarters[t];
-            for &c in &set.types[t].children {
-                next[c] += vt;
-            }
+        for (vt, q) in v.iter().zip(&quarters) {
+            lacuna_quarters += vt * q;
         }
-        v = next;
+        v = next_level(set, &v);
     }
     out
 }
