@@ -767,7 +767,7 @@ mod placed_anywhere {
             prop_assert_eq!(away.euler, at_home.euler);
             prop_assert_eq!(away.genus, at_home.genus);
             // In the geometry's own units the enclosed volume is s³ times the original's.
-            let vol = |g: &lacuna::mesh::VolumeSolid| g.sizes().volume_mm3 / g.transform.0.powi(3);
+            let vol = |g: &lacuna::mesh::VolumeSolid| g.sizes(1, 0.4).volume_mm3 / g.transform.0.powi(3);
             let ratio = vol(&away) / vol(&at_home);
             prop_assert!((ratio / s.powi(3) - 1.0).abs() < 1e-4, "{} vs {}", ratio, s.powi(3));
         }
@@ -946,8 +946,35 @@ fn the_printability_object_of_a_plate_and_of_a_volume() {
     assert_eq!((r.extent_mm[2], r.wall_thickness_mm), (2.0, Some(2.0)));
     assert!(r.fits_bed);
     let v = volume("cube-C2", 1);
-    let sizes = v.sizes();
+    let sizes = v.sizes(8, 0.4);
     let vr = sizes.report(&v.solid.parts, 1, 0.4, [50.0, 200.0, 200.0]);
+    // The hole and the ligament are the least over the 8 layers: recomputed here from the
+    // slices, each measured as a face's plate is.
+    let heights = lacuna::mesh::slice::layer_heights(&v.solid.parts, 8);
+    assert_eq!(heights.len(), 8);
+    let each: Vec<_> = heights
+        .iter()
+        .map(|&z| lacuna::mesh::slice::slice(&v.solid.parts, z))
+        .collect();
+    let least = |f: &dyn Fn(&lacuna::mesh::feature::Shapes) -> Option<f64>| {
+        each.iter().filter_map(f).fold(f64::INFINITY, f64::min)
+    };
+    let hole = least(&|s| lacuna::mesh::feature::smallest_hole(s).map(|h| h.0));
+    let lig = least(&|s| lacuna::mesh::feature::thinnest_ligament(s).map(|l| l.1));
+    assert_eq!(vr.smallest_hole_mm, Some(hole));
+    let got = vr.thinnest_ligament_mm.expect("a ligament");
+    assert!(
+        (got - lig).abs() <= 2.0 * lacuna::mesh::feature::LIGAMENT_TOLERANCE,
+        "{got} {lig}"
+    );
+    for k in ["smallest_hole", "thinnest_ligament"] {
+        assert_eq!(
+            vr.kinds[k].0,
+            lacuna::mesh::printability::FigureKind::Estimate
+        );
+    }
+    // cube-C2's level 1 overhangs (the undersides of its tunnels' roofs): a bridge to cross.
+    assert!(vr.largest_bridge_mm.is_some_and(|b| b > 0.0 && b < 100.0));
     assert_eq!(
         vr.kinds["wall_thickness"].0,
         lacuna::mesh::printability::FigureKind::LowerBound

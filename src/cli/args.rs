@@ -554,6 +554,22 @@ pub(crate) struct PrintArgs {
     /// overhang beyond 45° and the area on the bed.
     #[arg(long, value_enum, default_value = "keep")]
     pub(crate) orient: OrientArg,
+    /// Horizontal layers of a solid (a volume or a shell) whose smallest hole and thinnest
+    /// ligament are measured, at the middles of equal bands of its height.
+    #[arg(long, default_value_t = lacuna::mesh::slice::DEFAULT_LAYERS, value_name = "N",
+          value_parser = parse_layers)]
+    pub(crate) layers: usize,
+}
+
+/// `--layers N`: from 1 to [`lacuna::mesh::slice::MAX_LAYERS`].
+fn parse_layers(s: &str) -> Result<usize, String> {
+    let max = lacuna::mesh::slice::MAX_LAYERS;
+    match s.trim().parse::<usize>() {
+        Ok(n) if (1..=max).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "`{s}` is not a number of layers: give an integer from 1 to {max}"
+        )),
+    }
 }
 
 /// How the mesh written is oriented (`--orient`).

@@ -403,6 +403,7 @@ pub(super) fn orient(
         o = lacuna::mesh::orient::choose_axis(parts);
         let _ = lacuna::mesh::orient::turn_checked(parts, &o);
     }
+    o.largest_bridge_mm = lacuna::mesh::orient::largest_bridge(parts);
     for line in o.text().lines() {
         match line.starts_with("warning:") {
             true => eprintln!("{line}"),

@@ -325,7 +325,7 @@ pub(super) fn render(
     lacuna::mesh::check_size("--resolution", print.resolution).map_err(mesh_error)?;
     let (mut vs, set) = checked_solid(name, v, geo, print.width, limits)?;
     outputs.say(&vs.summary());
-    let sizes = vs.sizes();
+    let sizes = vs.sizes(print.layers, print.resolution);
     outputs.say(&sizes.text(print.resolution));
     let mut failed = false;
     if t.mesh.any() {
@@ -439,7 +439,7 @@ pub(super) fn measure(
 ) -> Result<ExitCode, Error> {
     lacuna::mesh::check_size("--resolution", print.resolution).map_err(mesh_error)?;
     let (vs, _) = checked_solid(name, v, geo, print.width, limits)?;
-    let sizes = vs.sizes();
+    let sizes = vs.sizes(print.layers, print.resolution);
     let below = sizes.below(print.resolution);
     let embedded = vs.crossing.is_none();
     let verified = embedded && (!print.strict || below.is_empty());
@@ -503,7 +503,10 @@ pub(super) fn report(
     let solid =
         lacuna::topology::volume::solid_topology_of(&set, levels, &v.assembly.start_cells())?;
     let (vs, _) = checked_solid(name, v, geo, lacuna::mesh::DEFAULT_WIDTH, limits)?;
-    let sizes = vs.sizes();
+    let sizes = vs.sizes(
+        lacuna::mesh::slice::DEFAULT_LAYERS,
+        lacuna::mesh::DEFAULT_RESOLUTION,
+    );
     let mut check = vs.summary();
     check += &sizes.text(lacuna::mesh::DEFAULT_RESOLUTION);
     let html = lacuna::export::volume_report_html(

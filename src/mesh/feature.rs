@@ -282,6 +282,14 @@ pub fn erode(shapes: &Shapes, r: f64) -> Shapes {
 /// of components or holes) as a bracket `(lo, hi)` of the scan and bisection, mm; none for no
 /// material. An estimate (see the module doc).
 pub fn thinnest_ligament(shapes: &Shapes) -> Option<(f64, f64)> {
+    thinnest_ligament_below(shapes, f64::INFINITY)
+}
+
+/// [`thinnest_ligament`] when it is below `cap` (mm): none when eroding by `cap / 2` leaves the
+/// numbers of components and holes as they are. One erosion decides a material whose ligaments
+/// are all wider, so the least over many layers ([`super::slice`]) bisects only the layers that
+/// beat the least so far.
+pub fn thinnest_ligament_below(shapes: &Shapes, cap: f64) -> Option<(f64, f64)> {
     let base = betti(shapes);
     if base.0 == 0 {
         return None;
@@ -308,11 +316,19 @@ pub fn thinnest_ligament(shapes: &Shapes) -> Option<(f64, f64)> {
         );
     let reach = (b[2] - b[0]).max(b[3] - b[1]);
     let changed = |r: f64| betti(&erode(shapes, r)) != base;
+    if cap.is_finite() && !changed(cap / 2.0) {
+        return None;
+    }
     // Doubling, then bisection: each erosion of a large level costs a polygon offset of the
     // whole union, and doubling takes about half the erosions a finer growth would (measured:
     // F0 level 5, 7 776 cells, 23 erosions with steps of ×1.25 against 13).
     let (mut lo, mut hi) = (0.0, LIGAMENT_TOLERANCE);
     while !changed(hi) {
+        if hi >= cap / 2.0 {
+            // Changed at cap / 2 (checked above), not at hi: the change is in (lo, cap / 2].
+            hi = cap / 2.0;
+            break;
+        }
         if hi > reach {
             // Nothing is left of any material eroded past its extent: not reached for real
             // shapes; say "at least".

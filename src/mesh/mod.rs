@@ -31,6 +31,7 @@ pub mod orient;
 pub mod outline;
 pub mod polygon;
 pub mod printability;
+pub mod slice;
 pub mod solid;
 pub mod stl;
 pub mod surface;
@@ -52,7 +53,7 @@ mod below {
     pub(crate) use crate::geometry::raster::bounds;
     pub(crate) use crate::input::automaton_model::AutomatonModel;
     pub(crate) use crate::measure::measurement::exact_topology;
-    pub(crate) use crate::topology::component::{components_by_induction, start_components};
+    pub(crate) use crate::topology::component::{components_by_induction, start_components, Dsu};
     pub(crate) use crate::topology::count::population;
 }
 pub use polygon::triangulate;

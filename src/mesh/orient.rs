@@ -77,6 +77,8 @@ pub struct Orientation {
     /// Whether the object needs supports or a raft in the chosen orientation: no area rests on
     /// the bed.
     pub needs_support: bool,
+    /// The largest bridge of the parts as turned ([`largest_bridge`]), mm, once they are.
+    pub largest_bridge_mm: Option<f64>,
 }
 
 /// Unit normal and area of a triangle.
@@ -243,7 +245,76 @@ fn choose_among(candidates: Vec<Overhang>, surface: f64, auto: bool) -> Orientat
         surface_mm2: surface,
         reason,
         needs_support,
+        largest_bridge_mm: None,
     }
+}
+
+/// The width of the widest overhang with −z down, mm: the span a bridge (or a support) must
+/// cross. The overhang triangles (facing down beyond [`OVERHANG_DEGREES`], not on the bed) are
+/// grouped into regions by the edges they share; each region is seen from below (its triangles
+/// projected on the bed and united by `i_overlay`), and its width is twice the radius of the
+/// largest disc inside it ([`super::feature::largest_disc`], within 10⁻³ mm): a strip of width `w`
+/// and any length needs a bridge of span `w`, whichever way the slicer lays it. None when nothing
+/// overhangs. An estimate on the `f32` coordinates, for advice.
+pub fn largest_bridge(parts: &[Part]) -> Option<f64> {
+    use i_overlay::core::fill_rule::FillRule;
+    use i_overlay::float::simplify::SimplifyShape;
+    let cos = OVERHANG_DEGREES.to_radians().cos();
+    let bottom = parts
+        .iter()
+        .flat_map(|p| p.vertices.iter().map(|v| f64::from(v[2])))
+        .fold(f64::INFINITY, f64::min);
+    let mut widest: Option<f64> = None;
+    for p in parts {
+        let corners = |t: &[u32; 3]| t.map(|i| p.vertices[i as usize].map(f64::from));
+        let over: Vec<usize> = (0..p.triangles.len())
+            .filter(|&k| {
+                let [a, b, c] = corners(&p.triangles[k]);
+                let (n, area) = normal_area(a, b, c);
+                area > 0.0
+                    && -n[2] >= cos
+                    && !(a[2] - bottom <= BED_TOLERANCE
+                        && b[2] - bottom <= BED_TOLERANCE
+                        && c[2] - bottom <= BED_TOLERANCE)
+            })
+            .collect();
+        let mut dsu = super::below::Dsu::new(over.len());
+        let mut by_edge: std::collections::HashMap<(u32, u32), usize> = Default::default();
+        for (k, &t) in over.iter().enumerate() {
+            let v = p.triangles[t];
+            for e in 0..3 {
+                let (a, b) = (v[e], v[(e + 1) % 3]);
+                match by_edge.entry((a.min(b), a.max(b))) {
+                    std::collections::hash_map::Entry::Occupied(o) => dsu.union(k, *o.get()),
+                    std::collections::hash_map::Entry::Vacant(slot) => {
+                        slot.insert(k);
+                    }
+                }
+            }
+        }
+        let mut regions: std::collections::BTreeMap<usize, Vec<Vec<[f64; 2]>>> = Default::default();
+        for (k, &t) in over.iter().enumerate() {
+            // Facing down, the triangle turns clockwise seen from above: reversed, it is
+            // counter-clockwise as `i_overlay`'s non-zero rule wants.
+            let [a, b, c] = corners(&p.triangles[t]);
+            regions.entry(dsu.find(k)).or_default().push(vec![
+                [a[0], a[1]],
+                [c[0], c[1]],
+                [b[0], b[1]],
+            ]);
+        }
+        for tris in regions.into_values() {
+            for shape in tris.simplify_shape(FillRule::NonZero) {
+                let Some((outer, holes)) = shape.split_first() else {
+                    continue;
+                };
+                let islands: Vec<&[[f64; 2]]> = holes.iter().map(Vec::as_slice).collect();
+                let (lo, _) = super::feature::largest_disc(outer, &islands, 1e-3);
+                widest = Some(widest.map_or(2.0 * lo, |w| w.max(2.0 * lo)));
+            }
+        }
+    }
+    widest
 }
 
 /// Turns the parts so that the chosen direction points to −z. An axis direction is a signed
@@ -376,6 +447,11 @@ impl Orientation {
             "  overhang (mm²) by the direction down: {}\n",
             others.join(", ")
         );
+        if let Some(b) = self.largest_bridge_mm {
+            s += &format!(
+                "  largest bridge {b:.2} mm (the widest overhang region seen from below, an estimate)\n"
+            );
+        }
         if self.needs_support {
             s += "warning: no face rests on the bed in this orientation: print with supports or a raft (PrusaSlicer: --support-material)\n";
         }
@@ -543,5 +619,22 @@ mod tests {
         let o = choose(&tiny, true);
         assert_eq!(o.chosen, "-z");
         assert!(o.needs_support, "{}", o.text());
+    }
+
+    /// By hand, two boxes: a 10 × 4 × 1 bar at height 5 over nothing, and a 1 × 1 × 1 cube on
+    /// the bed. The bar's underside is an overhang of 10 × 4: a bridge of
+    /// span 4 (the largest disc of a 10 × 4 rectangle has diameter 4); the cube's underside is
+    /// on the bed and its top faces up: no overhang.
+    #[test]
+    fn the_largest_bridge_is_the_widest_overhang_seen_from_below() {
+        let mut bar = cuboid(10.0, 4.0, 1.0);
+        for v in &mut bar[0].vertices {
+            v[2] += 5.0;
+        }
+        let parts = [bar[0].clone(), cuboid(1.0, 1.0, 1.0)[0].clone()];
+        let b = largest_bridge(&parts).expect("the bar overhangs");
+        assert!((b - 4.0).abs() < 2e-3, "{b}");
+        // On the bed alone, nothing overhangs.
+        assert_eq!(largest_bridge(&cuboid(10.0, 4.0, 1.0)), None);
     }
 }

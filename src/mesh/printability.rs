@@ -82,6 +82,9 @@ pub struct PrintReport {
     pub overhang_mm2: Option<f64>,
     /// The area resting on the bed as built, mm².
     pub bed_contact_mm2: Option<f64>,
+    /// The largest bridge as built, mm ([`crate::mesh::orient::largest_bridge`], an estimate);
+    /// none when nothing overhangs.
+    pub largest_bridge_mm: Option<f64>,
     /// The features below the resolution, in words.
     pub below_resolution: Vec<String>,
     /// Why the features were not measured, if so.
@@ -129,6 +132,7 @@ impl PrintReport {
             // Vertical walls and a flat bottom on the bed: nothing overhangs, the material rests.
             overhang_mm2: p.material_mm2.map(|_| 0.0),
             bed_contact_mm2: p.material_mm2,
+            largest_bridge_mm: None,
             below_resolution: p.below(),
             not_measured: p.not_measured.clone(),
         }

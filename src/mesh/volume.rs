@@ -896,10 +896,9 @@ mod cube_tests {
     }
 }
 
-/// Sizes of a volume's solid, in millimetres: from the checked mesh (enclosed volume, surface
-/// area, extent, and a lower bound on the wall thickness, [`super::wall`]) and from the evaluated
-/// cells (the smallest hole, an estimate: a hole's width is its inscribed circle's diameter seen
-/// from its mean point).
+/// Sizes of a volume's solid, in millimetres, all from the checked mesh: enclosed volume, surface
+/// area, extent, a lower bound on the wall thickness ([`super::wall`]) and the smallest hole and
+/// thinnest ligament of its horizontal layers ([`super::slice`], estimates).
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct VolumeSizes {
     /// Enclosed volume, mm³.
@@ -908,8 +907,12 @@ pub struct VolumeSizes {
     pub area_mm2: f64,
     /// Extent along x, y and z, mm.
     pub extent_mm: [f64; 3],
-    /// The smallest hole the last step opened, mm (none at level 0).
+    /// The smallest hole of the layers sliced, mm (none when no layer has a hole): an estimate.
     pub smallest_hole_mm: Option<f64>,
+    /// The thinnest ligament of the layers sliced, mm: an estimate.
+    pub thinnest_ligament_mm: Option<f64>,
+    /// The layers sliced and where their least figures were found.
+    pub layers: super::slice::LayerFeatures,
     /// A lower bound on every wall thickness sampled by a ray along a triangle's inward normal,
     /// mm: the least distance between two facing triangles with material between them that share
     /// no vertex ([`super::wall::wall_bound`]); none when no two triangles face each other.
@@ -917,8 +920,9 @@ pub struct VolumeSizes {
 }
 
 impl VolumeSolid {
-    /// The sizes of the solid (see [`VolumeSizes`]).
-    pub fn sizes(&self) -> VolumeSizes {
+    /// The sizes of the solid (see [`VolumeSizes`]), its features measured on `layers` slices
+    /// against `resolution` (mm).
+    pub fn sizes(&self, layers: usize, resolution: f64) -> VolumeSizes {
         let mut volume6 = 0.0;
         let mut area2 = 0.0;
         let mut lo = [f64::INFINITY; 3];
@@ -937,21 +941,15 @@ impl VolumeSolid {
                     + a[2] * (b[0] * c[1] - b[1] * c[0]);
             }
         }
-        let mm = self.transform.0;
-        let g = &self.geometry;
-        let hole = g
-            .holes
-            .iter()
-            .map(|h| crate::geometry::hole_width(g, h) * mm)
-            .fold(None, |acc: Option<f64>, x| {
-                Some(acc.map_or(x, |a| a.min(x)))
-            });
+        let layers = super::slice::layer_features(&self.solid.parts, layers, resolution);
         let wall = super::wall::wall_bound(&self.solid.parts).map(|w| w.thickness);
         VolumeSizes {
             volume_mm3: volume6 / 6.0,
             area_mm2: area2 / 2.0,
             extent_mm: [0, 1, 2].map(|k| (hi[k] - lo[k]).max(0.0)),
-            smallest_hole_mm: hole,
+            smallest_hole_mm: layers.smallest_hole.map(|h| h.0),
+            thinnest_ligament_mm: layers.thinnest_ligament.map(|l| l.0),
+            layers,
             wall_bound_mm: wall,
         }
     }
@@ -961,8 +959,8 @@ use super::printability::PrintReport;
 
 impl VolumeSizes {
     /// The printability in the shape faces have ([`super::printability::PrintReport`]): the
-    /// smallest hole an estimate, the wall thickness a lower bound, no ligament figure (the
-    /// wall bound stands for it in 3D), the overhang of `parts` as built.
+    /// smallest hole and the thinnest ligament of the layers estimates, the wall thickness a
+    /// lower bound, the overhang and the largest bridge of `parts` as built.
     pub fn report(
         &self,
         parts: &[super::solid::Part],
@@ -972,11 +970,25 @@ impl VolumeSizes {
     ) -> super::printability::PrintReport {
         use super::printability::FigureKind;
         let mut kinds = std::collections::BTreeMap::new();
+        let n = self.layers.layers;
         kinds.insert(
             "smallest_hole",
             (
                 FigureKind::Estimate,
-                "the inscribed circle of the last step's holes, seen from their mean point".into(),
+                format!(
+                    "the narrowest hole of {n} horizontal layers (each twice its largest inscribed radius, within {} mm); the layers between are not seen",
+                    2.0 * super::feature::HOLE_TOLERANCE
+                ),
+            ),
+        );
+        kinds.insert(
+            "thinnest_ligament",
+            (
+                FigureKind::Estimate,
+                format!(
+                    "the thinnest ligament of {n} horizontal layers (erosion by bisection, ±{} mm); the layers between are not seen",
+                    2.0 * super::feature::LIGAMENT_TOLERANCE
+                ),
             ),
         );
         kinds.insert(
@@ -991,7 +1003,7 @@ impl VolumeSizes {
             level,
             resolution_mm: resolution,
             smallest_hole_mm: self.smallest_hole_mm,
-            thinnest_ligament_mm: None,
+            thinnest_ligament_mm: self.thinnest_ligament_mm,
             wall_thickness_mm: self.wall_bound_mm,
             kinds,
             extent_mm: self.extent_mm,
@@ -999,6 +1011,7 @@ impl VolumeSizes {
             fits_bed: (0..3).all(|k| self.extent_mm[k] <= bed[k]),
             overhang_mm2: o.first().map(|x| x.overhang_mm2),
             bed_contact_mm2: o.first().map(|x| x.bed_contact_mm2),
+            largest_bridge_mm: super::orient::largest_bridge(parts),
             below_resolution: self.below(resolution),
             not_measured: None,
         }
@@ -1007,9 +1020,21 @@ impl VolumeSizes {
     /// The features below a printer's resolution, in words.
     pub fn below(&self, resolution: f64) -> Vec<String> {
         let mut out = Vec::new();
+        let at = |f: Option<(f64, f64)>| f.map_or(0.0, |x| x.1);
         if let Some(h) = self.smallest_hole_mm.filter(|&h| h < resolution) {
             out.push(format!(
-                "the smallest hole ({h:.3} mm) is below the resolution {resolution} mm"
+                "the smallest hole is below the resolution {resolution} mm in {} of {} layers (the least {h:.3} mm, at z = {:.2} mm)",
+                self.layers.holes_below,
+                self.layers.layers,
+                at(self.layers.smallest_hole)
+            ));
+        }
+        if let Some(l) = self.thinnest_ligament_mm.filter(|&l| l < resolution) {
+            out.push(format!(
+                "the thinnest ligament is below the resolution {resolution} mm in {} of {} layers (the least {l:.3} mm, at z = {:.2} mm)",
+                self.layers.ligaments_below,
+                self.layers.layers,
+                at(self.layers.thinnest_ligament)
             ));
         }
         if let Some(l) = self.wall_bound_mm.filter(|&l| l < resolution) {
@@ -1024,13 +1049,15 @@ impl VolumeSizes {
     pub fn text(&self, resolution: f64) -> String {
         let opt = |x: Option<f64>| x.map_or("none".to_string(), |v| format!("{v:.3} mm"));
         let mut s = format!(
-            "volume {:.3} mm³, surface area {:.3} mm², extent {:.2} × {:.2} × {:.2} mm\nsmallest hole {} (estimate), wall thickness {} (bound), resolution {resolution} mm\n",
+            "volume {:.3} mm³, surface area {:.3} mm², extent {:.2} × {:.2} × {:.2} mm\nsmallest hole {}, thinnest ligament {} (estimates from {} horizontal layers), wall thickness {} (bound), resolution {resolution} mm\n",
             self.volume_mm3,
             self.area_mm2,
             self.extent_mm[0],
             self.extent_mm[1],
             self.extent_mm[2],
             opt(self.smallest_hole_mm),
+            opt(self.thinnest_ligament_mm),
+            self.layers.layers,
             self.wall_bound_mm
                 .map_or("none".to_string(), |v| format!("≥ {v:.3} mm")),
         );
