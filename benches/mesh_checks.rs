@@ -7,6 +7,8 @@
 // - sweep: the candidate pairs as the sweep along x before the BVH found them (pairs whose boxes
 //   overlap in x, filtered on y and z; no triangle test), for comparison with the BVH;
 // - wall: the wall-thickness bound (`mesh::wall`);
+// - layers: the smallest hole and thinnest ligament of 20 horizontal layers (`mesh::slice`);
+// - bridge: the largest bridge as built (`mesh::orient::largest_bridge`);
 // - write: binary STL into memory.
 // `LEVEL=2 cargo bench --bench mesh_checks` runs a smaller level.
 
@@ -78,6 +80,12 @@ fn main() {
     });
     assert_eq!(swept, bvh_pairs, "the BVH finds the sweep's pairs");
     let (wall, wall_s) = timed(|| lacuna::mesh::wall::wall_bound(parts));
+    let (layers, layers_s) = timed(|| lacuna::mesh::slice::layer_features(parts, 20, 0.4));
+    let (bridge, bridge_s) = timed(|| lacuna::mesh::orient::largest_bridge(parts));
+    println!(
+        "layers: {} sliced, smallest hole {:?}, thinnest ligament {:?}; largest bridge {:?} mm",
+        layers.layers, layers.smallest_hole, layers.thinnest_ligament, bridge
+    );
     let (bytes, write_s) = timed(|| {
         let mut out = Vec::new();
         stl::write_binary(&vs.solid, &mut out).expect("writes");
@@ -95,6 +103,8 @@ fn main() {
         ("candidate pairs, BVH", bvh_s),
         ("candidate pairs, x sweep (before)", sweep_s),
         ("wall bound (BVH)", wall_s),
+        ("layers (20 slices)", layers_s),
+        ("largest bridge", bridge_s),
         ("write binary STL", write_s),
     ] {
         println!("{name:<34} {s:>10.4} {:>12.1}", s / write_s);
