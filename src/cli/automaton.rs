@@ -101,6 +101,8 @@ pub(super) struct MeshOut {
     /// The printer's resolution in mm (`--resolution`) and whether a wall below it fails
     /// (`--strict`).
     pub(super) resolution: (f64, bool),
+    /// The horizontal layers measured (`--layers`).
+    pub(super) layers: usize,
 }
 
 /// Writes the STL, 3MF and (with a thickness) OBJ meshes of the level's polygon leaves: the
@@ -162,14 +164,37 @@ fn write_meshes(p: &Prepared, level: u32, m: &MeshOut, outputs: &mut Outputs) ->
         // or less where two pieces come close), against the printer's resolution.
         let (resolution, strict) = m.resolution;
         let wall = lacuna::mesh::wall::wall_bound(&built.solid.parts).map(|w| w.thickness);
+        let layers = lacuna::mesh::slice::layer_features(&built.solid.parts, m.layers, resolution);
+        let mm = |x: Option<(f64, f64)>| x.map_or("none".to_string(), |v| format!("{:.3} mm", v.0));
         outputs.say(&format!(
-            "printability: wall thickness {} (lower bound: the least distance of two facing triangles with material between them), resolution {resolution} mm\n",
-            wall.map_or("none".to_string(), |w| format!("≥ {w:.3} mm"))
+            "printability: wall thickness {} (lower bound: the least distance of two facing triangles with material between them); smallest hole {}, thinnest ligament {} (estimates from {} horizontal layers); resolution {resolution} mm\n",
+            wall.map_or("none".to_string(), |w| format!("≥ {w:.3} mm")),
+            mm(layers.smallest_hole),
+            mm(layers.thinnest_ligament),
+            layers.layers,
         ));
+        let mut below = Vec::new();
         if let Some(w) = wall.filter(|&w| w < resolution) {
-            let why = format!(
+            below.push(format!(
                 "the wall thickness bound ({w:.3} mm: two facing walls that close) is below the resolution {resolution} mm"
-            );
+            ));
+        }
+        for (what, f, n) in [
+            ("smallest hole", layers.smallest_hole, layers.holes_below),
+            (
+                "thinnest ligament",
+                layers.thinnest_ligament,
+                layers.ligaments_below,
+            ),
+        ] {
+            if let Some((x, z)) = f.filter(|&(x, _)| x < resolution) {
+                below.push(format!(
+                    "the {what} is below the resolution {resolution} mm in {n} of {} layers (the least {x:.3} mm, at z = {z:.2} mm)",
+                    layers.layers
+                ));
+            }
+        }
+        for why in below {
             match strict {
                 true => return Err(mesh_error(lacuna::mesh::MeshError::Resolution(why))),
                 false => eprintln!("warning: {why}"),

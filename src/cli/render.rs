@@ -169,6 +169,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             bed: print.bed,
             orient: print.orient,
             resolution: (print.resolution, print.strict),
+            layers: print.layers,
         };
         return automaton::render(
             &geo,
