@@ -38,8 +38,7 @@ pub use template_file::{
     format_exact, parse_template, write_template, ExactTemplate, TypeTemplate,
 };
 pub use volume::{
-    default_placement, evaluate_assembly, evaluate_volume, hole_width, least_thickness,
-    place_assembly, solid_corners, GeoEdge, GeoFace, GeoVolume, InnerFan, Placement, Reading,
-    SolidGeometry, P3,
+    default_placement, evaluate_assembly, evaluate_volume, least_thickness, place_assembly,
+    solid_corners, GeoEdge, GeoFace, GeoVolume, InnerFan, Placement, Reading, SolidGeometry, P3,
 };
 pub use volume_valence::{assembly_valences, volume_valences, ComplexValences};

@@ -1395,25 +1395,6 @@ pub fn least_thickness(g: &SolidGeometry, v: &GeoVolume) -> Option<f64> {
     least
 }
 
-/// The width of a hole given as a loop of points: two points, their distance (a gap); more,
-/// twice the least distance from their mean to a side (the inscribed circle's diameter, as an
-/// estimate).
-pub fn hole_width(g: &SolidGeometry, hole: &[usize]) -> f64 {
-    let pts: Vec<P3> = hole.iter().map(|&p| g.points[p]).collect();
-    if pts.len() == 2 {
-        return norm(sub(pts[1], pts[0]));
-    }
-    let c = mean(pts.iter().copied());
-    let mut least = f64::INFINITY;
-    for i in 0..pts.len() {
-        let (a, b) = (pts[i], pts[(i + 1) % pts.len()]);
-        let ab = sub(b, a);
-        let t = (dot(sub(c, a), ab) / dot(ab, ab).max(1e-300)).clamp(0.0, 1.0);
-        least = least.min(norm(sub(c, add(a, scale(ab, t)))));
-    }
-    2.0 * least
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -50,7 +50,7 @@ pub enum FigureKind {
     Bracket,
     /// A proved lower bound (the wall thickness of a volume).
     LowerBound,
-    /// An estimate (erosion by bisection, a hole seen from its mean point).
+    /// An estimate (erosion by bisection, the least over sampled layers).
     Estimate,
 }
 
