@@ -973,6 +973,44 @@ fn the_printability_object_of_a_plate_and_of_a_volume() {
             lacuna::mesh::printability::FigureKind::Estimate
         );
     }
+    // The slices themselves, against an independent figure: the areas of 400 slices at equal
+    // heights, summed by the midpoint rule, give the enclosed volume that the divergence theorem
+    // gives from the triangles (`sizes.volume_mm3`), to well under 1 %.
+    let (lo, hi) = (0.0, sizes.extent_mm[2]);
+    let n = 400;
+    let h = (hi - lo) / f64::from(n);
+    let area = |shapes: &lacuna::mesh::feature::Shapes| -> f64 {
+        let ring = |r: &Vec<[f64; 2]>| {
+            (0..r.len())
+                .map(|i| {
+                    let (a, b) = (r[i], r[(i + 1) % r.len()]);
+                    a[0] * b[1] - b[0] * a[1]
+                })
+                .sum::<f64>()
+                / 2.0
+        };
+        // Outer contours counter-clockwise, holes clockwise: the signed sum is the material.
+        shapes.iter().flatten().map(ring).sum()
+    };
+    let z0 = v
+        .solid
+        .parts
+        .iter()
+        .flat_map(|p| p.vertices.iter().map(|x| f64::from(x[2])))
+        .fold(f64::INFINITY, f64::min);
+    let by_slices: f64 = (0..n)
+        .map(|i| {
+            area(&lacuna::mesh::slice::slice(
+                &v.solid.parts,
+                z0 + (f64::from(i) + 0.5) * h,
+            )) * h
+        })
+        .sum();
+    assert!(
+        (by_slices - sizes.volume_mm3).abs() < 0.005 * sizes.volume_mm3,
+        "slices {by_slices} against {}",
+        sizes.volume_mm3
+    );
     // cube-C2's level 1 overhangs (the undersides of its tunnels' roofs): a bridge to cross.
     assert!(vr.largest_bridge_mm.is_some_and(|b| b > 0.0 && b < 100.0));
     assert_eq!(
