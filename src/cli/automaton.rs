@@ -179,21 +179,7 @@ fn write_meshes(p: &Prepared, level: u32, m: &MeshOut, outputs: &mut Outputs) ->
                 "the wall thickness bound ({w:.3} mm: two facing walls that close) is below the resolution {resolution} mm"
             ));
         }
-        for (what, f, n) in [
-            ("smallest hole", layers.smallest_hole, layers.holes_below),
-            (
-                "thinnest ligament",
-                layers.thinnest_ligament,
-                layers.ligaments_below,
-            ),
-        ] {
-            if let Some((x, z)) = f.filter(|&(x, _)| x < resolution) {
-                below.push(format!(
-                    "the {what} is below the resolution {resolution} mm in {n} of {} layers (the least {x:.3} mm, at z = {z:.2} mm)",
-                    layers.layers
-                ));
-            }
-        }
+        below.extend(layers.below(resolution));
         for why in below {
             match strict {
                 true => return Err(mesh_error(lacuna::mesh::MeshError::Resolution(why))),

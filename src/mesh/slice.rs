@@ -48,6 +48,25 @@ pub struct LayerFeatures {
     pub ligaments_below: usize,
 }
 
+impl LayerFeatures {
+    /// The figures below `resolution` (mm), in words: how many layers and the least.
+    pub fn below(&self, resolution: f64) -> Vec<String> {
+        [
+            ("smallest hole", self.smallest_hole, self.holes_below),
+            ("thinnest ligament", self.thinnest_ligament, self.ligaments_below),
+        ]
+        .into_iter()
+        .filter_map(|(what, f, n)| {
+            let (x, z) = f.filter(|&(x, _)| x < resolution)?;
+            Some(format!(
+                "the {what} is below the resolution {resolution} mm in {n} of {} layers (the least {x:.3} mm, at z = {z:.2} mm)",
+                self.layers
+            ))
+        })
+        .collect()
+    }
+}
+
 /// The cross-section of the parts' closed surfaces with the plane at height `z` (mm): the
 /// material as shapes (an outer contour counter-clockwise, its holes clockwise).
 pub fn slice(parts: &[Part], z: f64) -> Shapes {

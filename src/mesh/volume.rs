@@ -1019,24 +1019,7 @@ impl VolumeSizes {
 
     /// The features below a printer's resolution, in words.
     pub fn below(&self, resolution: f64) -> Vec<String> {
-        let mut out = Vec::new();
-        let at = |f: Option<(f64, f64)>| f.map_or(0.0, |x| x.1);
-        if let Some(h) = self.smallest_hole_mm.filter(|&h| h < resolution) {
-            out.push(format!(
-                "the smallest hole is below the resolution {resolution} mm in {} of {} layers (the least {h:.3} mm, at z = {:.2} mm)",
-                self.layers.holes_below,
-                self.layers.layers,
-                at(self.layers.smallest_hole)
-            ));
-        }
-        if let Some(l) = self.thinnest_ligament_mm.filter(|&l| l < resolution) {
-            out.push(format!(
-                "the thinnest ligament is below the resolution {resolution} mm in {} of {} layers (the least {l:.3} mm, at z = {:.2} mm)",
-                self.layers.ligaments_below,
-                self.layers.layers,
-                at(self.layers.thinnest_ligament)
-            ));
-        }
+        let mut out = self.layers.below(resolution);
         if let Some(l) = self.wall_bound_mm.filter(|&l| l < resolution) {
             out.push(format!(
                 "the wall thickness bound ({l:.3} mm: two facing walls that close) is below the resolution {resolution} mm"
