@@ -1266,3 +1266,90 @@ fn the_3mf_parts_hold_each_type_s_cells_as_closed_shells() {
     assert_eq!(code, 2, "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `render --json` (issue #30): one JSON object on standard output with the same printability
+/// object for a face's plate, a volume and an automaton's thickened shell; the status lines go
+/// to standard error. The extents are checked against the STL each command wrote, read back by
+/// `stl_io` (the shell's `--width` is the printed object's x extent), and the figures' kinds
+/// against what each kind of solid can prove: a plate's wall is its thickness (exact), a
+/// solid's wall a lower bound, never above the shell's own thickness.
+#[test]
+fn render_json_gives_one_printability_object_for_every_kind() {
+    let dir = std::env::temp_dir().join(format!("lacuna-render-json-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let cases: [(&[&str], &str); 3] = [
+        (&["F0", "--level", "1"], "exact"),
+        (&["cube-C2", "--level", "1"], "lower-bound"),
+        (
+            &["quad-patch-3d", "--level", "2", "--thickness", "1"],
+            "lower-bound",
+        ),
+    ];
+    for (k, (args, wall_kind)) in cases.iter().enumerate() {
+        let stl = dir.join(format!("{k}.stl"));
+        let stl = stl.to_str().unwrap();
+        let mut a = vec!["render"];
+        a.extend_from_slice(args);
+        a.extend_from_slice(&["--stl", stl, "--json"]);
+        let (code, out, err) = common::lacuna(&a);
+        assert_eq!(code, 0, "{args:?}: {err}");
+        assert!(
+            err.contains("wrote "),
+            "{args:?}: status lines on stderr: {err}"
+        );
+        let j: serde_json::Value = serde_json::from_str(&out).expect("one JSON object");
+        assert_eq!(j["input"], args[0]);
+        assert_eq!(j["written"], serde_json::json!([stl]));
+        let p = &j["printability"];
+        for key in [
+            "smallest_hole_mm",
+            "thinnest_ligament_mm",
+            "wall_thickness_mm",
+            "extent_mm",
+            "fits_bed",
+            "overhang_mm2",
+            "largest_bridge_mm",
+            "resolution_mm",
+            "kinds",
+        ] {
+            assert!(p.get(key).is_some(), "{args:?}: no {key} in {p}");
+        }
+        assert_eq!(p["kinds"]["wall_thickness"][0], *wall_kind, "{args:?}");
+        let m = read_stl(&std::fs::read(stl).unwrap(), stl);
+        for d in 0..3 {
+            let (lo, hi) = m.vertices.iter().fold((f64::MAX, f64::MIN), |(l, h), v| {
+                (l.min(f64::from(v[d])), h.max(f64::from(v[d])))
+            });
+            let e = p["extent_mm"][d].as_f64().unwrap();
+            // The file holds f32 coordinates: equal to ~1e-5 of 100 mm.
+            assert!(
+                (e - (hi - lo)).abs() < 1e-3,
+                "{args:?}: extent {d}: {e} vs {}",
+                hi - lo
+            );
+        }
+        let x = p["extent_mm"][0].as_f64().unwrap();
+        assert!((x - 100.0).abs() < 1e-3, "{args:?}: width {x}");
+        if k == 2 {
+            let w = p["wall_thickness_mm"].as_f64().expect("a wall bound");
+            assert!(w > 0.0 && w <= 1.0 + 1e-6, "shell wall bound {w}");
+        }
+    }
+    // Without a mesh there is nothing to print: null. With an output on standard output, the
+    // JSON would share it: refused.
+    let svg = dir.join("f.svg");
+    let (code, out, _) = common::lacuna(&[
+        "render",
+        "F0",
+        "--level",
+        "1",
+        "--svg",
+        svg.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(code, 0);
+    let j: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert!(j["printability"].is_null());
+    let (code, _, err) = common::lacuna(&["render", "F0", "--svg", "-", "--json"]);
+    assert_eq!(code, 2, "{err}");
+}

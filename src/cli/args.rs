@@ -468,6 +468,11 @@ pub(crate) struct RenderArgs {
     /// Write the level-N cells as JSON polygons.
     #[arg(long, value_name = "OUT.json")]
     pub(crate) json_out: Option<std::path::PathBuf>,
+    /// Print one JSON object on standard output when done: the input, the level, the files
+    /// written and the printability of the mesh (`printability`, as `measure --json` has it;
+    /// null without --stl, --3mf or --obj). The status lines go to standard error.
+    #[arg(long)]
+    pub(crate) json: bool,
     /// Write the solid as a Wavefront OBJ mesh (triangles, one object per component, mm).
     #[arg(long, value_name = "OUT.obj")]
     pub(crate) obj: Option<std::path::PathBuf>,

@@ -173,13 +173,19 @@ fn write_meshes(p: &Prepared, level: u32, m: &MeshOut, outputs: &mut Outputs) ->
             mm(layers.thinnest_ligament),
             layers.layers,
         ));
-        let mut below = Vec::new();
-        if let Some(w) = wall.filter(|&w| w < resolution) {
-            below.push(format!(
-                "the wall thickness bound ({w:.3} mm: two facing walls that close) is below the resolution {resolution} mm"
-            ));
-        }
-        below.extend(layers.below(resolution));
+        let figures = lacuna::mesh::printability::SolidFigures {
+            level,
+            resolution,
+            bed: m.bed,
+            extent_mm: built.solid.extent(),
+            wall_bound_mm: wall,
+            layers: &layers,
+        };
+        let below = figures.below();
+        outputs.printability = Some(lacuna::mesh::printability::PrintReport::of_solid(
+            &built.solid.parts,
+            figures,
+        ));
         for why in below {
             match strict {
                 true => return Err(mesh_error(lacuna::mesh::MeshError::Resolution(why))),

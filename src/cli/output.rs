@@ -12,6 +12,11 @@ pub(crate) struct Outputs {
     written: Vec<String>,
     /// Whether an output goes to standard output (then status lines go to standard error).
     pub(crate) to_stdout: bool,
+    /// Whether the command ends with one JSON object on standard output (`render --json`):
+    /// status lines go to standard error.
+    pub(crate) json: bool,
+    /// The printability of the mesh written, for that JSON object.
+    pub(crate) printability: Option<lacuna::mesh::printability::PrintReport>,
 }
 
 /// Whether `path` names standard output or input.
@@ -81,6 +86,8 @@ impl Outputs {
         Ok(Outputs {
             written: Vec::new(),
             to_stdout,
+            json: false,
+            printability: None,
         })
     }
 
@@ -121,10 +128,15 @@ impl Outputs {
         }
     }
 
+    /// The outputs written so far.
+    pub(crate) fn written(&self) -> &[String] {
+        &self.written
+    }
+
     /// A status line (`wrote …`): on standard output, or on standard error when an output
-    /// goes to standard output.
+    /// goes to standard output or the command prints JSON.
     pub(crate) fn say(&self, text: &str) {
-        if self.to_stdout {
+        if self.to_stdout || self.json {
             eprint!("{text}");
         } else {
             super::out(text);

@@ -12,6 +12,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         geo,
         svg,
         json_out,
+        json,
         obj,
         stl,
         stl_ascii,
@@ -112,6 +113,12 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         lacuna::mesh::check_size("--resolution", print.resolution).map_err(mesh_error)?;
     }
     let mut outputs = Outputs::check(&geo.inputs(), &wanted)?;
+    if json && outputs.to_stdout {
+        return Err(Error::Usage(
+            "--json and an output on standard output (`-`) would both write to it: give the output a file".into(),
+        ));
+    }
+    outputs.json = json;
     let by_type = |what: &str| {
         Error::Usage(format!(
             "--3mf-colours and --3mf-parts show the cells of faces and volumes by type; {what} has no cells of types"
@@ -137,7 +144,8 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             transparent: background == BackgroundArg::Transparent,
             style,
         };
-        return volume::render(&name, &v, &geo, &print, targets, &mut outputs, limits);
+        let code = volume::render(&name, &v, &geo, &print, targets, &mut outputs, limits)?;
+        return Ok(finish(&geo, &outputs, code));
     }
     if let Some((name, model)) = automaton::automaton_input(&geo)? {
         if style != lacuna::mesh::threemf::Style::Plain {
@@ -171,7 +179,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             resolution: (print.resolution, print.strict),
             layers: print.layers,
         };
-        return automaton::render(
+        let code = automaton::render(
             &geo,
             p,
             &mut outputs,
@@ -180,7 +188,8 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             png.as_deref(),
             &meshes,
             (size, background.into(), !no_legend),
-        );
+        )?;
+        return Ok(finish(&geo, &outputs, code));
     }
     let vector = svg.is_some() || json_out.is_some() || mesh.any();
     let (_, inst) = instance(&geo, limits, if vector { 2_000_000 } else { 100_000_000 })?;
@@ -231,6 +240,9 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             .map_err(mesh_error)?;
         outputs.say(&pr.text());
         pr.enforce(print.strict).map_err(mesh_error)?;
+        outputs.printability = Some(lacuna::mesh::printability::PrintReport::of_plate(
+            &pr, print.bed,
+        ));
         let type_name = |k: usize| format!("T{k} {}", inst.types.types[k].face);
         let (mut solid, colours) = match style {
             lacuna::mesh::threemf::Style::Colours => {
@@ -327,7 +339,21 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         outputs.write(p, |w| lacuna::export::write_density_picture(&map, &pic, w))?;
         wrote(&outputs, p);
     }
-    Ok(ExitCode::SUCCESS)
+    Ok(finish(&geo, &outputs, ExitCode::SUCCESS))
+}
+
+/// The end of `render`: under `--json`, one object on standard output — the input, the level,
+/// the files written and the printability of the mesh (null without one).
+fn finish(geo: &GeoArgs, outputs: &Outputs, code: ExitCode) -> ExitCode {
+    if outputs.json {
+        print_json(&serde_json::json!({
+            "input": geo.input,
+            "level": geo.level,
+            "written": outputs.written(),
+            "printability": outputs.printability,
+        }));
+    }
+    code
 }
 
 /// What a mesh written to `targets` is claimed to be.

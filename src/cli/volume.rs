@@ -330,6 +330,8 @@ pub(super) fn render(
     let mut failed = false;
     if t.mesh.any() {
         vs.embedded()?;
+        outputs.printability =
+            Some(sizes.report(&vs.solid.parts, geo.level, print.resolution, print.bed));
         if print.strict {
             if let Some(b) = sizes.below(print.resolution).first() {
                 return Err(mesh_error(lacuna::mesh::MeshError::Resolution(b.clone())));

@@ -139,6 +139,91 @@ impl PrintReport {
     }
 }
 
+/// What [`PrintReport::of_solid`] reads of a checked 3D solid (a volume's, or an automaton's
+/// thickened shell).
+pub struct SolidFigures<'a> {
+    /// The level.
+    pub level: u32,
+    /// The printer resolution compared with, mm.
+    pub resolution: f64,
+    /// The build volume, mm.
+    pub bed: [f64; 3],
+    /// The extent along x, y, z as written, mm.
+    pub extent_mm: [f64; 3],
+    /// The wall-thickness lower bound ([`super::wall::wall_bound`]), mm.
+    pub wall_bound_mm: Option<f64>,
+    /// The horizontal layers measured ([`super::slice::layer_features`]).
+    pub layers: &'a super::slice::LayerFeatures,
+}
+
+impl SolidFigures<'_> {
+    /// The features below the resolution, in words: the layers' and the wall bound's.
+    pub fn below(&self) -> Vec<String> {
+        let resolution = self.resolution;
+        let mut out = self.layers.below(resolution);
+        if let Some(l) = self.wall_bound_mm.filter(|&l| l < resolution) {
+            out.push(format!(
+                "the wall thickness bound ({l:.3} mm: two facing walls that close) is below the resolution {resolution} mm"
+            ));
+        }
+        out
+    }
+}
+
+impl PrintReport {
+    /// The report of a checked 3D solid: the smallest hole and the thinnest ligament of its
+    /// horizontal layers (estimates), the wall thickness (a lower bound), the overhang and the
+    /// largest bridge of `parts` as built (z up).
+    pub fn of_solid(parts: &[super::solid::Part], f: SolidFigures) -> PrintReport {
+        let mut kinds = std::collections::BTreeMap::new();
+        let n = f.layers.layers;
+        kinds.insert(
+            "smallest_hole",
+            (
+                FigureKind::Estimate,
+                format!(
+                    "the narrowest hole of {n} horizontal layers (each twice its largest inscribed radius, within {} mm); the layers between are not seen",
+                    2.0 * HOLE_TOLERANCE
+                ),
+            ),
+        );
+        kinds.insert(
+            "thinnest_ligament",
+            (
+                FigureKind::Estimate,
+                format!(
+                    "the thinnest ligament of {n} horizontal layers (erosion by bisection, ±{} mm); the layers between are not seen",
+                    2.0 * LIGAMENT_TOLERANCE
+                ),
+            ),
+        );
+        kinds.insert(
+            "wall_thickness",
+            (
+                FigureKind::LowerBound,
+                "the least distance of two facing triangles with material between them".into(),
+            ),
+        );
+        let (o, _) = super::orient::overhangs(parts);
+        PrintReport {
+            level: f.level,
+            resolution_mm: f.resolution,
+            smallest_hole_mm: f.layers.smallest_hole.map(|h| h.0),
+            thinnest_ligament_mm: f.layers.thinnest_ligament.map(|l| l.0),
+            wall_thickness_mm: f.wall_bound_mm,
+            kinds,
+            extent_mm: f.extent_mm,
+            bed_mm: f.bed,
+            fits_bed: (0..3).all(|k| f.extent_mm[k] <= f.bed[k]),
+            overhang_mm2: o.first().map(|x| x.overhang_mm2),
+            bed_contact_mm2: o.first().map(|x| x.bed_contact_mm2),
+            largest_bridge_mm: super::orient::largest_bridge(parts),
+            below_resolution: f.below(),
+            not_measured: None,
+        }
+    }
+}
+
 /// Measures the smallest hole and the thinnest ligament of `level` at the size `size.width`.
 pub fn printability(
     inst: &Instance,

@@ -157,38 +157,119 @@ pub fn layer_features(parts: &[Part], layers: usize, resolution: f64) -> LayerFe
         layers: heights.len(),
         ..Default::default()
     };
-    for z in heights {
-        let shapes = slice(parts, z);
-        if let Some((lo, _)) = smallest_hole(&shapes) {
-            if lo < resolution {
-                f.holes_below += 1;
+    // The layers are independent until their ligaments: sliced and measured on every core, a
+    // batch at a time (a batch's slices are held in memory), then gathered in height order, so
+    // the figures do not depend on the number of threads.
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    for batch in heights.chunks(4 * threads) {
+        for layer in in_parallel(batch, threads, |z| Layer::of(parts, z, resolution)) {
+            if let Some((lo, _)) = layer.hole {
+                if lo < resolution {
+                    f.holes_below += 1;
+                }
+                if f.smallest_hole.is_none_or(|(a, _)| lo < a) {
+                    f.smallest_hole = Some((lo, layer.z));
+                }
             }
-            if f.smallest_hole.is_none_or(|(a, _)| lo < a) {
-                f.smallest_hole = Some((lo, z));
+            if layer.ligament_below {
+                f.ligaments_below += 1;
             }
-        }
-        // One erosion counts the layer against the resolution; only a layer thinner than the
-        // least so far is bisected.
-        let base = betti(&shapes);
-        if base.0 == 0 {
-            continue;
-        }
-        if betti(&erode(&shapes, resolution / 2.0)) != base {
-            f.ligaments_below += 1;
-        }
-        let best = f.thinnest_ligament.map_or(f64::INFINITY, |l| l.0);
-        if let Some((_, hi)) = thinnest_ligament_below(&shapes, best) {
-            if hi < best {
-                f.thinnest_ligament = Some((hi, z));
+            if !layer.material {
+                continue;
+            }
+            // Only a layer thinner than the least so far is bisected (one erosion decides the
+            // others): in height order, one layer after the other.
+            let best = f.thinnest_ligament.map_or(f64::INFINITY, |l| l.0);
+            if let Some((_, hi)) = thinnest_ligament_below(&layer.shapes, best) {
+                if hi < best {
+                    f.thinnest_ligament = Some((hi, layer.z));
+                }
             }
         }
     }
     f
 }
 
+/// What one layer gives on its own.
+struct Layer {
+    /// Its height, mm.
+    z: f64,
+    /// Its material.
+    shapes: Shapes,
+    /// Its smallest hole's bracket, mm.
+    hole: Option<(f64, f64)>,
+    /// Whether it has material.
+    material: bool,
+    /// Whether eroding its material by half the resolution changes its components or holes.
+    ligament_below: bool,
+}
+
+impl Layer {
+    fn of(parts: &[Part], z: f64, resolution: f64) -> Layer {
+        let shapes = slice(parts, z);
+        let hole = smallest_hole(&shapes);
+        let base = betti(&shapes);
+        let material = base.0 > 0;
+        let ligament_below = material && betti(&erode(&shapes, resolution / 2.0)) != base;
+        Layer {
+            z,
+            shapes,
+            hole,
+            material,
+            ligament_below,
+        }
+    }
+}
+
+/// `f` of every item on up to `threads` threads (item `i` on thread `i mod threads`), the
+/// results in the items' order.
+fn in_parallel<T: Send>(items: &[f64], threads: usize, f: impl Fn(f64) -> T + Sync) -> Vec<T> {
+    let threads = threads.clamp(1, items.len().max(1));
+    if threads == 1 {
+        return items.iter().map(|&x| f(x)).collect();
+    }
+    let mut out: Vec<Option<T>> = items.iter().map(|_| None).collect();
+    std::thread::scope(|sc| {
+        let f = &f;
+        let handles: Vec<_> = (0..threads)
+            .map(|t| {
+                sc.spawn(move || {
+                    (t..items.len())
+                        .step_by(threads)
+                        .map(|i| (i, f(items[i])))
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        for h in handles {
+            // A panic of a worker is a defect of the measuring code: passed on as it is.
+            let done = h.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
+            for (i, r) in done {
+                out[i] = Some(r);
+            }
+        }
+    });
+    out.into_iter().flatten().collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn in_parallel_keeps_the_order_of_the_items() {
+        let items: Vec<f64> = (0..11).map(f64::from).collect();
+        let square = |x: f64| x * x;
+        let one: Vec<f64> = items.iter().map(|&x| square(x)).collect();
+        for threads in [1, 2, 3, 16] {
+            assert_eq!(
+                in_parallel(&items, threads, square),
+                one,
+                "{threads} threads"
+            );
+        }
+        assert!(in_parallel(&[], 4, square).is_empty());
+    }
 
     /// An axis box `[x0, x1] × [y0, y1] × [z0, z1]` as a closed part, triangles counter-clockwise
     /// from outside.

@@ -861,21 +861,29 @@ mod cube_tests {
     }
 
     #[test]
-    fn the_wall_bound_is_below_every_centroid_ray_of_cube_c2() {
-        // cube-C2 level 2 at 100 mm: the bound is a lower bound on every ray-sampled thickness
-        // (GEOMETRY §5), here the rays from the centroids, and it is attained by a real pair of
-        // walls, so it is positive.
-        let s = solid_of("cube C2 | B2 B2 B2 | A1 | B2 B2 | V1", 2).unwrap();
-        let bound = crate::mesh::wall::wall_bound(&s.solid.parts)
-            .unwrap()
-            .thickness;
-        let rays = s
-            .solid
-            .parts
-            .iter()
-            .map(centroid_ray_thickness)
-            .fold(f64::INFINITY, f64::min);
-        assert!(bound > 0.0 && bound <= rays, "bound {bound}, rays {rays}");
+    fn the_wall_bound_is_below_every_centroid_ray_of_cube_c2_and_tetrahedron_b2() {
+        // cube-C2 and tetrahedron-B2 at level 2, 100 mm: the bound is a lower bound on every
+        // ray-sampled thickness (GEOMETRY §5), here the rays from the centroids, and it is
+        // attained by a real pair of walls, so it is positive.
+        for text in [
+            "cube C2 | B2 B2 B2 | A1 | B2 B2 | V1",
+            "tetrahedron B2 | B2 B2 B2 | A1 | B2 B2 | V1",
+        ] {
+            let s = solid_of(text, 2).unwrap();
+            let bound = crate::mesh::wall::wall_bound(&s.solid.parts)
+                .unwrap()
+                .thickness;
+            let rays = s
+                .solid
+                .parts
+                .iter()
+                .map(centroid_ray_thickness)
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                bound > 0.0 && bound <= rays,
+                "{text}: bound {bound}, rays {rays}"
+            );
+        }
     }
 
     #[test]
@@ -955,7 +963,7 @@ impl VolumeSolid {
     }
 }
 
-use super::printability::PrintReport;
+use super::printability::{PrintReport, SolidFigures};
 
 impl VolumeSizes {
     /// The printability in the shape faces have ([`super::printability::PrintReport`]): the
@@ -967,65 +975,24 @@ impl VolumeSizes {
         level: u32,
         resolution: f64,
         bed: [f64; 3],
-    ) -> super::printability::PrintReport {
-        use super::printability::FigureKind;
-        let mut kinds = std::collections::BTreeMap::new();
-        let n = self.layers.layers;
-        kinds.insert(
-            "smallest_hole",
-            (
-                FigureKind::Estimate,
-                format!(
-                    "the narrowest hole of {n} horizontal layers (each twice its largest inscribed radius, within {} mm); the layers between are not seen",
-                    2.0 * super::feature::HOLE_TOLERANCE
-                ),
-            ),
-        );
-        kinds.insert(
-            "thinnest_ligament",
-            (
-                FigureKind::Estimate,
-                format!(
-                    "the thinnest ligament of {n} horizontal layers (erosion by bisection, ±{} mm); the layers between are not seen",
-                    2.0 * super::feature::LIGAMENT_TOLERANCE
-                ),
-            ),
-        );
-        kinds.insert(
-            "wall_thickness",
-            (
-                FigureKind::LowerBound,
-                "the least distance of two facing triangles with material between them".into(),
-            ),
-        );
-        let (o, _) = super::orient::overhangs(parts);
-        PrintReport {
-            level,
-            resolution_mm: resolution,
-            smallest_hole_mm: self.smallest_hole_mm,
-            thinnest_ligament_mm: self.thinnest_ligament_mm,
-            wall_thickness_mm: self.wall_bound_mm,
-            kinds,
-            extent_mm: self.extent_mm,
-            bed_mm: bed,
-            fits_bed: (0..3).all(|k| self.extent_mm[k] <= bed[k]),
-            overhang_mm2: o.first().map(|x| x.overhang_mm2),
-            bed_contact_mm2: o.first().map(|x| x.bed_contact_mm2),
-            largest_bridge_mm: super::orient::largest_bridge(parts),
-            below_resolution: self.below(resolution),
-            not_measured: None,
-        }
+    ) -> PrintReport {
+        PrintReport::of_solid(parts, self.figures(level, resolution, bed))
     }
 
     /// The features below a printer's resolution, in words.
     pub fn below(&self, resolution: f64) -> Vec<String> {
-        let mut out = self.layers.below(resolution);
-        if let Some(l) = self.wall_bound_mm.filter(|&l| l < resolution) {
-            out.push(format!(
-                "the wall thickness bound ({l:.3} mm: two facing walls that close) is below the resolution {resolution} mm"
-            ));
+        self.figures(0, resolution, [0.0; 3]).below()
+    }
+
+    fn figures(&self, level: u32, resolution: f64, bed: [f64; 3]) -> SolidFigures<'_> {
+        SolidFigures {
+            level,
+            resolution,
+            bed,
+            extent_mm: self.extent_mm,
+            wall_bound_mm: self.wall_bound_mm,
+            layers: &self.layers,
         }
-        out
     }
 
     /// A few lines for the terminal.
