@@ -483,6 +483,36 @@ fn hardening_16_help_standard_streams_completions_and_man_page() {
         out.starts_with(".ie") || out.contains(".TH lacuna 1"),
         "{out}"
     );
+    // `man --all DIR`: the page the main one points at exists for every subcommand that
+    // `--help` lists (issue #32: `lacuna-verify(1)` could not be written).
+    let (_, help, _) = lacuna(&["--help"]);
+    let subcommands: Vec<&str> = help
+        .split("Commands:")
+        .nth(1)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .take_while(|l| l.starts_with("  "))
+        .filter_map(|l| l.split_whitespace().next())
+        .filter(|c| *c != "help")
+        .collect();
+    assert!(
+        subcommands.contains(&"verify") && subcommands.len() > 15,
+        "{help}"
+    );
+    let man = d.join("man");
+    let (code, out, err) = lacuna(&["man", "--all", &s(&man)]);
+    assert_eq!(code, 0, "{err}");
+    for c in &subcommands {
+        let page = std::fs::read_to_string(man.join(format!("lacuna-{c}.1")))
+            .unwrap_or_else(|e| panic!("lacuna-{c}.1: {e}; {out}"));
+        assert!(page.contains(&format!(".TH lacuna-{c} 1")), "lacuna-{c}.1");
+    }
+    assert!(man.join("lacuna.1").is_file());
+    assert!(
+        out.contains(&format!("wrote {} manual pages", subcommands.len() + 1)),
+        "{out}"
+    );
 }
 
 #[test]

@@ -730,6 +730,13 @@ fn bad_rule_files_exit_2_with_code_line_and_column() {
             "E1308",
             "4:1",
         ),
+        // A misspelt `initiator` (issue #32): still the rule grammar's error, with the keyword
+        // it is closest to, not the automaton grammar's.
+        (
+            "initator 0,0 g 1,0\ngenerator g 0,0 g 1,0\n",
+            "did you mean `initiator`?",
+            "1:1",
+        ),
     ];
     for (i, (text, code, at)) in cases.iter().enumerate() {
         let f = dir.join(format!("bad{i}.rule"));

@@ -21,7 +21,7 @@ fn counts_of_the_tetrahedron_by_hand() {
     let (code, out, err) = lacuna(&["counts", "tetrahedron-B2", "--levels", "3", "--json"]);
     assert_eq!(code, 0, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
-    let cells: Vec<&str> = v["counts"]
+    let cells: Vec<&str> = v["levels"]
         .as_array()
         .unwrap()
         .iter()
@@ -29,7 +29,22 @@ fn counts_of_the_tetrahedron_by_hand() {
         .collect();
     assert_eq!(cells, ["1", "4", "76", "1516"]);
     // Lacunas: the tetrahedron contributes 1 + 4/2 = 3.
-    assert_eq!(v["counts"][1]["lacunas"], "3");
+    assert_eq!(v["levels"][1]["lacunas"], "3");
+    // One JSON shape across kinds (issue #32): `levels` and `types` as for faces, the old
+    // `counts` kept as an alias; a face's counts name their input as a volume's do.
+    assert_eq!(v["counts"], v["levels"]);
+    assert_eq!(
+        (v["types"].clone(), v["input"].clone()),
+        (3.into(), "tetrahedron-B2".into())
+    );
+    let (code, out, _) = lacuna(&["counts", "F0", "--levels", "1", "--json"]);
+    assert_eq!(code, 0);
+    let f: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(
+        (f["types"].clone(), f["input"].clone()),
+        (1.into(), "F0".into())
+    );
+    assert_eq!(f["levels"][1]["cells"], "6");
 }
 
 #[test]
@@ -42,6 +57,14 @@ fn the_limit_ratio_of_the_cube_by_hand() {
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     assert_eq!(v["exact"], "47/161", "{out}");
     assert_eq!(v["exists"], true);
+    // The reasons speak of volumes (issue #32: "3 volume types", then "3 face types reached").
+    let (code, out, _) = lacuna(&["ratio", "cube-B2"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("3 volume types reached in 2 classes"), "{out}");
+    assert!(
+        out.contains("sub-volumes 1") && !out.contains("face type"),
+        "{out}"
+    );
 }
 
 #[test]
@@ -94,7 +117,7 @@ fn counts_json(input: &str, levels: &str) -> (Vec<String>, Vec<String>, Vec<Vec<
         other => other.to_string(),
     };
     let col = |k: &str| -> Vec<String> {
-        v["counts"]
+        v["levels"]
             .as_array()
             .unwrap()
             .iter()

@@ -142,8 +142,9 @@ pub(crate) enum Command {
     Morph(Limited<MorphArgs>),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell) on standard output.
     Completions(CompletionsArgs),
-    /// Print the manual page (roff, for `man -l -`) on standard output.
-    Man,
+    /// Print the manual page (roff, for `man -l -`) on standard output; with `--all DIR`, write
+    /// a page for lacuna and one for every subcommand (`lacuna-verify.1`, …) into DIR.
+    Man(ManArgs),
 }
 
 /// The export formats.
@@ -252,6 +253,15 @@ pub(crate) struct CheckMeshArgs {
     /// Print JSON.
     #[arg(long)]
     pub(crate) json: bool,
+}
+
+/// The arguments of `lacuna man`.
+#[derive(Args)]
+pub(crate) struct ManArgs {
+    /// Write every page (lacuna.1 and lacuna-SUBCOMMAND.1) into this folder, created if needed,
+    /// instead of printing lacuna's page.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) all: Option<std::path::PathBuf>,
 }
 
 /// The arguments of `lacuna completions`.

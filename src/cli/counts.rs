@@ -17,7 +17,9 @@ pub(super) fn run(args: CountsArgs, limits: &Limits) -> Result<ExitCode, Error> 
     let input = load_input(&input)?;
     let ts = lacuna::topology::close_or_error(&input.faces(), limits)?;
     if json {
-        print_json(&lacuna::export::counts_json(&ts, &input, levels));
+        let mut v = lacuna::export::counts_json(&ts, &input, levels);
+        v["input"] = serde_json::Value::from(input.name.clone());
+        print_json(&v);
     } else {
         out(&format!(
             "{} ({} face type{})\n",

@@ -69,7 +69,7 @@ pub(crate) fn main() -> ExitCode {
         | Command::Report(_)
         | Command::Export(_)
         | Command::Completions(_)
-        | Command::Man => false,
+        | Command::Man(_) => false,
     };
     match run(cli) {
         Ok(code) => code,
@@ -135,7 +135,28 @@ fn run(cli: Cli) -> Result<ExitCode, Error> {
             clap_complete::generate(a.shell, &mut Cli::command(), "lacuna", &mut out);
             print_bytes(&out)
         }
-        Command::Man => {
+        Command::Man(ManArgs { all: Some(dir) }) => {
+            let failed = |e: std::io::Error| Error::Write {
+                path: dir.display().to_string(),
+                reason: e.to_string(),
+            };
+            std::fs::create_dir_all(&dir).map_err(failed)?;
+            clap_mangen::generate_to(Cli::command(), &dir).map_err(failed)?;
+            let mut pages: Vec<String> = std::fs::read_dir(&dir)
+                .map_err(failed)?
+                .filter_map(|e| e.ok()?.file_name().into_string().ok())
+                .filter(|n| n.starts_with("lacuna") && n.ends_with(".1"))
+                .collect();
+            pages.sort();
+            out(&format!(
+                "wrote {} manual pages into {}: {}\n",
+                pages.len(),
+                dir.display(),
+                pages.join(", ")
+            ));
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Man(ManArgs { all: None }) => {
             let mut out = Vec::new();
             clap_mangen::Man::new(Cli::command())
                 .render(&mut out)

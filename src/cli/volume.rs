@@ -49,11 +49,15 @@ pub(super) fn counts(
     let c = volume_counts(&set, levels);
     let solid = lacuna::topology::volume::solid_topology_of(&set, levels, &v.start_cells())?;
     if json {
+        // `levels` and `types` as faces have them (issue #32); `counts` and `volume_types` are
+        // the old names, kept for one release.
         print_json(&serde_json::json!({
             "input": name,
+            "types": set.types.len(),
+            "levels": c,
+            "solid": solid,
             "volume_types": set.types.len(),
             "counts": c,
-            "solid": solid,
         }));
     } else {
         let n = set.types.len();

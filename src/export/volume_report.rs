@@ -34,8 +34,18 @@ pub fn volume_ratio(set: &VolumeTypeSet, digits: usize) -> Result<RatioReport> {
         *start.entry(t).or_default() += 1;
     }
     let start: Vec<(usize, u64)> = start.into_iter().collect();
+    // The analysis is the faces' (THEORY §4) on the volume types' matrix: its reasons name the
+    // types and cells in the words of faces, said here in those of volumes.
     analyse(&m, &c, &start)
         .map(|r| r.with_digits(digits))
+        .map(|mut r| {
+            for line in &mut r.reasons {
+                *line = line
+                    .replace("face type", "volume type")
+                    .replace("sub-faces", "sub-volumes");
+            }
+            r
+        })
         .map_err(|e| Error::Analysis(e.to_string()))
 }
 

@@ -246,7 +246,9 @@ pub fn load_any(arg: &str) -> Result<Loaded> {
                 .into(),
         });
     }
-    if crate::input::rule::is_rule(&src.text) {
+    // A `.rule` file is read by the rule grammar even when its `initiator` line is misspelt, so
+    // that its errors are the rule grammar's.
+    if src.name.ends_with(".rule") || crate::input::rule::is_rule(&src.text) {
         let (_, model) = crate::input::rule::compile_rule(&src)?;
         return Ok(Loaded::Automaton {
             name,
@@ -421,7 +423,7 @@ fn read_source(arg: &str) -> Result<(String, Source)> {
 
 /// The library name closest to `arg` (case-insensitive edit distance), when it is close: at
 /// most a third of the name's length, and at least one edit for names of three letters.
-fn did_you_mean<'a>(arg: &str, names: &[&'a str]) -> Option<&'a str> {
+pub(crate) fn did_you_mean<'a>(arg: &str, names: &[&'a str]) -> Option<&'a str> {
     let a: Vec<char> = arg.to_lowercase().chars().collect();
     let distance = |b: &str| {
         let b: Vec<char> = b.to_lowercase().chars().collect();

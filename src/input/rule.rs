@@ -132,11 +132,15 @@ pub fn splitmix64(mut z: u64) -> u64 {
     z ^ (z >> 31)
 }
 
-/// True when a text is a rule file: one of its lines starts with `initiator` (automaton files
-/// have no such line; comments and `field` may come first).
+/// True when a text is a rule file: one of its lines starts with `initiator` or `generator`
+/// (automaton files have no such line; comments and `field` may come first).
 pub fn is_rule(text: &str) -> bool {
-    text.lines()
-        .any(|l| l.split('#').next().unwrap_or("").split_whitespace().next() == Some("initiator"))
+    text.lines().any(|l| {
+        matches!(
+            l.split('#').next().unwrap_or("").split_whitespace().next(),
+            Some("initiator" | "generator")
+        )
+    })
 }
 
 fn valid_name(n: &str) -> bool {
@@ -423,7 +427,12 @@ pub fn parse_rule(src: &Source) -> Result<Rule> {
                 return Err(Error::at(
                     "E1308",
                     format!(
-                    "`{other}`: a rule file has `field`, `initiator`, `generator`, `age`, `random`, `seed` and `depth` lines"
+                    "`{other}`: a rule file has `field`, `initiator`, `generator`, `age`, `random`, `seed` and `depth` lines{}",
+                    crate::input::library::did_you_mean(
+                        other,
+                        &["field", "initiator", "generator", "age", "random", "seed", "depth"]
+                    )
+                    .map_or(String::new(), |k| format!(": did you mean `{k}`?"))
                 ),
                     ln,
                     c0,
