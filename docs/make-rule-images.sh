@@ -7,7 +7,6 @@ $L render quadric-koch --level 3 --svg docs/images/quadric-koch.svg
 $L render koch --level 4 --svg docs/images/koch.svg
 $L render sierpinski-arrowhead --level 6 --svg docs/images/sierpinski-arrowhead.svg
 $L render heighway-dragon --level 10 --svg docs/images/heighway-dragon.svg
-$L render monkeys-tree --level 3 --svg docs/images/monkeys-tree.svg
 $L render pythagoras-tree --level 8 --svg docs/images/pythagoras-tree.svg
 $L render self-seeding-square --level 3 --svg docs/images/self-seeding-square.svg
 $L render vegetation --level 8 --svg docs/images/vegetation.svg

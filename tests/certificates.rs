@@ -31,7 +31,7 @@ const FACE_FIXTURES: [&str; 8] = [
     "two-quads",
     "autofrac-two-quads",
 ];
-const AUTOMATON_FIXTURES: [&str; 31] = [
+const AUTOMATON_FIXTURES: [&str; 30] = [
     "de-casteljau-edge",
     "chaikin-known",
     "spec-edge",
@@ -60,7 +60,6 @@ const AUTOMATON_FIXTURES: [&str; 31] = [
     "koch",
     "sierpinski-arrowhead",
     "heighway-dragon",
-    "monkeys-tree",
     "pythagoras-tree",
     "self-seeding-square",
     "vegetation",

@@ -117,10 +117,6 @@ pub fn library() -> &'static [(&'static str, &'static str)] {
             include_str!("../../fixtures/heighway-dragon.rule"),
         ),
         (
-            "monkeys-tree",
-            include_str!("../../fixtures/monkeys-tree.rule"),
-        ),
-        (
             "pythagoras-tree",
             include_str!("../../fixtures/pythagoras-tree.rule"),
         ),
