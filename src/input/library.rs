@@ -6,6 +6,7 @@ use crate::error::{Error, Result, Source};
 use crate::input::assembly::Assembly;
 use crate::input::autofrac::{is_autofrac, parse_autofrac};
 use crate::input::automaton_model::{is_automaton_model, parse_model, AutomatonModel};
+use crate::input::suggest::did_you_mean;
 use crate::topology::face::Face;
 
 /// The named structures: `(name, text)`, each a file of `fixtures/`.
@@ -415,33 +416,6 @@ fn read_source(arg: &str) -> Result<(String, Source)> {
         path: arg.into(),
         reason,
     })
-}
-
-/// The library name closest to `arg` (case-insensitive edit distance), when it is close: at
-/// most a third of the name's length, and at least one edit for names of three letters.
-pub(crate) fn did_you_mean<'a>(arg: &str, names: &[&'a str]) -> Option<&'a str> {
-    let a: Vec<char> = arg.to_lowercase().chars().collect();
-    let distance = |b: &str| {
-        let b: Vec<char> = b.to_lowercase().chars().collect();
-        // Levenshtein distance, one row at a time.
-        let mut row: Vec<usize> = (0..=b.len()).collect();
-        for (i, ca) in a.iter().enumerate() {
-            let mut prev = row[0];
-            row[0] = i + 1;
-            for (j, cb) in b.iter().enumerate() {
-                let cur = row[j + 1];
-                row[j + 1] = (prev + usize::from(ca != cb)).min(row[j] + 1).min(cur + 1);
-                prev = cur;
-            }
-        }
-        row[b.len()]
-    };
-    names
-        .iter()
-        .map(|n| (distance(n), *n))
-        .min()
-        .filter(|(d, n)| *d <= (n.chars().count() / 3).max(1))
-        .map(|(_, n)| n)
 }
 
 #[cfg(test)]

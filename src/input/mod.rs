@@ -11,6 +11,7 @@ pub(crate) mod automaton_model;
 pub(crate) mod coords;
 pub(crate) mod library;
 pub(crate) mod rule;
+pub(crate) mod suggest;
 pub(crate) mod volume_file;
 
 pub use assembly::{set_corners, vertices, Assembly, SharedEdge};

@@ -428,7 +428,7 @@ pub fn parse_rule(src: &Source) -> Result<Rule> {
                     "E1308",
                     format!(
                     "`{other}`: a rule file has `field`, `initiator`, `generator`, `age`, `random`, `seed` and `depth` lines{}",
-                    crate::input::library::did_you_mean(
+                    crate::input::suggest::did_you_mean(
                         other,
                         &["field", "initiator", "generator", "age", "random", "seed", "depth"]
                     )
