@@ -20,5 +20,7 @@ $L render gasket-5 --level 5 --png docs/images/gasket-5.png
 $L render gasket-6 --level 5 --png docs/images/gasket-6.png
 $L render gasket-7 --level 5 --png docs/images/gasket-7.png
 $L render gasket-8 --level 4 --png docs/images/gasket-8.png
+$L render lemniscate-fractal --level 6 --png docs/images/lemniscate-fractal.png
+$L render rose-fractal --level 6 --png docs/images/rose-fractal.png
 # Seed 004's fractal kite (docs/GALLERY.md, docs/GUIDE.md).
 $L render kite-dart --level 14 --png docs/images/kite-dart.png

@@ -31,7 +31,7 @@ const FACE_FIXTURES: [&str; 8] = [
     "two-quads",
     "autofrac-two-quads",
 ];
-const AUTOMATON_FIXTURES: [&str; 30] = [
+const AUTOMATON_FIXTURES: [&str; 32] = [
     "de-casteljau-edge",
     "chaikin-known",
     "spec-edge",
@@ -49,6 +49,8 @@ const AUTOMATON_FIXTURES: [&str; 30] = [
     "penrose-robinson",
     // Seed 002: the Sierpinski carpet and the gasket family (issue #37).
     "sierpinski-carpet",
+    "lemniscate-fractal",
+    "rose-fractal",
     "gasket-3",
     "gasket-4",
     "gasket-5",

@@ -256,6 +256,103 @@ fn every_certificate_is_checked_by_lacuna_check() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+// ---- Seed 002, Fig. 7: multiplicities ----
+
+/// The level-1 points of Fig. 7's sets from the paper's curves, computed here: the lemniscate
+/// `(sin θ, sin 2θ)` (eq. (24) at t = 1) and the rose `cos(3θ/2)·e^(jθ/2)`, both at θ = uπ/3,
+/// u = 1…6; with the multiplicity of each distinct point (eq. (18)).
+fn figure_7(rose: bool) -> (Vec<[f64; 2]>, Vec<usize>) {
+    let points: Vec<[f64; 2]> = (1..=6)
+        .map(|u| {
+            let t = u as f64 * PI / 3.0;
+            match rose {
+                false => [t.sin(), (2.0 * t).sin()],
+                true => {
+                    let r = (1.5 * t).cos();
+                    [r * (t / 2.0).cos(), r * (t / 2.0).sin()]
+                }
+            }
+        })
+        .collect();
+    let mut distinct: Vec<([f64; 2], usize)> = Vec::new();
+    for p in &points {
+        match distinct
+            .iter_mut()
+            .find(|(q, _)| close(q[0], p[0], 1e-12) && close(q[1], p[1], 1e-12))
+        {
+            Some((_, n)) => *n += 1,
+            None => distinct.push((*p, 1)),
+        }
+    }
+    let mut mult: Vec<usize> = distinct.iter().map(|d| d.1).collect();
+    mult.sort_unstable();
+    (points, mult)
+}
+
+#[test]
+fn figure_7_sets_sample_their_curves_and_classify_tells_them_apart() {
+    for (name, rose, want) in [
+        ("lemniscate-fractal", false, vec![1, 1, 1, 1, 2]),
+        ("rose-fractal", true, vec![1, 1, 1, 3]),
+    ] {
+        let (points, mult) = figure_7(rose);
+        assert_eq!(mult, want, "{name}: the curve's multiplicities");
+        // Each level-1 piece draws its image of the origin: the sample of its map.
+        let drawn = pieces(name, "1");
+        assert_eq!(drawn.len(), 6, "{name}");
+        for (k, (d, p)) in drawn.iter().zip(&points).enumerate() {
+            assert!(
+                close(d[0][0], p[0], 1e-12) && close(d[0][1], p[1], 1e-12),
+                "{name}: T{k} draws {:?}, the curve's sample is {p:?}",
+                d[0]
+            );
+        }
+        // The coinciding maps make the open-set condition fail, and verify names two of them.
+        let line = similarity_line(name);
+        assert!(
+            line.contains("an upper bound") && line.contains("are the same map"),
+            "{line}"
+        );
+    }
+    // classify with seed 002's multiplicity: the distinct maps of level 1 are the distinct
+    // points counted above (5 and 4); equal cardinality (6 pieces each) is not enough.
+    let classify = |a: &str, b: &str| -> serde_json::Value {
+        let (code, out, err) = lacuna(&[
+            "classify",
+            a,
+            b,
+            "--multiplicity",
+            "coincidences",
+            "--levels",
+            "2",
+            "--json",
+        ]);
+        assert!(code == 0 || code == 1, "{a} {b}: {err}");
+        serde_json::from_str(&out).expect("JSON")
+    };
+    let v = classify("lemniscate-fractal", "rose-fractal");
+    let (l, r) = (figure_7(false).1.len(), figure_7(true).1.len());
+    assert_eq!(v["same_class"], false);
+    assert_eq!(v["differs"]["group"], "multiplicity");
+    assert_eq!(v["differs"]["invariant"], "distinct maps");
+    assert_eq!(
+        (v["differs"]["a"].clone(), v["differs"]["b"].clone()),
+        (l.to_string().into(), r.to_string().into())
+    );
+    // The paper's classes: the octagonal gasket and the carpet share cardinality 8 and have no
+    // multiplicity; the Sierpinski gasket has 3 points.
+    assert_eq!(
+        classify("gasket-8", "sierpinski-carpet")["same_class"],
+        true
+    );
+    let v = classify("gasket-3", "sierpinski-carpet");
+    assert_eq!(v["differs"]["group"], "cardinality");
+    assert_eq!(
+        (v["differs"]["a"].clone(), v["differs"]["b"].clone()),
+        ("3".into(), "8".into())
+    );
+}
+
 // ---- docs/GALLERY.md stays true ----
 
 /// One figure of the gallery: the commands of its console block and the first row of the table

@@ -235,13 +235,26 @@ pub fn volume_invariants(
     })
 }
 
+/// Which multiplicity of an automaton [`automaton_invariants`] reads.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum AutomatonMultiplicity {
+    /// Where pieces meet: how many pieces share each image of a fixed corner (module doc).
+    #[default]
+    Contacts,
+    /// Seed 002's (eq. (18)): how many pieces of a level are the same map — the points a curve
+    /// defines more than once, `L_r` times — whatever the pieces touch.
+    Coincidences,
+}
+
 /// The invariants of an automaton with its resolved operators: pieces per level from the start
-/// state, and the multiplicity at level 1 at the images of fixed corners (module doc).
+/// state, and the multiplicity of levels 1 and on (`how`: at the images of fixed corners, or
+/// seed 002's coinciding pieces).
 pub fn automaton_invariants(
     name: &str,
     model: &AutomatonModel,
     resolved: &Resolved,
     levels: u64,
+    how: AutomatonMultiplicity,
 ) -> Result<Invariants> {
     let a = &model.automaton;
     let n = a.states.len();
@@ -264,18 +277,37 @@ pub fn automaton_invariants(
         }
         v = next;
     }
-    let (per_level, cut) = contacts(model, resolved, &subs, levels, MAX_CONTACT_PIECES)?;
+    let (per_level, cut) = match how {
+        AutomatonMultiplicity::Contacts => {
+            contacts(model, resolved, &subs, levels, MAX_CONTACT_PIECES)?
+        }
+        AutomatonMultiplicity::Coincidences => {
+            coincidences(model, resolved, &subs, levels, MAX_CONTACT_PIECES)?
+        }
+    };
+    let (total, each, what) = match how {
+        AutomatonMultiplicity::Contacts => (
+            "fixed-corner images",
+            "points where {m} pieces meet",
+            "at the exact images of fixed corners; contacts elsewhere and the limit are not decided",
+        ),
+        AutomatonMultiplicity::Coincidences => (
+            "distinct maps",
+            "maps of {m} pieces",
+            "seed 002's multiplicity: the pieces of a level that are one exact map (a point the curve defines L times); the limit is not decided",
+        ),
+    };
     let mut multiplicity = vec![Vec::new(); levels as usize + 1];
     for (i, (hist, points)) in per_level.iter().enumerate() {
         let row = &mut multiplicity[i + 1];
-        row.push(("fixed-corner images".to_string(), points.to_string()));
+        row.push((total.to_string(), points.to_string()));
         row.extend(
             hist.iter()
-                .map(|(m, k)| (format!("points where {m} pieces meet"), k.to_string())),
+                .map(|(m, k)| (each.replace("{m}", &m.to_string()), k.to_string())),
         );
     }
     let mut notes = vec![format!(
-        "automaton multiplicity: levels 1 to {}, at the exact images of fixed corners; contacts elsewhere and the limit are not decided",
+        "automaton multiplicity: levels 1 to {}, {what}",
         per_level.len()
     )];
     notes.extend(cut);
@@ -330,20 +362,7 @@ fn contacts(
             );
             return Ok((out, Some(note)));
         }
-        let mut next = Vec::with_capacity(count);
-        for (m, s) in &pieces {
-            for &o in subs {
-                let op = &a.operators[o];
-                if op.to != *s {
-                    continue;
-                }
-                let p = m.mul(k, &resolved.ops[o]).ok_or_else(|| {
-                    Error::Analysis(format!("operator {o} does not chain with its state's maps"))
-                })?;
-                next.push((p, op.from));
-            }
-        }
-        pieces = next;
+        pieces = step(model, resolved, subs, &pieces)?;
         let mut at: HashMap<Vec<FieldElement>, Vec<usize>> = HashMap::new();
         for (w, (m, s)) in pieces.iter().enumerate() {
             for &j in &fixed[*s] {
@@ -359,6 +378,72 @@ fn contacts(
             *hist.entry(p.len()).or_default() += 1;
         }
         out.push((hist, at.len()));
+    }
+    Ok((out, None))
+}
+
+/// The pieces of the next level: each piece's map times every sub-operator into its state.
+fn step(
+    model: &AutomatonModel,
+    resolved: &Resolved,
+    subs: &[usize],
+    pieces: &[(KMatrix, usize)],
+) -> Result<Vec<(KMatrix, usize)>> {
+    let a = &model.automaton;
+    let mut next = Vec::new();
+    for (m, s) in pieces {
+        for &o in subs {
+            let op = &a.operators[o];
+            if op.to != *s {
+                continue;
+            }
+            let p = m.mul(&model.field, &resolved.ops[o]).ok_or_else(|| {
+                Error::Analysis(format!("operator {o} does not chain with its state's maps"))
+            })?;
+            next.push((p, op.from));
+        }
+    }
+    Ok(next)
+}
+
+/// Seed 002's multiplicity (eq. (18)) at levels 1 to `levels`: for each level, for each number
+/// m, how many distinct exact maps (with their state) exactly m pieces of the level are, and the
+/// number of distinct maps. Two pieces with one map are the same points of the attractor at
+/// every depth — the paper's point "defined L times" by its curve. Levels whose pieces number
+/// more than `max_pieces` are not enumerated (the note says so).
+fn coincidences(
+    model: &AutomatonModel,
+    resolved: &Resolved,
+    subs: &[usize],
+    levels: u64,
+    max_pieces: usize,
+) -> Result<(Vec<Contacts>, Option<String>)> {
+    let a = &model.automaton;
+    let dim0 = a.states[model.start].dim;
+    let mut pieces: Vec<(KMatrix, usize)> =
+        vec![(KMatrix::identity(&model.field, dim0), model.start)];
+    let mut out = Vec::new();
+    for level in 1..=levels {
+        let count: usize = pieces
+            .iter()
+            .map(|(_, s)| subs.iter().filter(|&&o| a.operators[o].to == *s).count())
+            .sum();
+        if count > max_pieces {
+            let note = format!(
+                "automaton coincidences not enumerated from level {level}: {count} pieces, above {max_pieces}"
+            );
+            return Ok((out, Some(note)));
+        }
+        pieces = step(model, resolved, subs, &pieces)?;
+        let mut maps: HashMap<(usize, &[FieldElement]), u64> = HashMap::new();
+        for (m, s) in &pieces {
+            *maps.entry((*s, m.data.as_slice())).or_default() += 1;
+        }
+        let mut hist: BTreeMap<usize, u64> = BTreeMap::new();
+        for &n in maps.values() {
+            *hist.entry(n as usize).or_default() += 1;
+        }
+        out.push((hist, maps.len()));
     }
     Ok((out, None))
 }
@@ -765,7 +850,53 @@ mod tests {
         })
         .unwrap();
         let resolved = crate::analysis::resolve(&model, &[], 1_000_000).unwrap();
-        automaton_invariants("test", &model, &resolved, 2).unwrap()
+        automaton_invariants("test", &model, &resolved, 2, Default::default()).unwrap()
+    }
+
+    #[test]
+    fn coinciding_pieces_are_counted_level_by_level() {
+        // Three maps of ratio 1/2 on [0, 1]: T0 and T1 the same (x/2), T2 = x/2 + 1/2. Level 1:
+        // two maps, x/2 of 2 pieces and x/2 + 1/2 of 1. Level 2 (words ab, the map T_a T_b):
+        // a, b in {0, 1} give x/4 (4 pieces); a in {0, 1}, b = 2 give x/4 + 1/4 (2); a = 2,
+        // b in {0, 1} give x/4 + 1/2 (2); 22 gives x/4 + 3/4 (1): four maps, of 1, 2, 2, 4 pieces.
+        let text = "state e 2\nsub e.T0 : e <- e = [1 1/2; 0 1/2]\nsub e.T1 : e <- e = [1 1/2; 0 1/2]\nsub e.T2 : e <- e = [1/2 0; 1/2 1]\nspace 2\npoints [0 0; 1 0]\n";
+        let model = crate::input::parse_model(&crate::Source {
+            name: "test".into(),
+            text: text.into(),
+        })
+        .unwrap();
+        let resolved = crate::analysis::resolve(&model, &[], 1_000_000).unwrap();
+        let i = automaton_invariants(
+            "test",
+            &model,
+            &resolved,
+            2,
+            AutomatonMultiplicity::Coincidences,
+        )
+        .unwrap();
+        let named = |v: &[(&str, &str)]| -> Vec<Named> {
+            v.iter()
+                .map(|(a, b)| (a.to_string(), b.to_string()))
+                .collect()
+        };
+        assert_eq!(
+            i.multiplicity[1],
+            named(&[
+                ("distinct maps", "2"),
+                ("maps of 1 pieces", "1"),
+                ("maps of 2 pieces", "1")
+            ])
+        );
+        assert_eq!(
+            i.multiplicity[2],
+            named(&[
+                ("distinct maps", "4"),
+                ("maps of 1 pieces", "1"),
+                ("maps of 2 pieces", "2"),
+                ("maps of 4 pieces", "1")
+            ])
+        );
+        assert_eq!(i.cardinality[2], named(&[("pieces", "9")]));
     }
 
     #[test]

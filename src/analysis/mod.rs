@@ -27,7 +27,7 @@ pub use automaton_resolve::{
 pub use census::{census, CensusFace, CensusReport, CensusSpec};
 pub use classes::{
     automaton_invariants, classify, face_invariants, levels_for, levels_needed, volume_invariants,
-    Classification, Difference, Invariants, Named,
+    AutomatonMultiplicity, Classification, Difference, Invariants, Named,
 };
 pub use contraction::{
     check_contraction, check_contraction_within, difference_restriction, ContractionReport,

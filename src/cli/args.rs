@@ -330,6 +330,15 @@ pub(crate) struct CountsArgs {
     pub(crate) json: bool,
 }
 
+/// The multiplicity `classify` compares for automata.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub(crate) enum MultiplicityArg {
+    /// Pieces meeting at the images of fixed corners.
+    Contacts,
+    /// Pieces that are one exact map (seed 002).
+    Coincidences,
+}
+
 /// The arguments of `lacuna classify`.
 #[derive(Args)]
 pub(crate) struct ClassifyArgs {
@@ -349,6 +358,11 @@ pub(crate) struct ClassifyArgs {
     /// Refuse before the work when a volume's level-k complex has more cells than this.
     #[arg(long, default_value_t = 200_000)]
     pub(crate) max_cells: u64,
+    /// For an automaton, the multiplicity compared: `contacts` (how many pieces meet at each
+    /// image of a fixed corner) or `coincidences` (seed 002's, eq. (18): how many pieces of a
+    /// level are one exact map, the points a curve defines more than once).
+    #[arg(long, value_enum, default_value_t = MultiplicityArg::Contacts)]
+    pub(crate) multiplicity: MultiplicityArg,
     /// Print JSON: `{"same_class", "differs", …}`.
     #[arg(long)]
     pub(crate) json: bool,

@@ -128,7 +128,18 @@ fn invariants(
             (i, None)
         }
         Structure::Automaton(name, model, resolved) => (
-            lacuna::analysis::automaton_invariants(name, model, resolved, levels)?,
+            lacuna::analysis::automaton_invariants(
+                name,
+                model,
+                resolved,
+                levels,
+                match args.multiplicity {
+                    MultiplicityArg::Contacts => lacuna::analysis::AutomatonMultiplicity::Contacts,
+                    MultiplicityArg::Coincidences => {
+                        lacuna::analysis::AutomatonMultiplicity::Coincidences
+                    }
+                },
+            )?,
             None,
         ),
     })

@@ -98,6 +98,14 @@ pub fn library() -> &'static [(&'static str, &'static str)] {
             "sierpinski-carpet",
             include_str!("../../fixtures/sierpinski-carpet.aut"),
         ),
+        (
+            "lemniscate-fractal",
+            include_str!("../../fixtures/lemniscate-fractal.aut"),
+        ),
+        (
+            "rose-fractal",
+            include_str!("../../fixtures/rose-fractal.aut"),
+        ),
         ("gasket-3", include_str!("../../fixtures/gasket-3.aut")),
         ("gasket-4", include_str!("../../fixtures/gasket-4.aut")),
         ("gasket-5", include_str!("../../fixtures/gasket-5.aut")),
