@@ -353,6 +353,39 @@ fn figure_7_sets_sample_their_curves_and_classify_tells_them_apart() {
     );
 }
 
+/// Fig. 10: the hexagonal gasket's samples are the circle's, in the lemniscate's order, so that
+/// `morph` between the two automata is eq. (24); every frame is verified.
+#[test]
+fn figure_10_is_a_morph_from_the_circle_samples_to_the_lemniscate() {
+    let hex = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/fixtures/hexagonal-gasket-samples.aut"
+    );
+    let drawn = pieces(hex, "1");
+    assert_eq!(drawn.len(), 6);
+    for (k, d) in drawn.iter().enumerate() {
+        let t = (k + 1) as f64 * PI / 3.0;
+        assert!(
+            close(d[0][0], t.cos(), 1e-12) && close(d[0][1], t.sin(), 1e-12),
+            "T{k}: {:?}",
+            d[0]
+        );
+    }
+    let line = similarity_line(hex);
+    assert!(line.contains("(the Hausdorff dimension: holds"), "{line}");
+    let (code, out, err) = lacuna(&[
+        "morph",
+        hex,
+        "lemniscate-fractal",
+        "--frames",
+        "3",
+        "--level",
+        "2",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("VERIFIED: every frame"), "{out}");
+}
+
 // ---- docs/GALLERY.md stays true ----
 
 /// One figure of the gallery: the commands of its console block and the first row of the table
