@@ -568,6 +568,11 @@ fn pictures_for_the_docs() {
         size: 448,
         level: 4,
         window: lacuna::geometry::bounds(&i, 4).size(),
+        outside: lacuna::measure::density_map(&i, 0, 64, 4)
+            .values
+            .iter()
+            .map(|&v| v == 0.0)
+            .collect(),
     };
     let mut png = Vec::new();
     lacuna::export::write_density_picture(&map, &pic, &mut png).unwrap();

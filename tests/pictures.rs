@@ -155,6 +155,7 @@ fn density_picture_colours_each_block_and_has_a_colour_bar() {
         size: 320,
         level: 2,
         window: lacuna::geometry::bounds(&i, 4).size(),
+        outside: Vec::new(),
     };
     let mut bytes = Vec::new();
     write_density_picture(&map, &pic, &mut bytes).unwrap();
@@ -171,11 +172,45 @@ fn density_picture_colours_each_block_and_has_a_colour_bar() {
             "block {row},{col}"
         );
     }
-    // The colour bar: red (1) at its top, blue (0) at its bottom.
+    // The colour bar: yellow (1) at its top, dark violet (0) at its bottom.
     let bx = m + 320 + m + 4;
     let near = |p: [u8; 4], c: [u8; 3]| (0..3).all(|k| p[k].abs_diff(c[k]) <= 4);
     assert!(near(px[(m + 1) * w as usize + bx], density_colour(1.0)));
     assert!(near(px[(m + 318) * w as usize + bx], density_colour(0.0)));
+    // With the level-0 face's own map, the blocks outside the hexagon are pale grey, off the
+    // colour map, and an empty block inside (a hole) keeps the map's dark violet: the two are
+    // told apart (issue #32: one blue for both).
+    let face = lacuna::measure::density_map(&i, 0, 16, 4);
+    let pic = DensityPicture {
+        outside: face.values.iter().map(|&v| v == 0.0).collect(),
+        ..pic
+    };
+    let mut bytes = Vec::new();
+    write_density_picture(&map, &pic, &mut bytes).unwrap();
+    let (w, _, px) = decode(&bytes);
+    let at = |row: usize, col: usize| px[(m + row * 20 + 10) * w as usize + m + col * 20 + 10];
+    // F0's hexagon has corners (±1, 0) in a square window: the top left block is outside it.
+    assert_eq!(face.values[0], 0.0);
+    let o = lacuna::export::OUTSIDE;
+    assert_eq!(at(0, 0), [o[0], o[1], o[2], 255]);
+    let mut holes = 0;
+    for row in 0..16 {
+        for col in 0..16 {
+            let k = row * 16 + col;
+            if face.values[k] == 1.0 && map.values[k] < 0.1 {
+                holes += 1;
+                let c = at(row, col);
+                assert!(
+                    lacuna::export::lightness([c[0], c[1], c[2]]) < 35.0,
+                    "{c:?}"
+                );
+            }
+        }
+    }
+    assert!(
+        holes > 0,
+        "F0 level 2 has blocks inside the face that are nearly empty"
+    );
 }
 
 #[test]

@@ -331,10 +331,13 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
     }
     if let Some(p) = &density {
         let map = lacuna::measure::density_map(&inst, level, density_grid, segs);
+        // The blocks with no point of the level-0 faces: outside, not holes.
+        let face = lacuna::measure::density_map(&inst, 0, density_grid, segs);
         let pic = lacuna::export::DensityPicture {
             size: size as u32,
             level,
             window: lacuna::geometry::bounds(&inst, segs).size(),
+            outside: face.values.iter().map(|&v| v == 0.0).collect(),
         };
         outputs.write(p, |w| lacuna::export::write_density_picture(&map, &pic, w))?;
         wrote(&outputs, p);

@@ -1,5 +1,5 @@
 //! Colour PNG pictures: the cells of a level, anti-aliased and filled by face type with the SVG's
-//! palette, with a legend; and density maps at a chosen size with the blue → red colour map, a
+//! palette, with a legend; and density maps at a chosen size with the viridis colour map, a
 //! colour bar and the grid and mask stated.
 //!
 //! Shapes are rasterised by `zeno` (exact-area anti-aliasing, non-zero fill, strokes with round
@@ -7,7 +7,7 @@
 //! no font file to load); the image is encoded by `png`. The canvas is premultiplied RGBA, 8 bits
 //! per channel; source-over compositing.
 
-use crate::export::palette::{darker, density_colour, outline_colour, type_colour, Rgb};
+use crate::export::palette::{darker, density_colour, outline_colour, type_colour, Rgb, OUTSIDE};
 use crate::export::picture::{
     legend_entries, legend_grid, outline, stroke_width, Background, Frame, PictureOptions,
 };
@@ -570,11 +570,16 @@ pub struct DensityPicture {
     pub level: u32,
     /// Side of the window in plane units (the mask of a block is `window / grid` wide).
     pub window: f64,
+    /// Per block (row-major, as the map's values), whether it lies wholly outside the structure
+    /// (no point of its level-0 faces): drawn in [`OUTSIDE`], off the colour map, so that it is
+    /// not read as a hole. Empty: every block is drawn on the map.
+    pub outside: Vec<bool>,
 }
 
-/// Writes a density map as a colour PNG: the map `size × size` pixels (blocks as squares, blue for
-/// empty to red for full, [`density_colour`]), a colour bar with ticks 0, 0.25, …, 1 to its right,
-/// and below it the level, the grid and the mask (a block's side in plane units and its samples).
+/// Writes a density map as a colour PNG: the map `size × size` pixels (blocks as squares, dark
+/// violet for empty to yellow for full, [`density_colour`]; blocks outside the structure pale
+/// grey), a colour bar with ticks 0, 0.25, …, 1 to its right, and below it the level, the grid,
+/// the mask (a block's side in plane units and its samples) and what the grey is.
 pub fn write_density_picture<W: Write>(
     map: &DensityMap,
     pic: &DensityPicture,
@@ -588,7 +593,7 @@ pub fn write_density_picture<W: Write>(
     );
     let m = ch / 2;
     let bar_w = (s / 32).clamp(12, 48);
-    let lines = [
+    let mut lines = vec![
         format!("relative density, level {}", pic.level),
         format!("grid {0} x {0} blocks", map.grid),
         format!(
@@ -597,6 +602,9 @@ pub fn write_density_picture<W: Write>(
             map.samples
         ),
     ];
+    if pic.outside.iter().any(|&o| o) {
+        lines.push("pale grey: outside the level-0 faces".to_string());
+    }
     let text_w = lines
         .iter()
         .map(|l| l.chars().count() as u32)
@@ -604,7 +612,7 @@ pub fn write_density_picture<W: Write>(
         .unwrap_or(0)
         * cw;
     let width = (m + s + m + bar_w + cw / 2 + 4 * cw + m).max(2 * m + text_w);
-    let height = m + s + m / 2 + 3 * (ch + 2) + m;
+    let height = m + s + m / 2 + lines.len() as u32 * (ch + 2) + m;
     let mut canvas = Canvas::new(width, height, Background::White);
     let g = map.grid.max(1);
     for y in 0..s {
@@ -612,7 +620,11 @@ pub fn write_density_picture<W: Write>(
         for x in 0..s {
             let bc = (x as usize * g) / s as usize;
             let d = map.values.get(br * g + bc).copied().unwrap_or(0.0);
-            canvas.blend(i64::from(m + x), i64::from(m + y), density_colour(d), 255);
+            let colour = match pic.outside.get(br * g + bc) {
+                Some(true) => OUTSIDE,
+                _ => density_colour(d),
+            };
+            canvas.blend(i64::from(m + x), i64::from(m + y), colour, 255);
         }
     }
     // The colour bar: 1 at the top, 0 at the bottom, with a thin frame and five ticks.

@@ -32,7 +32,9 @@ pub use bitmap::{
 pub use html::{report_html, report_html_unverified};
 pub use moditere::moditere_text;
 pub use morph::{write_morph_svg, FrameCells};
-pub use palette::{density_colour, hex, lightness, outline_colour, type_colour, Rgb, MUTED};
+pub use palette::{
+    density_colour, hex, lightness, outline_colour, type_colour, Rgb, MUTED, OUTSIDE,
+};
 pub use picture::{
     legend_entries, outline, stroke_width, write_svg_picture, Background, Frame, PictureOptions,
 };

@@ -1,14 +1,20 @@
-//! Colours of the pictures: one fill per face type, and the blue → red colour map of the density
+//! Colours of the pictures: one fill per face type, and the viridis colour map of the density
 //! maps.
 //!
-//! The type palette is Paul Tol's "muted" qualitative scheme (designed to stay distinct under the
-//! common colour-vision deficiencies and in grey print), in his order. None of its colours is close
-//! to the white background (the lightest, sand, has CIE L* 82 against white's 100), so a cell
-//! never looks like a hole. Past nine types the colours repeat, darker each round; the legend names
-//! every type with its notation.
+//! The type palette starts with Paul Tol's "muted" qualitative scheme (designed to stay distinct
+//! under the common colour-vision deficiencies and in grey print), in his order, and goes on with
+//! fifteen colours chosen here, greedily, each the one farthest (CIE L*a*b*, ΔE76) from every
+//! colour before it among the sRGB colours of steps 0x11 with lightness L* 30–80 and chroma at
+//! most 60 (as muted as Tol's): so the first 24 types are pairwise at least ΔE 22.8 apart (the
+//! least distance inside Tol's nine; a test keeps it). None is close to the white background (the
+//! lightest, sand, has L* 82 against white's 100), so a cell never looks like a hole. Past 24
+//! types the colours repeat, darker each round; the legend names every type with its notation.
 //!
-//! The density colour map is ColorBrewer's RdYlBu reversed (blue for empty, through pale yellow, to
-//! red for full), diverging and readable by colour-blind viewers.
+//! The density colour map is viridis (van der Walt and Smith's perceptually uniform sequential map,
+//! the eleven stops of `viridis(11)`): dark violet for empty, through blue and green, to yellow for
+//! full — lightness grows with density, so it reads in grey print and for colour-blind viewers. A
+//! density is one-sided (0 to 1), so a sequential map, not a diverging one. Blocks outside the
+//! structure are drawn in [`OUTSIDE`], off the map, so that they are not read as empty holes.
 
 /// An sRGB colour.
 pub type Rgb = [u8; 3];
@@ -26,11 +32,37 @@ pub const MUTED: [Rgb; 9] = [
     [0xAA, 0x44, 0x99],
 ];
 
+/// The fifteen colours after Tol's nine (module doc: each the farthest from all before it).
+const MORE: [Rgb; 15] = [
+    [0x88, 0x99, 0xFF],
+    [0x44, 0x55, 0x77],
+    [0x88, 0x44, 0x00],
+    [0x55, 0x55, 0x33],
+    [0xDD, 0xBB, 0xBB],
+    [0xFF, 0x99, 0x66],
+    [0xFF, 0xAA, 0xEE],
+    [0x44, 0xDD, 0x99],
+    [0x00, 0x88, 0xCC],
+    [0x00, 0x55, 0x55],
+    [0x77, 0x44, 0x44],
+    [0x77, 0xBB, 0x55],
+    [0xAA, 0x99, 0xCC],
+    [0x77, 0x88, 0x88],
+    [0x99, 0x22, 0x22],
+];
+
+/// The number of distinct type colours before they repeat darker.
+pub const DISTINCT_TYPES: usize = MUTED.len() + MORE.len();
+
 /// The fill colour of face type `ty`.
 pub fn type_colour(ty: usize) -> Rgb {
-    let base = MUTED[ty % MUTED.len()];
-    // Each further round of nine is 20% darker than the one before (at most three darker rounds).
-    let round = ((ty / MUTED.len()).min(3)) as f64;
+    let i = ty % DISTINCT_TYPES;
+    let base = match MUTED.get(i) {
+        Some(&c) => c,
+        None => MORE[i - MUTED.len()],
+    };
+    // Each further round of 24 is 20% darker than the one before (at most three darker rounds).
+    let round = ((ty / DISTINCT_TYPES).min(3)) as f64;
     let k = 0.8f64.powf(round);
     base.map(|c| (f64::from(c) * k).round() as u8)
 }
@@ -50,23 +82,27 @@ pub fn hex(c: Rgb) -> String {
     format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2])
 }
 
-/// The stops of the density colour map (ColorBrewer RdYlBu, reversed), at 0, 0.1, …, 1.
+/// The stops of the density colour map (viridis), at 0, 0.1, …, 1.
 const DENSITY_STOPS: [Rgb; 11] = [
-    [0x31, 0x36, 0x95],
-    [0x45, 0x75, 0xb4],
-    [0x74, 0xad, 0xd1],
-    [0xab, 0xd9, 0xe9],
-    [0xe0, 0xf3, 0xf8],
-    [0xff, 0xff, 0xbf],
-    [0xfe, 0xe0, 0x90],
-    [0xfd, 0xae, 0x61],
-    [0xf4, 0x6d, 0x43],
-    [0xd7, 0x30, 0x27],
-    [0xa5, 0x00, 0x26],
+    [0x44, 0x01, 0x54],
+    [0x48, 0x25, 0x76],
+    [0x41, 0x44, 0x87],
+    [0x35, 0x60, 0x8D],
+    [0x2A, 0x78, 0x8E],
+    [0x21, 0x90, 0x8C],
+    [0x22, 0xA8, 0x84],
+    [0x43, 0xBF, 0x71],
+    [0x7A, 0xD1, 0x51],
+    [0xBB, 0xDF, 0x27],
+    [0xFD, 0xE7, 0x25],
 ];
 
-/// The colour of density `d` (clamped to [0, 1]): dark blue for 0, pale yellow for 1/2, dark red
-/// for 1, linear between the stops.
+/// The colour of a block of a density map that lies wholly outside the structure (no point of
+/// its level-0 faces): a pale grey, off the colour map.
+pub const OUTSIDE: Rgb = [0xEE, 0xEE, 0xEE];
+
+/// The colour of density `d` (clamped to [0, 1]): dark violet for 0, teal for 1/2, yellow for 1,
+/// linear between the stops.
 pub fn density_colour(d: f64) -> Rgb {
     let x = if d.is_finite() {
         d.clamp(0.0, 1.0)
@@ -119,13 +155,67 @@ mod tests {
         }
     }
 
+    /// CIE L*a*b* (D65) of an sRGB colour, written out here from the standard's formulas.
+    fn lab(c: Rgb) -> [f64; 3] {
+        let lin = |v: u8| {
+            let v = f64::from(v) / 255.0;
+            if v <= 0.04045 {
+                v / 12.92
+            } else {
+                ((v + 0.055) / 1.055).powf(2.4)
+            }
+        };
+        let [r, g, b] = c.map(lin);
+        let x = (0.4124 * r + 0.3576 * g + 0.1805 * b) / 0.95047;
+        let y = 0.2126 * r + 0.7152 * g + 0.0722 * b;
+        let z = (0.0193 * r + 0.1192 * g + 0.9505 * b) / 1.08883;
+        let f = |t: f64| {
+            if t > 216.0 / 24389.0 {
+                t.cbrt()
+            } else {
+                (24389.0 / 27.0 * t + 16.0) / 116.0
+            }
+        };
+        let (fx, fy, fz) = (f(x), f(y), f(z));
+        [116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)]
+    }
+
     #[test]
-    fn the_density_map_runs_from_blue_to_red() {
-        assert_eq!(density_colour(0.0), [0x31, 0x36, 0x95]);
-        assert_eq!(density_colour(1.0), [0xa5, 0x00, 0x26]);
-        assert_eq!(density_colour(0.5), [0xff, 0xff, 0xbf]);
+    fn the_first_24_type_colours_are_pairwise_distinct() {
+        // Issue #32: types 0 and 9, 3 and 12, 5 and 14 were one hue in two shades. Now every
+        // pair of the first 24 is at least ΔE76 22.8 apart (Tol's own closest pair is 22.80);
+        // the 25th repeats the first, darker.
+        let mut least = f64::INFINITY;
+        for a in 0..DISTINCT_TYPES {
+            for b in a + 1..DISTINCT_TYPES {
+                let (x, y) = (lab(type_colour(a)), lab(type_colour(b)));
+                let d = (0..3).map(|k| (x[k] - y[k]).powi(2)).sum::<f64>().sqrt();
+                least = least.min(d);
+            }
+        }
+        assert!(
+            least > 22.8,
+            "two of the first 24 colours are {least} apart"
+        );
+        assert_eq!(DISTINCT_TYPES, 24);
+        let (first, again) = (type_colour(0), type_colour(24));
+        assert!((0..3).all(|k| again[k] < first[k]), "{}", hex(again));
+        assert!((lightness(type_colour(3)) - lab(type_colour(3))[0]).abs() < 1e-9);
+    }
+
+    #[test]
+    fn the_density_map_is_sequential_and_outside_is_off_it() {
+        assert_eq!(density_colour(0.0), [0x44, 0x01, 0x54]);
+        assert_eq!(density_colour(1.0), [0xFD, 0xE7, 0x25]);
+        assert_eq!(density_colour(0.5), [0x21, 0x90, 0x8C]);
         assert_eq!(density_colour(f64::NAN), density_colour(0.0));
-        let c = density_colour(0.25);
-        assert!(c[2] > c[0], "a quarter is still blue: {c:?}");
+        // Sequential: lightness grows with the density (checked on 101 values).
+        let l: Vec<f64> = (0..=100)
+            .map(|k| lightness(density_colour(f64::from(k) / 100.0)))
+            .collect();
+        assert!(l.windows(2).all(|w| w[1] > w[0]), "{l:?}");
+        // Outside is lighter than any density's colour, and grey (off the map's hues).
+        assert!(lightness(OUTSIDE) > l[100] + 3.0);
+        assert!(OUTSIDE[0] == OUTSIDE[1] && OUTSIDE[1] == OUTSIDE[2]);
     }
 }
