@@ -439,7 +439,8 @@ fn fifteen_type_graph_in_chromium() {
 #[test]
 #[ignore = "needs Debian's chromium; .ci/run runs it with --ignored"]
 fn automaton_report_in_chromium() {
-    // The report of an automaton (issues #14, #16): no console output; the sections in order;
+    // The report of an automaton (issues #14, #16, #32): no console output; the sections in the
+    // order of every report (the pictures first, after the verdict);
     // every element inside the page; the box-counting plot with its fit and equation; the
     // curvature-range plot with its bars. Hand count for the cubic de Casteljau curve (I = 2
     // operators): the parameters are 0, 1/2, 1 and j/8 for j = 1, 2, 3, 5, 6, 7; a left side at
@@ -459,13 +460,13 @@ fn automaton_report_in_chromium() {
     assert_eq!(
         names,
         [
+            "Pictures",
             "Solver",
             "Contraction",
             "Operators",
             "Dimension",
             "Pseudo-curvature",
             "Levels",
-            "Pictures",
             "Input"
         ],
         "sections"

@@ -3,6 +3,7 @@
 // shows the colour of each block; the SVG draws the curves themselves and has one legend entry per
 // type; outlines scale with the cells of the level.
 
+mod common;
 use lacuna::export::{
     density_colour, outline, stroke_width, type_colour, write_density_picture, write_png_picture,
     write_svg_picture, Background, DensityPicture, Frame, PictureOptions,
@@ -373,5 +374,46 @@ fn volume_pictures_are_centred_and_every_side_in_view_is_lit() {
         (lo.min(lum(c.0)), hi.max(lum(c.0)))
     });
     assert!(lo >= 0.5 * hi, "a dark side: {sides:?}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Issue #32: the three reports — a face, a volume, an automaton — share one layout: the title
+/// `lacuna report: NAME`, the verdict line before any section, the pictures first, and text
+/// blocks that wrap instead of scrolling (a long mesh line is never cut).
+#[test]
+fn every_kind_of_report_has_one_layout() {
+    let dir = std::env::temp_dir().join(format!("lacuna-report-layout-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, level) in [("F0", "1"), ("cube-C2", "1"), ("sierpinski-triangle", "2")] {
+        let out = dir.join(format!("{name}.html"));
+        let (code, _, err) = common::lacuna(&[
+            "report",
+            name,
+            "--level",
+            level,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{name}: {err}");
+        let html = std::fs::read_to_string(&out).unwrap();
+        assert!(
+            html.contains(&format!("<title>lacuna report: {name}</title>"))
+                && html.contains(&format!("<h1>lacuna report: {name}</h1>")),
+            "{name}: the title"
+        );
+        let verdict = html
+            .find("<b>Verdict: VERIFIED</b>")
+            .expect("a verdict line");
+        let first = html.find("<h2>").expect("sections");
+        assert!(
+            verdict < first,
+            "{name}: the verdict comes before the sections"
+        );
+        assert!(
+            html[first..].starts_with("<h2>Pictures</h2>"),
+            "{name}: the pictures come first"
+        );
+        assert!(html.contains("white-space:pre-wrap") && !html.contains("overflow-x:auto"));
+    }
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -515,15 +515,40 @@ pub(super) fn report(
     );
     let mut check = vs.summary();
     check += &sizes.text(lacuna::mesh::DEFAULT_RESOLUTION);
+    let covers = format!(
+        "closed, {} volume type{}; the level-{} mesh has the exact cells, components and Euler characteristic of the topology{}",
+        set.types.len(),
+        if set.types.len() == 1 { "" } else { "s" },
+        geo.level,
+        match &vs.crossing {
+            None => " and no two of its triangles cross",
+            Some(_) => ", but two of its triangles cross: see the mesh below",
+        }
+    );
     let html = lacuna::export::volume_report_html(
-        &format!("{name} — level {}", geo.level),
+        name,
+        (
+            vs.crossing.is_none(),
+            if vs.crossing.is_none() {
+                "VERIFIED"
+            } else {
+                "NOT VERIFIED"
+            },
+            &covers,
+        ),
         &[
             ("Closure", closure_text),
             (
                 "The level-n solid (exact; – where not derived)",
                 lacuna::export::solid_table(&solid),
             ),
-            ("The mesh, checked against the exact topology", check),
+            (
+                &format!(
+                    "The level-{} mesh, checked against the exact topology",
+                    geo.level
+                ),
+                check,
+            ),
         ],
         &vs.solid.parts,
     );

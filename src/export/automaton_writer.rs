@@ -3,6 +3,7 @@
 //! SVG and PNG show an axonometric view; OBJ keeps the coordinates.
 
 use crate::analysis::CurveCurvature;
+use crate::export::html::esc;
 use crate::export::plot::{plot_svg, signed, tick_label, ticks, Plot};
 use crate::geometry::point::{fit_line, Raster};
 use crate::geometry::{Evaluator, Shape, ShapeKind};
@@ -250,13 +251,6 @@ pub fn automaton_raster(ev: &Evaluator, level: u32, size: usize) -> Raster {
     }
 }
 
-/// Escapes text for HTML.
-fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-}
-
 /// One side's pseudo-curvature ranges along a curve: `(t, κinf, κsup)`.
 type RangeSeries<'a> = (&'a str, &'a str, Vec<(f64, f64, f64)>);
 
@@ -489,18 +483,36 @@ pub fn automaton_report_html(
     curves: &[(String, Result<CurveCurvature, String>)],
     source: &str,
 ) -> String {
-    let mut h = format!(
-        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>lacuna report: {}</title>\
-         <style>body{{font-family:sans-serif;max-width:1100px;margin:auto}}td,th{{padding:2px 8px;text-align:right}}\
-         pre{{background:#f6f6f6;padding:6px}} .pics svg{{border:1px solid #ccc;margin:4px}}</style></head><body>\n",
-        esc(&m.input)
+    // The layout of every report (crate::export::html::page_start): title, verdict, pictures,
+    // then the details.
+    let mut h = crate::export::html::page_start(&m.input);
+    h += &crate::export::html::verdict_line(
+        m.solver.consistent,
+        if m.solver.consistent {
+            "VERIFIED"
+        } else {
+            "NOT VERIFIED"
+        },
+        if m.solver.consistent {
+            "the constraints hold exactly and every infinite walk contracts"
+        } else {
+            "a constraint fails: see Solver"
+        },
     );
-    let _ = writeln!(h, "<h1>lacuna report: {}</h1>", esc(&m.input));
     let _ = writeln!(
         h,
         "<p>Automaton in space {}, drawn to level {}.</p>",
         m.space, m.level
     );
+    h += "<h2>Pictures</h2>\n<div class=\"pics\">\n";
+    for l in 0..=m.level {
+        let _ = writeln!(
+            h,
+            "<figure>{}<figcaption>level {l}</figcaption></figure>",
+            automaton_svg(ev.space, &ev.shapes(l), 320.0)
+        );
+    }
+    h += "</div>\n";
     let _ = writeln!(
         h,
         "<h2>Solver</h2><p>Field {}: {}.</p>",
@@ -587,15 +599,7 @@ pub fn automaton_report_html(
             l.level, l.pieces, l.length, l.area
         );
     }
-    h += "</table>\n<h2>Pictures</h2>\n<div class=\"pics\">\n";
-    for l in 0..=m.level {
-        let _ = writeln!(
-            h,
-            "<figure style=\"display:inline-block\">{}<figcaption>level {l}</figcaption></figure>",
-            automaton_svg(ev.space, &ev.shapes(l), 320.0)
-        );
-    }
-    h += "</div>\n<h2>Input</h2>\n<pre>";
+    h += "</table>\n<h2>Input</h2>\n<pre>";
     h += &esc(source);
     h += "</pre>\n</body></html>\n";
     h

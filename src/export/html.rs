@@ -15,7 +15,7 @@ use crate::measure::measurement::{LevelMeasure, MeasureReport};
 use std::fmt::Write as _;
 
 /// Escapes text for HTML.
-fn esc(s: &str) -> String {
+pub(crate) fn esc(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
@@ -55,22 +55,43 @@ fn solver_section(s: &crate::constraint::automaton::SolveReport, input: &str) ->
     h
 }
 
-/// The head of the page and its title.
+/// The head of a face's page and its title.
 fn page_head(v: &VerifyReport) -> String {
+    page_start(&v.input)
+}
+
+/// The start of every report page — faces, volumes and automata share one layout: the head with
+/// one style, the title `lacuna report: NAME` as the heading, then ([`verdict_line`]) the verdict,
+/// then the pictures, then the details.
+pub(crate) fn page_start(name: &str) -> String {
     format!(
         "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">\
          <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\"><title>lacuna report: {0}</title>\
          <style>body{{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;line-height:1.4}}\
          table{{border-collapse:collapse}}td,th{{border:1px solid #ccc;padding:2px 8px;text-align:right}}\
          .pics figure{{display:inline-block;margin:4px}}.pics figure>svg{{width:250px;height:250px;border:1px solid #eee}}\
-         pre{{background:#f6f6f6;padding:8px;overflow-x:auto}}\
+         pre{{background:#f6f6f6;padding:8px;white-space:pre-wrap;overflow-wrap:anywhere}}\
          ul.legend{{list-style:none;padding:0;margin:4px 0 0 4px;columns:2 300px}}\
          ul.legend li{{margin:2px 0}}.swatch{{display:inline-block;width:12px;height:12px;border:1px solid #333;margin-right:6px;vertical-align:-1px}}\
          .plots svg{{margin:4px;border:1px solid #ddd}}\
          details.particular{{margin:8px 0}}details .matrices{{max-height:24em;overflow:auto;font-size:90%;background:#f6f6f6;padding:8px}}\
          .note{{color:#555;font-size:92%}}\
          .ok{{color:#063}}.bad{{color:#a00}}</style></head><body><h1>lacuna report: {0}</h1>",
-        esc(&v.input)
+        esc(name)
+    )
+}
+
+/// The verdict line under a report's title: `Verdict: VERIFIED` (green) or the failure (red),
+/// with what it covers.
+pub(crate) fn verdict_line(ok: bool, verdict: &str, covers: &str) -> String {
+    format!(
+        "<p class=\"{}\"><b>Verdict: {}</b>{}</p>\n",
+        if ok { "ok" } else { "bad" },
+        esc(verdict),
+        match covers {
+            "" => String::new(),
+            c => format!(" ({})", esc(c)),
+        }
     )
 }
 

@@ -5,6 +5,7 @@
 //! All three draw the checked mesh ([`Part`]s in millimetres) in one orthographic view: looking
 //! down on the solid from the front right, so that three sides of a cube show.
 
+use crate::export::html::esc;
 use crate::export::palette::{type_colour, Rgb};
 use crate::mesh::Part;
 use std::fmt::Write as _;
@@ -377,23 +378,26 @@ pub fn volume_viewer(parts: &[Part]) -> String {
     )
 }
 
-fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-}
-
-/// The HTML report of a volume: what was checked (as text), the exact solid table, the SVG
-/// projection and the WebGL view.
-pub fn volume_report_html(title: &str, sections: &[(&str, String)], parts: &[Part]) -> String {
-    let mut body = String::new();
+/// The HTML report of a volume, in the layout of every report (`crate::export::html::page_start`):
+/// the title, the verdict (`ok`, its word, what it covers), the pictures — the WebGL view and the
+/// SVG projection — then what was checked (as text) and the exact solid table.
+pub fn volume_report_html(
+    name: &str,
+    verdict: (bool, &str, &str),
+    sections: &[(&str, String)],
+    parts: &[Part],
+) -> String {
+    let mut h = crate::export::html::page_start(name);
+    h += &crate::export::html::verdict_line(verdict.0, verdict.1, verdict.2);
+    let _ = write!(
+        h,
+        "<h2>Pictures</h2>\n<p>The solid (drag to rotate), and its projection.</p>\n{}\n{}\n",
+        volume_viewer(parts),
+        volume_svg(parts, 480)
+    );
     for (head, text) in sections {
-        let _ = write!(body, "<h2>{}</h2>\n<pre>{}</pre>\n", esc(head), esc(text));
+        let _ = write!(h, "<h2>{}</h2>\n<pre>{}</pre>\n", esc(head), esc(text));
     }
-    format!(
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>{t}</title>\n<style>body{{font-family:sans-serif;max-width:60em;margin:2em auto}}pre{{background:#f6f6f6;padding:.5em;overflow-x:auto}}</style>\n</head>\n<body>\n<h1>{t}</h1>\n{body}<h2>The solid</h2>\n<p>Drag to rotate.</p>\n{viewer}<h2>Projection</h2>\n{svg}</body>\n</html>\n",
-        t = esc(title),
-        viewer = volume_viewer(parts),
-        svg = volume_svg(parts, 480),
-    )
+    h += "</body></html>\n";
+    h
 }
