@@ -72,7 +72,7 @@ fn a_face_mesh_checks_with_its_claims() {
         &s(&claims),
     ]);
     assert_eq!(code, 0, "{out}{err}");
-    // render: "… 1 part(s), … Euler characteristic -24 (exact: 1 component(s), 13 hole(s))".
+    // render: "… 1 part, … Euler characteristic -24 (exact: 1 component, 13 holes)".
     let euler = number_after(&out, "Euler characteristic");
     let components = number_after(&out, "(exact:");
     let (code, v) = check_json(&[&s(&stl), "--claims", &s(&claims)]);
@@ -118,10 +118,10 @@ fn a_volume_mesh_checks_as_stl_and_3mf() {
         &s(&claims),
     ]);
     assert_eq!(code, 0, "{out}{err}");
-    // render: "… surface Euler characteristic -8 = 2χ …, 1 surface piece(s), genus 5".
+    // render: "… surface Euler characteristic -8 = 2χ …, 1 surface piece, genus 5".
     let euler = number_after(&out, "surface Euler characteristic");
-    let pieces = number_before(&out, "surface piece(s)");
-    let genus = number_after(&out, "surface piece(s), genus");
+    let pieces = number_before(&out, "surface piece");
+    let genus = number_after(&out, "surface piece, genus");
     for (file, format) in [(&stl, "stl-binary"), (&mf, "3mf")] {
         let (code, v) = check_json(&[&s(file), "--claims", &s(&claims)]);
         assert_eq!(code, 0, "{v:#}");

@@ -372,7 +372,7 @@ fn a_choice_that_flattens_a_level_one_cell_is_refused_before_drawing() {
     let (code, out, err) = lacuna(&["measure", digon, "--level", "1"]);
     assert_eq!(code, 0, "{err}");
     assert!(
-        out.contains("level-1 cells: 7 sub-face(s) and 2 lacuna(s) over all types, every control polygon of positive area"),
+        out.contains("level-1 cells: 7 sub-faces and 2 lacunas over all types, every control polygon of positive area"),
         "{out}"
     );
 }

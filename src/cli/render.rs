@@ -481,8 +481,8 @@ pub(super) fn write_type_parts(
         .map(|t| format!("{} ×{}", name(t.ty), t.cells))
         .collect();
     outputs.say(&format!(
-        "3MF parts: {} part(s), one per type, every cell a closed shell (checked against the exact count of its type): {}\n",
-        parts.len(),
+        "3MF parts: {}, one per type, every cell a closed shell (checked against the exact count of its type): {}\n",
+        lacuna::mesh::counted(parts.len(), "part", "parts"),
         summary.join(", ")
     ));
     write_threemf(outputs, p, |zip| {

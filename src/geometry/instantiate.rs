@@ -260,8 +260,11 @@ impl LevelOne {
     /// The line `render` and `measure` print.
     pub fn describe(&self) -> String {
         format!(
-            "level-1 cells: {} sub-face(s) and {} lacuna(s) over all types, every control polygon of positive area (exact, in each type's template)",
-            self.cells, self.lacunas
+            "level-1 cells: {} {} and {} {} over all types, every control polygon of positive area (exact, in each type's template)",
+            self.cells,
+            if self.cells == 1 { "sub-face" } else { "sub-faces" },
+            self.lacunas,
+            if self.lacunas == 1 { "lacuna" } else { "lacunas" }
         )
     }
 }

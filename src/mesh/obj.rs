@@ -9,10 +9,10 @@ use std::io::{self, Write};
 pub fn write<W: Write>(solid: &Solid, mut out: W) -> io::Result<()> {
     writeln!(
         out,
-        "# lacuna: {} level {}, millimetres, {} part(s), closed and outward-oriented",
+        "# lacuna: {} level {}, millimetres, {}, closed and outward-oriented",
         solid.name,
         solid.level,
-        solid.parts.len()
+        super::counted(solid.parts.len(), "part", "parts")
     )?;
     let mut base = 1usize;
     for (i, p) in solid.parts.iter().enumerate() {

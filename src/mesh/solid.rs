@@ -117,17 +117,17 @@ impl Solid {
         let v: usize = self.parts.iter().map(|p| p.vertices.len()).sum();
         let euler: Vec<String> = self.checks.iter().map(|c| c.euler.to_string()).collect();
         format!(
-            "mesh: {} level {}, {} cells, width {} mm, thickness {} mm: {} part(s), {v} vertices, {} triangles; closed oriented manifold, Euler characteristic {} (exact: {} component(s), {} hole(s))\n",
+            "mesh: {} level {}, {}, width {} mm, thickness {} mm: {}, {v} vertices, {} triangles; closed oriented manifold, Euler characteristic {} (exact: {}, {})\n",
             self.name,
             self.level,
-            self.cells,
+            super::counted(self.cells, "cell", "cells"),
             self.size.width,
             self.size.thickness,
-            self.parts.len(),
+            super::counted(self.parts.len(), "part", "parts"),
             self.triangle_count(),
             euler.join(", "),
-            self.expected.components,
-            self.expected.holes
+            super::counted(self.expected.components, "component", "components"),
+            super::counted(&self.expected.holes, "hole", "holes")
         )
     }
 }

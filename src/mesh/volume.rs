@@ -410,14 +410,18 @@ fn solid_with(
     if let Some(b0) = exact.components {
         if parts.len() as u64 != b0 {
             return Err(check(format!(
-                "{} part(s), the exact topology has {b0} component(s)",
-                parts.len()
+                "{}, the exact topology has {}",
+                super::counted(parts.len(), "part", "parts"),
+                super::counted(b0, "component", "components")
             )));
         }
         if let Some(b2) = exact.voids {
             if surfaces as u64 != b0 + b2 {
                 return Err(check(format!(
-                    "{surfaces} surface piece(s), the exact topology has {b0} component(s) and {b2} void(s)"
+                    "{}, the exact topology has {} and {}",
+                    super::counted(surfaces, "surface piece", "surface pieces"),
+                    super::counted(b0, "component", "components"),
+                    super::counted(b2, "void", "voids")
                 )));
             }
         }
@@ -566,16 +570,16 @@ impl VolumeSolid {
         };
         let v: usize = self.solid.parts.iter().map(|p| p.vertices.len()).sum();
         format!(
-            "mesh: {} level {}, {} volumes, width {} mm: {} part(s), {v} vertices, {} triangles; closed oriented manifold, surface Euler characteristic {} = 2χ (exact χ = {}), {} surface piece(s), genus {}; {crossing}\n",
+            "mesh: {} level {}, {}, width {} mm: {}, {v} vertices, {} triangles; closed oriented manifold, surface Euler characteristic {} = 2χ (exact χ = {}), {}, genus {}; {crossing}\n",
             self.solid.name,
             self.solid.level,
-            self.solid.cells,
+            super::counted(self.solid.cells, "volume", "volumes"),
             self.solid.size.width,
-            self.solid.parts.len(),
+            super::counted(self.solid.parts.len(), "part", "parts"),
             self.solid.triangle_count(),
             self.euler,
             self.exact.euler,
-            self.surfaces,
+            super::counted(self.surfaces, "surface piece", "surface pieces"),
             self.genus,
         )
     }
