@@ -345,11 +345,51 @@ fn contacts(
     levels: u64,
     max_pieces: usize,
 ) -> Result<(Vec<Contacts>, Option<String>)> {
-    let a = &model.automaton;
-    let k = &model.field;
     let fixed = fixed_corners(model, resolved, subs);
+    let dim0 = model.automaton.states[model.start].dim;
+    per_level(
+        model,
+        resolved,
+        subs,
+        levels,
+        max_pieces,
+        "contacts",
+        |pieces| {
+            let mut at: HashMap<Vec<FieldElement>, Vec<usize>> = HashMap::new();
+            for (w, (m, s)) in pieces.iter().enumerate() {
+                for &j in &fixed[*s] {
+                    let col: Vec<FieldElement> = (0..dim0).map(|r| m.get(r, j).clone()).collect();
+                    let meeting = at.entry(col).or_default();
+                    if !meeting.contains(&w) {
+                        meeting.push(w);
+                    }
+                }
+            }
+            let mut hist: BTreeMap<usize, u64> = BTreeMap::new();
+            for p in at.values() {
+                *hist.entry(p.len()).or_default() += 1;
+            }
+            (hist, at.len())
+        },
+    )
+}
+
+/// The pieces of the start state level by level, from 1 to `levels`, each level measured by
+/// `measure`; levels whose pieces number more than `max_pieces` are not enumerated (the note
+/// says so, naming `what` was not).
+fn per_level(
+    model: &AutomatonModel,
+    resolved: &Resolved,
+    subs: &[usize],
+    levels: u64,
+    max_pieces: usize,
+    what: &str,
+    mut measure: impl FnMut(&[(KMatrix, usize)]) -> Contacts,
+) -> Result<(Vec<Contacts>, Option<String>)> {
+    let a = &model.automaton;
     let dim0 = a.states[model.start].dim;
-    let mut pieces: Vec<(KMatrix, usize)> = vec![(KMatrix::identity(k, dim0), model.start)];
+    let mut pieces: Vec<(KMatrix, usize)> =
+        vec![(KMatrix::identity(&model.field, dim0), model.start)];
     let mut out = Vec::new();
     for level in 1..=levels {
         let count: usize = pieces
@@ -358,26 +398,12 @@ fn contacts(
             .sum();
         if count > max_pieces {
             let note = format!(
-                "automaton contacts not enumerated from level {level}: {count} pieces, above {max_pieces}"
+                "automaton {what} not enumerated from level {level}: {count} pieces, above {max_pieces}"
             );
             return Ok((out, Some(note)));
         }
         pieces = step(model, resolved, subs, &pieces)?;
-        let mut at: HashMap<Vec<FieldElement>, Vec<usize>> = HashMap::new();
-        for (w, (m, s)) in pieces.iter().enumerate() {
-            for &j in &fixed[*s] {
-                let col: Vec<FieldElement> = (0..dim0).map(|r| m.get(r, j).clone()).collect();
-                let meeting = at.entry(col).or_default();
-                if !meeting.contains(&w) {
-                    meeting.push(w);
-                }
-            }
-        }
-        let mut hist: BTreeMap<usize, u64> = BTreeMap::new();
-        for p in at.values() {
-            *hist.entry(p.len()).or_default() += 1;
-        }
-        out.push((hist, at.len()));
+        out.push(measure(&pieces));
     }
     Ok((out, None))
 }
@@ -418,34 +444,25 @@ fn coincidences(
     levels: u64,
     max_pieces: usize,
 ) -> Result<(Vec<Contacts>, Option<String>)> {
-    let a = &model.automaton;
-    let dim0 = a.states[model.start].dim;
-    let mut pieces: Vec<(KMatrix, usize)> =
-        vec![(KMatrix::identity(&model.field, dim0), model.start)];
-    let mut out = Vec::new();
-    for level in 1..=levels {
-        let count: usize = pieces
-            .iter()
-            .map(|(_, s)| subs.iter().filter(|&&o| a.operators[o].to == *s).count())
-            .sum();
-        if count > max_pieces {
-            let note = format!(
-                "automaton coincidences not enumerated from level {level}: {count} pieces, above {max_pieces}"
-            );
-            return Ok((out, Some(note)));
-        }
-        pieces = step(model, resolved, subs, &pieces)?;
-        let mut maps: HashMap<(usize, &[FieldElement]), u64> = HashMap::new();
-        for (m, s) in &pieces {
-            *maps.entry((*s, m.data.as_slice())).or_default() += 1;
-        }
-        let mut hist: BTreeMap<usize, u64> = BTreeMap::new();
-        for &n in maps.values() {
-            *hist.entry(n as usize).or_default() += 1;
-        }
-        out.push((hist, maps.len()));
-    }
-    Ok((out, None))
+    per_level(
+        model,
+        resolved,
+        subs,
+        levels,
+        max_pieces,
+        "coincidences",
+        |pieces| {
+            let mut maps: HashMap<(usize, &[FieldElement]), u64> = HashMap::new();
+            for (m, s) in pieces {
+                *maps.entry((*s, m.data.as_slice())).or_default() += 1;
+            }
+            let mut hist: BTreeMap<usize, u64> = BTreeMap::new();
+            for &n in maps.values() {
+                *hist.entry(n as usize).or_default() += 1;
+            }
+            (hist, maps.len())
+        },
+    )
 }
 
 /// For each state, its corners that one of its own sub-operators fixes (column j is e_j).

@@ -117,6 +117,11 @@ pub fn density_colour(d: f64) -> Rgb {
 
 /// CIE L* (lightness, 0–100) of an sRGB colour.
 pub fn lightness(c: Rgb) -> f64 {
+    lab(c)[0]
+}
+
+/// CIE L*a*b* (D65 white) of an sRGB colour.
+pub fn lab(c: Rgb) -> [f64; 3] {
     let lin = |v: u8| {
         let v = f64::from(v) / 255.0;
         if v <= 0.04045 {
@@ -125,12 +130,19 @@ pub fn lightness(c: Rgb) -> f64 {
             ((v + 0.055) / 1.055).powf(2.4)
         }
     };
-    let y = 0.2126 * lin(c[0]) + 0.7152 * lin(c[1]) + 0.0722 * lin(c[2]);
-    if y > 216.0 / 24389.0 {
-        116.0 * y.cbrt() - 16.0
-    } else {
-        y * 24389.0 / 27.0
-    }
+    let [r, g, b] = c.map(lin);
+    let x = (0.4124 * r + 0.3576 * g + 0.1805 * b) / 0.95047;
+    let y = 0.2126 * r + 0.7152 * g + 0.0722 * b;
+    let z = (0.0193 * r + 0.1192 * g + 0.9505 * b) / 1.08883;
+    let f = |t: f64| {
+        if t > 216.0 / 24389.0 {
+            t.cbrt()
+        } else {
+            (24389.0 / 27.0 * t + 16.0) / 116.0
+        }
+    };
+    let (fx, fy, fz) = (f(x), f(y), f(z));
+    [116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)]
 }
 
 #[cfg(test)]
@@ -155,31 +167,6 @@ mod tests {
         }
     }
 
-    /// CIE L*a*b* (D65) of an sRGB colour, written out here from the standard's formulas.
-    fn lab(c: Rgb) -> [f64; 3] {
-        let lin = |v: u8| {
-            let v = f64::from(v) / 255.0;
-            if v <= 0.04045 {
-                v / 12.92
-            } else {
-                ((v + 0.055) / 1.055).powf(2.4)
-            }
-        };
-        let [r, g, b] = c.map(lin);
-        let x = (0.4124 * r + 0.3576 * g + 0.1805 * b) / 0.95047;
-        let y = 0.2126 * r + 0.7152 * g + 0.0722 * b;
-        let z = (0.0193 * r + 0.1192 * g + 0.9505 * b) / 1.08883;
-        let f = |t: f64| {
-            if t > 216.0 / 24389.0 {
-                t.cbrt()
-            } else {
-                (24389.0 / 27.0 * t + 16.0) / 116.0
-            }
-        };
-        let (fx, fy, fz) = (f(x), f(y), f(z));
-        [116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)]
-    }
-
     #[test]
     fn the_first_24_type_colours_are_pairwise_distinct() {
         // Issue #32: types 0 and 9, 3 and 12, 5 and 14 were one hue in two shades. Now every
@@ -200,7 +187,10 @@ mod tests {
         assert_eq!(DISTINCT_TYPES, 24);
         let (first, again) = (type_colour(0), type_colour(24));
         assert!((0..3).all(|k| again[k] < first[k]), "{}", hex(again));
-        assert!((lightness(type_colour(3)) - lab(type_colour(3))[0]).abs() < 1e-9);
+        // White is L* 100, a* = b* = 0 (to the 4-digit matrix), black L* 0: the formulas' ends.
+        let w = lab([255, 255, 255]);
+        assert!((w[0] - 100.0).abs() < 0.01 && w[1].abs() < 0.05 && w[2].abs() < 0.05);
+        assert!(lightness([0, 0, 0]).abs() < 1e-9);
     }
 
     #[test]
