@@ -277,14 +277,7 @@ pub fn automaton_invariants(
         }
         v = next;
     }
-    let (per_level, cut) = match how {
-        AutomatonMultiplicity::Contacts => {
-            contacts(model, resolved, &subs, levels, MAX_CONTACT_PIECES)?
-        }
-        AutomatonMultiplicity::Coincidences => {
-            coincidences(model, resolved, &subs, levels, MAX_CONTACT_PIECES)?
-        }
-    };
+    let (per_level, cut) = multiplicities(model, resolved, &subs, levels, MAX_CONTACT_PIECES, how)?;
     let (total, each, what) = match how {
         AutomatonMultiplicity::Contacts => (
             "fixed-corner images",
@@ -332,46 +325,64 @@ type Contacts = (BTreeMap<usize, u64>, usize);
 /// The pieces of one level an automaton's contacts are enumerated for, at most.
 pub const MAX_CONTACT_PIECES: usize = 4096;
 
-/// The contacts of an automaton's start state at levels 1 to `levels`: for each level, for each
-/// number m of pieces, how many points have exactly m pieces meeting there, and the number of
-/// points looked at. A piece of level k is a word `o_1 … o_k` of sub-operators chained from the
-/// start state, with the exact map `M_{o_1} ⋯ M_{o_k}`; its points are the images of the corners
-/// of its last state that one of that state's own sub-operators fixes (points of the attractor).
+/// The multiplicity of an automaton's start state at levels 1 to `levels`, read as `how` says.
+///
+/// A piece of level k is a word `o_1 … o_k` of sub-operators chained from the start state, with
+/// the exact map `M_{o_1} ⋯ M_{o_k}`. For each level, for each number m, how many:
+/// - `Contacts`: points have exactly m pieces meeting there (a piece's points are the images of
+///   the corners of its last state that one of that state's own sub-operators fixes: points of
+///   the attractor), and the number of points looked at;
+/// - `Coincidences` (seed 002, eq. (18)): distinct exact maps (with their state) exactly m pieces
+///   of the level are, and the number of distinct maps — two pieces with one map are the same
+///   points of the attractor at every depth, the paper's point "defined L times" by its curve.
+///
 /// Levels whose pieces number more than `max_pieces` are not enumerated (the note says so).
-fn contacts(
+fn multiplicities(
     model: &AutomatonModel,
     resolved: &Resolved,
     subs: &[usize],
     levels: u64,
     max_pieces: usize,
+    how: AutomatonMultiplicity,
 ) -> Result<(Vec<Contacts>, Option<String>)> {
-    let fixed = fixed_corners(model, resolved, subs);
-    let dim0 = model.automaton.states[model.start].dim;
-    per_level(
-        model,
-        resolved,
-        subs,
-        levels,
-        max_pieces,
-        "contacts",
-        |pieces| {
-            let mut at: HashMap<Vec<FieldElement>, Vec<usize>> = HashMap::new();
-            for (w, (m, s)) in pieces.iter().enumerate() {
-                for &j in &fixed[*s] {
-                    let col: Vec<FieldElement> = (0..dim0).map(|r| m.get(r, j).clone()).collect();
-                    let meeting = at.entry(col).or_default();
-                    if !meeting.contains(&w) {
-                        meeting.push(w);
+    let limits = (levels, max_pieces);
+    match how {
+        AutomatonMultiplicity::Contacts => {
+            let fixed = fixed_corners(model, resolved, subs);
+            let dim0 = model.automaton.states[model.start].dim;
+            per_level(model, resolved, subs, limits, "contacts", |pieces| {
+                let mut at: HashMap<Vec<FieldElement>, Vec<usize>> = HashMap::new();
+                for (w, (m, s)) in pieces.iter().enumerate() {
+                    for &j in &fixed[*s] {
+                        let col: Vec<FieldElement> =
+                            (0..dim0).map(|r| m.get(r, j).clone()).collect();
+                        let meeting = at.entry(col).or_default();
+                        if !meeting.contains(&w) {
+                            meeting.push(w);
+                        }
                     }
                 }
-            }
-            let mut hist: BTreeMap<usize, u64> = BTreeMap::new();
-            for p in at.values() {
-                *hist.entry(p.len()).or_default() += 1;
-            }
-            (hist, at.len())
-        },
-    )
+                let mut hist: BTreeMap<usize, u64> = BTreeMap::new();
+                for p in at.values() {
+                    *hist.entry(p.len()).or_default() += 1;
+                }
+                (hist, at.len())
+            })
+        }
+        AutomatonMultiplicity::Coincidences => {
+            per_level(model, resolved, subs, limits, "coincidences", |pieces| {
+                let mut maps: HashMap<(usize, &[FieldElement]), u64> = HashMap::new();
+                for (m, s) in pieces {
+                    *maps.entry((*s, m.data.as_slice())).or_default() += 1;
+                }
+                let mut hist: BTreeMap<usize, u64> = BTreeMap::new();
+                for &n in maps.values() {
+                    *hist.entry(n as usize).or_default() += 1;
+                }
+                (hist, maps.len())
+            })
+        }
+    }
 }
 
 /// The pieces of the start state level by level, from 1 to `levels`, each level measured by
@@ -381,8 +392,7 @@ fn per_level(
     model: &AutomatonModel,
     resolved: &Resolved,
     subs: &[usize],
-    levels: u64,
-    max_pieces: usize,
+    (levels, max_pieces): (u64, usize),
     what: &str,
     mut measure: impl FnMut(&[(KMatrix, usize)]) -> Contacts,
 ) -> Result<(Vec<Contacts>, Option<String>)> {
@@ -430,39 +440,6 @@ fn step(
         }
     }
     Ok(next)
-}
-
-/// Seed 002's multiplicity (eq. (18)) at levels 1 to `levels`: for each level, for each number
-/// m, how many distinct exact maps (with their state) exactly m pieces of the level are, and the
-/// number of distinct maps. Two pieces with one map are the same points of the attractor at
-/// every depth — the paper's point "defined L times" by its curve. Levels whose pieces number
-/// more than `max_pieces` are not enumerated (the note says so).
-fn coincidences(
-    model: &AutomatonModel,
-    resolved: &Resolved,
-    subs: &[usize],
-    levels: u64,
-    max_pieces: usize,
-) -> Result<(Vec<Contacts>, Option<String>)> {
-    per_level(
-        model,
-        resolved,
-        subs,
-        levels,
-        max_pieces,
-        "coincidences",
-        |pieces| {
-            let mut maps: HashMap<(usize, &[FieldElement]), u64> = HashMap::new();
-            for (m, s) in pieces {
-                *maps.entry((*s, m.data.as_slice())).or_default() += 1;
-            }
-            let mut hist: BTreeMap<usize, u64> = BTreeMap::new();
-            for &n in maps.values() {
-                *hist.entry(n as usize).or_default() += 1;
-            }
-            (hist, maps.len())
-        },
-    )
 }
 
 /// For each state, its corners that one of its own sub-operators fixes (column j is e_j).
@@ -929,7 +906,15 @@ mod tests {
         let subs: Vec<usize> = (0..model.automaton.operators.len())
             .filter(|&o| model.automaton.operators[o].kind == OpKind::Sub)
             .collect();
-        let (levels, note) = contacts(&model, &resolved, &subs, 3, 5).unwrap();
+        let (levels, note) = multiplicities(
+            &model,
+            &resolved,
+            &subs,
+            3,
+            5,
+            AutomatonMultiplicity::Contacts,
+        )
+        .unwrap();
         assert_eq!(levels.len(), 1);
         assert_eq!(levels[0].1, 6);
         assert!(note.unwrap().contains("from level 2: 9 pieces"));
