@@ -72,6 +72,10 @@ fn verify_a_volume_in_notation() {
     let (code, out, err) = lacuna(&["verify", "octahedron B2 | B2 B2 B2 | A1 | B2 B2 | V2"]);
     assert_eq!(code, 0, "{err}");
     assert!(
+        out.starts_with("lacuna verify: "),
+        "the heading names the command: {out}"
+    );
+    assert!(
         out.contains("every sub-volume's boundary is a sphere"),
         "{out}"
     );

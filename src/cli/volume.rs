@@ -173,7 +173,9 @@ pub(super) fn verify(
             "solid_certified_levels": certified,
         }));
     } else {
-        let mut t = lacuna::export::volume_closure_text(name, &VolumeClosure::Closed(set));
+        // The closure's text, under the heading of the command that prints it.
+        let mut t = lacuna::export::volume_closure_text(name, &VolumeClosure::Closed(set))
+            .replacen("lacuna closure: ", "lacuna verify: ", 1);
         t += &format!(
             "\nstructure: every sub-volume's boundary is a sphere{}\n\ncounts\n",
             if verified { "" } else { ": FAILED" }
