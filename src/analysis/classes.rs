@@ -362,11 +362,7 @@ fn multiplicities(
                         }
                     }
                 }
-                let mut hist: BTreeMap<usize, u64> = BTreeMap::new();
-                for p in at.values() {
-                    *hist.entry(p.len()).or_default() += 1;
-                }
-                (hist, at.len())
+                (histogram(at.values().map(Vec::len)), at.len())
             })
         }
         AutomatonMultiplicity::Coincidences => {
@@ -375,14 +371,19 @@ fn multiplicities(
                 for (m, s) in pieces {
                     *maps.entry((*s, m.data.as_slice())).or_default() += 1;
                 }
-                let mut hist: BTreeMap<usize, u64> = BTreeMap::new();
-                for &n in maps.values() {
-                    *hist.entry(n as usize).or_default() += 1;
-                }
-                (hist, maps.len())
+                (histogram(maps.values().map(|&n| n as usize)), maps.len())
             })
         }
     }
+}
+
+/// For each size m, how many of `sizes` are m.
+fn histogram(sizes: impl Iterator<Item = usize>) -> BTreeMap<usize, u64> {
+    let mut hist = BTreeMap::new();
+    for m in sizes {
+        *hist.entry(m).or_default() += 1;
+    }
+    hist
 }
 
 /// The pieces of the start state level by level, from 1 to `levels`, each level measured by

@@ -182,10 +182,13 @@ fn write_meshes(p: &Prepared, level: u32, m: &MeshOut, outputs: &mut Outputs) ->
             layers: &layers,
         };
         let below = figures.below();
-        outputs.printability = Some(lacuna::mesh::printability::PrintReport::of_solid(
-            &built.solid.parts,
-            figures,
-        ));
+        // The overhang and the largest bridge are measured for the JSON object only.
+        if outputs.json {
+            outputs.printability = Some(lacuna::mesh::printability::PrintReport::of_solid(
+                &built.solid.parts,
+                figures,
+            ));
+        }
         for why in below {
             match strict {
                 true => return Err(mesh_error(lacuna::mesh::MeshError::Resolution(why))),

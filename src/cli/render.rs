@@ -240,9 +240,11 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             .map_err(mesh_error)?;
         outputs.say(&pr.text());
         pr.enforce(print.strict).map_err(mesh_error)?;
-        outputs.printability = Some(lacuna::mesh::printability::PrintReport::of_plate(
-            &pr, print.bed,
-        ));
+        if outputs.json {
+            outputs.printability = Some(lacuna::mesh::printability::PrintReport::of_plate(
+                &pr, print.bed,
+            ));
+        }
         let type_name = |k: usize| format!("T{k} {}", inst.types.types[k].face);
         let (mut solid, colours) = match style {
             lacuna::mesh::threemf::Style::Colours => {

@@ -15,7 +15,7 @@ pub(super) fn closure(
     if json {
         print_json(&lacuna::export::volume_closure_json(name, &c));
     } else {
-        out(&lacuna::export::volume_closure_text(name, &c));
+        out(&lacuna::export::volume_closure_text("closure", name, &c));
     }
     Ok(match c {
         VolumeClosure::Closed(_) => ExitCode::SUCCESS,
@@ -173,9 +173,8 @@ pub(super) fn verify(
             "solid_certified_levels": certified,
         }));
     } else {
-        // The closure's text, under the heading of the command that prints it.
-        let mut t = lacuna::export::volume_closure_text(name, &VolumeClosure::Closed(set))
-            .replacen("lacuna closure: ", "lacuna verify: ", 1);
+        let mut t =
+            lacuna::export::volume_closure_text("verify", name, &VolumeClosure::Closed(set));
         t += &format!(
             "\nstructure: every sub-volume's boundary is a sphere{}\n\ncounts\n",
             if verified { "" } else { ": FAILED" }
@@ -336,8 +335,11 @@ pub(super) fn render(
     let mut failed = false;
     if t.mesh.any() {
         vs.embedded()?;
-        outputs.printability =
-            Some(sizes.report(&vs.solid.parts, geo.level, print.resolution, print.bed));
+        // The overhang and the largest bridge are measured for the JSON object only.
+        if outputs.json {
+            outputs.printability =
+                Some(sizes.report(&vs.solid.parts, geo.level, print.resolution, print.bed));
+        }
         if print.strict {
             if let Some(b) = sizes.below(print.resolution).first() {
                 return Err(mesh_error(lacuna::mesh::MeshError::Resolution(b.clone())));
@@ -501,7 +503,7 @@ pub(super) fn report(
     limits: &Limits,
 ) -> Result<ExitCode, Error> {
     let c = VolumeClosure::of(&v.assembly.volumes, limits)?;
-    let closure_text = lacuna::export::volume_closure_text(name, &c);
+    let closure_text = lacuna::export::volume_closure_text("closure", name, &c);
     let VolumeClosure::Closed(set) = c else {
         return Err(Error::Usage(format!(
             "the volume's closure did not close (see `lacuna closure {name}`)"

@@ -66,10 +66,11 @@ pub fn surface_summary(v: &Volume) -> String {
         .join(" + ")
 }
 
-/// `lacuna closure` of a volume.
-pub fn volume_closure_text(name: &str, closure: &VolumeClosure) -> String {
+/// The closure of a volume as text, headed `lacuna COMMAND: NAME` (`closure`, or `verify`,
+/// which prints it first).
+pub fn volume_closure_text(command: &str, name: &str, closure: &VolumeClosure) -> String {
     let mut o = String::new();
-    let _ = writeln!(o, "lacuna closure: {name}\n");
+    let _ = writeln!(o, "lacuna {command}: {name}\n");
     match closure {
         VolumeClosure::Runaway(r) => {
             let _ = writeln!(o, "closure: RUNAWAY — {}", r.reason);
