@@ -42,14 +42,16 @@ fn timed<T>(f: impl FnOnce() -> T) -> (T, Duration) {
     (out, took)
 }
 
-/// Runs the checker and asserts it answered in well under a second of CPU, in a debug build
-/// (each of these takes 0.2 s or less; the cases they come from took 40 s to 140 s before).
+/// A guard against the checker running away, not a measure of its speed (speed is measured in
+/// `benches/`): the cases these tests come from took 40 s to 140 s of CPU before they were
+/// bounded, and each takes under half a second now in a debug build, so a bound ten times that
+/// fails on a regression and never on a loaded machine.
+const RUNAWAY: Duration = Duration::from_secs(5);
+
+/// Runs the checker and asserts it answered within [`RUNAWAY`] of CPU time.
 fn quick(what: &str, cert: &Certificate) -> CheckReport {
     let (report, took) = timed(|| check(cert));
-    assert!(
-        took < Duration::from_millis(500),
-        "{what}: the checker took {took:?}"
-    );
+    assert!(took < RUNAWAY, "{what}: the checker took {took:?}");
     report
 }
 
@@ -373,7 +375,7 @@ fn a_correct_1500_digit_decimal_is_accepted() {
     r.digits = k as usize;
     r.points[0].decimal = decimal.clone();
     let ((), took) = timed(|| assert_proved("1500 digits", &cert));
-    assert!(took < Duration::from_secs(1), "{took:?}");
+    assert!(took < RUNAWAY, "{took:?}");
     // One unit more in the last place is not a truncation.
     let last = last_digit_changed(&decimal);
     assert_rejected(

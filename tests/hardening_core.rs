@@ -17,8 +17,12 @@ fn timed(args: &[&str]) -> (i32, String, String, Duration) {
     (code, out, err, t.elapsed())
 }
 
-/// A refusal before the work: far below the old minutes, with room for a loaded test machine.
-const BEFORE_THE_WORK: Duration = Duration::from_secs(3);
+/// A refusal before the work: far below the old minutes, with room for a loaded test machine
+/// (a guard against running away, not a speed measurement: speed is measured in `benches/`).
+const BEFORE_THE_WORK: Duration = Duration::from_secs(10);
+
+/// Work that used to run for minutes and now takes a second or two of a debug build.
+const IN_SECONDS: Duration = Duration::from_secs(30);
 
 /// A file in the test's scratch folder.
 fn scratch(name: &str, text: &str) -> String {
@@ -254,7 +258,7 @@ fn hardening_11_counts_default_level_limit() {
     let max = lacuna::topology::Limits::default().max_level;
     let (code, out, err, t) = timed(&["counts", "F0", "--levels", &max.to_string(), "--json"]);
     assert_eq!(code, 0, "{err}");
-    assert!(t < Duration::from_secs(10), "{t:?}");
+    assert!(t < IN_SECONDS, "{t:?}");
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     let last = &v["levels"][max as usize];
     let six = num_bigint::BigUint::from(6u32).pow(max as u32);
@@ -272,7 +276,7 @@ fn hardening_11_ratio_digits_default_limit_in_seconds() {
     let d = 3000;
     let (code, out, err, t) = timed(&["ratio", "cycle-sqrt17", "--digits", &d.to_string()]);
     assert_eq!(code, 0, "{err}");
-    assert!(t < Duration::from_secs(10), "{t:?}");
+    assert!(t < IN_SECONDS, "{t:?}");
     let ten = num_bigint::BigUint::from(10u32).pow(d as u32);
     let s = (num_bigint::BigUint::from(17u32) * &ten * &ten).sqrt();
     let floor = (s - num_bigint::BigUint::from(3u32) * &ten) / 4u32;

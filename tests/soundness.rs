@@ -424,5 +424,6 @@ fn a_small_volume_certificate_of_long_edges_is_refused_before_its_surface_is_bui
         "{}",
         report.to_text()
     );
-    assert!(start.elapsed() < std::time::Duration::from_secs(2));
+    // A guard against a runaway (the refusal comes before the work), not a speed measurement.
+    assert!(start.elapsed() < std::time::Duration::from_secs(20));
 }
