@@ -90,13 +90,21 @@ pub(super) fn parameter_choice(
     Ok(())
 }
 
-/// How the parameters were chosen, when a template or goals were given (else nothing).
+/// How the parameters were chosen, when a template or goals were given or the automatic area
+/// goal moved a degenerate fit (else nothing).
 pub(super) fn choice_text(geo: &GeoArgs, inst: &lacuna::geometry::Instance) -> String {
-    if geo.template.is_none() && geo.goals.is_empty() {
+    let c = &inst.choice;
+    if geo.template.is_none() && geo.goals.is_empty() && c.lifted.is_none() {
         return String::new();
     }
-    let c = &inst.choice;
     let mut s = format!("parameters: {}\n", c.method);
+    if let Some(cell) = &c.lifted {
+        s += &format!(
+            "the fit made {cell} degenerate; the automatic area goal moved it (every level-1 cell \
+             at least 1/64 of its type's template area shared among the type's cells, met by \
+             linearisation and an LP, checked exactly)\n"
+        );
+    }
     if let (Some(r), Some(a)) = (&c.residual, c.residual_approx) {
         s += &format!("template residual Σ|P·c − y|² = {r} (≈ {a:.6e})\n");
         for (t, m) in c.per_type_max.iter().enumerate() {

@@ -445,6 +445,9 @@ pub struct Choice {
     pub min_slack: Option<String>,
     /// Whether the goals moved the parameters (false: the fit met them as it was).
     pub moved_by_goals: bool,
+    /// When the fitted point made a level-1 cell degenerate and the automatic area goal moved
+    /// it: the cell that had collapsed and its exact signed area at the fitted point.
+    pub lifted: Option<String>,
     /// Root-mean-square distance of the level-1 control points to the floating-point template.
     pub rms: f64,
 }
@@ -457,6 +460,10 @@ pub(crate) struct Context<'a> {
     pub(crate) param: &'a Parametrization,
     pub(crate) fixed: &'a [Option<Q>],
     pub(crate) q: usize,
+    /// Move a fitted point that makes a level-1 cell degenerate (not forced by the constraints)
+    /// with the automatic area goal (`crate::geometry::level_one`); false for a caller that
+    /// reports degenerate frames as findings (a morph).
+    pub(crate) lift: bool,
 }
 
 /// Chooses the parameters (module documentation, and `crate::geometry::lp` for goals).
@@ -522,16 +529,27 @@ pub(crate) fn choose(
         }
     };
     let count = cx.lin.system.unknowns;
+    let a = &cx.generated.automaton;
+    let mut weights: Vec<(usize, String)> = cols
+        .iter()
+        .flat_map(|c| c.unknowns.iter())
+        .map(|&u| (u, a.entry_name(cx.lin.unknown_entries[u])))
+        .collect();
+    weights.sort_by_key(|w| w.0);
+    weights.dedup_by_key(|w| w.0);
+    let objective: Vec<usize> = weights.iter().map(|w| w.0).collect();
+    let goal_error = |code: &'static str, message: String| {
+        crate::geometry::options::GeometryError::Goal { code, message }
+    };
+    let goal_failure = |e: GoalFailure| match e {
+        GoalFailure::Infeasible(m) => goal_error("E1031", m),
+        GoalFailure::Snap(m) => goal_error("E1032", m),
+        GoalFailure::Solver(m) => goal_error("E1033", format!("the LP solver failed: {m}")),
+        GoalFailure::Unmet(m) => goal_error("E1031", m),
+    };
+    let mut ineqs = Vec::new();
     if !opt.goals.is_empty() {
         let ex = exact.as_ref().expect("an exact template under goals");
-        let a = &cx.generated.automaton;
-        let mut weights: Vec<(usize, String)> = cols
-            .iter()
-            .flat_map(|c| c.unknowns.iter())
-            .map(|&u| (u, a.entry_name(cx.lin.unknown_entries[u])))
-            .collect();
-        weights.sort_by_key(|w| w.0);
-        weights.dedup_by_key(|w| w.0);
         let mut vertices = Vec::new();
         for (c, ec) in cols.iter().zip(&exact_cols) {
             let ty = &types.types[c.ty];
@@ -560,29 +578,102 @@ pub(crate) fn choose(
             }
         }
         let constant = |u: usize| cx.param.expression(u).1.is_empty();
-        let ineqs = inequalities(&opt.goals, &weights, &constant, &vertices, opt.bits);
-        let objective: Vec<usize> = weights.iter().map(|w| w.0).collect();
+        ineqs = inequalities(&opt.goals, &weights, &constant, &vertices, opt.bits);
         let met = meet_goals(
             cx.param, cx.fixed, &t, &objective, &ineqs, &opt.goals, opt.bits,
-        );
-        let goal_error = |code: &'static str, message: String| {
-            crate::geometry::options::GeometryError::Goal { code, message }
-        };
-        t = match met {
-            Ok(met) => {
-                choice.moved_by_goals = met != t;
-                met
-            }
-            Err(GoalFailure::Infeasible(m)) => return Err(goal_error("E1031", m)),
-            Err(GoalFailure::Snap(m)) => return Err(goal_error("E1032", m)),
-            Err(GoalFailure::Solver(m)) => {
-                return Err(goal_error("E1033", format!("the LP solver failed: {m}")))
-            }
-        };
+        )
+        .map_err(goal_failure)?;
+        choice.moved_by_goals = met != t;
+        t = met;
         let x = unknowns_at(cx.param, count, &t);
         choice.min_slack = crate::geometry::lp::min_slack(&ineqs, &x).map(|s| s.to_string());
         choice.goals = opt.goals.iter().map(|g| g.to_string()).collect();
         choice.method += " + LP goals";
+    }
+    // The automatic area goal, when the point chosen so far makes a level-1 cell flat that the
+    // constraints do not force flat (`crate::geometry::level_one`).
+    if cx.lift {
+        use crate::geometry::level_one as l1;
+        let cells = l1::cells(types, cx.generated, cx.lin);
+        let frames = l1::frames(types, cx.q, opt);
+        let x = unknowns_at(cx.param, count, &t);
+        // A positive check, or a collapse the constraints force (reported by the caller's own
+        // check with its witness), is left as it is.
+        if let Err(crate::geometry::options::GeometryError::Degenerate {
+            forced: false,
+            cell,
+            area,
+            ..
+        }) = l1::check(&cells, &frames, &x)
+        {
+            let margins = l1::automatic_margins(&cells, &frames);
+            // The area goal's index, for messages: after the user's goals (the linear
+            // inequalities keep their indices).
+            let mut goals = opt.goals.clone();
+            goals.push(crate::geometry::lp::Goal::MinArea);
+            let lx = l1::Lift {
+                param: cx.param,
+                fixed: cx.fixed,
+                unknowns: count,
+                cells: &cells,
+                frames: &frames,
+                objective: &objective,
+                bits: opt.bits,
+            };
+            // At a cell shrunk to a point the area is stationary (its tangent plane is flat):
+            // linearisation cannot start there. When the template or goals moved the point
+            // away from the default fit and the default fit is not flat, start instead from the
+            // first point on the segment towards it (a solution too: the space is affine) where
+            // every cell has area, nearest the chosen point first.
+            let start = match opt.template.is_some() || !opt.goals.is_empty() {
+                true => {
+                    let fit = fit_float(
+                        cx.param,
+                        cx.fixed,
+                        &templates,
+                        &cols,
+                        opt.regularization,
+                        opt.bits,
+                    );
+                    let on = |lambda: &Q| -> Vec<Q> {
+                        t.iter()
+                            .zip(&fit)
+                            .map(|(a, b)| a + (b - a) * lambda)
+                            .collect()
+                    };
+                    (0..=4)
+                        .rev()
+                        .map(|k| on(&Q::new(1.into(), (1i64 << k).into())))
+                        .find(|s| {
+                            l1::check(&cells, &frames, &unknowns_at(cx.param, count, s)).is_ok()
+                        })
+                        .unwrap_or_else(|| t.clone())
+                }
+                false => t.clone(),
+            };
+            let area_goal = goals.len() - 1;
+            let met =
+                l1::lift(&lx, &start, &margins, &ineqs, (&goals, area_goal)).map_err(|e| {
+                    // Failing, it leaves the fitted point degenerate: E1012, with what it tried.
+                    let (GoalFailure::Infeasible(m)
+                    | GoalFailure::Snap(m)
+                    | GoalFailure::Solver(m)
+                    | GoalFailure::Unmet(m)) = e;
+                    crate::geometry::options::GeometryError::Degenerate {
+                        cell: cell.clone(),
+                        area: area.clone(),
+                        advice: format!(
+                        "the automatic area goal did not lift it ({m}); choose other parameters: \
+                         --template, --goal or --param"
+                    ),
+                        forced: false,
+                    }
+                })?;
+            choice.moved_by_goals |= met != t;
+            choice.lifted = Some(format!("{cell} (signed area {area})"));
+            choice.method += " + automatic area goal";
+            t = met;
+        }
     }
     let x = unknowns_at(cx.param, count, &t);
     if exact.is_some() {

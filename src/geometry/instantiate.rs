@@ -19,9 +19,10 @@
 //! exact projection of a user template (`--template`, `crate::geometry::template_file`) and inequality goals
 //! through an LP (`--goal`, `crate::geometry::lp`).
 
+use crate::geometry::level_one::{self, LevelOne};
 use crate::geometry::options::{GeometryError, InstantiateOptions};
 use crate::geometry::placement::StartFace;
-use crate::geometry::point::{bezier_point, dyadic, Point, QPoint};
+use crate::geometry::point::{bezier_point, Point};
 use crate::geometry::template::dim_of;
 use crate::{
     constraint::automaton_of, constraint::solve, constraint::GenOptions, constraint::Generated,
@@ -69,7 +70,7 @@ pub struct Instance {
     pub fit_residual: f64,
     /// How the parameters were chosen (method, exact residual, goals).
     pub choice: crate::geometry::choose::Choice,
-    /// The exact level-1 check of the chosen point ([`Instance::check_level_one`]).
+    /// The exact level-1 check of the chosen point ([`Instance::level_one`]).
     pub level_one: LevelOne,
     /// The start faces in the plane.
     pub start: Vec<StartFace>,
@@ -121,19 +122,26 @@ fn to_f64(r: &BigRational) -> f64 {
 
 /// Instantiates an input: closes it, solves its constraint system exactly, chooses the free
 /// parameters (see the module documentation) and places the start faces.
+/// When the fitted point makes a level-1 cell degenerate that the constraints do not force to
+/// be, the automatic area goal moves it (`crate::geometry::level_one`); the exact level-1 check
+/// then runs on the point chosen.
 pub fn instantiate(input: &Input, opt: &InstantiateOptions) -> Result<Instance, GeometryError> {
-    let inst = instantiate_unchecked(input, opt)?;
+    let inst = build(input, opt, true)?;
     let level_one = inst.level_one(opt)?;
     Ok(Instance { level_one, ..inst })
 }
 
-/// [`instantiate`] without the exact level-1 check of the chosen point ([`Instance::level_one`]):
-/// for a caller that reports a degenerate choice as a finding of its own (a frame of a morph
-/// that passes through a collapse), not as an error.
+/// [`instantiate`] without the exact level-1 check of the chosen point ([`Instance::level_one`])
+/// and without moving a degenerate fit: for a caller that reports a degenerate choice as a
+/// finding of its own (a frame of a morph that passes through a collapse), not as an error.
 pub fn instantiate_unchecked(
     input: &Input,
     opt: &InstantiateOptions,
 ) -> Result<Instance, GeometryError> {
+    build(input, opt, false)
+}
+
+fn build(input: &Input, opt: &InstantiateOptions, lift: bool) -> Result<Instance, GeometryError> {
     let q = opt.degree.max(1);
     let faces = input.faces();
     // A one-edge face has no placement with area (issue #20 item 3): refused before the work.
@@ -186,6 +194,7 @@ pub fn instantiate_unchecked(
         param: &param,
         fixed: &fixed,
         q,
+        lift,
     };
     let (tq, choice) = crate::geometry::choose::choose(&cx, opt)?;
     let values = crate::geometry::choose::unknowns_at(&param, lin.system.unknowns, &tq);
@@ -243,48 +252,6 @@ pub fn instantiate_unchecked(
     Ok(inst)
 }
 
-/// What the exact level-1 check found: every cell's control polygon has positive area.
-#[derive(Clone, Debug, Default, serde::Serialize)]
-pub struct LevelOne {
-    /// Sub-faces checked, over all types.
-    pub cells: usize,
-    /// Central lacunas checked.
-    pub lacunas: usize,
-    /// The smallest signed area of a sub-face's control polygon, in its type's template,
-    /// exactly.
-    #[serde(serialize_with = "crate::geometry::instantiate::rational_str")]
-    pub smallest_area: Option<BigRational>,
-}
-
-impl LevelOne {
-    /// The line `render` and `measure` print.
-    pub fn describe(&self) -> String {
-        format!(
-            "level-1 cells: {} {} and {} {} over all types, every control polygon of positive area (exact, in each type's template)",
-            self.cells,
-            if self.cells == 1 { "sub-face" } else { "sub-faces" },
-            self.lacunas,
-            if self.lacunas == 1 { "lacuna" } else { "lacunas" }
-        )
-    }
-}
-
-fn rational_str<S: serde::Serializer>(x: &Option<BigRational>, s: S) -> Result<S::Ok, S::Error> {
-    match x {
-        Some(v) => s.serialize_str(&v.to_string()),
-        None => s.serialize_none(),
-    }
-}
-
-/// Twice the signed area of a polygon (shoelace), exactly.
-fn area2(poly: &[QPoint]) -> BigRational {
-    let n = poly.len();
-    (0..n).fold(BigRational::zero(), |s, i| {
-        let (a, b) = (&poly[i], &poly[(i + 1) % n]);
-        s + &a[0] * &b[1] - &b[0] * &a[1]
-    })
-}
-
 impl Instance {
     /// The default template of the instance in the template file format (what
     /// `lacuna render INPUT --write-template FILE` writes).
@@ -302,104 +269,15 @@ impl Instance {
     }
 
     /// The exact level-1 check of the chosen point in each type's default template under `opt`
-    /// (its control points rounded to dyadic rationals): see [`Instance::check_level_one`].
+    /// (its control points rounded to dyadic rationals): every sub-face's and every central
+    /// lacuna's control polygon has positive signed area (`crate::geometry::level_one`). A cell of
+    /// zero or negative area is a degenerate choice (E1012) or a forced collapse (E1013),
+    /// refused before any drawing.
     pub fn level_one(&self, opt: &InstantiateOptions) -> Result<LevelOne, GeometryError> {
         let q = opt.degree.max(1);
-        let frames: Vec<Vec<QPoint>> = self
-            .types
-            .types
-            .iter()
-            .map(|ty| {
-                crate::geometry::template::template(ty, &self.types, q, opt)
-                    .points
-                    .iter()
-                    .map(|p| [dyadic(p[0], 40), dyadic(p[1], 40)])
-                    .collect()
-            })
-            .collect();
-        self.check_level_one(&frames)
-    }
-
-    /// The exact level-1 check of the chosen point (THEORY §7, issue #36): in each type's
-    /// default template `frames[t]` (its control points, rounded to dyadic rationals), every
-    /// sub-face's control polygon (its control points in boundary order, placed by the chosen
-    /// operator) and the central lacuna's (the sub-faces' lacuna sides, reversed) must have
-    /// positive signed area. A cell of zero or negative area there is a degenerate choice
-    /// (E1012), refused before any drawing.
-    pub(crate) fn check_level_one(
-        &self,
-        frames: &[Vec<QPoint>],
-    ) -> Result<LevelOne, GeometryError> {
-        let mut out = LevelOne::default();
-        let (flat_faces, flat_lacunas) = self.types.flat_cells();
-        let advice = |forced: bool| match forced {
-            true => "a forced collapse: no choice of parameters gives it area (THEORY §6; \
-                     `lacuna verify` states it)"
-                .to_string(),
-            false => "choose other parameters: --template, --goal or --param".to_string(),
-        };
-        for (t, ty) in self.types.types.iter().enumerate() {
-            let p = &frames[t];
-            let m_t = self.dims[t];
-            // Control point c of sub-face k, in the parent's frame.
-            let point = |k: usize, c: usize| -> QPoint {
-                let w = ty.children[k];
-                let m_w = self.dims[w];
-                let base = self.linearized.offsets[self.generated.sub_ops[t][k]].expect("unknown");
-                let mut x = [BigRational::zero(), BigRational::zero()];
-                for (r, pr) in p.iter().enumerate().take(m_t) {
-                    let v = &self.values[base + r * m_w + c];
-                    x[0] += v * &pr[0];
-                    x[1] += v * &pr[1];
-                }
-                x
-            };
-            let mut lacuna: Vec<(usize, Vec<QPoint>)> = Vec::new();
-            for (k, &w) in ty.children.iter().enumerate() {
-                let m_w = self.dims[w];
-                let poly: Vec<QPoint> = (0..m_w).map(|c| point(k, c)).collect();
-                let a = area2(&poly);
-                out.cells += 1;
-                if a <= BigRational::zero() {
-                    return Err(GeometryError::Degenerate {
-                        cell: format!("sub-face {k} of T{t} ({})", self.types.types[w].face),
-                        area: (a / BigRational::from_integer(2.into())).to_string(),
-                        advice: advice(flat_faces.contains(&t) || flat_faces.contains(&w)),
-                        forced: flat_faces.contains(&t) || flat_faces.contains(&w),
-                    });
-                }
-                let a = a / BigRational::from_integer(2.into());
-                out.smallest_area = Some(match out.smallest_area.take() {
-                    Some(s) if s <= a => s,
-                    _ => a,
-                });
-                let offsets = &self.generated.edge_offsets[w];
-                for (e, o) in ty.subdivision.subfaces[k].origins.iter().enumerate() {
-                    if let Origin::Lacuna { side } = *o {
-                        // The side's control points, from its first to the next edge's first.
-                        let (from, to) = (offsets[e], offsets.get(e + 1).copied().unwrap_or(m_w));
-                        let mut pts: Vec<QPoint> = (from..=to).map(|c| point(k, c % m_w)).collect();
-                        pts.reverse();
-                        lacuna.push((side, pts));
-                    }
-                }
-            }
-            if !lacuna.is_empty() {
-                lacuna.sort_by_key(|(side, _)| *side);
-                let poly: Vec<QPoint> = lacuna.into_iter().flat_map(|(_, p)| p).collect();
-                let a = area2(&poly);
-                out.lacunas += 1;
-                if a <= BigRational::zero() {
-                    return Err(GeometryError::Degenerate {
-                        cell: format!("the lacuna of T{t} ({})", ty.face),
-                        area: (a / BigRational::from_integer(2.into())).to_string(),
-                        advice: advice(flat_lacunas.contains(&t) || flat_faces.contains(&t)),
-                        forced: flat_lacunas.contains(&t) || flat_faces.contains(&t),
-                    });
-                }
-            }
-        }
-        Ok(out)
+        let frames = level_one::frames(&self.types, q, opt);
+        let cells = level_one::cells(&self.types, &self.generated, &self.linearized);
+        level_one::check(&cells, &frames, &self.values)
     }
 
     /// Re-checks every equation of the constraint system on the chosen values, exactly over Q.

@@ -13,6 +13,9 @@
 //!   (a rational vector, so the inequality is exact). Lengths are in template units (the default
 //!   polygons have circumradius 1).
 //!
+//! The automatic cell-area goal (`crate::geometry::level_one`) is quadratic: it linearises the
+//! areas round by round and calls [`meet_goals`] with the tangent planes beside the linear goals.
+//!
 //! **Objective**: stay close to the reference solution `x0` (the template fit, or the exact
 //! template projection with `--template`): minimise the L1 distance `Σ_u |x_u − x0_u|` over the
 //! sub-face weights, with one auxiliary variable per weight. When `x0` already satisfies every
@@ -44,6 +47,11 @@ pub enum Goal {
         /// The smallest distance (template units).
         size: Q,
     },
+    /// Every level-1 cell (sub-face and central lacuna) has a control polygon of area at least
+    /// a margin in its type's template: the automatic goal that moves a fitted point off a
+    /// collapse the constraints do not force (`crate::geometry::level_one`). Quadratic, met by
+    /// sequential linearisation; not given on the command line.
+    MinArea,
 }
 
 impl std::fmt::Display for Goal {
@@ -52,6 +60,7 @@ impl std::fmt::Display for Goal {
             Goal::NonNegative { margin } if margin.is_zero() => write!(f, "nonnegative"),
             Goal::NonNegative { margin } => write!(f, "nonnegative={margin}"),
             Goal::MinLacuna { size } => write!(f, "min-lacuna={size}"),
+            Goal::MinArea => write!(f, "automatic cell area"),
         }
     }
 }
@@ -92,6 +101,9 @@ pub(crate) enum GoalFailure {
     Snap(String),
     /// The LP solver failed otherwise.
     Solver(String),
+    /// A quadratic goal (`min-area`) was not reached by linearisation: not a proof that no
+    /// point meets it.
+    Unmet(String),
 }
 
 /// A lacuna vertex of type `ty`: its unknowns (one per control point of the type), its exact
@@ -129,6 +141,8 @@ pub(crate) fn inequalities(
                     });
                 }
             }
+            // Quadratic: linearised round by round in `crate::geometry::level_one::lift`.
+            Goal::MinArea => {}
             Goal::MinLacuna { size } => {
                 for v in vertices {
                     let n = Q::from_integer((v.corners.len().max(1) as i64).into());

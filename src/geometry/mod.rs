@@ -9,6 +9,7 @@ pub(crate) mod automaton_eval;
 pub(crate) mod choose;
 pub(crate) mod flatten;
 pub(crate) mod instantiate;
+pub(crate) mod level_one;
 pub(crate) mod lp;
 pub(crate) mod options;
 pub(crate) mod placement;
@@ -24,7 +25,8 @@ pub use automaton_eval::{
 };
 pub use choose::{project_exact, Choice, ExactColumn, Projection};
 pub use flatten::flatten_bezier;
-pub use instantiate::{instantiate, instantiate_unchecked, Cell, EdgeSlot, Instance, LevelOne};
+pub use instantiate::{instantiate, instantiate_unchecked, Cell, EdgeSlot, Instance};
+pub use level_one::LevelOne;
 pub use lp::{parse_goal, Goal};
 pub use options::{GeometryError, InstantiateOptions};
 pub use placement::StartFace;

@@ -54,16 +54,29 @@ pub(crate) fn float_point(p: &QPoint) -> [f64; 2] {
     [to_f64(&p[0]), to_f64(&p[1])]
 }
 
-/// The control points of a face with exact corners (as `crate::geometry::template::control_points`).
+/// The control points of a face with exact corners, exactly as
+/// `crate::geometry::template::control_points` places them in floating point: evenly spaced on
+/// straight edges, and in a digon the Bézier inner points pushed outwards by
+/// `DIGON_BULGE·4s(1 − s)` times the chord (DIGON_BULGE = 1/2), so that the frame has an area.
 fn exact_control_points(face: &Face, corners: &[QPoint], q: usize) -> Vec<QPoint> {
     let n = corners.len();
+    let bulge = Q::new(BigInt::from(1), BigInt::from(2));
+    debug_assert_eq!(bulge.to_f64(), Some(crate::geometry::template::DIGON_BULGE));
+    let four = Q::from_integer(BigInt::from(4));
     let mut pts = Vec::new();
     for (i, e) in face.boundary.iter().enumerate() {
         let d = crate::geometry::template::dim_of(e, q);
         let (a, b) = (&corners[i], &corners[(i + 1) % n]);
         for c in 0..d - 1 {
             let s = Q::new(BigInt::from(c), BigInt::from(d - 1));
-            pts.push([&a[0] + (&b[0] - &a[0]) * &s, &a[1] + (&b[1] - &a[1]) * &s]);
+            let mut p = [&a[0] + (&b[0] - &a[0]) * &s, &a[1] + (&b[1] - &a[1]) * &s];
+            if n == 2 && c > 0 {
+                // Outward normal of a counter-clockwise face: the edge direction turned right.
+                let h = &bulge * &four * &s * (Q::from_integer(BigInt::from(1)) - &s);
+                p[0] += &h * (&b[1] - &a[1]);
+                p[1] -= &h * (&b[0] - &a[0]);
+            }
+            pts.push(p);
         }
     }
     pts
@@ -508,6 +521,33 @@ fn parse_points(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_digon_frame_bulges_exactly_as_the_float_one() {
+        // Corners (−1, 1/4), (1, 1/4); each Bézier inner point at the chord's middle (0, 1/4),
+        // pushed right of its edge by ½·4·½·½ = ½ of the chord (2, 0) or (−2, 0): (0, −3/4)
+        // and (0, 5/4). Flat, the frame had area 0 and an exact template of a digon projected
+        // onto a collapsed lacuna.
+        let q = |a: i64, b: i64| Q::new(a.into(), b.into());
+        let face: Face = crate::input::load_input("B2 B2 | B2 B2 B2 | A1")
+            .unwrap()
+            .faces()[0]
+            .clone();
+        let corners = [[q(-1, 1), q(1, 4)], [q(1, 1), q(1, 4)]];
+        let exact = exact_control_points(&face, &corners, 2);
+        let by_hand = [
+            [q(-1, 1), q(1, 4)],
+            [q(0, 1), q(-3, 4)],
+            [q(1, 1), q(1, 4)],
+            [q(0, 1), q(5, 4)],
+        ];
+        assert_eq!(exact, by_hand);
+        let float =
+            crate::geometry::template::control_points(&face, &[[-1.0, 0.25], [1.0, 0.25]], 2);
+        for (e, f) in exact.iter().zip(&float) {
+            assert_eq!(float_point(e), *f);
+        }
+    }
 
     #[test]
     fn exact_decimals_are_written_as_decimals() {
