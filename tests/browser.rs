@@ -357,10 +357,22 @@ fn blocks(w: usize, h: usize, g: &[u8]) -> Vec<f64> {
     out
 }
 
-fn check_screenshot(page: &Path, name: &str, height: u32) {
+/// A screenshot of the page (`height` pixels, whole 16-pixel blocks) compared with its reference
+/// block by block; `extra` adds Chromium flags (SwiftShader for a page with WebGL).
+fn check_screenshot(page: &Path, name: &str, height: u32, extra: &[&str]) {
     let shot = page.with_file_name("screenshot.png");
-    let (_, stderr) = browse(page, height, &[&format!("--screenshot={}", shot.display())]);
-    assert!(console_lines(&stderr).is_empty());
+    let flag = format!("--screenshot={}", shot.display());
+    let args: Vec<&str> = std::iter::once(flag.as_str())
+        .chain(extra.iter().copied())
+        .collect();
+    let (_, stderr) = browse(page, height, &args);
+    // Taking the screenshot of a WebGL canvas reads its pixels, and the driver logs a
+    // performance note about it; nothing else may be logged.
+    let console: Vec<&str> = console_lines(&stderr)
+        .into_iter()
+        .filter(|l| !l.contains("GPU stall due to ReadPixels"))
+        .collect();
+    assert!(console.is_empty(), "console: {console:?}");
     let bytes = std::fs::read(&shot).unwrap();
     let (w, h, grey) = decode(&bytes);
     assert_eq!((w, h), (WIDTH as usize, height as usize));
@@ -412,7 +424,7 @@ fn check_report(input: &str, level: u32, name: &str, types: usize) {
     check_elements(&page, types);
     // Screenshot of the whole page, rounded up to whole 16-pixel blocks.
     let height = (height as u32).div_ceil(16) * 16;
-    check_screenshot(&page, name, height);
+    check_screenshot(&page, name, height, &[]);
 }
 
 #[test]
@@ -507,6 +519,14 @@ fn automaton_report_in_chromium() {
     let kappa: Vec<_> = lines.iter().filter(|l| l[0] == "kappa").collect();
     assert_eq!(kappa.len(), 1);
     assert_eq!((n(kappa[0], 1), n(kappa[0], 2), n(kappa[0], 3)), (8, 8, 0));
+    // The whole page against the reference looked at by eye (issue #32).
+    let (_, height, _) = layout(&page);
+    check_screenshot(
+        &page,
+        "de-casteljau-cubic",
+        (height as u32).div_ceil(16) * 16,
+        &[],
+    );
 }
 
 #[test]
@@ -589,4 +609,13 @@ window.addEventListener('load', () => {
     assert!(cover * 20 > all && cover * 20 < all * 19, "{text}");
     assert!(shades > 3, "{text}");
     assert!(n(2, 1) > all / 100, "a drag turns the solid: {text}");
+    // The whole page, WebGL view included, against the reference looked at by eye (issue #32).
+    let (width, height, _) = layout(&page);
+    assert!(width <= WIDTH as i64, "the page overflows: {width}px");
+    check_screenshot(
+        &page,
+        "tetrahedron-B2",
+        (height as u32).div_ceil(16) * 16,
+        &["--enable-unsafe-swiftshader"],
+    );
 }
