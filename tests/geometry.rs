@@ -673,3 +673,58 @@ fn html_report_is_self_contained_and_complete() {
     assert!(html.contains("<td>35/2</td>") && html.contains("limit ratio R = 1/3"));
     assert!(html.contains("Verdict: VERIFIED"));
 }
+
+/// Issue #36: every two-edge face of the edge kinds B2, C2, B3, C3 (E = B2 B2 B2) under A1 and A3,
+/// with its outline derived by hand. A digon's corners are (−1, 1/4) and (1, 1/4). Every Bézier
+/// edge, `B2` or `B3` alike (n counts its pieces; the curve's degree is `--degree`, 2 by default),
+/// has one inner control point, at the chord's middle pushed outwards by ½·4·½·½ = ½ of the chord
+/// (length 2), so 1 off the chord; the curve's middle (P0 + 2P1 + P2)/4 is ½ off, its farthest
+/// point. A Cantor edge stays on the chord. So the outline spans x ∈ [−1, 1] and, across the
+/// chord, the sum of both edges' offsets: height/width = (off(e0) + off(e1))/2, with off = ½ for
+/// a Bézier edge and 0 for a Cantor edge. Two Cantor edges make a flat face: a forced collapse
+/// (E1013), refused by `render`, stated by `verify`. Every other face draws at levels 1 and 2
+/// (every level checked, E1041 otherwise) and measures its exact holes and components at level 2.
+#[test]
+fn two_edge_faces_have_their_hand_derived_outline_or_are_a_forced_collapse() {
+    let off = |e: &str| match e.starts_with('B') {
+        true => 1.0 / 2.0,
+        false => 0.0,
+    };
+    let dir = std::env::temp_dir().join(format!("lacuna-two-edge-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for algorithm in ["A1", "A3"] {
+        for e0 in ["B2", "C2", "B3", "C3"] {
+            for e1 in ["B2", "C2", "B3", "C3"] {
+                let face = format!("{e0} {e1} | B2 B2 B2 | {algorithm}");
+                let input = load_input(&face).unwrap();
+                let got = instantiate(&input, &InstantiateOptions::default());
+                if e0.starts_with('C') && e1.starts_with('C') {
+                    let e = got.err().unwrap_or_else(|| panic!("{face}: drawn flat"));
+                    assert_eq!(e.code(), "E1013", "{face}: {e}");
+                    continue;
+                }
+                let i = got.unwrap_or_else(|e| panic!("{face}: {e}"));
+                let b = lacuna::geometry::bounds(&i, 256);
+                let (w, h) = (b.max[0] - b.min[0], b.max[1] - b.min[1]);
+                let want = (off(e0) + off(e1)) / 2.0;
+                assert!((h / w - want).abs() < 1e-3, "{face}: {h}/{w}, want {want}");
+                let png = dir.join(format!("{}.png", face.replace([' ', '|'], "")));
+                let (code, _, err) = common::lacuna(&[
+                    "render",
+                    &face,
+                    "--level",
+                    "2",
+                    "--png",
+                    png.to_str().unwrap(),
+                    "--size",
+                    "200",
+                ]);
+                assert_eq!(code, 0, "{face}: {err}");
+                let (code, out, err) =
+                    common::lacuna(&["measure", &face, "--level", "2", "--raster", "512"]);
+                assert_eq!(code, 0, "{face}: {err}");
+                assert!(out.contains("verdict: VERIFIED"), "{face}: {out}");
+            }
+        }
+    }
+}
