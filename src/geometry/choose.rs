@@ -505,6 +505,16 @@ pub(crate) fn choose(
             .collect(),
         None => Vec::new(),
     };
+    let default_fit = || {
+        fit_float(
+            cx.param,
+            cx.fixed,
+            &templates,
+            &cols,
+            opt.regularization,
+            opt.bits,
+        )
+    };
     let mut choice = Choice::default();
     let mut t = match (&opt.template, &exact) {
         (Some(_), Some(ex)) => {
@@ -518,14 +528,7 @@ pub(crate) fn choose(
                 "least-squares fit (floating point, rounded to 2^-{})",
                 opt.bits
             );
-            fit_float(
-                cx.param,
-                cx.fixed,
-                &templates,
-                &cols,
-                opt.regularization,
-                opt.bits,
-            )
+            default_fit()
         }
     };
     let count = cx.lin.system.unknowns;
@@ -627,14 +630,7 @@ pub(crate) fn choose(
             // every cell has area, nearest the chosen point first.
             let start = match opt.template.is_some() || !opt.goals.is_empty() {
                 true => {
-                    let fit = fit_float(
-                        cx.param,
-                        cx.fixed,
-                        &templates,
-                        &cols,
-                        opt.regularization,
-                        opt.bits,
-                    );
+                    let fit = default_fit();
                     let on = |lambda: &Q| -> Vec<Q> {
                         t.iter()
                             .zip(&fit)
