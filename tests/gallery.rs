@@ -410,11 +410,13 @@ fn gallery_figures() -> Vec<Figure> {
                 render: None,
                 row: Vec::new(),
             });
+        } else if line.starts_with("lacuna solve ") {
+            // A figure of constraints (seed 004, §3), checked by its own test below.
+            figures.extend(current.take());
         } else if let Some(rest) = line.strip_prefix("lacuna render ") {
-            let f = current
-                .as_mut()
-                .expect("a render line follows a verify line");
-            f.render = Some(rest.split_whitespace().map(String::from).collect());
+            if let Some(f) = current.as_mut() {
+                f.render = Some(rest.split_whitespace().map(String::from).collect());
+            }
         } else if line.starts_with("|---") {
             if let Some(f) = current.as_mut().filter(|f| f.row.is_empty()) {
                 let row = lines.next().expect("a row under the table's header");
@@ -628,6 +630,90 @@ fn the_kite_and_dart_are_the_paper_s_maps_with_one_sign_corrected() {
         assert!(out.contains(verdict), "{input}: {out}");
         let (code, out, _) = lacuna(&["check", cert.to_str().unwrap()]);
         assert_eq!(code, 0, "{input}: {out}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+// ---- Seed 004: Fig. 4 and the constraint figures of §3 ----
+
+/// The degrees of freedom of the entries of seed 004's §3, derived by hand, against what `solve`
+/// prints now and what docs/GALLERY.md says. Every column is barycentric (its entries sum to 1),
+/// so a column of 3 entries with none fixed has 2 free entries, one of 9 has 8.
+/// - `spec-edge-incidence`: incidence fixes T₀'s column 0 to B₀ = (1, 0, 0) and T₁'s column 2 to
+///   (0, 0, 1); the other two columns of each are free: 2·2 + 2·2 = 8.
+/// - `spec-edge`: adjacency `T₀ B₁ = T₁ B₀` also makes T₀'s column 2 equal T₁'s column 0: one
+///   column of 2 free entries less, 8 − 2 = 6 (the paper's "6 degrees of freedom left").
+/// - `quad-patch`: the patch has 9 control points (bi-quadratic), each sub-patch operator 9×9.
+///   A corner sub-patch has 5 of its points on the parent's boundary edges, fixed by the edge's
+///   operators through incidence. Free columns: each sub-patch's inner point (4 columns), the
+///   middle point of each of the 4 inner edges shared by two sub-patches (adjacency makes it one
+///   column for both), and the parent's centre, shared by all four (1 column): 9 columns of 8
+///   free entries, 72.
+/// - `half-tangent-edge`: 2 (the derivation in tests/solver.rs).
+/// - `bspline-quadratic-4`: every operator is given: 0.
+#[test]
+fn seed_004_constraint_figures_have_their_hand_derived_degrees_of_freedom() {
+    let by_hand = [
+        ("bspline-quadratic-4", 0),
+        ("spec-edge-incidence", 8),
+        ("spec-edge", 6),
+        ("quad-patch", 72),
+        ("half-tangent-edge", 2),
+    ];
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/GALLERY.md"))
+        .expect("docs/GALLERY.md");
+    let solved: Vec<&str> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("lacuna solve "))
+        .map(str::trim)
+        .collect();
+    assert_eq!(
+        solved,
+        by_hand.iter().map(|(n, _)| *n).collect::<Vec<_>>(),
+        "the solve commands of docs/GALLERY.md"
+    );
+    for (name, dof) in by_hand {
+        let (code, out, err) = lacuna(&["solve", name, "--json"]);
+        assert_eq!(code, 0, "{name}: {err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        assert_eq!(v["consistent"], true, "{name}");
+        assert_eq!(v["dof"].as_u64(), Some(dof), "{name}");
+        // The table of Fig. 6–11 names the entry and starts its last cell with the number.
+        if let Some(row) = text.lines().find(|l| l.contains(&format!("| `{name}` |"))) {
+            let last = row.trim_end_matches('|').rsplit('|').next().unwrap().trim();
+            assert!(
+                last.starts_with(&dof.to_string()),
+                "docs/GALLERY.md says {last} for {name}; by hand {dof}"
+            );
+        }
+    }
+    // The pictures of these sections are the ones the commands draw now (SVG, byte for byte).
+    let dir = std::env::temp_dir().join(format!("lacuna-gallery-svg-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let section = &text[text
+        .find("### Fig. 4 — the uniform quadratic B-spline")
+        .unwrap()..];
+    for line in section.lines().filter(|l| l.starts_with("lacuna render ")) {
+        let mut args: Vec<String> = line.split_whitespace().skip(1).map(String::from).collect();
+        let svg = args.iter().position(|a| a == "--svg").expect("--svg") + 1;
+        let committed = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(&args[svg]);
+        let fresh = dir.join("fresh.svg");
+        args[svg] = fresh.to_str().unwrap().to_string();
+        let run: Vec<&str> = args.iter().map(String::as_str).collect();
+        let (code, _, err) = lacuna(&run);
+        assert_eq!(code, 0, "{line}: {err}");
+        assert!(
+            std::fs::read(&fresh).unwrap() == std::fs::read(&committed).unwrap(),
+            "{} differs from `{line}`: run docs/make-automaton-images.sh",
+            committed.display()
+        );
+    }
+    // The measure line of Fig. 4: the contraction is proved (T0a, T1a on no cycle).
+    for line in section.lines().filter(|l| l.starts_with("lacuna measure ")) {
+        let args: Vec<&str> = line.split_whitespace().skip(1).collect();
+        let (code, out, err) = lacuna(&args);
+        assert_eq!(code, 0, "{line}: {err}");
+        assert!(out.contains("contraction: proven"), "{line}: {out}");
     }
     std::fs::remove_dir_all(&dir).ok();
 }
