@@ -33,13 +33,8 @@ fn autofrac_algorithm_1_with_delays_closes_and_is_certified() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-fn edge() -> impl Strategy<Value = EdgeType> {
-    (
-        prop_oneof![Just(EdgeKind::B), Just(EdgeKind::C)],
-        2u32..=3,
-        1u32..=3,
-    )
-        .prop_map(|(k, n, d)| EdgeType::new(k, n).delayed(d))
+fn edge() -> impl Strategy<Value = EdgeType> + Clone {
+    common::strategies::edge(2..=3, 1u32..=3)
 }
 
 /// The face, with at least one delayed boundary edge.

@@ -9,8 +9,8 @@ use lacuna::certificate::{certificate_for, certificate_for_system};
 use lacuna::certificate::{Certificate, Step};
 use lacuna::checker::{check, check_json, Outcome};
 use lacuna::{
-    constraint::GenOptions, topology::Algorithm, topology::EdgeKind, topology::EdgeType,
-    topology::Face, topology::Limits, topology::Params,
+    constraint::GenOptions, topology::EdgeKind, topology::EdgeType, topology::Face,
+    topology::Limits,
 };
 use num_rational::BigRational;
 use proptest::prelude::*;
@@ -530,36 +530,14 @@ fn wrong_versions_are_rejected() {
     }
 }
 
-fn edge() -> impl Strategy<Value = EdgeType> {
-    (
-        prop_oneof![Just(EdgeKind::B), Just(EdgeKind::C)],
-        2u32..=3,
-        prop_oneof![4 => Just(1u32), 1 => Just(2u32)],
-    )
-        .prop_map(|(k, n, d)| EdgeType::new(k, n).delayed(d))
-}
-
-fn param() -> impl Strategy<Value = EdgeType> {
-    prop_oneof![Just(EdgeKind::B), Just(EdgeKind::C)].prop_map(|k| EdgeType::new(k, 2))
-}
-
 fn face() -> impl Strategy<Value = Face> {
-    (
-        proptest::collection::vec(edge(), 1..=4),
-        (param(), param(), param()),
-        prop_oneof![
-            Just(Algorithm::a1()),
-            Just(Algorithm::a2()),
-            Just(Algorithm::a3())
-        ],
+    common::strategies::face(
+        common::strategies::edge(2..=3, prop_oneof![4 => Just(1u32), 1 => Just(2u32)]),
+        1..=4,
+        prop_oneof![Just(EdgeKind::B), Just(EdgeKind::C)].prop_map(|k| EdgeType::new(k, 2)),
+        common::strategies::builtin_algorithm(),
         prop_oneof![3 => Just(1u32), 1 => Just(2u32)],
     )
-        .prop_map(|(boundary, (ea, el, ec), algorithm, delay)| Face {
-            boundary,
-            params: Params { ea, el, ec },
-            algorithm,
-            delay,
-        })
 }
 
 /// One semantic change per kind; each one must be caught by the named step.

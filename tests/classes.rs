@@ -3,54 +3,22 @@
 //! derived by hand, and `lacuna morph` between templates of F0, through a collapse too.
 
 mod common;
-use common::lacuna;
-use lacuna::topology::{
-    close, components_by_cells, counts, multiplicity, Algorithm, Closure, EdgeKind, EdgeType, Face,
-    Limits, Params, SpokeItem,
-};
+use common::{lacuna, strategies};
+use lacuna::topology::{close, components_by_cells, counts, multiplicity, Closure, Face, Limits};
 use num_bigint::{BigInt, BigUint};
 use num_rational::BigRational;
 use proptest::prelude::*;
 
-fn edge(max_delay: u32) -> impl Strategy<Value = EdgeType> {
-    (
-        prop_oneof![Just(EdgeKind::B), Just(EdgeKind::C)],
-        2u32..=3,
-        1..=max_delay,
-    )
-        .prop_map(|(k, n, d)| EdgeType::new(k, n).delayed(d))
-}
-
-fn algorithm() -> impl Strategy<Value = Algorithm> {
-    let item = prop_oneof![
-        Just(SpokeItem::Joint),
-        Just(SpokeItem::Gap),
-        Just(SpokeItem::Corner),
-        Just(SpokeItem::DelayedCorner),
-    ];
-    prop_oneof![
-        3 => Just(Algorithm::a1()),
-        2 => Just(Algorithm::a2()),
-        2 => Just(Algorithm::a3()),
-        2 => proptest::collection::btree_set(item, 1..3).prop_map(Algorithm::Spokes),
-    ]
-}
-
+/// Faces of 2 to 6 edges (`B`/`C`, 2 or 3 sub-edges, delay ≤ 2), undelayed parameters, A1–A3
+/// or a spoke set of at most two plain items, face delay 1 or 2.
 fn face() -> impl Strategy<Value = Face> {
-    (
-        proptest::collection::vec(edge(2), 2..=6),
-        edge(1),
-        edge(1),
-        edge(1),
-        algorithm(),
+    strategies::face(
+        strategies::edge(2..=3, 1..=2u32),
+        2..=6,
+        strategies::edge(2..=3, 1..=1u32),
+        strategies::algorithm(strategies::plain_spoke_item(), 3),
         1u32..=2,
     )
-        .prop_map(|(boundary, ea, el, ec, algorithm, delay)| Face {
-            boundary,
-            params: Params { ea, el, ec },
-            algorithm,
-            delay,
-        })
 }
 
 proptest! {

@@ -430,32 +430,21 @@ fn strict_resolution_is_a_failure_and_bad_sizes_are_refused() {
 
 mod random {
     use super::*;
-    use lacuna::{topology::EdgeKind, topology::EdgeType, topology::Face, topology::Params};
+    use lacuna::{topology::EdgeType, topology::Face};
     use proptest::prelude::*;
 
-    fn edge() -> impl Strategy<Value = EdgeType> {
-        (prop_oneof![Just(EdgeKind::B), Just(EdgeKind::C)], 2u32..=3)
-            .prop_map(|(k, n)| EdgeType::new(k, n))
+    fn edge() -> impl Strategy<Value = EdgeType> + Clone {
+        common::strategies::edge(2..=3, Just(1u32))
     }
 
     fn face() -> impl Strategy<Value = Face> {
-        (
-            proptest::collection::vec(edge(), 3..=6),
+        common::strategies::face(
             edge(),
+            3..=6,
             edge(),
-            edge(),
-            prop_oneof![
-                Just(lacuna::topology::Algorithm::a1()),
-                Just(lacuna::topology::Algorithm::a2()),
-                Just(lacuna::topology::Algorithm::a3())
-            ],
+            common::strategies::builtin_algorithm(),
+            Just(1u32),
         )
-            .prop_map(|(boundary, ea, el, ec, algorithm)| Face {
-                boundary,
-                params: Params { ea, el, ec },
-                algorithm,
-                delay: 1,
-            })
     }
 
     proptest! {

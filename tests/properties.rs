@@ -9,13 +9,11 @@ use num_bigint::BigUint;
 use num_rational::BigRational;
 use proptest::prelude::*;
 
-fn edge(max_delay: u32) -> impl Strategy<Value = EdgeType> {
-    (
-        prop_oneof![Just(EdgeKind::B), Just(EdgeKind::C)],
-        2u32..=4,
-        1..=max_delay,
-    )
-        .prop_map(|(k, n, d)| EdgeType::new(k, n).delayed(d))
+mod common;
+use common::strategies;
+
+fn edge(max_delay: u32) -> impl Strategy<Value = EdgeType> + Clone {
+    strategies::edge(2..=4, 1..=max_delay)
 }
 
 fn pattern() -> impl Strategy<Value = EdgePattern> {
@@ -35,29 +33,11 @@ fn algorithm() -> impl Strategy<Value = Algorithm> {
         Just(SpokeItem::DelayedCorner),
         (pattern(), pattern()).prop_map(|(p, q)| SpokeItem::CornerBetween(p, q)),
     ];
-    prop_oneof![
-        3 => Just(Algorithm::a1()),
-        2 => Just(Algorithm::a2()),
-        2 => Just(Algorithm::a3()),
-        2 => proptest::collection::btree_set(item, 1..4).prop_map(Algorithm::Spokes),
-    ]
+    strategies::algorithm(item, 4)
 }
 
 fn face() -> impl Strategy<Value = Face> {
-    (
-        proptest::collection::vec(edge(3), 1..=10),
-        edge(2),
-        edge(2),
-        edge(2),
-        algorithm(),
-        1u32..=2,
-    )
-        .prop_map(|(boundary, ea, el, ec, algorithm, delay)| Face {
-            boundary,
-            params: Params { ea, el, ec },
-            algorithm,
-            delay,
-        })
+    strategies::face(edge(3), 1..=10, edge(2), algorithm(), 1u32..=2)
 }
 
 /// N^C and N^L of every type by the first-step recurrence, independent of `counts` (which

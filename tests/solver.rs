@@ -1,6 +1,8 @@
 //! The constraint solver on the hand-written automata of `fixtures/` and on generated face
 //! automata. Every expected number is derived by hand in the test that checks it.
 
+mod common;
+
 use lacuna::{
     algebra::bezier_restriction, algebra::Matrix, constraint::solve_automaton,
     constraint::solve_closure, constraint::Automaton, constraint::GenOptions,
@@ -229,38 +231,19 @@ fn a_non_barycentric_fixed_operator_is_inconsistent_with_a_certificate() {
 mod properties {
     use super::*;
     use lacuna::{
-        constraint::automaton_of, topology::close, topology::Closure, topology::EdgeKind,
-        topology::EdgeType, topology::Face, topology::Limits, topology::Params,
+        constraint::automaton_of, topology::close, topology::Closure, topology::Face,
+        topology::Limits,
     };
     use proptest::prelude::*;
 
     fn face() -> impl Strategy<Value = Face> {
-        let edge = (
-            prop_oneof![Just(EdgeKind::B), Just(EdgeKind::C)],
-            2u32..=3,
-            1u32..=2,
+        common::strategies::face(
+            common::strategies::edge(2..=3, 1u32..=2),
+            2..=5,
+            common::strategies::edge(2..=3, Just(1u32)),
+            common::strategies::builtin_algorithm(),
+            Just(1u32),
         )
-            .prop_map(|(k, n, d)| EdgeType::new(k, n).delayed(d));
-        let plain = (prop_oneof![Just(EdgeKind::B), Just(EdgeKind::C)], 2u32..=3)
-            .prop_map(|(k, n)| EdgeType::new(k, n));
-        let alg = prop_oneof![
-            Just(lacuna::topology::Algorithm::a1()),
-            Just(lacuna::topology::Algorithm::a2()),
-            Just(lacuna::topology::Algorithm::a3())
-        ];
-        (
-            proptest::collection::vec(edge, 2..=5),
-            plain.clone(),
-            plain.clone(),
-            plain,
-            alg,
-        )
-            .prop_map(|(boundary, ea, el, ec, algorithm)| Face {
-                boundary,
-                params: Params { ea, el, ec },
-                algorithm,
-                delay: 1,
-            })
     }
 
     proptest! {

@@ -3,6 +3,8 @@
 
 use std::process::Command;
 
+pub mod strategies;
+
 /// Runs the built binary in the crate's directory: (exit code, stdout, stderr).
 pub fn lacuna(args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_lacuna"))
