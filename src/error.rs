@@ -295,6 +295,27 @@ impl fmt::Display for Span {
 /// Shorthand for results in lacuna.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
+/// `n` with its noun, singular or plural: `1 part`, `2 parts` (for every message that counts).
+pub fn counted(n: impl std::fmt::Display, one: &str, many: &str) -> String {
+    let text = n.to_string();
+    match text.as_str() {
+        "1" => format!("1 {one}"),
+        _ => format!("{text} {many}"),
+    }
+}
+
+#[cfg(test)]
+mod counted_tests {
+    #[test]
+    fn one_is_singular_and_every_other_number_plural() {
+        assert_eq!(super::counted(1, "part", "parts"), "1 part");
+        assert_eq!(super::counted(0, "part", "parts"), "0 parts");
+        assert_eq!(super::counted(13u64, "hole", "holes"), "13 holes");
+        let big = num_bigint::BigUint::from(1u32);
+        assert_eq!(super::counted(&big, "hole", "holes"), "1 hole");
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

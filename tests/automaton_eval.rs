@@ -678,6 +678,6 @@ fn an_undecided_contraction_is_its_own_error_and_a_larger_limit_proves_it() {
     );
     let (code, out, err) = lacuna(&["measure", f, "--level", "1"]);
     assert_eq!(code, 0, "{err}");
-    assert!(out.contains("within 6 operator(s)"), "{out}");
+    assert!(out.contains("within 6 operators"), "{out}");
     let _ = std::fs::remove_dir_all(&dir);
 }

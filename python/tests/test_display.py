@@ -22,7 +22,7 @@ def test_a_face_and_an_automaton_show_a_picture():
 def test_the_closure_of_f0_is_a_table_of_its_one_type():
     # F0 (THEORY §3, §5): one type, six sub-faces of its own type, contribution 5/2.
     html = lacuna.load("F0").closure()._repr_html_()
-    assert "1 face type(s)" in html
+    assert "closed: 1 face type," in html
     assert "<td>6×T0</td>" in html
     assert "<td>5/2</td>" in html
     assert "B2 C2 B2 C2 B2 C2 | C2 B2 B2 | A1" in html

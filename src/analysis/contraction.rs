@@ -74,11 +74,12 @@ impl ContractionReport {
     /// One line saying what was proven.
     pub fn text(&self) -> String {
         format!(
-            "contraction: proven — every walk of the control graph reaches, within {} operator(s), a product of {}-norm < 1 on the differences of points ({} products, exact); {} elementary cycle(s) contract",
-            self.depth,
+            "contraction: proven — every walk of the control graph reaches, within {}, a product of {}-norm < 1 on the differences of points ({}, exact); {} contract{}",
+            crate::error::counted(self.depth, "operator", "operators"),
             if self.norm == "inf" { "∞" } else { "1" },
-            self.products,
-            self.cycles.len()
+            crate::error::counted(self.products, "product", "products"),
+            crate::error::counted(self.cycles.len(), "elementary cycle", "elementary cycles"),
+            if self.cycles.len() == 1 { "s" } else { "" }
         )
     }
 }

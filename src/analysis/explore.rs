@@ -514,7 +514,14 @@ fn evaluate(face: &Face, props: &[Property], limits: &Limits, checks: &Checks) -
                             kind: "collapsing pair".into(),
                             detail: vec![
                                 report.degenerate[0].clone(),
-                                format!("{} forced collapse(s) in all", report.degenerate.len()),
+                                format!(
+                                    "{} in all",
+                                    crate::error::counted(
+                                        report.degenerate.len(),
+                                        "forced collapse",
+                                        "forced collapses"
+                                    )
+                                ),
                             ],
                         })
                     };

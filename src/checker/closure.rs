@@ -382,9 +382,10 @@ pub(super) fn check_closure(
     }
     let subs: usize = c.types.iter().map(|r| r.subfaces.len()).sum();
     let msg = format!(
-        "{nt} face type(s) closed under subdivision, the claim's {} start face(s) among them: \
-         {subs} sub-faces re-derived (THEORY §3), every incidence identity and contribution holds",
-        faces.len()
+        "{} closed under subdivision, the claim's {} among them: {subs} sub-faces re-derived \
+         (THEORY §3), every incidence identity and contribution holds",
+        super::counted(nt, "face type", "face types"),
+        super::counted(faces.len(), "start face", "start faces")
     );
     let verdict = format!("closure: {nt} face types, closed under subdivision");
     let contributions = c

@@ -271,8 +271,11 @@ pub(super) fn check_degeneracy(
             let mut parts = Vec::new();
             if let Some(w) = w {
                 parts.push(format!(
-                    "{classes_total} corner(s) coincide on every solution with a distinct one \
-                     ({w})"
+                    "{} on every solution with a distinct one ({w})",
+                    match classes_total {
+                        1 => "1 corner coincides".to_string(),
+                        n => format!("{n} corners coincide"),
+                    }
                 ));
             }
             if let Some(t) = flat_faces.first() {

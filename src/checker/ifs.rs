@@ -411,9 +411,13 @@ pub(super) fn check_constraints_hold(a: &AutomatonClaim, claimed: usize) -> Chec
     constraints_hold(&k, a, &ops)?;
     Ok((
         format!(
-            "every operator is given; {} constraint(s) and {} barycentric operator(s) evaluated exactly in {}: every one holds",
-            a.constraints.len(),
-            a.barycentric.len(),
+            "every operator is given; {} and {} evaluated exactly in {}: every one holds",
+            super::counted(a.constraints.len(), "constraint", "constraints"),
+            super::counted(
+                a.barycentric.len(),
+                "barycentric operator",
+                "barycentric operators"
+            ),
             match a.field {
                 Some(_) => "K",
                 None => "Q",
@@ -693,14 +697,15 @@ pub(super) fn check_contraction(a: &AutomatonClaim, s: &ContractionStep) -> Chec
     };
     Ok((
         format!(
-            "{} walk(s) of at most {depth} operator(s) form a complete prefix code from each of the {} reachable state(s); every operator on them is barycentric and every walk's product on the differences of points has {}-norm ≤ {bound} < 1 (exact in {}), for the instance {}: every infinite walk contracts",
-            s.walks.len(),
-            reached.len(),
+            "{} of at most {} form a complete prefix code from each of the {}; every operator on them is barycentric and every walk's product on the differences of points has {}-norm ≤ {bound} < 1 (exact in {}), for the instance {}: every infinite walk contracts",
+            super::counted(s.walks.len(), "walk", "walks"),
+            super::counted(depth, "operator", "operators"),
+            super::counted(reached.len(), "reachable state", "reachable states"),
             if inf { "∞" } else { "1" },
             if a.field.is_some() { "K" } else { "Q" },
             match s.instance.is_empty() {
                 true => "the claim gives".to_string(),
-                false => format!("completed by the step's values of {} unknown operator(s) (every constraint holds)", s.instance.len()),
+                false => format!("completed by the step's values of {} (every constraint holds)", super::counted(s.instance.len(), "unknown operator", "unknown operators")),
             }
         ),
         match s.instance.is_empty() {
@@ -1581,8 +1586,12 @@ pub(super) fn check_similarity(a: &AutomatonClaim, s: &SimilarityStep) -> Checke
     let listed: Vec<&Vec<usize>> = s.parts.iter().map(|p| &p.states).collect();
     if parts.iter().collect::<Vec<_>>() != listed {
         return Err(format!(
-            "the parts must be the {} cyclic strongly connected part(s) of the reachable control graph, ordered by smallest state",
-            parts.len()
+            "the parts must be the {} of the reachable control graph, ordered by smallest state",
+            super::counted(
+                parts.len(),
+                "cyclic strongly connected part",
+                "cyclic strongly connected parts"
+            )
         ));
     }
     if parts.is_empty() {
@@ -1670,8 +1679,8 @@ pub(super) fn check_similarity(a: &AutomatonClaim, s: &SimilarityStep) -> Checke
     let hausdorff = hausdorff(a, &parts, &values, &s.decimal);
     Ok((
         format!(
-            "{} cyclic part(s); every operator inside a part is a similitude of squared ratio σ^k on the frames, exactly in {}; u* is the smallest root of det(I − M(u)) in (0, 1] (Sturm), so ρ(M(u*)) = 1; {}; the largest is {}… ({} digits re-derived)",
-            parts.len(),
+            "{}; every operator inside a part is a similitude of squared ratio σ^k on the frames, exactly in {}; u* is the smallest root of det(I − M(u)) in (0, 1] (Sturm), so ρ(M(u*)) = 1; {}; the largest is {}… ({} digits re-derived)",
+            super::counted(parts.len(), "cyclic part", "cyclic parts"),
             if a.field.is_some() { "K" } else { "Q" },
             forms.join("; "),
             s.decimal,

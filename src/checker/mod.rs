@@ -116,6 +116,15 @@ thread_local! {
     static SPENT: std::cell::Cell<u128> = const { std::cell::Cell::new(0) };
 }
 
+/// `1 cell`, `2 cells`: a count with its noun in the right number. The checker's own copy of
+/// the producer's helper (`crate::error::counted`): it imports nothing outside `certificate`.
+pub(super) fn counted(n: impl std::fmt::Display, one: &str, many: &str) -> String {
+    match n.to_string() {
+        t if t == "1" => format!("1 {one}"),
+        t => format!("{t} {many}"),
+    }
+}
+
 /// The budget in force.
 pub(super) fn budget() -> Budget {
     BUDGET.with(std::cell::Cell::get)

@@ -331,9 +331,9 @@ pub(super) fn check_ratio(r: &RatioStep, sub: &Substitution, tied: &str) -> Chec
     if period != BigUint::from(r.period) || BigUint::from(r.points.len()) != period {
         return Err(format!(
             "the period is P = {period} (lcm of the dominant periods); the certificate claims {} \
-             with {} point(s)",
+             with {}",
             r.period,
-            r.points.len()
+            super::counted(r.points.len(), "point", "points")
         ));
     }
     let d = cls.iter().map(|(ms, _)| ms.len()).sum::<usize>() + 1;
@@ -489,9 +489,10 @@ pub(super) fn check_ratio(r: &RatioStep, sub: &Substitution, tied: &str) -> Chec
     };
     Ok((
         format!(
-            "{} class(es) re-derived for {tied}; {rho}, {dominant} dominant class(es) (Perron \
-             vectors, Collatz–Wielandt bounds), P = {period}; {}; {verdict}",
-            cls.len(),
+            "{} re-derived for {tied}; {rho}, {} (Perron vectors, Collatz–Wielandt bounds), P = \
+             {period}; {}; {verdict}",
+            super::counted(cls.len(), "class", "classes"),
+            super::counted(dominant, "dominant class", "dominant classes"),
             whys.join("; ")
         ),
         format!("limit ratio: {verdict}"),

@@ -787,8 +787,13 @@ pub(super) fn check_face(
             ));
         }
         lines.push(format!(
-            "level {i}: {} cells, {} edges, {} corners, χ = {}, {} component(s), {} hole(s)",
-            got.faces, got.edges, got.corners, got.euler, got.components, got.holes
+            "level {i}: {} cells, {} edges, {} corners, χ = {}, {}, {}",
+            got.faces,
+            got.edges,
+            got.corners,
+            got.euler,
+            super::counted(got.components, "component", "components"),
+            super::counted(got.holes, "hole", "holes")
         ));
     }
     let msg = format!(
@@ -918,16 +923,15 @@ pub(super) fn check_solid(
             ));
         }
         lines.push(format!(
-            "level {i}: {} volumes, {} faces, {} edges, {} corners, χ = {}, {} component(s), {} \
-             void(s), {} tunnel(s)",
+            "level {i}: {} volumes, {} faces, {} edges, {} corners, χ = {}, {}, {}, {}",
             got.volumes,
             got.faces,
             got.edges,
             got.corners,
             got.euler,
-            got.components,
-            got.voids,
-            got.tunnels
+            super::counted(got.components, "component", "components"),
+            super::counted(got.voids, "void", "voids"),
+            super::counted(got.tunnels, "tunnel", "tunnels")
         ));
     }
     let last = s.rows.len() - 1;
@@ -939,7 +943,10 @@ pub(super) fn check_solid(
          equal the F2 ones",
         match claim.shared.len() {
             0 => String::new(),
-            n => format!(" with their {n} shared face(s)"),
+            n => format!(
+                " with their {}",
+                super::counted(n, "shared face", "shared faces")
+            ),
         }
     );
     Ok((msg, format!("the level-n solid: {}", lines.join("; "))))

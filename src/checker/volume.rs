@@ -761,10 +761,11 @@ pub(super) fn check_volume_closure(
         v = next;
     }
     let msg = format!(
-        "{nt} volume type(s) closed under subdivision, the claim's {} start volume(s) among \
-         them: every surface a sphere, {subvolumes} sub-volumes re-derived (THEORY §10) and \
-         identified by canonical code, every contribution and the counts of levels 0–{} recounted",
-        claim.volumes.len(),
+        "{} closed under subdivision, the claim's {} among them: every surface a sphere, \
+         {subvolumes} sub-volumes re-derived (THEORY §10) and identified by canonical code, every \
+         contribution and the counts of levels 0–{} recounted",
+        super::counted(nt, "volume type", "volume types"),
+        super::counted(claim.volumes.len(), "start volume", "start volumes"),
         claim.levels
     );
     let verdict = format!(

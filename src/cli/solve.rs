@@ -54,9 +54,9 @@ pub(super) fn run(args: SolveArgs, limits: &Limits) -> Result<ExitCode, Error> {
                     print_json(&v);
                 } else {
                     let mut o = format!(
-                        "field {}: every operator is given; {} constraint(s) and the barycentric conditions checked exactly in the field\n",
+                        "field {}: every operator is given; {} and the barycentric conditions checked exactly in the field\n",
                         v.field,
-                        model.automaton.constraints.len()
+                        lacuna::mesh::counted(model.automaton.constraints.len(), "constraint", "constraints")
                     );
                     if v.consistent {
                         o += "consistent: every constraint holds\n";

@@ -391,14 +391,9 @@ pub fn project_exact(
 
 /// The exact value of every unknown at parameters `t`.
 pub(crate) fn unknowns_at(param: &Parametrization, count: usize, t: &[Q]) -> Vec<Q> {
-    (0..count)
-        .map(|u| {
-            let (cst, terms) = param.expression(u);
-            terms
-                .iter()
-                .fold(cst.clone(), |acc, (k, c)| acc + c * &t[*k])
-        })
-        .collect()
+    let x = param.at(t);
+    debug_assert_eq!(x.len(), count, "one value per unknown");
+    x
 }
 
 /// The exact squared distance of a column's point to its target at the unknowns `x`.
@@ -617,7 +612,6 @@ pub(crate) fn choose(
             let lx = l1::Lift {
                 param: cx.param,
                 fixed: cx.fixed,
-                unknowns: count,
                 cells: &cells,
                 frames: &frames,
                 objective: &objective,

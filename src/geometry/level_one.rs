@@ -256,7 +256,6 @@ const RHO_MAX: i64 = 4;
 pub(crate) struct Lift<'a> {
     pub(crate) param: &'a Parametrization,
     pub(crate) fixed: &'a [Option<Q>],
-    pub(crate) unknowns: usize,
     pub(crate) cells: &'a [CellPolygon],
     pub(crate) frames: &'a [Vec<QPoint>],
     /// The unknowns whose L1 distance to the current point the LP minimises.
@@ -278,7 +277,7 @@ pub(crate) fn lift(
     let two = Q::from_integer(2.into());
     let mut t = t0.to_vec();
     for _ in 0..ROUNDS {
-        let x = crate::geometry::choose::unknowns_at(lx.param, lx.unknowns, &t);
+        let x = lx.param.at(&t);
         let areas: Vec<Q> = lx.cells.iter().map(|c| area2(c, lx.frames, &x)).collect();
         // Twice the area against twice the margin: met exactly, or another round.
         if areas.iter().zip(margins).all(|(a2, m)| *a2 >= &two * m) && linear_hold(linear, &x) {
@@ -339,7 +338,7 @@ pub(crate) fn lift(
             }
         };
     }
-    let x = crate::geometry::choose::unknowns_at(lx.param, lx.unknowns, &t);
+    let x = lx.param.at(&t);
     match lx
         .cells
         .iter()
@@ -428,13 +427,12 @@ mod tests {
         // the parametrisation's pivots.
         let want: Vec<Q> = [1, 0, 0, 0, 1, 0, 0, 2, 0].iter().map(|&v| q(v)).collect();
         let t0: Vec<Q> = space.free.iter().map(|&u| want[u].clone()).collect();
-        assert_eq!(crate::geometry::choose::unknowns_at(&param, 9, &t0), want);
+        assert_eq!(param.at(&t0), want);
         let objective: Vec<usize> = (0..9).collect();
         let cells = [cell];
         let lx = Lift {
             param: &param,
             fixed: &fixed,
-            unknowns: 9,
             cells: &cells,
             frames: &frames,
             objective: &objective,
@@ -442,7 +440,7 @@ mod tests {
         };
         let goals = [Goal::MinArea];
         let t = lift(&lx, &t0, &[q(1)], &[], (&goals, 0)).expect("met");
-        let x = crate::geometry::choose::unknowns_at(&param, 9, &t);
+        let x = param.at(&t);
         let p: Vec<(Q, Q)> = (0..3)
             .map(|i| (x[3 * i + 1].clone(), x[3 * i + 2].clone()))
             .collect();

@@ -188,8 +188,8 @@ pub fn write_template(name: &str, types: &TypeSet, q: usize, template: &ExactTem
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "# lacuna template for {name}: Bézier degree {q}, {} face type(s).",
-        types.types.len()
+        "# lacuna template for {name}: Bézier degree {q}, {}.",
+        crate::error::counted(types.types.len(), "face type", "face types")
     );
     out.push_str(
         "# Exact positions: decimals (0.25), fractions (1/3), integers. Edit the targets (and\n\

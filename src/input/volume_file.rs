@@ -423,8 +423,8 @@ fn coordinates(
         return Err(at(
             "E1214",
             format!(
-                "{what} has {n} corners; {} point(s) given (`X Y Z`, separated by commas)",
-                items.len()
+                "{what} has {n} corners; {} given (`X Y Z`, separated by commas)",
+                crate::error::counted(items.len(), "point", "points")
             ),
             line,
             list_t,

@@ -411,9 +411,9 @@ fn outline_of(
                 error = Some(MeshError::Check {
                     level,
                     reason: format!(
-                        "edge {e} of cell {me} is {} by the flags but held by {} cell(s)",
+                        "edge {e} of cell {me} is {} by the flags but held by {}",
                         if c.free[e] { "free" } else { "shared" },
-                        h.count
+                        crate::error::counted(h.count, "cell", "cells")
                     ),
                 });
                 return;

@@ -495,8 +495,10 @@ pub fn check_type_part(ty: usize, part: Part, cells: &BigUint) -> Result<TypePar
     let n = ck.components as u64;
     if BigUint::from(n) != *cells || ck.euler != 2 * ck.components as i64 {
         return Err(format!(
-            "the cells of type {ty} give {} closed surface(s) of Euler characteristic {} in all; the exact count is {cells} cell(s), each a sphere",
-            ck.components, ck.euler
+            "the cells of type {ty} give {} of Euler characteristic {} in all; the exact count is {}, each a sphere",
+            crate::error::counted(ck.components, "closed surface", "closed surfaces"),
+            ck.euler,
+            crate::error::counted(cells, "cell", "cells")
         ));
     }
     Ok(TypePart { ty, cells: n, part })

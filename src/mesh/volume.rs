@@ -429,7 +429,8 @@ fn solid_with(
     if let Some(b1) = &exact.tunnels {
         if BigInt::from(genus) != *b1 {
             return Err(check(format!(
-                "the surface has genus {genus}, the exact topology {b1} tunnel(s)"
+                "the surface has genus {genus}, the exact topology {}",
+                crate::error::counted(b1, "tunnel", "tunnels")
             )));
         }
     }

@@ -249,7 +249,11 @@ pub(super) fn read(bytes: &[u8], name: &str, max_triangles: u64) -> Result<Mesh,
     let unused = order.iter().filter(|id| !items.contains(id)).count();
     if unused > 0 {
         w.note(format!(
-            "{unused} object(s) not in the build, not checked (they are not printed)"
+            "{} not in the build, not checked (they are not printed)",
+            match unused {
+                1 => "1 object".to_string(),
+                n => format!("{n} objects"),
+            }
         ));
     }
     if welded > 0 {

@@ -283,7 +283,8 @@ class Closure:
                 seen[c] = seen.get(c, 0) + 1
             kids = " + ".join(f"{k}×{c}" if k > 1 else c for c, k in seen.items())
             rows.append([t.id, t.face, kids, t.contribution])
-        head = f"<p>closed: {len(self.types)} face type(s), start {', '.join(self.start)}</p>"
+        n = len(self.types)
+        head = f"<p>closed: {n} face type{'' if n == 1 else 's'}, start {', '.join(self.start)}</p>"
         return head + _html_table(["type", "face", "sub-faces", "contribution"], rows)
 
     def matrix(self) -> List[List[int]]:

@@ -513,12 +513,13 @@ pub fn analyse(
     let (ord_d, _) = split_off(&reflect(&d, period, dim), &f);
     let numerator = |seq: &[BigInt], r: usize| numerator(&d, seq, period, dim, r);
     let mut reasons = vec![format!(
-        "{} face type{} reached in {} class{}; rho = {} from dominant class(es) {}",
+        "{} face type{} reached in {} class{}; rho = {} from the dominant class{} {}",
         reached.len(),
         if reached.len() == 1 { "" } else { "s" },
         classes.len(),
         if classes.len() == 1 { "" } else { "es" },
         rho,
+        if dominant.len() == 1 { "" } else { "es" },
         dominant
             .iter()
             .map(|&i| format!(

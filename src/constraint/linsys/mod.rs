@@ -472,6 +472,15 @@ impl Parametrization {
         (&self.constant[x], &self.params[x])
     }
 
+    /// The value of every unknown at the free parameters `t` (one per parameter), exactly.
+    pub fn at(&self, t: &[BigRational]) -> Vec<BigRational> {
+        self.constant
+            .iter()
+            .zip(&self.params)
+            .map(|(c, terms)| terms.iter().fold(c.clone(), |acc, (k, v)| acc + v * &t[*k]))
+            .collect()
+    }
+
     /// Same answer as [`forced_equal`], in time proportional to the unknowns involved.
     pub fn forced_equal(&self, a: &[(usize, BigRational)], b: &[(usize, BigRational)]) -> bool {
         let mut sum: BTreeMap<usize, BigRational> = BTreeMap::new();
