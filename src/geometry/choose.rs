@@ -461,11 +461,19 @@ pub(crate) struct Context<'a> {
     pub(crate) lift: bool,
 }
 
+/// What [`choose`] returns: the parameters, how they were chosen, and with `Context::lift` the
+/// exact level-1 check of the chosen point (`crate::geometry::level_one`).
+type Chosen = (
+    Vec<Q>,
+    Choice,
+    Option<Result<crate::geometry::LevelOne, crate::geometry::options::GeometryError>>,
+);
+
 /// Chooses the parameters (module documentation, and `crate::geometry::lp` for goals).
 pub(crate) fn choose(
     cx: &Context,
     opt: &crate::geometry::options::InstantiateOptions,
-) -> Result<(Vec<Q>, Choice), crate::geometry::options::GeometryError> {
+) -> Result<Chosen, crate::geometry::options::GeometryError> {
     use crate::geometry::lp::{inequalities, meet_goals, GoalFailure, LacunaVertex};
     use crate::geometry::template_file::{parse_template, ExactTemplate};
     let types = cx.types;
@@ -527,15 +535,18 @@ pub(crate) fn choose(
         }
     };
     let count = cx.lin.system.unknowns;
-    let a = &cx.generated.automaton;
-    let mut weights: Vec<(usize, String)> = cols
-        .iter()
-        .flat_map(|c| c.unknowns.iter())
-        .map(|&u| (u, a.entry_name(cx.lin.unknown_entries[u])))
-        .collect();
-    weights.sort_by_key(|w| w.0);
-    weights.dedup_by_key(|w| w.0);
-    let objective: Vec<usize> = weights.iter().map(|w| w.0).collect();
+    // The sub-face weights (every unknown of a column, once, in order): the LPs' objective,
+    // built only when goals or the area goal need it.
+    let mut objective: Option<Vec<usize>> = None;
+    let weights_of = || {
+        let mut o: Vec<usize> = cols
+            .iter()
+            .flat_map(|c| c.unknowns.iter().copied())
+            .collect();
+        o.sort_unstable();
+        o.dedup();
+        o
+    };
     let goal_error = |code: &'static str, message: String| {
         crate::geometry::options::GeometryError::Goal { code, message }
     };
@@ -548,6 +559,12 @@ pub(crate) fn choose(
     let mut ineqs = Vec::new();
     if !opt.goals.is_empty() {
         let ex = exact.as_ref().expect("an exact template under goals");
+        let a = &cx.generated.automaton;
+        let objective = objective.get_or_insert_with(weights_of);
+        let weights: Vec<(usize, String)> = objective
+            .iter()
+            .map(|&u| (u, a.entry_name(cx.lin.unknown_entries[u])))
+            .collect();
         let mut vertices = Vec::new();
         for (c, ec) in cols.iter().zip(&exact_cols) {
             let ty = &types.types[c.ty];
@@ -578,7 +595,7 @@ pub(crate) fn choose(
         let constant = |u: usize| cx.param.expression(u).1.is_empty();
         ineqs = inequalities(&opt.goals, &weights, &constant, &vertices, opt.bits);
         let met = meet_goals(
-            cx.param, cx.fixed, &t, &objective, &ineqs, &opt.goals, opt.bits,
+            cx.param, cx.fixed, &t, objective, &ineqs, &opt.goals, opt.bits,
         )
         .map_err(goal_failure)?;
         choice.moved_by_goals = met != t;
@@ -588,21 +605,23 @@ pub(crate) fn choose(
         choice.goals = opt.goals.iter().map(|g| g.to_string()).collect();
         choice.method += " + LP goals";
     }
-    // The automatic area goal, when the point chosen so far makes a level-1 cell flat that the
-    // constraints do not force flat (`crate::geometry::level_one`).
+    // The exact level-1 check of the chosen point, and before it the automatic area goal when
+    // the point chosen so far makes a level-1 cell flat that the constraints do not force flat
+    // (`crate::geometry::level_one`). The check's verdict goes back to the caller, which reports
+    // it after the rest of the instance is built.
+    let mut checked = None;
     if cx.lift {
         use crate::geometry::level_one as l1;
         let cells = l1::cells(types, cx.generated, cx.lin);
         let frames = l1::frames(types, cx.q, opt);
-        let x = unknowns_at(cx.param, count, &t);
-        // A positive check, or a collapse the constraints force (reported by the caller's own
-        // check with its witness), is left as it is.
+        let first = l1::check(&cells, &frames, &unknowns_at(cx.param, count, &t));
+        // A positive check, or a collapse the constraints force, is the verdict as it is.
         if let Err(crate::geometry::options::GeometryError::Degenerate {
             forced: false,
             cell,
             area,
             ..
-        }) = l1::check(&cells, &frames, &x)
+        }) = &first
         {
             let margins = l1::automatic_margins(&cells, &frames);
             // The area goal's index, for messages: after the user's goals (the linear
@@ -614,7 +633,7 @@ pub(crate) fn choose(
                 fixed: cx.fixed,
                 cells: &cells,
                 frames: &frames,
-                objective: &objective,
+                objective: objective.get_or_insert_with(weights_of),
                 bits: opt.bits,
             };
             // At a cell shrunk to a point the area is stationary (its tangent plane is flat):
@@ -663,6 +682,13 @@ pub(crate) fn choose(
             choice.lifted = Some(format!("{cell} (signed area {area})"));
             choice.method += " + automatic area goal";
             t = met;
+            checked = Some(l1::check(
+                &cells,
+                &frames,
+                &unknowns_at(cx.param, count, &t),
+            ));
+        } else {
+            checked = Some(first);
         }
     }
     let x = unknowns_at(cx.param, count, &t);
@@ -690,7 +716,7 @@ pub(crate) fn choose(
         })
         .sum();
     choice.rms = (sq / cols.len().max(1) as f64).sqrt();
-    Ok((t, choice))
+    Ok((t, choice, checked))
 }
 
 #[cfg(test)]

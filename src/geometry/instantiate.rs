@@ -126,8 +126,8 @@ fn to_f64(r: &BigRational) -> f64 {
 /// be, the automatic area goal moves it (`crate::geometry::level_one`); the exact level-1 check
 /// then runs on the point chosen.
 pub fn instantiate(input: &Input, opt: &InstantiateOptions) -> Result<Instance, GeometryError> {
-    let inst = build(input, opt, true)?;
-    let level_one = inst.level_one(opt)?;
+    let (inst, checked) = build(input, opt, true)?;
+    let level_one = checked.expect("the level-1 check runs when the fit may be moved")?;
     Ok(Instance { level_one, ..inst })
 }
 
@@ -138,10 +138,14 @@ pub fn instantiate_unchecked(
     input: &Input,
     opt: &InstantiateOptions,
 ) -> Result<Instance, GeometryError> {
-    build(input, opt, false)
+    build(input, opt, false).map(|(inst, _)| inst)
 }
 
-fn build(input: &Input, opt: &InstantiateOptions, lift: bool) -> Result<Instance, GeometryError> {
+/// The instance, and with `lift` the exact level-1 check of its chosen point (done by the
+/// choice, which moves a degenerate fit first).
+type Built = (Instance, Option<Result<LevelOne, GeometryError>>);
+
+fn build(input: &Input, opt: &InstantiateOptions, lift: bool) -> Result<Built, GeometryError> {
     let q = opt.degree.max(1);
     let faces = input.faces();
     // A one-edge face has no placement with area (issue #20 item 3): refused before the work.
@@ -196,7 +200,7 @@ fn build(input: &Input, opt: &InstantiateOptions, lift: bool) -> Result<Instance
         q,
         lift,
     };
-    let (tq, choice) = crate::geometry::choose::choose(&cx, opt)?;
+    let (tq, choice, checked) = crate::geometry::choose::choose(&cx, opt)?;
     let values = crate::geometry::choose::unknowns_at(&param, lin.system.unknowns, &tq);
     let fit_residual = choice.rms;
     let parameters = names.into_iter().zip(tq).collect();
@@ -249,7 +253,7 @@ fn build(input: &Input, opt: &InstantiateOptions, lift: bool) -> Result<Instance
         flags,
     };
     inst.check_exact()?;
-    Ok(inst)
+    Ok((inst, checked))
 }
 
 impl Instance {

@@ -158,19 +158,32 @@ fn cross(a: &QPoint, b: &QPoint) -> Q {
     &a[0] * &b[1] - &a[1] * &b[0]
 }
 
-/// Twice the signed area of `cell` at the unknowns `x` (shoelace), exactly.
-pub(crate) fn area2(cell: &CellPolygon, frames: &[Vec<QPoint>], x: &[Q]) -> Q {
-    let frame = &frames[cell.ty];
-    let pts: Vec<QPoint> = cell.vertices.iter().map(|v| vertex(frame, v, x)).collect();
+/// Twice the signed area of a polygon (shoelace), exactly.
+fn shoelace(pts: &[QPoint]) -> Q {
     let n = pts.len();
     (0..n).fold(Q::zero(), |s, i| s + cross(&pts[i], &pts[(i + 1) % n]))
 }
 
-/// The gradient of [`area2`] at `x` with respect to the unknowns, exactly: vertex `i` enters
-/// the terms `p_i × p_{i+1}` and `p_{i−1} × p_i`, and `∂p_i/∂x_{v_i[r]} = F_r`.
-fn area2_gradient(cell: &CellPolygon, frames: &[Vec<QPoint>], x: &[Q]) -> BTreeMap<usize, Q> {
+/// The vertices of `cell` in its frame at the unknowns `x`.
+fn points(cell: &CellPolygon, frames: &[Vec<QPoint>], x: &[Q]) -> Vec<QPoint> {
     let frame = &frames[cell.ty];
-    let pts: Vec<QPoint> = cell.vertices.iter().map(|v| vertex(frame, v, x)).collect();
+    cell.vertices.iter().map(|v| vertex(frame, v, x)).collect()
+}
+
+/// Twice the signed area of `cell` at the unknowns `x`, exactly.
+pub(crate) fn area2(cell: &CellPolygon, frames: &[Vec<QPoint>], x: &[Q]) -> Q {
+    shoelace(&points(cell, frames, x))
+}
+
+/// The gradient of twice the area of `cell` with respect to the unknowns, at the cell's
+/// vertices `pts` (from [`points`]), exactly: vertex `i` enters the terms `p_i × p_{i+1}` and
+/// `p_{i−1} × p_i`, and `∂p_i/∂x_{v_i[r]} = F_r`.
+fn area2_gradient(
+    cell: &CellPolygon,
+    frames: &[Vec<QPoint>],
+    pts: &[QPoint],
+) -> BTreeMap<usize, Q> {
+    let frame = &frames[cell.ty];
     let n = pts.len();
     let mut g: BTreeMap<usize, Q> = BTreeMap::new();
     for (i, v) in cell.vertices.iter().enumerate() {
@@ -234,11 +247,7 @@ pub(crate) fn automatic_margins(cells: &[CellPolygon], frames: &[Vec<QPoint>]) -
     }
     let frame_area: Vec<Q> = frames
         .iter()
-        .map(|f| {
-            let n = f.len();
-            let a2 = (0..n).fold(Q::zero(), |s, i| s + cross(&f[i], &f[(i + 1) % n]));
-            (a2 / Q::from_integer(2.into())).abs()
-        })
+        .map(|f| (shoelace(f) / Q::from_integer(2.into())).abs())
         .collect();
     cells
         .iter()
@@ -278,16 +287,17 @@ pub(crate) fn lift(
     let mut t = t0.to_vec();
     for _ in 0..ROUNDS {
         let x = lx.param.at(&t);
-        let areas: Vec<Q> = lx.cells.iter().map(|c| area2(c, lx.frames, &x)).collect();
+        let pts: Vec<Vec<QPoint>> = lx.cells.iter().map(|c| points(c, lx.frames, &x)).collect();
+        let areas: Vec<Q> = pts.iter().map(|p| shoelace(p)).collect();
         // Twice the area against twice the margin: met exactly, or another round.
         if areas.iter().zip(margins).all(|(a2, m)| *a2 >= &two * m) && linear_hold(linear, &x) {
             return Ok(t);
         }
         let mut ineqs = linear.to_vec();
-        for ((cell, a2), m) in lx.cells.iter().zip(&areas).zip(margins) {
+        for (((cell, p), a2), m) in lx.cells.iter().zip(&pts).zip(&areas).zip(margins) {
             // The tangent plane aims 1/8 above the margin, room for the quadratic terms it
             // ignores: area2(x) + g·(y − x) ≥ 2m·9/8, i.e. g·y ≥ 9m/4 − area2(x) + g·x.
-            let g = area2_gradient(cell, lx.frames, &x);
+            let g = area2_gradient(cell, lx.frames, p);
             let gx = g.iter().fold(Q::zero(), |s, (u, c)| s + c * &x[*u]);
             ineqs.push(Inequality {
                 goal: area_goal,
@@ -366,24 +376,29 @@ mod tests {
         Q::from_integer(n.into())
     }
 
-    #[test]
-    fn the_gradient_is_the_derivative_of_the_shoelace_sum() {
-        // A triangle in the frame F = (0,0), (1,0), (0,1); vertex i is
-        // x[3i]·F0 + x[3i+1]·F1 + x[3i+2]·F2 = (x[3i+1], x[3i+2]).
+    /// A triangle in the frame F = (0,0), (1,0), (0,1): vertex i is
+    /// x[3i]·F0 + x[3i+1]·F1 + x[3i+2]·F2 = (x[3i+1], x[3i+2]).
+    fn triangle(lacuna: bool) -> (Vec<Vec<QPoint>>, CellPolygon) {
         let frames = vec![vec![[q(0), q(0)], [q(1), q(0)], [q(0), q(1)]]];
         let cell = CellPolygon {
             ty: 0,
-            label: "t".into(),
-            lacuna: false,
+            label: "the triangle".into(),
+            lacuna,
             forced: false,
             vertices: (0..3).map(|i| vec![3 * i, 3 * i + 1, 3 * i + 2]).collect(),
         };
+        (frames, cell)
+    }
+
+    #[test]
+    fn the_gradient_is_the_derivative_of_the_shoelace_sum() {
+        let (frames, cell) = triangle(false);
         // Vertices (0,0), (2,0), (0,3): twice the area is 2·3 = 6.
         let x: Vec<Q> = [1, 0, 0, 0, 2, 0, 0, 0, 3].iter().map(|&v| q(v)).collect();
         assert_eq!(area2(&cell, &frames, &x), q(6));
         // The area is quadratic: the tangent plane is exact up to second order, so a central
         // difference of step 1 in one unknown equals the derivative (the x² term cancels).
-        let g = area2_gradient(&cell, &frames, &x);
+        let g = area2_gradient(&cell, &frames, &points(&cell, &frames, &x));
         for u in 0..9 {
             let (mut up, mut down) = (x.clone(), x.clone());
             up[u] += q(1);
@@ -414,14 +429,7 @@ mod tests {
             panic!("an empty system is consistent")
         };
         let param = space.parametrize();
-        let frames = vec![vec![[q(0), q(0)], [q(1), q(0)], [q(0), q(1)]]];
-        let cell = CellPolygon {
-            ty: 0,
-            label: "the triangle".into(),
-            lacuna: false,
-            forced: false,
-            vertices: (0..3).map(|i| vec![3 * i, 3 * i + 1, 3 * i + 2]).collect(),
-        };
+        let (frames, cell) = triangle(false);
         let fixed = vec![None; 9];
         // The free parameters are the unknowns themselves, in some order: set them through
         // the parametrisation's pivots.
@@ -451,14 +459,7 @@ mod tests {
 
     #[test]
     fn a_flat_cell_is_degenerate_and_a_forced_one_says_so() {
-        let frames = vec![vec![[q(0), q(0)], [q(1), q(0)], [q(0), q(1)]]];
-        let mut cell = CellPolygon {
-            ty: 0,
-            label: "the lacuna of T0 (x)".into(),
-            lacuna: true,
-            forced: false,
-            vertices: (0..3).map(|i| vec![3 * i, 3 * i + 1, 3 * i + 2]).collect(),
-        };
+        let (frames, mut cell) = triangle(true);
         // Three points on the x axis: (0,0), (1,0), (2,0).
         let x: Vec<Q> = [1, 0, 0, 0, 1, 0, 0, 2, 0].iter().map(|&v| q(v)).collect();
         let e = check(std::slice::from_ref(&cell), &frames, &x).unwrap_err();
