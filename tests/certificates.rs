@@ -18,7 +18,7 @@ use proptest::prelude::*;
 mod common;
 use common::{
     assert_proved, assert_rejected, automaton_certificate, face_certificate, steps_named,
-    volume_certificate,
+    volume_certificate_with_system,
 };
 
 const FACE_FIXTURES: [&str; 8] = [
@@ -194,7 +194,11 @@ fn proofs_are_fresh_and_check() {
                 .iter()
                 .map(|n| (*n, automaton_certificate(n))),
         )
-        .chain(VOLUME_FIXTURES.iter().map(|n| (*n, volume_certificate(n))));
+        .chain(
+            VOLUME_FIXTURES
+                .iter()
+                .map(|n| (*n, volume_certificate_with_system(n))),
+        );
     for (name, cert) in all {
         let path = format!("{dir}/{name}.json");
         let json = cert.to_json();

@@ -7,7 +7,7 @@ use lacuna::certificate::{Certificate, Step, VolumeClosureStep, VolumeRule};
 use lacuna::checker::{check, Outcome};
 
 mod common;
-use common::{assert_proved, lacuna, volume_certificate};
+use common::{assert_proved, lacuna, volume_certificate, volume_certificate_with_system};
 
 fn closure_of(cert: &mut Certificate) -> &mut VolumeClosureStep {
     match cert.steps.first_mut() {
@@ -405,4 +405,193 @@ mod random {
             prop_assert!(check(&bad).failed());
         }
     }
+}
+
+fn system_of(cert: &mut Certificate) -> &mut lacuna::certificate::VolumeSystemStep {
+    cert.steps
+        .iter_mut()
+        .find_map(|s| match s {
+            Step::VolumeSolutionSpace(v) => Some(v),
+            _ => None,
+        })
+        .expect("a volume-solution-space step")
+}
+
+/// The checker fails `cert` at the volume-solution-space step with a message containing
+/// `reason`.
+fn system_refused(what: &str, cert: &Certificate, reason: &str) {
+    failed_at("volume-solution-space", what, cert, reason);
+}
+
+#[test]
+fn the_volume_constraints_are_certified_and_agree_with_the_solver() {
+    // Two implementations meet: lacuna's generator and sparse solver (constraint/volume.rs,
+    // linsys) and the checker's rebuild from its own derivation of the sub-volumes
+    // (checker/volume_system.rs). The checker's row count and dof must be the solver's.
+    for name in ["cube-B2", "tetrahedron-B2"] {
+        let mut cert = volume_certificate_with_system(name);
+        assert_proved(name, &cert);
+        let (code, out, err) = lacuna(&["solve", name, "--json"]);
+        assert_eq!(code, 0, "{err}");
+        let solved: serde_json::Value = serde_json::from_str(&out).expect("json");
+        let step = system_of(&mut cert).clone();
+        assert_eq!(serde_json::json!(step.dof), solved["dof"], "{name}: {out}");
+        assert_eq!(serde_json::json!(step.unknowns), solved["unknowns"]);
+        let report = check(&cert);
+        let msg = &report.step("volume-solution-space").unwrap().message;
+        let rows = format!(
+            "{} rows over {} unknowns",
+            solved["equations"], step.unknowns
+        );
+        assert!(msg.contains(&rows), "{name}: `{rows}` not in {msg}");
+        if name == "cube-B2" {
+            // By hand (CERTIFICATES.md): the cube's state has 20 points (8 corners, 12 edge
+            // midpoints), the corner piece V1 49 (19 corners, 30 edges), V2 65 (25, 40);
+            // V0 → 8 V1, V1 → 16 V1 + 3 V2, V2 → 20 V1 + 5 V2.
+            let volume_part = 8 * 20 * 49 + 49 * (16 * 49 + 3 * 65) + 65 * (20 * 49 + 5 * 65);
+            assert_eq!(volume_part, 140_636);
+            let face_part = step.unknowns - volume_part;
+            assert!(
+                msg.contains(&format!("({face_part} of face operators")),
+                "{msg}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_forged_volume_system_is_rejected() {
+    let good = volume_certificate_with_system("cube-B2");
+    let forge = |f: &dyn Fn(&mut lacuna::certificate::VolumeSystemStep)| {
+        let mut c = good.clone();
+        f(system_of(&mut c));
+        c
+    };
+    // A changed entry of the particular solution.
+    let c = forge(&|s| {
+        let x = &mut s.particular[0].1;
+        *x = if x == "1" { "2".into() } else { "1".into() };
+    });
+    system_refused(
+        "particular",
+        &c,
+        "the particular solution fails rebuilt row",
+    );
+    // A basis vector changed off its free unknown.
+    let c = forge(&|s| {
+        let b = s
+            .basis
+            .iter_mut()
+            .find(|b| b.len() > 1)
+            .expect("a basis vector with a pivot entry");
+        let free: std::collections::BTreeSet<usize> = s.free.iter().copied().collect();
+        let e = b.iter_mut().find(|(i, _)| !free.contains(i)).unwrap();
+        e.1 = format!("{}1", e.1.trim_start_matches('-'));
+    });
+    system_refused("basis", &c, "fails homogeneous rebuilt row");
+    // One degree of freedom more: an unknown that is not free made free with a unit vector.
+    let c = forge(&|s| {
+        let free: std::collections::BTreeSet<usize> = s.free.iter().copied().collect();
+        let x = (0..s.unknowns).find(|i| !free.contains(i)).unwrap();
+        let at = s.free.partition_point(|&f| f < x);
+        s.free.insert(at, x);
+        s.basis.insert(at, vec![(x, "1".into())]);
+        s.dof += 1;
+        s.rank -= 1;
+    });
+    system_refused("extra dof", &c, "fails homogeneous rebuilt row");
+    // One degree of freedom less: a free unknown and its vector dropped. The basis still
+    // satisfies the rows, but the unknowns that are not free are then dependent.
+    let c = forge(&|s| {
+        s.free.pop();
+        s.basis.pop();
+        s.dof -= 1;
+        s.rank += 1;
+    });
+    system_refused("fewer dof", &c, "are not shown independent");
+    // Counts that do not add up.
+    let c = forge(&|s| s.rank += 1);
+    system_refused("rank", &c, "unknowns");
+    let c = forge(&|s| s.unknowns += 1);
+    system_refused("unknowns", &c, "unknowns");
+    // A face read as another face type: the second face of the corner piece (V1) whose type
+    // occurs earlier on its surface, relabelled as the cube's square (type 0), so that the face
+    // closure's start order still holds and the frame check is what rejects it.
+    let c = forge(&|s| {
+        let fr = &mut s.frames[1];
+        let f = (1..fr.len())
+            .find(|&f| fr[f].0 != 0 && fr[..f].iter().any(|x| x.0 == fr[f].0))
+            .expect("a repeated face type other than the square");
+        fr[f].0 = 0;
+    });
+    system_refused("frame type", &c, "is not face type");
+    // The start faces of the face closure out of order.
+    let c = forge(&|s| s.frames[0][0].0 = s.frames[1].iter().map(|f| f.0).max().unwrap());
+    system_refused("frame order", &c, "the face closure");
+    // Two sub-volumes of the corner piece placed as each other's type (the children's
+    // multiset is unchanged): the derived sub-volume is not the placed type.
+    let c = forge(&|s| {
+        let list = &mut s.subvolumes[1];
+        let a = list.iter().position(|p| p.type_index == 1).unwrap();
+        let b = list.iter().position(|p| p.type_index == 2).unwrap();
+        list[a].type_index = 2;
+        list[b].type_index = 1;
+    });
+    system_refused("placement type", &c, "faces derived");
+    // A sub-face placed on another face of its sub-volume's type.
+    let c = forge(&|s| {
+        let p = &mut s.subvolumes[0][0];
+        p.subfaces[0].1 = p.subfaces[1].1;
+    });
+    let report = check(&c);
+    assert!(report.failed(), "{}", report.to_text());
+    // A turned frame of a square face (a symmetry of the square, so the face is still its
+    // type) numbers the volume's points otherwise: the solution no longer fits.
+    let c = forge(&|s| s.frames[0][0].1 = (s.frames[0][0].1 + 1) % 4);
+    let report = check(&c);
+    assert!(report.failed(), "{}", report.to_text());
+    // The unforged certificate still checks.
+    assert_proved("cube-B2", &good);
+}
+
+#[test]
+fn verify_writes_the_volume_system_and_check_proves_it() {
+    let dir = std::env::temp_dir().join(format!("lacuna-volsys-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("tetra.json");
+    let (code, out, err) = lacuna(&[
+        "verify",
+        "tetrahedron-B2",
+        "--certificate",
+        path.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("certified by the solution space (volume-solution-space)"),
+        "{out}"
+    );
+    let (code, out, _) = lacuna(&["check", path.to_str().unwrap()]);
+    assert_eq!(code, 0, "{out}");
+    assert!(
+        out.contains("proved  step 3 (volume-solution-space)")
+            && out.contains("volume constraints: consistent"),
+        "{out}"
+    );
+    // An assembly's shared faces are not rebuilt by the checker: its line says so, and its
+    // certificate has no such step.
+    let path = dir.join("two.json");
+    let (code, out, err) = lacuna(&[
+        "verify",
+        "two-cubes",
+        "--certificate",
+        path.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("not in the certificate: the constraints of shared faces"),
+        "{out}"
+    );
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(!text.contains("volume-solution-space"));
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 pub const FORMAT: &str = "lacuna-certificate";
 
 /// The format version this code writes and checks.
-pub const VERSION: u32 = 7;
+pub const VERSION: u32 = 8;
 
 /// A certificate: the claim (what was given, in canonical form) and the steps that prove every
 /// verdict about it.
@@ -419,6 +419,15 @@ pub enum Step {
     /// b3 = b2 = 0 over F2 and χ the same over every field, b1 over Q equals b1 over F2. Rows
     /// whose F2 b2 or b3 is not 0 are refused.
     SolidHomology(SolidHomologyStep),
+    /// **The solution space of the volume constraints** (THEORY §10, one volume or volumes
+    /// apart). Justification: the checker checks the face closure of the surfaces as a
+    /// `closure` step, checks every face frame and every sub-volume placement (an isomorphism of
+    /// the sub-volume it derives onto the listed type, propagated through the gluing), rebuilds
+    /// the whole system itself (faces as for `solution-space`, then the volume states, their
+    /// incidences, spoke adjacencies and barycentric columns), and checks the particular
+    /// solution and the basis against its own rows; the unknowns that are not free are shown
+    /// independent by elimination modulo a prime. See `docs/CERTIFICATES.md`.
+    VolumeSolutionSpace(VolumeSystemStep),
     /// **The topology of a face's level-n complex** (one start face). Justification: as for
     /// `solid-homology`, without volumes: the checker builds the complex from the claim's face
     /// (edges' pieces, sub-faces, spokes, lacuna and gap sides, corners), checks ∂∂ = 0 over F2,
@@ -829,6 +838,57 @@ pub struct SolutionStep {
     pub dof: usize,
 }
 
+/// Where a face of a sub-volume lies on its type's surface: `(face, rotation)`.
+pub type Seat = (usize, usize);
+
+/// A side of the level-1 surface of a volume: `(face, sub-face, position)`.
+pub type LevelOneSide = (usize, usize, usize);
+
+/// Where sub-volume `k` of a volume type lies: its type, and where the faces it is built from
+/// lie on that type's surface.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SubVolumePlacement {
+    /// Index into the volume closure's types.
+    pub type_index: usize,
+    /// `((f, j), (g, r))`: sub-face `j` of face `f` (numbered as its face type subdivides) is
+    /// face `g` of the type; its boundary as built, rotated left by `r`, is `g`'s face type.
+    pub subfaces: Vec<((usize, usize), Seat)>,
+    /// `((f, j, p), (g, r))`: the side face `X Er Ei Er` over side `p` of sub-face `j` of face
+    /// `f` is face `g` of the type, rotated left by `r` as above.
+    pub sides: Vec<(LevelOneSide, Seat)>,
+}
+
+/// The solution space of the constraint system of a volume closure (THEORY §10).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VolumeSystemStep {
+    /// Bézier degree q of the `Bn` edges.
+    pub degree: usize,
+    /// Cantor gap/piece ratio (a rational > 0).
+    pub cantor_gap: String,
+    /// The face types of the surfaces, closed under subdivision (checked as a `closure` step).
+    pub faces: ClosureStep,
+    /// `frames[v][f] = (t, r)`: face `f` of volume type `v`, rotated left by `r`, is face type
+    /// `t`.
+    pub frames: Vec<Vec<(usize, usize)>>,
+    /// `subvolumes[v][k]`: the sub-volume whose operator is `V<v>.T<k>`.
+    pub subvolumes: Vec<Vec<SubVolumePlacement>>,
+    /// The number of unknowns (the checker's column order, CERTIFICATES.md).
+    pub unknowns: usize,
+    /// A solution, sparse: unknowns not listed are 0.
+    pub particular: Vec<(usize, String)>,
+    /// The free unknowns, increasing, one per basis vector.
+    pub free: Vec<usize>,
+    /// Sparse basis vectors of the kernel; `basis[k]` is 1 at `free[k]`, 0 at the other free
+    /// unknowns.
+    pub basis: Vec<Vec<(usize, String)>>,
+    /// The claimed rank (the unknowns that are not free).
+    pub rank: usize,
+    /// The claimed degrees of freedom.
+    pub dof: usize,
+}
+
 /// The proof that a system has no solution.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -949,6 +1009,7 @@ impl Step {
             Step::LimitRatio(_) => "limit-ratio",
             Step::VolumeClosure(_) => "volume-closure",
             Step::SolidHomology(_) => "solid-homology",
+            Step::VolumeSolutionSpace(_) => "volume-solution-space",
             Step::FaceHomology(_) => "face-homology",
             Step::RuleCompilation(_) => "rule-compilation",
             Step::ConstraintsHold(_) => "constraints-hold",

@@ -18,6 +18,7 @@ use crate::certificate::format::{
 use crate::certificate::format::{
     AttractorClaim, ConstraintFailsStep, ConstraintsHoldStep, ContractionStep, FieldCoords,
     NeighbourFails, NeighbourHolds, NeighbourMap, NeighbourMaps, SimilarityPart, SimilarityStep,
+    SubVolumePlacement, VolumeSystemStep,
 };
 use num_rational::BigRational;
 use num_traits::{One, Zero};
@@ -258,6 +259,132 @@ pub fn certificate_for_volumes(
             .push(Step::SolidHomology(SolidHomologyStep { rows }));
     }
     Ok(cert)
+}
+
+/// The `volume-solution-space` step of a solved volume system (volumes apart): the face closure
+/// of the surfaces, every face's frame, every sub-volume's placement, and the solution space with
+/// the unknowns in the checker's order (face operators type by type, then `V<v>.T<k>` volume
+/// by volume, each row-major). `None` when the system is inconsistent (lacuna then has no
+/// certificate for the volume constraints).
+pub fn volume_system_step(
+    set: &crate::topology::volume::VolumeTypeSet,
+    solved: &crate::constraint::SolvedVolumes,
+    opts: &crate::constraint::GenOptions,
+) -> Result<Option<Step>, CertifyError> {
+    let crate::constraint::Solution::Consistent(space) = &solved.solution else {
+        return Ok(None);
+    };
+    let gv = &solved.generated;
+    let faces = closure_step(&gv.faces)?;
+    let index: std::collections::HashMap<&crate::topology::Face, usize> = gv
+        .faces
+        .types
+        .iter()
+        .enumerate()
+        .map(|(i, t)| (&t.face, i))
+        .collect();
+    let mismatch = |what: &str| {
+        CertifyError::Lacuna(crate::Error::Usage(format!(
+            "the volume system does not have the checker's layout: {what}"
+        )))
+    };
+    let mut frames = Vec::with_capacity(set.types.len());
+    for ty in &set.types {
+        let mut fr = Vec::new();
+        for f in &ty.volume.surface.faces {
+            let (c, r) = f.canonical();
+            let t = *index
+                .get(&c)
+                .ok_or_else(|| mismatch("a surface face has no type"))?;
+            fr.push((t, r));
+        }
+        frames.push(fr);
+    }
+    let subvolumes = set
+        .types
+        .iter()
+        .map(|ty| {
+            ty.subdivision
+                .subvolumes
+                .iter()
+                .zip(&ty.children)
+                .map(|(sub, &w)| SubVolumePlacement {
+                    type_index: w,
+                    subfaces: sub
+                        .subfaces
+                        .iter()
+                        .map(|&(sf, p)| (sf, (p.face, p.rotation)))
+                        .collect(),
+                    sides: sub
+                        .sides
+                        .iter()
+                        .map(|&(side, p)| (side, (p.face, p.rotation)))
+                        .collect(),
+                })
+                .collect()
+        })
+        .collect();
+    // The checker numbers the unknowns face operator by face operator (type, sub-face), then
+    // sub-volume operator by sub-volume operator (volume type, sub-volume), entries row-major:
+    // lacuna's linearisation must have the same order.
+    let a = &gv.generated.automaton;
+    let by_name: std::collections::HashMap<&str, usize> = a
+        .operators
+        .iter()
+        .enumerate()
+        .map(|(i, o)| (o.name.as_str(), i))
+        .collect();
+    let mut order: Vec<usize> = gv.generated.sub_ops.iter().flatten().copied().collect();
+    for (v, ty) in set.types.iter().enumerate() {
+        for k in 0..ty.children.len() {
+            let op = by_name
+                .get(format!("V{v}.T{k}").as_str())
+                .ok_or_else(|| mismatch("a sub-volume operator is missing"))?;
+            order.push(*op);
+        }
+    }
+    let mut expected = Vec::with_capacity(solved.linearized.unknown_entries.len());
+    for &o in &order {
+        let (rows, cols) = (
+            a.states[a.operators[o].to].dim,
+            a.states[a.operators[o].from].dim,
+        );
+        expected.extend((0..rows).flat_map(|r| (0..cols).map(move |c| (o, r, c))));
+    }
+    if expected != solved.linearized.unknown_entries {
+        return Err(mismatch("the unknowns are in another order"));
+    }
+    Ok(Some(Step::VolumeSolutionSpace(VolumeSystemStep {
+        degree: opts.degree,
+        cantor_gap: opts.cantor_gap.to_string(),
+        faces,
+        frames,
+        subvolumes,
+        unknowns: solved.linearized.system.unknowns,
+        particular: space
+            .particular
+            .iter()
+            .enumerate()
+            .filter(|(_, x)| !x.is_zero())
+            .map(|(i, x)| (i, x.to_string()))
+            .collect(),
+        free: space.free.clone(),
+        basis: space.basis.iter().map(|b| terms(b)).collect(),
+        rank: space.rank,
+        dof: space.dof(),
+    })))
+}
+
+/// Solves the constraint system of a closed set of volumes apart (THEORY §10, Bézier degree 2,
+/// equal Cantor gaps) within `limits` and returns its `volume-solution-space` step (`None` when
+/// the system is inconsistent).
+pub fn solve_and_certify_volumes(
+    set: &crate::topology::volume::VolumeTypeSet,
+    limits: &crate::topology::Limits,
+) -> Result<Option<Step>, CertifyError> {
+    let opts = crate::constraint::GenOptions::default();
+    let solved = crate::constraint::solve_volumes_with_system(set, &[], opts.clone(), limits)?;
+    volume_system_step(set, &solved, &opts)
 }
 
 /// The rows of the `solid-homology` step for the table `solid` (from level 0): every level

@@ -101,7 +101,7 @@ pub(super) fn check_degeneracy(
         .recipe
         .as_ref()
         .ok_or("the solution space has no recipe naming its unknowns")?;
-    let lay = layout(c, q, s.system.unknowns)?;
+    let lay = layout(c, q, Some(s.system.unknowns))?;
     let column = columns(&lay.names, &recipe.unknowns)?;
     let expr = expressions(s)?;
     let zero: Expr = Default::default();

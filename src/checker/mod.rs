@@ -49,6 +49,7 @@ mod series;
 mod solid;
 mod system;
 mod volume;
+mod volume_system;
 
 use self::claim::{claim_lines, structure};
 use self::closure::{check_closure, Substitution};
@@ -410,6 +411,7 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
     let mut steps = Vec::new();
     let mut closure: Option<(Substitution, &crate::certificate::ClosureStep)> = None;
     let mut volumes: Option<Substitution> = None;
+    let mut volume_closure: Option<&crate::certificate::VolumeClosureStep> = None;
     let mut solution: Option<&crate::certificate::SolutionStep> = None;
     let given = match &cert.claim {
         Claim::Substitution(s) => Some(Substitution::of_claim(s)),
@@ -450,6 +452,7 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
             Step::VolumeClosure(c) => match &cert.claim {
                 Claim::Volumes(v) => check_volume_closure(c, v).map(|(msg, verdict, sub)| {
                     volumes = Some(sub);
+                    volume_closure = Some(c);
                     (msg, verdict)
                 }),
                 _ => {
@@ -471,6 +474,13 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
                 _ => {
                     Err("a solid-homology step in a certificate whose claim has no volumes".into())
                 }
+            },
+            Step::VolumeSolutionSpace(s) => match &cert.claim {
+                Claim::Volumes(v) => self::volume_system::check_volume_system(s, volume_closure, v),
+                _ => Err(
+                    "a volume-solution-space step in a certificate whose claim has no volumes"
+                        .into(),
+                ),
             },
             Step::ConstraintsHold(s) => match &cert.claim {
                 Claim::Automaton(a) => self::ifs::check_constraints_hold(a, s.constraints),

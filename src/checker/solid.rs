@@ -923,11 +923,11 @@ pub(super) fn check_solid(
             ));
         }
         lines.push(format!(
-            "level {i}: {} volumes, {} faces, {} edges, {} corners, χ = {}, {}, {}, {}",
-            got.volumes,
-            got.faces,
-            got.edges,
-            got.corners,
+            "level {i}: {}, {}, {}, {}, χ = {}, {}, {}, {}",
+            super::counted(got.volumes, "volume", "volumes"),
+            super::counted(got.faces, "face", "faces"),
+            super::counted(got.edges, "edge", "edges"),
+            super::counted(got.corners, "corner", "corners"),
             got.euler,
             super::counted(got.components, "component", "components"),
             super::counted(got.voids, "void", "voids"),

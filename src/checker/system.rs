@@ -223,6 +223,32 @@ pub(super) fn rebuild(
     recipe: &Recipe,
     given_rows: usize,
 ) -> Result<Vec<Equation>, String> {
+    let (layout, rows) = rebuild_ordered(
+        c,
+        (degree, cantor_gap),
+        Some(recipe.unknowns.len()),
+        given_rows as u128,
+    )?;
+    let column = columns(&layout.names, &recipe.unknowns)?;
+    let renumber = |(terms, rhs): Equation| -> Equation {
+        (
+            terms.into_iter().map(|(v, a)| (column[v], a)).collect(),
+            rhs,
+        )
+    };
+    Ok(rows.into_iter().map(renumber).collect())
+}
+
+/// The rebuilt system with the unknowns in the checker's own order (the layout's names), for
+/// Bézier degree and Cantor ratio as written. `expected`, when given, is the number of unknowns
+/// the certificate names (compared before a name is built); the edge states must need at most
+/// `max_states` rows.
+pub(super) fn rebuild_ordered(
+    c: &ClosureStep,
+    (degree, cantor_gap): (usize, &str),
+    expected: Option<usize>,
+    max_states: u128,
+) -> Result<(Layout, Vec<Equation>), String> {
     if !(1..=MAX_DEGREE).contains(&degree) {
         return Err(format!("Bézier degree {degree} is not in 1..={MAX_DEGREE}"));
     }
@@ -251,28 +277,23 @@ pub(super) fn rebuild(
         acc.saturating_add(u128::from(*n))
             .saturating_add(u128::from(*d))
     });
-    if states > given_rows as u128 {
+    if states > max_states {
         return Err(format!(
-            "the edge types need more than the {given_rows} rows the certificate lists"
+            "the edge types need more than the {max_states} rows the certificate lists"
         ));
     }
     let edges: BTreeSet<Edge> = deepest
         .iter()
         .flat_map(|(&(kind, n), &d)| (1..=d).map(move |delay| Edge { kind, n, delay }))
         .collect();
-    let Layout {
-        dims,
-        offsets,
-        base,
-        names,
-    } = layout(c, q, recipe.unknowns.len())?;
+    let lay = layout(c, q, expected)?;
+    let (dims, offsets, base) = (&lay.dims, &lay.offsets, &lay.base);
     let embed = |t: usize, i: usize| -> Option<Mat> {
         let e = c.types.get(t)?.face.boundary.get(i)?;
         let o: usize = *offsets.get(t).and_then(|o: &Vec<usize>| o.get(i))?;
         let pick: Vec<usize> = (0..dim(q, e)).map(|x| (o + x) % dims[t]).collect();
         Some(select(dims[t], &pick))
     };
-    let column = columns(&names, &recipe.unknowns)?;
     // The vertex and every edge type, with all lower delays.
     b.barycentric(&identity(1));
     for e in &edges {
@@ -318,13 +339,7 @@ pub(super) fn rebuild(
             b.equal(unknown(sa, left), unknown(sb, right))?;
         }
     }
-    let renumber = |(terms, rhs): Equation| -> Equation {
-        (
-            terms.into_iter().map(|(v, a)| (column[v], a)).collect(),
-            rhs,
-        )
-    };
-    Ok(b.rows.into_iter().map(renumber).collect())
+    Ok((lay, b.rows))
 }
 
 /// Where the unknowns of a closure's system sit: per face type its number of control points
@@ -344,7 +359,7 @@ pub(super) struct Layout {
 /// The layout of the unknowns of a closure's system for Bézier degree `q`; the number of
 /// unknowns is counted (checked arithmetic) and compared with `expected` before a name is
 /// built.
-pub(super) fn layout(c: &ClosureStep, q: usize, expected: usize) -> Result<Layout, String> {
+pub(super) fn layout(c: &ClosureStep, q: usize, expected: Option<usize>) -> Result<Layout, String> {
     // Face states: dimension, and the offset of each boundary edge's first point.
     let mut dims = Vec::new();
     let mut offsets = Vec::new();
@@ -370,11 +385,12 @@ pub(super) fn layout(c: &ClosureStep, q: usize, expected: usize) -> Result<Layou
                 .ok_or("the number of unknowns overflows")?;
         }
     }
-    if count != expected {
+    if let Some(expected) = expected.filter(|&e| e != count) {
         return Err(format!(
             "the recipe names {expected} unknowns, the closure has {count}"
         ));
     }
+    super::within_work("the unknowns of the face system", count as u128)?;
     let mut names = Vec::with_capacity(count);
     let mut base = Vec::new();
     for (t, rule) in c.types.iter().enumerate() {

@@ -69,7 +69,7 @@ fn items(a: &[SpokeItem]) -> Vec<SpokeItem> {
     v
 }
 
-fn face_key(f: &Face, root: usize) -> FaceKey {
+pub(super) fn face_key(f: &Face, root: usize) -> FaceKey {
     let mut b = f.boundary.clone();
     if !b.is_empty() {
         let r = root % b.len();
@@ -84,7 +84,7 @@ fn edge_ok(e: &Edge) -> bool {
 }
 
 /// Sub-edges of an edge: 1 when delayed, else n.
-fn pieces(e: &Edge) -> usize {
+pub(super) fn pieces(e: &Edge) -> usize {
     match e.delay >= 2 {
         true => 1,
         false => e.n as usize,
@@ -410,7 +410,12 @@ fn step(v: &Volume) -> Result<Vec<Volume>, String> {
 /// One step of `v`: its level-1 surface, and the sub-volumes, each with where every one of its
 /// faces comes from.
 pub(super) fn step_traced(v: &Volume) -> Result<(Level1, Vec<Traced>), String> {
-    let l1 = Level1::of(v)?;
+    traced(v, Level1::of(v)?)
+}
+
+/// One step of `v` from its level-1 surface `l1` (as [`step_traced`], with the faces
+/// subdivided in whatever frames `l1` holds them).
+pub(super) fn traced(v: &Volume, l1: Level1) -> Result<(Level1, Vec<Traced>), String> {
     let all: Vec<(usize, usize)> = l1
         .subs
         .iter()

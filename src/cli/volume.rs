@@ -134,29 +134,43 @@ pub(super) fn verify(
     let r = lacuna::export::volume_ratio(&set, 30)?;
     // The constraints of THEORY §10, with the faces shared between volumes read from both sides.
     // A limit on the solve leaves the constraints undecided; the rest is still reported (and
-    // certified: the constraints of volumes are not in the certificate).
-    let solver = match lacuna::constraint::solve_volumes(
+    // certified: the constraints of volumes apart are the volume-solution-space step; those of
+    // an assembly's shared faces are not in the certificate).
+    let opts = lacuna::constraint::GenOptions::default();
+    let solved = match lacuna::constraint::solve_volumes_with_system(
         &set,
         &lacuna::constraint::shared_readings(v),
-        Default::default(),
+        opts.clone(),
         limits,
     ) {
         Ok(s) => Ok(s),
         Err(e @ (Error::Limit { .. } | Error::ProvedAboveLimit { .. })) => Err(e),
         Err(e) => return Err(e),
     };
+    let system_step = match (&solved, v.shared.is_empty()) {
+        (Ok(s), true) => {
+            lacuna::certificate::volume_system_step(&set, s, &opts).map_err(|e| match e {
+                lacuna::certificate::CertifyError::Lacuna(e) => e,
+                e => Error::Usage(format!("--certificate: {e}")),
+            })?
+        }
+        _ => None,
+    };
+    let system_certified = system_step.is_some();
+    let solver = solved.map(|s| s.report);
     let decided = solver.is_ok();
     let verified = failures.is_empty() && solver.as_ref().is_ok_and(|s| s.ok());
     let certified = lacuna::certificate::solid_rows(&solid).len();
     let cert = match certificate {
-        Some(_) => Some(
-            lacuna::certificate::certificate_for_volumes(name, &set, levels, v).map_err(
-                |e| match e {
+        Some(_) => {
+            let mut c = lacuna::certificate::certificate_for_volumes(name, &set, levels, v)
+                .map_err(|e| match e {
                     lacuna::certificate::CertifyError::Lacuna(e) => e,
                     e => Error::Usage(format!("--certificate: {e}")),
-                },
-            )?,
-        ),
+                })?;
+            c.steps.extend(system_step);
+            Some(c)
+        }
         None => None,
     };
     if json {
@@ -196,7 +210,12 @@ pub(super) fn verify(
         match &solver {
             Ok(solver) => {
                 t += &format!(
-                    "\nconstraints (faces and volumes, Bézier degree 2; exact, not in the certificate): {} unknowns, {} equations, {}\n",
+                    "\nconstraints (faces and volumes, Bézier degree 2; exact, {}): {} unknowns, {} equations, {}\n",
+                    match system_certified {
+                        true => "certified by the solution space (volume-solution-space)",
+                        false if v.shared.is_empty() => "not in the certificate",
+                        false => "not in the certificate: the constraints of shared faces are not rebuilt by the checker",
+                    },
                     solver.unknowns,
                     solver.equations,
                     if solver.consistent {

@@ -24,5 +24,6 @@ pub use linsys::{
     SolutionSpace, TextLayout, MINIMIZE_LIMIT,
 };
 pub use volume::{
-    shared_readings, solve_volumes, volume_automaton, GeneratedVolumes, SharedReading,
+    shared_readings, solve_volumes, solve_volumes_with_system, volume_automaton, GeneratedVolumes,
+    SharedReading, SolvedVolumes,
 };

@@ -448,6 +448,30 @@ pub fn solve_volumes(
     opts: GenOptions,
     limits: &Limits,
 ) -> Result<crate::constraint::automaton::SolveReport> {
+    Ok(solve_volumes_with_system(set, shared, opts, limits)?.report)
+}
+
+/// A solved volume system: lacuna's report, and the automaton, its linearisation and the exact
+/// solution the report was read from (what a certificate is made of).
+#[derive(Clone, Debug)]
+pub struct SolvedVolumes {
+    /// The report.
+    pub report: crate::constraint::automaton::SolveReport,
+    /// The automaton.
+    pub generated: GeneratedVolumes,
+    /// Its linear system, with the operator entry of every unknown.
+    pub linearized: crate::constraint::automaton::Linearized,
+    /// The solution.
+    pub solution: crate::constraint::linsys::Solution,
+}
+
+/// [`solve_volumes`], keeping the system and its solution.
+pub fn solve_volumes_with_system(
+    set: &VolumeTypeSet,
+    shared: &[SharedReading],
+    opts: GenOptions,
+    limits: &Limits,
+) -> Result<SolvedVolumes> {
     let gv = volume_automaton(set, shared, opts, limits)?;
     limits.check_unknowns(gv.generated.automaton.unknown_count())?;
     limits.check_memory(gv.generated.automaton.solve_memory_estimate())?;
@@ -462,7 +486,12 @@ pub fn solve_volumes(
         );
         report.degeneracy_checked = true;
     }
-    Ok(report)
+    Ok(SolvedVolumes {
+        report,
+        generated: gv,
+        linearized: lin,
+        solution,
+    })
 }
 
 #[cfg(test)]
