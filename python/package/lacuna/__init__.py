@@ -15,7 +15,8 @@ Exact results are Python objects: integers as ``int`` (of any size), rationals a
 :class:`LacunaError` exceptions (or a subclass) carrying ``code``, ``message`` and ``span``.
 
 Inputs are what the command line reads: face notation (:class:`Face`), assembly and AutoFrac2D
-files (:class:`Assembly`), automaton files (:class:`Automaton`), and the names of the library
+files (:class:`Assembly`), automaton files (:class:`Automaton`), volume notation and volume files
+(:class:`Volume`, one volume or several glued face to face), and the names of the library
 (:func:`library`, :func:`load`).
 """
 
@@ -48,6 +49,7 @@ __all__ = [
     "Face",
     "Assembly",
     "Automaton",
+    "Volume",
     "Structure",
     "Closure",
     "FaceType",
@@ -60,6 +62,13 @@ __all__ = [
     "CheckReport",
     "Rendering",
     "Shapes",
+    "VolumeClosure",
+    "VolumeType",
+    "VolumeLevelCount",
+    "VolumeCounts",
+    "SolidLevel",
+    "SolidTopology",
+    "VolumeRendering",
     "Record",
     "library",
     "load",
@@ -936,16 +945,17 @@ def library_text(name: str) -> str:
     raise FileError("E0601", f"cannot read `{name}`: no such library entry")
 
 
-def load(source: PathLike) -> Union[Face, Assembly, Automaton]:
+def load(source: PathLike) -> Union[Face, Assembly, Automaton, "Volume"]:
     """What ``source`` names, as the command line reads it: face notation (a :class:`Face`), a file
-    or a library name of faces (an :class:`Assembly`, whatever the number of its faces) or of an
-    automaton (an :class:`Automaton`). Volumes are not wrapped yet."""
+    or a library name of faces (an :class:`Assembly`, whatever the number of its faces), of an
+    automaton (an :class:`Automaton`), or volume notation, a volume file or a library name of
+    volumes (a :class:`Volume`, one volume or several glued face to face)."""
     s = os.fspath(source)
     kind, _ = _lacuna.kind(s)
     if kind == "automaton":
         return Automaton(s)
     if kind == "volume":
-        raise UsageError("E0504", f"`{s}` is a volume: the Python package reads faces and automata")
+        return Volume(s)
     if "|" in s:
         return Face(s)
     return Assembly(s)
@@ -955,3 +965,16 @@ def check(path: PathLike) -> CheckReport:
     """Runs the independent checker on a certificate file (``lacuna check``)."""
     text = _lacuna.read_text(os.fspath(path))
     return _check_report(*_lacuna.check_text(text))
+
+
+# Volumes live in their own module; it uses the helpers above, so it is imported last.
+from ._volume import (  # noqa: E402
+    SolidLevel,
+    SolidTopology,
+    Volume,
+    VolumeClosure,
+    VolumeCounts,
+    VolumeLevelCount,
+    VolumeRendering,
+    VolumeType,
+)
