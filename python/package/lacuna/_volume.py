@@ -238,7 +238,7 @@ class VolumeRendering:
 
     def __repr__(self) -> str:
         n = sum(len(t) for t in self.triangles)
-        files = [str(p) for p in self.written]
+        files = [p.name for p in self.written]
         return f"VolumeRendering(level={self.level}, parts={len(self.vertices)}, triangles={n}, embedded={self.embedded}, written={files})"
 
     def plot(self, ax=None, colour: str = "#6c9bd2", edgecolor: str = "black", linewidth: float = 0.1):
