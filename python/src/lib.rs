@@ -190,6 +190,21 @@ fn kind(py: Python<'_>, input: String) -> PyResult<(String, String)> {
     })
 }
 
+/// The start faces of faces (notation, a file or a library name): the canonical notation of
+/// each, and the number of shared edges between them.
+#[pyfunction]
+fn start_faces(py: Python<'_>, input: String) -> PyResult<(Vec<String>, usize)> {
+    run(py, move || {
+        let input = load_input(&input)?;
+        let faces = input
+            .faces()
+            .iter()
+            .map(|f| f.canonical().0.to_string())
+            .collect();
+        Ok((faces, input.assembly.shared.len()))
+    })
+}
+
 /// The canonical notation of one face (the least rotation of its boundary).
 #[pyfunction]
 fn canonical(py: Python<'_>, notation: String) -> PyResult<String> {
@@ -842,6 +857,7 @@ fn _lacuna(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(kind, m)?)?;
     m.add_function(wrap_pyfunction!(canonical, m)?)?;
+    m.add_function(wrap_pyfunction!(start_faces, m)?)?;
     m.add_function(wrap_pyfunction!(library, m)?)?;
     m.add_function(wrap_pyfunction!(closure, m)?)?;
     m.add_function(wrap_pyfunction!(counts, m)?)?;

@@ -817,6 +817,15 @@ class Face(Structure):
         self.notation = _lacuna.canonical(notation)
         super().__init__(notation)
 
+    @classmethod
+    def _named(cls, source: str, notation: str) -> "Face":
+        """The one face of a file or a library entry (``source``, which keeps its name and any
+        coordinates the file gives), of canonical notation ``notation``."""
+        f = cls.__new__(cls)
+        f.notation = notation
+        Structure.__init__(f, source)
+        return f
+
     def __repr__(self) -> str:
         return f"Face({self.notation!r})"
 
@@ -946,10 +955,11 @@ def library_text(name: str) -> str:
 
 
 def load(source: PathLike) -> Union[Face, Assembly, Automaton, "Volume"]:
-    """What ``source`` names, as the command line reads it: face notation (a :class:`Face`), a file
-    or a library name of faces (an :class:`Assembly`, whatever the number of its faces), of an
-    automaton (an :class:`Automaton`), or volume notation, a volume file or a library name of
-    volumes (a :class:`Volume`, one volume or several glued face to face)."""
+    """What ``source`` names, as the command line reads it: face notation, or a file or a library
+    name of one face without shared edges (a :class:`Face`; ``load("F0")``), a file or a library
+    name of several faces (an :class:`Assembly`), of an automaton (an :class:`Automaton`), or
+    volume notation, a volume file or a library name of volumes (a :class:`Volume`, one volume or
+    several glued face to face)."""
     s = os.fspath(source)
     kind, _ = _lacuna.kind(s)
     if kind == "automaton":
@@ -958,6 +968,9 @@ def load(source: PathLike) -> Union[Face, Assembly, Automaton, "Volume"]:
         return Volume(s)
     if "|" in s:
         return Face(s)
+    faces, shared = _lacuna.start_faces(s)
+    if len(faces) == 1 and shared == 0:
+        return Face._named(s, faces[0])
     return Assembly(s)
 
 

@@ -18,6 +18,9 @@ _Path = Optional[Union[str, PathLike[str]]]
 def kind(input: str) -> Tuple[str, str]:
     """(``"faces"`` | ``"automaton"`` | ``"volume"``, name); parses the input completely."""
 
+def start_faces(input: str) -> Tuple[List[str], int]:
+    """The canonical notation of each start face of faces, and the number of shared edges."""
+
 def canonical(notation: str) -> str:
     """The canonical notation of one face."""
 
