@@ -19,6 +19,8 @@ use pyo3::types::PyDict;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+mod volume;
+
 /// A lacuna error as the Python exception the package defines (`lacuna._errors.from_native`
 /// chooses the class from the code).
 fn py_err(py: Python<'_>, e: Error) -> PyErr {
@@ -150,23 +152,56 @@ fn param_values(params: &[(String, String)]) -> Result<Vec<(String, BigRational)
         .collect()
 }
 
+/// The Cantor gap/piece of `solve` as an exact positive value (E0113 when it is not one).
+fn cantor_gap(text: &str) -> Result<BigRational, Error> {
+    lacuna::input::parse_rational(text.trim())
+        .filter(|g| *g > BigRational::from_integer(0.into()))
+        .ok_or_else(|| {
+            Error::syntax(
+                "E0113",
+                format!("cantor_gap `{text}` must be an exact positive number (1, 1/2, 0.25)"),
+                lacuna::Span {
+                    line: 1,
+                    col: 1,
+                    len: text.chars().count().max(1),
+                },
+                Some(&lacuna::Source::command_line(text)),
+            )
+        })
+}
+
 /// Pretty JSON of a report (the layout of the command line's `--json`).
 fn json(v: &impl serde::Serialize) -> String {
     serde_json::to_string_pretty(v).expect("reports serialise")
 }
 
 /// What an input names, and its name: `("faces", name)`, `("automaton", name)` or
-/// `("volume", name)`. Parses it completely, so a bad input raises here.
+/// `("volume", name)` (one volume or several glued face to face). Parses it completely, so a bad input raises here.
 #[pyfunction]
 fn kind(py: Python<'_>, input: String) -> PyResult<(String, String)> {
     run(py, || {
-        if let Some((name, _)) = lacuna::input::load_volume(&input)? {
+        if let Some((name, _)) = lacuna::input::load_volume_file(&input)? {
             return Ok(("volume".to_string(), name));
         }
         Ok(match load_any(&input)? {
             Loaded::Faces(i) => ("faces".to_string(), i.name),
             Loaded::Automaton { name, .. } => ("automaton".to_string(), name),
         })
+    })
+}
+
+/// The start faces of faces (notation, a file or a library name): the canonical notation of
+/// each, and the number of shared edges between them.
+#[pyfunction]
+fn start_faces(py: Python<'_>, input: String) -> PyResult<(Vec<String>, usize)> {
+    run(py, move || {
+        let input = load_input(&input)?;
+        let faces = input
+            .faces()
+            .iter()
+            .map(|f| f.canonical().0.to_string())
+            .collect();
+        Ok((faces, input.assembly.shared.len()))
     })
 }
 
@@ -252,22 +287,7 @@ fn solve(
 ) -> PyResult<String> {
     let l = self::limits(limits)?;
     run(py, move || {
-        let gap = lacuna::input::parse_rational(cantor_gap.trim())
-            .filter(|g| *g > BigRational::from_integer(0.into()))
-            .ok_or_else(|| {
-                Error::syntax(
-                    "E0113",
-                    format!(
-                        "cantor_gap `{cantor_gap}` must be an exact positive number (1, 1/2, 0.25)"
-                    ),
-                    lacuna::Span {
-                        line: 1,
-                        col: 1,
-                        len: cantor_gap.chars().count().max(1),
-                    },
-                    Some(&lacuna::Source::command_line(&cantor_gap)),
-                )
-            })?;
+        let gap = self::cantor_gap(&cantor_gap)?;
         if !(1..=8).contains(&degree) {
             return Err(out_of_range(
                 "degree",
@@ -837,6 +857,7 @@ fn _lacuna(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(kind, m)?)?;
     m.add_function(wrap_pyfunction!(canonical, m)?)?;
+    m.add_function(wrap_pyfunction!(start_faces, m)?)?;
     m.add_function(wrap_pyfunction!(library, m)?)?;
     m.add_function(wrap_pyfunction!(closure, m)?)?;
     m.add_function(wrap_pyfunction!(counts, m)?)?;
@@ -851,5 +872,13 @@ fn _lacuna(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(automaton_shapes, m)?)?;
     m.add_function(wrap_pyfunction!(render, m)?)?;
     m.add_function(wrap_pyfunction!(measure, m)?)?;
+    m.add_function(wrap_pyfunction!(volume::volume_closure, m)?)?;
+    m.add_function(wrap_pyfunction!(volume::volume_counts_json, m)?)?;
+    m.add_function(wrap_pyfunction!(volume::volume_ratio, m)?)?;
+    m.add_function(wrap_pyfunction!(volume::volume_solve, m)?)?;
+    m.add_function(wrap_pyfunction!(volume::volume_verify, m)?)?;
+    m.add_function(wrap_pyfunction!(volume::volume_certificate, m)?)?;
+    m.add_function(wrap_pyfunction!(volume::volume_render, m)?)?;
+    m.add_function(wrap_pyfunction!(volume::volume_measure, m)?)?;
     Ok(())
 }

@@ -15,7 +15,8 @@ Exact results are Python objects: integers as ``int`` (of any size), rationals a
 :class:`LacunaError` exceptions (or a subclass) carrying ``code``, ``message`` and ``span``.
 
 Inputs are what the command line reads: face notation (:class:`Face`), assembly and AutoFrac2D
-files (:class:`Assembly`), automaton files (:class:`Automaton`), and the names of the library
+files (:class:`Assembly`), automaton files (:class:`Automaton`), volume notation and volume files
+(:class:`Volume`, one volume or several glued face to face), and the names of the library
 (:func:`library`, :func:`load`).
 """
 
@@ -48,6 +49,7 @@ __all__ = [
     "Face",
     "Assembly",
     "Automaton",
+    "Volume",
     "Structure",
     "Closure",
     "FaceType",
@@ -60,6 +62,13 @@ __all__ = [
     "CheckReport",
     "Rendering",
     "Shapes",
+    "VolumeClosure",
+    "VolumeType",
+    "VolumeLevelCount",
+    "VolumeCounts",
+    "SolidLevel",
+    "SolidTopology",
+    "VolumeRendering",
     "Record",
     "library",
     "load",
@@ -808,6 +817,15 @@ class Face(Structure):
         self.notation = _lacuna.canonical(notation)
         super().__init__(notation)
 
+    @classmethod
+    def _named(cls, source: str, notation: str) -> "Face":
+        """The one face of a file or a library entry (``source``, which keeps its name and any
+        coordinates the file gives), of canonical notation ``notation``."""
+        f = cls.__new__(cls)
+        f.notation = notation
+        Structure.__init__(f, source)
+        return f
+
     def __repr__(self) -> str:
         return f"Face({self.notation!r})"
 
@@ -936,18 +954,23 @@ def library_text(name: str) -> str:
     raise FileError("E0601", f"cannot read `{name}`: no such library entry")
 
 
-def load(source: PathLike) -> Union[Face, Assembly, Automaton]:
-    """What ``source`` names, as the command line reads it: face notation (a :class:`Face`), a file
-    or a library name of faces (an :class:`Assembly`, whatever the number of its faces) or of an
-    automaton (an :class:`Automaton`). Volumes are not wrapped yet."""
+def load(source: PathLike) -> Union[Face, Assembly, Automaton, "Volume"]:
+    """What ``source`` names, as the command line reads it: face notation, or a file or a library
+    name of one face without shared edges (a :class:`Face`; ``load("F0")``), a file or a library
+    name of several faces (an :class:`Assembly`), of an automaton (an :class:`Automaton`), or
+    volume notation, a volume file or a library name of volumes (a :class:`Volume`, one volume or
+    several glued face to face)."""
     s = os.fspath(source)
     kind, _ = _lacuna.kind(s)
     if kind == "automaton":
         return Automaton(s)
     if kind == "volume":
-        raise UsageError("E0504", f"`{s}` is a volume: the Python package reads faces and automata")
+        return Volume(s)
     if "|" in s:
         return Face(s)
+    faces, shared = _lacuna.start_faces(s)
+    if len(faces) == 1 and shared == 0:
+        return Face._named(s, faces[0])
     return Assembly(s)
 
 
@@ -955,3 +978,16 @@ def check(path: PathLike) -> CheckReport:
     """Runs the independent checker on a certificate file (``lacuna check``)."""
     text = _lacuna.read_text(os.fspath(path))
     return _check_report(*_lacuna.check_text(text))
+
+
+# Volumes live in their own module; it uses the helpers above, so it is imported last.
+from ._volume import (  # noqa: E402
+    SolidLevel,
+    SolidTopology,
+    Volume,
+    VolumeClosure,
+    VolumeCounts,
+    VolumeLevelCount,
+    VolumeRendering,
+    VolumeType,
+)

@@ -18,6 +18,9 @@ _Path = Optional[Union[str, PathLike[str]]]
 def kind(input: str) -> Tuple[str, str]:
     """(``"faces"`` | ``"automaton"`` | ``"volume"``, name); parses the input completely."""
 
+def start_faces(input: str) -> Tuple[List[str], int]:
+    """The canonical notation of each start face of faces, and the number of shared edges."""
+
 def canonical(notation: str) -> str:
     """The canonical notation of one face."""
 
@@ -103,3 +106,55 @@ def measure(
     limits: _Limits = None,
 ) -> str:
     """The measures, as `lacuna measure --json`."""
+
+# Volumes and volume assemblies (volume notation, a volume file or a library name of volumes).
+
+def volume_closure(input: str, limits: _Limits = None) -> str:
+    """The closure of volume types, as `lacuna closure --json` for a volume."""
+
+def volume_counts_json(input: str, levels: int, limits: _Limits = None) -> str:
+    """{"input", "types", "levels": cells, lacunas and R_i per level, "solid": the level-n
+    solid's cells, χ, components, voids and tunnels per level}, as `lacuna counts --json`."""
+
+def volume_ratio(input: str, digits: int, limits: _Limits = None) -> str:
+    """The exact limit ratio of a volume, as `lacuna ratio --json`."""
+
+def volume_solve(input: str, degree: int = 2, cantor_gap: str = "1", limits: _Limits = None) -> str:
+    """The constraint system of the volume states, as `lacuna solve --json`."""
+
+def volume_verify(input: str, levels: int = 5, limits: _Limits = None) -> str:
+    """The whole verification of a volume, as `lacuna verify --json`."""
+
+def volume_certificate(input: str, levels: int = 5, limits: _Limits = None) -> str:
+    """A volume's certificate (closure, counts, R, the level-n solid for levels 0..levels), as
+    JSON text."""
+
+def volume_render(
+    input: str,
+    level: int,
+    targets: Dict[str, Union[str, bool, int, None]],
+    width: float = 100.0,
+    resolution: float = 0.4,
+    strict: bool = False,
+    bed: Tuple[float, float, float] = (200.0, 200.0, 200.0),
+    layers: int = 20,
+    max_cells: Optional[int] = None,
+    limits: _Limits = None,
+) -> str:
+    """Builds and checks the level's solid and writes the files of `targets` (keys `svg`, `png`,
+    `stl`, `stl_ascii`, `threemf`, `threemf_style` ("plain", "colours", "parts"), `obj`, `claims`,
+    `size`, `transparent`, `orient` ("keep", "auto")); returns JSON: `written`, `notes`,
+    `embedded`, `crossing`, `solid`, `printability`, `parts` (flat vertices and triangles)."""
+
+def volume_measure(
+    input: str,
+    level: int,
+    width: float = 100.0,
+    resolution: float = 0.4,
+    strict: bool = False,
+    bed: Tuple[float, float, float] = (200.0, 200.0, 200.0),
+    layers: int = 20,
+    max_cells: Optional[int] = None,
+    limits: _Limits = None,
+) -> str:
+    """The measures of a volume's level-n solid, as `lacuna measure --json`."""
