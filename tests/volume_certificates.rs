@@ -550,6 +550,35 @@ fn a_forged_volume_system_is_rejected() {
     let c = forge(&|s| s.frames[0][0].1 = (s.frames[0][0].1 + 1) % 4);
     let report = check(&c);
     assert!(report.failed(), "{}", report.to_text());
+    // The degeneracy step on the volume system: a pair of corners that do not coincide
+    // listed as coinciding (corners 0 of sub-faces 0 and 1 of the square).
+    let mut c = good.clone();
+    let d = c
+        .steps
+        .iter_mut()
+        .find_map(|s| match s {
+            Step::Degeneracy(d) => Some(d),
+            _ => None,
+        })
+        .expect("a degeneracy step");
+    assert!(d.coincide.is_empty());
+    d.coincide.push([0, 0, 0, 1, 0]);
+    failed_at(
+        "degeneracy",
+        "a false coincidence",
+        &c,
+        "listed as coinciding",
+    );
+    // Without the solution space it rests on, the degeneracy step proves nothing.
+    let mut c = good.clone();
+    c.steps
+        .retain(|s| !matches!(s, Step::VolumeSolutionSpace(_)));
+    failed_at(
+        "degeneracy",
+        "no system",
+        &c,
+        "no proved volume-solution-space step",
+    );
     // The unforged certificate still checks.
     assert_proved("cube-B2", &good);
 }
@@ -574,7 +603,8 @@ fn verify_writes_the_volume_system_and_check_proves_it() {
     assert_eq!(code, 0, "{out}");
     assert!(
         out.contains("proved  step 3 (volume-solution-space)")
-            && out.contains("volume constraints: consistent"),
+            && out.contains("volume constraints: consistent")
+            && out.contains("proved  step 4 (degeneracy)"),
         "{out}"
     );
     // An assembly's shared faces are not rebuilt by the checker: its line says so, and its

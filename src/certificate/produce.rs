@@ -264,15 +264,16 @@ pub fn certificate_for_volumes(
 /// The `volume-solution-space` step of a solved volume system (volumes apart): the face closure
 /// of the surfaces, every face's frame, every sub-volume's placement, and the solution space with
 /// the unknowns in the checker's order (face operators type by type, then `V<v>.T<k>` volume
-/// by volume, each row-major). `None` when the system is inconsistent (lacuna then has no
-/// certificate for the volume constraints).
+/// by volume, each row-major), then the `degeneracy` step of the surfaces' face types on that
+/// solution set. None when the system is inconsistent (lacuna then has no certificate for the
+/// volume constraints).
 pub fn volume_system_step(
     set: &crate::topology::volume::VolumeTypeSet,
     solved: &crate::constraint::SolvedVolumes,
     opts: &crate::constraint::GenOptions,
-) -> Result<Option<Step>, CertifyError> {
+) -> Result<Vec<Step>, CertifyError> {
     let crate::constraint::Solution::Consistent(space) = &solved.solution else {
-        return Ok(None);
+        return Ok(Vec::new());
     };
     let gv = &solved.generated;
     let faces = closure_step(&gv.faces)?;
@@ -354,7 +355,9 @@ pub fn volume_system_step(
     if expected != solved.linearized.unknown_entries {
         return Err(mismatch("the unknowns are in another order"));
     }
-    Ok(Some(Step::VolumeSolutionSpace(VolumeSystemStep {
+    let found =
+        crate::constraint::collapses(&gv.faces, &gv.generated, &solved.linearized.offsets, space);
+    let system = Step::VolumeSolutionSpace(VolumeSystemStep {
         degree: opts.degree,
         cantor_gap: opts.cantor_gap.to_string(),
         faces,
@@ -372,16 +375,22 @@ pub fn volume_system_step(
         basis: space.basis.iter().map(|b| terms(b)).collect(),
         rank: space.rank,
         dof: space.dof(),
-    })))
+    });
+    let degeneracy = Step::Degeneracy(DegeneracyStep {
+        coincide: found.coincide,
+        flat_faces: found.flat_faces,
+        flat_lacunas: found.flat_lacunas,
+    });
+    Ok(vec![system, degeneracy])
 }
 
 /// Solves the constraint system of a closed set of volumes apart (THEORY §10, Bézier degree 2,
-/// equal Cantor gaps) within `limits` and returns its `volume-solution-space` step (`None` when
-/// the system is inconsistent).
+/// equal Cantor gaps) within `limits` and returns its `volume-solution-space` and `degeneracy`
+/// steps (none when the system is inconsistent).
 pub fn solve_and_certify_volumes(
     set: &crate::topology::volume::VolumeTypeSet,
     limits: &crate::topology::Limits,
-) -> Result<Option<Step>, CertifyError> {
+) -> Result<Vec<Step>, CertifyError> {
     let opts = crate::constraint::GenOptions::default();
     let solved = crate::constraint::solve_volumes_with_system(set, &[], opts.clone(), limits)?;
     volume_system_step(set, &solved, &opts)

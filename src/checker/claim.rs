@@ -474,6 +474,7 @@ fn slots(c: &Claim) -> &'static [(&'static [&'static str], bool)] {
             (&["limit-ratio"], true),
             (&["solid-homology"], false),
             (&["volume-solution-space"], false),
+            (&["degeneracy"], false),
         ],
     }
 }

@@ -22,9 +22,11 @@
 
 use super::closure::subdivide;
 use super::solid::level_one_corners;
-use super::system::{columns, layout};
+use super::system::{columns, layout, Layout};
 use super::{rat, within_work, Checked, Q};
-use crate::certificate::{ClosureStep, DegeneracyStep, Kind, Origin, SolutionStep};
+use crate::certificate::{
+    ClosureStep, DegeneracyStep, Kind, Origin, SolutionStep, VolumeSystemStep,
+};
 use std::collections::{BTreeSet, HashMap};
 
 /// An unknown's affine expression on the solution set: the particular value and the nonzero
@@ -33,16 +35,19 @@ type Expr = (Q, Vec<(usize, Q)>);
 
 /// The affine expression of every unknown the certificate's basis or particular solution
 /// touches (the others are 0 on every solution).
-fn expressions(s: &SolutionStep) -> Result<HashMap<usize, Expr>, String> {
-    let entries = s.particular.len() + s.basis.iter().map(Vec::len).sum::<usize>();
+fn expressions(
+    particular: &[(usize, String)],
+    basis: &[Vec<(usize, String)>],
+) -> Result<HashMap<usize, Expr>, String> {
+    let entries = particular.len() + basis.iter().map(Vec::len).sum::<usize>();
     within_work("the degeneracy step's expressions", 64 * entries as u128)?;
     let mut out: HashMap<usize, Expr> = HashMap::new();
-    for (x, v) in &s.particular {
+    for (x, v) in particular {
         let v = rat(v)?;
         let e = out.entry(*x).or_default();
         e.0 += v;
     }
-    for (j, b) in s.basis.iter().enumerate() {
+    for (j, b) in basis.iter().enumerate() {
         for (x, v) in b {
             out.entry(*x).or_default().1.push((j, rat(v)?));
         }
@@ -103,7 +108,28 @@ pub(super) fn check_degeneracy(
         .ok_or("the solution space has no recipe naming its unknowns")?;
     let lay = layout(c, q, Some(s.system.unknowns))?;
     let column = columns(&lay.names, &recipe.unknowns)?;
-    let expr = expressions(s)?;
+    let expr = expressions(&s.particular, &s.basis)?;
+    check_with(d, c, &lay, &column, &expr)
+}
+
+/// Checks a degeneracy step that follows a proved `volume-solution-space` step: the corners of
+/// the level-1 complexes of the surfaces' face types, on the volume system's solution set (its
+/// first unknowns are the face operators' entries, in the checker's layout order).
+pub(super) fn check_volume_degeneracy(d: &DegeneracyStep, s: &VolumeSystemStep) -> Checked {
+    let lay = layout(&s.faces, s.degree, None)?;
+    let column: Vec<usize> = (0..lay.names.len()).collect();
+    let expr = expressions(&s.particular, &s.basis)?;
+    check_with(d, &s.faces, &lay, &column, &expr)
+}
+
+/// The check itself, the face operators' entries at `column` of the proved system.
+fn check_with(
+    d: &DegeneracyStep,
+    c: &ClosureStep,
+    lay: &Layout,
+    column: &[usize],
+    expr: &HashMap<usize, Expr>,
+) -> Checked {
     let zero: Expr = Default::default();
     if let Some(i) = d.coincide.iter().position(|x| x[0] >= c.types.len()) {
         return Err(format!(

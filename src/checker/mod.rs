@@ -412,6 +412,7 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
     let mut closure: Option<(Substitution, &crate::certificate::ClosureStep)> = None;
     let mut volumes: Option<Substitution> = None;
     let mut volume_closure: Option<&crate::certificate::VolumeClosureStep> = None;
+    let mut volume_system: Option<&crate::certificate::VolumeSystemStep> = None;
     let mut solution: Option<&crate::certificate::SolutionStep> = None;
     let given = match &cert.claim {
         Claim::Substitution(s) => Some(Substitution::of_claim(s)),
@@ -476,7 +477,8 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
                 }
             },
             Step::VolumeSolutionSpace(s) => match &cert.claim {
-                Claim::Volumes(v) => self::volume_system::check_volume_system(s, volume_closure, v),
+                Claim::Volumes(v) => self::volume_system::check_volume_system(s, volume_closure, v)
+                    .inspect(|_| volume_system = Some(s)),
                 _ => Err(
                     "a volume-solution-space step in a certificate whose claim has no volumes"
                         .into(),
@@ -513,6 +515,12 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
                 (Claim::Faces(_), _, _) => Err(
                     "no proved closure and solution-space steps to take the corners from".into(),
                 ),
+                (Claim::Volumes(_), _, _) => match volume_system {
+                    Some(s) => self::degeneracy::check_volume_degeneracy(d, s),
+                    None => {
+                        Err("no proved volume-solution-space step to take the corners from".into())
+                    }
+                },
                 _ => Err("a degeneracy step in a certificate whose claim has no faces".into()),
             },
             Step::Inconsistent(c) => check_conflict(c, tie),

@@ -154,9 +154,9 @@ pub(super) fn verify(
                 e => Error::Usage(format!("--certificate: {e}")),
             })?
         }
-        _ => None,
+        _ => Vec::new(),
     };
-    let system_certified = system_step.is_some();
+    let system_certified = !system_step.is_empty();
     let solver = solved.map(|s| s.report);
     let decided = solver.is_ok();
     let verified = failures.is_empty() && solver.as_ref().is_ok_and(|s| s.ok());
@@ -225,7 +225,11 @@ pub(super) fn verify(
                     }
                 );
                 t += &format!(
-                    "degeneracy (exact, not in the certificate): {}\n",
+                    "degeneracy (exact, {}): {}\n",
+                    match system_certified {
+                        true => "certified (degeneracy)",
+                        false => "not in the certificate",
+                    },
                     if solver.degenerate.is_empty() {
                         "no two distinct corner points of a face's level-1 complex are forced to coincide"
                             .to_string()
