@@ -513,12 +513,13 @@ fn wrong_versions_are_rejected() {
     cert.version = 99;
     assert_rejected("version 99", &cert, "header");
     assert!(check_json("{").failed());
-    // Files of versions 1 to 6 (other step forms: version 2 had no recipe, version 3 no claim,
+    // Files of versions 1 to 7 (other step forms: version 2 had no recipe, version 3 no claim,
     // version 4 no attractor steps, version 5 no solid-homology step nor shared faces, version
-    // 6 no neighbour-map witnesses nor degeneracy step) are refused by their version, not by a parse error.
-    for old in ["1", "2", "3", "4", "5", "6"] {
+    // 6 no neighbour-map witnesses nor degeneracy step, version 7 no volume-solution-space
+    // step) are refused by their version, not by a parse error.
+    for old in ["1", "2", "3", "4", "5", "6", "7"] {
         let json = face_certificate("F0").to_json().replacen(
-            "\"version\":7",
+            "\"version\":8",
             &format!("\"version\":{old}"),
             1,
         );

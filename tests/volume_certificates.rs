@@ -545,11 +545,11 @@ fn a_forged_volume_system_is_rejected() {
     });
     let report = check(&c);
     assert!(report.failed(), "{}", report.to_text());
-    // A turned frame of a square face (a symmetry of the square, so the face is still its
-    // type) numbers the volume's points otherwise: the solution no longer fits.
+    // A turned frame of a square face: a symmetry of the square, so the face is still its
+    // type, but it would read the type's sub-faces onto other quarters of the face (another
+    // system). Frames are the canonical rotation.
     let c = forge(&|s| s.frames[0][0].1 = (s.frames[0][0].1 + 1) % 4);
-    let report = check(&c);
-    assert!(report.failed(), "{}", report.to_text());
+    system_refused("frame rotation", &c, "is not its canonical rotation");
     // The degeneracy step on the volume system: a pair of corners that do not coincide
     // listed as coinciding (corners 0 of sub-faces 0 and 1 of the square).
     let mut c = good.clone();
@@ -607,21 +607,31 @@ fn verify_writes_the_volume_system_and_check_proves_it() {
             && out.contains("proved  step 4 (degeneracy)"),
         "{out}"
     );
-    // An assembly's shared faces are not rebuilt by the checker: its line says so, and its
-    // certificate has no such step.
-    let path = dir.join("two.json");
-    let (code, out, err) = lacuna(&[
-        "verify",
-        "two-cubes",
-        "--certificate",
-        path.to_str().unwrap(),
-    ]);
-    assert_eq!(code, 0, "{err}");
-    assert!(
-        out.contains("not in the certificate: the constraints of shared faces"),
-        "{out}"
-    );
-    let text = std::fs::read_to_string(&path).unwrap();
-    assert!(!text.contains("volume-solution-space"));
     std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn the_shared_face_of_two_cubes_is_rebuilt_and_binds() {
+    // Two cubes glued face to face have the cube's volume types, so the same unknowns; the
+    // shared face adds the rows that make its sub-faces one polygon from either side, which
+    // the checker rebuilds: the rank rises and fewer degrees of freedom remain.
+    let mut one = volume_certificate_with_system("cube-B2");
+    let mut two = volume_certificate_with_system("two-cubes");
+    assert_proved("two-cubes", &two);
+    let (a, b) = (system_of(&mut one).clone(), system_of(&mut two).clone());
+    assert_eq!(a.unknowns, b.unknowns);
+    assert!(b.dof < a.dof, "{} ≥ {}", b.dof, a.dof);
+    let report = check(&two);
+    let msg = &report.step("volume-solution-space").unwrap().message;
+    assert!(
+        msg.contains("of 1 face shared by the start volumes"),
+        "{msg}"
+    );
+    // The cube's own solution space does not satisfy the shared face's rows: a certificate of
+    // the assembly carrying it is refused.
+    let mut forged = two.clone();
+    *system_of(&mut forged) = a;
+    let report = check(&forged);
+    let step = report.step("volume-solution-space").unwrap();
+    assert_eq!(step.outcome, Outcome::Failed, "{}", report.to_text());
 }

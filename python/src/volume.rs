@@ -212,16 +212,14 @@ pub(crate) fn volume_certificate(
         let mut cert =
             lacuna::certificate::certificate_for_volumes(&name, &set, levels, &v.assembly)
                 .map_err(lacuna_error)?;
-        // Volumes apart: the solution space of their constraints too, as `verify
-        // --certificate` writes it (a system above the limits is left out, not an error).
-        if v.assembly.shared.is_empty() {
-            match lacuna::certificate::solve_and_certify_volumes(&set, &l) {
-                Ok(step) => cert.steps.extend(step),
-                Err(lacuna::certificate::CertifyError::Lacuna(
-                    Error::Limit { .. } | Error::ProvedAboveLimit { .. },
-                )) => {}
-                Err(e) => return Err(lacuna_error(e)),
-            }
+        // The solution space of the constraints too, as `verify --certificate` writes it (a
+        // system above the limits is left out, not an error).
+        match lacuna::certificate::solve_and_certify_volumes(&set, &v.assembly, &l) {
+            Ok(steps) => cert.steps.extend(steps),
+            Err(lacuna::certificate::CertifyError::Lacuna(
+                Error::Limit { .. } | Error::ProvedAboveLimit { .. },
+            )) => {}
+            Err(e) => return Err(lacuna_error(e)),
         }
         Ok(cert.to_json())
     })

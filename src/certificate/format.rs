@@ -79,8 +79,8 @@ pub struct VolumesClaim {
     /// The counts are certified at levels 0 to `levels`.
     pub levels: u64,
     /// The faces two start volumes share (a 3D assembly); none for volumes apart. They matter
-    /// to the level-n solid only (`solid-homology`): counts and the limit ratio are those of
-    /// the volumes apart.
+    /// to the level-n solid (`solid-homology`) and to the constraints (`volume-solution-space`);
+    /// counts and the limit ratio are those of the volumes apart.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub shared: Vec<SharedFaceClaim>,
 }
@@ -419,12 +419,12 @@ pub enum Step {
     /// b3 = b2 = 0 over F2 and χ the same over every field, b1 over Q equals b1 over F2. Rows
     /// whose F2 b2 or b3 is not 0 are refused.
     SolidHomology(SolidHomologyStep),
-    /// **The solution space of the volume constraints** (THEORY §10, one volume or volumes
-    /// apart). Justification: the checker checks the face closure of the surfaces as a
+    /// **The solution space of the volume constraints** (THEORY §10). Justification: the checker checks the face closure of the surfaces as a
     /// `closure` step, checks every face frame and every sub-volume placement (an isomorphism of
     /// the sub-volume it derives onto the listed type, propagated through the gluing), rebuilds
     /// the whole system itself (faces as for `solution-space`, then the volume states, their
-    /// incidences, spoke adjacencies and barycentric columns), and checks the particular
+    /// incidences, spoke adjacencies and barycentric columns, and the faces the start volumes
+    /// share read from both sides), and checks the particular
     /// solution and the basis against its own rows; the unknowns that are not free are shown
     /// independent by elimination modulo a prime. See `docs/CERTIFICATES.md`.
     VolumeSolutionSpace(VolumeSystemStep),

@@ -261,7 +261,7 @@ pub fn certificate_for_volumes(
     Ok(cert)
 }
 
-/// The `volume-solution-space` step of a solved volume system (volumes apart): the face closure
+/// The `volume-solution-space` step of a solved volume system: the face closure
 /// of the surfaces, every face's frame, every sub-volume's placement, and the solution space with
 /// the unknowns in the checker's order (face operators type by type, then `V<v>.T<k>` volume
 /// by volume, each row-major), then the `degeneracy` step of the surfaces' face types on that
@@ -384,15 +384,17 @@ pub fn volume_system_step(
     Ok(vec![system, degeneracy])
 }
 
-/// Solves the constraint system of a closed set of volumes apart (THEORY §10, Bézier degree 2,
-/// equal Cantor gaps) within `limits` and returns its `volume-solution-space` and `degeneracy`
+/// Solves the constraint system of a closed set of volumes (THEORY §10, Bézier degree 2, equal
+/// Cantor gaps; with the faces an assembly's volumes share) within `limits` and returns its `volume-solution-space` and `degeneracy`
 /// steps (none when the system is inconsistent).
 pub fn solve_and_certify_volumes(
     set: &crate::topology::volume::VolumeTypeSet,
+    assembly: &crate::topology::volume::VolumeAssembly,
     limits: &crate::topology::Limits,
 ) -> Result<Vec<Step>, CertifyError> {
     let opts = crate::constraint::GenOptions::default();
-    let solved = crate::constraint::solve_volumes_with_system(set, &[], opts.clone(), limits)?;
+    let shared = crate::constraint::shared_readings(assembly);
+    let solved = crate::constraint::solve_volumes_with_system(set, &shared, opts.clone(), limits)?;
     volume_system_step(set, &solved, &opts)
 }
 

@@ -387,7 +387,10 @@ pub(super) fn check_closure(
         super::counted(nt, "face type", "face types"),
         super::counted(faces.len(), "start face", "start faces")
     );
-    let verdict = format!("closure: {nt} face types, closed under subdivision");
+    let verdict = format!(
+        "closure: {}, closed under subdivision",
+        super::counted(nt, "face type", "face types")
+    );
     let contributions = c
         .types
         .iter()

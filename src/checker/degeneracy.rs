@@ -277,14 +277,17 @@ fn check_with(
         ));
     }
     let message = format!(
-        "the level-1 complexes of {} types ({corners_total} corners) built by the checker; the \
-         corners' coordinates compared as affine functions on the proved solution set: {} \
-         forced to coincide with another; flat cells re-derived from the types: {} faces, {} \
-         lacunas",
-        c.types.len(),
+        "the level-1 {} ({}) built by the checker; the corners' coordinates compared as \
+         affine functions on the proved solution set: {} forced to coincide with another; flat \
+         cells re-derived from the types: {}, {}",
+        match c.types.len() {
+            1 => "complex of 1 type".to_string(),
+            n => format!("complexes of {n} types"),
+        },
+        super::counted(corners_total, "corner", "corners"),
         classes_total,
-        flat_faces.len(),
-        flat_lacunas.len()
+        super::counted(flat_faces.len(), "face", "faces"),
+        super::counted(flat_lacunas.len(), "lacuna", "lacunas")
     );
     let verdict = match (
         first_witness,

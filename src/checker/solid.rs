@@ -787,10 +787,10 @@ pub(super) fn check_face(
             ));
         }
         lines.push(format!(
-            "level {i}: {} cells, {} edges, {} corners, χ = {}, {}, {}",
-            got.faces,
-            got.edges,
-            got.corners,
+            "level {i}: {}, {}, {}, χ = {}, {}, {}",
+            super::counted(got.faces, "cell", "cells"),
+            super::counted(got.edges, "edge", "edges"),
+            super::counted(got.corners, "corner", "corners"),
             got.euler,
             super::counted(got.components, "component", "components"),
             super::counted(got.holes, "hole", "holes")

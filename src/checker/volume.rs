@@ -774,7 +774,8 @@ pub(super) fn check_volume_closure(
         claim.levels
     );
     let verdict = format!(
-        "volume closure: {nt} volume types, closed under subdivision; N^C = {}; N^L = {}",
+        "volume closure: {}, closed under subdivision; N^C = {}; N^L = {}",
+        super::counted(nt, "volume type", "volume types"),
         cells_line.join(", "),
         lacunas_line.join(", ")
     );

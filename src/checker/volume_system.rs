@@ -19,7 +19,7 @@
 //! shown independent by elimination modulo a prime (a rank over F_p is at most the rank over Q),
 //! so a kernel vector vanishing at the free unknowns vanishes: the nullity is at most dof.
 
-use super::closure::check_closure;
+use super::closure::{check_closure, least_rotation};
 use super::system::rebuild_ordered;
 use super::volume::{face_key, pieces, traced, Level1, Prov, Side};
 use super::{rat, Checked, Equation, Q};
@@ -138,6 +138,14 @@ fn points(v: &Volume, frames: &[(usize, usize)], faces: &Faces) -> Result<Points
         let face = &v.faces[f];
         if r >= face.boundary.len().max(1) || face_key(face, r) != face_key(faces.face(t)?, 0) {
             return Err(format!("face {f} rotated by {r} is not face type {t}"));
+        }
+        // The frame is the canonical rotation (the least, Booth's): on a symmetric face another
+        // rotation would read the type's sub-faces onto other parts of the face, another system.
+        if r != least_rotation(&face.boundary) {
+            return Err(format!(
+                "face {f}: frame rotation {r} is not its canonical rotation {}",
+                least_rotation(&face.boundary)
+            ));
         }
         base.push(total);
         total = total
@@ -348,13 +356,6 @@ pub(super) fn check_volume_system(
     let Some(vc) = closure else {
         return Err("no proved volume-closure step to tie the system to".into());
     };
-    if !claim.shared.is_empty() {
-        return Err(
-            "the claim's volumes share faces: the checker does not rebuild the constraints of \
-             shared faces"
-                .into(),
-        );
-    }
     let n = s.unknowns;
     if s.rank.checked_add(s.dof) != Some(n) || s.dof != s.free.len() || s.basis.len() != s.dof {
         return Err(format!(
@@ -573,6 +574,9 @@ pub(super) fn check_volume_system(
             }
         }
     }
+    let before = rows.rows.len();
+    shared_faces(claim, &faces, &mut rows)?;
+    let mirrored = rows.rows.len() - before;
     let rows = rows.rows;
     let (rank_p, p) = witness(s, &rows)?;
     Ok((
@@ -580,7 +584,8 @@ pub(super) fn check_volume_system(
             "{closure_msg}; {} frames and {placed} sub-volume \
              placements proved (isomorphisms onto the listed types through the gluing); system \
              rebuilt from the closures: {} rows over {n} unknowns ({} of face operators, THEORY \
-             §6, Bézier degree {}, Cantor gap/piece {}; {} rows of volume states, THEORY §10); \
+             §6, Bézier degree {}, Cantor gap/piece {}; {} rows of volume states{}, THEORY \
+             §10); \
              the particular solution and the {} basis vectors satisfy every row; rank {rank_p} \
              (the unknowns that are not free independent mod {p}), {} degrees of freedom; the \
              solution set is exactly particular + span(basis)",
@@ -589,7 +594,14 @@ pub(super) fn check_volume_system(
             face_unknowns,
             s.degree,
             s.cantor_gap,
-            rows.len() - face_rows_count,
+            rows.len() - face_rows_count - mirrored,
+            match claim.shared.len() {
+                0 => String::new(),
+                k => format!(
+                    " and {mirrored} of {} shared by the start volumes, read from both sides",
+                    super::counted(k, "face", "faces")
+                ),
+            },
             s.basis.len(),
             s.dof
         ),
@@ -598,6 +610,112 @@ pub(super) fn check_volume_system(
             s.rank, s.dof
         ),
     ))
+}
+
+/// The rows of the faces the claim's start volumes share (THEORY §10): a face read from both
+/// sides is one face, so its sub-faces from either side are the same polygons at every level.
+/// For the face types `t1`, `t2` of the two readings, edge `i` of `t2` on edge `x − i` of `t1`
+/// run backwards: `P · T2_k' = T1_k · Q` for every sub-face `k` of `t1` and its mirror `k'`
+/// (the sub-face of `t2` made of the mirrored pieces), `P` and `Q` reading the points of one
+/// frame in the other; then the same for the pair of sub-face types, until no new pair appears.
+fn shared_faces(claim: &VolumesClaim, faces: &Faces, rows: &mut Rows) -> Result<(), String> {
+    if claim.shared.is_empty() {
+        return Ok(());
+    }
+    let index: HashMap<_, usize> = faces
+        .c
+        .types
+        .iter()
+        .enumerate()
+        .map(|(t, r)| (face_key(&r.face, 0), t))
+        .collect();
+    let reading = |[v, f, e]: [usize; 3]| -> Result<(usize, usize, usize, usize), String> {
+        let face = claim
+            .volumes
+            .get(v)
+            .and_then(|x| x.faces.get(f))
+            .ok_or(format!("shared face ({v}, {f}) is not a face of the claim"))?;
+        let n = face.boundary.len();
+        let r = least_rotation(&face.boundary);
+        let t = *index
+            .get(&face_key(face, r))
+            .ok_or(format!("shared face ({v}, {f}) is not a listed face type"))?;
+        Ok((t, r, e, n))
+    };
+    let mut work = Vec::new();
+    for sh in &claim.shared {
+        let (ta, ra, ea, n) = reading(sh.a)?;
+        let (tb, rb, eb, _) = reading(sh.b)?;
+        // Edge i of type ta is edge i + ra of a's reading, which lies on edge eb − (i + ra − ea)
+        // of b's reading, which is edge (that − rb) of type tb.
+        work.push((ta, tb, (ea + eb + 2 * n - ra % n - rb % n) % n));
+    }
+    let mut seen = BTreeSet::new();
+    while let Some((t1, t2, x)) = work.pop() {
+        if !seen.insert((t1.min(t2), t1.max(t2), x)) {
+            continue;
+        }
+        let row_of = faces.reversed(t1, t2, x)?;
+        let mut inverse = vec![0usize; row_of.len()];
+        row_of.iter().enumerate().for_each(|(j, &r)| inverse[r] = j);
+        let (y1, y2) = (&faces.c.types[t1], &faces.c.types[t2]);
+        let n = y1.face.boundary.len();
+        let pieces_of = |o: &[Origin]| -> Vec<(usize, usize, usize)> {
+            o.iter()
+                .enumerate()
+                .filter_map(|(l, o)| match *o {
+                    Origin::Piece { edge, piece } => Some((edge, piece, l)),
+                    _ => None,
+                })
+                .collect()
+        };
+        for (k1, sub1) in y1.subfaces.iter().enumerate() {
+            let mine = pieces_of(&sub1.origins);
+            let mirror = |e: usize, p: usize| {
+                let count = pieces(&y1.face.boundary[e]);
+                ((x + n - e % n) % n, count - 1 - p)
+            };
+            let mut want: Vec<(usize, usize)> =
+                mine.iter().map(|&(e, p, _)| mirror(e, p)).collect();
+            want.sort_unstable();
+            let found = y2.subfaces.iter().position(|s2| {
+                let mut got: Vec<(usize, usize)> = pieces_of(&s2.origins)
+                    .iter()
+                    .map(|&(e, p, _)| (e, p))
+                    .collect();
+                got.sort_unstable();
+                got == want
+            });
+            let (Some(k2), Some(&(e, pc, l1))) = (found, mine.first()) else {
+                return Err(format!(
+                    "sub-face {k1} of face type {t1} has no mirror in face type {t2}"
+                ));
+            };
+            let sub2 = &y2.subfaces[k2];
+            let m = mirror(e, pc);
+            let l2 = pieces_of(&sub2.origins)
+                .iter()
+                .find(|&&(e2, p2, _)| (e2, p2) == m)
+                .map(|&(_, _, l)| l)
+                .ok_or("a mirrored piece is missing")?;
+            let xk = (l1 + l2) % sub1.origins.len().max(1);
+            let (w1, w2) = (sub1.type_index, sub2.type_index);
+            let q_rows = faces.reversed(w1, w2, xk)?;
+            let (m1, mw1, mw2) = (faces.dims[t1], faces.dims[w1], faces.dims[w2]);
+            let (b1, b2) = (faces.base[t1][k1], faces.base[t2][k2]);
+            super::within_work("the rows of shared faces", (m1 * mw2) as u128)?;
+            for (r, &j) in inverse.iter().enumerate() {
+                for (c, &qc) in q_rows.iter().enumerate() {
+                    rows.push(
+                        vec![(b2 + j * mw2 + c, Q::one()), (b1 + r * mw1 + qc, -Q::one())],
+                        Q::zero(),
+                    );
+                }
+            }
+            work.push((w1, w2, xk));
+        }
+    }
+    Ok(())
 }
 
 /// A sparse vector with strictly increasing, in-range indices.
@@ -742,7 +860,21 @@ mod tests {
     fn a_turn_by_a_quarter_moves_every_point_one_edge_on() {
         // A square of four B2 edges (q = 2): 8 points, edge k starts at point 2k. Turned by 1,
         // built edge k + 1 is frame edge k: built point 2(k+1) + c is frame point 2k + c.
-        let sq = super::super::volume::tests::square();
+        let b2 = Edge {
+            kind: Kind::B,
+            n: 2,
+            delay: 1,
+        };
+        let sq = Face {
+            boundary: vec![b2; 4],
+            params: crate::certificate::Params {
+                ea: b2,
+                el: b2,
+                ec: b2,
+            },
+            algorithm: vec![crate::certificate::SpokeItem::Joint],
+            delay: 1,
+        };
         let c = ClosureStep {
             types: vec![crate::certificate::TypeRule {
                 face: sq,

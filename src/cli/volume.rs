@@ -134,8 +134,8 @@ pub(super) fn verify(
     let r = lacuna::export::volume_ratio(&set, 30)?;
     // The constraints of THEORY §10, with the faces shared between volumes read from both sides.
     // A limit on the solve leaves the constraints undecided; the rest is still reported (and
-    // certified: the constraints of volumes apart are the volume-solution-space step; those of
-    // an assembly's shared faces are not in the certificate).
+    // certified: the constraints are the volume-solution-space step, with the faces an assembly's
+    // volumes share).
     let opts = lacuna::constraint::GenOptions::default();
     let solved = match lacuna::constraint::solve_volumes_with_system(
         &set,
@@ -147,14 +147,12 @@ pub(super) fn verify(
         Err(e @ (Error::Limit { .. } | Error::ProvedAboveLimit { .. })) => Err(e),
         Err(e) => return Err(e),
     };
-    let system_step = match (&solved, v.shared.is_empty()) {
-        (Ok(s), true) => {
-            lacuna::certificate::volume_system_step(&set, s, &opts).map_err(|e| match e {
-                lacuna::certificate::CertifyError::Lacuna(e) => e,
-                e => Error::Usage(format!("--certificate: {e}")),
-            })?
-        }
-        _ => Vec::new(),
+    let system_step = match &solved {
+        Ok(s) => lacuna::certificate::volume_system_step(&set, s, &opts).map_err(|e| match e {
+            lacuna::certificate::CertifyError::Lacuna(e) => e,
+            e => Error::Usage(format!("--certificate: {e}")),
+        })?,
+        Err(_) => Vec::new(),
     };
     let system_certified = !system_step.is_empty();
     let solver = solved.map(|s| s.report);
@@ -213,8 +211,7 @@ pub(super) fn verify(
                     "\nconstraints (faces and volumes, Bézier degree 2; exact, {}): {} unknowns, {} equations, {}\n",
                     match system_certified {
                         true => "certified by the solution space (volume-solution-space)",
-                        false if v.shared.is_empty() => "not in the certificate",
-                        false => "not in the certificate: the constraints of shared faces are not rebuilt by the checker",
+                        false => "not in the certificate",
                     },
                     solver.unknowns,
                     solver.equations,

@@ -92,15 +92,12 @@ pub fn volume_certificate_with_system(name: &str) -> Certificate {
         lacuna::topology::volume::VolumeClosure::Closed(set) => set,
         lacuna::topology::volume::VolumeClosure::Runaway(r) => panic!("{name}: {}", r.reason),
     };
-    // Volumes apart: their constraint system too, when it is solved within the default limits
-    // (cube-C2's is refused for its memory estimate; an assembly's shared faces are not
-    // rebuilt by the checker).
-    if volumes.shared.is_empty() {
-        match lacuna::certificate::solve_and_certify_volumes(&set, &Limits::default()) {
-            Ok(step) => cert.steps.extend(step),
-            Err(lacuna::certificate::CertifyError::Lacuna(lacuna::Error::Limit { .. })) => {}
-            Err(e) => panic!("{name}: {e}"),
-        }
+    // The constraint system too, when it is solved within the default limits (cube-C2's is
+    // refused for its memory estimate).
+    match lacuna::certificate::solve_and_certify_volumes(&set, &volumes, &Limits::default()) {
+        Ok(steps) => cert.steps.extend(steps),
+        Err(lacuna::certificate::CertifyError::Lacuna(lacuna::Error::Limit { .. })) => {}
+        Err(e) => panic!("{name}: {e}"),
     }
     cert
 }
