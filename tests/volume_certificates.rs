@@ -405,6 +405,47 @@ mod random {
             prop_assert!(check(&bad).failed());
         }
     }
+
+    proptest! {
+        // Each case solves a system of up to a few hundred thousand unknowns and checks it
+        // (a few seconds in a debug build): few cases, and a bound on the unknowns.
+        #![proptest_config(ProptestConfig::with_cases(6))]
+        #[test]
+        fn random_volume_systems_certify(text in notation()) {
+            let v = parse_volume(&text).unwrap();
+            let limits = Limits {
+                max_types: 16,
+                max_unknowns: 200_000,
+                ..Limits::default()
+            };
+            let Ok(VolumeClosure::Closed(set)) = VolumeClosure::of(std::slice::from_ref(&v), &limits) else {
+                return Ok(());
+            };
+            let assembly = lacuna::topology::volume::VolumeAssembly::single(v);
+            let mut cert =
+                lacuna::certificate::certificate_for_volumes(&text, &set, 1, &assembly).unwrap();
+            match lacuna::certificate::solve_and_certify_volumes(&set, &assembly, &limits) {
+                Ok(steps) => cert.steps.extend(steps),
+                // Above the bound: a limit, nothing to certify.
+                Err(lacuna::certificate::CertifyError::Lacuna(
+                    lacuna::Error::Limit { .. } | lacuna::Error::ProvedAboveLimit { .. },
+                )) => return Ok(()),
+                Err(e) => return Err(TestCaseError::fail(format!("{text}: {e}"))),
+            }
+            let report = check(&cert);
+            prop_assert!(report.all_proved(), "{}\n{}", text, report.to_text());
+            // One basis vector dropped (a degree of freedom denied) is caught.
+            let mut bad = cert.clone();
+            let s = system_of(&mut bad);
+            if s.dof > 0 {
+                s.free.pop();
+                s.basis.pop();
+                s.dof -= 1;
+                s.rank += 1;
+                prop_assert!(check(&bad).failed(), "{}", text);
+            }
+        }
+    }
 }
 
 fn system_of(cert: &mut Certificate) -> &mut lacuna::certificate::VolumeSystemStep {
