@@ -58,18 +58,45 @@ pub(super) fn check_solution(s: &SolutionStep, to: Tie) -> Checked {
     }
     let rows = parse_rows(&s.system.rows, n)?;
     let system = tie(&s.system, &rows, to)?;
-    let part = sparse(&s.particular, n, "particular solution")?;
+    satisfies(&rows, n, &s.particular, &s.free, &s.basis)?;
+    let p = nonsingular_minor(&rows, &s.pivots, n)?;
+    Ok((
+        format!(
+            "{system}; rank {} (pivot minor nonsingular mod {p}), {dof} degrees of freedom; the \
+             solution set is exactly particular + span(basis)",
+            s.rank
+        ),
+        format!(
+            "constraint system: consistent, rank {}, {dof} degrees of freedom",
+            s.rank
+        ),
+    ))
+}
+
+/// Checks a solution space's witness against `rows` over `n` unknowns: the particular solution
+/// (sparse, other unknowns 0) satisfies every row; the free unknowns are increasing and in
+/// range; each basis vector is 1 at its own free unknown, 0 at the other free ones, and
+/// satisfies every homogeneous row it touches (so the vectors are independent solutions of the
+/// homogeneous system: the nullity is at least their number).
+pub(super) fn satisfies(
+    rows: &[Equation],
+    n: usize,
+    particular: &[(usize, String)],
+    free: &[usize],
+    basis: &[Vec<(usize, String)>],
+) -> Result<(), String> {
+    let part = sparse(particular, n, "particular solution")?;
     if let Some(i) = rows.iter().position(|(t, rhs)| dot(t, &part) != *rhs) {
         return Err(format!("the particular solution fails row {i}"));
     }
-    if s.free.windows(2).any(|w| w[0] >= w[1]) || s.free.last().is_some_and(|&f| f >= n) {
+    if free.windows(2).any(|w| w[0] >= w[1]) || free.last().is_some_and(|&f| f >= n) {
         return Err("free unknowns not increasing or out of range".into());
     }
-    if s.basis.len() != s.free.len() {
+    if basis.len() != free.len() {
         return Err(format!(
             "{} basis vectors for {} free unknowns",
-            s.basis.len(),
-            s.free.len()
+            basis.len(),
+            free.len()
         ));
     }
     let mut rows_of: Vec<Vec<usize>> = vec![Vec::new(); n];
@@ -79,16 +106,15 @@ pub(super) fn check_solution(s: &SolutionStep, to: Tie) -> Checked {
     // Which unknown is free, and the index of its basis vector: one pass over each vector's
     // own entries instead of a scan of every free unknown per vector.
     let mut free_at: Vec<Option<usize>> = vec![None; n];
-    s.free
-        .iter()
+    free.iter()
         .enumerate()
         .for_each(|(j, &f)| free_at[f] = Some(j));
-    for (k, b) in s.basis.iter().enumerate() {
+    for (k, b) in basis.iter().enumerate() {
         let b = sparse(b, n, &format!("basis vector {k}"))?;
-        if b.get(&s.free[k]).is_none_or(|x| !x.is_one()) {
+        if b.get(&free[k]).is_none_or(|x| !x.is_one()) {
             return Err(format!(
                 "basis vector {k} is not 1 at free unknown {}",
-                s.free[k]
+                free[k]
             ));
         }
         if let Some((f, _)) = b
@@ -105,18 +131,7 @@ pub(super) fn check_solution(s: &SolutionStep, to: Tie) -> Checked {
             return Err(format!("basis vector {k} fails homogeneous row {i}"));
         }
     }
-    let p = nonsingular_minor(&rows, &s.pivots, n)?;
-    Ok((
-        format!(
-            "{system}; rank {} (pivot minor nonsingular mod {p}), {dof} degrees of freedom; the \
-             solution set is exactly particular + span(basis)",
-            s.rank
-        ),
-        format!(
-            "constraint system: consistent, rank {}, {dof} degrees of freedom",
-            s.rank
-        ),
-    ))
+    Ok(())
 }
 
 /// Shows the pivot minor nonsingular: eliminating its rows in the listed order modulo a prime

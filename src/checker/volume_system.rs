@@ -22,7 +22,7 @@
 use super::closure::{check_closure, least_rotation};
 use super::system::rebuild_ordered;
 use super::volume::{face_key, pieces, traced, Level1, Prov, Side};
-use super::{rat, Checked, Equation, Q};
+use super::{Checked, Equation, Q};
 use crate::certificate::{
     ClosureStep, Edge, Face, Kind, Origin, SubVolumePlacement, Volume, VolumeClosureStep,
     VolumeSystemStep, VolumesClaim,
@@ -718,65 +718,16 @@ fn shared_faces(claim: &VolumesClaim, faces: &Faces, rows: &mut Rows) -> Result<
     Ok(())
 }
 
-/// A sparse vector with strictly increasing, in-range indices.
-fn sparse(v: &[(usize, String)], n: usize, what: &str) -> Result<BTreeMap<usize, Q>, String> {
-    if v.windows(2).any(|w| w[0].0 >= w[1].0) || v.last().is_some_and(|x| x.0 >= n) {
-        return Err(format!("{what}: indices not increasing or out of range"));
-    }
-    v.iter().map(|(i, s)| Ok((*i, rat(s)?))).collect()
-}
-
-fn dot(terms: &[(usize, Q)], x: &BTreeMap<usize, Q>) -> Q {
-    terms
-        .iter()
-        .filter_map(|(v, c)| x.get(v).map(|y| c * y))
-        .sum()
-}
-
 /// Checks the particular solution and the basis against `rows`, then that the columns that are
 /// not free are independent modulo a prime. Returns the rank shown and the prime.
 fn witness(s: &VolumeSystemStep, rows: &[Equation]) -> Result<(usize, u64), String> {
     let n = s.unknowns;
-    let part = sparse(&s.particular, n, "particular solution")?;
-    if let Some(i) = rows.iter().position(|(t, rhs)| dot(t, &part) != *rhs) {
-        return Err(format!("the particular solution fails rebuilt row {i}"));
-    }
-    if s.free.windows(2).any(|w| w[0] >= w[1]) || s.free.last().is_some_and(|&f| f >= n) {
-        return Err("free unknowns not increasing or out of range".into());
-    }
-    let mut rows_of: Vec<Vec<usize>> = vec![Vec::new(); n];
-    for (i, (t, _)) in rows.iter().enumerate() {
-        t.iter().for_each(|(v, _)| rows_of[*v].push(i));
-    }
+    super::linear::satisfies(rows, n, &s.particular, &s.free, &s.basis)?;
     let mut free_at: Vec<Option<usize>> = vec![None; n];
     s.free
         .iter()
         .enumerate()
         .for_each(|(j, &f)| free_at[f] = Some(j));
-    for (k, b) in s.basis.iter().enumerate() {
-        let b = sparse(b, n, &format!("basis vector {k}"))?;
-        if b.get(&s.free[k]).is_none_or(|x| !x.is_one()) {
-            return Err(format!(
-                "basis vector {k} is not 1 at free unknown {}",
-                s.free[k]
-            ));
-        }
-        if let Some((f, _)) = b
-            .iter()
-            .find(|(v, x)| free_at[**v].is_some_and(|j| j != k) && !x.is_zero())
-        {
-            return Err(format!("basis vector {k} is not 0 at free unknown {f}"));
-        }
-        let touched: BTreeSet<usize> = b.keys().flat_map(|v| rows_of[*v].iter().copied()).collect();
-        if let Some(i) = touched
-            .into_iter()
-            .find(|&i| !dot(&rows[i].0, &b).is_zero())
-        {
-            return Err(format!(
-                "basis vector {k} fails homogeneous rebuilt row {i}"
-            ));
-        }
-    }
     let want = n - s.dof;
     let mut why = String::new();
     for p in [(1u64 << 61) - 1, 1_000_000_007, 998_244_353] {
