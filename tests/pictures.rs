@@ -295,13 +295,14 @@ fn automaton_pictures_are_coloured_centred_and_visible() {
         b[0] > 4 && b[1] > 4 && b[2] < w - 5 && b[3] < h - 5,
         "{b:?}"
     );
-    // The Cantor set: a picture 100 pixels tall, its 32 pieces on the middle row, spread over
-    // the width less the margins (16 px each side), with a gap in the middle third.
+    // The Cantor set: a picture 100 pixels tall, its 32 pieces drawn as bars a fortieth of the
+    // width (10 px) tall across the middle row, spread over the width less the margins (16 px
+    // each side), with a gap in the middle third.
     let (w, h, px) = render("cantor-set", "5");
     assert_eq!((w, h), (400, 100));
     let (b, n) = ink(w, &px, h);
-    assert!(n >= 32, "{n} pixels");
-    assert!(b[1] >= 47 && b[3] <= 53, "{b:?}");
+    assert!(n >= 32 * 10, "{n} pixels");
+    assert!(b[1] >= 44 && b[3] <= 55 && b[3] - b[1] >= 8, "{b:?}");
     assert!(b[0] <= 17 && b[2] >= 382, "{b:?}");
     let row = (b[1] + b[3]) / 2;
     let middle = (180..220).all(|x| px[(row * w + x) as usize][..3] == [255, 255, 255]);

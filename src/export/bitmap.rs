@@ -466,7 +466,27 @@ pub fn write_shapes_png<W: Write>(
                 }
             }
             crate::geometry::ShapeKind::Polyline if !below_pixel(&pts) => {
-                canvas.polyline(&mut scratch, &mut buf, &pts, colour, line * 1.5);
+                let stroke = crate::export::automaton_writer::bar_width(dx, dy, w, line * 1.5);
+                if stroke > line * 1.5 {
+                    // Bars with square ends, filled, so that the gaps between pieces stay exact.
+                    let b = &mut fills[s.state % n];
+                    for seg in pts.windows(2) {
+                        let (a, c) = (seg[0], seg[1]);
+                        let len = (c[0] - a[0]).hypot(c[1] - a[1]).max(1e-12);
+                        let (nx, ny) = (
+                            -(c[1] - a[1]) / len * stroke / 2.0,
+                            (c[0] - a[0]) / len * stroke / 2.0,
+                        );
+                        b.add(&[
+                            [a[0] + nx, a[1] + ny],
+                            [c[0] + nx, c[1] + ny],
+                            [c[0] - nx, c[1] - ny],
+                            [a[0] - nx, a[1] - ny],
+                        ]);
+                    }
+                } else {
+                    canvas.polyline(&mut scratch, &mut buf, &pts, colour, stroke);
+                }
             }
             // A point, or a polyline shorter than a pixel: a dot.
             _ => {
