@@ -37,19 +37,9 @@ fn bounds2(space: usize, shapes: &[Shape]) -> (f64, f64, f64, f64) {
     }
     let pad = ((x1 - x0).max(y1 - y0) * 0.03).max(1e-9);
     // A drawing on a line (a Cantor set) gets a band a quarter as high as it is wide, its
-    // pieces drawn as bars across it ([`bar_width`]).
+    // pieces drawn as bars across it ([`crate::export::bitmap::bar_width`]).
     let grow = ((x1 - x0) / 8.0 - (y1 - y0) / 2.0 - pad).max(0.0);
     (x0 - pad, y0 - pad - grow, x1 + pad, y1 + pad + grow)
-}
-
-/// The stroke of polylines, in pixels of a picture `width` wide: 1, or for a drawing that lies
-/// on a line (x-extent `dx`, y-extent `dy`) bars a fortieth of the width thick, so that a Cantor
-/// set reads as bars rather than a hairline.
-pub(crate) fn bar_width(dx: f64, dy: f64, width: f64, line: f64) -> f64 {
-    match dy <= dx * 1e-9 {
-        true => (width / 40.0).max(line),
-        false => line,
-    }
 }
 
 /// The SVG text of shapes (y upwards), `width` pixels wide.
@@ -62,7 +52,7 @@ pub fn automaton_svg(space: usize, shapes: &[Shape], width: f64) -> String {
         .flat_map(|sh| &sh.points)
         .map(|p| view(space, p).1)
         .fold((f64::MAX, f64::MIN), |(a, b), y| (a.min(y), b.max(y)));
-    let stroke = bar_width(x1 - x0, (flat.1 - flat.0).max(0.0), width, 1.0);
+    let stroke = crate::export::bitmap::bar_width(x1 - x0, (flat.1 - flat.0).max(0.0), width, 1.0);
     let mut s = format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width:.0}\" height=\"{h:.0}\" viewBox=\"0 0 {width:.3} {h:.3}\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
     );

@@ -386,6 +386,16 @@ pub fn write_png_picture<W: Write>(
     canvas.write_png(out)
 }
 
+/// The stroke of polylines, in pixels of a picture `width` wide: 1, or for a drawing that lies
+/// on a line (x-extent `dx`, y-extent `dy`) bars a fortieth of the width thick, so that a Cantor
+/// set reads as bars rather than a hairline.
+pub(crate) fn bar_width(dx: f64, dy: f64, width: f64, line: f64) -> f64 {
+    match dy <= dx * 1e-9 {
+        true => (width / 40.0).max(line),
+        false => line,
+    }
+}
+
 /// Writes the shapes of an automaton's level (`Evaluator::shapes`, drawn in the plane: space 3
 /// through the SVG's axonometric view) as a colour PNG `width` pixels wide: the picture centred
 /// with a margin (its height follows the shapes' aspect, at least a quarter and at most twice the
@@ -466,7 +476,7 @@ pub fn write_shapes_png<W: Write>(
                 }
             }
             crate::geometry::ShapeKind::Polyline if !below_pixel(&pts) => {
-                let stroke = crate::export::automaton_writer::bar_width(dx, dy, w, line * 1.5);
+                let stroke = bar_width(dx, dy, w, line * 1.5);
                 if stroke > line * 1.5 {
                     // Bars with square ends, filled, so that the gaps between pieces stay exact.
                     let b = &mut fills[s.state % n];
