@@ -516,10 +516,11 @@ fn wrong_versions_are_rejected() {
     // Files of versions 1 to 7 (other step forms: version 2 had no recipe, version 3 no claim,
     // version 4 no attractor steps, version 5 no solid-homology step nor shared faces, version
     // 6 no neighbour-map witnesses nor degeneracy step, version 7 no volume-solution-space
-    // step) are refused by their version, not by a parse error.
-    for old in ["1", "2", "3", "4", "5", "6", "7"] {
+    // step, version 8 no solid-recurrence step) are refused by their version, not by a parse
+    // error.
+    for old in ["1", "2", "3", "4", "5", "6", "7", "8"] {
         let json = face_certificate("F0").to_json().replacen(
-            "\"version\":8",
+            "\"version\":9",
             &format!("\"version\":{old}"),
             1,
         );

@@ -276,6 +276,134 @@ fn the_solids_of_the_library_are_certified_with_their_hand_figures() {
     assert!(solid_of(&mut two).rows.iter().all(|r| r.components == 1));
 }
 
+fn recurrence_of(cert: &mut Certificate) -> &mut lacuna::certificate::SolidRecurrenceStep {
+    cert.steps
+        .iter_mut()
+        .find_map(|s| match s {
+            Step::SolidRecurrence(r) => Some(r),
+            _ => None,
+        })
+        .expect("a solid-recurrence step")
+}
+
+/// Where the certificate has both, the recurrence's rows are the solid built cell by cell (two
+/// derivations of the checker that share only the one-step code), and its volumes are the
+/// closure's counts N^C (a third, from the children alone) at every level.
+fn recurrence_agrees(name: &str, cert: &mut Certificate) {
+    let built = cert.steps.iter().find_map(|s| match s {
+        Step::SolidHomology(h) => Some(h.rows.clone()),
+        _ => None,
+    });
+    let counts = closure_of(cert).counts.clone();
+    let rows = recurrence_of(cert).rows.clone();
+    assert_eq!(rows.len(), counts.len(), "{name}: one row per level");
+    for (r, c) in rows.iter().zip(&counts) {
+        assert_eq!(r.volumes, c.cells, "{name}: level {} volumes", r.level);
+    }
+    for (b, r) in built.iter().flatten().zip(&rows) {
+        let cells = [b.volumes, b.faces, b.edges, b.corners].map(|x| x.to_string());
+        assert_eq!(
+            cells,
+            [&r.volumes, &r.faces, &r.edges, &r.corners].map(|x| x.clone()),
+            "{name}: level {}",
+            b.level
+        );
+        assert_eq!(b.euler.to_string(), r.euler, "{name}: level {} χ", b.level);
+        if let Some(c) = r.components {
+            assert_eq!(b.components, c, "{name}: level {} components", b.level);
+        }
+    }
+}
+
+#[test]
+fn the_recurrence_agrees_with_the_built_solid_and_forgeries_fail() {
+    for name in [
+        "cube-B2",
+        "tetrahedron-B2",
+        "cube-C2",
+        "truncated-tetrahedron",
+        "two-cubes",
+    ] {
+        let mut cert = volume_certificate(name);
+        assert_proved(name, &cert);
+        recurrence_agrees(name, &mut cert);
+    }
+    // Forged rows are caught by the recurrence itself (at levels 0–3 the solid-homology step
+    // would catch them too; past them only the recurrence does, below).
+    let honest = volume_certificate("cube-B2");
+    let forge = |f: &dyn Fn(&mut lacuna::certificate::SolidRecurrenceStep)| {
+        let mut bad = honest.clone();
+        f(recurrence_of(&mut bad));
+        bad
+    };
+    let bump = |s: &str, by: i64| (s.parse::<i64>().unwrap() + by).to_string();
+    let bad = forge(&|r| r.rows[3].faces = bump(&r.rows[3].faces, 1));
+    failed_at(
+        "solid-recurrence",
+        "a face more at level 3",
+        &bad,
+        "the row says",
+    );
+    let bad = forge(&|r| {
+        r.rows[2].corners = bump(&r.rows[2].corners, -1);
+        r.rows[2].euler = bump(&r.rows[2].euler, -1);
+    });
+    failed_at(
+        "solid-recurrence",
+        "a corner fewer and χ with it",
+        &bad,
+        "corners",
+    );
+    let bad = forge(&|r| r.rows[3].components = Some(2));
+    failed_at("solid-recurrence", "two components", &bad, "level 0 has 1");
+    let bad = forge(&|r| {
+        r.rows.pop();
+    });
+    failed_at(
+        "solid-recurrence",
+        "a level missing",
+        &bad,
+        "rows for levels 0 to 3",
+    );
+    let bad = forge(&|r| r.rows[2].level = 3);
+    failed_at(
+        "solid-recurrence",
+        "a level out of place",
+        &bad,
+        "row 2 is for level 3",
+    );
+    // Level 5 of the cube, past the solid built cell by cell (its 24 million cells are above
+    // the solid-homology step's bound): the recurrence alone certifies it.
+    let (_, volumes) = lacuna::input::load_volumes("cube-B2").unwrap().unwrap();
+    let set = match lacuna::topology::volume::VolumeClosure::of(
+        &volumes.volume_list(),
+        &lacuna::topology::Limits::default(),
+    )
+    .unwrap()
+    {
+        lacuna::topology::volume::VolumeClosure::Closed(set) => set,
+        lacuna::topology::volume::VolumeClosure::Runaway(r) => panic!("{}", r.reason),
+    };
+    let mut deep =
+        lacuna::certificate::certificate_for_volumes("cube-B2", &set, 5, &volumes).unwrap();
+    assert_proved("cube-B2 to level 5", &deep);
+    let built = deep.steps.iter().find_map(|s| match s {
+        Step::SolidHomology(h) => Some(h.rows.len()),
+        _ => None,
+    });
+    assert_eq!(built, Some(4), "levels 0–3 built cell by cell");
+    recurrence_agrees("cube-B2 to level 5", &mut deep);
+    let r = recurrence_of(&mut deep);
+    r.rows[5].edges = bump(&r.rows[5].edges, 2);
+    r.rows[5].faces = bump(&r.rows[5].faces, 2);
+    failed_at(
+        "solid-recurrence",
+        "two edges and two faces more at level 5",
+        &deep,
+        "the row says",
+    );
+}
+
 #[test]
 fn forged_solids_are_rejected() {
     let honest = volume_certificate("cube-B2");
@@ -398,6 +526,13 @@ mod random {
                 lacuna::certificate::certificate_for_volumes(&text, &set, 2, &assembly).unwrap();
             let report = check(&cert);
             prop_assert!(report.all_proved(), "{}\n{}", text, report.to_text());
+            let mut both = cert.clone();
+            recurrence_agrees(&text, &mut both);
+            let mut bad = cert.clone();
+            let r = recurrence_of(&mut bad);
+            let n: u64 = r.rows[2].edges.parse().unwrap();
+            r.rows[2].edges = (n + 1).to_string();
+            prop_assert!(check(&bad).failed(), "{}", text);
             let mut bad = cert.clone();
             let c = closure_of(&mut bad);
             let n: u64 = c.counts[1].cells.parse().unwrap();
@@ -639,9 +774,10 @@ fn verify_writes_the_volume_system_and_check_proves_it() {
     let (code, out, _) = lacuna(&["check", path.to_str().unwrap()]);
     assert_eq!(code, 0, "{out}");
     assert!(
-        out.contains("proved  step 3 (volume-solution-space)")
+        out.contains("proved  step 3 (solid-recurrence)")
+            && out.contains("proved  step 4 (volume-solution-space)")
             && out.contains("volume constraints: consistent")
-            && out.contains("proved  step 4 (degeneracy)"),
+            && out.contains("proved  step 5 (degeneracy)"),
         "{out}"
     );
     std::fs::remove_dir_all(&dir).ok();

@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 pub const FORMAT: &str = "lacuna-certificate";
 
 /// The format version this code writes and checks.
-pub const VERSION: u32 = 8;
+pub const VERSION: u32 = 9;
 
 /// A certificate: the claim (what was given, in canonical form) and the steps that prove every
 /// verdict about it.
@@ -103,6 +103,37 @@ pub struct SharedFaceClaim {
 pub struct SolidHomologyStep {
     /// One row per level, from level 0.
     pub rows: Vec<SolidRow>,
+}
+
+/// The cells, χ and components of the level-n solid of the claim's volumes at levels 0 to
+/// `rows.len() − 1` (every level of the claim), by the recurrence of cells by birth.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolidRecurrenceStep {
+    /// One row per level, from level 0.
+    pub rows: Vec<SolidCountRow>,
+}
+
+/// The cells of the solid at one level, in decimal (they grow past any fixed width), and its
+/// components where claimed.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolidCountRow {
+    /// The level.
+    pub level: u64,
+    /// Volumes (3-cells).
+    pub volumes: String,
+    /// Faces (2-cells).
+    pub faces: String,
+    /// Edges (1-cells).
+    pub edges: String,
+    /// Corners (0-cells).
+    pub corners: String,
+    /// χ = corners − edges + faces − volumes.
+    pub euler: String,
+    /// b0: connected components, when claimed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub components: Option<u64>,
 }
 
 /// The topology of the level-n complex of one start face at levels 0 to `rows.len() − 1`.
@@ -419,6 +450,19 @@ pub enum Step {
     /// b3 = b2 = 0 over F2 and χ the same over every field, b1 over Q equals b1 over F2. Rows
     /// whose F2 b2 or b3 is not 0 are refused.
     SolidHomology(SolidHomologyStep),
+    /// **The cells, χ and components of the level-n solid at every claimed level** (THEORY
+    /// §10). Justification: every cell of level n + 1 is born inside one cell of level n, and
+    /// what a cell creates depends only on its type. The checker derives the birth table itself
+    /// from one step of small complexes with the code of `solid-homology`: a volume type's own
+    /// complex (its sub-volumes are the proved closure's children; its interior faces, edges and
+    /// corners are what its complex has beyond its subdivided surface), a face type's own
+    /// complex (its sub-faces, the edges beyond its sides' pieces, the corners beyond the face's
+    /// and its sides'), an edge type's pieces and the corners between them (read inside the
+    /// faces that have it as a side). It counts level 0 on the complex of the claim's volumes and
+    /// runs the recurrence in big integers. Components: when every volume type's level-1
+    /// complex is connected, every level has the components of level 0. See
+    /// `docs/CERTIFICATES.md`.
+    SolidRecurrence(SolidRecurrenceStep),
     /// **The solution space of the volume constraints** (THEORY §10). Justification: the checker checks the face closure of the surfaces as a
     /// `closure` step, checks every face frame and every sub-volume placement (an isomorphism of
     /// the sub-volume it derives onto the listed type, propagated through the gluing), rebuilds
@@ -1009,6 +1053,7 @@ impl Step {
             Step::LimitRatio(_) => "limit-ratio",
             Step::VolumeClosure(_) => "volume-closure",
             Step::SolidHomology(_) => "solid-homology",
+            Step::SolidRecurrence(_) => "solid-recurrence",
             Step::VolumeSolutionSpace(_) => "volume-solution-space",
             Step::FaceHomology(_) => "face-homology",
             Step::RuleCompilation(_) => "rule-compilation",

@@ -11,9 +11,10 @@ use crate::certificate::format::{
     Adjacency, Algebraic, AutomatonClaim, AutomatonOperator, AutomatonState, Certificate, Claim,
     ClassClaim, ClosureStep, ConflictStep, DegeneracyStep, Edge, Face, FaceHomologyStep, FaceRow,
     FacesClaim, Kind, Origin, Params, Pattern, PointClaim, RadiusWitness, RatioStep, Recipe, Row,
-    RuleCompilationStep, SharedFaceClaim, SolidHomologyStep, SolidRow, SolutionStep, SpokeItem,
-    Step, SubFace, SubstitutionClaim, System, TypeRule, Volume, VolumeClosureStep, VolumeCount,
-    VolumeRule, VolumeTypeRule, VolumesClaim, WordEquation, WordFactor,
+    RuleCompilationStep, SharedFaceClaim, SolidCountRow, SolidHomologyStep, SolidRecurrenceStep,
+    SolidRow, SolutionStep, SpokeItem, Step, SubFace, SubstitutionClaim, System, TypeRule, Volume,
+    VolumeClosureStep, VolumeCount, VolumeRule, VolumeTypeRule, VolumesClaim, WordEquation,
+    WordFactor,
 };
 use crate::certificate::format::{
     AttractorClaim, ConstraintFailsStep, ConstraintsHoldStep, ContractionStep, FieldCoords,
@@ -258,6 +259,9 @@ pub fn certificate_for_volumes(
         cert.steps
             .push(Step::SolidHomology(SolidHomologyStep { rows }));
     }
+    cert.steps.push(Step::SolidRecurrence(SolidRecurrenceStep {
+        rows: solid.iter().map(solid_count_row).collect(),
+    }));
     Ok(cert)
 }
 
@@ -396,6 +400,20 @@ pub fn solve_and_certify_volumes(
     let shared = crate::constraint::shared_readings(assembly);
     let solved = crate::constraint::solve_volumes_with_system(set, &shared, opts.clone(), limits)?;
     volume_system_step(set, &solved, &opts)
+}
+
+/// The row of the `solid-recurrence` step for one level: its cells and χ, and its components
+/// where lacuna derives them.
+fn solid_count_row(l: &crate::topology::volume::SolidLevel) -> SolidCountRow {
+    SolidCountRow {
+        level: l.level,
+        volumes: l.volumes.to_string(),
+        faces: l.faces.to_string(),
+        edges: l.edges.to_string(),
+        corners: l.corners.to_string(),
+        euler: l.euler.to_string(),
+        components: l.components,
+    }
 }
 
 /// The rows of the `solid-homology` step for the table `solid` (from level 0): every level

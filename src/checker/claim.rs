@@ -473,6 +473,7 @@ fn slots(c: &Claim) -> &'static [(&'static [&'static str], bool)] {
             (&["volume-closure"], true),
             (&["limit-ratio"], true),
             (&["solid-homology"], false),
+            (&["solid-recurrence"], false),
             (&["volume-solution-space"], false),
             (&["degeneracy"], false),
         ],

@@ -25,7 +25,9 @@
 //! - `choice.rs`: a rule's age and random choices (ages, seeded SplitMix64 draws, the states
 //!   of occurrences above the depth and their bound);
 //! - `solid.rs`: the level-n solid built cell by cell, its cells, χ and Betti numbers (ranks
-//!   of boundary matrices over F2).
+//!   of boundary matrices over F2);
+//! - `solid_recurrence.rs`: the solid's cells, χ and components at every level, by the
+//!   recurrence of cells by birth whose table it derives from one step of each type's complex.
 //!
 //! What each step proves is documented on [`Step`] and in `docs/CERTIFICATES.md`. No value read
 //! from a certificate, or derived from one, is held in a fixed-width integer that could wrap:
@@ -47,6 +49,7 @@ mod ratio;
 mod rule;
 mod series;
 mod solid;
+mod solid_recurrence;
 mod system;
 mod volume;
 mod volume_system;
@@ -475,6 +478,14 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
                 _ => {
                     Err("a solid-homology step in a certificate whose claim has no volumes".into())
                 }
+            },
+            Step::SolidRecurrence(s) => match &cert.claim {
+                Claim::Volumes(v) => {
+                    self::solid_recurrence::check_solid_recurrence(s, volume_closure, v)
+                }
+                _ => Err(
+                    "a solid-recurrence step in a certificate whose claim has no volumes".into(),
+                ),
             },
             Step::VolumeSolutionSpace(s) => match &cert.claim {
                 Claim::Volumes(v) => self::volume_system::check_volume_system(s, volume_closure, v)

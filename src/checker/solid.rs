@@ -37,13 +37,13 @@ use std::collections::HashMap;
 use super::volume::tests as volume_tests;
 
 /// A union–find over sides that keeps, for each, whether it runs against its class's root.
-struct Parity {
+pub(super) struct Parity {
     parent: Vec<usize>,
     flip: Vec<bool>,
 }
 
 impl Parity {
-    fn new(n: usize) -> Parity {
+    pub(super) fn new(n: usize) -> Parity {
         Parity {
             parent: (0..n).collect(),
             flip: vec![false; n],
@@ -51,7 +51,7 @@ impl Parity {
     }
 
     /// The root of `x` and whether `x` runs against it.
-    fn find(&mut self, x: usize) -> (usize, bool) {
+    pub(super) fn find(&mut self, x: usize) -> (usize, bool) {
         let mut path = Vec::new();
         let mut r = x;
         while self.parent[r] != r {
@@ -68,7 +68,7 @@ impl Parity {
     }
 
     /// Joins `a` and `b`: the same edge, run the other way when `opposite`.
-    fn union(&mut self, a: usize, b: usize, opposite: bool) -> Result<(), String> {
+    pub(super) fn union(&mut self, a: usize, b: usize, opposite: bool) -> Result<(), String> {
         let (ra, pa) = self.find(a);
         let (rb, pb) = self.find(b);
         if ra == rb {
@@ -91,28 +91,38 @@ type Run = (usize, bool);
 type Reading = ((usize, bool), Vec<Run>);
 
 /// A face of the complex in its own orientation.
-struct CFace {
-    ty: Face,
+#[derive(Clone)]
+pub(super) struct CFace {
+    pub(super) ty: Face,
     bnd: Vec<Run>,
 }
 
 /// A volume of the complex as it reads its surface: `faces[f]` is the face of the complex that
 /// its face `f` is (and whether it reads it against its own orientation), `sides[f][i]` the
 /// edge its side `i` of face `f` runs along.
-struct CVol {
+pub(super) struct CVol {
     v: Volume,
     faces: Vec<(usize, bool)>,
     sides: Vec<Vec<Run>>,
 }
 
 /// The cell complex of the solid at one level (corners are derived by [`Complex::corners`]).
-struct Complex {
-    edges: Vec<Edge>,
-    faces: Vec<CFace>,
-    vols: Vec<CVol>,
+pub(super) struct Complex {
+    pub(super) edges: Vec<Edge>,
+    pub(super) faces: Vec<CFace>,
+    pub(super) vols: Vec<CVol>,
 }
 
 impl Complex {
+    /// The complex without its volumes: the surfaces alone.
+    pub(super) fn surface(&self) -> Complex {
+        Complex {
+            edges: self.edges.clone(),
+            faces: self.faces.clone(),
+            vols: Vec::new(),
+        }
+    }
+
     fn cells(&self) -> usize {
         self.edges.len() + self.faces.len() + self.vols.len()
     }
@@ -125,7 +135,7 @@ impl Complex {
     }
 
     /// The corner of every edge end (`2e` its start, `2e + 1` its end) and the number of corners.
-    fn corners(&self) -> (Vec<usize>, usize) {
+    pub(super) fn corners(&self) -> (Vec<usize>, usize) {
         let mut dsu = Parity::new(2 * self.edges.len());
         let end = |(e, fwd): Run| 2 * e + usize::from(fwd);
         let start = |(e, fwd): Run| 2 * e + usize::from(!fwd);
@@ -166,7 +176,7 @@ fn check_types(ty: &Face, bnd: &[Run], edges: &[Edge]) -> Result<(), String> {
 
 /// The level-0 complex: the claim's volumes, each face once (a shared face as its first
 /// reader reads it), edges the classes of sides under the surfaces' gluing and the shared faces.
-fn start(claim: &VolumesClaim) -> Result<Complex, String> {
+pub(super) fn start(claim: &VolumesClaim) -> Result<Complex, String> {
     for (i, v) in claim.volumes.iter().enumerate() {
         checked_key(v).map_err(|e| format!("start volume {i}: {e}"))?;
     }
@@ -290,7 +300,7 @@ enum Inside {
 }
 
 /// The complex one level down.
-fn next(c: &Complex) -> Result<Complex, String> {
+pub(super) fn next(c: &Complex) -> Result<Complex, String> {
     let mut edges: Vec<Edge> = Vec::new();
     // Pieces of each edge, in its own direction.
     let mut first_piece = Vec::with_capacity(c.edges.len());
@@ -697,7 +707,7 @@ fn row(c: &Complex, level: u64) -> Result<SolidRow, String> {
 }
 
 /// The level-0 complex of one face: its sides are distinct edges, run forwards.
-fn start_face(face: &Face) -> Result<Complex, String> {
+pub(super) fn start_face(face: &Face) -> Result<Complex, String> {
     let mut c = Complex {
         edges: face.boundary.clone(),
         faces: Vec::new(),

@@ -196,9 +196,14 @@ pub(super) fn verify(
         }
         t += &lacuna::export::volume_counts_table(&counts);
         t += &match certified {
-            0 => "\nthe level-n solid (exact, derived by lacuna's recurrence, not in the certificate; – where not derived)\n".to_string(),
+            0 => "\nthe level-n solid (exact; cells, χ and components certified by the recurrence of cells by birth (solid-recurrence); voids and tunnels derived by lacuna's argument (THEORY §10), not in the certificate; – where not derived)\n".to_string(),
+            n if n as u64 > levels => format!(
+                "\nthe level-n solid (exact; levels 0–{} certified by cells and ranks over F2 (solid-homology), cells, χ and components also by the recurrence of cells by birth (solid-recurrence))\n",
+                n - 1
+            ),
             n => format!(
-                "\nthe level-n solid (exact; levels 0–{} certified by cells and ranks over F2 (solid-homology), the rest derived by lacuna's recurrence, not in the certificate; – where not derived)\n",
+                "\nthe level-n solid (exact; levels 0–{} certified by cells and ranks over F2 (solid-homology); cells, χ and components of every level by the recurrence of cells by birth (solid-recurrence); voids and tunnels past level {} derived by lacuna's argument (THEORY §10), not in the certificate; – where not derived)\n",
+                n - 1,
                 n - 1
             ),
         };
