@@ -365,12 +365,62 @@ fn the_recurrence_agrees_with_the_built_solid_and_forgeries_fail() {
         &bad,
         "rows for levels 0 to 3",
     );
+    let bad = forge(&|r| {
+        r.rows[3].voids = Some(1);
+        r.rows[3].tunnels = Some(bump(r.rows[3].tunnels.as_deref().unwrap(), 1));
+    });
+    failed_at(
+        "solid-recurrence",
+        "a void (and a tunnel with it)",
+        &bad,
+        "1 void claimed",
+    );
+    let bad = forge(&|r| r.rows[2].tunnels = Some(bump(r.rows[2].tunnels.as_deref().unwrap(), 1)));
+    failed_at(
+        "solid-recurrence",
+        "a tunnel more",
+        &bad,
+        "b0 + b2 − χ = 77",
+    );
+    let bad = forge(&|r| r.rows[1].voids = None);
+    failed_at(
+        "solid-recurrence",
+        "tunnels without voids",
+        &bad,
+        "without components and voids",
+    );
     let bad = forge(&|r| r.rows[2].level = 3);
     failed_at(
         "solid-recurrence",
         "a level out of place",
         &bad,
         "row 2 is for level 3",
+    );
+    // A delayed cube caps its holes: the checker derives no voids past level 0, and refuses
+    // them when claimed.
+    let text = "cube B2 | B2 B2 B2 | A1 | B2 B2 | V1 | 2";
+    let v = lacuna::topology::volume::parse_volume(text).unwrap();
+    let set = match lacuna::topology::volume::VolumeClosure::of(
+        std::slice::from_ref(&v),
+        &lacuna::topology::Limits::default(),
+    )
+    .unwrap()
+    {
+        lacuna::topology::volume::VolumeClosure::Closed(set) => set,
+        lacuna::topology::volume::VolumeClosure::Runaway(r) => panic!("{}", r.reason),
+    };
+    let assembly = lacuna::topology::volume::VolumeAssembly::single(v);
+    let mut delayed =
+        lacuna::certificate::certificate_for_volumes(text, &set, 2, &assembly).unwrap();
+    assert_proved(text, &delayed);
+    let r = recurrence_of(&mut delayed);
+    assert!(r.rows[2].voids.is_none(), "no voids claimed past level 0");
+    r.rows[2].voids = Some(0);
+    failed_at(
+        "solid-recurrence",
+        "voids of a delayed cube",
+        &delayed,
+        "premises",
     );
     // Level 5 of the cube, past the solid built cell by cell (its 24 million cells are above
     // the solid-homology step's bound): the recurrence alone certifies it.

@@ -115,7 +115,7 @@ pub struct SolidRecurrenceStep {
 }
 
 /// The cells of the solid at one level, in decimal (they grow past any fixed width), and its
-/// components where claimed.
+/// Betti numbers where claimed.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolidCountRow {
@@ -134,6 +134,12 @@ pub struct SolidCountRow {
     /// b0: connected components, when claimed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub components: Option<u64>,
+    /// b2: enclosed cavities, when claimed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub voids: Option<u64>,
+    /// b1 = b0 + b2 − χ: tunnels, when claimed (with b0 and b2), in decimal.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tunnels: Option<String>,
 }
 
 /// The topology of the level-n complex of one start face at levels 0 to `rows.len() − 1`.
@@ -451,7 +457,8 @@ pub enum Step {
     /// whose F2 b2 or b3 is not 0 are refused.
     SolidHomology(SolidHomologyStep),
     /// **The cells, χ and components of the level-n solid at every claimed level** (THEORY
-    /// §10). Justification: every cell of level n + 1 is born inside one cell of level n, and
+    /// §10), and its voids and tunnels. Justification: every cell of level n + 1 is born inside
+    /// one cell of level n, and
     /// what a cell creates depends only on its type. The checker derives the birth table itself
     /// from one step of small complexes with the code of `solid-homology`: a volume type's own
     /// complex (its sub-volumes are the proved closure's children; its interior faces, edges and
@@ -460,8 +467,11 @@ pub enum Step {
     /// and its sides'), an edge type's pieces and the corners between them (read inside the
     /// faces that have it as a side). It counts level 0 on the complex of the claim's volumes and
     /// runs the recurrence in big integers. Components: when every volume type's level-1
-    /// complex is connected, every level has the components of level 0. See
-    /// `docs/CERTIFICATES.md`.
+    /// complex is connected, every level has the components of level 0. Voids: when no set of a
+    /// face type's sub-faces has its boundary on the face's sides only, and a volume type's
+    /// complex relative to its subdivided surface has no 2- or 3-dimensional homology over F2,
+    /// every level past 0 has b2 = b3 = 0 (the exact sequence of the level's complex relative to
+    /// its subdivided faces); then b1 = b0 − χ. See `docs/CERTIFICATES.md`.
     SolidRecurrence(SolidRecurrenceStep),
     /// **The solution space of the volume constraints** (THEORY §10). Justification: the checker checks the face closure of the surfaces as a
     /// `closure` step, checks every face frame and every sub-volume placement (an isomorphism of

@@ -259,8 +259,12 @@ pub fn certificate_for_volumes(
         cert.steps
             .push(Step::SolidHomology(SolidHomologyStep { rows }));
     }
+    let voids = recurrence_has_voids(set);
     cert.steps.push(Step::SolidRecurrence(SolidRecurrenceStep {
-        rows: solid.iter().map(solid_count_row).collect(),
+        rows: solid
+            .iter()
+            .map(|l| solid_count_row(l, l.level == 0 || voids))
+            .collect(),
     }));
     Ok(cert)
 }
@@ -402,9 +406,19 @@ pub fn solve_and_certify_volumes(
     volume_system_step(set, &solved, &opts)
 }
 
-/// The row of the `solid-recurrence` step for one level: its cells and χ, and its components
-/// where lacuna derives them.
-fn solid_count_row(l: &crate::topology::volume::SolidLevel) -> SolidCountRow {
+/// Whether the `solid-recurrence` step claims voids and tunnels past level 0: only without
+/// delays. A delayed volume caps its holes, and the checker derives no voids then (the caps are
+/// 2-cycles of its complex relative to its surface).
+pub fn recurrence_has_voids(set: &crate::topology::volume::VolumeTypeSet) -> bool {
+    !set.types
+        .iter()
+        .any(|t| t.volume.delay >= 2 || t.volume.surface.faces.iter().any(|f| f.delay >= 2))
+}
+
+/// The row of the `solid-recurrence` step for one level: its cells and χ, and its Betti numbers
+/// where lacuna derives them (voids and tunnels only when `voids`).
+fn solid_count_row(l: &crate::topology::volume::SolidLevel, voids: bool) -> SolidCountRow {
+    let voids = voids.then_some(l.voids).flatten();
     SolidCountRow {
         level: l.level,
         volumes: l.volumes.to_string(),
@@ -413,6 +427,8 @@ fn solid_count_row(l: &crate::topology::volume::SolidLevel) -> SolidCountRow {
         corners: l.corners.to_string(),
         euler: l.euler.to_string(),
         components: l.components,
+        voids,
+        tunnels: voids.and(l.tunnels.as_ref()).map(|t| t.to_string()),
     }
 }
 

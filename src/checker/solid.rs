@@ -94,7 +94,7 @@ type Reading = ((usize, bool), Vec<Run>);
 #[derive(Clone)]
 pub(super) struct CFace {
     pub(super) ty: Face,
-    bnd: Vec<Run>,
+    pub(super) bnd: Vec<Run>,
 }
 
 /// A volume of the complex as it reads its surface: `faces[f]` is the face of the complex that
@@ -102,7 +102,7 @@ pub(super) struct CFace {
 /// edge its side `i` of face `f` runs along.
 pub(super) struct CVol {
     v: Volume,
-    faces: Vec<(usize, bool)>,
+    pub(super) faces: Vec<(usize, bool)>,
     sides: Vec<Vec<Run>>,
 }
 
@@ -549,7 +549,7 @@ fn align(own: &CFace, sub: &Face, pieces: &[(usize, Run)]) -> Option<(bool, Vec<
 
 /// The ranks of a matrix over F2 given by its columns (row indices, a repeated one cancels),
 /// by column reduction: the work is charged as it goes.
-fn rank_f2(columns: Vec<Vec<usize>>) -> Result<usize, String> {
+pub(super) fn rank_f2(columns: Vec<Vec<usize>>) -> Result<usize, String> {
     let mut owner: HashMap<usize, Vec<usize>> = HashMap::new();
     let mut rank = 0;
     for col in columns {
@@ -639,14 +639,14 @@ fn chain_complex(c: &Complex, corner: &[usize]) -> Result<(), String> {
 
 /// The cells, χ and Betti numbers of a complex over F2, which are the rational ones (see the
 /// module documentation): refused unless b2 = b3 = 0 over F2.
-struct Betti {
+pub(super) struct Betti {
     cells: [u64; 4],
     euler: i64,
-    b0: u64,
+    pub(super) b0: u64,
     b1: u64,
 }
 
-fn betti(c: &Complex, level: u64) -> Result<Betti, String> {
+pub(super) fn betti(c: &Complex, level: u64) -> Result<Betti, String> {
     let (corner, corners) = c.corners();
     // b0: corners joined by edges.
     let mut dsu = Parity::new(corners);

@@ -34,7 +34,7 @@
 //! subdivision of a cell they share (a corner stays a corner, an edge keeps its ends).
 
 use super::closure::{least_rotation, piece_type};
-use super::solid::{next, start, start_face, Complex, Parity};
+use super::solid::{betti, next, rank_f2, start, start_face, Complex, Parity};
 use super::volume::{checked_key, face_key, FaceKey, TypeKey};
 use crate::certificate::{
     Edge, Face, SolidRecurrenceStep, Volume, VolumeClosureStep, VolumesClaim,
@@ -42,6 +42,9 @@ use crate::certificate::{
 use num_bigint::{BigInt, BigUint};
 use num_traits::Zero;
 use std::collections::HashMap;
+
+#[cfg(test)]
+use super::volume::tests as volume_tests;
 
 /// What one cell of a type creates inside itself: faces and edges by index into the
 /// registries, and a number of corners.
@@ -62,6 +65,9 @@ struct Table {
     edge_index: HashMap<Edge, usize>,
     /// Pieces of each edge type, and the corners born in it once a face has shown them.
     edge_birth: Vec<(Vec<usize>, Option<u64>)>,
+    /// Whether some face type has a set of sub-faces whose boundary lies on its sides only (a
+    /// 2-cycle of the subdivided faces may then exist: no voids derived).
+    sealed: bool,
 }
 
 /// Most face and edge types the recurrence may meet.
@@ -184,6 +190,16 @@ impl Table {
             let e = self.edge(face.boundary[s])?;
             self.edge_corners(e, count)?;
         }
+        // No set of sub-faces has its boundary on the face's sides only: the columns of ∂2
+        // restricted to the edges born inside are independent over F2.
+        let inside: Vec<Vec<usize>> = n
+            .faces
+            .iter()
+            .map(|f| f.bnd.iter().map(|r| r.0).filter(|&e| e >= b).collect())
+            .collect();
+        if rank_f2(inside)? != n.faces.len() {
+            self.sealed = true;
+        }
         let born = class.iter().filter(|&&c| c == Class::Born).count() as u64;
         let faces = n
             .faces
@@ -213,8 +229,10 @@ fn components(c: &Complex, corner: &[usize], n: usize) -> usize {
     (0..n).filter(|&x| dsu.find(x).0 == x).count()
 }
 
-/// What a volume type creates inside itself, and whether its level-1 complex is connected.
-fn derive_volume(v: &Volume, table: &mut Table) -> Result<(Birth, usize, bool), String> {
+/// What a volume type creates inside itself, its number of sub-volumes, whether its level-1
+/// complex is connected, and whether that complex relative to its subdivided surface has no
+/// homology in degrees 2 and 3 over F2.
+fn derive_volume(v: &Volume, table: &mut Table) -> Result<(Birth, usize, bool, bool), String> {
     let single = VolumesClaim {
         volumes: vec![v.clone()],
         levels: 0,
@@ -254,6 +272,21 @@ fn derive_volume(v: &Volume, table: &mut Table) -> Result<(Birth, usize, bool), 
         .map(|&e| table.edge(e))
         .collect::<Result<Vec<_>, _>>()?;
     let connected = components(&nk, &corner, total) == 1;
+    // The complex relative to the subdivided surface: the cells past the prefix. Its H2 and H3
+    // over F2 are 0 when ∂3 (sub-volumes → inner faces) is injective and every relative 2-cycle
+    // of inner faces is a boundary of sub-volumes.
+    let (fp, ep) = (ns.faces.len(), ns.edges.len());
+    let d3: Vec<Vec<usize>> = nk
+        .vols
+        .iter()
+        .map(|v| v.faces.iter().map(|f| f.0).filter(|&g| g >= fp).collect())
+        .collect();
+    let d2: Vec<Vec<usize>> = nk.faces[fp..]
+        .iter()
+        .map(|f| f.bnd.iter().map(|r| r.0).filter(|&e| e >= ep).collect())
+        .collect();
+    let (r3, r2) = (rank_f2(d3)?, rank_f2(d2)?);
+    let open = r3 == nk.vols.len() && nk.faces.len() - fp == r2 + r3;
     Ok((
         Birth {
             faces,
@@ -262,6 +295,7 @@ fn derive_volume(v: &Volume, table: &mut Table) -> Result<(Birth, usize, bool), 
         },
         nk.vols.len(),
         connected,
+        open,
     ))
 }
 
@@ -299,8 +333,9 @@ pub(super) fn check_solid_recurrence(
     let mut table = Table::default();
     let mut vol_birth = Vec::with_capacity(closure.types.len());
     let mut all_connected = true;
+    let mut all_open = true;
     for (t, rule) in closure.types.iter().enumerate() {
-        let (birth, subvolumes, connected) =
+        let (birth, subvolumes, connected, open) =
             derive_volume(&rule.volume, &mut table).map_err(|e| format!("volume type {t}: {e}"))?;
         if subvolumes != rule.children.len() {
             return Err(format!(
@@ -309,6 +344,7 @@ pub(super) fn check_solid_recurrence(
             ));
         }
         all_connected &= connected;
+        all_open &= open;
         vol_birth.push(birth);
     }
     // Level 0: the complex of the claim's volumes.
@@ -340,6 +376,8 @@ pub(super) fn check_solid_recurrence(
     }
     let (corner0, n0) = c0.corners();
     let b0 = components(&c0, &corner0, n0) as u64;
+    // Level 0 without cavities, over F2 (the solid-homology code refuses b2 or b3 ≠ 0).
+    let level0_open = betti(&c0, 0).is_ok();
     let mut corners = BigUint::from(n0);
     // Every face type met, derived (deriving one may meet more).
     let mut i = 0;
@@ -388,6 +426,37 @@ pub(super) fn check_solid_recurrence(
                 ));
             }
         }
+        let voids_derived = match level {
+            0 => level0_open,
+            _ => all_open && !table.sealed,
+        };
+        if let Some(v) = row.voids {
+            if !voids_derived || v != 0 {
+                return Err(format!(
+                    "level {level}: {} claimed; {}",
+                    super::counted(v, "void", "voids"),
+                    match voids_derived {
+                        true => "the premises hold, and the level has none",
+                        false => "the premises that derive voids do not hold",
+                    }
+                ));
+            }
+        }
+        if let Some(t) = &row.tunnels {
+            let derived = match (row.components, row.voids) {
+                (Some(b0), Some(b2)) => (BigInt::from(b0) + BigInt::from(b2) - &euler).to_string(),
+                _ => {
+                    return Err(format!(
+                        "level {level}: tunnels claimed without components and voids"
+                    ))
+                }
+            };
+            if *t != derived {
+                return Err(format!(
+                    "level {level}: {t} tunnels claimed; b0 + b2 − χ = {derived}"
+                ));
+            }
+        }
         if level + 1 == s.rows.len() || level < 2 {
             lines.push(format!(
                 "level {level}: {}, {}, {}, {}, χ = {}{}",
@@ -399,6 +468,14 @@ pub(super) fn check_solid_recurrence(
                 match row.components {
                     Some(c) => format!(", {}", super::counted(c, "component", "components")),
                     None => String::new(),
+                } + &match (&row.voids, &row.tunnels) {
+                    (Some(v), Some(t)) => format!(
+                        ", {}, {}",
+                        super::counted(v, "void", "voids"),
+                        super::counted(t, "tunnel", "tunnels")
+                    ),
+                    (Some(v), None) => format!(", {}", super::counted(v, "void", "voids")),
+                    _ => String::new(),
                 }
             ));
         }
@@ -439,10 +516,11 @@ pub(super) fn check_solid_recurrence(
         }
         (vol, fac, edg, corners) = (nvol, nfac, nedg, ncor);
     }
-    let msg = format!(
+    let msg =
+        format!(
         "the birth table derived from one step of the own complexes of {}, {} and {} (the code \
          of solid-homology), level 0 counted on the claim's complex, levels 0–{} by the \
-         recurrence in big integers{}",
+         recurrence in big integers{}{}",
         super::counted(closure.types.len(), "volume type", "volume types"),
         super::counted(table.faces.len(), "face type", "face types"),
         super::counted(table.edges.len(), "edge type", "edge types"),
@@ -452,10 +530,61 @@ pub(super) fn check_solid_recurrence(
                 "; every volume type's level-1 complex is connected, so every level has the \
                      components of level 0",
             false => "; a volume type's level-1 complex is not connected: no components derived",
+        },
+        match all_open && !table.sealed {
+            true => "; no face type's sub-faces close up on its sides, and every volume type's \
+                     complex relative to its subdivided surface has H2 = H3 = 0 over F2, so every \
+                     level past 0 has b2 = b3 = 0 and b1 = b0 + b2 − χ",
+            false => "; a face type's sub-faces close up on its sides or a volume type's relative \
+                      complex has homology in degree 2 or 3: no voids derived past level 0",
         }
     );
     Ok((
         msg,
         format!("the level-n solid by the recurrence: {}", lines.join("; ")),
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::volume_tests::{b2, cube, square};
+    use super::*;
+
+    #[test]
+    fn the_cube_births_what_the_worked_example_counts() {
+        // docs/CERTIFICATES.md, by hand: the cube creates 8 pieces, 56 faces (24 spoke side
+        // faces, 24 walls, 8 inner faces), 84 edges (36 radial, 48 inner), 36 inner corners.
+        let mut table = Table::default();
+        let (birth, pieces, connected, open) = derive_volume(&cube(), &mut table).unwrap();
+        assert_eq!(
+            (pieces, birth.faces.len(), birth.edges.len(), birth.corners),
+            (8, 56, 84, 36)
+        );
+        assert!(connected && open);
+        // A square under {joint}: 4 pentagons, 4 spokes and 4 lacuna sides, 4 lacuna corners;
+        // a B2 edge: 2 pieces and the joint between them.
+        let f = table.face(&square()).unwrap();
+        table.derive_face(f).unwrap();
+        let b = table.face_birth[f].as_ref().unwrap();
+        assert_eq!((b.faces.len(), b.edges.len(), b.corners), (4, 8, 4));
+        assert!(b.faces.iter().all(|&g| table.faces[g].boundary.len() == 5));
+        let e = table.edge(b2()).unwrap();
+        assert_eq!(table.edge_birth[e], (vec![e, e], Some(1)));
+        assert!(!table.sealed);
+    }
+
+    #[test]
+    fn a_delayed_face_closes_up_on_its_sides() {
+        // A delayed square becomes one square without a hole: its one sub-face's boundary lies
+        // on its sides only, so premise 1 fails and no voids are derived.
+        let mut table = Table::default();
+        let f = table
+            .face(&Face {
+                delay: 2,
+                ..square()
+            })
+            .unwrap();
+        table.derive_face(f).unwrap();
+        assert!(table.sealed);
+    }
 }

@@ -159,6 +159,7 @@ pub(super) fn verify(
     let decided = solver.is_ok();
     let verified = failures.is_empty() && solver.as_ref().is_ok_and(|s| s.ok());
     let certified = lacuna::certificate::solid_rows(&solid).len();
+    let has_voids = lacuna::certificate::recurrence_has_voids(&set);
     let cert = match certificate {
         Some(_) => {
             let mut c = lacuna::certificate::certificate_for_volumes(name, &set, levels, v)
@@ -195,18 +196,32 @@ pub(super) fn verify(
             t += &format!("  {f}\n");
         }
         t += &lacuna::export::volume_counts_table(&counts);
-        t += &match certified {
-            0 => "\nthe level-n solid (exact; cells, χ and components certified by the recurrence of cells by birth (solid-recurrence); voids and tunnels derived by lacuna's argument (THEORY §10), not in the certificate; – where not derived)\n".to_string(),
-            n if n as u64 > levels => format!(
-                "\nthe level-n solid (exact; levels 0–{} certified by cells and ranks over F2 (solid-homology), cells, χ and components also by the recurrence of cells by birth (solid-recurrence))\n",
-                n - 1
-            ),
-            n => format!(
-                "\nthe level-n solid (exact; levels 0–{} certified by cells and ranks over F2 (solid-homology); cells, χ and components of every level by the recurrence of cells by birth (solid-recurrence); voids and tunnels past level {} derived by lacuna's argument (THEORY §10), not in the certificate; – where not derived)\n",
-                n - 1,
-                n - 1
-            ),
-        };
+        // Voids and tunnels that neither step certifies: past the levels built cell by cell,
+        // when the recurrence claims none (a delayed volume).
+        let loose: Vec<String> = solid
+            .iter()
+            .filter(|l| l.level as usize >= certified && l.level > 0)
+            .filter(|l| l.voids.is_some() && !has_voids)
+            .map(|l| l.level.to_string())
+            .collect();
+        t += &format!(
+            "\nthe level-n solid (exact; {}cells, χ{} of every level by the recurrence of cells by birth (solid-recurrence){}; – where not derived)\n",
+            match certified {
+                0 => String::new(),
+                n => format!("levels 0–{} certified cell by cell with ranks over F2 (solid-homology); ", n - 1),
+            },
+            match has_voids {
+                true => ", components, voids and tunnels",
+                false => " and components",
+            },
+            match loose.len() {
+                0 => String::new(),
+                _ => format!(
+                    "; voids and tunnels of level {} derived by lacuna's argument (THEORY §10), not in the certificate",
+                    loose.join(", ")
+                ),
+            }
+        );
         t += &lacuna::export::solid_table(&solid);
         t += "\n";
         t += &lacuna::export::ratio_text(&r);
