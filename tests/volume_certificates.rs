@@ -234,14 +234,22 @@ fn lacuna_check_exits_1_on_a_tampered_volume_certificate() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// The first step of the variant `$v` of a certificate, to change it.
+macro_rules! step_mut {
+    ($cert:expr, $v:path) => {
+        $cert
+            .steps
+            .iter_mut()
+            .find_map(|s| match s {
+                $v(x) => Some(x),
+                _ => None,
+            })
+            .expect(stringify!($v))
+    };
+}
+
 fn solid_of(cert: &mut Certificate) -> &mut lacuna::certificate::SolidHomologyStep {
-    cert.steps
-        .iter_mut()
-        .find_map(|s| match s {
-            Step::SolidHomology(h) => Some(h),
-            _ => None,
-        })
-        .expect("a solid-homology step")
+    step_mut!(cert, Step::SolidHomology)
 }
 
 /// The checker fails `cert` at the solid-homology step with a message containing `reason`.
@@ -277,13 +285,17 @@ fn the_solids_of_the_library_are_certified_with_their_hand_figures() {
 }
 
 fn recurrence_of(cert: &mut Certificate) -> &mut lacuna::certificate::SolidRecurrenceStep {
-    cert.steps
-        .iter_mut()
-        .find_map(|s| match s {
-            Step::SolidRecurrence(r) => Some(r),
-            _ => None,
-        })
-        .expect("a solid-recurrence step")
+    step_mut!(cert, Step::SolidRecurrence)
+}
+
+/// The closed set of volume types of `volumes`.
+fn closed(volumes: &[lacuna::topology::volume::Volume]) -> lacuna::topology::volume::VolumeTypeSet {
+    match lacuna::topology::volume::VolumeClosure::of(volumes, &lacuna::topology::Limits::default())
+        .unwrap()
+    {
+        lacuna::topology::volume::VolumeClosure::Closed(set) => set,
+        lacuna::topology::volume::VolumeClosure::Runaway(r) => panic!("{}", r.reason),
+    }
 }
 
 /// Where the certificate has both, the recurrence's rows are the solid built cell by cell (two
@@ -400,15 +412,7 @@ fn the_recurrence_agrees_with_the_built_solid_and_forgeries_fail() {
     // them when claimed.
     let text = "cube B2 | B2 B2 B2 | A1 | B2 B2 | V1 | 2";
     let v = lacuna::topology::volume::parse_volume(text).unwrap();
-    let set = match lacuna::topology::volume::VolumeClosure::of(
-        std::slice::from_ref(&v),
-        &lacuna::topology::Limits::default(),
-    )
-    .unwrap()
-    {
-        lacuna::topology::volume::VolumeClosure::Closed(set) => set,
-        lacuna::topology::volume::VolumeClosure::Runaway(r) => panic!("{}", r.reason),
-    };
+    let set = closed(std::slice::from_ref(&v));
     let assembly = lacuna::topology::volume::VolumeAssembly::single(v);
     let mut delayed =
         lacuna::certificate::certificate_for_volumes(text, &set, 2, &assembly).unwrap();
@@ -425,15 +429,7 @@ fn the_recurrence_agrees_with_the_built_solid_and_forgeries_fail() {
     // Level 5 of the cube, past the solid built cell by cell (its 24 million cells are above
     // the solid-homology step's bound): the recurrence alone certifies it.
     let (_, volumes) = lacuna::input::load_volumes("cube-B2").unwrap().unwrap();
-    let set = match lacuna::topology::volume::VolumeClosure::of(
-        &volumes.volume_list(),
-        &lacuna::topology::Limits::default(),
-    )
-    .unwrap()
-    {
-        lacuna::topology::volume::VolumeClosure::Closed(set) => set,
-        lacuna::topology::volume::VolumeClosure::Runaway(r) => panic!("{}", r.reason),
-    };
+    let set = closed(&volumes.volume_list());
     let mut deep =
         lacuna::certificate::certificate_for_volumes("cube-B2", &set, 5, &volumes).unwrap();
     assert_proved("cube-B2 to level 5", &deep);
@@ -634,13 +630,7 @@ mod random {
 }
 
 fn system_of(cert: &mut Certificate) -> &mut lacuna::certificate::VolumeSystemStep {
-    cert.steps
-        .iter_mut()
-        .find_map(|s| match s {
-            Step::VolumeSolutionSpace(v) => Some(v),
-            _ => None,
-        })
-        .expect("a volume-solution-space step")
+    step_mut!(cert, Step::VolumeSolutionSpace)
 }
 
 /// The checker fails `cert` at the volume-solution-space step with a message containing

@@ -35,7 +35,7 @@
 
 use super::closure::{least_rotation, piece_type};
 use super::solid::{betti, next, rank_f2, start, start_face, Complex, Parity};
-use super::volume::{checked_key, face_key, FaceKey, TypeKey};
+use super::volume::{checked_key, face_key, one_per_level, FaceKey, TypeKey};
 use crate::certificate::{
     Edge, Face, SolidRecurrenceStep, Volume, VolumeClosureStep, VolumesClaim,
 };
@@ -306,14 +306,7 @@ pub(super) fn check_solid_recurrence(
     claim: &VolumesClaim,
 ) -> Result<(String, String), String> {
     let closure = closure.ok_or("no proved volume-closure step to take the volume types from")?;
-    if s.rows.len() as u128 != u128::from(claim.levels) + 1 {
-        return Err(format!(
-            "{} rows for levels 0 to {} ({} needed)",
-            s.rows.len(),
-            claim.levels,
-            u128::from(claim.levels) + 1
-        ));
-    }
+    one_per_level(s.rows.len(), claim.levels, "rows")?;
     if let Some((i, r)) = s
         .rows
         .iter()

@@ -247,6 +247,17 @@ pub(super) fn level1_sides(v: &Volume) -> u128 {
         .fold(0, u128::saturating_add)
 }
 
+/// A list of `n` items must have one per level from 0 to `levels`.
+pub(super) fn one_per_level(n: usize, levels: u64, what: &str) -> Result<(), String> {
+    match n as u128 == u128::from(levels) + 1 {
+        true => Ok(()),
+        false => Err(format!(
+            "{n} {what} for levels 0 to {levels} ({} needed)",
+            u128::from(levels) + 1
+        )),
+    }
+}
+
 /// Checks a volume's own fields and its surface; returns its type key.
 pub(super) fn checked_key(v: &Volume) -> Result<TypeKey, String> {
     let p = v.params;
@@ -694,14 +705,7 @@ pub(super) fn check_volume_closure(
             "max-levels",
         ));
     }
-    if c.counts.len() as u128 != u128::from(claim.levels) + 1 {
-        return Err(format!(
-            "{} counts listed for levels 0 to {} ({} needed)",
-            c.counts.len(),
-            claim.levels,
-            u128::from(claim.levels) + 1
-        ));
-    }
+    one_per_level(c.counts.len(), claim.levels, "counts listed")?;
     let contributions: Vec<BigUint> = c
         .types
         .iter()
