@@ -31,6 +31,11 @@
 //!   join a rim edge to its inner copy; the inner face is the loop of inner corners.
 //! - A face's centre is the mean of its corners; a cap of a delayed volume is pushed into its
 //!   volume by [`PUSH`] of the way to the volume's centre, so that two caps over one hole part.
+//! - [`InnerFan::Radial`], the third way the mesh layer tries when the first two fold (issue
+//!   #31), changes four of these rules: the volume's centre sees its level-1 surface, an inner
+//!   face is fanned around a point from which the centre sees every fan triangle, the shrink is
+//!   lowered where the inner face would reach its patch (`reach`), and a face whose mean lies
+//!   outside its kernel is centred at a kernel point.
 
 use crate::error::{Diagnostic, Error, Result};
 use crate::input::Corners;
@@ -300,11 +305,18 @@ pub enum InnerFan {
     /// of a fan on the patch. Around the rim's mean, the fan of a strongly bent rim (two faces
     /// meeting in a valley seen from the centre) can cut through the patch.
     PatchPoint,
+    /// Around the same shrink of a point from which every triangle of the rim's fan is seen from
+    /// the volume's centre (counter-clockwise from outside), with the step's shrink lowered below
+    /// [`SHRINK`] where an inner face would otherwise reach its patch; the volume's centre is
+    /// then chosen to see the sub-faces of its level-1 surface, on which the sub-volumes stand
+    /// (issue #31: at level 3, the inner face of a sub-volume over a patch bent around a corner of
+    /// the cavity cut through that patch under both rules above).
+    Radial,
 }
 
 impl InnerFan {
     /// Every rule, in the order the mesh layer tries them.
-    pub const ALL: [InnerFan; 2] = [InnerFan::RimMean, InnerFan::PatchPoint];
+    pub const ALL: [InnerFan; 3] = [InnerFan::RimMean, InnerFan::PatchPoint, InnerFan::Radial];
 
     /// A few words for reports.
     pub fn describe(self) -> &'static str {
@@ -312,6 +324,9 @@ impl InnerFan {
             InnerFan::RimMean => "inner faces fanned around their mean",
             InnerFan::PatchPoint => {
                 "inner faces fanned around the shrink of a point of their patch"
+            }
+            InnerFan::Radial => {
+                "inner faces fanned around a point seen from their volume's centre, and shrunk to stay inside their patch's cone"
             }
         }
     }
@@ -357,7 +372,13 @@ impl Builder {
     }
 
     fn face(&mut self, face: Face, corners: Vec<usize>, center: Option<P3>) -> usize {
-        let center = center.unwrap_or_else(|| mean(corners.iter().map(|&c| self.points[c])));
+        let center = center.unwrap_or_else(|| {
+            let pts: Vec<P3> = corners.iter().map(|&c| self.points[c]).collect();
+            match self.fan {
+                InnerFan::Radial => face_centre(&pts),
+                _ => mean(pts.iter().copied()),
+            }
+        });
         self.faces.push(GeoFace {
             face,
             corners,
@@ -626,7 +647,10 @@ impl Builder {
     /// Shrinking towards a kernel point keeps the side faces of two sub-volumes in disjoint
     /// cones; towards the mean of a non-convex volume (the bent pieces next to a Cantor gap) some
     /// faces are seen from behind and the sub-volumes over them fold.
-    fn star_centre(&self, gv: &GeoVolume) -> P3 {
+    ///
+    /// `seen`: the faces whose fan triangles the point must see (the volume's own faces when
+    /// empty).
+    fn star_centre(&self, gv: &GeoVolume, seen: &[&Reading]) -> P3 {
         let m = mean(
             gv.faces
                 .iter()
@@ -636,7 +660,9 @@ impl Builder {
         // Outward unit normals and a point of every fan triangle.
         let mut planes: Vec<(P3, P3)> = Vec::new();
         let mut size = 0.0f64;
-        for r in &gv.faces {
+        let own: Vec<&Reading> = gv.faces.iter().collect();
+        let seen = if seen.is_empty() { &own[..] } else { seen };
+        for r in seen.iter().copied() {
             let c = self.faces[r.face].center;
             let n = r.corners.len();
             for i in 0..n {
@@ -679,13 +705,25 @@ impl Builder {
         for (k, r) in gv.faces.iter().enumerate() {
             subs.push(self.subdivide_reading(&v.surface.faces[k], r)?);
         }
-        let vcenter = self.star_centre(gv);
+        let radial = self.fan == InnerFan::Radial && v.delay < 2;
+        let vcenter = if radial {
+            // The sub-volumes stand on the level-1 surface: the centre must see its sub-faces.
+            let level_one: Vec<&Reading> = subs.iter().flat_map(|s| s.subs.iter()).collect();
+            self.star_centre(gv, &level_one)
+        } else {
+            self.star_centre(gv, &[])
+        };
+        let (shrink, radial_centres) = if radial {
+            self.radial_fans(&step, &subs, vcenter)
+        } else {
+            (SHRINK, Vec::new())
+        };
         // Every rim point goes [`SHRINK`] of the way to the volume's centre: the side face over a
         // rim edge lies in the cone from the centre over that edge, so the side faces of two rim
         // edges meet only along the radial edge they share, and the inner face is the rim loop
         // shrunk towards the centre (no offset along summed normals, which folds where the
         // volume is not convex).
-        let inner_of = |me: &mut Builder, p: usize| -> P3 { lerp(me.points[p], vcenter, SHRINK) };
+        let inner_of = |me: &mut Builder, p: usize| -> P3 { lerp(me.points[p], vcenter, shrink) };
         let mut out = Vec::with_capacity(step.subvolumes.len());
         if v.delay >= 2 {
             let s = &step.subvolumes[0];
@@ -798,13 +836,18 @@ impl Builder {
             // [`InnerFan`]).
             let centre = match self.fan {
                 InnerFan::RimMean => None,
+                InnerFan::Radial => radial_centres
+                    .get(s)
+                    .copied()
+                    .flatten()
+                    .map(|c| lerp(c, vcenter, shrink)),
                 InnerFan::PatchPoint => {
                     let rim_of = |i: usize| {
                         let (e, _, a, _) = rim(s, i);
                         (e, a)
                     };
                     self.patch_point(sv, &subs, (0..m).map(rim_of).collect())
-                        .map(|p| lerp(p, vcenter, SHRINK))
+                        .map(|p| lerp(p, vcenter, shrink))
                 }
             };
             let faces = self.fill(&sv.volume, faces, None, centre)?;
@@ -814,6 +857,55 @@ impl Builder {
             });
         }
         Ok(out)
+    }
+
+    /// The inner faces of [`InnerFan::Radial`]: the fraction of the way from a rim point to `o`
+    /// at which the step places inner corners, and for every sub-volume the point its inner
+    /// face is fanned around before that shrink (`None` where no fan of its rim is seen from
+    /// `o`; the mean of its rim is used then).
+    ///
+    /// The fan centre of a sub-volume is the mean of its rim when every fan triangle around it
+    /// is seen from `o` counter-clockwise from outside, else a point of the cone of such centres
+    /// ([`radial_centre`]). The fraction is [`SHRINK`] times the least [`reach`] of the fans over
+    /// their patches (at most 1): the inner face then lies, on every ray from `o`, at most half of
+    /// the way from `o` to the patch, so it cannot meet the patch, and it stays in the cone over
+    /// the patch, which the other sub-volumes do not enter.
+    fn radial_fans(
+        &self,
+        step: &VolumeSubdivision,
+        subs: &[SubReadings],
+        o: P3,
+    ) -> (f64, Vec<Option<P3>>) {
+        let mut least = 1.0f64;
+        let mut centres = Vec::with_capacity(step.subvolumes.len());
+        for sv in &step.subvolumes {
+            let pts: Vec<P3> = sv
+                .sides
+                .iter()
+                .map(|&((f, k, p), _)| self.points[subs[f].subs[k].corners[p]])
+                .collect();
+            let Some(c) = radial_centre(o, &pts) else {
+                centres.push(None);
+                continue;
+            };
+            centres.push(Some(c));
+            let m = pts.len();
+            let fan: Vec<[P3; 3]> = (0..m).map(|i| [c, pts[i], pts[(i + 1) % m]]).collect();
+            let mut patch: Vec<[P3; 3]> = Vec::new();
+            for &((f, k), _) in &sv.subfaces {
+                let r = &subs[f].subs[k];
+                let cc = self.faces[r.face].center;
+                let n = r.corners.len();
+                for i in 0..n {
+                    let (a, b) = (r.corners[i], r.corners[(i + 1) % n]);
+                    patch.push([cc, self.points[a], self.points[b]]);
+                }
+            }
+            if let Some(t) = reach(o, &fan, &patch) {
+                least = least.min(t);
+            }
+        }
+        (1.0 - (1.0 - SHRINK) * least.min(1.0), centres)
     }
 
     /// The point M of [`InnerFan::PatchPoint`] for sub-volume `sv`, whose rim is `rim` ((edge,
@@ -904,6 +996,158 @@ impl Builder {
         check_glue(v, &faces, &self.edges)?;
         Ok(faces)
     }
+}
+
+/// The centre of a face with corners `pts`: their mean when the face is star-shaped from it
+/// about its Newell normal n (every fan triangle (c, aᵢ, aᵢ₊₁) turns counter-clockwise about n,
+/// strictly), else the point of that kernel nearest to the mean (with a margin, in the plane
+/// through the mean normal to n; [`kernel_point`]), else the mean.
+///
+/// Inner points of a face are placed towards its centre (a lacuna corner half-way from the
+/// centre to its junction point), and faces are fanned around it: a centre outside the kernel
+/// (the mean of an arrow-shaped sub-face at level 3, issue #31) turns fan triangles over and
+/// makes sub-faces that cross.
+fn face_centre(pts: &[P3]) -> P3 {
+    let m = mean(pts.iter().copied());
+    let k = pts.len();
+    if k < 4 {
+        return m;
+    }
+    let mut n = [0.0; 3];
+    for i in 0..k {
+        n = add(n, cross(sub(pts[i], m), sub(pts[(i + 1) % k], m)));
+    }
+    let nl = norm(n);
+    let size = pts.iter().map(|p| norm(sub(*p, m))).fold(0.0f64, f64::max);
+    if nl <= 1e-12 * size * size {
+        return m;
+    }
+    let n = scale(n, 1.0 / nl);
+    // (c − aᵢ)·(eᵢ × n) < 0 for every side eᵢ = aᵢ₊₁ − aᵢ.
+    let mut planes: Vec<(P3, P3)> = Vec::with_capacity(k + 2);
+    for i in 0..k {
+        let e = sub(pts[(i + 1) % k], pts[i]);
+        let out = cross(e, n);
+        let l = norm(out);
+        if l > 0.0 {
+            planes.push((scale(out, 1.0 / l), pts[i]));
+        }
+    }
+    let inside = |c: P3| {
+        planes
+            .iter()
+            .all(|(o, a)| dot(*o, sub(c, *a)) < -1e-9 * size)
+    };
+    if inside(m) {
+        return m;
+    }
+    // A slab about the mean's plane bounds the prism of such points.
+    planes.push((n, add(m, scale(n, size))));
+    planes.push((scale(n, -1.0), sub(m, scale(n, size))));
+    match kernel_point(&planes, m, size) {
+        Some(c) => sub(c, scale(n, dot(sub(c, m), n))),
+        None => m,
+    }
+}
+
+/// A point `c` around which the loop `rim` is fanned with every triangle (c, rᵢ, rᵢ₊₁) seen from
+/// `o` counter-clockwise from outside (strictly): the mean of the rim when it is one, else the
+/// point nearest to it of the cone {c : (c − o)·((rᵢ − o) × (rᵢ₊₁ − o)) > 0 for all i} (each
+/// condition is linear in c), cut off beyond the rim's mean and behind `o`, with a margin
+/// ([`kernel_point`]). `None` when that cone is empty or thin.
+fn radial_centre(o: P3, rim: &[P3]) -> Option<P3> {
+    let m = rim.len();
+    let normals: Vec<P3> = (0..m)
+        .map(|i| cross(sub(rim[i], o), sub(rim[(i + 1) % m], o)))
+        .collect();
+    let c = mean(rim.iter().copied());
+    let sees = |c: P3| normals.iter().all(|n| dot(*n, sub(c, o)) > 0.0);
+    if sees(c) {
+        return Some(c);
+    }
+    let size = rim.iter().map(|p| norm(sub(*p, o))).fold(0.0f64, f64::max);
+    let g = sub(c, o);
+    let gl = norm(g);
+    if gl <= 1e-12 * size {
+        return None;
+    }
+    let g = scale(g, 1.0 / gl);
+    // Outward normals: −n̂ᵢ through o, and the cap ĝ through o + 2·(c − o).
+    let mut planes: Vec<(P3, P3)> = normals
+        .iter()
+        .filter(|n| norm(**n) > 0.0)
+        .map(|n| (scale(*n, -1.0 / norm(*n)), o))
+        .collect();
+    planes.push((g, add(o, scale(g, 2.0 * gl))));
+    // …and on the rim's side of o (behind o a clockwise rim would be seen counter-clockwise).
+    planes.push((scale(g, -1.0), o));
+    kernel_point(&planes, c, size).filter(|x| sees(*x) && dot(g, sub(*x, o)) > 0.0)
+}
+
+/// How far the fan `fan` may be shrunk towards `o` and stay strictly between `o` and the
+/// surface `patch`: the least, over the rays from `o` through both, of the patch's distance
+/// from `o` over the fan's (ρ_P/ρ_F). The fan shrunk by any factor below it lies strictly
+/// closer to `o` than the patch on every ray. `None` when a triangle of either is not seen
+/// from `o` counter-clockwise from outside (strictly): the bound means nothing then.
+///
+/// On the cone over one fan triangle and one patch triangle, 1/ρ is linear in the direction
+/// (1/ρ(ω) = n·ω / n·a for the plane through a with normal n), so ρ_P/ρ_F is a ratio of two
+/// linear functions, positive on the cone, and its least value is at an edge ray of the
+/// intersection of the two cones: the fan triangle's corners clipped by the three planes through
+/// `o` and the patch triangle's edges.
+fn reach(o: P3, fan: &[[P3; 3]], patch: &[[P3; 3]]) -> Option<f64> {
+    let rel = |t: &[P3; 3]| t.map(|p| sub(p, o));
+    let det = |t: &[P3; 3]| dot(t[0], cross(t[1], t[2]));
+    let plane = |t: &[P3; 3]| {
+        let n = cross(sub(t[1], t[0]), sub(t[2], t[0]));
+        (n, dot(n, t[0]))
+    };
+    let patch: Vec<[P3; 3]> = patch.iter().map(rel).collect();
+    if patch.iter().any(|t| det(t) <= 0.0) {
+        return None;
+    }
+    let mut least = f64::INFINITY;
+    for f in fan.iter().map(rel) {
+        if det(&f) <= 0.0 {
+            return None;
+        }
+        let (nf, df) = plane(&f);
+        for p in &patch {
+            let mut poly: Vec<P3> = f.to_vec();
+            for k in 0..3 {
+                let h = cross(p[k], p[(k + 1) % 3]);
+                poly = clip(&poly, h);
+                if poly.is_empty() {
+                    break;
+                }
+            }
+            let (np, dp) = plane(p);
+            for w in poly {
+                let (a, b) = (dot(nf, w) / df, dot(np, w) / dp);
+                if b > 0.0 {
+                    least = least.min(a / b);
+                }
+            }
+        }
+    }
+    Some(least)
+}
+
+/// The polygon `poly` (corners as directions) clipped to the half-space `h·x ≥ 0`
+/// (Sutherland–Hodgman).
+fn clip(poly: &[P3], h: P3) -> Vec<P3> {
+    let mut out = Vec::with_capacity(poly.len() + 1);
+    for i in 0..poly.len() {
+        let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+        let (sa, sb) = (dot(h, a), dot(h, b));
+        if sa >= 0.0 {
+            out.push(a);
+        }
+        if (sa >= 0.0) != (sb >= 0.0) {
+            out.push(lerp(a, b, sa / (sa - sb)));
+        }
+    }
+    out
 }
 
 /// A point of the kernel of a surface given by the outward unit normals and points of its fan
@@ -1423,6 +1667,122 @@ mod tests {
             ([-1.0, 0.0, 0.0], [1.0, 0.0, 0.0]),
         ];
         assert_eq!(kernel_point(&empty, [0.5; 3], 1.0), None);
+    }
+
+    #[test]
+    fn the_reach_of_a_fan_is_the_least_ratio_of_distances_on_the_shared_cone() {
+        // Seen from the origin, the patch is the triangle a = (1, 0, 1), b = (0, 1, 1),
+        // c = (−½, −½, 1) in the plane z = 1 (det(a, b, c) = 2 > 0: counter-clockwise from
+        // outside). A copy twice as far (the plane z = 2) is at twice the distance on every ray:
+        // reach ½.
+        let patch = [[[1.0, 0.0, 1.0], [0.0, 1.0, 1.0], [-0.5, -0.5, 1.0]]];
+        let twice = [patch[0].map(|p| scale(p, 2.0))];
+        let r = reach([0.0; 3], &twice, &patch).unwrap();
+        assert!((r - 0.5).abs() < 1e-12, "{r}");
+        // A fan triangle in the plane z − x/4 = 1 whose cone holds the patch's: its corners are
+        // the rays (3, 0, 1), (−1, ±2, 1) met at t = 4 and t = 4/5. On a ray ω the patch is at
+        // 1/ω_z and the fan at 1/(ω_z − ω_x/4), so ρ_P/ρ_F = 1 − ω_x/(4ω_z): least where x/z is
+        // greatest inside the patch's cone, 1 at a, so 3/4. Over the fan's whole cone (x/z up to
+        // 3) it would be 1/4: only the shared cone counts.
+        let fan = [[[12.0, 0.0, 4.0], [-0.8, 1.6, 0.8], [-0.8, -1.6, 0.8]]];
+        let r = reach([0.0; 3], &fan, &patch).unwrap();
+        assert!((r - 0.75).abs() < 1e-12, "{r}");
+        // Moving everything by the same vector changes nothing.
+        let d = [0.3, -2.0, 5.0];
+        let moved =
+            |t: &[[P3; 3]]| -> Vec<[P3; 3]> { t.iter().map(|x| x.map(|p| add(p, d))).collect() };
+        let r = reach(d, &moved(&fan), &moved(&patch)).unwrap();
+        assert!((r - 0.75).abs() < 1e-12, "{r}");
+        // A fan triangle seen from behind (clockwise) bounds nothing.
+        let turned = [[fan[0][0], fan[0][2], fan[0][1]]];
+        assert_eq!(reach([0.0; 3], &turned, &patch), None);
+        // Nor does a patch seen from behind.
+        let behind = [[patch[0][0], patch[0][2], patch[0][1]]];
+        assert_eq!(reach([0.0; 3], &fan, &behind), None);
+    }
+
+    /// Whether every fan triangle (c, rᵢ, rᵢ₊₁) turns counter-clockwise seen from `o`.
+    fn sees_all(o: P3, c: P3, rim: &[P3]) -> bool {
+        let m = rim.len();
+        (0..m).all(|i| dot(sub(c, o), cross(sub(rim[i], o), sub(rim[(i + 1) % m], o))) > 0.0)
+    }
+
+    #[test]
+    fn a_radial_centre_sees_every_fan_triangle_from_the_volume_centre() {
+        // A square rim in the plane z = 1 around the z axis: its mean (0, 0, 1) sees it.
+        let square: Vec<P3> = vec![
+            [1.0, -1.0, 1.0],
+            [1.0, 1.0, 1.0],
+            [-1.0, 1.0, 1.0],
+            [-1.0, -1.0, 1.0],
+        ];
+        assert_eq!(radial_centre([0.0; 3], &square), Some([0.0, 0.0, 1.0]));
+        // A chevron in the plane z = 1, counter-clockwise seen from above: (0, 0), (4, 0),
+        // (4, 1), (1, 1), (1, 4), (0, 4)… with the reflex corner at (1, 1), the mean of its six
+        // corners is (5/3, 5/3), beyond the reflex corner: the triangle (mean, (4, 1), (1, 1))
+        // turns clockwise. Its kernel is the open square (0, 1)².
+        let chevron: Vec<P3> = [
+            [0.0, 0.0],
+            [4.0, 0.0],
+            [4.0, 1.0],
+            [1.0, 1.0],
+            [1.0, 4.0],
+            [0.0, 4.0],
+        ]
+        .iter()
+        .map(|p| [p[0], p[1], 1.0])
+        .collect();
+        let o = [0.5, 0.5, -1.0];
+        assert!(!sees_all(o, mean(chevron.iter().copied()), &chevron));
+        let c = radial_centre(o, &chevron).unwrap();
+        assert!(sees_all(o, c, &chevron), "{c:?}");
+        // Clockwise, no point on its side of o sees it (behind o, the points over the kernel
+        // would).
+        let mut turned = chevron.clone();
+        turned.reverse();
+        assert_eq!(radial_centre(o, &turned), None);
+    }
+
+    #[test]
+    fn a_face_centre_is_its_mean_unless_the_mean_is_outside_its_kernel() {
+        // A square: its mean.
+        let square: Vec<P3> = vec![
+            [0.0, 0.0, 2.0],
+            [2.0, 0.0, 2.0],
+            [2.0, 2.0, 2.0],
+            [0.0, 2.0, 2.0],
+        ];
+        assert_eq!(face_centre(&square), [1.0, 1.0, 2.0]);
+        // The chevron above, tilted out of its plane by a rotation about the x axis: the mean
+        // lies beyond the reflex corner, and the centre chosen instead lies in the face's plane
+        // and sees every side counter-clockwise about the face's normal.
+        let (cs, sn) = (0.6, 0.8);
+        let chevron: Vec<P3> = [
+            [0.0, 0.0],
+            [4.0, 0.0],
+            [4.0, 1.0],
+            [1.0, 1.0],
+            [1.0, 4.0],
+            [0.0, 4.0],
+        ]
+        .iter()
+        .map(|p| [p[0], cs * p[1], sn * p[1] + 3.0])
+        .collect();
+        let n = [0.0, -sn, cs];
+        let sees = |c: P3| {
+            (0..6).all(|i| {
+                let (a, b) = (chevron[i], chevron[(i + 1) % 6]);
+                dot(n, cross(sub(a, c), sub(b, c))) > 0.0
+            })
+        };
+        let m = mean(chevron.iter().copied());
+        assert!(!sees(m));
+        let c = face_centre(&chevron);
+        assert!(sees(c), "{c:?}");
+        assert!(
+            dot(n, sub(c, chevron[0])).abs() < 1e-9,
+            "{c:?} off the plane"
+        );
     }
 
     #[test]
