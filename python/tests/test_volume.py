@@ -155,9 +155,10 @@ def test_verify_and_a_certificate_the_checker_accepts(tmp_path, cli):
     assert [int(c.cells) for c in report.counts] == [r[1] for r in _cube_counts(3)]
     assert report.solver.consistent
     cert = v.certificate(tmp_path / "cube.json", levels=2)
-    # volume-closure, limit-ratio, solid-homology, the constraints' solution space and the
-    # degeneracy of the surfaces' faces on it.
-    assert repr(cert) == "Certificate(input='cube-B2', steps=5)"
+    # volume-closure, limit-ratio, solid-homology, solid-recurrence, the constraints' solution
+    # space and the degeneracy of the surfaces' faces on it.
+    assert repr(cert) == "Certificate(input='cube-B2', steps=6)"
+    assert '"step":"solid-recurrence"' in cert.text
     assert '"step":"volume-solution-space"' in cert.text
     assert cert.check().all_proved
     assert lacuna.check(tmp_path / "cube.json").all_proved
