@@ -285,10 +285,11 @@ def test_errors_of_volume_methods():
 
 
 def test_a_solid_that_folds_is_not_written(tmp_path):
-    # The tetrahedron with Cantor edges C2 under A1 and V1 folds at level 3 (two triangles cross;
-    # docs/VOLUMES.md, the command line's test `a_solid_that_folds_is_not_written`): a mesh would
-    # not be the verified structure, so nothing is written (E1041).
-    v = lacuna.Volume("tetrahedron C2 | B2 B2 B2 | A1 | B2 B2 | V1")
+    # The tetrahedron with Cantor edges C3 under A1 and V1 folds at level 3 under all three
+    # inner-face rules (two triangles cross; docs/VOLUMES.md, the command line's test
+    # `a_solid_that_folds_is_not_written`): a mesh would not be the verified structure, so nothing
+    # is written (E1041). C2 folded too until the third rule (issue #31).
+    v = lacuna.Volume("tetrahedron C3 | B2 B2 B2 | A1 | B2 B2 | V1")
     with pytest.raises(lacuna.GeometryError) as e:
         v.render(3, stl=tmp_path / "t3.stl")
     assert e.value.code == "E1041"
