@@ -4,7 +4,7 @@
 //! naming its edge.
 
 mod common;
-use common::lacuna;
+use common::{lacuna, number_after};
 use std::path::PathBuf;
 
 /// A fresh folder for one test's files.
@@ -17,21 +17,6 @@ fn folder(name: &str) -> PathBuf {
 
 fn s(p: &std::path::Path) -> String {
     p.display().to_string()
-}
-
-/// The integer after `label` in `text`.
-fn number_after(text: &str, label: &str) -> i64 {
-    let at = text
-        .find(label)
-        .unwrap_or_else(|| panic!("no `{label}` in {text}"));
-    let rest = &text[at + label.len()..];
-    let n: String = rest
-        .trim_start()
-        .chars()
-        .take_while(|c| *c == '-' || c.is_ascii_digit())
-        .collect();
-    n.parse()
-        .unwrap_or_else(|_| panic!("no number after `{label}` in {text}"))
 }
 
 /// The integer before `label` in `text`.

@@ -7,7 +7,9 @@ use lacuna::certificate::{Certificate, Step, VolumeClosureStep, VolumeRule};
 use lacuna::checker::{check, Outcome};
 
 mod common;
-use common::{assert_proved, lacuna, volume_certificate, volume_certificate_with_system};
+use common::{
+    assert_proved, closed_volumes, lacuna, volume_certificate, volume_certificate_with_system,
+};
 
 fn closure_of(cert: &mut Certificate) -> &mut VolumeClosureStep {
     match cert.steps.first_mut() {
@@ -289,16 +291,6 @@ fn recurrence_of(cert: &mut Certificate) -> &mut lacuna::certificate::SolidRecur
     step_mut!(cert, Step::SolidRecurrence)
 }
 
-/// The closed set of volume types of `volumes`.
-fn closed(volumes: &[lacuna::topology::volume::Volume]) -> lacuna::topology::volume::VolumeTypeSet {
-    match lacuna::topology::volume::VolumeClosure::of(volumes, &lacuna::topology::Limits::default())
-        .unwrap()
-    {
-        lacuna::topology::volume::VolumeClosure::Closed(set) => set,
-        lacuna::topology::volume::VolumeClosure::Runaway(r) => panic!("{}", r.reason),
-    }
-}
-
 /// Where the certificate has both, the recurrence's rows are the solid built cell by cell (two
 /// derivations of the checker that share only the one-step code), and its volumes are the
 /// closure's counts N^C (a third, from the children alone) at every level.
@@ -403,7 +395,7 @@ fn the_recurrence_agrees_with_the_built_solid_and_forgeries_fail() {
     // them when claimed.
     let text = "cube B2 | B2 B2 B2 | A1 | B2 B2 | V1 | 2";
     let v = lacuna::topology::volume::parse_volume(text).unwrap();
-    let set = closed(std::slice::from_ref(&v));
+    let set = closed_volumes(std::slice::from_ref(&v));
     let assembly = lacuna::topology::volume::VolumeAssembly::single(v);
     let mut delayed =
         lacuna::certificate::certificate_for_volumes(text, &set, 2, &assembly).unwrap();
@@ -420,7 +412,7 @@ fn the_recurrence_agrees_with_the_built_solid_and_forgeries_fail() {
     // Level 5 of the cube, past the solid built cell by cell (its 24 million cells are above
     // the solid-homology step's bound): the recurrence alone certifies it.
     let (_, volumes) = lacuna::input::load_volumes("cube-B2").unwrap().unwrap();
-    let set = closed(&volumes.volume_list());
+    let set = closed_volumes(&volumes.volume_list());
     let mut deep =
         lacuna::certificate::certificate_for_volumes("cube-B2", &set, 5, &volumes).unwrap();
     assert_proved("cube-B2 to level 5", &deep);

@@ -5,21 +5,7 @@
 //! writer, accepts the file with the parts, Euler characteristic and genus `render` printed.
 
 mod common;
-use common::lacuna;
-
-/// The integer after `label` in `text`.
-fn number_after(text: &str, label: &str) -> i64 {
-    let at = text
-        .find(label)
-        .unwrap_or_else(|| panic!("no `{label}` in {text}"));
-    let n: String = text[at + label.len()..]
-        .trim_start()
-        .chars()
-        .take_while(|c| *c == '-' || c.is_ascii_digit())
-        .collect();
-    n.parse()
-        .unwrap_or_else(|_| panic!("no number after `{label}` in {text}"))
-}
+use common::{lacuna, number_after};
 
 #[test]
 fn the_level_three_cantor_tetrahedron_embeds_and_its_mesh_checks() {

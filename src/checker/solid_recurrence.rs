@@ -255,12 +255,12 @@ fn derive_volume(v: &Volume, table: &mut Table) -> Result<(Birth, usize, bool, b
     let mut surface_class: Vec<usize> = corner[..2 * ns.edges.len()].to_vec();
     surface_class.sort_unstable();
     surface_class.dedup();
-    if surface_class.len() != ns.corners().1 {
+    let surface_corners = ns.corners().1;
+    if surface_class.len() != surface_corners {
         return Err(format!(
             "the inside of the volume joins corners of its subdivided surface ({} classes there, \
-             {} on the surface alone)",
-            surface_class.len(),
-            ns.corners().1
+             {surface_corners} on the surface alone)",
+            surface_class.len()
         ));
     }
     let faces = nk.faces[ns.faces.len()..]

@@ -1707,6 +1707,18 @@ mod tests {
         (0..m).all(|i| dot(sub(c, o), cross(sub(rim[i], o), sub(rim[(i + 1) % m], o))) > 0.0)
     }
 
+    /// A chevron, counter-clockwise in its plane: (0, 0), (4, 0), (4, 1), (1, 1), (1, 4),
+    /// (0, 4), with the reflex corner at (1, 1). The mean of its six corners, (5/3, 5/3), lies
+    /// beyond the reflex corner; its kernel is the open square (0, 1)².
+    const CHEVRON: [[f64; 2]; 6] = [
+        [0.0, 0.0],
+        [4.0, 0.0],
+        [4.0, 1.0],
+        [1.0, 1.0],
+        [1.0, 4.0],
+        [0.0, 4.0],
+    ];
+
     #[test]
     fn a_radial_centre_sees_every_fan_triangle_from_the_volume_centre() {
         // A square rim in the plane z = 1 around the z axis: its mean (0, 0, 1) sees it.
@@ -1721,17 +1733,7 @@ mod tests {
         // (4, 1), (1, 1), (1, 4), (0, 4)… with the reflex corner at (1, 1), the mean of its six
         // corners is (5/3, 5/3), beyond the reflex corner: the triangle (mean, (4, 1), (1, 1))
         // turns clockwise. Its kernel is the open square (0, 1)².
-        let chevron: Vec<P3> = [
-            [0.0, 0.0],
-            [4.0, 0.0],
-            [4.0, 1.0],
-            [1.0, 1.0],
-            [1.0, 4.0],
-            [0.0, 4.0],
-        ]
-        .iter()
-        .map(|p| [p[0], p[1], 1.0])
-        .collect();
+        let chevron: Vec<P3> = CHEVRON.iter().map(|p| [p[0], p[1], 1.0]).collect();
         let o = [0.5, 0.5, -1.0];
         assert!(!sees_all(o, mean(chevron.iter().copied()), &chevron));
         let c = radial_centre(o, &chevron).unwrap();
@@ -1757,17 +1759,10 @@ mod tests {
         // lies beyond the reflex corner, and the centre chosen instead lies in the face's plane
         // and sees every side counter-clockwise about the face's normal.
         let (cs, sn) = (0.6, 0.8);
-        let chevron: Vec<P3> = [
-            [0.0, 0.0],
-            [4.0, 0.0],
-            [4.0, 1.0],
-            [1.0, 1.0],
-            [1.0, 4.0],
-            [0.0, 4.0],
-        ]
-        .iter()
-        .map(|p| [p[0], cs * p[1], sn * p[1] + 3.0])
-        .collect();
+        let chevron: Vec<P3> = CHEVRON
+            .iter()
+            .map(|p| [p[0], cs * p[1], sn * p[1] + 3.0])
+            .collect();
         let n = [0.0, -sn, cs];
         let sees = |c: P3| {
             (0..6).all(|i| {

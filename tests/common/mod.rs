@@ -58,21 +58,38 @@ pub fn automaton_certificate(name: &str) -> Certificate {
     }
 }
 
+/// The closed set of volume types of `volumes` within the default limits.
+pub fn closed_volumes(
+    volumes: &[lacuna::topology::volume::Volume],
+) -> lacuna::topology::volume::VolumeTypeSet {
+    match lacuna::topology::volume::VolumeClosure::of(volumes, &Limits::default()).expect("closes")
+    {
+        lacuna::topology::volume::VolumeClosure::Closed(set) => set,
+        lacuna::topology::volume::VolumeClosure::Runaway(r) => panic!("{}", r.reason),
+    }
+}
+
+/// The integer after `label` in `text` (a figure of a command's output).
+pub fn number_after(text: &str, label: &str) -> i64 {
+    let at = text
+        .find(label)
+        .unwrap_or_else(|| panic!("no `{label}` in {text}"));
+    let n: String = text[at + label.len()..]
+        .trim_start()
+        .chars()
+        .take_while(|c| *c == '-' || c.is_ascii_digit())
+        .collect();
+    n.parse()
+        .unwrap_or_else(|_| panic!("no number after `{label}` in {text}"))
+}
+
 /// The certificate of a volume (or an assembly of volumes) of the library, with counts to
 /// level 3.
 pub fn volume_certificate(name: &str) -> Certificate {
     let (_, volumes) = lacuna::input::load_volumes(name)
         .unwrap_or_else(|e| panic!("{name}: {}", e.render()))
         .unwrap_or_else(|| panic!("{name} is not a volume"));
-    let set = match lacuna::topology::volume::VolumeClosure::of(
-        &volumes.volume_list(),
-        &Limits::default(),
-    )
-    .expect("closes")
-    {
-        lacuna::topology::volume::VolumeClosure::Closed(set) => set,
-        lacuna::topology::volume::VolumeClosure::Runaway(r) => panic!("{name}: {}", r.reason),
-    };
+    let set = closed_volumes(&volumes.volume_list());
     lacuna::certificate::certificate_for_volumes(name, &set, 3, &volumes).expect("certifiable")
 }
 
@@ -83,15 +100,7 @@ pub fn volume_certificate_with_system(name: &str) -> Certificate {
     let (_, volumes) = lacuna::input::load_volumes(name)
         .expect("loads")
         .expect("a volume");
-    let set = match lacuna::topology::volume::VolumeClosure::of(
-        &volumes.volume_list(),
-        &Limits::default(),
-    )
-    .expect("closes")
-    {
-        lacuna::topology::volume::VolumeClosure::Closed(set) => set,
-        lacuna::topology::volume::VolumeClosure::Runaway(r) => panic!("{name}: {}", r.reason),
-    };
+    let set = closed_volumes(&volumes.volume_list());
     // The constraint system too, when it is solved within the default limits (cube-C2's is
     // refused for its memory estimate).
     match lacuna::certificate::solve_and_certify_volumes(&set, &volumes, &Limits::default()) {
