@@ -516,11 +516,11 @@ fn wrong_versions_are_rejected() {
     // Files of versions 1 to 7 (other step forms: version 2 had no recipe, version 3 no claim,
     // version 4 no attractor steps, version 5 no solid-homology step nor shared faces, version
     // 6 no neighbour-map witnesses nor degeneracy step, version 7 no volume-solution-space
-    // step, version 8 no solid-recurrence step) are refused by their version, not by a parse
-    // error.
-    for old in ["1", "2", "3", "4", "5", "6", "7", "8"] {
+    // step, version 8 no solid-recurrence step, version 9 no level-one step) are refused by
+    // their version, not by a parse error.
+    for old in ["1", "2", "3", "4", "5", "6", "7", "8", "9"] {
         let json = face_certificate("F0").to_json().replacen(
-            "\"version\":9",
+            "\"version\":10",
             &format!("\"version\":{old}"),
             1,
         );
@@ -689,4 +689,94 @@ proptest! {
             prop_assert!(rejected, "{f}: mutation of {step} not caught:\n{}", report.to_text());
         }
     }
+}
+
+fn level_one_of(cert: &mut Certificate) -> &mut lacuna::certificate::LevelOneStep {
+    cert.steps
+        .iter_mut()
+        .find_map(|s| match s {
+            Step::LevelOne(l) => Some(l),
+            _ => None,
+        })
+        .expect("a level-one step")
+}
+
+/// The certificate `measure --certificate` writes for library entry `name` at the default
+/// choice of parameters.
+fn placement_certificate(name: &str) -> Certificate {
+    let input = lacuna::input::load_input(name).expect("a library entry");
+    let inst =
+        lacuna::geometry::instantiate(&input, &lacuna::geometry::InstantiateOptions::default())
+            .expect("instantiates");
+    lacuna::measure::placement_certificate(&inst).expect("certifiable")
+}
+
+/// Each frame's coordinates mapped by `f`.
+fn map_frames(cert: &mut Certificate, f: impl Fn(&BigRational, usize) -> BigRational) {
+    for frame in &mut level_one_of(cert).frames {
+        for p in frame.iter_mut() {
+            for (i, c) in p.iter_mut().enumerate() {
+                let v: BigRational = c.parse().unwrap();
+                *c = f(&v, i).to_string();
+            }
+        }
+    }
+}
+
+#[test]
+fn the_chosen_point_is_certified_and_forgeries_rejected() {
+    for name in ["F0", "two-quads", "delayed-B2-C2"] {
+        let cert = placement_certificate(name);
+        assert_proved(name, &cert);
+    }
+    let cert = placement_certificate("F0");
+    let step = {
+        let mut c = cert.clone();
+        level_one_of(&mut c).clone()
+    };
+    // F0's one type has 6 sub-faces (every spoke of its 6 corners) and one central lacuna.
+    assert_eq!((step.sub_faces, step.lacunas), (6, 1));
+    let smallest: BigRational = step.smallest_area.parse().unwrap();
+    let four = BigRational::from_integer(4.into());
+    // By hand: every control point of a cell is Σ_r x_r·F_r with Σ_r x_r = 1 (each column of a
+    // sub-face operator is barycentric), so translating every frame by (3/7, −5) translates
+    // every cell, and the areas stay; doubling every frame doubles every control point, and the
+    // areas are multiplied by 4.
+    let mut moved = cert.clone();
+    let shift = [
+        BigRational::new(3.into(), 7.into()),
+        BigRational::from_integer((-5).into()),
+    ];
+    map_frames(&mut moved, |v, i| v + &shift[i]);
+    assert_proved("frames translated", &moved);
+    let mut doubled = cert.clone();
+    map_frames(&mut doubled, |v, _| v * BigRational::from_integer(2.into()));
+    assert_rejected("frames doubled, area kept", &doubled, "level-one");
+    level_one_of(&mut doubled).smallest_area = (&smallest * &four).to_string();
+    assert_proved("frames doubled, area ×4", &doubled);
+    // A mirrored frame turns clockwise: its own area is negative.
+    let mut mirrored = cert.clone();
+    map_frames(&mut mirrored, |v, i| if i == 0 { -v } else { v.clone() });
+    assert_rejected("a mirrored frame", &mirrored, "level-one");
+    // Counts, points and parameters that are not the closure's or the space's.
+    let mut bad = cert.clone();
+    level_one_of(&mut bad).sub_faces += 1;
+    assert_rejected("a sub-face too many", &bad, "level-one");
+    let mut bad = cert.clone();
+    level_one_of(&mut bad).frames[0].pop();
+    assert_rejected("a frame point missing", &bad, "level-one");
+    let mut bad = cert.clone();
+    level_one_of(&mut bad).parameters.pop();
+    assert_rejected("a parameter missing", &bad, "level-one");
+    // A smallest area that is not the smallest: half of it.
+    let mut bad = cert.clone();
+    level_one_of(&mut bad).smallest_area =
+        (&smallest / BigRational::from_integer(2.into())).to_string();
+    assert_rejected("half the smallest area", &bad, "level-one");
+    // (Another point of the space is no forgery by itself: the claim may hold there too, e.g. with
+    // parameter 0 of F0 set to 1000, whose sub-faces keep positive area and the same smallest.)
+    // Without the solution space the step has nothing to stand on.
+    let mut alone = cert.clone();
+    alone.steps.retain(|s| s.name() != "solution-space");
+    assert!(!check(&alone).all_proved());
 }

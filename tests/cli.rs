@@ -173,3 +173,34 @@ fn measure_prints_a_table_with_the_exact_counts() {
     }
     assert!(out.contains("verdict: VERIFIED"), "{out}");
 }
+
+#[test]
+fn measure_writes_a_certificate_of_its_exact_lines() {
+    let dir = std::env::temp_dir().join(format!("lacuna-cli-measure-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let cert = dir.join("F0-measure.json");
+    let c = cert.to_str().unwrap();
+    let (code, out, err) = lacuna(&["measure", "F0", "--level", "1", "--certificate", c]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("the level-1 line by the level-one step"),
+        "{out}"
+    );
+    assert!(
+        out.contains(&format!("certificate written to {c}")),
+        "{out}"
+    );
+    let (code, out, err) = lacuna(&["check", c]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(
+        out.contains("every level-1 control polygon has positive area"),
+        "{out}"
+    );
+    // Volumes and automata: verify certifies their exact figures; measure says so (bad input).
+    for input in ["cube-B2", "koch"] {
+        let (code, _, err) = lacuna(&["measure", input, "--level", "1", "--certificate", c]);
+        assert_eq!(code, 2, "{input}: {err}");
+        assert!(err.contains("lacuna verify"), "{input}: {err}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 pub const FORMAT: &str = "lacuna-certificate";
 
 /// The format version this code writes and checks.
-pub const VERSION: u32 = 9;
+pub const VERSION: u32 = 10;
 
 /// A certificate: the claim (what was given, in canonical form) and the steps that prove every
 /// verdict about it.
@@ -488,6 +488,15 @@ pub enum Step {
     /// and takes b0 from the 1-skeleton and the rank of ∂2 over F2; with b2 = 0 over F2, b1 (the
     /// holes) over Q equals b1 over F2.
     FaceHomology(FaceHomologyStep),
+    /// **Every cell of level 1 has area at a chosen point** (faces, after a proved
+    /// `solution-space` step). Justification: the checker evaluates the point
+    /// `particular + Σ t_j·basis_j` at the step's parameters (a point of the proved solution
+    /// set), places every sub-face operator's columns in its parent type's frame (the sub-face's
+    /// control points) and the sub-faces' lacuna sides, reversed and in side order (the central
+    /// lacuna's), and computes each control polygon's signed area exactly (shoelace over Q): every
+    /// one, and every frame, must be positive, and the counts and the smallest sub-face area must
+    /// be the listed ones.
+    LevelOne(LevelOneStep),
     /// **The automaton is its rule's compilation.** Justification: the checker reads the
     /// claim's rule text with its own parser (field line, initiator, generators, flags, age and
     /// random choices, `seed`, `depth`), compiles it with its own code (states, one per
@@ -538,6 +547,26 @@ pub struct DegeneracyStep {
     pub flat_faces: Vec<usize>,
     /// Face types whose lacuna has two sides, both Cantor edges: the lacuna has area 0.
     pub flat_lacunas: Vec<usize>,
+}
+
+/// The step `level-one`: a chosen point of the proved solution space at which every cell of
+/// level 1 has a control polygon of positive signed area, in frames the step gives.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LevelOneStep {
+    /// Per face type (closure order), its frame: one point `[x, y]` (rationals) per control
+    /// point of the type, in boundary order. The type's own control polygon in its frame must
+    /// have positive signed area.
+    pub frames: Vec<Vec<[String; 2]>>,
+    /// The chosen point: the value of each free parameter, in the order of the proved
+    /// `solution-space` step's `free` list (the point is `particular + Σ t_j·basis_j`).
+    pub parameters: Vec<String>,
+    /// The sub-faces checked, over all types.
+    pub sub_faces: u64,
+    /// The central lacunas checked, over all types.
+    pub lacunas: u64,
+    /// The smallest signed area of a sub-face's control polygon in its parent's frame.
+    pub smallest_area: String,
 }
 
 /// The step `constraints-hold`: no data, the claim has everything.
@@ -1066,6 +1095,7 @@ impl Step {
             Step::SolidRecurrence(_) => "solid-recurrence",
             Step::VolumeSolutionSpace(_) => "volume-solution-space",
             Step::FaceHomology(_) => "face-homology",
+            Step::LevelOne(_) => "level-one",
             Step::RuleCompilation(_) => "rule-compilation",
             Step::ConstraintsHold(_) => "constraints-hold",
             Step::ConstraintFails(_) => "constraint-fails",

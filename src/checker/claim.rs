@@ -447,6 +447,7 @@ fn slots(c: &Claim) -> &'static [(&'static [&'static str], bool)] {
             (&["degeneracy"], false),
             (&["limit-ratio"], true),
             (&["face-homology"], false),
+            (&["level-one"], false),
         ],
         // Every operator given: the constraints are evaluated, there is no system to solve.
         Claim::Automaton(a)

@@ -11,6 +11,8 @@
 //! - `linear.rs`: exact linear checks and elimination modulo primes;
 //! - `degeneracy.rs`: the corners of every type's level-1 complex that the proved solution set
 //!   forces to coincide, and the cells forced flat;
+//! - `level_one.rs`: a chosen point of the proved solution set at which every level-1 control
+//!   polygon has positive area in the given frames;
 //! - `ifs.rs`: an automaton's constraints in its field K, the contraction of every walk of its
 //!   control graph (a complete prefix code of walks of norm below 1), its similarity dimension;
 //! - `neighbour.rs`: the open-set condition of a part decided by neighbour maps (a closed set
@@ -43,6 +45,7 @@ mod closure;
 mod degeneracy;
 mod field;
 mod ifs;
+mod level_one;
 mod linear;
 mod neighbour;
 mod ratio;
@@ -533,6 +536,15 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
                     }
                 },
                 _ => Err("a degeneracy step in a certificate whose claim has no faces".into()),
+            },
+            Step::LevelOne(l) => match (&cert.claim, &closure, solution) {
+                (Claim::Faces(f), Some((_, c)), Some(s)) => {
+                    self::level_one::check_level_one(l, c, f.degree, s)
+                }
+                (Claim::Faces(_), _, _) => {
+                    Err("no proved closure and solution-space steps to take the cells from".into())
+                }
+                _ => Err("a level-one step in a certificate whose claim has no faces".into()),
             },
             Step::Inconsistent(c) => check_conflict(c, tie),
             Step::LimitRatio(r) => match (&given, &closure, &volumes) {

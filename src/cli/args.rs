@@ -668,6 +668,11 @@ pub(crate) struct MeasureArgs {
     /// Certified digits of the similarity dimension of an automaton.
     #[arg(long, default_value_t = 30)]
     pub(crate) digits: usize,
+    /// Write the certificate of the faces and of the chosen point (JSON; a `level-one` step
+    /// proves the exact level-1 line) to this file. Faces only: for volumes and automata
+    /// `lacuna verify --certificate` certifies the exact figures.
+    #[arg(long, value_name = "OUT.json")]
+    pub(crate) certificate: Option<std::path::PathBuf>,
 }
 
 /// The arguments of `lacuna report`.

@@ -12,6 +12,7 @@ pub(super) fn run(args: MeasureArgs, limits: &Limits) -> Result<ExitCode, Error>
         print,
         json,
         digits,
+        certificate,
     } = args;
     check_raster("--raster", raster, lacuna::measure::LARGEST_RASTER)?;
     check_raster("--max-raster", max_raster, lacuna::measure::LARGEST_RASTER)?;
@@ -24,10 +25,36 @@ pub(super) fn run(args: MeasureArgs, limits: &Limits) -> Result<ExitCode, Error>
         });
     }
     check_density_grid(density_grid, 0)?;
+    let mut outputs = match &certificate {
+        Some(path) => Outputs::check(
+            &[std::path::Path::new(&geo.input)],
+            &[("--certificate", path)],
+        )?,
+        None => Outputs::check(&[], &[])?,
+    };
+    if json && outputs.to_stdout {
+        return Err(Error::Usage(
+            "--json and --certificate - would both write to standard output".into(),
+        ));
+    }
+    let faces_only = || {
+        Error::Usage(
+            "--certificate: measure certifies the chosen point of faces; for volumes and \
+             automata, `lacuna verify INPUT --certificate OUT.json` certifies every exact figure \
+             measure prints"
+                .into(),
+        )
+    };
     if let Some((name, v)) = lacuna::input::load_volume_file(&geo.input)? {
+        if certificate.is_some() {
+            return Err(faces_only());
+        }
         return volume::measure(&name, &v, &geo, &print, json, limits);
     }
     if let Some((name, model)) = automaton::automaton_input(&geo)? {
+        if certificate.is_some() {
+            return Err(faces_only());
+        }
         let p = automaton::prepare(&geo, name, model, limits, 2_000_000)?;
         return automaton::measure(&geo, p, digits, json, limits);
     }
@@ -58,6 +85,11 @@ pub(super) fn run(args: MeasureArgs, limits: &Limits) -> Result<ExitCode, Error>
     for f in &strict_failures {
         eprintln!("verification failed: {f}");
     }
+    if let Some(path) = &certificate {
+        let cert = lacuna::measure::placement_certificate(&inst)
+            .map_err(|e| e.into_error("--certificate"))?;
+        outputs.write(path, |w| w.write_all(cert.to_json().as_bytes()))?;
+    }
     if json {
         print_json(&lacuna::mesh::printability::WithPrintability {
             report: &r,
@@ -66,6 +98,9 @@ pub(super) fn run(args: MeasureArgs, limits: &Limits) -> Result<ExitCode, Error>
     } else {
         out(&r.to_text());
         out(&p.text());
+        if let Some(path) = &certificate {
+            outputs.say(&format!("certificate written to {}\n", path.display()));
+        }
     }
     Ok(if r.verified && strict_failures.is_empty() {
         ExitCode::SUCCESS

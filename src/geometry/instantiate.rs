@@ -62,6 +62,8 @@ pub struct Instance {
     pub generated: Generated,
     /// Its linear system.
     pub linearized: Linearized,
+    /// The options the constraints were generated with (Bézier degree, Cantor gap).
+    pub options: GenOptions,
     /// The exact value of every unknown.
     pub values: Vec<BigRational>,
     /// The free parameters by name with their chosen values.
@@ -160,13 +162,11 @@ fn build(input: &Input, opt: &InstantiateOptions, lift: bool) -> Result<Built, G
             face: t.face.to_string(),
         });
     }
-    let generated = automaton_of(
-        &types,
-        GenOptions {
-            degree: q,
-            cantor_gap: opt.cantor_gap.clone(),
-        },
-    );
+    let options = GenOptions {
+        degree: q,
+        cantor_gap: opt.cantor_gap.clone(),
+    };
+    let generated = automaton_of(&types, options.clone());
     let a = &generated.automaton;
     // The solve's size is known from the automaton's shapes: refuse it before the work.
     opt.limits.check_unknowns(a.unknown_count())?;
@@ -240,6 +240,7 @@ fn build(input: &Input, opt: &InstantiateOptions, lift: bool) -> Result<Built, G
         types,
         generated,
         linearized: lin,
+        options,
         values,
         parameters,
         fit_residual,

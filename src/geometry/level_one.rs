@@ -38,6 +38,10 @@ pub struct LevelOne {
     /// exactly.
     #[serde(serialize_with = "rational_str")]
     pub smallest_area: Option<Q>,
+    /// Each type's frame, the control points in which its cells were measured (what a
+    /// certificate's `level-one` step carries).
+    #[serde(skip)]
+    pub frames: Vec<Vec<QPoint>>,
 }
 
 impl LevelOne {
@@ -203,7 +207,10 @@ pub(crate) fn check(
     frames: &[Vec<QPoint>],
     x: &[Q],
 ) -> Result<LevelOne, GeometryError> {
-    let mut out = LevelOne::default();
+    let mut out = LevelOne {
+        frames: frames.to_vec(),
+        ..Default::default()
+    };
     let two = Q::from_integer(2.into());
     for cell in cells {
         let a = area2(cell, frames, x) / &two;

@@ -251,6 +251,10 @@ pub struct MeasureReport {
     /// The exact level-1 check of the chosen point: every cell's control polygon has positive
     /// area (issue #36).
     pub level_one: crate::geometry::LevelOne,
+    /// The last level whose exact holes and components the certificate's `face-homology` step
+    /// proves (from level 0); none when the certificate has no such step (an assembly of faces,
+    /// or a level 0 too large to build).
+    pub certified_to: Option<u64>,
     /// Every level's holes and components match the exact counts.
     pub verified: bool,
     /// One line per failure, starting with its code (E1010 mismatch, E1011 below resolution).
@@ -412,6 +416,9 @@ pub fn measure(inst: &Instance, opts: &MeasureOptions) -> Result<MeasureReport, 
         raster: opts.raster,
         template_residual: inst.fit_residual,
         level_one: inst.level_one.clone(),
+        certified_to: crate::certificate::face_rows(&inst.types)
+            .ok()
+            .and_then(|rows| rows.last().map(|r| r.level)),
         verified: failures.is_empty(),
         failures,
         levels,
@@ -472,6 +479,18 @@ impl MeasureReport {
         }
         let _ = writeln!(s, "components derived by {}", self.components_by);
         let _ = writeln!(s, "{}", self.level_one.describe());
+        let _ = writeln!(
+            s,
+            "{}; the level-1 line by the level-one step (`--certificate OUT.json` writes them)",
+            match self.certified_to {
+                Some(n) => format!(
+                    "certified: the exact holes and components by the face-homology step at levels 0–{n}"
+                ),
+                None => "the exact holes and components derived by lacuna, not in a certificate \
+                         (its claim does not carry an assembly's gluing)"
+                    .to_string(),
+            }
+        );
         if self.verified {
             s += "verdict: VERIFIED (observed holes and components equal the exact counts)\n";
         } else {

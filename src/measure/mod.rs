@@ -5,6 +5,7 @@
 //! integers. It never imports exports or the command line.
 
 pub(crate) mod automaton_measure;
+pub(crate) mod certify;
 pub(crate) mod density;
 pub(crate) mod hole;
 pub(crate) mod measurement;
@@ -13,6 +14,7 @@ pub(crate) mod morph;
 pub use automaton_measure::{
     box_dimension, level_measures, shape_measure, AutomatonLevel, AutomatonMeasure, BoxDimension,
 };
+pub use certify::placement_certificate;
 pub use density::{density_map, density_raster, DensityMap, DensitySummary};
 pub use hole::{polygon_size, smallest_holes};
 pub use measurement::{
