@@ -477,6 +477,31 @@ pub(super) fn render(
     })
 }
 
+/// Which step of a volume's certificate proves the exact figures of `level`, when the
+/// `solid-homology` step builds levels `0..certified` cell by cell and `has_voids` says whether
+/// the `solid-recurrence` step claims voids and tunnels past level 0.
+fn solid_provenance(
+    level: &lacuna::topology::volume::SolidLevel,
+    certified: usize,
+    has_voids: bool,
+) -> String {
+    if (level.level as usize) < certified {
+        return "certified cell by cell with ranks over F2 (solid-homology)".into();
+    }
+    let loose = level.level > 0 && level.voids.is_some() && !has_voids;
+    format!(
+        "cells, χ{} certified by the recurrence of cells by birth (solid-recurrence){}",
+        match has_voids {
+            true => ", components, voids and tunnels",
+            false => " and components",
+        },
+        match loose {
+            true => "; voids and tunnels derived by lacuna's argument (THEORY §10), not in the certificate",
+            false => "",
+        }
+    )
+}
+
 /// `lacuna measure` of a volume: the exact topology of the level, the checked mesh, its sizes in
 /// mm and the printability against `--resolution`.
 pub(super) fn measure(
@@ -488,7 +513,7 @@ pub(super) fn measure(
     limits: &Limits,
 ) -> Result<ExitCode, Error> {
     lacuna::mesh::check_size("--resolution", print.resolution).map_err(mesh_error)?;
-    let (vs, _) = checked_solid(name, v, geo, print.width, limits)?;
+    let (vs, set) = checked_solid(name, v, geo, print.width, limits)?;
     let sizes = vs.sizes(print.layers, print.resolution);
     let below = sizes.below(print.resolution);
     let embedded = vs.crossing.is_none();
@@ -514,11 +539,25 @@ pub(super) fn measure(
             "below_resolution": below,
         }));
     } else {
-        out(&format!("{name}, level {}\n", geo.level));
+        let levels = lacuna::topology::volume::solid_topology_of(
+            &set,
+            u64::from(geo.level),
+            &v.assembly.start_cells(),
+        )?;
+        out(&format!(
+            "{name}, level {} (exact; {}: `lacuna verify {name} --levels {} --certificate OUT.json` writes it)\n",
+            geo.level,
+            solid_provenance(&vs.exact, lacuna::certificate::solid_rows(&levels).len(), lacuna::certificate::recurrence_has_voids(&set)),
+            geo.level.max(1),
+        ));
         out(&lacuna::export::solid_table(std::slice::from_ref(
             &vs.exact,
         )));
         out(&vs.summary());
+        out(&format!(
+            "  (lacuna's own check of the mesh it built, not a certificate step: `lacuna render {name} --level {} --stl F.stl --claims C.json` writes it, `lacuna check-mesh F.stl --claims C.json` re-checks the file independently)\n",
+            geo.level
+        ));
         out(&sizes.text(print.resolution));
         out(&format!(
             "verdict: {}\n",

@@ -322,13 +322,27 @@ impl AutomatonMeasure {
             }
             (Some(s), _) => {
                 o += &format!(
-                    "similarity dimension = {} = {}… (the Hausdorff dimension: open-set condition {})\n",
-                    s.exact, s.decimal, s.open_set
+                    "similarity dimension = {} = {}… (the Hausdorff dimension: open-set condition {}{})\n",
+                    s.exact,
+                    s.decimal,
+                    s.open_set,
+                    match s.open_set_witnessed() {
+                        true => "",
+                        false => "; decided by lacuna, not certified: the certificate states an upper bound",
+                    }
                 )
             }
             (None, Some(n)) => o += &format!("similarity dimension: not applicable ({n})\n"),
             _ => {}
         }
+        o += &format!(
+            "the solver's verdict, the contraction{} are certified by the steps `lacuna verify {} --certificate OUT.json` writes; lengths, areas and box counting are floating-point estimates\n",
+            match self.similarity_dimension {
+                Some(_) => " and the similarity dimension",
+                None => "",
+            },
+            self.input
+        );
         o
     }
 }
