@@ -353,6 +353,113 @@ fn figure_7_sets_sample_their_curves_and_classify_tells_them_apart() {
     );
 }
 
+/// Fig. 8's samples by hand: the gasket's on the unit circle, `(sin uπ/4, cos uπ/4)`, and the
+/// carpet's around the square in the same directions, for u = 1…8.
+fn figure_8_samples() -> (Vec<[f64; 2]>, Vec<[f64; 2]>) {
+    let gasket = (1..=8)
+        .map(|u| {
+            let t = u as f64 * PI / 4.0;
+            [t.sin(), t.cos()]
+        })
+        .collect();
+    let square = [
+        [1.0, 1.0],
+        [1.0, 0.0],
+        [1.0, -1.0],
+        [0.0, -1.0],
+        [-1.0, -1.0],
+        [-1.0, 0.0],
+        [-1.0, 1.0],
+        [0.0, 1.0],
+    ];
+    (gasket, square.to_vec())
+}
+
+/// Fig. 8: one product system drawn with two projections is the octagonal gasket (ratio
+/// 1/(2 + √2)) and the carpet (ratio 1/3); `morph` between them moves the control points, so the
+/// frame at t = 1/2 has the midpoints of the two ends' samples (eq. (21)).
+#[test]
+fn figure_8_is_a_morph_of_one_product_system_between_two_projections() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/fixtures/");
+    let (gasket, carpet) = (
+        format!("{dir}octagonal-gasket-product.aut"),
+        format!("{dir}carpet-product.aut"),
+    );
+    let (f, g) = figure_8_samples();
+    for (file, samples, r) in [
+        (&gasket, &f, 1.0 / (2.0 + 2f64.sqrt())),
+        (&carpet, &g, 1.0 / 3.0),
+    ] {
+        // Level 1: a leaf draws F_u(O) = the sample u.
+        let one = pieces(file, "1");
+        assert_eq!(one.len(), 8, "{file}");
+        for (d, p) in one.iter().zip(samples.iter()) {
+            assert!(
+                close(d[0][0], p[0], 1e-12) && close(d[0][1], p[1], 1e-12),
+                "{file}: {d:?} {p:?}"
+            );
+        }
+        // Level 2 begins with F_1(F_1(O)) = p_1 + r·p_1: the ratio.
+        let two = pieces(file, "2");
+        assert_eq!(two.len(), 64, "{file}");
+        let want = [samples[0][0] * (1.0 + r), samples[0][1] * (1.0 + r)];
+        assert!(
+            close(two[0][0][0], want[0], 1e-12) && close(two[0][0][1], want[1], 1e-12),
+            "{file}"
+        );
+    }
+    let svg = std::env::temp_dir().join(format!("lacuna-fig8-{}.svg", std::process::id()));
+    let (code, out, err) = lacuna(&[
+        "morph",
+        &gasket,
+        &carpet,
+        "--frames",
+        "3",
+        "--level",
+        "1",
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("0 of 8 operators change, 4 of 5 control points move"),
+        "{out}"
+    );
+    assert!(out.contains("VERIFIED: every frame"), "{out}");
+    // The middle frame's dots against the midpoints (f_u + g_u)/2, up to the picture's
+    // similarity (scale, translation, y downwards): every distance in the same ratio.
+    let text = std::fs::read_to_string(&svg).unwrap();
+    std::fs::remove_file(&svg).ok();
+    let group = text
+        .split("<g class=\"frame\" id=\"frame-1\"")
+        .nth(1)
+        .and_then(|g| g.split("</g>").next())
+        .expect("frame 1");
+    let attr = |c: &str, k: &str| -> f64 {
+        let v = c.split(&format!("{k}=\"")).nth(1).unwrap();
+        v[..v.find('"').unwrap()].parse().unwrap()
+    };
+    let dots: Vec<[f64; 2]> = group
+        .split("<circle ")
+        .skip(1)
+        .map(|c| [attr(c, "cx"), -attr(c, "cy")])
+        .collect();
+    assert_eq!(dots.len(), 8);
+    let mid: Vec<[f64; 2]> = f
+        .iter()
+        .zip(&g)
+        .map(|(a, b)| [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0])
+        .collect();
+    let dist = |a: &[f64; 2], b: &[f64; 2]| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
+    let scale = dist(&dots[0], &dots[4]) / dist(&mid[0], &mid[4]);
+    for i in 0..8 {
+        for j in 0..8 {
+            let (d, e) = (dist(&dots[i], &dots[j]), scale * dist(&mid[i], &mid[j]));
+            assert!((d - e).abs() < 0.05, "dots {i}, {j}: {d} px, expected {e}");
+        }
+    }
+}
+
 /// Fig. 10: the hexagonal gasket's samples are the circle's, in the lemniscate's order, so that
 /// `morph` between the two automata is eq. (24); every frame is verified.
 #[test]

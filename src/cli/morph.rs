@@ -136,14 +136,24 @@ fn finish(
     if args.json {
         print_json(report);
     } else {
-        let mut s = format!(
-            "{}: {} frames at level {}, {} of {} free parameters change\n",
-            report.name,
-            report.frames.len(),
-            report.level,
-            report.changing,
-            report.parameters
-        );
+        let mut s = match report.moving_points {
+            Some((k, n)) => format!(
+                "{}: {} frames at level {}, {} of {} operators change, {k} of {n} control points move\n",
+                report.name,
+                report.frames.len(),
+                report.level,
+                report.changing,
+                report.parameters
+            ),
+            None => format!(
+                "{}: {} frames at level {}, {} of {} free parameters change\n",
+                report.name,
+                report.frames.len(),
+                report.level,
+                report.changing,
+                report.parameters
+            ),
+        };
         for f in &report.frames {
             if f.verified {
                 s += &match (f.holes, f.components) {

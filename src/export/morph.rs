@@ -69,6 +69,20 @@ pub fn write_morph_svg<W: Write>(
             "<animate attributeName=\"visibility\" values=\"{values}\" keyTimes=\"{times}\" calcMode=\"discrete\" dur=\"{total}s\" repeatCount=\"indefinite\"/>"
         )?;
         for (ty, poly, closed) in cells {
+            // A point (an automaton's `point` primitive) is a dot: a path of one point draws
+            // nothing.
+            if let [p] = poly.as_slice() {
+                let (x, y) = px(p);
+                let colour = match frame.verified {
+                    true => hex(outline_colour(*ty)),
+                    false => "#d00".to_string(),
+                };
+                writeln!(
+                    out,
+                    "<circle cx=\"{x:.2}\" cy=\"{y:.2}\" r=\"1.6\" fill=\"{colour}\"/>"
+                )?;
+                continue;
+            }
             let mut d = String::new();
             for (i, p) in poly.iter().enumerate() {
                 let (x, y) = px(p);
@@ -148,5 +162,29 @@ mod tests {
         );
         assert_eq!(key_times(3, 4), ("hidden;visible".into(), "0;0.75".into()));
         assert_eq!(key_times(0, 1), ("visible".into(), "0".into()));
+    }
+
+    #[test]
+    fn a_point_is_drawn_as_a_dot() {
+        // Two points of an automaton's `point` primitive and one closed triangle: the points
+        // are circles (a path of one point would draw nothing), the triangle a filled path.
+        let frame = MorphFrame {
+            index: 0,
+            t: "0".into(),
+            verified: true,
+            failures: Vec::new(),
+            holes: None,
+            components: None,
+        };
+        let cells: FrameCells = vec![
+            (0, vec![[0.0, 0.0]], false),
+            (0, vec![[1.0, 1.0]], false),
+            (1, vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], true),
+        ];
+        let mut out = Vec::new();
+        write_morph_svg("dots", &[(cells, frame)], 100, 0.5, &mut out).unwrap();
+        let svg = String::from_utf8(out).unwrap();
+        assert_eq!(svg.matches("<circle ").count(), 2, "{svg}");
+        assert_eq!(svg.matches("<path ").count(), 1, "{svg}");
     }
 }

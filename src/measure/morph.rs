@@ -54,6 +54,10 @@ pub struct MorphReport {
     pub changing: usize,
     /// The free parameters (operators, for automata) in all.
     pub parameters: usize,
+    /// For automata whose two ends give control points: how many of the start state's control
+    /// points move, and how many it has.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub moving_points: Option<(usize, usize)>,
     /// The frames.
     pub frames: Vec<MorphFrame>,
     /// Whether every frame passed.
@@ -113,11 +117,16 @@ pub fn shape_difference(a: &AutomatonModel, b: &AutomatonModel) -> Option<String
     if a.field_decl != b.field_decl {
         return Some("their number fields differ".into());
     }
+    let count = |m: &AutomatonModel| m.points.as_ref().map(Vec::len);
+    if count(a) != count(b) {
+        return Some("their control points differ in number (or one has none)".into());
+    }
     None
 }
 
 /// Morphs between two automata of one shape (`a`, `b` with their resolved operators): frame k
-/// has every operator equal to (1 − t)·A + t·B entry by entry, exactly in the field, and is
+/// has every operator equal to (1 − t)·A + t·B entry by entry, exactly in the field (and the
+/// start state's control points likewise, when the two give different ones), and is
 /// checked exactly — every constraint holds and every cycle of the control graph contracts —
 /// then handed to `draw` with its evaluator. Automata have no exact hole count, so frames are not
 /// measured.
@@ -140,6 +149,10 @@ pub fn morph_automata(
     }
     let k = &a.field;
     let changing = ra.ops.iter().zip(&rb.ops).filter(|(x, y)| x != y).count();
+    let moving_points = match (&a.points, &b.points) {
+        (Some(pa), Some(pb)) => Some((pa.iter().zip(pb).filter(|(x, y)| x != y).count(), pa.len())),
+        _ => None,
+    };
     let mut out = Vec::new();
     for f in 0..frames {
         let t = BigRational::new(f.into(), (frames - 1).max(1).into());
@@ -173,6 +186,27 @@ pub fn morph_automata(
                 ..ra.verdict.clone()
             },
         };
+        // The control points move on their segments too (seed 002, eq. (21)): a projected IFS
+        // whose projection changes, such as the octagonal gasket and the carpet drawn from one
+        // product system (Fig. 8).
+        let model = match (&a.points, &b.points) {
+            (Some(pa), Some(pb)) if pa != pb => {
+                let mut m = a.clone();
+                m.points = Some(
+                    pa.iter()
+                        .zip(pb)
+                        .map(|(p, q)| {
+                            p.iter()
+                                .zip(q)
+                                .map(|(x, y)| k.add(&k.scale(x, &s), &k.scale(y, &t)))
+                                .collect()
+                        })
+                        .collect(),
+                );
+                std::borrow::Cow::Owned(m)
+            }
+            _ => std::borrow::Cow::Borrowed(a),
+        };
         let frame = MorphFrame {
             index: f,
             t: t_text(f, frames),
@@ -181,7 +215,7 @@ pub fn morph_automata(
             holes: None,
             components: None,
         };
-        draw(f, &Evaluator::new(a, &resolved), &frame)?;
+        draw(f, &Evaluator::new(&model, &resolved), &frame)?;
         out.push(frame);
     }
     let first_failure = out.iter().find(|f| !f.verified).map(|f| f.index);
@@ -190,6 +224,7 @@ pub fn morph_automata(
         level,
         changing,
         parameters: ra.ops.len(),
+        moving_points,
         verified: first_failure.is_none(),
         first_failure,
         frames: out,
@@ -262,6 +297,7 @@ pub fn morph(
         level: mopts.level,
         changing,
         parameters: pa.len(),
+        moving_points: None,
         verified: first_failure.is_none(),
         first_failure,
         frames: out,
