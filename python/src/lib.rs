@@ -28,11 +28,60 @@ fn py_err(py: Python<'_>, e: Error) -> PyErr {
     let made = py
         .import("lacuna._errors")
         .and_then(|m| m.getattr("from_native"))
-        .and_then(|f| f.call1((e.code(), e.to_string(), span, e.render())));
+        .and_then(|f| {
+            f.call1((
+                e.code(),
+                pythonic(&e.to_string()),
+                span,
+                pythonic(&e.render()),
+            ))
+        });
     match made {
         Ok(exc) => PyErr::from_value(exc),
         Err(err) => err,
     }
+}
+
+/// The limits Python takes as `limits={...}` keys, by the command line's flag.
+const LIMIT_KEYS: [&str; 9] = [
+    "max-boundary",
+    "max-types",
+    "max-level",
+    "max-subedges",
+    "max-delay",
+    "max-digits",
+    "max-unknowns",
+    "max-memory",
+    "max-matrix",
+];
+
+/// A message as Python users raise its limits: the command line's `--max-level` is
+/// `limits={'max_level': …}` (the keyword every method takes), `--max-cells` the keyword
+/// `max_cells=…`; other text is unchanged.
+fn pythonic(message: &str) -> String {
+    let mut out = String::with_capacity(message.len());
+    let mut rest = message;
+    while let Some(at) = rest.find("--max-") {
+        out.push_str(&rest[..at]);
+        let tail = &rest[at + 2..];
+        let end = tail
+            .find(|c: char| !(c.is_ascii_lowercase() || c == '-'))
+            .unwrap_or(tail.len());
+        let name = &tail[..end];
+        match name {
+            n if LIMIT_KEYS.contains(&n) => {
+                out.push_str(&format!("limits={{'{}': …}}", n.replace('-', "_")))
+            }
+            "max-cells" => out.push_str("max_cells=…"),
+            n => {
+                out.push_str("--");
+                out.push_str(n);
+            }
+        }
+        rest = &tail[end..];
+    }
+    out.push_str(rest);
+    out
 }
 
 /// Runs `work` with the Python thread detached and maps its error to a Python exception.
