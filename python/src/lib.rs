@@ -19,6 +19,7 @@ use pyo3::types::PyDict;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+mod family;
 mod volume;
 
 /// A lacuna error as the Python exception the package defines (`lacuna._errors.from_native`
@@ -921,6 +922,9 @@ fn _lacuna(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(automaton_shapes, m)?)?;
     m.add_function(wrap_pyfunction!(render, m)?)?;
     m.add_function(wrap_pyfunction!(measure, m)?)?;
+    m.add_function(wrap_pyfunction!(family::explore_shard, m)?)?;
+    m.add_function(wrap_pyfunction!(family::census, m)?)?;
+    m.add_function(wrap_pyfunction!(family::check_mesh, m)?)?;
     m.add_function(wrap_pyfunction!(volume::volume_closure, m)?)?;
     m.add_function(wrap_pyfunction!(volume::volume_counts_json, m)?)?;
     m.add_function(wrap_pyfunction!(volume::volume_ratio, m)?)?;

@@ -37,3 +37,15 @@ def cli():
         return p.returncode, data
 
     return run
+
+
+@pytest.fixture(scope="session")
+def cli_text():
+    """Runs `lacuna ARGS…`: returns (exit code, standard output as text)."""
+    exe = _binary()
+
+    def run(*args):
+        p = subprocess.run([str(exe), *map(str, args)], capture_output=True, text=True, cwd=REPO)
+        return p.returncode, p.stdout
+
+    return run

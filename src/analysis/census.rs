@@ -99,10 +99,20 @@ fn parse_list<T>(text: &str, what: &str, f: impl Fn(&str, usize) -> Result<T>) -
                 Some(&crate::error::Source::command_line(text)),
             ));
         }
-        out.push(f(t, col).map_err(|e| e.within(&crate::error::Source::command_line(text), 1, 0))?);
+        let lead = item.len() - item.trim_start().len();
+        out.push(
+            f(t, col + lead)
+                .map_err(|e| e.within(&crate::error::Source::command_line(text), 1, 0))?,
+        );
         col += item.chars().count() + 1;
     }
     Ok(out)
+}
+
+/// A comma-separated list of edge types (`B2,C2`), each spanned in `text` for errors; `what`
+/// names the list in the message of an empty item (E0112).
+pub fn parse_edge_list(text: &str, what: &str) -> Result<Vec<EdgeType>> {
+    parse_list(text, what, EdgeType::parse)
 }
 
 impl CensusSpec {

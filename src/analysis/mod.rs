@@ -24,7 +24,7 @@ pub use automaton_resolve::{
     analyse_attractor, constraints_failing, failures, resolve, Attractor, Failing, ResolveVerdict,
     Resolved,
 };
-pub use census::{census, CensusFace, CensusReport, CensusSpec};
+pub use census::{census, parse_edge_list, CensusFace, CensusReport, CensusSpec};
 pub use classes::{
     automaton_invariants, classify, face_invariants, levels_for, levels_needed, volume_invariants,
     AutomatonMultiplicity, Classification, Difference, Invariants, Named,

@@ -3,33 +3,6 @@
 
 use super::*;
 
-fn list(text: &str, what: &str) -> Result<Vec<lacuna::topology::EdgeType>, Error> {
-    let mut out = Vec::new();
-    let mut col = 1;
-    for item in text.split(',') {
-        let t = item.trim();
-        if t.is_empty() {
-            return Err(Error::syntax(
-                "E0112",
-                format!("empty item in the list of {what}"),
-                lacuna::Span {
-                    line: 1,
-                    col,
-                    len: 1,
-                },
-                Some(&lacuna::Source::command_line(text)),
-            ));
-        }
-        let lead = item.len() - item.trim_start().len();
-        out.push(
-            lacuna::topology::EdgeType::parse(t, col + lead)
-                .map_err(|e| e.within(&lacuna::Source::command_line(text), 1, 0))?,
-        );
-        col += item.chars().count() + 1;
-    }
-    Ok(out)
-}
-
 /// The `holes` property: the face instantiated with the default parameters, measured at levels
 /// 0..=`level` (raster 512, refined up to 4096 for narrow holes); the observed holes must equal the
 /// exact count at every level. A geometry that cannot be measured is a skip, not a failure.
@@ -115,9 +88,9 @@ pub(super) fn run(args: ExploreArgs, limits: &Limits) -> Result<ExitCode, Error>
     let algorithm = lacuna::topology::Algorithm::parse(algorithm.trim(), 1, &[])
         .map_err(|e| e.within(&lacuna::Source::command_line(&algorithm), 1, 0))?;
     let spec = lacuna::analysis::ExploreSpec {
-        edges: list(&edges, "edges")?,
+        edges: lacuna::analysis::parse_edge_list(&edges, "edges")?,
         max_length,
-        params: list(&params, "parameters")?,
+        params: lacuna::analysis::parse_edge_list(&params, "parameters")?,
         algorithm,
         properties: lacuna::analysis::parse_properties(&properties)?,
         random,

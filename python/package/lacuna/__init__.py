@@ -70,6 +70,10 @@ __all__ = [
     "SolidTopology",
     "VolumeRendering",
     "Record",
+    "Exploration",
+    "explore",
+    "census",
+    "check_mesh",
     "library",
     "load",
     "check",
@@ -991,3 +995,6 @@ from ._volume import (  # noqa: E402
     VolumeRendering,
     VolumeType,
 )
+
+# Families and the mesh checker, likewise.
+from ._family import Exploration, census, check_mesh, explore  # noqa: E402

@@ -158,3 +158,41 @@ def volume_measure(
     limits: _Limits = None,
 ) -> str:
     """The measures of a volume's level-n solid, as `lacuna measure --json`."""
+
+def explore_shard(
+    edges: str,
+    max_length: int,
+    params: str,
+    algorithm: str,
+    properties: str,
+    random: Optional[int],
+    seed: int,
+    shard: int,
+    shards: int,
+    shrink_budget: int,
+    threads: int,
+    limits: _Limits = None,
+) -> str:
+    """Shard `shard` (from 0) of `shards` of a family, as `lacuna explore --shard i/n --json`:
+    JSON `{"results": [...], "summary": {...}}` (the holes property is refused)."""
+
+def census(
+    edges: str,
+    params: str,
+    algorithms: str,
+    max_length: int,
+    threads: Optional[int] = None,
+    limits: _Limits = None,
+) -> str:
+    """`lacuna census --json` with every face."""
+
+def check_mesh(
+    bytes: bytes,
+    name: str,
+    expect_euler: Optional[int] = None,
+    expect_parts: Optional[int] = None,
+    claims: Optional[Tuple[str, str]] = None,
+    max_triangles: int = 20000000,
+) -> Tuple[str, bool]:
+    """`lacuna check-mesh --json` on a file's bytes (claims: the claims file's text and name);
+    returns the JSON and whether it passed."""

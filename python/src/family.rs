@@ -1,0 +1,148 @@
+//! Families of faces from Python: one shard of `lacuna explore` (the Python package splits a
+//! family into shards and hands them to any `concurrent.futures.Executor`), `lacuna census`, and
+//! the independent mesh checker of `lacuna check-mesh`.
+
+use super::{json, limits, run};
+use lacuna::analysis::{Check, Checks, ExploreSpec, Outcome, Witness};
+use lacuna::Error;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// The `certificate` property of a face, as the command line checks it: the certificate of its
+/// closed type set is produced and every step proved by the independent checker.
+fn certificate_outcome(_: &lacuna::topology::Face, ts: &lacuna::topology::TypeSet) -> Outcome {
+    let cert = match lacuna::certificate::certificate_for(
+        "explore",
+        ts,
+        lacuna::constraint::GenOptions::default(),
+    ) {
+        Ok(c) => c,
+        Err(e) => {
+            return Outcome::Fail(Witness {
+                kind: "certificate".into(),
+                detail: vec![format!("no certificate: {e}")],
+            })
+        }
+    };
+    let report = lacuna::checker::check(&cert);
+    match report.all_proved() {
+        true => Outcome::Pass,
+        false => Outcome::Fail(Witness {
+            kind: "certificate".into(),
+            detail: report.to_text().lines().map(String::from).collect(),
+        }),
+    }
+}
+
+/// Shard `shard` (0-based) of `shards` of a family, as `lacuna explore --shard i/n --json`
+/// explores it: `{"results": [one per boundary], "summary": {...}}`. The `holes` property
+/// measures geometry and is the command line's only.
+#[pyfunction]
+#[pyo3(signature = (edges, max_length, params, algorithm, properties, random, seed, shard, shards, shrink_budget, threads, limits=None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn explore_shard(
+    py: Python<'_>,
+    edges: String,
+    max_length: usize,
+    params: String,
+    algorithm: String,
+    properties: String,
+    random: Option<u64>,
+    seed: u64,
+    shard: u64,
+    shards: u64,
+    shrink_budget: usize,
+    threads: usize,
+    limits: Option<&Bound<'_, PyDict>>,
+) -> PyResult<String> {
+    let l = self::limits(limits)?;
+    run(py, move || {
+        let algorithm = lacuna::topology::Algorithm::parse(algorithm.trim(), 1, &[])
+            .map_err(|e| e.within(&lacuna::Source::command_line(&algorithm), 1, 0))?;
+        let properties = lacuna::analysis::parse_properties(&properties)?;
+        if properties.contains(&lacuna::analysis::Property::Holes) {
+            return Err(Error::Usage(
+                "the holes property measures every face's geometry: run it with `lacuna explore --properties holes` (and `--shard i/n` on several machines)".into(),
+            ));
+        }
+        if shards == 0 || shard >= shards {
+            return Err(Error::Usage(format!(
+                "shard {shard} of {shards}: shards are numbered from 0 to shards − 1"
+            )));
+        }
+        let spec = ExploreSpec {
+            edges: lacuna::analysis::parse_edge_list(&edges, "edges")?,
+            max_length,
+            params: lacuna::analysis::parse_edge_list(&params, "parameters")?,
+            algorithm,
+            properties,
+            random,
+            seed,
+            shard: (shard, shards),
+            shrink_budget,
+            threads: threads.clamp(1, 256),
+        };
+        let certificate: Check = &certificate_outcome;
+        let checks = Checks {
+            certificate: Some(certificate),
+            holes: None,
+        };
+        let mut results = Vec::new();
+        let summary = lacuna::analysis::explore(&spec, &l, &checks, |r| {
+            results.push(serde_json::to_value(r).expect("results serialise"))
+        })?;
+        Ok(json(
+            &serde_json::json!({ "results": results, "summary": summary }),
+        ))
+    })
+}
+
+/// `lacuna census --json`: the family's closures, with every face.
+#[pyfunction]
+#[pyo3(signature = (edges, params, algorithms, max_length, threads=None, limits=None))]
+pub(crate) fn census(
+    py: Python<'_>,
+    edges: String,
+    params: String,
+    algorithms: String,
+    max_length: usize,
+    threads: Option<usize>,
+    limits: Option<&Bound<'_, PyDict>>,
+) -> PyResult<String> {
+    let l = self::limits(limits)?;
+    run(py, move || {
+        let mut spec =
+            lacuna::analysis::CensusSpec::parse(&edges, &params, &algorithms, max_length, threads)?;
+        spec.per_face = true;
+        Ok(json(&lacuna::analysis::census(&spec, &l)))
+    })
+}
+
+/// `lacuna check-mesh --json` on the bytes of an STL or 3MF file, with the expectations and the
+/// claims file's text when given.
+#[pyfunction]
+#[pyo3(signature = (bytes, name, expect_euler=None, expect_parts=None, claims=None, max_triangles=20_000_000))]
+pub(crate) fn check_mesh(
+    py: Python<'_>,
+    bytes: Vec<u8>,
+    name: String,
+    expect_euler: Option<i64>,
+    expect_parts: Option<u64>,
+    claims: Option<(String, String)>,
+    max_triangles: u64,
+) -> PyResult<(String, bool)> {
+    run(py, move || {
+        let claims = match &claims {
+            Some((text, path)) => Some(lacuna::meshcheck::Claims::parse(text, path)?),
+            None => None,
+        };
+        let options = lacuna::meshcheck::Options {
+            max_triangles,
+            expect_euler,
+            expect_parts,
+            claims,
+        };
+        let report = lacuna::meshcheck::check(&bytes, &name, &options)?;
+        Ok((json(&report.to_json()), report.passed()))
+    })
+}
