@@ -315,6 +315,8 @@ pub(crate) struct Targets {
     pub(crate) transparent: bool,
     /// `keep` or `auto`.
     pub(crate) orient: String,
+    /// Return the HTML fragment of the WebGL view (`viewer` in the JSON).
+    pub(crate) viewer: bool,
 }
 
 /// Writes a 3MF package built in memory (a ZIP is written with seeks) to `p`.
@@ -385,6 +387,7 @@ pub(crate) fn volume_render(
         },
         transparent: get_flag("transparent")?,
         orient: get_text("orient", "keep")?,
+        viewer: get_flag("viewer")?,
     };
     let print = Print {
         width,
@@ -488,6 +491,14 @@ fn render(
             })
         })
         .collect();
+    // The rotating view of the volume report, as built (it centres the solid itself).
+    let viewer = t.viewer.then(|| {
+        // One canvas id per view: a notebook holds many on one page.
+        static VIEWS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+        let n = VIEWS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let id = format!("lacuna-solid-{}-{n}", std::process::id());
+        lacuna::export::volume_viewer_with_id(&vs.solid.parts, &id)
+    });
     let orientation = match mesh.any() {
         true => {
             let parts = &mut vs.solid.parts;
@@ -611,6 +622,7 @@ fn render(
         "solid": vs.exact,
         "printability": printability,
         "parts": parts,
+        "viewer": viewer,
     })))
 }
 

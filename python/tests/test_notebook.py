@@ -24,8 +24,14 @@ def test_the_notebook_runs_and_draws(tmp_path):
     outputs = [o for c in nb.cells if c.cell_type == "code" for o in c.outputs]
     assert not [o for o in outputs if o.output_type == "error"]
     pngs = [o for o in outputs if "image/png" in o.get("data", {})]
-    # F0's R_i, F0 at level 3, the type graph, |R_i − R|, the √17 cycle, the half-tangent curves.
-    assert len(pngs) == 6
+    # F0's R_i, F0 at level 3, the type graph, |R_i − R|, the √17 cycle, the half-tangent curves,
+    # Koch's curve.
+    assert len(pngs) == 7
+    # The cube's WebGL view, inline.
+    html = [o["data"]["text/html"] for o in outputs if "text/html" in o.get("data", {})]
+    assert any("<canvas" in h and "getContext('webgl'" in h for h in html)
     text = "".join(o.get("text", "") for o in outputs)
     assert "R = 1/3" in text and "equals (sqrt(17) - 3)/4: True" in text
+    assert "log 4 / log 3" in text
+    assert "minimal counterexample: C2 | B2 B2 B2 | A1 breaks no-collapse" in text
     assert "degrees of freedom 2" in text and "all proved: True" in text

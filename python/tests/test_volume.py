@@ -294,3 +294,21 @@ def test_a_solid_that_folds_is_not_written(tmp_path):
         v.render(3, stl=tmp_path / "t3.stl")
     assert e.value.code == "E1041"
     assert not (tmp_path / "t3.stl").exists()
+
+
+def test_a_volume_view_is_the_report_s_webgl_inline():
+    import re
+
+    v = lacuna.load("cube-B2")
+    a, b = v.view(1), v.view(1)
+    html = a._repr_html_()
+    assert html.count("<canvas") == 1 and "<script>" in html and "getContext('webgl'" in html
+    # Two views on one notebook page: each canvas has its own id, and its script finds it.
+    ids = [re.search(r'<canvas id="([^"]+)"', r._repr_html_()).group(1) for r in (a, b)]
+    assert ids[0] != ids[1]
+    assert all(f"getElementById('{i}')" in r._repr_html_() for i, r in zip(ids, (a, b)))
+    # Every triangle of the mesh is in the view: three points of three coordinates each.
+    pos = re.search(r"new Float32Array\(\[([^\]]*)\]\)", html).group(1)
+    assert len([x for x in pos.split(",") if x]) == 9 * sum(len(t) for t in a.triangles)
+    # Without asking, a rendering has no view (a notebook shows its repr).
+    assert v.render(1)._repr_html_() is None

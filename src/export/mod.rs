@@ -43,7 +43,8 @@ pub use report::{
     VerifyReport,
 };
 pub use volume_picture::{
-    volume_report_html, volume_svg, volume_viewer, write_volume_png, write_volume_svg,
+    volume_report_html, volume_svg, volume_viewer, volume_viewer_with_id, write_volume_png,
+    write_volume_svg,
 };
 pub use volume_report::{
     solid_table, surface_summary, volume_closure_json, volume_closure_text, volume_counts_table,

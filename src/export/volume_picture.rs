@@ -290,6 +290,16 @@ pub fn write_volume_svg<W: Write>(parts: &[Part], size: u32, mut out: W) -> io::
 /// triangles (positions centred and scaled to the unit ball). Drag to rotate. The script sets
 /// `data-ready="1"` on the canvas once the first frame is drawn, or `data-error` with the reason.
 pub fn volume_viewer(parts: &[Part]) -> String {
+    volume_viewer_with_id(parts, "solid3d")
+}
+
+/// [`volume_viewer`] with the canvas named `id` (letters, digits, `-` and `_`; anything else is
+/// dropped), so that several views can share a page, as the cells of a notebook do.
+pub fn volume_viewer_with_id(parts: &[Part], id: &str) -> String {
+    let id: String = id
+        .chars()
+        .filter(|c| c.is_ascii_alphanumeric() || *c == '-' || *c == '_')
+        .collect();
     let view = View::of(parts);
     let mut pos = String::new();
     for t in triangles(parts) {
@@ -306,10 +316,10 @@ pub fn volume_viewer(parts: &[Part]) -> String {
     }
     let c = base();
     format!(
-        r#"<canvas id="solid3d" width="560" height="560" style="border:1px solid #ccc;cursor:grab" title="drag to rotate"></canvas>
+        r#"<canvas id="{id}" width="560" height="560" style="border:1px solid #ccc;cursor:grab" title="drag to rotate"></canvas>
 <script>
 (function () {{
-  var cv = document.getElementById('solid3d');
+  var cv = document.getElementById('{id}');
   try {{
     var P = new Float32Array([{pos}]);
     var gl = cv.getContext('webgl', {{preserveDrawingBuffer: true}});

@@ -143,8 +143,9 @@ def volume_render(
 ) -> str:
     """Builds and checks the level's solid and writes the files of `targets` (keys `svg`, `png`,
     `stl`, `stl_ascii`, `threemf`, `threemf_style` ("plain", "colours", "parts"), `obj`, `claims`,
-    `size`, `transparent`, `orient` ("keep", "auto")); returns JSON: `written`, `notes`,
-    `embedded`, `crossing`, `solid`, `printability`, `parts` (flat vertices and triangles)."""
+    `size`, `transparent`, `orient` ("keep", "auto"), `viewer`); returns JSON: `written`, `notes`,
+    `embedded`, `crossing`, `solid`, `printability`, `parts` (flat vertices and triangles),
+    `viewer` (the WebGL view's HTML, when asked)."""
 
 def volume_measure(
     input: str,

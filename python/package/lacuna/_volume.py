@@ -221,6 +221,9 @@ class VolumeRendering:
         notes: what the command line says on its way (the mesh check, sizes, orientation).
         printability: the printability of the mesh written (a Record, as ``render --json`` has
             it), when a mesh file was asked for.
+        viewer: with ``render(..., viewer=True)`` (or :meth:`Volume.view`), the HTML fragment of
+            the report's rotating WebGL view (a canvas and its script, no server); a notebook
+            shows it inline.
     """
 
     level: int
@@ -232,9 +235,15 @@ class VolumeRendering:
     written: List[Path]
     notes: str
     printability: Optional[Record]
+    viewer: Optional[str] = None
 
     def __len__(self) -> int:
         return len(self.vertices)
+
+    def _repr_html_(self) -> Optional[str]:
+        """The WebGL view when it was asked for (drag to rotate); else none, and a notebook shows
+        the ``repr``."""
+        return self.viewer
 
     def __repr__(self) -> str:
         n = sum(len(t) for t in self.triangles)
@@ -394,6 +403,7 @@ class Volume:
         orient: str = "keep",
         layers: int = 20,
         max_cells: Optional[int] = None,
+        viewer: bool = False,
         limits: Limits = None,
     ) -> VolumeRendering:
         """Builds the level-``level`` solid on its default placement (or the corners its file
@@ -423,6 +433,7 @@ class Volume:
             "size": _natural("size", size),
             "transparent": bool(transparent),
             "orient": str(orient),
+            "viewer": bool(viewer),
         }
         d = json.loads(
             _lacuna.volume_render(
@@ -450,7 +461,13 @@ class Volume:
             written=[Path(w) for w in d["written"]],
             notes="".join(d["notes"]),
             printability=Record(d["printability"]) if d.get("printability") else None,
+            viewer=d.get("viewer"),
         )
+
+    def view(self, level: int = 1, *, max_cells: Optional[int] = None, limits: Limits = None) -> VolumeRendering:
+        """The level-``level`` solid with the rotating WebGL view of ``lacuna report``, which a
+        notebook shows inline (no server, no file): ``v.view(2)`` as the last line of a cell."""
+        return self.render(level, viewer=True, max_cells=max_cells, limits=limits)
 
     def measure(
         self,
