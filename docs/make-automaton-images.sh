@@ -23,6 +23,8 @@ $L render gasket-8 --level 4 --png docs/images/gasket-8.png
 $L render lemniscate-fractal --level 6 --png docs/images/lemniscate-fractal.png
 $L render rose-fractal --level 6 --png docs/images/rose-fractal.png
 $L morph fixtures/octagonal-gasket-product.aut fixtures/carpet-product.aut --frames 8 --level 3 --svg docs/images/octagonal-gasket-to-carpet.svg
+$L morph fixtures/gasket-to-hexagonal-start.aut fixtures/gasket-to-hexagonal-end.aut --frames 8 --level 4 --svg docs/images/gasket-to-hexagonal.svg
+$L morph fixtures/gasket-to-carpet-start.aut fixtures/gasket-to-carpet-end.aut --frames 8 --level 3 --svg docs/images/gasket-to-carpet.svg
 $L morph fixtures/hexagonal-gasket-samples.aut lemniscate-fractal --frames 8 --level 3 --svg docs/images/hexagonal-gasket-to-lemniscate.svg
 # Seed 004's fractal kite (docs/GALLERY.md, docs/GUIDE.md).
 $L render kite-dart --level 14 --png docs/images/kite-dart.png

@@ -386,28 +386,8 @@ fn figure_8_is_a_morph_of_one_product_system_between_two_projections() {
         format!("{dir}carpet-product.aut"),
     );
     let (f, g) = figure_8_samples();
-    for (file, samples, r) in [
-        (&gasket, &f, 1.0 / (2.0 + 2f64.sqrt())),
-        (&carpet, &g, 1.0 / 3.0),
-    ] {
-        // Level 1: a leaf draws F_u(O) = the sample u.
-        let one = pieces(file, "1");
-        assert_eq!(one.len(), 8, "{file}");
-        for (d, p) in one.iter().zip(samples.iter()) {
-            assert!(
-                close(d[0][0], p[0], 1e-12) && close(d[0][1], p[1], 1e-12),
-                "{file}: {d:?} {p:?}"
-            );
-        }
-        // Level 2 begins with F_1(F_1(O)) = p_1 + r·p_1: the ratio.
-        let two = pieces(file, "2");
-        assert_eq!(two.len(), 64, "{file}");
-        let want = [samples[0][0] * (1.0 + r), samples[0][1] * (1.0 + r)];
-        assert!(
-            close(two[0][0][0], want[0], 1e-12) && close(two[0][0][1], want[1], 1e-12),
-            "{file}"
-        );
-    }
+    assert_samples(&gasket, &f, 1.0 / (2.0 + 2f64.sqrt()));
+    assert_samples(&carpet, &g, 1.0 / 3.0);
     let svg = std::env::temp_dir().join(format!("lacuna-fig8-{}.svg", std::process::id()));
     let (code, out, err) = lacuna(&[
         "morph",
@@ -457,6 +437,81 @@ fn figure_8_is_a_morph_of_one_product_system_between_two_projections() {
             let (d, e) = (dist(&dots[i], &dots[j]), scale * dist(&mid[i], &mid[j]));
             assert!((d - e).abs() < 0.05, "dots {i}, {j}: {d} px, expected {e}");
         }
+    }
+}
+
+/// The level-1 points of `file` (a leaf draws F_u(O) = f_u) are `samples`, in order, and level 2
+/// begins with F_1(F_1(O)) = (1 + r)·f_1.
+fn assert_samples(file: &str, samples: &[[f64; 2]], r: f64) {
+    let one = pieces(file, "1");
+    assert_eq!(one.len(), samples.len(), "{file}");
+    for (d, p) in one.iter().zip(samples) {
+        assert!(
+            close(d[0][0], p[0], 1e-12) && close(d[0][1], p[1], 1e-12),
+            "{file}: {d:?} {p:?}"
+        );
+    }
+    let two = pieces(file, "2");
+    assert_eq!(two.len(), samples.len().pow(2), "{file}");
+    let want = [samples[0][0] * (1.0 + r), samples[0][1] * (1.0 + r)];
+    assert!(
+        close(two[0][0][0], want[0], 1e-12) && close(two[0][0][1], want[1], 1e-12),
+        "{file}"
+    );
+}
+
+/// How many times each distinct point occurs, largest first.
+fn multiplicities(points: &[[f64; 2]]) -> Vec<usize> {
+    let mut seen: Vec<([f64; 2], usize)> = Vec::new();
+    for p in points {
+        match seen
+            .iter_mut()
+            .find(|(q, _)| close(q[0], p[0], 1e-12) && close(q[1], p[1], 1e-12))
+        {
+            Some((_, n)) => *n += 1,
+            None => seen.push((*p, 1)),
+        }
+    }
+    let mut m: Vec<usize> = seen.into_iter().map(|(_, n)| n).collect();
+    m.sort_unstable_by(|a, b| b.cmp(a));
+    m
+}
+
+/// Fig. 11 and 12: the Sierpinski gasket written with six (eight) samples, each of its three
+/// taken several times, and the hexagonal gasket (the carpet); the linear metamorphosis between
+/// the two projections of one product system verifies every frame.
+#[test]
+fn figures_11_and_12_unfold_the_gasket_s_multiplicities() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/fixtures/");
+    let at = |k: f64| [(k * PI / 3.0).cos(), (k * PI / 3.0).sin()];
+    // Fig. 11: e^(j·u·2π/3) and e^(j·u·π/3), u = 1…6 (eq. (26) at T = 2π/3 and π/3).
+    let gasket6: Vec<[f64; 2]> = (1..=6).map(|u| at(2.0 * u as f64)).collect();
+    let hexagon: Vec<[f64; 2]> = (1..=6).map(|u| at(u as f64)).collect();
+    assert_eq!(multiplicities(&gasket6), vec![2, 2, 2]);
+    assert_eq!(multiplicities(&hexagon), vec![1; 6]);
+    // Fig. 12: (sin θ, cos θ) at θ = −2uπ/3, u = 1…8 (eq. (28) at t = 0), and the square.
+    let gasket8: Vec<[f64; 2]> = (1..=8)
+        .map(|u| {
+            let t = -2.0 * u as f64 * PI / 3.0;
+            [t.sin(), t.cos()]
+        })
+        .collect();
+    assert_eq!(multiplicities(&gasket8), vec![3, 3, 2]);
+    let (_, square) = figure_8_samples();
+    for (name, start, end) in [
+        ("gasket-to-hexagonal", &gasket6, &hexagon),
+        ("gasket-to-carpet", &gasket8, &square),
+    ] {
+        let (a, b) = (
+            format!("{dir}{name}-start.aut"),
+            format!("{dir}{name}-end.aut"),
+        );
+        assert_samples(&a, start, 0.5);
+        assert_samples(&b, end, 1.0 / 3.0);
+        let (code, out, err) = lacuna(&["morph", &a, &b, "--frames", "3", "--level", "2"]);
+        assert_eq!(code, 0, "{name}: {err}");
+        assert!(out.contains("4 of 5 control points move"), "{name}: {out}");
+        assert!(out.contains("VERIFIED: every frame"), "{name}: {out}");
     }
 }
 
