@@ -22,7 +22,7 @@
 
 use super::closure::subdivide;
 use super::solid::level_one_corners;
-use super::system::{columns, layout, Layout};
+use super::system::{layout, solution_layout, Layout};
 use super::{rat, within_work, Checked, Q};
 use crate::certificate::{
     ClosureStep, DegeneracyStep, Kind, Origin, SolutionStep, VolumeSystemStep,
@@ -101,13 +101,7 @@ pub(super) fn check_degeneracy(
     q: usize,
     s: &SolutionStep,
 ) -> Checked {
-    let recipe = s
-        .system
-        .recipe
-        .as_ref()
-        .ok_or("the solution space has no recipe naming its unknowns")?;
-    let lay = layout(c, q, Some(s.system.unknowns))?;
-    let column = columns(&lay.names, &recipe.unknowns)?;
+    let (lay, column) = solution_layout(c, q, s)?;
     let expr = expressions(&s.particular, &s.basis)?;
     check_with(d, c, &lay, &column, &expr)
 }

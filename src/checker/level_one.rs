@@ -20,7 +20,7 @@
 //! is a statement about the chosen point in the given frames; which frames and which point
 //! lacuna chose (its default templates, the fit, the goals) is not part of the proof.
 
-use super::system::{columns, layout};
+use super::system::solution_layout;
 use super::{rat, within_work, Checked, Q};
 use crate::certificate::{ClosureStep, LevelOneStep, Origin, SolutionStep};
 use std::collections::HashMap;
@@ -45,13 +45,7 @@ pub(super) fn check_level_one(
     q: usize,
     s: &SolutionStep,
 ) -> Checked {
-    let recipe = s
-        .system
-        .recipe
-        .as_ref()
-        .ok_or("the solution space has no recipe naming its unknowns")?;
-    let lay = layout(c, q, Some(s.system.unknowns))?;
-    let column = columns(&lay.names, &recipe.unknowns)?;
+    let (lay, column) = solution_layout(c, q, s)?;
     if l.parameters.len() != s.basis.len() {
         return Err(format!(
             "{} parameters for a solution space of {} free unknowns",

@@ -438,6 +438,24 @@ pub(super) fn columns(rebuilt: &[String], given: &[String]) -> Result<Vec<usize>
         .collect()
 }
 
+/// The layout of a closure's unknowns (degree `q`) and, for each, its column in the proved
+/// solution space `s`, matched by the recipe's names: what the steps that read operator entries
+/// on the solution set (`degeneracy`, `level-one`) stand on.
+pub(super) fn solution_layout(
+    c: &ClosureStep,
+    q: usize,
+    s: &crate::certificate::SolutionStep,
+) -> Result<(Layout, Vec<usize>), String> {
+    let recipe = s
+        .system
+        .recipe
+        .as_ref()
+        .ok_or("the solution space has no recipe naming its unknowns")?;
+    let lay = layout(c, q, Some(s.system.unknowns))?;
+    let column = columns(&lay.names, &recipe.unknowns)?;
+    Ok((lay, column))
+}
+
 /// A row in canonical form: terms merged by unknown, zeros dropped, sorted.
 fn canonical((terms, rhs): &Equation) -> (Vec<(usize, Q)>, Q) {
     let mut merged: Vec<(usize, Q)> = terms.clone();

@@ -582,7 +582,7 @@ pub(super) fn verify(
             s.open_set,
             match s.open_set_witnessed() {
                 true => "",
-                false => "; decided by lacuna, not certified: the certificate states an upper bound",
+                false => lacuna::measure::OPEN_SET_NOT_CERTIFIED,
             }
         ),
         (None, Some(n)) => o += &format!("similarity dimension: not applicable ({n})\n"),

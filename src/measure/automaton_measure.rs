@@ -266,6 +266,11 @@ impl BoxDimension {
     }
 }
 
+/// What `verify` and `measure` add to an open-set verdict that lacuna decided without a witness
+/// the certificate can carry.
+pub const OPEN_SET_NOT_CERTIFIED: &str =
+    "; decided by lacuna, not certified: the certificate states an upper bound";
+
 impl AutomatonMeasure {
     /// The human-readable report.
     pub fn to_text(&self) -> String {
@@ -328,7 +333,7 @@ impl AutomatonMeasure {
                     s.open_set,
                     match s.open_set_witnessed() {
                         true => "",
-                        false => "; decided by lacuna, not certified: the certificate states an upper bound",
+                        false => OPEN_SET_NOT_CERTIFIED,
                     }
                 )
             }
