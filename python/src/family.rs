@@ -124,13 +124,15 @@ pub(crate) fn census(
 #[pyo3(signature = (bytes, name, expect_euler=None, expect_parts=None, claims=None, max_triangles=20_000_000))]
 pub(crate) fn check_mesh(
     py: Python<'_>,
-    bytes: Vec<u8>,
+    bytes: &Bound<'_, pyo3::types::PyBytes>,
     name: String,
     expect_euler: Option<i64>,
     expect_parts: Option<u64>,
     claims: Option<(String, String)>,
     max_triangles: u64,
 ) -> PyResult<(String, bool)> {
+    // Copied before the thread detaches (a memcpy; extracting a Vec<u8> reads byte by byte).
+    let bytes = bytes.as_bytes().to_vec();
     run(py, move || {
         let claims = match &claims {
             Some((text, path)) => Some(lacuna::meshcheck::Claims::parse(text, path)?),

@@ -901,6 +901,40 @@ fn measure(
     })
 }
 
+/// The pixels of a PNG (8-bit RGB or RGBA, as the library writes them): `(height, width, RGBA
+/// bytes row by row)`, RGB widened with an opaque alpha.
+#[pyfunction]
+fn decode_png(
+    py: Python<'_>,
+    data: &Bound<'_, pyo3::types::PyBytes>,
+) -> PyResult<(u32, u32, std::borrow::Cow<'static, [u8]>)> {
+    // Copied before the thread detaches (a memcpy; extracting a Vec<u8> reads byte by byte).
+    let data = data.as_bytes().to_vec();
+    run(py, move || {
+        let bad = |e: String| Error::Usage(format!("not a PNG lacuna reads: {e}"));
+        let mut reader = png::Decoder::new(std::io::Cursor::new(data))
+            .read_info()
+            .map_err(|e| bad(e.to_string()))?;
+        let size = reader
+            .output_buffer_size()
+            .ok_or_else(|| bad("too large".into()))?;
+        let mut buf = vec![0; size];
+        let info = reader
+            .next_frame(&mut buf)
+            .map_err(|e| bad(e.to_string()))?;
+        buf.truncate(info.buffer_size());
+        let rgba = match (info.color_type, info.bit_depth) {
+            (png::ColorType::Rgba, png::BitDepth::Eight) => buf,
+            (png::ColorType::Rgb, png::BitDepth::Eight) => buf
+                .chunks(3)
+                .flat_map(|p| [p[0], p[1], p[2], 255])
+                .collect(),
+            (c, d) => return Err(bad(format!("{c:?} at {d:?}"))),
+        };
+        Ok((info.height, info.width, std::borrow::Cow::Owned(rgba)))
+    })
+}
+
 /// The native module.
 #[pymodule]
 fn _lacuna(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -922,6 +956,7 @@ fn _lacuna(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(automaton_shapes, m)?)?;
     m.add_function(wrap_pyfunction!(render, m)?)?;
     m.add_function(wrap_pyfunction!(measure, m)?)?;
+    m.add_function(wrap_pyfunction!(decode_png, m)?)?;
     m.add_function(wrap_pyfunction!(family::explore_shard, m)?)?;
     m.add_function(wrap_pyfunction!(family::census, m)?)?;
     m.add_function(wrap_pyfunction!(family::check_mesh, m)?)?;

@@ -110,3 +110,20 @@ def test_plot_draws_every_cell():
     matplotlib.use("Agg")
     ax = lacuna.load("F0").render(1).plot()
     assert len(ax.collections[0].get_paths()) == 6
+
+
+def test_renderings_show_their_picture_and_give_its_pixels():
+    f0 = lacuna.load("F0")
+    r = f0.render(2)
+    png = r._repr_png_()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    img = r.image
+    # 1024 pixels wide, RGBA; F0 is taller than wide by its hexagon's proportions, plus a legend.
+    assert img.shape[1] == 1024 and img.shape[2] == 4 and img.dtype.name == "uint8"
+    # The drawing is there: pixels of F0's type colour, not only background.
+    rgb = img[..., :3].reshape(-1, 3)
+    assert (rgb != 255).any(axis=1).mean() > 0.2
+    assert "cells=36" in repr(r)
+    s = lacuna.load("sierpinski-triangle").render(4)
+    assert s._repr_png_()[:4] == b"\x89PNG" and s.image.shape[1] == 1024
+    assert "pieces=81" in repr(s)

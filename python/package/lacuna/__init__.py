@@ -190,6 +190,34 @@ def _png_bytes(render, level: int, size: int) -> bytes:
         return out.read_bytes()
 
 
+def _decode_png(data: bytes):
+    """The pixels of a PNG lacuna wrote as an (h, w, 4) uint8 NumPy array (RGBA)."""
+    import numpy as np
+
+    h, w, rgba = _lacuna.decode_png(data)
+    return np.frombuffer(bytes(rgba), dtype=np.uint8).reshape(h, w, 4)
+
+
+class _Picture:
+    """A rendering that can draw itself: ``_repr_png_`` for notebooks (``display`` pixels wide)
+    and ``image``, the picture as an RGBA NumPy array."""
+
+    #: The width in pixels of the picture a notebook shows.
+    display = 480
+
+    def png(self, size: int = 1024) -> bytes:
+        """The PNG of this level, ``size`` pixels wide, as ``render(..., png=...)`` writes it."""
+        return _png_bytes(self._render, self._level, _natural("size", size))
+
+    def _repr_png_(self) -> bytes:
+        return self.png(self.display)
+
+    @property
+    def image(self):
+        """The picture (1024 pixels wide) as an (h, w, 4) uint8 RGBA NumPy array."""
+        return _decode_png(self.png(1024))
+
+
 def _html_table(head: List[str], rows: List[List[Any]]) -> str:
     """A small HTML table (cells escaped)."""
     import html
@@ -505,13 +533,19 @@ class Certificate:
 
 
 @dataclass
-class Rendering:
+class Rendering(_Picture):
     """The cells of a level of faces: one float polygon per cell (an (n, 2) NumPy array, counter-
-    clockwise), its face type, and the files written."""
+    clockwise), its face type, and the files written. A notebook shows its picture; ``image`` is
+    the picture as an RGBA array."""
 
     polygons: List[Any]
     types: Any
     written: List[Path]
+    _render: Any = field(default=None, repr=False, compare=False)
+    _level: int = field(default=0, repr=False, compare=False)
+
+    def __repr__(self) -> str:
+        return f"Rendering(level={self._level}, cells={len(self.polygons)}, written={[p.name for p in self.written]})"
 
     def __len__(self) -> int:
         return len(self.polygons)
@@ -537,9 +571,10 @@ class Rendering:
 
 
 @dataclass
-class Shapes:
+class Shapes(_Picture):
     """The pieces of an automaton's attractor at a level: each an (n, space) NumPy array of points
-    (space 2 or 3), its state's name and kind (``point``, ``polyline``, ``polygon``)."""
+    (space 2 or 3), its state's name and kind (``point``, ``polyline``, ``polygon``). A notebook
+    shows its picture; ``image`` is the picture as an RGBA array."""
 
     points: List[Any]
     states: List[str]
@@ -547,6 +582,11 @@ class Shapes:
     space: int
     consistent: bool
     written: List[Path]
+    _render: Any = field(default=None, repr=False, compare=False)
+    _level: int = field(default=0, repr=False, compare=False)
+
+    def __repr__(self) -> str:
+        return f"Shapes(level={self._level}, pieces={len(self.points)}, space={self.space}, written={[p.name for p in self.written]})"
 
     def __len__(self) -> int:
         return len(self.points)
@@ -770,7 +810,12 @@ class Structure:
                     lim,
                 )
             ]
-        return Rendering(polygons=polygons, types=np.asarray(types, dtype=int), written=written)
+        picture = lambda lv, png, size: self.render(  # noqa: E731
+            lv, png=png, size=size, params=params, segments=segments, max_cells=max_cells, limits=limits
+        )
+        return Rendering(
+            polygons=polygons, types=np.asarray(types, dtype=int), written=written, _render=picture, _level=int(level)
+        )
 
     def measure(
         self,
@@ -922,6 +967,7 @@ class Automaton:
                     None, None, 4, max_cells, lim,
                 )
             ]
+        picture = lambda lv, png, size: self.render(lv, png=png, size=size, params=params, max_cells=max_cells, limits=limits)  # noqa: E731
         return Shapes(
             points=[np.asarray(s["points"], dtype=float).reshape(-1, space) for s in shapes],
             states=[s["state"] for s in shapes],
@@ -929,6 +975,8 @@ class Automaton:
             space=space,
             consistent=bool(consistent),
             written=written,
+            _render=picture,
+            _level=int(level),
         )
 
     def measure(self, level: int, *, digits: int = 30, params: Params = None, max_cells: Optional[int] = None, limits: Limits = None) -> Record:

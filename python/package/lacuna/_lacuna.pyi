@@ -197,3 +197,6 @@ def check_mesh(
 ) -> Tuple[str, bool]:
     """`lacuna check-mesh --json` on a file's bytes (claims: the claims file's text and name);
     returns the JSON and whether it passed."""
+
+def decode_png(data: bytes) -> Tuple[int, int, bytes]:
+    """The pixels of a PNG lacuna wrote: (height, width, RGBA bytes row by row)."""
