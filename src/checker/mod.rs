@@ -34,6 +34,8 @@
 //! - `rule.rs`: a rule text read and compiled again, compared with the claim's automaton.
 //! - `choice.rs`: a rule's age and random choices (ages, seeded SplitMix64 draws, the states
 //!   of occurrences above the depth and their bound);
+//! - `volume_system.rs`: the volume constraint system rebuilt from the step's own derivation;
+//!   `volume_points.rs`: its volume points in frames, level 1, placements proved as isomorphisms;
 //! - `solid.rs`: the level-n solid built cell by cell, its cells, χ and Betti numbers (ranks
 //!   of boundary matrices over F2);
 //! - `solid_recurrence.rs`: the solid's cells, χ and components at every level, by the
@@ -68,6 +70,7 @@ mod solid;
 mod solid_recurrence;
 mod system;
 mod volume;
+mod volume_points;
 mod volume_system;
 
 use self::claim::{claim_lines, structure};

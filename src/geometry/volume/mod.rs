@@ -41,6 +41,9 @@
 //! `centres.rs` (face centres, fan centres, kernels and reach), `step.rs` (the builder: one step
 //! of faces and volumes, the inner-face rules), `placement.rs` (the start volumes placed in 3D),
 //! `evaluate.rs` (the level-n solid of a volume or an assembly, thickness).
+//!
+//! [`subdivide_volume`]: crate::topology::volume::subdivide_volume
+//! [`Volume`]: crate::topology::volume::Volume
 
 mod cells;
 mod centres;
