@@ -13,8 +13,16 @@
 //!   forces to coincide, and the cells forced flat;
 //! - `level_one.rs`: a chosen point of the proved solution set at which every level-1 control
 //!   polygon has positive area in the given frames;
-//! - `ifs.rs`: an automaton's constraints in its field K, the contraction of every walk of its
-//!   control graph (a complete prefix code of walks of norm below 1), its similarity dimension;
+//! - `ifs.rs`: an automaton's field K, its matrices, its operators' values and its constraints
+//!   evaluated in K;
+//! - `control_graph.rs`: the control graph of an automaton's attractor, its cyclic parts;
+//! - `contraction.rs`: the contraction of every walk of the control graph (a complete prefix code
+//!   of walks of norm below 1);
+//! - `similarity.rs`: the similarity dimension of the attractor (Mauldin–Williams) and what the
+//!   parts' open-set witnesses make of it;
+//! - `convex_open_set.rs`: the open-set condition of a part witnessed by convex sets in the
+//!   states' charts;
+//! - `enclosure.rs`: rational enclosures of numbers of K, of roots and of logarithms;
 //! - `neighbour.rs`: the open-set condition of a part decided by neighbour maps (a closed set
 //!   without the identity, or two words with one map), exactly in the automaton's field;
 //! - `field.rs`: polynomials over Q, Sturm isolation, exact zero and sign tests in Q[x]/(p);
@@ -26,6 +34,8 @@
 //! - `rule.rs`: a rule text read and compiled again, compared with the claim's automaton.
 //! - `choice.rs`: a rule's age and random choices (ages, seeded SplitMix64 draws, the states
 //!   of occurrences above the depth and their bound);
+//! - `volume_system.rs`: the volume constraint system rebuilt from the step's own derivation;
+//!   `volume_points.rs`: its volume points in frames, level 1, placements proved as isomorphisms;
 //! - `solid.rs`: the level-n solid built cell by cell, its cells, χ and Betti numbers (ranks
 //!   of boundary matrices over F2);
 //! - `solid_recurrence.rs`: the solid's cells, χ and components at every level, by the
@@ -42,7 +52,11 @@ mod automaton;
 mod choice;
 mod claim;
 mod closure;
+mod contraction;
+mod control_graph;
+mod convex_open_set;
 mod degeneracy;
+mod enclosure;
 mod field;
 mod ifs;
 mod level_one;
@@ -51,10 +65,12 @@ mod neighbour;
 mod ratio;
 mod rule;
 mod series;
+mod similarity;
 mod solid;
 mod solid_recurrence;
 mod system;
 mod volume;
+mod volume_points;
 mod volume_system;
 
 use self::claim::{claim_lines, structure};
@@ -511,11 +527,11 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
                 ),
             },
             Step::Contraction(s) => match &cert.claim {
-                Claim::Automaton(a) => self::ifs::check_contraction(a, s),
+                Claim::Automaton(a) => self::contraction::check_contraction(a, s),
                 _ => Err("a contraction step in a certificate whose claim is no automaton".into()),
             },
             Step::SimilarityDimension(s) => match &cert.claim {
-                Claim::Automaton(a) => self::ifs::check_similarity(a, s),
+                Claim::Automaton(a) => self::similarity::check_similarity(a, s),
                 _ => Err(
                     "a similarity-dimension step in a certificate whose claim is no automaton"
                         .into(),

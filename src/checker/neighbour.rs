@@ -66,8 +66,9 @@
 
 #[cfg(test)]
 use super::check_json;
+use super::convex_open_set::charts;
 use super::field::{self, P};
-use super::ifs::{charts, Field, KMat};
+use super::ifs::{Field, KMat};
 use super::{rat, Q};
 use crate::certificate::{
     AutomatonClaim, FieldCoords, NeighbourFails, NeighbourHolds, NeighbourMap, NeighbourMaps,

@@ -3,7 +3,7 @@
 //! line `measure` prints — every level-1 control polygon has positive area at the chosen point,
 //! in each type's frame.
 //!
-//! It lives here, not in `certificate/produce.rs`, because the chosen point and its frames are
+//! It lives here, not in `certificate/produce/`, because the chosen point and its frames are
 //! geometry's (a layer of the same rank as `certificate`); this layer sees both.
 
 use crate::certificate::{certificate_for, Certificate, CertifyError, LevelOneStep, Step};
