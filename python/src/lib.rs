@@ -881,7 +881,9 @@ fn measure(
             segments: g.segments,
             ..Default::default()
         };
-        let r = lacuna::measure::measure(&inst, &opts).map_err(geo_error)?;
+        let mut r = lacuna::measure::measure(&inst, &opts).map_err(geo_error)?;
+        // As `lacuna measure --json`: which certificate step proves the exact counts.
+        r.certification = lacuna::measure::certification(&inst);
         let size = lacuna::mesh::Size {
             width: width.unwrap_or(lacuna::mesh::DEFAULT_WIDTH),
             ..Default::default()

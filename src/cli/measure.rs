@@ -67,7 +67,8 @@ pub(super) fn run(args: MeasureArgs, limits: &Limits) -> Result<ExitCode, Error>
         density_grid,
         ..Default::default()
     };
-    let r = lacuna::measure::measure(&inst, &opts).map_err(geo_error)?;
+    let mut r = lacuna::measure::measure(&inst, &opts).map_err(geo_error)?;
+    r.certification = lacuna::measure::certification(&inst);
     // Printability at the level: the smallest hole and thinnest ligament in mm (THEORY §11).
     let size = lacuna::mesh::Size {
         width: print.width,

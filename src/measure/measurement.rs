@@ -251,10 +251,11 @@ pub struct MeasureReport {
     /// The exact level-1 check of the chosen point: every cell's control polygon has positive
     /// area (issue #36).
     pub level_one: crate::geometry::LevelOne,
-    /// The last level whose exact holes and components the certificate's `face-homology` step
-    /// proves (from level 0); none when the certificate has no such step (an assembly of faces,
-    /// or a level 0 too large to build).
-    pub certified_to: Option<u64>,
+    /// Which certificate step proves the exact holes and components, when the caller asked
+    /// ([`certification`]: `measure` leaves it, so that callers that only compare counts, such
+    /// as `explore`'s holes property, do not build the certificate's rows).
+    #[serde(skip_serializing_if = "Certification::not_asked")]
+    pub certification: Certification,
     /// Every level's holes and components match the exact counts.
     pub verified: bool,
     /// One line per failure, starting with its code (E1010 mismatch, E1011 below resolution).
@@ -416,13 +417,46 @@ pub fn measure(inst: &Instance, opts: &MeasureOptions) -> Result<MeasureReport, 
         raster: opts.raster,
         template_residual: inst.fit_residual,
         level_one: inst.level_one.clone(),
-        certified_to: crate::certificate::face_rows(&inst.types)
-            .ok()
-            .and_then(|rows| rows.last().map(|r| r.level)),
+        certification: Certification::NotAsked,
         verified: failures.is_empty(),
         failures,
         levels,
     })
+}
+
+/// Which step of the faces' certificate proves a measure's exact holes and components.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Certification {
+    /// Not looked up (the caller did not ask for [`certification`]).
+    #[default]
+    NotAsked,
+    /// The `face-homology` step, from level 0 to `to`.
+    FaceHomology {
+        /// Its last level.
+        to: u64,
+    },
+    /// No step: an assembly of faces (the claim does not carry the gluing), or a level 0 too
+    /// large to build.
+    NotInCertificate,
+}
+
+impl Certification {
+    fn not_asked(&self) -> bool {
+        *self == Certification::NotAsked
+    }
+}
+
+/// Which step of `inst`'s certificate proves its exact holes and components: the levels of the
+/// rows `certificate_for` puts in the `face-homology` step.
+pub fn certification(inst: &Instance) -> Certification {
+    match crate::certificate::face_rows(&inst.types)
+        .ok()
+        .and_then(|rows| rows.last().map(|r| r.level))
+    {
+        Some(to) => Certification::FaceHomology { to },
+        None => Certification::NotInCertificate,
+    }
 }
 
 impl MeasureReport {
@@ -479,18 +513,23 @@ impl MeasureReport {
         }
         let _ = writeln!(s, "components derived by {}", self.components_by);
         let _ = writeln!(s, "{}", self.level_one.describe());
-        let _ = writeln!(
-            s,
-            "{}; the level-1 line by the level-one step (`--certificate OUT.json` writes them)",
-            match self.certified_to {
-                Some(n) => format!(
-                    "certified: the exact holes and components by the face-homology step at levels 0–{n}"
-                ),
-                None => "the exact holes and components derived by lacuna, not in a certificate \
-                         (its claim does not carry an assembly's gluing)"
+        let certified = match self.certification {
+            Certification::NotAsked => None,
+            Certification::FaceHomology { to } => Some(format!(
+                "certified: the exact holes and components by the face-homology step at levels 0–{to}"
+            )),
+            Certification::NotInCertificate => Some(
+                "the exact holes and components derived by lacuna, not in a certificate \
+                 (its claim does not carry an assembly's gluing)"
                     .to_string(),
-            }
-        );
+            ),
+        };
+        if let Some(c) = certified {
+            let _ = writeln!(
+                s,
+                "{c}; the level-1 line by the level-one step (`--certificate OUT.json` writes them)"
+            );
+        }
         if self.verified {
             s += "verdict: VERIFIED (observed holes and components equal the exact counts)\n";
         } else {

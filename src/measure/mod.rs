@@ -19,8 +19,9 @@ pub use certify::placement_certificate;
 pub use density::{density_map, density_raster, DensityMap, DensitySummary};
 pub use hole::{polygon_size, smallest_holes};
 pub use measurement::{
-    check_cells, exact_components, exact_topology, measure, raster_for_hole, ExactTopology,
-    LevelMeasure, MeasureOptions, MeasureReport, LARGEST_RASTER, MIN_HOLE_WIDTH,
+    certification, check_cells, exact_components, exact_topology, measure, raster_for_hole,
+    Certification, ExactTopology, LevelMeasure, MeasureOptions, MeasureReport, LARGEST_RASTER,
+    MIN_HOLE_WIDTH,
 };
 pub use morph::{
     frame_parameters, morph, morph_automata, shape_difference, MorphFrame, MorphReport,
