@@ -24,6 +24,15 @@ pub fn certificate_for_system(
     cert
 }
 
+/// A dense solution vector as the certificate's sparse list: the nonzero entries by index.
+pub(super) fn nonzero(v: &[BigRational]) -> Vec<(usize, String)> {
+    v.iter()
+        .enumerate()
+        .filter(|(_, x)| !x.is_zero())
+        .map(|(i, x)| (i, x.to_string()))
+        .collect()
+}
+
 pub(super) fn terms(v: &[(usize, BigRational)]) -> Vec<(usize, String)> {
     v.iter().map(|(i, c)| (*i, c.to_string())).collect()
 }
@@ -62,13 +71,7 @@ pub(super) fn step_of_system(system: System, solution: &crate::constraint::Solut
     match solution {
         crate::constraint::Solution::Consistent(s) => Step::SolutionSpace(SolutionStep {
             system,
-            particular: s
-                .particular
-                .iter()
-                .enumerate()
-                .filter(|(_, x)| !x.is_zero())
-                .map(|(i, x)| (i, x.to_string()))
-                .collect(),
+            particular: nonzero(&s.particular),
             free: s.free.clone(),
             basis: s.basis.iter().map(|b| terms(b)).collect(),
             pivots: s.pivots.clone(),

@@ -3,7 +3,7 @@
 //! from a claim.
 
 use super::faces::{closure_step, edge, face, lacuna_edge, lacuna_face};
-use super::systems::{ratio_step_in, terms};
+use super::systems::{nonzero, ratio_step_in, terms};
 use super::{CertifyError, SOLID_CELLS};
 use crate::certificate::format::{
     Certificate, Claim, DegeneracyStep, Face, SharedFaceClaim, SolidCountRow, SolidHomologyStep,
@@ -11,7 +11,6 @@ use crate::certificate::format::{
     VolumeTypeRule, VolumesClaim,
 };
 use crate::certificate::format::{SubVolumePlacement, VolumeSystemStep};
-use num_traits::Zero;
 
 /// The certificate of a closed set of volume types (THEORY §10): the claim is the start volumes
 /// of `assembly` (with the faces they share) and the number of levels; the steps are the closure
@@ -211,13 +210,7 @@ pub fn volume_system_step(
         frames,
         subvolumes,
         unknowns: solved.linearized.system.unknowns,
-        particular: space
-            .particular
-            .iter()
-            .enumerate()
-            .filter(|(_, x)| !x.is_zero())
-            .map(|(i, x)| (i, x.to_string()))
-            .collect(),
+        particular: nonzero(&space.particular),
         free: space.free.clone(),
         basis: space.basis.iter().map(|b| terms(b)).collect(),
         rank: space.rank,
