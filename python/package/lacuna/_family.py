@@ -210,7 +210,7 @@ def check_mesh(
     if claims is not None:
         c = os.fspath(claims)
         claim = (_lacuna.read_text(c), c)
-    text, _ = _lacuna.check_mesh(
+    text = _lacuna.check_mesh(
         data, p, expect_euler, expect_parts, claim, _natural("max_triangles", max_triangles)
     )
     return Record(json.loads(text))

@@ -194,9 +194,9 @@ def check_mesh(
     expect_parts: Optional[int] = None,
     claims: Optional[Tuple[str, str]] = None,
     max_triangles: int = 20000000,
-) -> Tuple[str, bool]:
+) -> str:
     """`lacuna check-mesh --json` on a file's bytes (claims: the claims file's text and name);
-    returns the JSON and whether it passed."""
+    its `passed` says whether every check and expectation held."""
 
 def decode_png(data: bytes) -> Tuple[int, int, bytes]:
     """The pixels of a PNG lacuna wrote: (height, width, RGBA bytes row by row)."""
