@@ -6,7 +6,7 @@
 //! them with `LACUNA_BLESS=1 cargo test --test certificates`.
 
 use lacuna::certificate::{certificate_for, certificate_for_system};
-use lacuna::certificate::{Certificate, Step};
+use lacuna::certificate::{Certificate, Claim, Step};
 use lacuna::checker::{check, check_json, Outcome};
 use lacuna::{
     constraint::GenOptions, topology::EdgeKind, topology::EdgeType, topology::Face,
@@ -242,19 +242,15 @@ fn every_fixture_round_trips_and_checks() {
     for name in FACE_FIXTURES {
         let cert = face_certificate(name);
         let names: Vec<&str> = cert.steps.iter().map(Step::name).collect();
-        // One start face: its complex's cells, components and holes too; an assembly of faces
-        // (whose gluing the claim does not carry) has no face-homology step.
-        let assemblies = ["two-quads", "autofrac-two-quads", "shared-radius-pentagons"];
-        let expected: &[&str] = match assemblies.contains(&name) {
-            true => &["closure", "solution-space", "degeneracy", "limit-ratio"],
-            false => &[
-                "closure",
-                "solution-space",
-                "degeneracy",
-                "limit-ratio",
-                "face-homology",
-            ],
-        };
+        // Every entry, one face or an assembly with its gluing: its complex's cells, components
+        // and holes too.
+        let expected = [
+            "closure",
+            "solution-space",
+            "degeneracy",
+            "limit-ratio",
+            "face-homology",
+        ];
         assert_eq!(names, expected, "{name}");
         assert_proved(name, &cert);
     }
@@ -533,11 +529,11 @@ fn wrong_versions_are_rejected() {
     // Files of versions 1 to 7 (other step forms: version 2 had no recipe, version 3 no claim,
     // version 4 no attractor steps, version 5 no solid-homology step nor shared faces, version
     // 6 no neighbour-map witnesses nor degeneracy step, version 7 no volume-solution-space
-    // step, version 8 no solid-recurrence step, version 9 no level-one step) are refused by
-    // their version, not by a parse error.
-    for old in ["1", "2", "3", "4", "5", "6", "7", "8", "9"] {
+    // step, version 8 no solid-recurrence step, version 9 no level-one step, version 10 no
+    // gluing of an assembly's faces) are refused by their version, not by a parse error.
+    for old in ["1", "2", "3", "4", "5", "6", "7", "8", "9", "10"] {
         let json = face_certificate("F0").to_json().replacen(
-            "\"version\":10",
+            "\"version\":11",
             &format!("\"version\":{old}"),
             1,
         );
@@ -796,4 +792,142 @@ fn the_chosen_point_is_certified_and_forgeries_rejected() {
     let mut alone = cert.clone();
     alone.steps.retain(|s| s.name() != "solution-space");
     assert!(!check(&alone).all_proved());
+}
+
+fn face_homology_of(cert: &Certificate) -> Option<Vec<lacuna::certificate::FaceRow>> {
+    cert.steps.iter().find_map(|s| match s {
+        Step::FaceHomology(h) => Some(h.rows.clone()),
+        _ => None,
+    })
+}
+
+#[test]
+fn an_assembly_certifies_its_glued_complex_and_forgeries_fail() {
+    // The two quads of `two-quads` glued along one B2 edge. Level 0 by hand: 2 cells,
+    // 4 + 4 − 1 = 7 edges, 4 + 4 − 2 = 6 corners, χ = 1, one component, no hole.
+    let cert = face_certificate("two-quads");
+    assert_proved("two-quads", &cert);
+    let Claim::Faces(claim) = &cert.claim else {
+        panic!("a faces claim")
+    };
+    assert_eq!(claim.glue.len(), 1);
+    let rows = face_homology_of(&cert).expect("a face-homology step");
+    let r0 = &rows[0];
+    assert_eq!(
+        (
+            r0.faces,
+            r0.edges,
+            r0.corners,
+            r0.euler,
+            r0.components,
+            r0.holes
+        ),
+        (2, 7, 6, 1, 1, 0)
+    );
+    // Every level against an independent derivation: measure's exact holes (centre lacunas and
+    // half gaps, THEORY §5 accounting, no cell complex) and components.
+    let input = lacuna::input::load_input("two-quads").expect("a library entry");
+    let inst =
+        lacuna::geometry::instantiate(&input, &lacuna::geometry::InstantiateOptions::default())
+            .expect("instantiates");
+    let exact = lacuna::measure::exact_topology(&inst, 4).expect("exact topology");
+    for (row, ex) in rows.iter().zip(&exact) {
+        assert_eq!(
+            row.holes.to_string(),
+            ex.holes.to_string(),
+            "level {}",
+            row.level
+        );
+        assert_eq!(row.components, ex.components, "level {}", row.level);
+        assert_eq!(
+            row.faces.to_string(),
+            ex.faces.to_string(),
+            "level {}",
+            row.level
+        );
+    }
+
+    // The gluing dropped: two components, the rows no longer hold.
+    let mut apart = cert.clone();
+    if let Claim::Faces(f) = &mut apart.claim {
+        f.glue.clear();
+    }
+    assert_rejected("the gluing dropped", &apart, "face-homology");
+    // A B2 side glued to a C2 side: refused as a whole, before any step.
+    let mut wrong = cert.clone();
+    if let Claim::Faces(f) = &mut wrong.claim {
+        let face = &f.faces[f.glue[0].b[0]];
+        let side = face
+            .boundary
+            .iter()
+            .position(|e| e.kind == lacuna::certificate::Kind::C)
+            .expect("a C2 side");
+        f.glue[0].b[1] = side;
+    }
+    let report = check(&wrong);
+    assert!(!report.all_proved(), "{}", report.to_text());
+    assert!(
+        report.to_text().contains("different edge types"),
+        "{}",
+        report.to_text()
+    );
+    // A side glued twice.
+    let mut twice = cert.clone();
+    if let Claim::Faces(f) = &mut twice.claim {
+        let g = f.glue[0];
+        f.glue.push(g);
+    }
+    assert!(check(&twice).to_text().contains("glued twice"));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 16, ..ProptestConfig::default() })]
+
+    /// A face glued to a copy of itself along an undelayed `Cn` side: by Mayer–Vietoris (b2 = 0,
+    /// the glued edge a union of n^l segments at level l, both copies connected) the glued
+    /// complex has 2·holes + n^l − 1 holes at level l: the half-notches over each gap close into
+    /// one hole. The rows of the assembly's certificate (checked) must say so.
+    #[test]
+    fn random_faces_glued_along_a_cantor_side(f in face()) {
+        let Some(side) = f.boundary.iter().position(|e| {
+            e.kind == lacuna::topology::EdgeKind::C && !e.is_delayed()
+        }) else {
+            return Ok(());
+        };
+        let limits = Limits { max_types: 60, max_boundary: 12, ..Limits::default() };
+        let Ok(one_ts) = lacuna::topology::close_or_error(std::slice::from_ref(&f), &limits) else {
+            return Ok(());
+        };
+        let Ok(one) = certificate_for("one", &one_ts, GenOptions::default()) else {
+            return Ok(());
+        };
+        let two_ts = lacuna::topology::close_or_error(&[f.clone(), f.clone()], &limits)
+            .expect("closes as one face does");
+        let (_, r) = f.canonical();
+        let m = f.boundary.len();
+        let canon = (side + m - r % m) % m;
+        let two = lacuna::certificate::certificate_for_assembly(
+            "two",
+            &two_ts,
+            &[[(0, canon), (1, canon)]],
+            GenOptions::default(),
+        )
+        .expect("certifiable as one face is");
+        let report = check(&two);
+        prop_assert!(report.all_proved(), "{f}:\n{}", report.to_text());
+        let n = u64::from(f.boundary[side].n);
+        // Without a step (components not derived within the cell bound) there is nothing to
+        // compare.
+        let (Some(a), Some(b)) = (face_homology_of(&one), face_homology_of(&two)) else {
+            return Ok(());
+        };
+        for (x, y) in a.iter().zip(&b) {
+            if x.components != 1 {
+                return Ok(());
+            }
+            let l = u32::try_from(x.level).expect("small");
+            prop_assert_eq!(y.components, 1, "{} level {}", f, l);
+            prop_assert_eq!(y.holes, 2 * x.holes + n.pow(l) - 1, "{} level {}", f, l);
+        }
+    }
 }

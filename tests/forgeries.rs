@@ -453,6 +453,7 @@ fn faces_certificate(start: Face, types: Vec<TypeRule>) -> Certificate {
         faces: vec![start],
         degree: 2,
         cantor_gap: "1".into(),
+        glue: Vec::new(),
     });
     let mut cert = Certificate::new("hostile", claim);
     cert.steps.push(Step::Closure(ClosureStep { types }));

@@ -402,9 +402,10 @@ fn certificate(
     run(py, move || {
         let input = load_input(&input)?;
         let ts = lacuna::topology::close_or_error(&input.faces(), &l)?;
-        let cert = lacuna::certificate::certificate_for(
+        let cert = lacuna::certificate::certificate_for_assembly(
             &input.name,
             &ts,
+            &input.assembly.canonical_glue(),
             lacuna::constraint::GenOptions::default(),
         )
         .map_err(|e| e.into_error("certificate"))?;

@@ -31,8 +31,8 @@ pub use automaton_steps::{
 };
 pub use claims::{
     AttractorClaim, AutomatonClaim, AutomatonOperator, AutomatonState, Edge, Face, FacesClaim,
-    FieldCoords, Kind, Params, Pattern, SharedFaceClaim, SpokeItem, SubstitutionClaim, Volume,
-    VolumeRule, VolumesClaim, WordEquation, WordFactor,
+    FieldCoords, GluedSides, Kind, Params, Pattern, SharedFaceClaim, SpokeItem, SubstitutionClaim,
+    Volume, VolumeRule, VolumesClaim, WordEquation, WordFactor,
 };
 pub use face_steps::{
     Adjacency, ClosureStep, DegeneracyStep, FaceHomologyStep, FaceRow, LevelOneSide, LevelOneStep,
@@ -53,7 +53,7 @@ use serde::{Deserialize, Serialize};
 pub const FORMAT: &str = "lacuna-certificate";
 
 /// The format version this code writes and checks.
-pub const VERSION: u32 = 10;
+pub const VERSION: u32 = 11;
 
 /// A certificate: the claim (what was given, in canonical form) and the steps that prove every
 /// verdict about it.
@@ -79,7 +79,7 @@ pub struct Certificate {
 ///
 /// - faces ([`Claim::Faces`]) need `closure`, then `solution-space` or `inconsistent`, may have
 ///   `degeneracy` (after `solution-space`), then need `limit-ratio`, and may have
-///   `face-homology` after them (one start face);
+///   `face-homology` after them (the start faces glued as the claim says);
 /// - an automaton ([`Claim::Automaton`]) or a system ([`Claim::System`]) needs
 ///   `solution-space` or `inconsistent`;
 /// - a substitution ([`Claim::Substitution`]) needs `limit-ratio`;
@@ -204,8 +204,9 @@ pub enum Step {
     /// solution and the basis against its own rows; the unknowns that are not free are shown
     /// independent by elimination modulo a prime. See `docs/CERTIFICATES.md`.
     VolumeSolutionSpace(VolumeSystemStep),
-    /// **The topology of a face's level-n complex** (one start face). Justification: as for
-    /// `solid-homology`, without volumes: the checker builds the complex from the claim's face
+    /// **The topology of the start faces' level-n complex** (one face, or an assembly glued along
+    /// the claim's sides). Justification: as for `solid-homology`, without volumes: the checker
+    /// builds the complex from the claim's faces, each glued side one edge with its partner
     /// (edges' pieces, sub-faces, spokes, lacuna and gap sides, corners), checks ∂∂ = 0 over F2,
     /// and takes b0 from the 1-skeleton and the rank of ∂2 over F2; with b2 = 0 over F2, b1 (the
     /// holes) over Q equals b1 over F2.

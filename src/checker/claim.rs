@@ -373,6 +373,13 @@ pub(super) fn claim_lines(c: &Claim) -> Vec<String> {
                 .iter()
                 .map(|x| format!("start face {}", face_text(x)))
                 .collect();
+            for g in &f.glue {
+                o.push(format!(
+                    "glued: start face {} side {} ~ start face {} side {}, read in opposite \
+                     directions",
+                    g.a[0], g.a[1], g.b[0], g.b[1]
+                ));
+            }
             o.push(format!(
                 "constraint system of THEORY §6 with Bézier degree {} and Cantor gap/piece {}",
                 f.degree, f.cantor_gap
@@ -517,6 +524,13 @@ pub(super) fn structure(c: &Claim, steps: &[Step]) -> Result<Vec<String>, String
                     shape()
                 ))
             }
+        }
+    }
+    if let Claim::Faces(f) = c {
+        if !f.glue.is_empty() {
+            // The gluing is read by face-homology only; a malformed one is refused whatever
+            // the steps.
+            super::solid::start_faces(f).map_err(|e| format!("the claim's gluing: {e}"))?;
         }
     }
     if matches!(c, Claim::Faces(_) | Claim::Volumes(_)) && !filled[0] {

@@ -718,6 +718,70 @@ pub(super) fn start_face(face: &Face) -> Result<Complex, String> {
     Ok(c)
 }
 
+/// The level-0 complex of the claim's start faces, each side glued to its partner in the claim
+/// (one edge, read in opposite directions by the two sides); the other sides are distinct edges,
+/// each face in its own orientation. A side glued twice, to itself, or to a side of another edge
+/// type is refused.
+pub(super) fn start_faces(claim: &FacesClaim) -> Result<Complex, String> {
+    let faces = &claim.faces;
+    if faces.is_empty() {
+        return Err("the claim has no start face".into());
+    }
+    let mut base = Vec::with_capacity(faces.len());
+    let mut n = 0usize;
+    for (k, f) in faces.iter().enumerate() {
+        if f.boundary.is_empty() || f.boundary.iter().any(|e| e.n < 2 || e.delay < 1) {
+            return Err(format!(
+                "start face {k} has no side, or an edge with n < 2 or delay 0"
+            ));
+        }
+        base.push(n);
+        n += f.boundary.len();
+    }
+    let slot = |[f, i]: [usize; 2]| -> Option<usize> {
+        (i < faces.get(f)?.boundary.len()).then(|| base[f] + i)
+    };
+    let mut dsu = Parity::new(n);
+    let mut glued = vec![false; n];
+    for (k, g) in claim.glue.iter().enumerate() {
+        let (Some(a), Some(b)) = (slot(g.a), slot(g.b)) else {
+            return Err(format!("glued sides {k}: no such face or side"));
+        };
+        if a == b || glued[a] || glued[b] {
+            return Err(format!(
+                "glued sides {k}: a side glued to itself, or a side glued twice"
+            ));
+        }
+        if faces[g.a[0]].boundary[g.a[1]] != faces[g.b[0]].boundary[g.b[1]] {
+            return Err(format!(
+                "glued sides {k}: the two sides are of different edge types"
+            ));
+        }
+        glued[a] = true;
+        glued[b] = true;
+        dsu.union(a, b, true)?;
+    }
+    let mut edge_id: HashMap<usize, usize> = HashMap::new();
+    let mut c = Complex {
+        edges: Vec::new(),
+        faces: Vec::new(),
+        vols: Vec::new(),
+    };
+    for (k, f) in faces.iter().enumerate() {
+        let mut bnd = Vec::with_capacity(f.boundary.len());
+        for (i, ty) in f.boundary.iter().enumerate() {
+            let (r, p) = dsu.find(base[k] + i);
+            let e = *edge_id.entry(r).or_insert_with(|| {
+                c.edges.push(*ty);
+                c.edges.len() - 1
+            });
+            bnd.push((e, !p));
+        }
+        c.new_face(f.clone(), bnd)?;
+    }
+    Ok(c)
+}
+
 /// The corners of the level-1 complex of one face: `[k][i]` is the corner at the start of side
 /// `i` of sub-face `k` (sub-faces in the order of the checker's subdivision), and the number of
 /// corners.
@@ -742,15 +806,6 @@ pub(super) fn check_face(
     s: &FaceHomologyStep,
     claim: &FacesClaim,
 ) -> Result<(String, String), String> {
-    let [face] = &claim.faces[..] else {
-        return Err(format!(
-            "the claim has {} start faces; the step is about one face",
-            claim.faces.len()
-        ));
-    };
-    if face.boundary.is_empty() || face.boundary.iter().any(|e| e.n < 2 || e.delay < 1) {
-        return Err("the start face has no side, or an edge with n < 2 or delay 0".into());
-    }
     let sizes: Vec<u64> = s
         .rows
         .iter()
@@ -762,7 +817,7 @@ pub(super) fn check_face(
         .collect();
     let levels: Vec<u64> = s.rows.iter().map(|r| r.level).collect();
     admissible(&levels, &sizes)?;
-    let mut c = start_face(face)?;
+    let mut c = start_faces(claim)?;
     let mut lines = Vec::new();
     for (i, claimed) in s.rows.iter().enumerate() {
         if i > 0 {
@@ -806,14 +861,29 @@ pub(super) fn check_face(
             super::counted(got.holes, "hole", "holes")
         ));
     }
+    let glued = match claim.glue.len() {
+        0 => String::new(),
+        g => format!(
+            " ({} glued)",
+            super::counted(g as u64, "pair of sides", "pairs of sides")
+        ),
+    };
+    let what = match claim.faces.len() {
+        1 => "face".to_string(),
+        k => format!("{k} faces{glued}"),
+    };
     let msg = format!(
-        "the level-n complex of the claim's face built cell by cell at levels 0–{} (edges' \
+        "the level-n complex of the claim's {what} built cell by cell at levels 0–{} (edges' \
          pieces, sub-faces, spokes, lacuna and gap sides, corners), cells counted, b0 from the \
          1-skeleton, the rank of ∂2 over F2: b2 = 0, so the rational Betti numbers equal the F2 \
          ones",
         s.rows.len() - 1
     );
-    Ok((msg, format!("the face's complex: {}", lines.join("; "))))
+    let whose = match claim.faces.len() {
+        1 => "the face's".to_string(),
+        k => format!("the {k} faces'"),
+    };
+    Ok((msg, format!("{whose} complex: {}", lines.join("; "))))
 }
 
 /// The rows are levels 0, 1, … in order, none above the cells the step builds.
@@ -1087,6 +1157,104 @@ mod tests {
         c = next(&c).unwrap();
         let b = betti(&c, 1).unwrap();
         assert_eq!((b.cells, b.euler, b.b0, b.b1), ([0, 4, 16, 12], 0, 1, 1));
+    }
+
+    fn glued(faces: Vec<Face>, glue: &[([usize; 2], [usize; 2])]) -> FacesClaim {
+        FacesClaim {
+            faces,
+            degree: 2,
+            cantor_gap: "1".into(),
+            glue: glue
+                .iter()
+                .map(|&(a, b)| crate::certificate::GluedSides { a, b })
+                .collect(),
+        }
+    }
+
+    fn levels_of(claim: &FacesClaim, to: usize) -> Vec<Betti> {
+        let mut c = start_faces(claim).unwrap();
+        let mut out = vec![betti(&c, 0).unwrap()];
+        for i in 1..=to {
+            c = next(&c).unwrap();
+            out.push(betti(&c, i as u64).unwrap());
+        }
+        out
+    }
+
+    #[test]
+    fn two_b2_squares_glued_by_hand() {
+        // Level 0: 2 cells, 4 + 4 − 1 = 7 edges, 4 + 4 − 2 = 6 corners, χ = 1, no hole.
+        // Level 1: twice the square's (4 cells, 16 edges, 12 corners) less the glued edge's
+        // 2 pieces, its joint and its 2 end corners counted twice: 8 cells, 30 edges,
+        // 21 corners, χ = −1, one component, so 2 holes (the two lacunas).
+        let sq = volume_tests::square();
+        let claim = glued(vec![sq.clone(), sq], &[([0, 0], [1, 2])]);
+        let b = levels_of(&claim, 1);
+        assert_eq!(
+            (b[0].cells, b[0].euler, b[0].b0, b[0].b1),
+            ([0, 2, 7, 6], 1, 1, 0)
+        );
+        assert_eq!(
+            (b[1].cells, b[1].euler, b[1].b0, b[1].b1),
+            ([0, 8, 30, 21], -1, 1, 2)
+        );
+    }
+
+    #[test]
+    fn a_glued_cantor_edge_closes_its_notches_into_holes() {
+        // Mayer–Vietoris for A ∪ B along the glued edge E (b2 = 0, E a union of segments):
+        // b1(A ∪ B) = b1(A) + b1(B) + b0(E) − 1 when A and B are connected. An undelayed C2
+        // edge is 2^n pieces apart at level n: the two half-notches over each gap become one
+        // hole, 2^n − 1 of them.
+        let mut f = volume_tests::square();
+        f.boundary[1] = Edge {
+            kind: crate::certificate::Kind::C,
+            n: 2,
+            delay: 1,
+        };
+        let one = levels_of(&glued(vec![f.clone()], &[]), 3);
+        let two = levels_of(&glued(vec![f.clone(), f], &[([0, 1], [1, 1])]), 3);
+        for (n, (a, b)) in one.iter().zip(&two).enumerate() {
+            assert_eq!(a.b0, 1, "level {n}");
+            assert_eq!(b.b0, 1, "level {n}");
+            assert_eq!(b.b1, 2 * a.b1 + (1 << n) - 1, "level {n}");
+        }
+    }
+
+    #[test]
+    fn a_malformed_gluing_is_refused() {
+        let sq = volume_tests::square();
+        let mut tri = sq.clone();
+        tri.boundary.clear();
+        let mut other = sq.clone();
+        other.boundary[0].delay = 2;
+        for (faces, glue, why) in [
+            (
+                vec![sq.clone(), sq.clone()],
+                vec![([0, 0], [2, 0])],
+                "no such face",
+            ),
+            (
+                vec![sq.clone(), sq.clone()],
+                vec![([0, 4], [1, 0])],
+                "no such face",
+            ),
+            (vec![sq.clone()], vec![([0, 0], [0, 0])], "itself"),
+            (
+                vec![sq.clone(), sq.clone(), sq.clone()],
+                vec![([0, 0], [1, 0]), ([2, 0], [1, 0])],
+                "twice",
+            ),
+            (
+                vec![sq.clone(), other],
+                vec![([0, 0], [1, 0])],
+                "different edge types",
+            ),
+            (vec![sq, tri], vec![([0, 0], [1, 0])], "no side"),
+        ] {
+            let e = start_faces(&glued(faces, &glue)).err().unwrap_or_default();
+            assert!(e.contains(why), "{why}: {e}");
+        }
     }
 
     #[test]

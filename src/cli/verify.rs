@@ -42,9 +42,10 @@ pub(super) fn run(args: VerifyArgs, limits: &Limits) -> Result<ExitCode, Error> 
     if let Some(path) = &certificate {
         match &closure {
             Closure::Closed(ts) => {
-                let cert = lacuna::certificate::certificate_for(
+                let cert = lacuna::certificate::certificate_for_assembly(
                     &input.name,
                     ts,
+                    &input.assembly.canonical_glue(),
                     lacuna::constraint::GenOptions::default(),
                 )
                 .map_err(|e| e.into_error("--certificate"))?;

@@ -6,14 +6,15 @@
 //! It lives here, not in `certificate/produce/`, because the chosen point and its frames are
 //! geometry's (a layer of the same rank as `certificate`); this layer sees both.
 
-use crate::certificate::{certificate_for, Certificate, CertifyError, LevelOneStep, Step};
+use crate::certificate::{certificate_for_assembly, Certificate, CertifyError, LevelOneStep, Step};
 use crate::geometry::Instance;
 use num_rational::BigRational as Q;
 use std::collections::HashMap;
 
 /// The certificate of `inst`'s faces with the `level-one` step of its chosen point.
 pub fn placement_certificate(inst: &Instance) -> Result<Certificate, CertifyError> {
-    let mut cert = certificate_for(&inst.name, &inst.types, inst.options.clone())?;
+    let mut cert =
+        certificate_for_assembly(&inst.name, &inst.types, &inst.glue, inst.options.clone())?;
     let step = level_one_step(inst, &cert).map_err(CertifyError::Witness)?;
     cert.steps.push(Step::LevelOne(step));
     Ok(cert)

@@ -436,8 +436,8 @@ pub enum Certification {
         /// Its last level.
         to: u64,
     },
-    /// No step: an assembly of faces (the claim does not carry the gluing), or a level 0 too
-    /// large to build.
+    /// No step: a level 0 too large to build, or components lacuna cannot derive within the
+    /// step's cell bound.
     NotInCertificate,
 }
 
@@ -450,7 +450,7 @@ impl Certification {
 /// Which step of `inst`'s certificate proves its exact holes and components: the levels of the
 /// rows `certificate_for` puts in the `face-homology` step.
 pub fn certification(inst: &Instance) -> Certification {
-    match crate::certificate::face_rows(&inst.types)
+    match crate::certificate::face_rows(&inst.types, &inst.glue)
         .ok()
         .and_then(|rows| rows.last().map(|r| r.level))
     {
@@ -520,7 +520,7 @@ impl MeasureReport {
             )),
             Certification::NotInCertificate => Some(
                 "the exact holes and components derived by lacuna, not in a certificate \
-                 (its claim does not carry an assembly's gluing)"
+                 (level 0 is beyond the face-homology step's cell bound)"
                     .to_string(),
             ),
         };

@@ -39,7 +39,13 @@ pub fn face_certificate(name: &str) -> Certificate {
     let input =
         lacuna::input::load_input(name).unwrap_or_else(|e| panic!("{name}: {}", e.render()));
     let ts = lacuna::topology::close_or_error(&input.faces(), &Limits::default()).expect("closes");
-    certificate_for(name, &ts, GenOptions::default()).expect("certifiable")
+    lacuna::certificate::certificate_for_assembly(
+        name,
+        &ts,
+        &input.assembly.canonical_glue(),
+        GenOptions::default(),
+    )
+    .expect("certifiable")
 }
 
 pub fn automaton_certificate(name: &str) -> Certificate {

@@ -15,6 +15,24 @@ pub struct FacesClaim {
     pub degree: usize,
     /// Cantor layout: the length of a gap relative to the length of a piece (a rational > 0).
     pub cantor_gap: String,
+    /// The sides glued together in an assembly of start faces (none for one face; omitted from
+    /// the JSON when empty). Only `face-homology` reads them: the closure, the system and the
+    /// ratio are those of the start faces whatever their gluing.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub glue: Vec<GluedSides>,
+}
+
+/// Two sides of start faces glued together: `[face, side]` each, the face an index into
+/// [`FacesClaim::faces`] and the side an index into its boundary (canonical rotation). The two
+/// sides are one edge read in opposite directions, as the sides two faces of the same orientation
+/// share.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GluedSides {
+    /// The first side, `[face, side]`.
+    pub a: [usize; 2],
+    /// The second side, `[face, side]`, read against the first.
+    pub b: [usize; 2],
 }
 
 /// `B` (connected) or `C` (Cantor-like).

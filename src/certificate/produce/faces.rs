@@ -6,16 +6,29 @@ use super::systems::{ratio_step, step_of_system, system};
 use super::{CertifyError, SOLID_CELLS};
 use crate::certificate::format::{
     Adjacency, Certificate, Claim, ClosureStep, DegeneracyStep, Edge, Face, FaceHomologyStep,
-    FaceRow, FacesClaim, Kind, Origin, Params, Pattern, Recipe, SpokeItem, Step, SubFace,
-    SubstitutionClaim, TypeRule,
+    FaceRow, FacesClaim, GluedSides, Kind, Origin, Params, Pattern, Recipe, SpokeItem, Step,
+    SubFace, SubstitutionClaim, TypeRule,
 };
 
 /// The full certificate of a closed type set: the claim (its start faces and the options of
 /// THEORY §6), the closure, the solution space (or conflict) of the generated constraint system,
-/// and the limit ratio. `input` is a label for people.
+/// and the limit ratio. `input` is a label for people. For an assembly of several faces, use
+/// [`certificate_for_assembly`] with its gluing: without it the start faces are taken apart.
 pub fn certificate_for(
     input: &str,
     ts: &crate::topology::TypeSet,
+    opts: crate::constraint::GenOptions,
+) -> Result<Certificate, CertifyError> {
+    certificate_for_assembly(input, ts, &[], opts)
+}
+
+/// [`certificate_for`] for start faces glued along `glue` (an assembly's
+/// [`crate::input::Assembly::canonical_glue`]): the claim carries the gluing, and the
+/// `face-homology` step is about the glued complex.
+pub fn certificate_for_assembly(
+    input: &str,
+    ts: &crate::topology::TypeSet,
+    glue: &[crate::topology::component::Glue],
     opts: crate::constraint::GenOptions,
 ) -> Result<Certificate, CertifyError> {
     let closure = closure_step(ts)?;
@@ -28,6 +41,13 @@ pub fn certificate_for(
         faces,
         degree: opts.degree.max(1),
         cantor_gap: opts.cantor_gap.to_string(),
+        glue: glue
+            .iter()
+            .map(|&[(fa, a), (fb, b)]| GluedSides {
+                a: [fa, a],
+                b: [fb, b],
+            })
+            .collect(),
     });
     let mut cert = Certificate::new(input, claim);
     cert.steps.push(Step::Closure(closure));
@@ -59,7 +79,7 @@ pub fn certificate_for(
     let (matrix, c, start) = substitution_of(ts);
     cert.steps
         .push(Step::LimitRatio(ratio_step(&matrix, &c, &start)?));
-    let rows = face_rows(ts)?;
+    let rows = face_rows(ts, glue)?;
     if !rows.is_empty() {
         cert.steps
             .push(Step::FaceHomology(FaceHomologyStep { rows }));
@@ -70,22 +90,23 @@ pub fn certificate_for(
 /// The most levels of a face's complex in its `face-homology` step.
 pub const FACE_LEVELS: u64 = 6;
 
-/// The rows of the `face-homology` step of a closure with one start face: cells by birth
-/// ([`crate::topology::volume::face_cells`]), components as `measure` derives them, and holes
-/// b1 = b0 − χ (a complex of cells in the plane encloses no surface: b2 = 0), from level 0 while
-/// a level has at most [`SOLID_CELLS`] cells, up to [`FACE_LEVELS`]. None for an assembly of faces
-/// (the claim does not carry their gluing).
-pub fn face_rows(ts: &crate::topology::TypeSet) -> Result<Vec<FaceRow>, CertifyError> {
+/// The rows of the `face-homology` step of a closure: the start faces glued along `glue`, cells
+/// by birth ([`crate::topology::volume::faces_cells`]), components as `measure` derives them,
+/// and holes b1 = b0 − χ (a complex of cells in the plane encloses no surface: b2 = 0), from
+/// level 0 while a level has at most [`SOLID_CELLS`] cells, up to [`FACE_LEVELS`].
+pub fn face_rows(
+    ts: &crate::topology::TypeSet,
+    glue: &[crate::topology::component::Glue],
+) -> Result<Vec<FaceRow>, CertifyError> {
     use num_traits::ToPrimitive;
-    let [start] = ts.start[..] else {
-        return Ok(Vec::new());
-    };
-    let cells = crate::topology::volume::face_cells(&ts.types[start].face, FACE_LEVELS)?;
-    let components: Vec<u64> = match crate::topology::component::components_by_induction(ts, &[]) {
+    let faces: Vec<crate::topology::Face> =
+        ts.start.iter().map(|&t| ts.types[t].face.clone()).collect();
+    let cells = crate::topology::volume::faces_cells(&faces, glue, FACE_LEVELS)?;
+    let components: Vec<u64> = match crate::topology::component::components_by_induction(ts, glue) {
         Ok(c) => vec![c as u64; cells.len()],
         Err(_) => match crate::topology::component::components_by_cells(
             ts,
-            &[],
+            glue,
             FACE_LEVELS as u32,
             SOLID_CELLS as usize,
         ) {

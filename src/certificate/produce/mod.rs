@@ -23,8 +23,8 @@ pub use automata::{
     lacuna_automaton, model_claim, model_of_claim,
 };
 pub use faces::{
-    certificate_for, certificate_for_substitution, closure_step, face_rows, lacuna_face,
-    substitution_of, SubstitutionParts, FACE_LEVELS,
+    certificate_for, certificate_for_assembly, certificate_for_substitution, closure_step,
+    face_rows, lacuna_face, substitution_of, SubstitutionParts, FACE_LEVELS,
 };
 use systems::rational;
 pub use systems::{certificate_for_system, ratio_step, solution_step};
@@ -92,7 +92,12 @@ pub fn recertify(
                 degree: f.degree,
                 cantor_gap: rational(&f.cantor_gap)?,
             };
-            certificate_for(label, &ts, opts)
+            let glue: Vec<crate::topology::component::Glue> = f
+                .glue
+                .iter()
+                .map(|g| [(g.a[0], g.a[1]), (g.b[0], g.b[1])])
+                .collect();
+            certificate_for_assembly(label, &ts, &glue, opts)
         }
         Claim::Automaton(a) if a.attractor.is_some() => {
             let m = model_of_claim(a)?;

@@ -343,16 +343,55 @@ pub fn solid_topology_of(
 /// lacunas are holes, not cells), from level 0 to `levels`, by birth as for solids: `(faces,
 /// edges, corners)` per level.
 pub fn face_cells(face: &Face, levels: u64) -> Result<Vec<[BigUint; 3]>> {
+    faces_cells(std::slice::from_ref(face), &[], levels)
+}
+
+/// The cells of the level-n complex of start faces glued along `glue` (pairs of (face, side),
+/// the two sides one edge read in opposite directions, each side glued at most once), as
+/// [`face_cells`]: a glued edge is one edge whose pieces and inner corners are counted once,
+/// and the corners at level 0 are the classes of the faces' corners under the gluing (they stay
+/// corners at every level, the ends of their edges' end pieces).
+pub fn faces_cells(
+    faces: &[Face],
+    glue: &[crate::topology::component::Glue],
+    levels: u64,
+) -> Result<Vec<[BigUint; 3]>> {
     let mut cells = Cells::default();
-    let f0 = cells.face(face)?;
-    let start_edges: Vec<usize> = face.boundary.iter().map(|&e| cells.edge(e)).collect();
+    let mut starts = Vec::new();
+    let mut base = Vec::with_capacity(faces.len());
+    let mut slots = 0usize;
+    for f in faces {
+        starts.push(cells.face(f)?);
+        base.push(slots);
+        slots += f.boundary.len();
+    }
+    // Corner i of a face starts its side i; gluing side a to side b (opposite directions) joins
+    // the start of a to the end of b and the end of a to the start of b.
+    let corner = |f: usize, i: usize| base[f] + i % faces[f].boundary.len();
+    let mut dsu = crate::topology::component::Dsu::new(slots);
+    let mut second = vec![false; slots];
+    for &[(fa, a), (fb, b)] in glue {
+        dsu.union(corner(fa, a), corner(fb, b + 1));
+        dsu.union(corner(fa, a + 1), corner(fb, b));
+        second[corner(fb, b)] = true;
+    }
+    let mut start_edges = Vec::new();
+    for (f, face) in faces.iter().enumerate() {
+        for (i, &e) in face.boundary.iter().enumerate() {
+            if !second[corner(f, i)] {
+                start_edges.push(cells.edge(e));
+            }
+        }
+    }
     let mut fac = vec![BigUint::zero(); cells.faces.len()];
     let mut edg = vec![BigUint::zero(); cells.edges.len()];
-    fac[f0] += 1u32;
+    for t in starts {
+        fac[t] += 1u32;
+    }
     for e in start_edges {
         edg[e] += 1u32;
     }
-    let mut corners = BigUint::from(face.boundary.len());
+    let mut corners = BigUint::from(dsu.classes());
     let mut out = Vec::new();
     for level in 0..=levels {
         let sum = |v: &[BigUint]| v.iter().sum::<BigUint>();

@@ -22,7 +22,7 @@ pub use assembly::{mirror_consistent, reversed, SharedFace, StartCells, StartMap
 pub use closure::{
     volume_counts, volumes_by_type, VolumeClosure, VolumeLevelCount, VolumeType, VolumeTypeSet,
 };
-pub use complex::{face_cells, solid_topology, solid_topology_of, SolidLevel};
+pub use complex::{face_cells, faces_cells, solid_topology, solid_topology_of, SolidLevel};
 pub use solid::{parse_volume, Solid};
 pub use step::{interior, subdivide_volume, Interior, Patch, Placed, SubVolume, VolumeSubdivision};
 pub use surface::Surface;
