@@ -153,7 +153,7 @@ fn shared_radius_fixture_is_certified() {
     // fixtures/shared-radius-pentagons.txt: two one-type classes P → 5P, P' → 5P', contribution 1
     // each, one start face of each: N^C_i = 2·5^i, N^L_i = 2(5^i − 1)/4, R = (1/2)/(1/2 + 2) = 1/5.
     let cert = face_certificate("shared-radius-pentagons");
-    let Some(Step::LimitRatio(r)) = cert.steps.last() else {
+    let Some(Step::LimitRatio(r)) = cert.steps.iter().find(|s| s.name() == "limit-ratio") else {
         panic!("no ratio step")
     };
     assert_eq!(r.classes.len(), 2);

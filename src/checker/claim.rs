@@ -530,7 +530,7 @@ pub(super) fn structure(c: &Claim, steps: &[Step]) -> Result<Vec<String>, String
         if !f.glue.is_empty() {
             // The gluing is read by face-homology only; a malformed one is refused whatever
             // the steps.
-            super::solid::start_faces(f).map_err(|e| format!("the claim's gluing: {e}"))?;
+            super::face_homology::start_faces(f).map_err(|e| format!("the claim's gluing: {e}"))?;
         }
     }
     if matches!(c, Claim::Faces(_) | Claim::Volumes(_)) && !filled[0] {

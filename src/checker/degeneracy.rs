@@ -21,7 +21,7 @@
 //! solution. The checker lists them from the closure's types and requires the step's lists.
 
 use super::closure::subdivide;
-use super::solid::level_one_corners;
+use super::face_homology::level_one_corners;
 use super::system::{layout, solution_layout, Layout};
 use super::{rat, within_work, Checked, Q};
 use crate::certificate::{

@@ -57,11 +57,13 @@ mod control_graph;
 mod convex_open_set;
 mod degeneracy;
 mod enclosure;
+mod face_homology;
 mod field;
 mod ifs;
 mod level_one;
 mod linear;
 mod neighbour;
+mod ranks;
 mod ratio;
 mod rule;
 mod series;
@@ -489,7 +491,7 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
                 ),
             },
             Step::FaceHomology(s) => match &cert.claim {
-                Claim::Faces(f) => self::solid::check_face(s, f),
+                Claim::Faces(f) => self::face_homology::check_face(s, f),
                 _ => Err("a face-homology step in a certificate whose claim has no faces".into()),
             },
             Step::SolidHomology(s) => match &cert.claim {

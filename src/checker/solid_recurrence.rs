@@ -34,7 +34,9 @@
 //! subdivision of a cell they share (a corner stays a corner, an edge keeps its ends).
 
 use super::closure::{least_rotation, piece_type};
-use super::solid::{betti, next, rank_f2, start, start_face, Complex, Parity};
+use super::face_homology::start_face;
+use super::ranks::{betti, rank_f2};
+use super::solid::{next, start, Complex, Parity};
 use super::volume::{checked_key, face_key, one_per_level, FaceKey, TypeKey};
 use crate::certificate::{
     Edge, Face, SolidRecurrenceStep, Volume, VolumeClosureStep, VolumesClaim,
