@@ -31,3 +31,4 @@ $L render kite-dart --level 14 --png docs/images/kite-dart.png
 # Seed 001's pictures (docs/GALLERY.md): the Takagi curve, the parabola's osculating circles.
 $L render fixtures/takagi.aut --level 8 --size 480 --png docs/images/seed001-takagi.png
 $L operators de-casteljau-edge --points '0 0; 1 1; 2 0' --svg docs/images/seed001-bezier-osculating.svg > /dev/null
+$L operators fixtures/alpha-two-valley.aut --points '0 0; 1 3; 2 0' --svg docs/images/seed001-alpha-two-valley.svg > /dev/null

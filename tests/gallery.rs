@@ -1023,7 +1023,8 @@ fn seed_001_commands_print_what_the_gallery_shows_and_the_hand_derived_values() 
     let output = |prefix: &str| -> String {
         let (cmd, shown) = commands
             .iter()
-            .find(|(c, _)| c.starts_with(prefix))
+            .find(|(c, _)| c == prefix)
+            .or_else(|| commands.iter().find(|(c, _)| c.starts_with(prefix)))
             .unwrap_or_else(|| panic!("docs/GALLERY.md has no `lacuna {prefix}…`"));
         let out = run_seed_001(cmd);
         // The lines shown are the command's, in its order (`…` stands for lines left out).
@@ -1222,15 +1223,102 @@ fn seed_001_commands_print_what_the_gallery_shows_and_the_hand_derived_values() 
     a.sort();
     b.sort();
     assert_eq!(a, b, "the caption matrices of docs/GALLERY.md");
-    for (c, _) in commands
-        .iter()
-        .filter(|(c, _)| c.starts_with("operators --matrix"))
-    {
+
+    // Figs. 20–21 in kind (fixtures/alpha-two-valley.aut): T0 = [1 2/5 9/25; 0 3/5 7/25; 0 0 9/25]
+    // is triangular, eigenvalues 1, 3/5, 9/25 = (3/5)²: α = 2; T1 is T0 with the coordinates
+    // reversed. The joint is T0's third column (9/25, 7/25, 9/25). Eigenvectors of T0:
+    // (T0 − 3/5)v = 0 gives z = 0, x = −y: v1 = (−1, 1, 0); (T0 − 9/25)v = 0 gives y = −7z/6 and
+    // 16x/25 = (7/15 − 9/25)z = 8z/75, x = z/6: v2 = (1/6, −7/6, 1). From c1 = e2:
+    // e2 − e0 = (−1, 0, 1) = (7/6)·v1 + 1·v2, β = 1/(7/6)² = 36/49, and with P = (0, 0), (1, 3),
+    // (2, 0) the curvature of that DCF is 2β·|V1 × V2|/|V1|³. By the symmetry (x ↦ 2 − x swaps
+    // the control points P0 and P2 and the operators), the left and right ranges at the joint
+    // are equal, as the paper says of its symmetric curves.
+    let project = |v: [f64; 3], p: [[f64; 2]; 3]| {
+        [
+            v[0] * p[0][0] + v[1] * p[1][0] + v[2] * p[2][0],
+            v[0] * p[0][1] + v[1] * p[1][1] + v[2] * p[2][1],
+        ]
+    };
+    let dcf_kappa = |beta: f64, v1: [f64; 3], v2: [f64; 3], p: [[f64; 2]; 3]| {
+        let (a, b) = (project(v1, p), project(v2, p));
+        2.0 * beta * (a[0] * b[1] - a[1] * b[0]).abs() / (a[0] * a[0] + a[1] * a[1]).powf(1.5)
+    };
+    let ranges = |out: &str, prefix: &str| -> Vec<[f64; 2]> {
+        out.lines()
+            .filter(|l| l.trim_start().starts_with(prefix))
+            .flat_map(|l| {
+                l.split('[')
+                    .skip(1)
+                    .map(|r| {
+                        let (lo, hi) = r[..r.find(']').unwrap()].split_once(", ").unwrap();
+                        [lo.parse().unwrap(), hi.parse().unwrap()]
+                    })
+                    .collect::<Vec<[f64; 2]>>()
+            })
+            .collect()
+    };
+    let out = output("operators fixtures/alpha-two-valley.aut");
+    assert!(
+        out.contains("joint c.T0|c.T1 at (9/25, 7/25, 9/25)"),
+        "{out}"
+    );
+    assert!(out.contains("c = (1, 0, 0), v1 = (-1, 1, 0), v2 = (1/6, -7/6, 1)"));
+    assert!(out.contains("from fix(c.T1): x1 = 7/6, x2 = 1, β = 36/49"));
+    let k = dcf_kappa(
+        36.0 / 49.0,
+        [-1.0, 1.0, 0.0],
+        [1.0 / 6.0, -7.0 / 6.0, 1.0],
+        [[0.0, 0.0], [1.0, 3.0], [2.0, 0.0]],
+    );
+    let start = ranges(&out, "right [")[0];
+    assert!(close(start[1], k, 1e-6), "κ from c1 by hand {k}: {start:?}");
+    assert!(
+        start[0] < start[1] - 1e-3,
+        "a range, not one value: {start:?}"
+    );
+    let (left, right) = (ranges(&out, "left ["), ranges(&out, "right ["));
+    assert_eq!(left[0], right[1], "the joint: left and right ranges equal");
+    assert_eq!(left[1], start, "the end mirrors the start");
+
+    // Fig. 19 on a curve of our own (fixtures/negative-lambda1-curve.aut): T0 = [1 27/20 1/4;
+    // 0 −7/20 251/400; 0 0 49/400], triangular, λ1 = −7/20, λ2 = 49/400 = λ1². (T0 + 7/20)v = 0
+    // gives z = 0, x = −y: v1 = (−1, 1, 0). (T0 − 49/400)v = 0: −189y/400 + 251z/400 = 0, so
+    // y = 251z/189, and 351x/400 = −(27/20·251/189 + 1/4)z = −(251/140 + 35/140)z, so
+    // x = −440z/189: v2 = (−440/189, 251/189, 1). From c1 = e2: (−1, 0, 1) = x1·v1 + x2·v2 gives
+    // x2 = 1, x1 = −251/189, β = x2/x1² = (189/251)² = 35721/63001; with P = (0, 0), (1, 1),
+    // (2, 0) its curvature lies in the range on both sides. The range has no upper bound (the
+    // curve crosses c + t·v2, where x1 = 0): the sampled κsup must grow with the level.
+    let curve = "operators fixtures/negative-lambda1-curve.aut --points '0 0; 1 1; 2 0'";
+    let out = output(curve);
+    assert!(out.starts_with("c.T0 (3×3, barycentric, contractive): oscillating"));
+    assert!(
+        out.contains("v1 = (-1, 1, 0), v2 = (-440/189, 251/189, 1)"),
+        "{out}"
+    );
+    assert!(out.contains("from fix(c.T1): x1 = -251/189, x2 = 1, β = 35721/63001"));
+    let k = dcf_kappa(
+        35721.0 / 63001.0,
+        [-1.0, 1.0, 0.0],
+        [-440.0 / 189.0, 251.0 / 189.0, 1.0],
+        [[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]],
+    );
+    let eight = ranges(&out, "c.T0: x1 > 0");
+    assert_eq!(eight.len(), 2, "both sides of c0");
+    assert_eq!(eight[0], eight[1], "both sub-sequences, one range");
+    assert!(eight[0][0] <= k && k <= eight[0][1], "{k} in {eight:?}");
+    let twelve = ranges(&output(&format!("{curve} --level 12")), "c.T0: x1 > 0");
+    assert!(
+        twelve[0][1] > 100.0 * eight[0][1] && twelve[0][0] <= eight[0][0],
+        "level 8: {eight:?}, level 12: {twelve:?}"
+    );
+
+    // Every command of the section prints what the page shows (and draws what it shows).
+    for (c, _) in &commands {
         output(c);
     }
     assert_eq!(
         commands.len(),
-        11,
+        14,
         "the seed 001 commands of docs/GALLERY.md"
     );
 }
