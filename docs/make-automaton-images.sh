@@ -28,3 +28,7 @@ $L morph fixtures/gasket-to-carpet-start.aut fixtures/gasket-to-carpet-end.aut -
 $L morph fixtures/hexagonal-gasket-samples.aut lemniscate-fractal --frames 8 --level 3 --svg docs/images/hexagonal-gasket-to-lemniscate.svg
 # Seed 004's fractal kite (docs/GALLERY.md, docs/GUIDE.md).
 $L render kite-dart --level 14 --png docs/images/kite-dart.png
+# Seed 001's pictures (docs/GALLERY.md): the Takagi curve, the parabola's osculating circles.
+$L render fixtures/takagi.aut --level 8 --size 480 --png docs/images/seed001-takagi.png
+$L operators de-casteljau-edge --points '0 0; 1 1; 2 0' --svg docs/images/seed001-bezier-osculating.svg > /dev/null
+$L operators fixtures/alpha-two-valley.aut --points '0 0; 1 3; 2 0' --svg docs/images/seed001-alpha-two-valley.svg > /dev/null

@@ -879,3 +879,446 @@ fn seed_004_constraint_figures_have_their_hand_derived_degrees_of_freedom() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+// ---- Seed 001: differential behaviour of BC-IFS curves ----
+
+/// The seed-001 section of docs/GALLERY.md: every `$ lacuna …` line of its console blocks, with
+/// the output lines shown under it (`…` marks lines left out).
+fn seed_001_commands() -> Vec<(String, Vec<String>)> {
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/GALLERY.md"))
+        .expect("docs/GALLERY.md");
+    let start = text.find("## Seed 001").expect("a seed 001 section");
+    let end = text.find("## Seed 002").expect("a seed 002 section");
+    let mut out: Vec<(String, Vec<String>)> = Vec::new();
+    let mut inside = false;
+    for line in text[start..end].lines() {
+        if line.starts_with("```") {
+            inside = line == "```console";
+        } else if !inside {
+        } else if let Some(cmd) = line.strip_prefix("$ lacuna ") {
+            out.push((cmd.to_string(), Vec::new()));
+        } else if let Some(last) = out.last_mut() {
+            last.1.push(line.to_string());
+        }
+    }
+    out
+}
+
+/// Splits a command line as the shell does for the gallery's commands: words, and `'…'` quoted.
+fn shell_words(line: &str) -> Vec<String> {
+    let (mut words, mut cur, mut quoted, mut any) = (Vec::new(), String::new(), false, false);
+    for ch in line.chars() {
+        match ch {
+            '\'' => (quoted, any) = (!quoted, true),
+            ' ' if !quoted => {
+                if any {
+                    words.push(std::mem::take(&mut cur));
+                }
+                any = false;
+            }
+            _ => (cur.push(ch), any = true).1,
+        }
+    }
+    if any {
+        words.push(cur);
+    }
+    words
+}
+
+/// Runs one gallery command, its picture written to a temporary file instead (compared byte for
+/// byte with the committed one): the standard output, with the temporary path put back.
+fn run_seed_001(cmd: &str) -> String {
+    let mut args = shell_words(cmd);
+    let dir = std::env::temp_dir().join(format!("lacuna-seed001-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut picture = None;
+    if let Some(i) = args.iter().position(|a| a == "--svg" || a == "--png") {
+        let committed = args[i + 1].clone();
+        let fresh = dir.join(committed.rsplit('/').next().unwrap());
+        args[i + 1] = fresh.to_str().unwrap().to_string();
+        picture = Some((committed, fresh));
+    }
+    let run: Vec<&str> = args.iter().map(String::as_str).collect();
+    let (code, out, err) = lacuna(&run);
+    assert_eq!(code, 0, "lacuna {cmd}: {err}");
+    let mut out = out;
+    if let Some((committed, fresh)) = picture {
+        let want = std::fs::read(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(&committed))
+            .unwrap_or_else(|_| panic!("{committed} is missing"));
+        assert!(
+            std::fs::read(&fresh).unwrap() == want,
+            "{committed} differs from `lacuna {cmd}`: run docs/make-automaton-images.sh"
+        );
+        out = out.replace(fresh.to_str().unwrap(), &committed);
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    out
+}
+
+/// A fraction n/d, written as lacuna writes it (`n/d`, or `n` when d = 1), with d > 0.
+#[derive(Clone, Copy, PartialEq, Debug)]
+struct Frac(i64, i64);
+
+impl Frac {
+    fn new(n: i64, d: i64) -> Frac {
+        let g = gcd(n.abs(), d.abs());
+        let s = if d < 0 { -1 } else { 1 };
+        Frac(s * n / g, s * d / g)
+    }
+    fn text(self) -> String {
+        match self.1 {
+            1 => self.0.to_string(),
+            d => format!("{}/{d}", self.0),
+        }
+    }
+    fn f(self) -> f64 {
+        self.0 as f64 / self.1 as f64
+    }
+    fn one_minus(self) -> Frac {
+        Frac::new(self.1 - self.0, self.1)
+    }
+}
+
+fn gcd(a: i64, b: i64) -> i64 {
+    if b == 0 {
+        a
+    } else {
+        gcd(b, a % b)
+    }
+}
+
+/// The paper's class of an operator from its two leading eigenvalues (§4–§6): λ1 < 0 makes the
+/// tangent oscillate; otherwise compare |λ2| with λ1² — α = log|λ2| / log λ1 is 2 exactly when
+/// they are equal (finite range), above 2 when |λ2| is smaller (flat), below when larger (sharp).
+/// Compared over the integers: |n2|/d2 against n1²/d1².
+fn hand_class(l1: Frac, l2: Frac) -> &'static str {
+    if l1.0 < 0 {
+        return "oscillating";
+    }
+    let (lhs, rhs) = (
+        (l2.0.abs() as i128) * (l1.1 as i128).pow(2),
+        (l1.0 as i128).pow(2) * l2.1 as i128,
+    );
+    match lhs.cmp(&rhs) {
+        std::cmp::Ordering::Equal => "finite",
+        std::cmp::Ordering::Less => "flat",
+        std::cmp::Ordering::Greater => "sharp",
+    }
+}
+
+/// Takagi's function `Σ_n dist(2ⁿx, Z)/2ⁿ`; for a dyadic x of denominator 2^k the terms of
+/// n ≥ k vanish, so 60 terms are exact up to rounding.
+fn takagi(x: f64) -> f64 {
+    (0..60)
+        .map(|n| {
+            let y = x * 2f64.powi(n);
+            (y - y.round()).abs() / 2f64.powi(n)
+        })
+        .sum()
+}
+
+#[test]
+fn seed_001_commands_print_what_the_gallery_shows_and_the_hand_derived_values() {
+    let commands = seed_001_commands();
+    let output = |prefix: &str| -> String {
+        let (cmd, shown) = commands
+            .iter()
+            .find(|(c, _)| c == prefix)
+            .or_else(|| commands.iter().find(|(c, _)| c.starts_with(prefix)))
+            .unwrap_or_else(|| panic!("docs/GALLERY.md has no `lacuna {prefix}…`"));
+        let out = run_seed_001(cmd);
+        // The lines shown are the command's, in its order (`…` stands for lines left out).
+        let printed: Vec<&str> = out.lines().collect();
+        let mut from = 0;
+        for line in shown.iter().filter(|l| l.as_str() != "…") {
+            let at = printed[from..]
+                .iter()
+                .position(|l| l == line)
+                .unwrap_or_else(|| panic!("`lacuna {cmd}` no longer prints\n{line}\n{out}"));
+            from += at + 1;
+        }
+        out
+    };
+
+    // Fig. 1. The Takagi maps w0(x, y) = (x/2, x/2 + y/2), w1(x, y) = ((x + 1)/2, (1 − x)/2 + y/2)
+    // in the barycentric coordinates (1 − x − y/2, y, x − y/2) of P0 = (0, 0), P1 = (1/2, 1),
+    // P2 = (1, 0): column j of T_i holds w_i(P_j). Both have eigenvalues 1, 1/2, 1/2: T0 keeps
+    // e0, and its block on (e1, e2) is [3/4 1/2; −1/8 1/4], trace 1 = 1/2 + 1/2, determinant
+    // 3/16 + 1/16 = 1/4 = (1/2)², but not I/2: one eigenvector (a Jordan block); T1 is T0 with
+    // the coordinates reversed.
+    let bary = |(x, y): (f64, f64)| [1.0 - x - y / 2.0, y, x - y / 2.0];
+    let w0 = |(x, y): (f64, f64)| (x / 2.0, x / 2.0 + y / 2.0);
+    let w1 = |(x, y): (f64, f64)| ((x + 1.0) / 2.0, (1.0 - x) / 2.0 + y / 2.0);
+    let p = [(0.0, 0.0), (0.5, 1.0), (1.0, 0.0)];
+    let fixture =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/fixtures/takagi.aut"))
+            .unwrap();
+    for (name, w) in [("c.T0", &w0 as &dyn Fn(_) -> _), ("c.T1", &w1)] {
+        let line = fixture
+            .lines()
+            .find(|l| l.starts_with(&format!("sub {name} ")))
+            .unwrap();
+        let inner = &line[line.find('[').unwrap() + 1..line.find(']').unwrap()];
+        let rows: Vec<Vec<f64>> = inner
+            .split(';')
+            .map(|r| {
+                r.split_whitespace()
+                    .map(|e| match e.split_once('/') {
+                        Some((n, d)) => n.parse::<f64>().unwrap() / d.parse::<f64>().unwrap(),
+                        None => e.parse().unwrap(),
+                    })
+                    .collect()
+            })
+            .collect();
+        for (j, &pj) in p.iter().enumerate() {
+            let col = bary(w(pj));
+            for i in 0..3 {
+                assert!(close(rows[i][j], col[i], 1e-15), "{name}[{i}][{j}]");
+            }
+        }
+    }
+    let out = output("operators fixtures/takagi.aut");
+    let half = Frac::new(1, 2).text();
+    assert_eq!(
+        out.matches(&format!("eigenvalues: 1, {half} (×2)")).count(),
+        2,
+        "{out}"
+    );
+    assert_eq!(
+        out.matches(&format!("degenerate — λ1 = {half} is repeated"))
+            .count(),
+        2
+    );
+    // The picture: every leaf of level 6 is the image of the control triangle; the images of P0
+    // and P2 are points of the graph, whose y is T(x).
+    for leaf in pieces("fixtures/takagi.aut", "6") {
+        for q in [leaf[0], leaf[2]] {
+            assert!(
+                close(q[1], takagi(q[0]), 1e-12),
+                "{q:?}: T = {}",
+                takagi(q[0])
+            );
+        }
+    }
+    output("render fixtures/takagi.aut");
+
+    // Fig. 2 and §3. The de Casteljau halves are triangular: eigenvalues their diagonals, 1, 1/2,
+    // 1/4; λ2 = 1/4 = (1/2)² = λ1², α = 2. T0 fixes e0; (T0 − I/2)v = 0 gives v2 = 0 and
+    // v0 + v1 = 0: v1 = (−1, 1, 0). T1 fixes e2; (T1 − I/2)v = 0 gives v0 = 0 and v1 + v2 = 0:
+    // v1 = (0, −1, 1). They join at T0·e2 = T0's third column = (1/4, 1/2, 1/4) = T1's first
+    // column = T1·e0.
+    let (one, q2, q4) = (Frac::new(1, 1), Frac::new(1, 2), Frac::new(1, 4));
+    let out = output("operators --matrix '[1 1/2 1/4;");
+    assert_eq!(
+        out.matches(&format!(
+            "eigenvalues: {}, {}, {}",
+            one.text(),
+            q2.text(),
+            q4.text()
+        ))
+        .count(),
+        2
+    );
+    assert_eq!(hand_class(q2, q4), "finite");
+    assert_eq!(out.matches("finite — λ2 = λ1²").count(), 2, "{out}");
+    assert!(out.contains("fixed point: (1, 0, 0)") && out.contains("fixed point: (0, 0, 1)"));
+    assert!(out.contains("tangent v1 = (-1, 1, 0)") && out.contains("tangent v1 = (0, -1, 1)"));
+    let out = output("operators de-casteljau-edge");
+    assert!(out.contains("joint e.T0|e.T1 at (1/4, 1/2, 1/4)"), "{out}");
+
+    // The Bézier curve of (0, 0), (1, 1), (2, 0): B(t) = (2t, 2t − 2t²), B' = (2, 2 − 4t),
+    // B'' = (0, −4), κ = |B' × B''|/|B'|³ = 8/|B'|³: 8/8^(3/2) = 1/(2√2) at t = 0 and 1, 8/2³ = 1
+    // at t = 1/2. The DCF of T0 from c1 = e2: e2 − e0 = (−1, 0, 1) = 2·(−1, 1, 0) + 1·(1, −2, 1),
+    // x1 = 2, x2 = 1, β = x2/x1² = 1/4; κ = 2β·|V1 × V2|/|V1|³ with V1 = (1, 1), V2 = (0, −2):
+    // 2·(1/4)·2/(2√2) = 1/(2√2) again. One DCF: every range is a single value.
+    let out = output("operators de-casteljau-edge --points");
+    assert!(
+        out.contains("from fix(e.T1): x1 = 2, x2 = 1, β = 1/4"),
+        "{out}"
+    );
+    let end = 1.0 / (2.0 * 2f64.sqrt());
+    let lines: Vec<&str> = out.lines().collect();
+    let dyadic = lines
+        .iter()
+        .position(|l| l.starts_with("pseudo-curvature at dyadic points"))
+        .unwrap();
+    let mut seen = 0;
+    let mut kappa = 0.0;
+    for l in &lines[dyadic..] {
+        let l = l.trim();
+        if let Some(t) = l.strip_prefix("t = ") {
+            kappa = match t.split(' ').next().unwrap() {
+                "1/2" => 1.0,
+                _ => end,
+            };
+        } else if l.starts_with("left [") || l.starts_with("right [") {
+            let inner = &l[l.find('[').unwrap() + 1..l.find(']').unwrap()];
+            let (lo, hi) = inner.split_once(", ").unwrap();
+            for v in [lo, hi] {
+                let v: f64 = v.parse().unwrap();
+                assert!(close(v, kappa, 1e-6), "{l}: by hand {kappa}");
+            }
+            seen += 1;
+        }
+    }
+    assert_eq!(seen, 4, "{out}");
+
+    // Figs. 16–22: the eigenvalues each caption gives, read as fractions (signs from the text:
+    // Fig. 16 has λ2 < 0, Fig. 19 λ1 < 0), in the matrix [1 1−λ1 1−λ2; 0 λ1 0; 0 0 λ2]:
+    // barycentric (columns sum to 1), triangular, so its eigenvalues are 1, λ1, λ2.
+    let f = Frac::new;
+    let captions = [
+        ("16", f(3, 5), f(-9, 25)),
+        ("17", f(11, 20), f(121, 400)),
+        ("18", f(7, 10), f(49, 100)),
+        ("19", f(-7, 20), f(49, 400)),
+        ("20", f(3, 5), f(9, 25)),
+        ("21", f(13, 20), f(169, 400)),
+        ("22 left", f(7, 10), f(343, 1000)),
+        ("22 right T0", f(1, 2), f(221, 625)),
+        ("22 right T1", f(11, 20), f(4079, 10000)),
+    ];
+    let mut matrices = Vec::new();
+    for (fig, l1, l2) in captions {
+        let m = format!(
+            "[1 {} {}; 0 {} 0; 0 0 {}]",
+            l1.one_minus().text(),
+            l2.one_minus().text(),
+            l1.text(),
+            l2.text()
+        );
+        let want = hand_class(l1, l2);
+        let (code, out, err) = lacuna(&["operators", "--matrix", &m]);
+        assert_eq!(code, 0, "{m}: {err}");
+        assert!(
+            out.starts_with(&format!(
+                "matrix (3×3, barycentric, contractive): {want} — "
+            )),
+            "Fig. {fig}: by hand {want}; lacuna: {out}"
+        );
+        match want {
+            "flat" | "sharp" => {
+                let alpha = l2.f().abs().ln() / l1.f().ln();
+                let shown = out.split("α ≈ ").nth(1).unwrap().trim();
+                assert!(close(shown.parse().unwrap(), alpha, 1e-6), "{fig}: {alpha}");
+            }
+            "finite" if l2.0 < 0 => assert!(out.contains("λ2 = -λ1²"), "{out}"),
+            _ => {}
+        }
+        matrices.push(m);
+    }
+    // The page runs exactly these matrices, and its table states the classes derived above.
+    let documented: Vec<String> = commands
+        .iter()
+        .filter(|(c, _)| c.starts_with("operators --matrix") && !c.contains("[1 1/2 1/4;"))
+        .flat_map(|(c, _)| {
+            shell_words(c)
+                .into_iter()
+                .filter(|w| w.starts_with('['))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    let mut a = documented.clone();
+    let mut b = matrices.clone();
+    a.sort();
+    b.sort();
+    assert_eq!(a, b, "the caption matrices of docs/GALLERY.md");
+
+    // Figs. 20–21 in kind (fixtures/alpha-two-valley.aut): T0 = [1 2/5 9/25; 0 3/5 7/25; 0 0 9/25]
+    // is triangular, eigenvalues 1, 3/5, 9/25 = (3/5)²: α = 2; T1 is T0 with the coordinates
+    // reversed. The joint is T0's third column (9/25, 7/25, 9/25). Eigenvectors of T0:
+    // (T0 − 3/5)v = 0 gives z = 0, x = −y: v1 = (−1, 1, 0); (T0 − 9/25)v = 0 gives y = −7z/6 and
+    // 16x/25 = (7/15 − 9/25)z = 8z/75, x = z/6: v2 = (1/6, −7/6, 1). From c1 = e2:
+    // e2 − e0 = (−1, 0, 1) = (7/6)·v1 + 1·v2, β = 1/(7/6)² = 36/49, and with P = (0, 0), (1, 3),
+    // (2, 0) the curvature of that DCF is 2β·|V1 × V2|/|V1|³. By the symmetry (x ↦ 2 − x swaps
+    // the control points P0 and P2 and the operators), the left and right ranges at the joint
+    // are equal, as the paper says of its symmetric curves.
+    let project = |v: [f64; 3], p: [[f64; 2]; 3]| {
+        [
+            v[0] * p[0][0] + v[1] * p[1][0] + v[2] * p[2][0],
+            v[0] * p[0][1] + v[1] * p[1][1] + v[2] * p[2][1],
+        ]
+    };
+    let dcf_kappa = |beta: f64, v1: [f64; 3], v2: [f64; 3], p: [[f64; 2]; 3]| {
+        let (a, b) = (project(v1, p), project(v2, p));
+        2.0 * beta * (a[0] * b[1] - a[1] * b[0]).abs() / (a[0] * a[0] + a[1] * a[1]).powf(1.5)
+    };
+    let ranges = |out: &str, prefix: &str| -> Vec<[f64; 2]> {
+        out.lines()
+            .filter(|l| l.trim_start().starts_with(prefix))
+            .flat_map(|l| {
+                l.split('[')
+                    .skip(1)
+                    .map(|r| {
+                        let (lo, hi) = r[..r.find(']').unwrap()].split_once(", ").unwrap();
+                        [lo.parse().unwrap(), hi.parse().unwrap()]
+                    })
+                    .collect::<Vec<[f64; 2]>>()
+            })
+            .collect()
+    };
+    let out = output("operators fixtures/alpha-two-valley.aut");
+    assert!(
+        out.contains("joint c.T0|c.T1 at (9/25, 7/25, 9/25)"),
+        "{out}"
+    );
+    assert!(out.contains("c = (1, 0, 0), v1 = (-1, 1, 0), v2 = (1/6, -7/6, 1)"));
+    assert!(out.contains("from fix(c.T1): x1 = 7/6, x2 = 1, β = 36/49"));
+    let k = dcf_kappa(
+        36.0 / 49.0,
+        [-1.0, 1.0, 0.0],
+        [1.0 / 6.0, -7.0 / 6.0, 1.0],
+        [[0.0, 0.0], [1.0, 3.0], [2.0, 0.0]],
+    );
+    let start = ranges(&out, "right [")[0];
+    assert!(close(start[1], k, 1e-6), "κ from c1 by hand {k}: {start:?}");
+    assert!(
+        start[0] < start[1] - 1e-3,
+        "a range, not one value: {start:?}"
+    );
+    let (left, right) = (ranges(&out, "left ["), ranges(&out, "right ["));
+    assert_eq!(left[0], right[1], "the joint: left and right ranges equal");
+    assert_eq!(left[1], start, "the end mirrors the start");
+
+    // Fig. 19 on a curve of our own (fixtures/negative-lambda1-curve.aut): T0 = [1 27/20 1/4;
+    // 0 −7/20 251/400; 0 0 49/400], triangular, λ1 = −7/20, λ2 = 49/400 = λ1². (T0 + 7/20)v = 0
+    // gives z = 0, x = −y: v1 = (−1, 1, 0). (T0 − 49/400)v = 0: −189y/400 + 251z/400 = 0, so
+    // y = 251z/189, and 351x/400 = −(27/20·251/189 + 1/4)z = −(251/140 + 35/140)z, so
+    // x = −440z/189: v2 = (−440/189, 251/189, 1). From c1 = e2: (−1, 0, 1) = x1·v1 + x2·v2 gives
+    // x2 = 1, x1 = −251/189, β = x2/x1² = (189/251)² = 35721/63001; with P = (0, 0), (1, 1),
+    // (2, 0) its curvature lies in the range on both sides. The range has no upper bound (the
+    // curve crosses c + t·v2, where x1 = 0): the sampled κsup must grow with the level.
+    let curve = "operators fixtures/negative-lambda1-curve.aut --points '0 0; 1 1; 2 0'";
+    let out = output(curve);
+    assert!(out.starts_with("c.T0 (3×3, barycentric, contractive): oscillating"));
+    assert!(
+        out.contains("v1 = (-1, 1, 0), v2 = (-440/189, 251/189, 1)"),
+        "{out}"
+    );
+    assert!(out.contains("from fix(c.T1): x1 = -251/189, x2 = 1, β = 35721/63001"));
+    let k = dcf_kappa(
+        35721.0 / 63001.0,
+        [-1.0, 1.0, 0.0],
+        [-440.0 / 189.0, 251.0 / 189.0, 1.0],
+        [[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]],
+    );
+    let eight = ranges(&out, "c.T0: x1 > 0");
+    assert_eq!(eight.len(), 2, "both sides of c0");
+    assert_eq!(eight[0], eight[1], "both sub-sequences, one range");
+    assert!(eight[0][0] <= k && k <= eight[0][1], "{k} in {eight:?}");
+    let twelve = ranges(&output(&format!("{curve} --level 12")), "c.T0: x1 > 0");
+    assert!(
+        twelve[0][1] > 100.0 * eight[0][1] && twelve[0][0] <= eight[0][0],
+        "level 8: {eight:?}, level 12: {twelve:?}"
+    );
+
+    // Every command of the section prints what the page shows (and draws what it shows).
+    for (c, _) in &commands {
+        output(c);
+    }
+    assert_eq!(
+        commands.len(),
+        14,
+        "the seed 001 commands of docs/GALLERY.md"
+    );
+}
