@@ -1,6 +1,8 @@
 """Issue #16 comparison: lacuna's exact eigen analysis against python-flint on the same matrices.
 
 Usage: flint_operators.py MATRICES LACUNA_BINARY
+       flint_operators.py MATRICES --flint-only   (FLINT's work once, nothing printed: for timing
+       the whole Python process, interpreter start and import included, in compare_peers.sh)
 MATRICES holds one matrix per line, `[a b; c d]` with exact rationals (exported by
 `lacuna operators F0 --json`). FLINT computes, for every matrix, the characteristic polynomial
 (fmpq_mat.charpoly), its factorisation over Q (fmpq_poly.factor) and certified complex roots of
@@ -57,6 +59,9 @@ def cpu_now():
 def main():
     lines = [l for l in open(sys.argv[1]) if l.strip()]
     mats = [parse(l) for l in lines]
+    if sys.argv[2] == "--flint-only":
+        flint_run(mats)
+        return
     binary = sys.argv[2]
     args = [binary, "operators"]
     for l in lines:

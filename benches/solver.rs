@@ -1,7 +1,9 @@
 //! Benchmark (issue #4): the exact solver on the constraint systems of a series of growing
 //! closures. For each face: unknowns, equations, the time to solve (best of 3, release), and
 //! whether the system is consistent. With `--export DIR` it also writes each system as a sparse
-//! text matrix (`lacuna::constraint::write_text`) for the FLINT comparison in `benches/compare_flint.sh`.
+//! text matrix (`lacuna::constraint::write_text`) for the FLINT comparison in `benches/compare_flint.sh`
+//! and the SymPy one in `benches/compare_peers.sh`: the systems of at most 20,000 unknowns, or of
+//! at most `EXPORT_MAX_UNKNOWNS` when that variable is set.
 //!
 //! Run: `cargo bench --bench solver [-- --export DIR]`.
 
@@ -28,6 +30,10 @@ const SERIES: &[&str] = &[
 
 fn main() {
     let export = common::export_dir();
+    let export_max: usize = std::env::var("EXPORT_MAX_UNKNOWNS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(20_000);
     println!(
         "{:>3}  {:>6}  {:>9}  {:>9}  {:>10}  {:>10}  face",
         "#", "types", "unknowns", "equations", "solve (s)", "consistent"
@@ -46,7 +52,7 @@ fn main() {
             lin.system.rows.len()
         );
         if let Some(dir) = &export {
-            if lin.system.unknowns <= 20_000 {
+            if lin.system.unknowns <= export_max {
                 let path = format!("{dir}/system_{k}.txt");
                 let file = std::io::BufWriter::new(std::fs::File::create(&path).expect("create"));
                 write_text(&lin.system, TextLayout::Sparse, file).expect("write");
