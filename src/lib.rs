@@ -44,6 +44,8 @@ pub mod measure;
 
 pub mod mesh;
 
+pub mod family;
+
 pub mod export;
 
 pub mod meshcheck;

@@ -22,6 +22,7 @@ const LAYERS: &[(&str, u32)] = &[
     ("meshcheck", 6),
     ("measure", 6),
     ("mesh", 7),
+    ("family", 7),
     ("export", 8),
 ];
 

@@ -3,42 +3,16 @@
 //! the independent mesh checker of `lacuna check-mesh`.
 
 use super::{json, limits, run};
-use lacuna::analysis::{Check, Checks, ExploreSpec, Outcome, Witness};
+use lacuna::analysis::ExploreSpec;
 use lacuna::Error;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-/// The `certificate` property of a face, as the command line checks it: the certificate of its
-/// closed type set is produced and every step proved by the independent checker.
-fn certificate_outcome(_: &lacuna::topology::Face, ts: &lacuna::topology::TypeSet) -> Outcome {
-    let cert = match lacuna::certificate::certificate_for(
-        "explore",
-        ts,
-        lacuna::constraint::GenOptions::default(),
-    ) {
-        Ok(c) => c,
-        Err(e) => {
-            return Outcome::Fail(Witness {
-                kind: "certificate".into(),
-                detail: vec![format!("no certificate: {e}")],
-            })
-        }
-    };
-    let report = lacuna::checker::check(&cert);
-    match report.all_proved() {
-        true => Outcome::Pass,
-        false => Outcome::Fail(Witness {
-            kind: "certificate".into(),
-            detail: report.to_text().lines().map(String::from).collect(),
-        }),
-    }
-}
-
 /// Shard `shard` (0-based) of `shards` of a family, as `lacuna explore --shard i/n --json`
-/// explores it: `{"results": [one per boundary], "summary": {...}}`. The `holes` property
-/// measures geometry and is the command line's only.
+/// explores it: `{"results": [one per boundary], "summary": {...}}`, with the same properties
+/// (`holes` measured at `holes_level` under the `max_holes_cells` estimate).
 #[pyfunction]
-#[pyo3(signature = (edges, max_length, params, algorithm, properties, random, seed, shard, shards, shrink_budget, threads, limits=None))]
+#[pyo3(signature = (edges, max_length, params, algorithm, properties, random, seed, shard, shards, shrink_budget, threads, holes_level=lacuna::family::DEFAULT_HOLES_LEVEL, max_holes_cells=lacuna::family::DEFAULT_MAX_HOLES_CELLS, limits=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn explore_shard(
     py: Python<'_>,
@@ -53,6 +27,8 @@ pub(crate) fn explore_shard(
     shards: u64,
     shrink_budget: usize,
     threads: usize,
+    holes_level: u32,
+    max_holes_cells: u64,
     limits: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
     let l = self::limits(limits)?;
@@ -60,11 +36,6 @@ pub(crate) fn explore_shard(
         let algorithm = lacuna::topology::Algorithm::parse(algorithm.trim(), 1, &[])
             .map_err(|e| e.within(&lacuna::Source::command_line(&algorithm), 1, 0))?;
         let properties = lacuna::analysis::parse_properties(&properties)?;
-        if properties.contains(&lacuna::analysis::Property::Holes) {
-            return Err(Error::Usage(
-                "the holes property measures every face's geometry: run it with `lacuna explore --properties holes` (and `--shard i/n` on several machines)".into(),
-            ));
-        }
         if shards == 0 || shard >= shards {
             return Err(Error::Usage(format!(
                 "shard {shard} of {shards}: shards are numbered from 0 to shards − 1"
@@ -82,14 +53,12 @@ pub(crate) fn explore_shard(
             shrink_budget,
             threads: threads.clamp(1, 256),
         };
-        let certificate: Check = &certificate_outcome;
-        let checks = Checks {
-            certificate: Some(certificate),
-            holes: None,
-        };
+        lacuna::family::check_holes_work(&spec, holes_level, max_holes_cells, &l)?;
         let mut results = Vec::new();
-        let summary = lacuna::analysis::explore(&spec, &l, &checks, |r| {
-            results.push(serde_json::to_value(r).expect("results serialise"))
+        let summary = lacuna::family::with_checks(holes_level, &l, |checks| {
+            lacuna::analysis::explore(&spec, &l, checks, |r| {
+                results.push(serde_json::to_value(r).expect("results serialise"))
+            })
         })?;
         Ok(json(
             &serde_json::json!({ "results": results, "summary": summary }),

@@ -60,8 +60,9 @@ const LIMIT_KEYS: [&str; 9] = [
 /// `limits={'max_level': …}` (the keyword every method takes), `--max-cells` the keyword
 /// `max_cells=…`; other text is unchanged.
 fn pythonic(message: &str) -> String {
+    let message = message.replace("--holes-level", "holes_level=…");
     let mut out = String::with_capacity(message.len());
-    let mut rest = message;
+    let mut rest = message.as_str();
     while let Some(at) = rest.find("--max-") {
         out.push_str(&rest[..at]);
         let tail = &rest[at + 2..];
@@ -74,6 +75,7 @@ fn pythonic(message: &str) -> String {
                 out.push_str(&format!("limits={{'{}': …}}", n.replace('-', "_")))
             }
             "max-cells" => out.push_str("max_cells=…"),
+            "max-holes-cells" => out.push_str("max_holes_cells=…"),
             n => {
                 out.push_str("--");
                 out.push_str(n);

@@ -67,9 +67,22 @@ def test_explore_as_a_dataframe():
     assert list(df["face"]) == [r.face for r in e.results]
 
 
+def test_the_holes_property_is_the_command_line_s(cli_text):
+    # The holes property measures every face's geometry: the same results as
+    # `lacuna explore --properties holes`, and the same limit, worded for Python.
+    code, lines, summary = _cli_lines(cli_text, "--properties", "holes")
+    e = lacuna.explore(**FAMILY, properties="holes")
+    assert [r.data for r in e.results] == lines
+    assert e.summary.passed == summary["passed"] and e.ok == (code == 0)
+    with pytest.raises(lacuna.LimitError) as err:
+        lacuna.explore(**FAMILY, properties="holes", max_holes_cells=10)
+    assert "max_holes_cells=" in str(err.value) and "--max" not in str(err.value)
+    with pytest.raises(lacuna.LimitError) as err:
+        lacuna.explore(**FAMILY, properties="holes", holes_level=7)
+    assert "holes_level=" in str(err.value)
+
+
 def test_explore_refuses_what_it_cannot_run():
-    with pytest.raises(lacuna.UsageError):
-        lacuna.explore(**FAMILY, properties="holes")
     with pytest.raises(lacuna.UsageError):
         lacuna.explore(**FAMILY, shards=0)
     with pytest.raises(lacuna.InputError):

@@ -214,7 +214,7 @@ pub(crate) struct ExploreArgs {
     #[arg(long)]
     pub(crate) threads: Option<usize>,
     /// The last level at which the `holes` property compares observed and exact holes (1 to 6).
-    #[arg(long, default_value_t = 2)]
+    #[arg(long, default_value_t = lacuna::family::DEFAULT_HOLES_LEVEL)]
     pub(crate) holes_level: u32,
     /// Maximum estimated work of the `holes` property, in cells: the faces of the family times
     /// 4^--holes-level (the cells of a four-spoke face at that level), checked before any face
@@ -222,7 +222,7 @@ pub(crate) struct ExploreArgs {
     #[arg(
         long,
         value_name = "N",
-        default_value_t = 8192,
+        default_value_t = lacuna::family::DEFAULT_MAX_HOLES_CELLS,
         help_heading = "Limits"
     )]
     pub(crate) max_holes_cells: u64,

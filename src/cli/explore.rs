@@ -3,71 +3,6 @@
 
 use super::*;
 
-/// The `holes` property: the face instantiated with the default parameters, measured at levels
-/// 0..=`level` (raster 512, refined up to 4096 for narrow holes); the observed holes must equal the
-/// exact count at every level. A geometry that cannot be measured is a skip, not a failure.
-fn holes_outcome(
-    face: &lacuna::topology::Face,
-    level: u32,
-    limits: &Limits,
-) -> lacuna::analysis::Outcome {
-    use lacuna::analysis::{Outcome, Witness};
-    let input = lacuna::input::Input {
-        name: face.to_string(),
-        assembly: lacuna::input::Assembly {
-            faces: vec![("0".into(), face.clone())],
-            shared: Vec::new(),
-            coords: Default::default(),
-        },
-    };
-    let opts = lacuna::geometry::InstantiateOptions {
-        limits: limits.clone(),
-        ..Default::default()
-    };
-    let inst = match lacuna::geometry::instantiate(&input, &opts) {
-        Ok(i) => i,
-        Err(e) => return Outcome::Skip(format!("{}: {e}", e.code())),
-    };
-    if let Err(e) = lacuna::measure::check_cells(&inst, level, 2_000_000) {
-        return Outcome::Skip(format!("{}: {e}", e.code()));
-    }
-    let mopts = lacuna::measure::MeasureOptions {
-        level,
-        raster: 512,
-        max_raster: 4096,
-        density_grid: 0,
-        ..Default::default()
-    };
-    match lacuna::measure::measure(&inst, &mopts) {
-        Err(e) => Outcome::Skip(format!("{}: {e}", e.code())),
-        // A boundary of one or two straight-placed edges has no area: nothing to observe.
-        Ok(r) if r.levels.first().is_none_or(|l| l.area.abs() < 1e-12) => {
-            Outcome::Skip("the default placement of this face has no area".into())
-        }
-        Ok(r) => {
-            let bad: Vec<String> = r
-                .levels
-                .iter()
-                .filter(|l| num_bigint::BigUint::from(l.holes) != l.exact.holes)
-                .map(|l| {
-                    format!(
-                        "level {}: {} holes observed, {} exact",
-                        l.level, l.holes, l.exact.holes
-                    )
-                })
-                .collect();
-            if bad.is_empty() {
-                Outcome::Pass
-            } else {
-                Outcome::Fail(Witness {
-                    kind: "holes".into(),
-                    detail: bad,
-                })
-            }
-        }
-    }
-}
-
 /// Runs `lacuna explore`.
 pub(super) fn run(args: ExploreArgs, limits: &Limits) -> Result<ExitCode, Error> {
     let ExploreArgs {
@@ -108,78 +43,23 @@ pub(super) fn run(args: ExploreArgs, limits: &Limits) -> Result<ExitCode, Error>
             })
             .clamp(1, 256),
     };
-    limits.check_level(u64::from(holes_level))?;
-    if !(1..=6).contains(&holes_level) {
-        return Err(Error::limit(
-            "the level of the holes property",
-            holes_level,
-            6,
-            "--holes-level",
-        ));
-    }
-    // The holes property measures every face on a raster refined until its smallest hole is
-    // resolved (up to 4096² pixels a level): seconds a face at level 6. Its work is estimated
-    // from the family's size before anything is measured.
-    if spec.properties.contains(&lacuna::analysis::Property::Holes) {
-        spec.check()?;
-        let cells = spec.size().saturating_mul(4u64.saturating_pow(holes_level));
-        if cells > max_holes_cells {
-            return Err(Error::limit(
-                "the estimated cells of the holes property (faces × 4^level)",
-                cells,
-                max_holes_cells,
-                "--max-holes-cells",
-            ));
-        }
-    }
-    // The certificate layer and the geometry sit above the analysis: their checks are supplied
-    // here.
-    use lacuna::analysis::{Outcome, Witness};
-    let certificate = |_: &lacuna::topology::Face, ts: &lacuna::topology::TypeSet| -> Outcome {
-        let cert = match lacuna::certificate::certificate_for(
-            "explore",
-            ts,
-            lacuna::constraint::GenOptions::default(),
-        ) {
-            Ok(c) => c,
-            Err(e) => {
-                return Outcome::Fail(Witness {
-                    kind: "certificate".into(),
-                    detail: vec![format!("no certificate: {e}")],
-                })
-            }
-        };
-        let report = lacuna::checker::check(&cert);
-        if report.all_proved() {
-            Outcome::Pass
-        } else {
-            Outcome::Fail(Witness {
-                kind: "certificate".into(),
-                detail: report.to_text().lines().map(String::from).collect(),
-            })
-        }
-    };
-    let holes = |face: &lacuna::topology::Face, ts: &lacuna::topology::TypeSet| -> Outcome {
-        // A cell forced to zero area has no geometry whose holes could be counted: refused with
-        // the reason (the no-collapse property reports it as the failure it is).
-        let (flat_faces, flat_lacunas) = ts.flat_cells();
-        let flat = lacuna::constraint::Collapses {
-            flat_faces,
-            flat_lacunas,
-            ..Default::default()
-        };
-        match flat.messages("").first() {
-            Some(why) => Outcome::Skip(format!("forced collapse: {why}")),
-            None => holes_outcome(face, holes_level, limits),
-        }
-    };
-    let checks = lacuna::analysis::Checks {
-        certificate: Some(&certificate),
-        holes: Some(&holes),
-    };
+    lacuna::family::check_holes_work(&spec, holes_level, max_holes_cells, limits)?;
+    lacuna::family::with_checks(holes_level, limits, |checks| {
+        run_checks(&spec, limits, checks, json)
+    })
+}
+
+/// Explores the family with `checks` and prints each result (JSON lines, or the failures as
+/// text) and the summary.
+fn run_checks(
+    spec: &lacuna::analysis::ExploreSpec,
+    limits: &Limits,
+    checks: &lacuna::analysis::Checks<'_>,
+    json: bool,
+) -> Result<ExitCode, Error> {
     // In the text, a minimal counterexample's witness is printed the first time only.
     let mut shown = std::collections::HashSet::new();
-    let summary = lacuna::analysis::explore(&spec, limits, &checks, |r| {
+    let summary = lacuna::analysis::explore(spec, limits, checks, |r| {
         if json {
             out(&(serde_json::to_string(r).expect("results serialise") + "\n"));
         } else if !r.failures.is_empty() {

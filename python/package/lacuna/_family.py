@@ -126,13 +126,17 @@ def explore(
     shards: int = 1,
     executor=None,
     threads: Optional[int] = None,
+    holes_level: int = 2,
+    max_holes_cells: int = 8192,
     limits: Limits = None,
 ) -> Exploration:
     """Checks properties on every face of a family (``lacuna explore``): boundaries of the
     ``edges`` up to ``max_length``, every combination of ``params`` for Ea, El, Ec, the
     ``algorithm``; ``random=N`` samples N boundaries (seeded). Properties: ``closes``,
-    ``consistent``, ``no-collapse``, ``ratio``, ``certificate`` (``holes``, which measures
-    geometry, is the command line's). A failure is shrunk to a minimal counterexample.
+    ``consistent``, ``no-collapse``, ``ratio``, ``certificate`` and ``holes`` (each face placed
+    and measured up to ``holes_level``: the observed holes must equal the exact ones; its work,
+    the family's faces times 4^level, is checked against ``max_holes_cells`` before anything
+    runs). A failure is shrunk to a minimal counterexample.
 
     ``shards=n`` splits the family as ``--shard i/n`` does; with an ``executor`` (any
     :class:`concurrent.futures.Executor`) the shards run on it, else one after the other here.
@@ -153,6 +157,8 @@ def explore(
         "seed": _natural("seed", seed),
         "shrink_budget": _natural("shrink_budget", shrink_budget),
         "threads": _natural("threads", threads) if threads is not None else (os.cpu_count() or 1),
+        "holes_level": _natural("holes_level", holes_level),
+        "max_holes_cells": _natural("max_holes_cells", max_holes_cells),
         "limits": _limits(limits),
     }
     if executor is None:
