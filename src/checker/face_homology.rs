@@ -107,7 +107,7 @@ pub(super) fn level_one_corners(face: &Face) -> Result<(Vec<Vec<usize>>, usize),
     Ok((at, n))
 }
 
-/// Checks the face-homology step against the claim's (one) start face.
+/// Checks the face-homology step against the claim's start faces, glued as the claim says.
 pub(super) fn check_face(
     s: &FaceHomologyStep,
     claim: &FacesClaim,
