@@ -10,6 +10,8 @@ use crate::certificate::{Face, FaceHomologyStep, FaceRow, FacesClaim};
 use std::collections::HashMap;
 
 #[cfg(test)]
+use super::ranks::Betti;
+#[cfg(test)]
 use super::volume::tests as volume_tests;
 
 /// The level-0 complex of one face: its sides are distinct edges, run forwards.
@@ -194,7 +196,6 @@ pub(super) fn check_face(
 
 #[cfg(test)]
 mod tests {
-    use super::super::ranks::Betti;
     use super::*;
     use crate::certificate::Edge;
 

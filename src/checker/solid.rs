@@ -32,6 +32,8 @@ use crate::certificate::{Edge, Face, Origin, SolidHomologyStep, SolidRow, Volume
 use std::collections::HashMap;
 
 #[cfg(test)]
+use super::ranks::rank_f2;
+#[cfg(test)]
 use super::volume::tests as volume_tests;
 
 /// A union–find over sides that keeps, for each, whether it runs against its class's root.
@@ -709,7 +711,6 @@ pub(super) fn check_solid(
 
 #[cfg(test)]
 mod tests {
-    use super::super::ranks::rank_f2;
     use super::volume_tests::{b2, cube};
     use super::*;
     use crate::certificate::SharedFaceClaim;
