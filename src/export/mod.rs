@@ -13,6 +13,7 @@ pub(crate) mod graph;
 pub(crate) mod html;
 pub(crate) mod moditere;
 pub(crate) mod morph;
+pub(crate) mod operators;
 pub(crate) mod palette;
 pub(crate) mod picture;
 pub(crate) mod plot;
@@ -32,6 +33,7 @@ pub use bitmap::{
 pub use html::{report_html, report_html_unverified};
 pub use moditere::moditere_text;
 pub use morph::{write_morph_svg, FrameCells};
+pub use operators::{operators_automaton, operators_report, OperatorsReport, OperatorsRequest};
 pub use palette::{
     density_colour, hex, lightness, outline_colour, type_colour, Rgb, MUTED, OUTSIDE,
 };

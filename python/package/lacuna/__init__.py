@@ -74,6 +74,7 @@ __all__ = [
     "explore",
     "census",
     "check_mesh",
+    "operators",
     "library",
     "load",
     "check",
@@ -693,6 +694,51 @@ def _solution(d: Dict[str, Any]) -> Union[Solution, FieldVerdict]:
 
 
 # ---------------------------------------------------------------------------------------------
+# Subdivision operators (`lacuna operators`)
+
+Points = Union[str, Sequence[Sequence[Union[int, float, Fraction, str]]]]
+
+
+def _rows(points: Points) -> str:
+    """Control points as the command line's ``x y; x y; …`` (a string is passed as it is)."""
+    if isinstance(points, str):
+        return points
+    return "; ".join(" ".join(str(x) for x in row) for row in points)
+
+
+def _operators(
+    source: Optional[str],
+    matrices: Sequence[str] = (),
+    op: Optional[str] = None,
+    points: Optional[Points] = None,
+    at: Sequence[Union[str, int, Fraction]] = (),
+    level: int = 8,
+    curvature: Optional[str] = None,
+    limits: Limits = None,
+) -> Record:
+    """The report of ``lacuna operators [SOURCE] … --json`` as a :class:`Record`."""
+    text = _lacuna.operators(
+        source,
+        [str(m) for m in matrices],
+        op,
+        None if points is None else _rows(points),
+        [str(t) for t in at],
+        _natural("level", level),
+        curvature,
+        _limits(limits),
+    )
+    return Record(json.loads(text))
+
+
+def operators(*matrices: Union[str, Sequence[Sequence[Union[int, Fraction, str]]]], limits: Limits = None) -> Record:
+    """The eigen analysis of matrices given by hand (``lacuna operators --matrix M … --json``):
+    each a string ``"[a b; c d]"`` or rows of exact numbers. ``.matrices`` holds one report per
+    matrix (eigenvalues, fixed point, contraction, tangent and pseudo-curvature class)."""
+    texts = [m if isinstance(m, str) else "[" + _rows(m) + "]" for m in matrices]
+    return _operators(None, texts, limits=limits)
+
+
+# ---------------------------------------------------------------------------------------------
 # Inputs
 
 
@@ -816,6 +862,25 @@ class Structure:
         return Rendering(
             polygons=polygons, types=np.asarray(types, dtype=int), written=written, _render=picture, _level=int(level)
         )
+
+    def operators(
+        self,
+        op: Optional[str] = None,
+        points: Optional[Points] = None,
+        limits: Limits = None,
+        *,
+        at: Sequence[Union[str, int, Fraction]] = (),
+        level: int = 8,
+        curvature: Optional[str] = None,
+    ) -> Record:
+        """The eigen analysis of the subdivision operators (THEORY §8), as ``lacuna operators
+        --json`` reports it: ``.automaton`` (every operator's eigenvalues, fixed point,
+        contraction, tangent and pseudo-curvature class, the end and joining points of curves),
+        ``.curves`` with ``points`` (the control points of a curve's state, ``"x y; x y"`` or
+        rows): the DCFs and pseudo-curvature ranges (also at the dyadic parameters ``at``), and
+        ``.curvature`` the estimate at the fixed point of the operator ``curvature``. ``op``
+        analyses only that operator. Faces are instantiated with the default parameters first."""
+        return _operators(self.source, (), op, points, at, level, curvature, limits)
 
     def measure(
         self,
@@ -978,6 +1043,25 @@ class Automaton:
             _render=picture,
             _level=int(level),
         )
+
+    def operators(
+        self,
+        op: Optional[str] = None,
+        points: Optional[Points] = None,
+        limits: Limits = None,
+        *,
+        at: Sequence[Union[str, int, Fraction]] = (),
+        level: int = 8,
+        curvature: Optional[str] = None,
+    ) -> Record:
+        """The eigen analysis of the subdivision operators (THEORY §8), as ``lacuna operators
+        --json`` reports it: ``.automaton`` (every operator's eigenvalues, fixed point,
+        contraction, tangent and pseudo-curvature class, the end and joining points of curves),
+        ``.curves`` with ``points`` (the control points of a curve's state, ``"x y; x y"`` or
+        rows): the DCFs and pseudo-curvature ranges (also at the dyadic parameters ``at``), and
+        ``.curvature`` the estimate at the fixed point of the operator ``curvature``. ``op``
+        analyses only that operator."""
+        return _operators(self.source, (), op, points, at, level, curvature, limits)
 
     def measure(self, level: int, *, digits: int = 30, params: Params = None, max_cells: Optional[int] = None, limits: Limits = None) -> Record:
         """Lengths and areas per level, a box-counting estimate and the exact similarity dimension
