@@ -19,6 +19,7 @@ use pyo3::types::PyDict;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+mod design;
 mod family;
 mod operators;
 mod volume;
@@ -964,6 +965,7 @@ fn _lacuna(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(measure, m)?)?;
     m.add_function(wrap_pyfunction!(decode_png, m)?)?;
     m.add_function(wrap_pyfunction!(operators::operators, m)?)?;
+    m.add_function(wrap_pyfunction!(design::design, m)?)?;
     m.add_function(wrap_pyfunction!(family::explore_shard, m)?)?;
     m.add_function(wrap_pyfunction!(family::census, m)?)?;
     m.add_function(wrap_pyfunction!(family::check_mesh, m)?)?;

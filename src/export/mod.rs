@@ -33,7 +33,10 @@ pub use bitmap::{
 pub use html::{report_html, report_html_unverified};
 pub use moditere::moditere_text;
 pub use morph::{write_morph_svg, FrameCells};
-pub use operators::{operators_automaton, operators_report, OperatorsReport, OperatorsRequest};
+pub use operators::{
+    design_report, operators_automaton, operators_report, DesignReport, OperatorsReport,
+    OperatorsRequest,
+};
 pub use palette::{
     density_colour, hex, lightness, outline_colour, type_colour, Rgb, MUTED, OUTSIDE,
 };

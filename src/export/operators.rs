@@ -256,3 +256,45 @@ fn curve_ranges(
     }
     Ok(out)
 }
+
+/// What `lacuna design` found: the operator of the chosen eigenvalues and eigenvectors, its eigen
+/// analysis and, when asked, the check of plugging it into an automaton.
+#[derive(Debug)]
+pub struct DesignReport {
+    /// T = V·D·V⁻¹, exact.
+    pub matrix: Matrix,
+    /// Its eigen analysis.
+    pub analysis: OperatorReport,
+    /// The check against an automaton's operator (`--check FILE --op NAME`).
+    pub check: Option<crate::analysis::DesignCheck>,
+}
+
+impl DesignReport {
+    /// The object `lacuna design --json` prints.
+    pub fn to_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "matrix": self.matrix.to_string(),
+            "analysis": self.analysis,
+            "check": self.check,
+        })
+    }
+}
+
+/// The operator of `lacuna design --eigenvalues V --eigenvectors M` (one eigenvector per row, in
+/// the order of the eigenvalues) and its eigen analysis; no check yet.
+pub fn design_report(eigenvalues: &str, eigenvectors: &str) -> Result<DesignReport, Error> {
+    let values = crate::analysis::parse_rationals_arg(eigenvalues)?;
+    let vectors = parse_matrix_arg(eigenvectors)?;
+    let rows: Vec<Vec<_>> = vectors
+        .data
+        .chunks(vectors.cols)
+        .map(<[_]>::to_vec)
+        .collect();
+    let matrix = crate::analysis::design_operator(&values, &rows)?;
+    let analysis = analyse_matrix(&matrix)?;
+    Ok(DesignReport {
+        matrix,
+        analysis,
+        check: None,
+    })
+}

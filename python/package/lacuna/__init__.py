@@ -75,6 +75,8 @@ __all__ = [
     "census",
     "check_mesh",
     "operators",
+    "design",
+    "Design",
     "library",
     "load",
     "check",
@@ -736,6 +738,62 @@ def operators(*matrices: Union[str, Sequence[Sequence[Union[int, Fraction, str]]
     matrix (eigenvalues, fixed point, contraction, tangent and pseudo-curvature class)."""
     texts = [m if isinstance(m, str) else "[" + _rows(m) + "]" for m in matrices]
     return _operators(None, texts, limits=limits)
+
+
+@dataclass(frozen=True)
+class Design:
+    """An operator built from its eigenvalues and eigenvectors (``lacuna design``).
+
+    Attributes:
+        matrix: T = V·D·V⁻¹, exact, as rows of Fractions.
+        analysis: its eigen analysis (a Record, as ``lacuna operators`` reports a matrix).
+        check: with an automaton, the result of plugging T in as one of its operators (a Record:
+            barycentric, every constraint involving it, the re-solved system), else None.
+        data: the object ``lacuna design --json`` prints.
+    """
+
+    matrix: List[List[Fraction]]
+    analysis: Record
+    check: Optional[Record]
+    data: Dict[str, Any] = field(repr=False)
+
+    @property
+    def ok(self) -> bool:
+        """The design satisfies every constraint of the automaton (True without a check; the
+        command line's exit code 1 otherwise)."""
+        return self.check is None or _design_ok(self.data["check"])
+
+
+def _design_ok(check: Dict[str, Any]) -> bool:
+    """The verdict of a design check (``DesignCheck::ok``): barycentric when it must be, every
+    constraint holds and the re-solved system is consistent."""
+    return check.get("barycentric") is not False and all(c["holds"] for c in check["constraints"]) and bool(check["consistent"])
+
+
+def design(
+    eigenvalues: Union[str, Sequence[Union[int, Fraction, str]]],
+    eigenvectors: Union[str, Sequence[Sequence[Union[int, Fraction, str]]]],
+    *,
+    check: Union[None, str, "Automaton"] = None,
+    op: Optional[str] = None,
+) -> Design:
+    """Inverse design (``lacuna design --json``): the exact operator T = V·D·V⁻¹ with the
+    eigenvalues ``eigenvalues`` (``"1 1/2 1/4"`` or exact numbers) and the eigenvectors
+    ``eigenvectors`` (one per row, in the same order: ``"[1 0 0; -1 1 0; 1 -2 1]"`` or rows), with
+    its eigen analysis; with ``check`` (an automaton) and ``op`` (one of its operators), whether T
+    can replace that operator."""
+    values = eigenvalues if isinstance(eigenvalues, str) else " ".join(str(v) for v in eigenvalues)
+    vectors = eigenvectors if isinstance(eigenvectors, str) else "[" + _rows(eigenvectors) + "]"
+    if (check is None) != (op is None):
+        raise UsageError("E0504", "check and op go together: give the automaton and the operator to replace")
+    source = check.source if isinstance(check, Automaton) else (None if check is None else os.fspath(check))
+    d = json.loads(_lacuna.design(values, vectors, source, op))
+    return Design(
+        matrix=_matrix(d["matrix"]),
+        analysis=Record(d["analysis"]),
+        check=None if d.get("check") is None else Record(d["check"]),
+        data=d,
+    )
 
 
 # ---------------------------------------------------------------------------------------------

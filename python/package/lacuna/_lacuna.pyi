@@ -213,3 +213,7 @@ def operators(
 ) -> str:
     """`lacuna operators [INPUT] --json`: the eigen analysis of the operators of `input` (an
     automaton, or faces instantiated with the default parameters) and of `matrices`."""
+
+def design(eigenvalues: str, eigenvectors: str, check: Optional[str] = None, op: Optional[str] = None) -> str:
+    """`lacuna design --json`: T = V·D·V⁻¹ exact (`matrix`), its `analysis` and the `check`
+    against an automaton's operator `op`."""
