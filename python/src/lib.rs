@@ -20,6 +20,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 mod design;
+mod export;
 mod family;
 mod operators;
 mod volume;
@@ -966,6 +967,7 @@ fn _lacuna(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(decode_png, m)?)?;
     m.add_function(wrap_pyfunction!(operators::operators, m)?)?;
     m.add_function(wrap_pyfunction!(design::design, m)?)?;
+    m.add_function(wrap_pyfunction!(export::export, m)?)?;
     m.add_function(wrap_pyfunction!(family::explore_shard, m)?)?;
     m.add_function(wrap_pyfunction!(family::census, m)?)?;
     m.add_function(wrap_pyfunction!(family::check_mesh, m)?)?;

@@ -9,6 +9,7 @@
 pub(crate) mod automaton_text;
 pub(crate) mod automaton_writer;
 pub(crate) mod bitmap;
+pub(crate) mod generated;
 pub(crate) mod graph;
 pub(crate) mod html;
 pub(crate) mod moditere;
@@ -30,6 +31,7 @@ pub use automaton_writer::{
 pub use bitmap::{
     write_density_picture, write_png_picture, write_shapes_png, DensityPicture, Projection,
 };
+pub use generated::{generated_text, GeneratedFormat};
 pub use html::{report_html, report_html_unverified};
 pub use moditere::moditere_text;
 pub use morph::{write_morph_svg, FrameCells};

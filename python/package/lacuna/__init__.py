@@ -940,6 +940,22 @@ class Structure:
         analyses only that operator. Faces are instantiated with the default parameters first."""
         return _operators(self.source, (), op, points, at, level, curvature, limits)
 
+    def export(
+        self,
+        path: Optional[PathLike] = None,
+        format: str = "aut",
+        *,
+        degree: int = 2,
+        cantor_gap: Union[str, int, Fraction] = 1,
+        limits: Limits = None,
+    ) -> str:
+        """The automaton generated from the closure (Bézier degree ``degree``, Cantor gap/piece
+        ``cantor_gap``) in lacuna's automaton format (``format="aut"``, which :meth:`solve` reads
+        back with the same rank and degrees of freedom) or as the MODITERE Python model of
+        AutoFrac2D (``format="moditere"``), as ``lacuna export SOURCE --format FORMAT`` writes it; also written to ``path`` when
+        given (never over the input)."""
+        return _lacuna.export(self.source, str(format), _path(path), _natural("degree", degree), str(cantor_gap), _limits(limits))
+
     def measure(
         self,
         level: int,
@@ -1120,6 +1136,19 @@ class Automaton:
         ``.curvature`` the estimate at the fixed point of the operator ``curvature``. ``op``
         analyses only that operator."""
         return _operators(self.source, (), op, points, at, level, curvature, limits)
+
+    def export(
+        self,
+        path: Optional[PathLike] = None,
+        format: str = "aut",
+        *,
+        degree: int = 2,
+        cantor_gap: Union[str, int, Fraction] = 1,
+        limits: Limits = None,
+    ) -> str:
+        """The automaton in lacuna's automaton format (``format="aut"``; it has no MODITERE model), as ``lacuna export SOURCE --format FORMAT`` writes it; also written to ``path`` when
+        given (never over the input)."""
+        return _lacuna.export(self.source, str(format), _path(path), _natural("degree", degree), str(cantor_gap), _limits(limits))
 
     def measure(self, level: int, *, digits: int = 30, params: Params = None, max_cells: Optional[int] = None, limits: Limits = None) -> Record:
         """Lengths and areas per level, a box-counting estimate and the exact similarity dimension

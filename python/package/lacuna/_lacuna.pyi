@@ -217,3 +217,13 @@ def operators(
 def design(eigenvalues: str, eigenvectors: str, check: Optional[str] = None, op: Optional[str] = None) -> str:
     """`lacuna design --json`: T = V·D·V⁻¹ exact (`matrix`), its `analysis` and the `check`
     against an automaton's operator `op`."""
+
+def export(
+    input: str,
+    format: str = "aut",
+    path: Optional[str] = None,
+    degree: int = 2,
+    cantor_gap: str = "1",
+    limits: _Limits = None,
+) -> str:
+    """`lacuna export INPUT --format F [-o PATH]`: the generated automaton's text."""
