@@ -952,8 +952,8 @@ class Structure:
         """The automaton generated from the closure (Bézier degree ``degree``, Cantor gap/piece
         ``cantor_gap``) in lacuna's automaton format (``format="aut"``, which :meth:`solve` reads
         back with the same rank and degrees of freedom) or as the MODITERE Python model of
-        AutoFrac2D (``format="moditere"``), as ``lacuna export SOURCE --format FORMAT`` writes it; also written to ``path`` when
-        given (never over the input)."""
+        AutoFrac2D (``format="moditere"``), as ``lacuna export SOURCE --format FORMAT`` writes
+        it; also written to ``path`` when given (never over the input)."""
         return _lacuna.export(self.source, str(format), _path(path), _natural("degree", degree), str(cantor_gap), _limits(limits))
 
     def measure(
@@ -1146,8 +1146,9 @@ class Automaton:
         cantor_gap: Union[str, int, Fraction] = 1,
         limits: Limits = None,
     ) -> str:
-        """The automaton in lacuna's automaton format (``format="aut"``; it has no MODITERE model), as ``lacuna export SOURCE --format FORMAT`` writes it; also written to ``path`` when
-        given (never over the input)."""
+        """The automaton in lacuna's automaton format (``format="aut"``; it has no MODITERE model), as
+        ``lacuna export SOURCE --format FORMAT`` writes it; also written to ``path`` when given
+        (never over the input)."""
         return _lacuna.export(self.source, str(format), _path(path), _natural("degree", degree), str(cantor_gap), _limits(limits))
 
     def measure(self, level: int, *, digits: int = 30, params: Params = None, max_cells: Optional[int] = None, limits: Limits = None) -> Record:
