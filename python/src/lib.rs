@@ -19,7 +19,10 @@ use pyo3::types::PyDict;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+mod design;
+mod export;
 mod family;
+mod operators;
 mod volume;
 
 /// A lacuna error as the Python exception the package defines (`lacuna._errors.from_native`
@@ -962,6 +965,9 @@ fn _lacuna(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(render, m)?)?;
     m.add_function(wrap_pyfunction!(measure, m)?)?;
     m.add_function(wrap_pyfunction!(decode_png, m)?)?;
+    m.add_function(wrap_pyfunction!(operators::operators, m)?)?;
+    m.add_function(wrap_pyfunction!(design::design, m)?)?;
+    m.add_function(wrap_pyfunction!(export::export, m)?)?;
     m.add_function(wrap_pyfunction!(family::explore_shard, m)?)?;
     m.add_function(wrap_pyfunction!(family::census, m)?)?;
     m.add_function(wrap_pyfunction!(family::check_mesh, m)?)?;

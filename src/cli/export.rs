@@ -48,58 +48,14 @@ pub(super) fn run(args: ExportArgs, limits: &Limits) -> Result<ExitCode, Error> 
     };
     let opts = lacuna::constraint::GenOptions {
         degree,
-        cantor_gap: gap.clone(),
+        cantor_gap: gap,
     };
-    let text = match lacuna::input::load_any(&input)? {
-        lacuna::input::Loaded::Automaton {
-            name, automaton, ..
-        } => {
-            if format == ExportFormat::Moditere {
-                return Err(Error::Usage(format!(
-                    "`{name}` is an automaton file: the MODITERE export needs faces (a face, an assembly or an AutoFrac2D file)"
-                )));
-            }
-            lacuna::export::automaton_text(
-                &automaton,
-                &[format!("lacuna export of the automaton `{name}`")],
-                &Default::default(),
-            )
-        }
-        lacuna::input::Loaded::Faces(input) => {
-            let ts = lacuna::topology::close_or_error(&input.faces(), limits)?;
-            match format {
-                ExportFormat::Aut => {
-                    let g = lacuna::constraint::automaton_of(&ts, opts);
-                    limits.check_unknowns(g.automaton.unknown_count())?;
-                    let notes = g
-                        .face_state
-                        .iter()
-                        .zip(&ts.types)
-                        .map(|(&s, t)| (s, t.face.to_string()))
-                        .collect();
-                    lacuna::export::automaton_text(
-                        &g.automaton,
-                        &[
-                            format!(
-                                "lacuna export of `{}`: the automaton generated from its closure ({} face types),",
-                                input.name.replace('\n', " "),
-                                ts.types.len()
-                            ),
-                            format!("Bézier degree {degree}, Cantor gap/piece ratio {gap} (THEORY §6)."),
-                            "`lacuna solve` of this file gives the unknowns, equations, rank and degrees of freedom".into(),
-                            "of `lacuna solve` on the input; the degeneracy check needs the faces, so only the input has it.".into(),
-                        ],
-                        &notes,
-                    )
-                }
-                ExportFormat::Moditere => {
-                    let g = lacuna::constraint::automaton_of(&ts, opts.clone());
-                    limits.check_unknowns(g.automaton.unknown_count())?;
-                    lacuna::export::moditere_text(&input, &ts, opts)?
-                }
-            }
-        }
+    let format = match format {
+        ExportFormat::Aut => lacuna::export::GeneratedFormat::Aut,
+        ExportFormat::Moditere => lacuna::export::GeneratedFormat::Moditere,
     };
+    let text =
+        lacuna::export::generated_text(lacuna::input::load_any(&input)?, format, opts, limits)?;
     match (output, outputs.as_mut()) {
         (Some(path), Some(o)) => o.write(&path, |w| w.write_all(text.as_bytes()))?,
         _ => out(&text),

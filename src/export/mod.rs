@@ -9,10 +9,12 @@
 pub(crate) mod automaton_text;
 pub(crate) mod automaton_writer;
 pub(crate) mod bitmap;
+pub(crate) mod generated;
 pub(crate) mod graph;
 pub(crate) mod html;
 pub(crate) mod moditere;
 pub(crate) mod morph;
+pub(crate) mod operators;
 pub(crate) mod palette;
 pub(crate) mod picture;
 pub(crate) mod plot;
@@ -29,9 +31,14 @@ pub use automaton_writer::{
 pub use bitmap::{
     write_density_picture, write_png_picture, write_shapes_png, DensityPicture, Projection,
 };
+pub use generated::{generated_text, GeneratedFormat};
 pub use html::{report_html, report_html_unverified};
 pub use moditere::moditere_text;
 pub use morph::{write_morph_svg, FrameCells};
+pub use operators::{
+    design_report, operators_automaton, operators_report, DesignReport, OperatorsReport,
+    OperatorsRequest,
+};
 pub use palette::{
     density_colour, hex, lightness, outline_colour, type_colour, Rgb, MUTED, OUTSIDE,
 };

@@ -74,6 +74,9 @@ __all__ = [
     "explore",
     "census",
     "check_mesh",
+    "operators",
+    "design",
+    "Design",
     "library",
     "load",
     "check",
@@ -693,6 +696,107 @@ def _solution(d: Dict[str, Any]) -> Union[Solution, FieldVerdict]:
 
 
 # ---------------------------------------------------------------------------------------------
+# Subdivision operators (`lacuna operators`)
+
+Points = Union[str, Sequence[Sequence[Union[int, float, Fraction, str]]]]
+
+
+def _rows(points: Points) -> str:
+    """Control points as the command line's ``x y; x y; …`` (a string is passed as it is)."""
+    if isinstance(points, str):
+        return points
+    return "; ".join(" ".join(str(x) for x in row) for row in points)
+
+
+def _operators(
+    source: Optional[str],
+    matrices: Sequence[str] = (),
+    op: Optional[str] = None,
+    points: Optional[Points] = None,
+    at: Sequence[Union[str, int, Fraction]] = (),
+    level: int = 8,
+    curvature: Optional[str] = None,
+    limits: Limits = None,
+) -> Record:
+    """The report of ``lacuna operators [SOURCE] … --json`` as a :class:`Record`."""
+    text = _lacuna.operators(
+        source,
+        [str(m) for m in matrices],
+        op,
+        None if points is None else _rows(points),
+        [str(t) for t in at],
+        _natural("level", level),
+        curvature,
+        _limits(limits),
+    )
+    return Record(json.loads(text))
+
+
+def operators(*matrices: Union[str, Sequence[Sequence[Union[int, Fraction, str]]]], limits: Limits = None) -> Record:
+    """The eigen analysis of matrices given by hand (``lacuna operators --matrix M … --json``):
+    each a string ``"[a b; c d]"`` or rows of exact numbers. ``.matrices`` holds one report per
+    matrix (eigenvalues, fixed point, contraction, tangent and pseudo-curvature class)."""
+    texts = [m if isinstance(m, str) else "[" + _rows(m) + "]" for m in matrices]
+    return _operators(None, texts, limits=limits)
+
+
+@dataclass(frozen=True)
+class Design:
+    """An operator built from its eigenvalues and eigenvectors (``lacuna design``).
+
+    Attributes:
+        matrix: T = V·D·V⁻¹, exact, as rows of Fractions.
+        analysis: its eigen analysis (a Record, as ``lacuna operators`` reports a matrix).
+        check: with an automaton, the result of plugging T in as one of its operators (a Record:
+            barycentric, every constraint involving it, the re-solved system), else None.
+        data: the object ``lacuna design --json`` prints.
+    """
+
+    matrix: List[List[Fraction]]
+    analysis: Record
+    check: Optional[Record]
+    data: Dict[str, Any] = field(repr=False)
+
+    @property
+    def ok(self) -> bool:
+        """The design satisfies every constraint of the automaton (True without a check; the
+        command line's exit code 1 otherwise)."""
+        return self.check is None or _design_ok(self.data["check"])
+
+
+def _design_ok(check: Dict[str, Any]) -> bool:
+    """The verdict of a design check (``DesignCheck::ok``): barycentric when it must be, every
+    constraint holds and the re-solved system is consistent."""
+    return check.get("barycentric") is not False and all(c["holds"] for c in check["constraints"]) and bool(check["consistent"])
+
+
+def design(
+    eigenvalues: Union[str, Sequence[Union[int, Fraction, str]]],
+    eigenvectors: Union[str, Sequence[Sequence[Union[int, Fraction, str]]]],
+    *,
+    check: Union[None, str, "Automaton"] = None,
+    op: Optional[str] = None,
+) -> Design:
+    """Inverse design (``lacuna design --json``): the exact operator T = V·D·V⁻¹ with the
+    eigenvalues ``eigenvalues`` (``"1 1/2 1/4"`` or exact numbers) and the eigenvectors
+    ``eigenvectors`` (one per row, in the same order: ``"[1 0 0; -1 1 0; 1 -2 1]"`` or rows), with
+    its eigen analysis; with ``check`` (an automaton) and ``op`` (one of its operators), whether T
+    can replace that operator."""
+    values = eigenvalues if isinstance(eigenvalues, str) else " ".join(str(v) for v in eigenvalues)
+    vectors = eigenvectors if isinstance(eigenvectors, str) else "[" + _rows(eigenvectors) + "]"
+    if (check is None) != (op is None):
+        raise UsageError("E0504", "check and op go together: give the automaton and the operator to replace")
+    source = check.source if isinstance(check, Automaton) else (None if check is None else os.fspath(check))
+    d = json.loads(_lacuna.design(values, vectors, source, op))
+    return Design(
+        matrix=_matrix(d["matrix"]),
+        analysis=Record(d["analysis"]),
+        check=None if d.get("check") is None else Record(d["check"]),
+        data=d,
+    )
+
+
+# ---------------------------------------------------------------------------------------------
 # Inputs
 
 
@@ -816,6 +920,41 @@ class Structure:
         return Rendering(
             polygons=polygons, types=np.asarray(types, dtype=int), written=written, _render=picture, _level=int(level)
         )
+
+    def operators(
+        self,
+        op: Optional[str] = None,
+        points: Optional[Points] = None,
+        limits: Limits = None,
+        *,
+        at: Sequence[Union[str, int, Fraction]] = (),
+        level: int = 8,
+        curvature: Optional[str] = None,
+    ) -> Record:
+        """The eigen analysis of the subdivision operators (THEORY §8), as ``lacuna operators
+        --json`` reports it: ``.automaton`` (every operator's eigenvalues, fixed point,
+        contraction, tangent and pseudo-curvature class, the end and joining points of curves),
+        ``.curves`` with ``points`` (the control points of a curve's state, ``"x y; x y"`` or
+        rows): the DCFs and pseudo-curvature ranges (also at the dyadic parameters ``at``), and
+        ``.curvature`` the estimate at the fixed point of the operator ``curvature``. ``op``
+        analyses only that operator. Faces are instantiated with the default parameters first."""
+        return _operators(self.source, (), op, points, at, level, curvature, limits)
+
+    def export(
+        self,
+        path: Optional[PathLike] = None,
+        format: str = "aut",
+        *,
+        degree: int = 2,
+        cantor_gap: Union[str, int, Fraction] = 1,
+        limits: Limits = None,
+    ) -> str:
+        """The automaton generated from the closure (Bézier degree ``degree``, Cantor gap/piece
+        ``cantor_gap``) in lacuna's automaton format (``format="aut"``, which :meth:`solve` reads
+        back with the same rank and degrees of freedom) or as the MODITERE Python model of
+        AutoFrac2D (``format="moditere"``), as ``lacuna export SOURCE --format FORMAT`` writes
+        it; also written to ``path`` when given (never over the input)."""
+        return _lacuna.export(self.source, str(format), _path(path), _natural("degree", degree), str(cantor_gap), _limits(limits))
 
     def measure(
         self,
@@ -978,6 +1117,39 @@ class Automaton:
             _render=picture,
             _level=int(level),
         )
+
+    def operators(
+        self,
+        op: Optional[str] = None,
+        points: Optional[Points] = None,
+        limits: Limits = None,
+        *,
+        at: Sequence[Union[str, int, Fraction]] = (),
+        level: int = 8,
+        curvature: Optional[str] = None,
+    ) -> Record:
+        """The eigen analysis of the subdivision operators (THEORY §8), as ``lacuna operators
+        --json`` reports it: ``.automaton`` (every operator's eigenvalues, fixed point,
+        contraction, tangent and pseudo-curvature class, the end and joining points of curves),
+        ``.curves`` with ``points`` (the control points of a curve's state, ``"x y; x y"`` or
+        rows): the DCFs and pseudo-curvature ranges (also at the dyadic parameters ``at``), and
+        ``.curvature`` the estimate at the fixed point of the operator ``curvature``. ``op``
+        analyses only that operator."""
+        return _operators(self.source, (), op, points, at, level, curvature, limits)
+
+    def export(
+        self,
+        path: Optional[PathLike] = None,
+        format: str = "aut",
+        *,
+        degree: int = 2,
+        cantor_gap: Union[str, int, Fraction] = 1,
+        limits: Limits = None,
+    ) -> str:
+        """The automaton in lacuna's automaton format (``format="aut"``; it has no MODITERE model), as
+        ``lacuna export SOURCE --format FORMAT`` writes it; also written to ``path`` when given
+        (never over the input)."""
+        return _lacuna.export(self.source, str(format), _path(path), _natural("degree", degree), str(cantor_gap), _limits(limits))
 
     def measure(self, level: int, *, digits: int = 30, params: Params = None, max_cells: Optional[int] = None, limits: Limits = None) -> Record:
         """Lengths and areas per level, a box-counting estimate and the exact similarity dimension

@@ -200,3 +200,30 @@ def check_mesh(
 
 def decode_png(data: bytes) -> Tuple[int, int, bytes]:
     """The pixels of a PNG lacuna wrote: (height, width, RGBA bytes row by row)."""
+
+def operators(
+    input: Optional[str] = None,
+    matrices: List[str] = ...,
+    op: Optional[str] = None,
+    points: Optional[str] = None,
+    at: List[str] = ...,
+    level: int = 8,
+    curvature: Optional[str] = None,
+    limits: _Limits = None,
+) -> str:
+    """`lacuna operators [INPUT] --json`: the eigen analysis of the operators of `input` (an
+    automaton, or faces instantiated with the default parameters) and of `matrices`."""
+
+def design(eigenvalues: str, eigenvectors: str, check: Optional[str] = None, op: Optional[str] = None) -> str:
+    """`lacuna design --json`: T = V·D·V⁻¹ exact (`matrix`), its `analysis` and the `check`
+    against an automaton's operator `op`."""
+
+def export(
+    input: str,
+    format: str = "aut",
+    path: Optional[str] = None,
+    degree: int = 2,
+    cantor_gap: str = "1",
+    limits: _Limits = None,
+) -> str:
+    """`lacuna export INPUT --format F [-o PATH]`: the generated automaton's text."""
