@@ -740,6 +740,33 @@ def operators(*matrices: Union[str, Sequence[Sequence[Union[int, Fraction, str]]
     return _operators(None, texts, limits=limits)
 
 
+class _Operators:
+    """The ``operators`` method shared by faces, assemblies and automata (``source`` is what the
+    command line would be given)."""
+
+    source: str
+
+    def operators(
+        self,
+        op: Optional[str] = None,
+        points: Optional[Points] = None,
+        limits: Limits = None,
+        *,
+        at: Sequence[Union[str, int, Fraction]] = (),
+        level: int = 8,
+        curvature: Optional[str] = None,
+    ) -> Record:
+        """The eigen analysis of the subdivision operators (THEORY §8), as ``lacuna operators
+        --json`` reports it: ``.automaton`` (every operator's eigenvalues, fixed point,
+        contraction, tangent and pseudo-curvature class, the end and joining points of curves),
+        ``.curves`` with ``points`` (the control points of a curve's state, ``"x y; x y"`` or
+        rows): the DCFs and pseudo-curvature ranges (also at the dyadic parameters ``at``), and
+        ``.curvature`` the estimate at the fixed point of the operator ``curvature``. ``op``
+        analyses only that operator. Faces and assemblies are instantiated with the default
+        parameters first."""
+        return _operators(self.source, (), op, points, at, level, curvature, limits)
+
+
 @dataclass(frozen=True)
 class Design:
     """An operator built from its eigenvalues and eigenvectors (``lacuna design``).
@@ -800,7 +827,7 @@ def design(
 # Inputs
 
 
-class Structure:
+class Structure(_Operators):
     """What the faces' methods share: a face, an assembly of faces (with shared edges) or a face
     structure of the library. ``source`` is what the command line would be given (notation, a
     path or a library name)."""
@@ -921,25 +948,6 @@ class Structure:
             polygons=polygons, types=np.asarray(types, dtype=int), written=written, _render=picture, _level=int(level)
         )
 
-    def operators(
-        self,
-        op: Optional[str] = None,
-        points: Optional[Points] = None,
-        limits: Limits = None,
-        *,
-        at: Sequence[Union[str, int, Fraction]] = (),
-        level: int = 8,
-        curvature: Optional[str] = None,
-    ) -> Record:
-        """The eigen analysis of the subdivision operators (THEORY §8), as ``lacuna operators
-        --json`` reports it: ``.automaton`` (every operator's eigenvalues, fixed point,
-        contraction, tangent and pseudo-curvature class, the end and joining points of curves),
-        ``.curves`` with ``points`` (the control points of a curve's state, ``"x y; x y"`` or
-        rows): the DCFs and pseudo-curvature ranges (also at the dyadic parameters ``at``), and
-        ``.curvature`` the estimate at the fixed point of the operator ``curvature``. ``op``
-        analyses only that operator. Faces are instantiated with the default parameters first."""
-        return _operators(self.source, (), op, points, at, level, curvature, limits)
-
     def export(
         self,
         path: Optional[PathLike] = None,
@@ -1031,7 +1039,7 @@ class Assembly(Structure):
         return cls(p)
 
 
-class Automaton:
+class Automaton(_Operators):
     """A hand-written automaton (lacuna's automaton format): states, operators, constraints, and
     optionally a field, points and primitives to draw its attractor."""
 
@@ -1117,25 +1125,6 @@ class Automaton:
             _render=picture,
             _level=int(level),
         )
-
-    def operators(
-        self,
-        op: Optional[str] = None,
-        points: Optional[Points] = None,
-        limits: Limits = None,
-        *,
-        at: Sequence[Union[str, int, Fraction]] = (),
-        level: int = 8,
-        curvature: Optional[str] = None,
-    ) -> Record:
-        """The eigen analysis of the subdivision operators (THEORY §8), as ``lacuna operators
-        --json`` reports it: ``.automaton`` (every operator's eigenvalues, fixed point,
-        contraction, tangent and pseudo-curvature class, the end and joining points of curves),
-        ``.curves`` with ``points`` (the control points of a curve's state, ``"x y; x y"`` or
-        rows): the DCFs and pseudo-curvature ranges (also at the dyadic parameters ``at``), and
-        ``.curvature`` the estimate at the fixed point of the operator ``curvature``. ``op``
-        analyses only that operator."""
-        return _operators(self.source, (), op, points, at, level, curvature, limits)
 
     def export(
         self,
