@@ -1,7 +1,7 @@
 //! `lacuna export` from Python: the automaton generated from the closure of faces, in lacuna's
 //! automaton format or as the MODITERE Python model, as text (and written to a file).
 
-use super::{cantor_gap, limits, out_of_range, refuse_clobbering, run, write_file};
+use super::{gen_options, limits, refuse_clobbering, run, write_file};
 use lacuna::export::GeneratedFormat;
 use lacuna::Error;
 use pyo3::prelude::*;
@@ -31,21 +31,9 @@ pub(crate) fn export(
                 )))
             }
         };
-        let gap = self::cantor_gap(&cantor_gap)?;
-        if !(1..=8).contains(&degree) {
-            return Err(out_of_range(
-                "degree",
-                degree,
-                "the Bézier degree",
-                "from 1 to 8",
-            ));
-        }
+        let opts = gen_options(degree, &cantor_gap)?;
         // The output is checked before the work: never the input.
         refuse_clobbering(&input, &[&path])?;
-        let opts = lacuna::constraint::GenOptions {
-            degree,
-            cantor_gap: gap,
-        };
         let text =
             lacuna::export::generated_text(lacuna::input::load_any(&input)?, format, opts, &l)?;
         if let Some(p) = &path {

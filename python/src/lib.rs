@@ -226,6 +226,24 @@ fn cantor_gap(text: &str) -> Result<BigRational, Error> {
         })
 }
 
+/// The options of THEORY §6 as Python gives them: `cantor_gap` read as an exact positive number,
+/// then `degree` checked to be from 1 to 8 (in that order, so the errors come as before).
+fn gen_options(degree: usize, cantor_gap: &str) -> Result<lacuna::constraint::GenOptions, Error> {
+    let gap = self::cantor_gap(cantor_gap)?;
+    if !(1..=8).contains(&degree) {
+        return Err(out_of_range(
+            "degree",
+            degree,
+            "the Bézier degree",
+            "from 1 to 8",
+        ));
+    }
+    Ok(lacuna::constraint::GenOptions {
+        degree,
+        cantor_gap: gap,
+    })
+}
+
 /// Pretty JSON of a report (the layout of the command line's `--json`).
 fn json(v: &impl serde::Serialize) -> String {
     serde_json::to_string_pretty(v).expect("reports serialise")
@@ -343,19 +361,7 @@ fn solve(
 ) -> PyResult<String> {
     let l = self::limits(limits)?;
     run(py, move || {
-        let gap = self::cantor_gap(&cantor_gap)?;
-        if !(1..=8).contains(&degree) {
-            return Err(out_of_range(
-                "degree",
-                degree,
-                "the Bézier degree",
-                "from 1 to 8",
-            ));
-        }
-        let opts = lacuna::constraint::GenOptions {
-            degree,
-            cantor_gap: gap,
-        };
+        let opts = gen_options(degree, &cantor_gap)?;
         let report = match load_any(&input)? {
             Loaded::Automaton { model, .. } if !model.field_ops.is_empty() => {
                 let r = lacuna::analysis::resolve(&model, &[], l.max_unknowns)?;

@@ -106,22 +106,10 @@ pub(crate) fn volume_solve(
 ) -> PyResult<String> {
     let l = self::limits(limits)?;
     run(py, move || {
-        let gap = crate::cantor_gap(&cantor_gap)?;
-        if !(1..=8).contains(&degree) {
-            return Err(out_of_range(
-                "degree",
-                degree,
-                "the Bézier degree",
-                "from 1 to 8",
-            ));
-        }
+        let opts = crate::gen_options(degree, &cantor_gap)?;
         let (_, v) = load(&input)?;
         let set = closed(&v, &l)?;
         let shared = lacuna::constraint::shared_readings(&v.assembly);
-        let opts = lacuna::constraint::GenOptions {
-            degree,
-            cantor_gap: gap,
-        };
         Ok(json(&lacuna::constraint::solve_volumes(
             &set, &shared, opts, &l,
         )?))

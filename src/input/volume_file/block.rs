@@ -2,7 +2,7 @@
 //! delay, its faces one connected surface that is a sphere, and the coordinates of its `corners`
 //! lines placing every point of the surface once.
 
-use super::{Block, Corners};
+use super::{link_len, Block, Corners};
 use crate::error::{Error, Result, Source};
 use crate::topology::volume::surface::Surface;
 use crate::topology::volume::Volume;
@@ -31,17 +31,8 @@ pub(super) fn finish(b: Block, src: &Source) -> Result<(Volume, Option<Corners>)
         .map(|(_, f, _, _)| vec![None; f.boundary.len()])
         .collect();
     for &(ln, col, [x, y]) in &b.links {
-        let text = src.text.lines().nth(ln - 1).unwrap_or("");
-        let len = (text
-            .split('#')
-            .next()
-            .unwrap_or("")
-            .trim_end()
-            .chars()
-            .count()
-            + 1)
-        .saturating_sub(col);
-        let err = |code: &'static str, m: String| Error::at(code, m, ln, col, len.max(1), src);
+        let len = link_len(src, ln, col);
+        let err = |code: &'static str, m: String| Error::at(code, m, ln, col, len, src);
         for &(f, i) in &[x, y] {
             let (name, face, _, _) = &b.faces[f];
             if i >= face.boundary.len() {

@@ -551,17 +551,8 @@ pub fn parse_volume_file(src: &Source) -> Result<VolumeFile> {
     };
     let mut used: std::collections::HashMap<(usize, usize), usize> = Default::default();
     for (ln, col, s) in links {
-        let text = src.text.lines().nth(ln - 1).unwrap_or("");
-        let len = (text
-            .split('#')
-            .next()
-            .unwrap_or("")
-            .trim_end()
-            .chars()
-            .count()
-            + 1)
-        .saturating_sub(col);
-        let err = |code: &'static str, m: String| Error::at(code, m, ln, col, len.max(1), src);
+        let len = link_len(src, ln, col);
+        let err = |code: &'static str, m: String| Error::at(code, m, ln, col, len, src);
         if s.a.0 == s.b.0 {
             return Err(err(
                 "E1230",
@@ -697,6 +688,21 @@ pub fn notation_file(arg: &str) -> Result<VolumeFile> {
         assembly: VolumeAssembly::single(parse_volume(arg)?),
         corners: vec![None],
     })
+}
+
+/// The length of a link line's span from column `col` of line `ln` to the end of its text (the
+/// comment and trailing blanks left out), at least 1: what an error about that link underlines.
+fn link_len(src: &Source, ln: usize, col: usize) -> usize {
+    let text = src.text.lines().nth(ln - 1).unwrap_or("");
+    let end = text
+        .split('#')
+        .next()
+        .unwrap_or("")
+        .trim_end()
+        .chars()
+        .count()
+        + 1;
+    end.saturating_sub(col).max(1)
 }
 
 #[cfg(test)]
