@@ -72,7 +72,7 @@ fn export_then_solve_on_the_command_line() {
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("delayed.aut");
     let f = file.to_str().unwrap();
-    let (code, _, err) = common::lacuna(&[
+    let (code, out, err) = common::lacuna(&[
         "export",
         "fixtures/delayed-B2-C2.txt",
         "--format",
@@ -81,6 +81,8 @@ fn export_then_solve_on_the_command_line() {
         f,
     ]);
     assert_eq!(code, 0, "{err}");
+    // Like `render`, a file written is said (issue #32).
+    assert_eq!(out, format!("wrote {f}\n"));
     let json = |args: &[&str]| -> serde_json::Value {
         let (_, out, err) = common::lacuna(args);
         serde_json::from_str(&out).unwrap_or_else(|_| panic!("{err}"))

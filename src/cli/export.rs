@@ -57,7 +57,10 @@ pub(super) fn run(args: ExportArgs, limits: &Limits) -> Result<ExitCode, Error> 
     let text =
         lacuna::export::generated_text(lacuna::input::load_any(&input)?, format, opts, limits)?;
     match (output, outputs.as_mut()) {
-        (Some(path), Some(o)) => o.write(&path, |w| w.write_all(text.as_bytes()))?,
+        (Some(path), Some(o)) => {
+            o.write(&path, |w| w.write_all(text.as_bytes()))?;
+            o.say(&format!("wrote {}\n", path.display()));
+        }
         _ => out(&text),
     }
     Ok(ExitCode::SUCCESS)
