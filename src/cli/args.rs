@@ -550,8 +550,8 @@ pub(crate) struct RenderArgs {
     /// Leave the legend (type → colour and notation) out of the SVG and PNG pictures.
     #[arg(long)]
     pub(crate) no_legend: bool,
-    /// Write the relative-density map of level N as a colour PNG, --size pixels a side (blue
-    /// empty to red full), with a colour bar, the grid and the mask stated.
+    /// Write the relative-density map of level N as a colour PNG, --size pixels a side (viridis:
+    /// dark violet empty to yellow full; outside the face grey), with a colour bar, the grid and the mask stated.
     #[arg(long, value_name = "OUT.png")]
     pub(crate) density: Option<std::path::PathBuf>,
     /// Blocks per side of the density map.
