@@ -1,11 +1,14 @@
 //! The closure: every face type the recursion produces, with the type graph (THEORY §4).
 //!
-//! Breadth-first from the start faces, identifying types by canonical face. "Did not close" is a
-//! result ([`Closure::Runaway`], with the chain of growing types), not an error. For the built-in
+//! Breadth-first from the start faces, identifying types by canonical face (the closure of
+//! `topology/breadth_first.rs`, shared with volumes). "Did not close" is a result
+//! ([`Closure::Runaway`], with the chain of growing types), not an error. For the built-in
 //! algorithms the closure is finite, and [`Bound::stated`] gives the bound in advance; the
 //! closure is checked against it.
 
 use crate::error::{Error, Result};
+pub use crate::topology::breadth_first::Runaway;
+use crate::topology::breadth_first::{close_types, Closable, LimitMet, Outcome};
 use crate::topology::class::ClassStructure;
 use crate::topology::edge::EdgeType;
 use crate::topology::face::Face;
@@ -92,37 +95,6 @@ impl TypeSet {
     }
 }
 
-/// A closure that did not close within the limits: the chain of types from a start face to the
-/// type that broke a limit.
-#[derive(Clone, Debug, Serialize)]
-pub struct Runaway {
-    /// The limit that was hit.
-    pub reason: String,
-    /// The witness chain: each face is a sub-face of the previous one.
-    pub witness: Vec<String>,
-}
-
-impl Runaway {
-    /// The runaway whose witness ends with `last`, the new type that broke the limit, found in
-    /// the subdivision of type `from`; `link(t)` gives type t's name and its parent.
-    pub(crate) fn chain(
-        reason: String,
-        last: String,
-        from: usize,
-        link: impl Fn(usize) -> (String, Option<usize>),
-    ) -> Self {
-        let mut witness = vec![last];
-        let mut cur = Some(from);
-        while let Some(c) = cur {
-            let (name, parent) = link(c);
-            witness.push(name);
-            cur = parent;
-        }
-        witness.reverse();
-        Runaway { reason, witness }
-    }
-}
-
 /// The outcome of closing a set of faces.
 #[derive(Clone, Debug)]
 #[allow(clippy::large_enum_variant)]
@@ -145,85 +117,54 @@ impl Closure {
                 return Err(b.above(limits, None));
             }
         }
-        let mut types: Vec<FaceType> = Vec::new();
-        let mut index: HashMap<Face, usize> = HashMap::new();
-        let mut start_idx = Vec::new();
-        let mut queue = std::collections::VecDeque::new();
-        for f in start {
-            let (c, _) = f.canonical();
-            let id = *index.entry(c.clone()).or_insert_with(|| {
-                types.push(FaceType {
-                    face: c,
-                    subdivision: empty_subdivision(),
-                    children: Vec::new(),
-                    parent: None,
-                });
-                queue.push_back(types.len() - 1);
-                types.len() - 1
-            });
-            start_idx.push(id);
-        }
-        while let Some(t) = queue.pop_front() {
-            let sub = subdivide(&types[t].face)?;
-            let mut children = Vec::with_capacity(sub.subfaces.len());
-            for s in &sub.subfaces {
-                let id = match index.get(&s.face) {
-                    Some(&id) => id,
-                    None => {
-                        let id = types.len();
-                        let len = s.face.boundary.len();
-                        if len > limits.max_boundary || id >= limits.max_types {
-                            // A proved-finite closure that meets a limit is a limit error,
-                            // never a runaway (THEORY §4).
-                            if let Some(b) = &bound {
-                                let met = (len <= limits.max_boundary).then_some(id);
-                                return Err(b.above(limits, met));
-                            }
-                            let reason = if len > limits.max_boundary {
-                                format!(
-                                    "a sub-face boundary has {len} edges, above the limit {} (--max-boundary)",
-                                    limits.max_boundary
-                                )
-                            } else {
-                                format!("more than {} face types (--max-types)", limits.max_types)
-                            };
-                            return Ok(Closure::Runaway(Runaway::chain(
-                                reason,
-                                s.face.to_string(),
-                                t,
-                                |c| (types[c].face.to_string(), types[c].parent),
-                            )));
-                        }
-                        index.insert(s.face.clone(), id);
-                        types.push(FaceType {
-                            face: s.face.clone(),
-                            subdivision: empty_subdivision(),
-                            children: Vec::new(),
-                            parent: Some(t),
-                        });
-                        queue.push_back(id);
-                        id
-                    }
-                };
-                children.push(id);
-            }
-            types[t].subdivision = sub;
-            types[t].children = children;
-        }
-        Ok(Closure::Closed(TypeSet {
-            types,
-            start: start_idx,
-            bound,
-        }))
+        let proved = |met: LimitMet| {
+            // A proved-finite closure that meets a limit is a limit error, never a runaway
+            // (THEORY §4).
+            let types_met = match met {
+                LimitMet::Size(_) => None,
+                LimitMet::Types(met) => Some(met),
+            };
+            bound.as_ref().map(|b| b.above(limits, types_met))
+        };
+        let start = start.iter().map(|f| f.canonical().0);
+        Ok(match close_types(start, limits, proved)? {
+            Outcome::Runaway(r) => Closure::Runaway(r),
+            Outcome::Closed(types, start) => Closure::Closed(TypeSet {
+                types: types
+                    .into_iter()
+                    .map(|n| FaceType {
+                        face: n.item,
+                        subdivision: n.step,
+                        children: n.children,
+                        parent: n.parent,
+                    })
+                    .collect(),
+                start,
+                bound,
+            }),
+        })
     }
 }
 
-fn empty_subdivision() -> Subdivision {
-    Subdivision {
-        junctions: Vec::new(),
-        spokes: Vec::new(),
-        subfaces: Vec::new(),
-        adjacencies: Vec::new(),
+impl Closable for Face {
+    type Step = Subdivision;
+
+    const NOUN: &'static str = "face";
+
+    fn size(&self) -> usize {
+        self.boundary.len()
+    }
+
+    fn size_reason(size: usize, limit: usize) -> String {
+        format!("a sub-face boundary has {size} edges, above the limit {limit} (--max-boundary)")
+    }
+
+    fn step(&self, _: &Limits) -> Result<Subdivision> {
+        subdivide(self)
+    }
+
+    fn children(step: &Subdivision) -> Vec<&Face> {
+        step.subfaces.iter().map(|s| &s.face).collect()
     }
 }
 

@@ -5,6 +5,7 @@
 //! Architecture invariant: this layer never sees a float and imports nothing from the crate but
 //! [`crate::error`]. Everything above builds on it; it knows nothing of what is built.
 
+pub(crate) mod breadth_first;
 pub(crate) mod class;
 pub(crate) mod closure;
 pub(crate) mod component;

@@ -1,12 +1,12 @@
 //! The closure of volume types and their exact counts (THEORY §10).
 //!
-//! Breadth-first from the start volumes, identifying types by canonical volume, as for faces
-//! (THEORY §4). No bound on the closure of volumes is proved yet, so growth past the limits is a
-//! runaway with its witness chain: more than `--max-types` volume types, or a volume whose surface
-//! has more than `--max-boundary` faces.
+//! Breadth-first from the start volumes, identifying types by canonical volume, by the closure
+//! faces use too (`topology/breadth_first.rs`, THEORY §4). No bound on the closure of volumes is
+//! proved yet, so growth past the limits is a runaway with its witness chain: more than
+//! `--max-types` volume types, or a volume whose surface has more than `--max-boundary` faces.
 
 use crate::error::Result;
-use crate::topology::closure::Runaway;
+use crate::topology::breadth_first::{close_types, Closable, Outcome, Runaway};
 use crate::topology::limits::Limits;
 use crate::topology::volume::step::{subdivide_volume, VolumeSubdivision};
 use crate::topology::volume::Volume;
@@ -14,7 +14,6 @@ use num_bigint::BigUint;
 use num_rational::BigRational;
 use num_traits::Zero;
 use serde::Serialize;
-use std::collections::{HashMap, VecDeque};
 
 /// One volume type of a closure.
 #[derive(Clone, Debug)]
@@ -56,76 +55,45 @@ impl VolumeClosure {
                 limits.check_face(f)?;
             }
         }
-        let mut types: Vec<VolumeType> = Vec::new();
-        let mut index: HashMap<Volume, usize> = HashMap::new();
-        let mut queue = VecDeque::new();
-        let mut start_idx = Vec::new();
-        let empty = || VolumeSubdivision {
-            subvolumes: Vec::new(),
-            spoke_pairs: Vec::new(),
-        };
-        for v in start {
-            let c = v.canonical();
-            let id = match index.get(&c) {
-                Some(&id) => id,
-                None => {
-                    index.insert(c.clone(), types.len());
-                    types.push(VolumeType {
-                        volume: c,
-                        subdivision: empty(),
-                        children: Vec::new(),
-                        parent: None,
-                    });
-                    queue.push_back(types.len() - 1);
-                    types.len() - 1
-                }
-            };
-            start_idx.push(id);
-        }
-        while let Some(t) = queue.pop_front() {
-            refuse_before_the_step(&types[t].volume, limits)?;
-            let sub = subdivide_volume(&types[t].volume)?;
-            let mut children = Vec::with_capacity(sub.subvolumes.len());
-            for s in &sub.subvolumes {
-                if let Some(&id) = index.get(&s.volume) {
-                    children.push(id);
-                    continue;
-                }
-                let id = types.len();
-                let faces = s.volume.surface.faces.len();
-                if faces > limits.max_boundary || id >= limits.max_types {
-                    let reason = if faces > limits.max_boundary {
-                        format!(
-                            "a sub-volume has {faces} faces, above the limit {} (--max-boundary)",
-                            limits.max_boundary
-                        )
-                    } else {
-                        format!("more than {} volume types (--max-types)", limits.max_types)
-                    };
-                    return Ok(VolumeClosure::Runaway(Runaway::chain(
-                        reason,
-                        s.volume.to_string(),
-                        t,
-                        |c| (types[c].volume.to_string(), types[c].parent),
-                    )));
-                }
-                index.insert(s.volume.clone(), id);
-                types.push(VolumeType {
-                    volume: s.volume.clone(),
-                    subdivision: empty(),
-                    children: Vec::new(),
-                    parent: Some(t),
-                });
-                queue.push_back(id);
-                children.push(id);
-            }
-            types[t].subdivision = sub;
-            types[t].children = children;
-        }
-        Ok(VolumeClosure::Closed(VolumeTypeSet {
-            types,
-            start: start_idx,
-        }))
+        let start = start.iter().map(Volume::canonical);
+        Ok(match close_types(start, limits, |_| None)? {
+            Outcome::Runaway(r) => VolumeClosure::Runaway(r),
+            Outcome::Closed(types, start) => VolumeClosure::Closed(VolumeTypeSet {
+                types: types
+                    .into_iter()
+                    .map(|n| VolumeType {
+                        volume: n.item,
+                        subdivision: n.step,
+                        children: n.children,
+                        parent: n.parent,
+                    })
+                    .collect(),
+                start,
+            }),
+        })
+    }
+}
+
+impl Closable for Volume {
+    type Step = VolumeSubdivision;
+
+    const NOUN: &'static str = "volume";
+
+    fn size(&self) -> usize {
+        self.surface.faces.len()
+    }
+
+    fn size_reason(size: usize, limit: usize) -> String {
+        format!("a sub-volume has {size} faces, above the limit {limit} (--max-boundary)")
+    }
+
+    fn step(&self, limits: &Limits) -> Result<VolumeSubdivision> {
+        refuse_before_the_step(self, limits)?;
+        subdivide_volume(self)
+    }
+
+    fn children(step: &VolumeSubdivision) -> Vec<&Volume> {
+        step.subvolumes.iter().map(|s| &s.volume).collect()
     }
 }
 
