@@ -42,13 +42,20 @@ def test_report_of_a_runaway_says_so():
     assert "NOT VERIFIED" in page and "did not close" in page
 
 
-def test_automaton_and_volume_reports():
+def test_automaton_and_volume_reports(cli, tmp_path):
     page = lacuna.load("sierpinski-triangle").report(level=3)
     assert "sierpinski-triangle" in page and ("<svg" in page or "<img" in page)
     # A level of the triangle has 3^k pieces: the measures table goes to level 3 (27 pieces).
     assert "27" in page
-    vol = lacuna.load("cube-B2").report(level=1)
+    out = tmp_path / "cube.html"
+    assert lacuna.load("cube-B2").report(out, level=1) == out
+    vol = out.read_text()
     assert "VERIFIED" in vol and "cube-B2" in vol
+    # The pages lacuna report writes, byte for byte.
+    for name, level, ours in (("sierpinski-triangle", 3, page), ("cube-B2", 1, vol)):
+        theirs = tmp_path / f"{name}.html"
+        code, _ = cli("report", name, "--level", level, "--out", theirs)
+        assert code == 0 and theirs.read_text() == ours, name
 
 
 def test_report_refuses_the_input_and_speaks_python(tmp_path):
