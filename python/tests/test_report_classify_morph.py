@@ -196,3 +196,15 @@ def test_morph_errors_speak_python():
     assert "max_cells" in e.value.message and "--max" not in e.value.message
     with pytest.raises(lacuna.UsageError):
         lacuna.morph(f, f)  # faces without on=
+
+
+def test_a_frame_plots_its_cells():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    f = lacuna.load("F0")
+    m = lacuna.morph(None, None, on=f, frames=2, level=1, size=64)
+    ax = m.frames[1].plot()
+    drawn = sum(len(c.get_paths()) for c in ax.collections)
+    assert drawn == len(m.frames[1]) == f.counts(1)[1].faces
+    assert "<table>" in m._repr_html_() and m._repr_html_().count("<tr>") == 3

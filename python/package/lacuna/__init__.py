@@ -18,6 +18,10 @@ Inputs are what the command line reads: face notation (:class:`Face`), assembly 
 files (:class:`Assembly`), automaton files (:class:`Automaton`), volume notation and volume files
 (:class:`Volume`, one volume or several glued face to face), and the names of the library
 (:func:`library`, :func:`load`).
+
+Every input writes the HTML report of ``lacuna report`` (``report(path)``); :func:`classify`
+groups inputs into topological classes and :func:`morph` builds and checks the frames between two
+parameter choices (``lacuna classify``, ``lacuna morph``).
 """
 
 from __future__ import annotations
