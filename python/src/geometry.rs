@@ -13,19 +13,19 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
 
-/// Geometry options shared by `polygons`, `render` and `measure`.
-struct Geo {
-    input: String,
-    level: u32,
-    params: Vec<(String, String)>,
-    segments: usize,
-    max_cells: Option<u64>,
-    limits: Limits,
+/// Geometry options shared by `polygons`, `render`, `measure` and `report`.
+pub(crate) struct Geo {
+    pub(crate) input: String,
+    pub(crate) level: u32,
+    pub(crate) params: Vec<(String, String)>,
+    pub(crate) segments: usize,
+    pub(crate) max_cells: Option<u64>,
+    pub(crate) limits: Limits,
 }
 
 impl Geo {
     /// The instance of the faces with the parameters given (the command line's `instance`).
-    fn instance(&self, default_cells: u64) -> Result<lacuna::geometry::Instance, Error> {
+    pub(crate) fn instance(&self, default_cells: u64) -> Result<lacuna::geometry::Instance, Error> {
         self.limits.check_level(u64::from(self.level))?;
         if !(1..=64).contains(&self.segments) {
             return Err(out_of_range(
@@ -49,7 +49,7 @@ impl Geo {
     }
 
     /// The automaton's model, resolved, contraction checked, ready to draw.
-    fn automaton(
+    pub(crate) fn automaton(
         &self,
         default_cells: u64,
     ) -> Result<
@@ -92,7 +92,7 @@ impl Geo {
 
 /// Reads the geometry keywords.
 #[allow(clippy::too_many_arguments)]
-fn geo(
+pub(crate) fn geo(
     input: String,
     level: u32,
     params: Vec<(String, String)>,
@@ -339,28 +339,15 @@ pub(crate) fn measure(
             }
             g.limits.check_digits(digits)?;
             let (model, resolved, contraction, ev, name) = g.automaton(2_000_000)?;
-            let levels = lacuna::measure::level_measures(&ev, g.level);
-            let mut box_level = g.level;
-            while box_level < 40 && ev.count(box_level + 1) <= 100_000 {
-                box_level += 1;
-            }
-            let box_dimension = lacuna::measure::box_dimension(&ev, box_level);
-            let (similarity_dimension, similarity_note) =
-                match lacuna::analysis::similarity_dimension(&model, &resolved.ops, digits) {
-                    Ok(s) => (Some(s), None),
-                    Err(n) => (None, Some(n)),
-                };
-            let m = lacuna::measure::AutomatonMeasure {
-                input: name,
-                space: model.space,
-                level: g.level,
-                solver: resolved.verdict.clone(),
-                contraction,
-                levels,
-                box_dimension,
-                similarity_dimension,
-                similarity_note,
-            };
+            let m = lacuna::measure::automaton_measure(
+                &name,
+                &model,
+                &resolved,
+                &contraction,
+                &ev,
+                g.level,
+                digits,
+            );
             return Ok(json(&m));
         }
         let inst = g.instance(20_000_000)?;

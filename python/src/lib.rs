@@ -19,6 +19,7 @@ use pyo3::types::PyDict;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+mod commands;
 mod design;
 mod export;
 mod family;
@@ -64,7 +65,10 @@ const LIMIT_KEYS: [&str; 9] = [
 /// `limits={'max_level': …}` (the keyword every method takes), `--max-cells` the keyword
 /// `max_cells=…`; other text is unchanged.
 fn pythonic(message: &str) -> String {
-    let message = message.replace("--holes-level", "holes_level=…");
+    let message = message
+        .replace("--holes-level", "holes_level=…")
+        .replace("--volume-levels", "volume_levels=…")
+        .replace("--level (lower it)", "level=… (lower it)");
     let mut out = String::with_capacity(message.len());
     let mut rest = message.as_str();
     while let Some(at) = rest.find("--max-") {
@@ -558,6 +562,9 @@ fn _lacuna(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(geometry::decode_png, m)?)?;
     m.add_function(wrap_pyfunction!(operators::operators, m)?)?;
     m.add_function(wrap_pyfunction!(design::design, m)?)?;
+    m.add_function(wrap_pyfunction!(commands::report, m)?)?;
+    m.add_function(wrap_pyfunction!(commands::classify, m)?)?;
+    m.add_function(wrap_pyfunction!(commands::morph, m)?)?;
     m.add_function(wrap_pyfunction!(export::export, m)?)?;
     m.add_function(wrap_pyfunction!(family::explore_shard, m)?)?;
     m.add_function(wrap_pyfunction!(family::census, m)?)?;

@@ -213,10 +213,6 @@ pub(crate) fn volume_certificate(
     })
 }
 
-/// The default bound on the faces of the level-n solid drawn or printed (`max_cells`), the
-/// command line's.
-const MAX_SOLID_FACES: u64 = 400_000;
-
 /// Printing sizes shared by `volume_render` and `volume_measure` (the command line's
 /// `PrintArgs`).
 pub(crate) struct Print {
@@ -265,26 +261,9 @@ fn checked_solid(
     max_cells: Option<u64>,
     limits: &Limits,
 ) -> Result<(lacuna::mesh::VolumeSolid, VolumeTypeSet), Error> {
-    let too_deep = || Error::limit("the level", level, limits.max_level, "--max-level");
-    if level > limits.max_level {
-        return Err(too_deep());
-    }
-    let level = u32::try_from(level).map_err(|_| too_deep())?;
     let set = closed(v, limits)?;
-    let exact = solid_topology_of(&set, u64::from(level), &v.assembly.start_cells())?;
-    let faces = &exact.last().expect("one row per level").faces;
-    let cap = max_cells.unwrap_or(MAX_SOLID_FACES);
-    if *faces > cap.into() {
-        return Err(Error::limit(
-            "the number of faces of the level-n solid",
-            faces,
-            cap,
-            "--max-cells",
-        ));
-    }
-    lacuna::mesh::check_size("--width", width).map_err(mesh_error)?;
-    let placement = lacuna::geometry::place_assembly(&v.assembly, &v.corners, &v.names)?;
-    let vs = lacuna::mesh::assembly_solid(name, &v.assembly, &placement, &set, level, width)?;
+    let cap = max_cells.unwrap_or(lacuna::mesh::MAX_SOLID_FACES);
+    let vs = lacuna::mesh::checked_volume_solid(name, v, &set, level, width, cap, limits)?;
     Ok((vs, set))
 }
 

@@ -25,7 +25,7 @@ def test_every_subcommand_has_a_row(cli_text):
     assert "operators" in commands and "man" in commands
     table = _table()
     assert sorted(table) == sorted(commands)
-    for name in ("operators", "design", "export"):
+    for name in ("operators", "design", "export", "report", "classify", "morph"):
         assert "none yet" not in table[name]
 
 
@@ -35,3 +35,5 @@ def test_the_named_functions_exist():
             assert callable(getattr(lacuna, name)), name
     for cls in (lacuna.Face, lacuna.Assembly, lacuna.Automaton):
         assert callable(cls.operators) and callable(cls.export)
+    for cls in (lacuna.Face, lacuna.Assembly, lacuna.Automaton, lacuna.Volume):
+        assert callable(cls.report)

@@ -10,7 +10,7 @@ use lacuna::input::AutomatonModel;
 /// A loaded automaton ready to draw.
 pub(super) struct Prepared {
     name: String,
-    source: String,
+    input: String,
     model: AutomatonModel,
     resolved: Resolved,
     contraction: ContractionReport,
@@ -57,16 +57,9 @@ pub(super) fn prepare(
             "--max-cells",
         ));
     }
-    let source = match std::fs::read_to_string(&geo.input) {
-        Ok(t) => t,
-        Err(_) => lacuna::input::library()
-            .iter()
-            .find(|(n, _)| *n == geo.input)
-            .map_or(String::new(), |(_, t)| t.to_string()),
-    };
     Ok(Prepared {
         name,
-        source,
+        input: geo.input.clone(),
         model,
         resolved,
         contraction,
@@ -315,29 +308,15 @@ pub(super) fn measures(
         });
     }
     limits.check_digits(digits)?;
-    let levels = lacuna::measure::level_measures(&p.ev, geo.level);
-    // Box counting wants fine pieces: the deepest level with at most 100 000 of them.
-    let mut box_level = geo.level;
-    while box_level < 40 && p.ev.count(box_level + 1) <= 100_000 {
-        box_level += 1;
-    }
-    let box_dimension = lacuna::measure::box_dimension(&p.ev, box_level);
-    let (similarity_dimension, similarity_note) =
-        match lacuna::analysis::similarity_dimension(&p.model, &p.resolved.ops, digits) {
-            Ok(s) => (Some(s), None),
-            Err(n) => (None, Some(n)),
-        };
-    Ok(lacuna::measure::AutomatonMeasure {
-        input: p.name.clone(),
-        space: p.model.space,
-        level: geo.level,
-        solver: p.resolved.verdict.clone(),
-        contraction: p.contraction.clone(),
-        levels,
-        box_dimension,
-        similarity_dimension,
-        similarity_note,
-    })
+    Ok(lacuna::measure::automaton_measure(
+        &p.name,
+        &p.model,
+        &p.resolved,
+        &p.contraction,
+        &p.ev,
+        geo.level,
+        digits,
+    ))
 }
 
 /// `lacuna measure` on an automaton.
@@ -371,123 +350,23 @@ pub(super) fn report(
     limits: &Limits,
 ) -> Result<ExitCode, Error> {
     warn(&p);
-    let m = measures(geo, &p, 30, limits)?;
-    let classes = classes_text(&p);
-    let curves = report_curves(&p);
-    let html = lacuna::export::automaton_report_html(&p.ev, &m, &classes, &curves, &p.source);
-    outputs.write(path, |w| w.write_all(html.as_bytes()))?;
+    let page = lacuna::export::automaton_report_page(
+        &p.input,
+        &p.name,
+        &p.model,
+        &p.resolved,
+        &p.contraction,
+        &p.ev,
+        geo.level,
+        limits,
+    )?;
+    outputs.write(path, |w| w.write_all(page.html.as_bytes()))?;
     outputs.say(&format!("wrote {}\n", path.display()));
-    Ok(if m.solver.consistent {
+    Ok(if page.verified {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(EXIT_FAILED)
     })
-}
-
-/// The operators' eigen analysis (as `lacuna operators` prints it) for rational operators.
-fn classes_text(p: &Prepared) -> String {
-    let mut a = p.model.automaton.clone();
-    for (o, op) in a.operators.iter_mut().enumerate() {
-        let k = &p.resolved.ops[o];
-        let data: Option<Vec<_>> = k.data.iter().map(|v| v.as_rational()).collect();
-        match data {
-            Some(d) => op.value = Some(lacuna::algebra::Matrix { rows: k.rows, cols: k.cols, data: d }),
-            None => return format!("operators with entries in {}: the eigen analysis of `lacuna operators` works over Q only", p.resolved.verdict.field),
-        }
-    }
-    match lacuna::analysis::analyse_automaton(&a) {
-        Ok(r) => r.to_text(),
-        Err(e) => format!("not analysed: {e}"),
-    }
-}
-
-/// The pseudo-curvature ranges of the automaton's curves for the report: every reachable state
-/// drawn as a polyline with two or more rational subdivision operators onto itself, its control
-/// points those of its first node (reached from the start by the shortest word), at the start,
-/// the joints, the end and the parameters k/I³ (I operators); samples of level 6.
-fn report_curves(p: &Prepared) -> Vec<(String, Result<lacuna::analysis::CurveCurvature, String>)> {
-    use num_traits::ToPrimitive;
-    let m = &p.model;
-    let a = &m.automaton;
-    let k = &m.field;
-    // Shortest words from the start (breadth first over the control graph).
-    let mut word: Vec<Option<Vec<usize>>> = vec![None; a.states.len()];
-    word[m.start] = Some(Vec::new());
-    let mut queue = std::collections::VecDeque::from([m.start]);
-    while let Some(q) = queue.pop_front() {
-        for (o, op) in a.operators.iter().enumerate() {
-            if op.kind == lacuna::constraint::OpKind::Sub && op.to == q && word[op.from].is_none() {
-                let mut w = word[q].clone().unwrap_or_default();
-                w.push(o);
-                word[op.from] = Some(w);
-                queue.push_back(op.from);
-            }
-        }
-    }
-    let approx = |v: &lacuna::algebra::FieldElement| -> f64 {
-        match v.as_rational() {
-            Some(q) => q.to_f64().unwrap_or(f64::NAN),
-            None => {
-                let w =
-                    num_rational::BigRational::new(1.into(), num_bigint::BigInt::from(1u64 << 60));
-                let (lo, hi) = k.enclosure(v, &w);
-                ((lo + hi) / num_rational::BigRational::from_integer(2.into()))
-                    .to_f64()
-                    .unwrap_or(f64::NAN)
-            }
-        }
-    };
-    let mut out = Vec::new();
-    for (s, state) in a.states.iter().enumerate() {
-        let Some(w) = &word[s] else { continue };
-        if !matches!(m.primitives[s], lacuna::input::Primitive::Polyline(_)) {
-            continue;
-        }
-        let ops: Vec<usize> = (0..a.operators.len())
-            .filter(|&o| {
-                let op = &a.operators[o];
-                op.kind == lacuna::constraint::OpKind::Sub && op.to == s && op.from == s
-            })
-            .collect();
-        if ops.len() < 2 {
-            continue;
-        }
-        let mats: Option<Vec<lacuna::algebra::Matrix>> = ops
-            .iter()
-            .map(|&o| {
-                let km = &p.resolved.ops[o];
-                let data: Option<Vec<_>> = km.data.iter().map(|v| v.as_rational()).collect();
-                data.map(|d| lacuna::algebra::Matrix {
-                    rows: km.rows,
-                    cols: km.cols,
-                    data: d,
-                })
-            })
-            .collect();
-        let Some(mats) = mats else {
-            out.push((
-                state.name.clone(),
-                Err("operators outside Q: the differential characteristic functions are computed over Q".to_string()),
-            ));
-            continue;
-        };
-        let Some(pts) = lacuna::geometry::exact_points(m, &p.resolved, w) else {
-            continue;
-        };
-        let pts: Vec<Vec<f64>> = pts.iter().map(|q| q.iter().map(approx).collect()).collect();
-        let names: Vec<String> = ops.iter().map(|&o| a.operators[o].name.clone()).collect();
-        let i = ops.len() as i64;
-        let at: Vec<num_rational::BigRational> = (1..i * i * i)
-            .filter(|j| j % (i * i) != 0)
-            .map(|j| num_rational::BigRational::new(j.into(), (i * i * i).into()))
-            .collect();
-        out.push((
-            state.name.clone(),
-            lacuna::analysis::curve_curvature(&names, &mats, &pts, &at, 6)
-                .map_err(|e| e.to_string()),
-        ));
-    }
-    out
 }
 
 /// What `verify` says about an automaton file or a rule.

@@ -5,15 +5,7 @@ use super::*;
 
 /// A geometry error as a lacuna error (same code and message).
 pub(super) fn geo_error(e: lacuna::geometry::GeometryError) -> Error {
-    match e {
-        lacuna::geometry::GeometryError::Lacuna(e) => e,
-        other => Error::Syntax(Box::new(lacuna::Diagnostic {
-            code: other.code(),
-            message: other.to_string(),
-            span: None,
-            source: None,
-        })),
-    }
+    e.into_error()
 }
 
 impl GeoArgs {

@@ -74,41 +74,15 @@ fn automata(
         std::path::Path::new(args.b.as_str()),
     ];
     let mut outputs = output::Outputs::check(&inputs, &wanted)?;
-    let ra = lacuna::analysis::resolve(&ma, &[], limits.max_unknowns)?;
-    let rb = lacuna::analysis::resolve(&mb, &[], limits.max_unknowns)?;
-    // The pieces of the level are counted before any frame is drawn.
-    let ev = lacuna::geometry::Evaluator::new(&ma, &ra);
-    let max = 2_000_000u128;
-    if ev.count(args.level) > max {
-        return Err(Error::limit(
-            "the pieces of one frame",
-            ev.count(args.level),
-            max,
-            "--level (lower it)",
-        ));
-    }
-    let mut frames: Vec<(lacuna::export::FrameCells, lacuna::measure::MorphFrame)> = Vec::new();
-    let mut report = lacuna::measure::morph_automata(
+    let name = format!("{} → {}", args.a, args.b);
+    let (report, frames) = lacuna::export::morph_automata(
+        &name,
         &ma,
-        &ra,
         &mb,
-        &rb,
         args.frames,
         args.level,
-        |k, ev, frame| {
-            let cells = ev
-                .shapes(args.level)
-                .into_iter()
-                .map(|s| {
-                    let closed = matches!(s.kind, lacuna::geometry::ShapeKind::Polygon);
-                    (
-                        s.state,
-                        s.points.iter().map(|p| [p[0], p[1]]).collect(),
-                        closed,
-                    )
-                })
-                .collect();
-            frames.push((cells, frame.clone()));
+        limits,
+        |k, ev| {
             if let Some(p) = pngs.get(k as usize) {
                 let raster = lacuna::export::automaton_raster(ev, args.level, args.size as usize);
                 outputs.write(p, |w| lacuna::export::write_png(&raster, w))?;
@@ -116,7 +90,6 @@ fn automata(
             Ok(())
         },
     )?;
-    report.name = format!("{} → {}", args.a, args.b);
     finish(args, &report, &frames, &mut outputs, pngs.len())
 }
 
@@ -124,7 +97,7 @@ fn automata(
 fn finish(
     args: &MorphArgs,
     report: &lacuna::measure::MorphReport,
-    frames: &[(lacuna::export::FrameCells, lacuna::measure::MorphFrame)],
+    frames: &lacuna::export::MorphFrames,
     outputs: &mut output::Outputs,
     pngs: usize,
 ) -> Result<ExitCode, Error> {
@@ -269,45 +242,31 @@ pub(super) fn run(args: MorphArgs, limits: &Limits) -> Result<ExitCode, Error> {
     let input = load_input(on)?;
     let a = choice(&args.a, limits)?;
     let b = choice(&args.b, limits)?;
-    // The level's cells are counted exactly before any frame is built.
-    let ts = lacuna::topology::close_or_error(&input.faces(), limits)?;
-    let cells = &lacuna::topology::counts(&ts, u64::from(args.level))[args.level as usize].faces;
-    let max_cells = args.max_cells;
-    if cells > &num_bigint::BigUint::from(max_cells) {
-        return Err(Error::limit(
-            "the cells of one frame",
-            cells,
-            max_cells,
-            "--max-cells",
-        ));
-    }
-    let mopts = lacuna::measure::MeasureOptions {
-        level: args.level,
-        raster: (args.size as usize).next_power_of_two(),
-        density_grid: 0,
-        ..Default::default()
-    };
     let picture = lacuna::export::PictureOptions {
         width: args.size,
         legend: false,
         ..Default::default()
     };
-    let mut frames: Vec<(lacuna::export::FrameCells, lacuna::measure::MorphFrame)> = Vec::new();
-    let report = lacuna::measure::morph(&input, &a, &b, args.frames, &mopts, |k, inst, frame| {
-        let mut cells = Vec::new();
-        inst.walk(args.level, false, |c| {
-            cells.push((c.ty, inst.cell_polygon(c.ty, c.points, 8), true));
-        });
-        frames.push((cells, frame.clone()));
-        if let Some(p) = pngs.get(k as usize) {
-            outputs
-                .write(p, |w| {
-                    lacuna::export::write_png_picture(inst, args.level, &picture, w)
-                })
-                .map_err(lacuna::geometry::GeometryError::Lacuna)?;
-        }
-        Ok(())
-    })
+    let (report, frames) = lacuna::export::morph_faces(
+        &input,
+        &a,
+        &b,
+        args.frames,
+        args.level,
+        args.size,
+        args.max_cells,
+        limits,
+        |k, inst| {
+            if let Some(p) = pngs.get(k as usize) {
+                outputs
+                    .write(p, |w| {
+                        lacuna::export::write_png_picture(inst, args.level, &picture, w)
+                    })
+                    .map_err(lacuna::geometry::GeometryError::Lacuna)?;
+            }
+            Ok(())
+        },
+    )
     .map_err(geo_error)?;
     finish(&args, &report, &frames, &mut outputs, pngs.len())
 }

@@ -22,32 +22,26 @@ pub(super) fn run(args: ReportArgs, limits: &Limits) -> Result<ExitCode, Error> 
     let (input, inst) = match instance(&geo, limits, 200_000) {
         // A closure that does not close is a negative verdict, as in `lacuna verify` (exit 1):
         // the page says so, with the runaway witness, and has nothing to draw.
-        Err(Error::Runaway { .. }) => {
-            let input = load_input(&geo.input)?;
-            let closure = Closure::of(&input.faces(), limits)?;
-            let v = verify_report(&input, &closure, u64::from(geo.level).max(5), limits)?;
-            let html = lacuna::export::report_html_unverified(&v);
-            outputs.write(&path, |w| w.write_all(html.as_bytes()))?;
-            outputs.say(&format!("wrote {}\n", path.display()));
-            return Ok(ExitCode::from(EXIT_FAILED));
+        Err(Error::Runaway { .. }) => (load_input(&geo.input)?, None),
+        other => {
+            let (input, inst) = other?;
+            (input, Some(inst))
         }
-        other => other?,
     };
-    // The instance's closure is the one `Closure::of` would compute again.
-    let closure = Closure::Closed(inst.types.clone());
-    let v = verify_report(&input, &closure, u64::from(geo.level).max(5), limits)?;
-    let opts = lacuna::measure::MeasureOptions {
-        level: geo.level,
+    if let Some(inst) = &inst {
+        eprint!("{}", choice_text(&geo, inst));
+    }
+    let page = lacuna::export::faces_report_page(
+        &input,
+        inst.as_ref(),
+        geo.level,
         raster,
-        segments: geo.segments,
-        ..Default::default()
-    };
-    let m = lacuna::measure::measure(&inst, &opts).map_err(geo_error)?;
-    eprint!("{}", choice_text(&geo, &inst));
-    let html = lacuna::export::report_html(&v, &inst, &m, geo.level, geo.segments);
-    outputs.write(&path, |w| w.write_all(html.as_bytes()))?;
+        geo.segments,
+        limits,
+    )?;
+    outputs.write(&path, |w| w.write_all(page.html.as_bytes()))?;
     outputs.say(&format!("wrote {}\n", path.display()));
-    Ok(if v.verified && m.verified {
+    Ok(if page.verified {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(EXIT_FAILED)

@@ -288,9 +288,6 @@ pub(super) fn verify(
     })
 }
 
-/// The default bound on the faces of the level-n solid drawn or printed (`--max-cells`).
-const MAX_SOLID_FACES: u64 = 400_000;
-
 /// The checked solid of a volume at `level` (THEORY §10, §11): the level and the exact number of
 /// faces are bounded before any geometry is built.
 fn checked_solid(
@@ -314,6 +311,23 @@ fn checked_solid(
             "--max-level",
         ));
     }
+    only_volume_flags(geo)?;
+    let set = closed(&v.assembly.volumes, limits)?;
+    let cap = geo.max_cells.unwrap_or(lacuna::mesh::MAX_SOLID_FACES);
+    let vs = lacuna::mesh::checked_volume_solid(
+        name,
+        v,
+        &set,
+        u64::from(geo.level),
+        width,
+        cap,
+        limits,
+    )?;
+    Ok((vs, set))
+}
+
+/// Refuses the flags that apply to faces only.
+fn only_volume_flags(geo: &GeoArgs) -> Result<(), Error> {
     if !geo.params.is_empty()
         || geo.corners.is_some()
         || geo.template.is_some()
@@ -323,26 +337,7 @@ fn checked_solid(
             "--param, --corners, --template and --goal apply to faces; a volume is placed on its solid or on the corners its file gives (see docs/VOLUMES.md)".into(),
         ));
     }
-    let set = closed(&v.assembly.volumes, limits)?;
-    let exact = lacuna::topology::volume::solid_topology_of(
-        &set,
-        u64::from(geo.level),
-        &v.assembly.start_cells(),
-    )?;
-    let faces = &exact.last().expect("one row per level").faces;
-    let cap = geo.max_cells.unwrap_or(MAX_SOLID_FACES);
-    if *faces > cap.into() {
-        return Err(Error::limit(
-            "the number of faces of the level-n solid",
-            faces,
-            cap,
-            "--max-cells",
-        ));
-    }
-    lacuna::mesh::check_size("--width", width).map_err(mesh_error)?;
-    let placement = lacuna::geometry::place_assembly(&v.assembly, &v.corners, &v.names)?;
-    let vs = lacuna::mesh::assembly_solid(name, &v.assembly, &placement, &set, geo.level, width)?;
-    Ok((vs, set))
+    Ok(())
 }
 
 /// What `render` writes for a volume.
@@ -581,66 +576,16 @@ pub(super) fn report(
     outputs: &mut Outputs,
     limits: &Limits,
 ) -> Result<ExitCode, Error> {
-    let c = VolumeClosure::of(&v.assembly.volumes, limits)?;
-    let closure_text = lacuna::export::volume_closure_text("closure", name, &c);
-    let VolumeClosure::Closed(set) = c else {
-        return Err(Error::Usage(format!(
-            "the volume's closure did not close (see `lacuna closure {name}`)"
-        )));
-    };
-    let levels = u64::from(geo.level).max(3);
-    let solid =
-        lacuna::topology::volume::solid_topology_of(&set, levels, &v.assembly.start_cells())?;
-    let (vs, _) = checked_solid(name, v, geo, lacuna::mesh::DEFAULT_WIDTH, limits)?;
-    let sizes = vs.sizes(
-        lacuna::mesh::slice::DEFAULT_LAYERS,
-        lacuna::mesh::DEFAULT_RESOLUTION,
-    );
-    let mut check = vs.summary();
-    check += &sizes.text(lacuna::mesh::DEFAULT_RESOLUTION);
-    let covers = format!(
-        "closed, {} volume type{}; the level-{} mesh has the exact cells, components and Euler characteristic of the topology{}",
-        set.types.len(),
-        if set.types.len() == 1 { "" } else { "s" },
-        geo.level,
-        match &vs.crossing {
-            None => " and no two of its triangles cross",
-            Some(_) => ", but two of its triangles cross: see the mesh below",
-        }
-    );
-    let html = lacuna::export::volume_report_html(
-        name,
-        (
-            vs.crossing.is_none(),
-            if vs.crossing.is_none() {
-                "VERIFIED"
-            } else {
-                "NOT VERIFIED"
-            },
-            &covers,
-        ),
-        &[
-            ("Closure", closure_text),
-            (
-                "The level-n solid (exact; – where not derived)",
-                lacuna::export::solid_table(&solid),
-            ),
-            (
-                &format!(
-                    "The level-{} mesh, checked against the exact topology",
-                    geo.level
-                ),
-                check,
-            ),
-        ],
-        &vs.solid.parts,
-    );
-    outputs.write(path, |w| w.write_all(html.as_bytes()))?;
+    only_volume_flags(geo)?;
+    let page = lacuna::export::volume_report_page(name, v, geo.level, geo.max_cells, limits)?;
+    outputs.write(path, |w| w.write_all(page.html.as_bytes()))?;
     outputs.say(&format!("wrote {}\n", path.display()));
-    Ok(if vs.crossing.is_none() {
+    Ok(if page.verified {
         ExitCode::SUCCESS
     } else {
-        eprintln!("warning: {}", vs.crossing.as_deref().unwrap_or(""));
+        if let Some(w) = &page.warning {
+            eprintln!("warning: {w}");
+        }
         ExitCode::from(EXIT_FAILED)
     })
 }

@@ -9,6 +9,7 @@
 pub(crate) mod automaton_text;
 pub(crate) mod automaton_writer;
 pub(crate) mod bitmap;
+pub(crate) mod classify;
 pub(crate) mod generated;
 pub(crate) mod graph;
 pub(crate) mod html;
@@ -19,6 +20,7 @@ pub(crate) mod palette;
 pub(crate) mod picture;
 pub(crate) mod plot;
 pub(crate) mod report;
+pub(crate) mod report_page;
 pub(crate) mod volume_picture;
 pub(crate) mod volume_report;
 pub(crate) mod writer;
@@ -31,10 +33,11 @@ pub use automaton_writer::{
 pub use bitmap::{
     write_density_picture, write_png_picture, write_shapes_png, DensityPicture, Projection,
 };
+pub use classify::{classify_inputs, ClassifyOptions, ClassifyOutcome};
 pub use generated::{generated_text, GeneratedFormat};
 pub use html::{report_html, report_html_unverified};
 pub use moditere::moditere_text;
-pub use morph::{write_morph_svg, FrameCells};
+pub use morph::{morph_automata, morph_faces, write_morph_svg, FrameCells, MorphFrames};
 pub use operators::{
     design_report, operators_automaton, operators_report, DesignReport, OperatorsReport,
     OperatorsRequest,
@@ -49,6 +52,7 @@ pub use report::{
     closure_json, closure_report, counts_json, counts_table, ratio_of, ratio_text, verify_report,
     VerifyReport,
 };
+pub use report_page::{automaton_report_page, faces_report_page, volume_report_page, ReportPage};
 pub use volume_picture::{
     volume_report_html, volume_svg, volume_viewer, volume_viewer_with_id, write_volume_png,
     write_volume_svg,

@@ -3,10 +3,13 @@
 //! repeated for ever), which browsers play. A viewer without animation shows frame 0. Each frame
 //! carries its label (t and its verdict); a frame that failed is outlined in red with the reason.
 
+use crate::error::Error;
 use crate::export::palette::{hex, outline_colour, type_colour};
 use crate::export::picture::xml_escape;
-use crate::geometry::Point;
-use crate::measure::MorphFrame;
+use crate::geometry::{Evaluator, GeometryError, Instance, InstantiateOptions, Point, ShapeKind};
+use crate::input::{AutomatonModel, Input};
+use crate::measure::{MeasureOptions, MorphFrame, MorphReport};
+use crate::topology::Limits;
 use std::io::{self, Write};
 
 /// The cells of one frame: face type (or automaton state), points in the plane, and whether the
@@ -128,6 +131,98 @@ pub fn write_morph_svg<W: Write>(
         )?;
     }
     writeln!(out, "</svg>")
+}
+
+/// Every frame of a morph: its cells and its verdict, as [`write_morph_svg`] draws them.
+pub type MorphFrames = Vec<(FrameCells, MorphFrame)>;
+
+/// The morph of faces between two parameter choices `a` and `b` of `input` (THEORY §13): the
+/// cells of `level` counted exactly first (more than `max_cells` is refused), then `frames`
+/// frames built and checked (holes and components counted on a raster of `size` pixels, rounded
+/// up to a power of two), each frame's cells kept as polygons (8 segments per Bézier edge).
+/// `each` sees every frame's instance as it is built (the command line writes PNG frames).
+#[allow(clippy::too_many_arguments)]
+pub fn morph_faces(
+    input: &Input,
+    a: &InstantiateOptions,
+    b: &InstantiateOptions,
+    frames: u32,
+    level: u32,
+    size: u32,
+    max_cells: u64,
+    limits: &Limits,
+    mut each: impl FnMut(u32, &Instance) -> Result<(), GeometryError>,
+) -> Result<(MorphReport, MorphFrames), GeometryError> {
+    let ts = crate::topology::close_or_error(&input.faces(), limits)?;
+    let counts = crate::topology::counts(&ts, u64::from(level));
+    let cells = &counts[level as usize].faces;
+    if cells > &num_bigint::BigUint::from(max_cells) {
+        return Err(Error::limit("the cells of one frame", cells, max_cells, "--max-cells").into());
+    }
+    let mopts = MeasureOptions {
+        level,
+        raster: (size as usize).next_power_of_two(),
+        density_grid: 0,
+        ..Default::default()
+    };
+    let mut drawn: MorphFrames = Vec::new();
+    let report = crate::measure::morph(input, a, b, frames, &mopts, |k, inst, frame| {
+        let mut cells = Vec::new();
+        inst.walk(level, false, |c| {
+            cells.push((c.ty, inst.cell_polygon(c.ty, c.points, 8), true));
+        });
+        drawn.push((cells, frame.clone()));
+        each(k, inst)
+    })?;
+    Ok((report, drawn))
+}
+
+/// The morph between two automata of one shape (THEORY §13): both resolved (free parameters 0),
+/// the pieces of `level` counted first (more than 2 000 000 in one frame is refused), then
+/// `frames` frames built and checked, each frame's pieces kept (polygons filled, polylines and
+/// points open). `each` sees every frame's evaluator as it is built. The report is named `name`.
+pub fn morph_automata(
+    name: &str,
+    a: &AutomatonModel,
+    b: &AutomatonModel,
+    frames: u32,
+    level: u32,
+    limits: &Limits,
+    mut each: impl FnMut(u32, &Evaluator) -> Result<(), Error>,
+) -> Result<(MorphReport, MorphFrames), Error> {
+    let ra = crate::analysis::resolve(a, &[], limits.max_unknowns)?;
+    let rb = crate::analysis::resolve(b, &[], limits.max_unknowns)?;
+    // The pieces of the level are counted before any frame is drawn.
+    let count = Evaluator::new(a, &ra).count(level);
+    let max = 2_000_000u128;
+    if count > max {
+        return Err(Error::limit(
+            "the pieces of one frame",
+            count,
+            max,
+            "--level (lower it)",
+        ));
+    }
+    let mut drawn: MorphFrames = Vec::new();
+    let mut report =
+        crate::measure::morph_automata(a, &ra, b, &rb, frames, level, |k, ev, frame| {
+            let cells = ev
+                .shapes(level)
+                .into_iter()
+                .map(|s| {
+                    let closed = matches!(s.kind, ShapeKind::Polygon);
+                    (
+                        s.state,
+                        s.points.iter().map(|p| [p[0], p[1]]).collect(),
+                        closed,
+                    )
+                })
+                .collect();
+            drawn.push((cells, frame.clone()));
+            each(k, ev)
+        })?;
+    report.name = name.to_string();
+    Ok((report, drawn))
 }
 
 /// The discrete `values` and `keyTimes` that show frame `k` of `n` during [k/n, (k+1)/n).

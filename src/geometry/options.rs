@@ -85,6 +85,19 @@ pub enum GeometryError {
 }
 
 impl GeometryError {
+    /// As a lacuna error with the same code and message (a lacuna error stays itself).
+    pub fn into_error(self) -> crate::Error {
+        match self {
+            GeometryError::Lacuna(e) => e,
+            other => crate::Error::Syntax(Box::new(crate::Diagnostic {
+                code: other.code(),
+                message: other.to_string(),
+                span: None,
+                source: None,
+            })),
+        }
+    }
+
     /// The stable diagnostic code.
     pub fn code(&self) -> &'static str {
         match self {

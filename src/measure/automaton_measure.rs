@@ -351,3 +351,42 @@ impl AutomatonMeasure {
         o
     }
 }
+
+/// Everything `measure` reports for an automaton drawn by `ev` (its model resolved as
+/// `resolved`, its cycles checked as `contraction`): lengths and areas per level 0 to `level`,
+/// box counting at the deepest level with at most 100 000 pieces (and at least `level`), and the
+/// exact similarity dimension with `digits` certified digits (the caller checks `digits`).
+#[allow(clippy::too_many_arguments)]
+pub fn automaton_measure(
+    name: &str,
+    model: &crate::input::AutomatonModel,
+    resolved: &crate::analysis::Resolved,
+    contraction: &ContractionReport,
+    ev: &Evaluator,
+    level: u32,
+    digits: usize,
+) -> AutomatonMeasure {
+    let levels = level_measures(ev, level);
+    // Box counting wants fine pieces: the deepest level with at most 100 000 of them.
+    let mut box_level = level;
+    while box_level < 40 && ev.count(box_level + 1) <= 100_000 {
+        box_level += 1;
+    }
+    let box_dimension = box_dimension(ev, box_level);
+    let (similarity_dimension, similarity_note) =
+        match crate::analysis::similarity_dimension(model, &resolved.ops, digits) {
+            Ok(s) => (Some(s), None),
+            Err(n) => (None, Some(n)),
+        };
+    AutomatonMeasure {
+        input: name.to_string(),
+        space: model.space,
+        level,
+        solver: resolved.verdict.clone(),
+        contraction: contraction.clone(),
+        levels,
+        box_dimension,
+        similarity_dimension,
+        similarity_note,
+    }
+}

@@ -12,8 +12,8 @@ pub(crate) mod measurement;
 pub(crate) mod morph;
 
 pub use automaton_measure::{
-    box_dimension, level_measures, shape_measure, AutomatonLevel, AutomatonMeasure, BoxDimension,
-    OPEN_SET_NOT_CERTIFIED,
+    automaton_measure, box_dimension, level_measures, shape_measure, AutomatonLevel,
+    AutomatonMeasure, BoxDimension, OPEN_SET_NOT_CERTIFIED,
 };
 pub use certify::placement_certificate;
 pub use density::{density_map, density_raster, DensityMap, DensitySummary};

@@ -242,3 +242,50 @@ pub fn write_targets(
 }
 
 pub use crate::error::counted;
+
+/// The most faces of a volume's level-n solid built when the caller gives no bound.
+pub const MAX_SOLID_FACES: u64 = 400_000;
+
+/// The checked level-`level` solid of a volume file (`set` the closure of its volumes), `width`
+/// millimetres wide: the level (at most `limits.max_level`) and the exact number of faces of the
+/// level (at most `max_faces`) are bounded before any geometry is built; then the volumes are
+/// placed and the solid built and checked by [`assembly_solid`].
+pub fn checked_volume_solid(
+    name: &str,
+    v: &crate::input::VolumeFile,
+    set: &crate::topology::volume::VolumeTypeSet,
+    level: u64,
+    width: f64,
+    max_faces: u64,
+    limits: &crate::topology::Limits,
+) -> crate::error::Result<VolumeSolid> {
+    let too_deep = || crate::Error::limit("the level", level, limits.max_level, "--max-level");
+    if level > limits.max_level {
+        return Err(too_deep());
+    }
+    let level = u32::try_from(level).map_err(|_| too_deep())?;
+    let exact = crate::topology::volume::solid_topology_of(
+        set,
+        u64::from(level),
+        &v.assembly.start_cells(),
+    )?;
+    let faces = &exact.last().expect("one row per level").faces;
+    if *faces > max_faces.into() {
+        return Err(crate::Error::limit(
+            "the number of faces of the level-n solid",
+            faces,
+            max_faces,
+            "--max-cells",
+        ));
+    }
+    check_size("--width", width).map_err(|e| {
+        crate::Error::Syntax(Box::new(crate::Diagnostic {
+            code: e.code(),
+            message: e.to_string(),
+            span: None,
+            source: None,
+        }))
+    })?;
+    let placement = crate::geometry::place_assembly(&v.assembly, &v.corners, &v.names)?;
+    assembly_solid(name, &v.assembly, &placement, set, level, width)
+}

@@ -18,6 +18,10 @@ Inputs are what the command line reads: face notation (:class:`Face`), assembly 
 files (:class:`Assembly`), automaton files (:class:`Automaton`), volume notation and volume files
 (:class:`Volume`, one volume or several glued face to face), and the names of the library
 (:func:`library`, :func:`load`).
+
+Every input writes the HTML report of ``lacuna report`` (``report(path)``); :func:`classify`
+groups inputs into topological classes and :func:`morph` builds and checks the frames between two
+parameter choices (``lacuna classify``, ``lacuna morph``).
 """
 
 from __future__ import annotations
@@ -72,6 +76,12 @@ __all__ = [
     "Record",
     "Exploration",
     "explore",
+    "classify",
+    "Classification",
+    "Comparison",
+    "morph",
+    "Morph",
+    "MorphFrame",
     "census",
     "check_mesh",
     "operators",
@@ -999,6 +1009,28 @@ class Structure(_Operators):
         )
 
 
+    def report(
+        self,
+        path: Optional[PathLike] = None,
+        level: int = 3,
+        *,
+        params: Params = None,
+        raster: int = 2048,
+        segments: int = 4,
+        max_cells: Optional[int] = None,
+        limits: Limits = None,
+    ) -> Union[Path, str]:
+        """The self-contained HTML report ``lacuna report`` writes: the verdict line, the
+        verification (levels 0 to ``level``, at least 5), pictures of levels 0 to ``level`` and
+        the measures (``raster`` pixels for box counting, ``segments`` per Bézier edge; at most
+        ``max_cells`` cells, 200 000 by default). Written to ``path`` (never over the input),
+        which is returned; with ``path`` None the HTML text is returned instead. A closure that
+        does not close is a page that says so."""
+        from ._commands import _report
+
+        return _report(self.source, path, level, params, raster, segments, max_cells, limits)
+
+
 def _path(p: Optional[PathLike]) -> Optional[str]:
     return None if p is None else os.fspath(p)
 
@@ -1150,6 +1182,26 @@ class Automaton(_Operators):
         )
 
 
+    def report(
+        self,
+        path: Optional[PathLike] = None,
+        level: int = 3,
+        *,
+        params: Params = None,
+        max_cells: Optional[int] = None,
+        limits: Limits = None,
+    ) -> Union[Path, str]:
+        """The self-contained HTML report ``lacuna report`` writes: the verdict on its constraints
+        (operators resolved with ``params``), pictures of levels 0 to ``level`` (at most
+        ``max_cells`` pieces, 100 000 by default), the measures and similarity dimension, the
+        operators' eigen analysis, the curvature of its curves and its source. Written to
+        ``path`` (never over the input), which is returned; with ``path`` None the HTML text is
+        returned instead."""
+        from ._commands import _report
+
+        return _report(self.source, path, level, params, 2048, 4, max_cells, limits)
+
+
 # ---------------------------------------------------------------------------------------------
 # The library
 
@@ -1207,3 +1259,6 @@ from ._volume import (  # noqa: E402
 
 # Families and the mesh checker, likewise.
 from ._family import Exploration, census, check_mesh, explore  # noqa: E402
+
+# The report, the classification and the metamorphosis, likewise.
+from ._commands import Classification, Comparison, Morph, MorphFrame, classify, morph  # noqa: E402

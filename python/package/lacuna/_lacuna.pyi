@@ -227,3 +227,44 @@ def export(
     limits: _Limits = None,
 ) -> str:
     """`lacuna export INPUT --format F [-o PATH]`: the generated automaton's text."""
+
+def report(
+    input: str,
+    level: int = 3,
+    path: Optional[str] = None,
+    params: List[Tuple[str, str]] = ...,
+    raster: int = 2048,
+    segments: int = 4,
+    max_cells: Optional[int] = None,
+    limits: _Limits = None,
+) -> Tuple[str, bool]:
+    """`lacuna report INPUT --out PATH`: the HTML page of faces, an automaton or volumes and its
+    verdict; written to `path` too when given."""
+
+def classify(
+    a: str,
+    b: str,
+    levels: int = 4,
+    volume_levels: int = 2,
+    max_cells: int = 200000,
+    multiplicity: str = "contacts",
+    limits: _Limits = None,
+) -> str:
+    """`lacuna classify A B --json`, with the inputs' `kinds` and the printed `text`."""
+
+def morph(
+    a: Optional[str] = None,
+    b: Optional[str] = None,
+    a_params: List[Tuple[str, str]] = ...,
+    b_params: List[Tuple[str, str]] = ...,
+    on: Optional[str] = None,
+    frames: int = 9,
+    level: int = 2,
+    size: int = 512,
+    seconds: float = 0.5,
+    svg: Optional[str] = None,
+    max_cells: int = 200000,
+    limits: _Limits = None,
+) -> Tuple[str, List[Tuple[List[int], List[int], List[float], List[bool]]]]:
+    """`lacuna morph A B [--on INPUT] --json` and every frame's cells (types, point offsets,
+    x/y interleaved, closed); the animated SVG written to `svg` when given."""

@@ -499,3 +499,20 @@ class Volume:
                 )
             )
         )
+
+    def report(
+        self,
+        path: Optional[PathLike] = None,
+        level: int = 3,
+        *,
+        max_cells: Optional[int] = None,
+        limits: Limits = None,
+    ) -> Union[Path, str]:
+        """The self-contained HTML report ``lacuna report`` writes: the closure, the exact solid
+        of levels 0 to ``level`` (at least 3), the level-``level`` mesh checked against the exact
+        topology (at most ``max_cells`` faces, 400 000 by default) with its sizes, a rotating
+        WebGL view and an SVG projection. Written to ``path`` (never over the input), which is
+        returned; with ``path`` None the HTML text is returned instead."""
+        from ._commands import _report
+
+        return _report(self.source, path, level, None, 2048, 4, max_cells, limits)
