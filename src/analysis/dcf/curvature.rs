@@ -43,11 +43,7 @@ fn side_range(
     keep: impl Fn(f64) -> bool,
     proj: &[Vec<f64>],
 ) -> SideRange {
-    let class = match d.order {
-        Ordering::Greater => "sharp",
-        Ordering::Equal => "finite",
-        Ordering::Less => "flat",
-    };
+    let class = super::class_of(d);
     let mut bs: Vec<f64> = Vec::new();
     for &(x1, b) in betas {
         // λ1 < 0: the orbit visits both sides; λ2 < 0: β alternates its sign.
@@ -63,6 +59,9 @@ fn side_range(
     });
     let (kinf, ksup) = match d.order {
         Ordering::Greater => (f64::INFINITY, f64::INFINITY),
+        // λ1 < 0 (THEORY §8): points of the curve on the line c + ℝ·v1 away from c come
+        // arbitrarily near c, and their β is infinite.
+        Ordering::Less if d.lambda1_negative => (0.0, f64::INFINITY),
         Ordering::Less => (0.0, 0.0),
         Ordering::Equal => {
             let s = 2.0 * d.shape(proj);
@@ -74,7 +73,12 @@ fn side_range(
                     } else {
                         lo.abs().min(hi.abs())
                     };
-                    (s * min_abs, s * lo.abs().max(hi.abs()))
+                    let sup = if d.lambda1_negative {
+                        f64::INFINITY
+                    } else {
+                        s * lo.abs().max(hi.abs())
+                    };
+                    (s * min_abs, sup)
                 }
             }
         }
@@ -425,6 +429,6 @@ pub fn curve_curvature(
         fixed_points,
         points: out,
         level,
-        note: "classes and DCF coefficients exact; κ ranges of the finite class from the β of exact attractor points evaluated in floating point (an inner estimate of [κinf, κsup])".into(),
+        note: "classes and DCF coefficients exact; κ ranges of the finite class from the β of exact attractor points evaluated in floating point (an inner estimate of [κinf, κsup]); κsup of the oscillating class (λ1 < 0) is +∞ by the argument of THEORY §8".into(),
     })
 }

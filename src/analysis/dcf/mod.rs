@@ -65,6 +65,21 @@ impl std::fmt::Display for Kappa {
     }
 }
 
+/// The pseudo-curvature class at the fixed point: `oscillating` when λ1 < 0 (THEORY §8: the
+/// tangent flips between v1 and −v1 and κsup is +∞ — the even and odd iterates each lie on a DCF
+/// of exponent α, but the curve between them crosses the line c + ℝ·v1), else `sharp`, `finite`
+/// or `flat` as α is below, equal to or above 2.
+pub(crate) fn class_of(d: &DcfData) -> &'static str {
+    if d.lambda1_negative {
+        return "oscillating";
+    }
+    match d.order {
+        Ordering::Greater => "sharp",
+        Ordering::Equal => "finite",
+        Ordering::Less => "flat",
+    }
+}
+
 /// The DCF of one operator at its fixed point, with its exact ingredients.
 #[derive(Clone, Debug, Serialize)]
 pub struct Dcf {
@@ -366,11 +381,7 @@ impl DcfData {
             (false, true) => "λ2 < 0: even iterates on c + t·v1 + β·t^α·v2, odd ones on c + t·v1 − β·t^α·v2 (two sub-sequences, β of both signs)",
             (true, true) => "λ1 < 0 and λ2 < 0: even iterates on c + t·v1 + β·t^α·v2, odd ones on c − t·v1 − β·t^α·v2",
         };
-        let class = match self.order {
-            Ordering::Greater => "sharp",
-            Ordering::Equal => "finite",
-            Ordering::Less => "flat",
-        };
+        let class = class_of(self);
         let starts = starts
             .iter()
             .filter_map(|(from, p)| {
