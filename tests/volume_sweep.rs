@@ -26,7 +26,14 @@ const KNOWN_FOLDS: [&str; 7] = [
 fn release_binary() -> PathBuf {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let status = Command::new(env!("CARGO"))
-        .args(["build", "--release", "--locked", "--quiet", "--bin", "lacuna"])
+        .args([
+            "build",
+            "--release",
+            "--locked",
+            "--quiet",
+            "--bin",
+            "lacuna",
+        ])
         .current_dir(&root)
         .status()
         .expect("cargo runs");
