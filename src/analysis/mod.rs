@@ -1,13 +1,13 @@
 //! Exact analysis above the topology and the constraints, one folder per subject:
 //!
-//! - [`ratio`]: the limit ratio R by eigen analysis;
-//! - [`operators`]: the operators' eigen analysis, curves and pseudo-curvature classes (the DCF),
+//! - `ratio/`: the limit ratio R by eigen analysis;
+//! - `operators/`: the operators' eigen analysis, curves and pseudo-curvature classes (the DCF),
 //!   inverse design;
-//! - [`automata`]: an automaton's operators made exact, contraction, the similarity dimension
+//! - `automata/`: an automaton's operators made exact, contraction, the similarity dimension
 //!   and the open-set condition;
-//! - [`families`]: the census of a family of faces, and the property-based exploration of a rule
+//! - `families/`: the census of a family of faces, and the property-based exploration of a rule
 //!   with shrinking;
-//! - [`invariants`]: the invariants of faces, volumes and automata, classes, the limit shares of
+//! - `invariants/`: the invariants of faces, volumes and automata, classes, the limit shares of
 //!   the valences.
 //!
 //! Architecture invariant: imports the layers below (topology, algebra, constraint, input) and never
