@@ -119,7 +119,7 @@ fn classify_f0_with_itself_and_with_the_square() {
     // Limit shares. F0: 6·2^k vertices of valence 2, 3·6^k − 3·2^k of valence 3 (THEORY §13),
     // so the shares tend to 0 and 1. The square: 4 corners of valence 2, (4/3)(5^k − 1) +
     // (8/3)(2^k − 1) of valence 3 and (5^k − 1)/3 − (4/3)(2^k − 1) of valence 4 (derivation in
-    // analysis/shares.rs), so 0, 4/5 and 1/5.
+    // analysis/invariants/shares.rs), so 0, 4/5 and 1/5.
     let shares = |side: &str| -> Vec<(u64, String, String)> {
         assert_eq!(v["limit_shares"][side]["status"], "exact");
         v["limit_shares"][side]["shares"]
@@ -152,9 +152,9 @@ fn classify_f0_with_itself_and_with_the_square() {
 
 #[test]
 fn classify_tells_equal_counts_with_different_multiplicity_apart() {
-    // Hand derivation (analysis/classes.rs): both have 5 sub-faces and 3/2 lacunas at level 1;
-    // at level 1 P has 3 vertices of valence 2 (its C2 gap has no spoke: two ends and a middle),
-    // Q has 2 (a spoke at its gap gives the middle valence 3).
+    // Hand derivation (analysis/invariants/classes.rs): both have 5 sub-faces and 3/2 lacunas at
+    // level 1; at level 1 P has 3 vertices of valence 2 (its C2 gap has no spoke: two ends and a
+    // middle), Q has 2 (a spoke at its gap gives the middle valence 3).
     let v = json(
         &[
             "classify",
@@ -182,7 +182,7 @@ fn classify_tells_equal_counts_with_different_multiplicity_apart() {
 #[test]
 fn classify_does_not_separate_faces_with_equal_invariants() {
     // Two different quads, each with 2 joints and 2 gaps under A1 (hand derivation in
-    // analysis/classes.rs: 4 sub-faces, 2 lacunas, valences {2: 8, 3: 8} at level 1).
+    // analysis/invariants/classes.rs: 4 sub-faces, 2 lacunas, valences {2: 8, 3: 8} at level 1).
     let v = json(
         &[
             "classify",

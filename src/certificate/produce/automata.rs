@@ -150,7 +150,7 @@ pub fn model_claim(m: &crate::input::AutomatonModel) -> AutomatonClaim {
         }
     }
     let points = m.points.clone().unwrap_or_else(|| {
-        crate::analysis::similarity::default_points(
+        crate::analysis::automata::similarity::default_points(
             m.automaton.states[m.start].dim,
             m.space,
             &m.field,
@@ -193,7 +193,7 @@ pub fn certify_model(
 /// (`u* = σ^j`), so that the checker can compare powers in K.
 fn u_in_field(
     m: &crate::input::AutomatonModel,
-    p: &crate::analysis::similarity::PartWitness,
+    p: &crate::analysis::automata::similarity::PartWitness,
 ) -> Option<FieldCoords> {
     let r = p.rational.as_ref()?;
     if p.u.as_rational().is_some() || p.sigma.as_rational().is_some() || !r.is_integer() {
@@ -215,9 +215,9 @@ fn u_in_field(
 /// The neighbour-map witness of a part (its states in order) as certificate data.
 fn neighbour_maps(
     states: &[usize],
-    w: &crate::analysis::open_set::NeighbourWitness,
+    w: &crate::analysis::automata::open_set::NeighbourWitness,
 ) -> NeighbourMaps {
-    use crate::analysis::open_set::{Coordinates, NeighbourWitness};
+    use crate::analysis::automata::open_set::{Coordinates, NeighbourWitness};
     match w {
         NeighbourWitness::Holds {
             coordinates,

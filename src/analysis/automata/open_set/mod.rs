@@ -18,8 +18,8 @@
 //!      non-empty interior;
 //!   2. one fixed polygon for every state: the square whose diagonal is the state's first two
 //!      points (for rules: the square on the segment), or the segment itself for 2-point states.
-//!   3. the neighbour maps ([`crate::analysis::neighbour_maps`], Bandt–Graf, exact in K): the
-//!      worklist of maps `f_u⁻¹ ∘ f_v` whose pieces may meet closes without the identity.
+//!   3. the neighbour maps ([`crate::analysis::automata::neighbour_maps`], Bandt–Graf, exact in
+//!      K): the worklist of maps `f_u⁻¹ ∘ f_v` whose pieces may meet closes without the identity.
 //! - **Fails** when two operators out of one state into the same state are equal, or when the
 //!   neighbour maps meet the identity: two pieces coincide, and the dimension is smaller than s.
 //! - **Undecided** otherwise (infinitely many neighbour maps, operators that are no contracting
@@ -38,8 +38,8 @@ use self::hulls::{attractor_hulls, chart_map, feasible, q0, Edge, Pt};
 use self::neighbours::{attractor_centres, balance, neighbour_edges};
 use crate::algebra::algebraic::FieldElement;
 use crate::algebra::kmatrix::KMatrix;
-use crate::analysis::contraction::control_graph;
-use crate::analysis::neighbour_maps::{search, Search};
+use crate::analysis::automata::contraction::control_graph;
+use crate::analysis::automata::neighbour_maps::{search, Search};
 use crate::input::automaton_model::AutomatonModel;
 use num_rational::BigRational;
 use num_traits::One;
@@ -98,7 +98,8 @@ pub struct NeighbourMap {
     pub b: Vec<FieldElement>,
 }
 
-/// The witness of a verdict decided by neighbour maps ([`crate::analysis::neighbour_maps`]).
+/// The witness of a verdict decided by neighbour maps
+/// ([`crate::analysis::automata::neighbour_maps`]).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum NeighbourWitness {
     /// The condition holds: the coordinates, one centre per state of the part (in part order),

@@ -1,12 +1,12 @@
 //! Operators of an automaton read as curves (THEORY §8, dyadic points): every known
-//! self-mapping sub-operator analysed by [`crate::analysis::operator`], the end points and joining points
-//! of each curve with their one-sided behaviour, and a float estimate of the curvature range in
-//! the finite class (geometry: never a verdict).
+//! self-mapping sub-operator analysed by [`crate::analysis::operators::operator`], the end points
+//! and joining points of each curve with their one-sided behaviour, and a float estimate of the
+//! curvature range in the finite class (geometry: never a verdict).
 
 use crate::algebra::algebraic::FieldElement;
 use crate::algebra::fieldpoly::{apply, null_space, rationals};
 use crate::algebra::matrix::Matrix;
-use crate::analysis::operator::{
+use crate::analysis::operators::operator::{
     analyse_matrix, op_error, render_vec, Behaviour, CurvatureClass, OperatorReport, TangentData,
 };
 use crate::constraint::automaton::{Automaton, OpKind, Operator};
@@ -392,7 +392,7 @@ pub fn estimate_curvature(
             });
         let inv = k.inv(&dot).expect("simple eigenvalue: u·v ≠ 0");
         u.iter()
-            .map(|x| crate::analysis::operator::f64_of(k, &k.mul(x, &inv)))
+            .map(|x| crate::analysis::operators::operator::f64_of(k, &k.mul(x, &inv)))
             .collect()
     };
     let u1 = left(&k.generator_element(), &data.v1);
@@ -400,7 +400,7 @@ pub fn estimate_curvature(
     let proj = |v: &[FieldElement]| -> [f64; 2] {
         let w: Vec<f64> = v
             .iter()
-            .map(|x| crate::analysis::operator::f64_of(k, x))
+            .map(|x| crate::analysis::operators::operator::f64_of(k, x))
             .collect();
         let mut s = [0.0, 0.0];
         for (wi, p) in w.iter().zip(points) {

@@ -32,7 +32,7 @@ use crate::algebra::disk::root_disks;
 use crate::algebra::factor::factor;
 use crate::algebra::fieldpoly::adjugate_eigenvector;
 use crate::algebra::matrix::Matrix;
-use crate::analysis::operator::{
+use crate::analysis::operators::operator::{
     char_poly, cmp_abs_with_square, eigenvector_in, f64_of, negate, render_vec,
 };
 use num_bigint::BigInt;

@@ -5,7 +5,7 @@
 
 use super::{dcf_data, q, Dcf, DcfData, Kappa};
 use crate::algebra::matrix::Matrix;
-use crate::analysis::operator::op_error;
+use crate::analysis::operators::operator::op_error;
 use crate::error::Result;
 use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive, Zero};

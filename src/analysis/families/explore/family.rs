@@ -159,7 +159,7 @@ pub(super) fn family_size(spec: &ExploreSpec) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::explore::Property;
+    use crate::analysis::families::explore::Property;
     use crate::topology::rule::Algorithm;
 
     fn spec(edges: &str, params: &str, algorithm: &str, len: usize) -> ExploreSpec {

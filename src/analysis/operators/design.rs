@@ -8,7 +8,7 @@
 //! exactly, and the whole system is re-solved with the operator fixed.
 
 use crate::algebra::matrix::Matrix;
-use crate::analysis::operator::op_error;
+use crate::analysis::operators::operator::op_error;
 use crate::constraint::automaton::{solve_automaton, Automaton, Factor};
 use crate::error::{Error, Result};
 use num_rational::BigRational;

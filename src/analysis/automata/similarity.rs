@@ -17,8 +17,8 @@ use crate::algebra::algebraic::{decide_digits, FieldElement, NumberField, RealAl
 use crate::algebra::kmatrix::KMatrix;
 use crate::algebra::poly::Poly;
 use crate::algebra::reallog::{log_ratio_bounds, round_out};
-use crate::analysis::contraction::{control_graph, reachable};
-use crate::analysis::open_set::NeighbourWitness;
+use crate::analysis::automata::contraction::{control_graph, reachable};
+use crate::analysis::automata::open_set::NeighbourWitness;
 use crate::input::automaton_model::AutomatonModel;
 use num_bigint::BigInt;
 use num_rational::BigRational;
@@ -36,8 +36,8 @@ pub struct SimilarityDimension {
     /// The strongly connected parts (their states) and each part's exact value.
     pub parts: Vec<(Vec<String>, String)>,
     /// True unless the open-set condition is proved for every part
-    /// ([`crate::analysis::open_set`]): the value is then only an upper bound of the Hausdorff
-    /// dimension, never the dimension.
+    /// ([`crate::analysis::automata::open_set`]): the value is then only an upper bound of the
+    /// Hausdorff dimension, never the dimension.
     pub upper_bound: bool,
     /// What the open-set check found (the criterion that decided, or why none did).
     pub open_set: String,
@@ -512,7 +512,7 @@ pub fn similarity_dimension(
     let decimal = certified_decimal(k, &values[best].1, digits);
     let verdicts: Vec<_> = parts
         .iter()
-        .map(|p| crate::analysis::open_set::part_verdict(m, ops, &frames, p))
+        .map(|p| crate::analysis::automata::open_set::part_verdict(m, ops, &frames, p))
         .collect();
     let upper_bound = verdicts.iter().any(|v| v.holds != Some(true));
     let open_set = if verdicts.len() == 1 {

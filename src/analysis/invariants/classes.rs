@@ -21,7 +21,7 @@
 //! images of fixed corners" and no more.
 
 use crate::algebra::{FieldElement, KMatrix};
-use crate::analysis::shares::{limit_shares, LimitShare, LimitShares};
+use crate::analysis::invariants::shares::{limit_shares, LimitShare, LimitShares};
 use crate::constraint::OpKind;
 use crate::error::{Error, Result};
 use crate::input::AutomatonModel;
@@ -33,7 +33,7 @@ use num_traits::Zero;
 use serde::Serialize;
 use std::collections::{BTreeMap, HashMap};
 
-use super::Resolved;
+use crate::analysis::automata::automaton_resolve::Resolved;
 
 /// A named exact value.
 pub type Named = (String, String);
@@ -900,7 +900,7 @@ mod tests {
         // enumerated and level 2 is not, with a note (a limit, not a verdict).
         let model = crate::input::parse_model(&crate::Source {
             name: "test".into(),
-            text: include_str!("../../fixtures/sierpinski-triangle.aut").into(),
+            text: include_str!("../../../fixtures/sierpinski-triangle.aut").into(),
         })
         .unwrap();
         let resolved = crate::analysis::resolve(&model, &[], 1_000_000).unwrap();
@@ -927,7 +927,7 @@ mod tests {
         // and two midpoints: T0 → (1,0,0), (1/2,1/2,0), (1/2,0,1/2); T1 → (1/2,1/2,0), (0,1,0),
         // (0,1/2,1/2); T2 → (1/2,0,1/2), (0,1/2,1/2), (0,0,1). Six points: the three midpoints
         // where two pieces meet, the three corners with one. Pieces per level: 3^k.
-        let s = automaton(include_str!("../../fixtures/sierpinski-triangle.aut"));
+        let s = automaton(include_str!("../../../fixtures/sierpinski-triangle.aut"));
         assert_eq!(
             s.cardinality[2],
             vec![("pieces".to_string(), "9".to_string())]
@@ -954,7 +954,7 @@ mod tests {
         assert!(s.notes[0].contains("levels 1 to 2"), "{:?}", s.notes);
         // Cantor: T0 fixes end 0, T1 end 1; images (1,0), (2/3,1/3), (1/3,2/3), (0,1): four
         // points, no two pieces meet.
-        let c = automaton(include_str!("../../fixtures/cantor-set.aut"));
+        let c = automaton(include_str!("../../../fixtures/cantor-set.aut"));
         assert_eq!(
             c.multiplicity[1],
             vec![

@@ -5,7 +5,7 @@ use super::hulls::{cmp, q0, Edge, Map};
 use super::Coordinates;
 use crate::algebra::algebraic::{FieldElement, NumberField};
 use crate::algebra::kmatrix::KMatrix;
-use crate::analysis::neighbour_maps::{KAffine, KEdge};
+use crate::analysis::automata::neighbour_maps::{KAffine, KEdge};
 use num_rational::BigRational;
 use num_traits::One;
 use std::cmp::Ordering;

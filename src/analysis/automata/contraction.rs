@@ -31,7 +31,7 @@
 use crate::algebra::algebraic::FieldElement;
 use crate::algebra::fieldpoly::{inside_unit_disk, k_divrem};
 use crate::algebra::kmatrix::KMatrix;
-use crate::analysis::automaton_resolve::coded;
+use crate::analysis::automata::automaton_resolve::coded;
 use crate::constraint::automaton::OpKind;
 use crate::error::Result;
 use crate::input::automaton_model::AutomatonModel;
