@@ -272,7 +272,7 @@ pub fn curve_curvature(
                 .map_or_else(|_| Vec::new(), |d| d.betas(&samples))
         })
         .collect();
-    let fixed_points = data
+    let fixed_points: Vec<Vec<SideRange>> = data
         .iter()
         .zip(names)
         .zip(&betas)
@@ -423,12 +423,20 @@ pub fn curve_curvature(
                 .collect()
         })
         .collect();
+    let mut note = String::from("classes and DCF coefficients exact; κ ranges of the finite class from the β of exact attractor points evaluated in floating point (an inner estimate of [κinf, κsup])");
+    if fixed_points
+        .iter()
+        .flatten()
+        .any(|s| s.class == "oscillating")
+    {
+        note += "; κsup of the oscillating class (λ1 < 0) is +∞ by the argument of THEORY §8";
+    }
     Ok(CurveCurvature {
         polyline,
         dcfs,
         fixed_points,
         points: out,
         level,
-        note: "classes and DCF coefficients exact; κ ranges of the finite class from the β of exact attractor points evaluated in floating point (an inner estimate of [κinf, κsup]); κsup of the oscillating class (λ1 < 0) is +∞ by the argument of THEORY §8".into(),
+        note,
     })
 }
