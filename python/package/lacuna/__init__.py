@@ -565,22 +565,43 @@ class Rendering(_Picture):
 
     def plot(self, ax=None, cmap: str = "tab10", edgecolor: str = "black", linewidth: float = 0.3):
         """Draws the cells on a matplotlib axis (filled by type); returns the axis."""
-        import matplotlib.pyplot as plt
-        from matplotlib.collections import PolyCollection
+        return _plot_cells(ax, self.polygons, self.types, None, cmap, edgecolor, linewidth)
 
-        if ax is None:
-            _, ax = plt.subplots()
-        colours = plt.get_cmap(cmap)
-        coll = PolyCollection(
-            self.polygons,
-            facecolors=[colours(int(t) % colours.N) for t in self.types],
-            edgecolors=edgecolor,
-            linewidths=linewidth,
+
+def _plot_cells(ax, polygons, types, closed, cmap: str, edgecolor: str, linewidth: float):
+    """Draws cells on a matplotlib axis (a new one when ``ax`` is None): the closed ones (all when
+    ``closed`` is None) as polygons filled by type, the open ones as lines of their type's colour
+    three times as wide; returns the axis. Used by :meth:`Rendering.plot` and the frames of
+    :func:`morph`."""
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import LineCollection, PolyCollection
+
+    if ax is None:
+        _, ax = plt.subplots()
+    colours = plt.get_cmap(cmap)
+    closed = [True] * len(polygons) if closed is None else closed
+    filled = [(p, t) for p, t, c in zip(polygons, types, closed) if c]
+    open_ = [(p, t) for p, t, c in zip(polygons, types, closed) if not c]
+    if filled:
+        ax.add_collection(
+            PolyCollection(
+                [p for p, _ in filled],
+                facecolors=[colours(int(t) % colours.N) for _, t in filled],
+                edgecolors=edgecolor,
+                linewidths=linewidth,
+            )
         )
-        ax.add_collection(coll)
-        ax.autoscale_view()
-        ax.set_aspect("equal")
-        return ax
+    if open_:
+        ax.add_collection(
+            LineCollection(
+                [p for p, _ in open_],
+                colors=[colours(int(t) % colours.N) for _, t in open_],
+                linewidths=linewidth * 3,
+            )
+        )
+    ax.autoscale_view()
+    ax.set_aspect("equal")
+    return ax
 
 
 @dataclass

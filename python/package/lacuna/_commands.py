@@ -19,7 +19,7 @@ from pathlib import Path
 from typing import Any, Dict, List, Mapping, Optional, Tuple, Union
 
 from . import _lacuna
-from . import Limits, PathLike, Record, UsageError, _html_table, _limits, _natural, _params, _path
+from . import Limits, PathLike, Record, UsageError, _html_table, _limits, _natural, _params, _path, _plot_cells
 
 
 def _report(
@@ -254,31 +254,9 @@ class MorphFrame:
         return len(self.polygons)
 
     def plot(self, ax=None, cmap: str = "tab10", edgecolor: str = "black", linewidth: float = 0.3):
-        """Draws the cells on a matplotlib axis (polygons filled by type); returns the axis."""
-        import matplotlib.pyplot as plt
-        from matplotlib.collections import LineCollection, PolyCollection
-
-        if ax is None:
-            _, ax = plt.subplots()
-        colours = plt.get_cmap(cmap)
-        filled = [(p, t) for p, t, c in zip(self.polygons, self.types, self.closed) if c]
-        open_ = [(p, t) for p, t, c in zip(self.polygons, self.types, self.closed) if not c]
-        if filled:
-            ax.add_collection(
-                PolyCollection(
-                    [p for p, _ in filled],
-                    facecolors=[colours(int(t) % colours.N) for _, t in filled],
-                    edgecolors=edgecolor,
-                    linewidths=linewidth,
-                )
-            )
-        if open_:
-            ax.add_collection(
-                LineCollection([p for p, _ in open_], colors=[colours(int(t) % colours.N) for _, t in open_], linewidths=linewidth * 3)
-            )
-        ax.autoscale_view()
-        ax.set_aspect("equal")
-        return ax
+        """Draws the cells on a matplotlib axis (polygons filled by type, open cells as lines);
+        returns the axis."""
+        return _plot_cells(ax, self.polygons, self.types, self.closed, cmap, edgecolor, linewidth)
 
 
 @dataclass
