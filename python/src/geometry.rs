@@ -72,20 +72,13 @@ impl Geo {
                 )))
             }
         };
-        let values = param_values(&self.params)?;
-        let resolved = lacuna::analysis::resolve(&model, &values, self.limits.max_unknowns)?;
-        let contraction = lacuna::analysis::check_contraction(&model, &resolved.ops)?;
-        let ev = lacuna::geometry::Evaluator::new(&model, &resolved);
-        let max = self.max_cells.unwrap_or(default_cells);
-        let count = ev.count(self.level);
-        if count > u128::from(max) {
-            return Err(Error::limit(
-                "the pieces of the level",
-                count,
-                max,
-                "--max-cells",
-            ));
-        }
+        let (resolved, contraction, ev) = lacuna::geometry::prepare_automaton(
+            &model,
+            &param_values(&self.params)?,
+            self.level,
+            self.max_cells.unwrap_or(default_cells),
+            &self.limits,
+        )?;
         Ok((model, resolved, contraction, ev, name))
     }
 }

@@ -42,21 +42,13 @@ pub(super) fn prepare(
             "--template, --goal and --corners apply to faces; an automaton takes its control points from its `points` line and its parameters from `param` lines and --param".into(),
         ));
     }
-    let values = param_values(&geo.params)?;
-    let resolved = lacuna::analysis::resolve(&model, &values, limits.max_unknowns)?;
-    let contraction =
-        lacuna::analysis::check_contraction_within(&model, &resolved.ops, limits.max_products)?;
-    let ev = Evaluator::new(&model, &resolved);
-    let max = geo.max_cells.unwrap_or(default_cells);
-    let count = ev.count(geo.level);
-    if count > u128::from(max) {
-        return Err(Error::limit(
-            "the pieces of the level",
-            count,
-            max,
-            "--max-cells",
-        ));
-    }
+    let (resolved, contraction, ev) = lacuna::geometry::prepare_automaton(
+        &model,
+        &param_values(&geo.params)?,
+        geo.level,
+        geo.max_cells.unwrap_or(default_cells),
+        limits,
+    )?;
     Ok(Prepared {
         name,
         input: geo.input.clone(),

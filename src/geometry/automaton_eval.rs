@@ -181,6 +181,34 @@ impl Evaluator {
     }
 }
 
+/// An automaton made ready to draw at `level`: its unknowns resolved with the parameter
+/// `values`, its contraction proved within `limits.max_products`, and the pieces of the level
+/// counted against `max_cells` before any drawing (E0501). The command line's `render`,
+/// `measure` and `report` and the Python package all prepare an automaton here.
+pub fn prepare_automaton(
+    m: &AutomatonModel,
+    values: &[(String, num_rational::BigRational)],
+    level: u32,
+    max_cells: u64,
+    limits: &crate::topology::Limits,
+) -> crate::error::Result<(Resolved, crate::analysis::ContractionReport, Evaluator)> {
+    limits.check_level(u64::from(level))?;
+    let resolved = crate::analysis::resolve(m, values, limits.max_unknowns)?;
+    let contraction =
+        crate::analysis::check_contraction_within(m, &resolved.ops, limits.max_products)?;
+    let ev = Evaluator::new(m, &resolved);
+    let count = ev.count(level);
+    if count > u128::from(max_cells) {
+        return Err(crate::error::Error::limit(
+            "the pieces of the level",
+            count,
+            max_cells,
+            "--max-cells",
+        ));
+    }
+    Ok((resolved, contraction, ev))
+}
+
 /// The exact control points (columns of `space × m`) of the node reached from the start by the
 /// operators `word` (each `T: q ← w` continuing from state q); `None` when the word does not
 /// follow the control graph.
