@@ -10,3 +10,4 @@ $L render cube-B2 --level 1 --svg docs/images/cube-B2-level1.svg
 $L render cube-B2 --level 2 --png docs/images/cube-B2-level2.png --size 480
 $L render two-cubes --level 2 --png docs/images/two-cubes-level2.png --size 480
 $L render fixtures/pyramid.txt --level 2 --png docs/images/pyramid-level2.png --size 480
+$L render 'tetrahedron C3 | B2 B2 B2 | A1 | B2 B2 | V1' --level 3 --png docs/images/tetrahedron-C3-A1-V1-level3.png --size 480

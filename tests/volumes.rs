@@ -359,18 +359,18 @@ fn render_a_volume_writes_a_checked_mesh_and_pictures() {
 
 #[test]
 fn a_solid_that_folds_is_not_written() {
-    // The tetrahedron with Cantor edges C3 under A1 and V1 (one of the level-3 sweep cases of
-    // VOLUMES.md) embeds at level 2, but at level 3 its placement folds (two triangles cross)
-    // under all three fan rules: a mesh would not be the verified structure, so nothing is
-    // written and the verdict is negative. (This was tetrahedron C2 A1 V1 until the third rule
-    // embedded it, issue #31; tests/volume_embedding.rs checks that one.)
+    // The cube whose top is turned by 160° (fixtures/twisted-cube-160.txt) embeds at level 1,
+    // but at level 2 its placement folds (two triangles cross) under all three fan rules: a mesh
+    // would not be the verified structure, so nothing is written and the verdict is negative.
+    // (This was tetrahedron C3 A1 V1 at level 3 until boundary faces were fanned around a point
+    // of their own kernel, issue #31; tests/volume_sweep.rs runs that case.)
     let d = scratch("fold");
     let stl = d.join("t3.stl");
     let (code, _, err) = lacuna(&[
         "render",
-        "tetrahedron C3 | B2 B2 B2 | A1 | B2 B2 | V1",
+        "fixtures/twisted-cube-160.txt",
         "--level",
-        "3",
+        "2",
         "--stl",
         &stl.to_string_lossy(),
     ]);

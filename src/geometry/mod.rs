@@ -42,6 +42,7 @@ pub use template_file::{
 };
 pub use volume::{
     default_placement, evaluate_assembly, evaluate_volume, least_thickness, place_assembly,
-    solid_corners, GeoEdge, GeoFace, GeoVolume, InnerFan, Placement, Reading, SolidGeometry, P3,
+    solid_corners, star_point, GeoEdge, GeoFace, GeoVolume, InnerFan, Placement, Reading,
+    SolidGeometry, P3,
 };
 pub use volume_valence::{assembly_valences, volume_valences, ComplexValences};

@@ -207,9 +207,15 @@ fn star_fan(poly: &[[f64; 3]], nrm: [f64; 3], centre: [f64; 3]) -> bool {
 
 /// The centre of a boundary face's fan: `centre` when the polygon is star-shaped from it (see
 /// [`star_fan`]), else the first such point among the points a quarter and half way from the
-/// centre to each corner and the centroids of the triangles of consecutive corners; `centre`
-/// when none is. A new point of the face's own: no diagonal joins two of its corners, so the
-/// face stays a disc of the mesh whatever its neighbours share.
+/// centre to each corner, then a point well inside the face's kernel lifted onto the face
+/// ([`star_point`](crate::geometry::star_point)), then the centroids of the triangles of
+/// consecutive corners; `centre` when none is. A new point of the face's own: no diagonal joins
+/// two of its corners, so the face stays a disc of the mesh whatever its neighbours share.
+///
+/// The kernel point comes before the centroids because a centroid can be another face's too:
+/// two faces that share the two sides at a corner have the same triangle there, and at level 3
+/// of the tetrahedron with `C3` edges (A1, V1) two mirror-image cavity faces were fanned around
+/// that one point, so the surface touched itself there (issue #31).
 fn fan_centre(poly: &[[f64; 3]], centre: [f64; 3]) -> [f64; 3] {
     let nrm = newell(poly);
     if star_fan(poly, nrm, centre) {
@@ -235,6 +241,7 @@ fn fan_centre(poly: &[[f64; 3]], centre: [f64; 3]) -> [f64; 3] {
         ]
     });
     towards
+        .chain(crate::geometry::star_point(poly))
         .chain(ears)
         .find(|&p| star_fan(poly, nrm, p))
         .unwrap_or(centre)
@@ -739,6 +746,44 @@ pub fn self_intersection(parts: &[Part]) -> (Option<((usize, usize), (usize, usi
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn two_faces_sharing_two_sides_at_a_corner_get_fan_centres_of_their_own() {
+        // Two boundary faces of tetrahedron C3 | B2 B2 B2 | A1 | B2 B2 | V1 at level 3 (issue
+        // #31), in the solid's unit coordinates as the placement made them: face `a` has every
+        // corner on the side x ≥ y of the solid's mirror plane x = y, three of them on it (its
+        // corners 0, 1 and 8), and face `b` is its mirror image read the other way round, so the
+        // two share the two sides at corner 0. Neither is star-shaped from its own centre (the
+        // mean), and the centroid of the triangle (8, 0, 1) lies on the mirror plane for both:
+        // fanned around it, the two faces touched there. A fan centre with positive mean value
+        // weights is a convex combination of the corners, all with x ≥ y and some with x > y, so
+        // it lies strictly on a's side and its mirror strictly on b's: the two fans part.
+        let a: Vec<[f64; 3]> = vec![
+            [0.6327955939302615, 0.6327955939302613, -0.5935229950732839],
+            [0.6573842748852033, 0.6573842748852032, -0.6045226447259009],
+            [0.6853305751467211, 0.6786153365335691, -0.6155222943785179],
+            [0.6886881944532971, 0.675257717226993, -0.6155222943785179],
+            [0.6976485078805684, 0.6808604113476884, -0.6300853019264845],
+            [0.676982153677721, 0.6609561976288908, -0.6276924462621063],
+            [0.6473554860476023, 0.6354492897893981, -0.6107365830497615],
+            [0.6424160069929512, 0.6364629088638492, -0.6241065554940308],
+            [0.6351360609342809, 0.6351360609342808, -0.615499761505792],
+        ];
+        let b: Vec<[f64; 3]> = a.iter().rev().map(|p| [p[1], p[0], p[2]]).collect();
+        let mean = |f: &[[f64; 3]]| {
+            let n = f.len() as f64;
+            [0, 1, 2].map(|k| f.iter().map(|p| p[k]).sum::<f64>() / n)
+        };
+        let (ma, mb) = (mean(&a), mean(&b));
+        assert!(!star_fan(&a, newell(&a), ma));
+        let ca = fan_centre(&a, ma);
+        let cb = fan_centre(&b, mb);
+        assert!(star_fan(&a, newell(&a), ca) && star_fan(&b, newell(&b), cb));
+        // Strictly: a millionth of the faces' size (about 0.07) apart from the plane, so that
+        // rounding does not pass for a side.
+        assert!(ca[0] - ca[1] > 1e-7, "{ca:?} is not on face a's side");
+        assert!(cb[1] - cb[0] > 1e-7, "{cb:?} is not on face b's side");
+    }
 
     #[test]
     fn crossing_triangles_are_found_and_apart_ones_are_not() {

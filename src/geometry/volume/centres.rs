@@ -14,10 +14,31 @@ use super::cells::{add, cross, dot, lerp, mean, norm, scale, sub, P3};
 /// (the mean of an arrow-shaped sub-face at level 3, issue #31) turns fan triangles over and
 /// makes sub-faces that cross.
 pub(super) fn face_centre(pts: &[P3]) -> P3 {
+    star_point_with(pts, false).unwrap_or_else(|| mean(pts.iter().copied()))
+}
+
+/// A point from which the polygon `pts` is star-shaped about its Newell normal n (every fan
+/// triangle (c, aᵢ, aᵢ₊₁) turns counter-clockwise about n, strictly): the mean when it is one,
+/// else the point of that kernel nearest to the mean with a margin of half the kernel's
+/// inradius, in the plane through the mean normal to n ([`kernel_point`]); `None` when the
+/// kernel is empty or thin or the polygon is flat. A triangle is star-shaped from its mean.
+///
+/// The mesh fans a boundary face around it when the face's own centre does not do: a point
+/// well inside the kernel belongs to that face alone, where a point on a fixed list of
+/// candidates (the centroid of the triangle at a corner) can be the same for two faces that
+/// share the two sides at that corner (issue #31: two mirror-image cavity faces at level 3
+/// fanned around one point).
+pub fn star_point(pts: &[P3]) -> Option<P3> {
+    star_point_with(pts, true)
+}
+
+/// [`star_point`]; a kernel point off the mean is lifted onto the face ([`lift`]) when `lifted`,
+/// else left on the plane through the mean (the placement's face centres, [`face_centre`]).
+fn star_point_with(pts: &[P3], lifted: bool) -> Option<P3> {
     let m = mean(pts.iter().copied());
     let k = pts.len();
     if k < 4 {
-        return m;
+        return Some(m);
     }
     let mut n = [0.0; 3];
     for i in 0..k {
@@ -26,7 +47,7 @@ pub(super) fn face_centre(pts: &[P3]) -> P3 {
     let nl = norm(n);
     let size = pts.iter().map(|p| norm(sub(*p, m))).fold(0.0f64, f64::max);
     if nl <= 1e-12 * size * size {
-        return m;
+        return None;
     }
     let n = scale(n, 1.0 / nl);
     // (c − aᵢ)·(eᵢ × n) < 0 for every side eᵢ = aᵢ₊₁ − aᵢ.
@@ -45,15 +66,67 @@ pub(super) fn face_centre(pts: &[P3]) -> P3 {
             .all(|(o, a)| dot(*o, sub(c, *a)) < -1e-9 * size)
     };
     if inside(m) {
-        return m;
+        return Some(m);
     }
     // A slab about the mean's plane bounds the prism of such points.
     planes.push((n, add(m, scale(n, size))));
     planes.push((scale(n, -1.0), sub(m, scale(n, size))));
-    match kernel_point(&planes, m, size) {
-        Some(c) => sub(c, scale(n, dot(sub(c, m), n))),
-        None => m,
+    let c = kernel_point(&planes, m, size)?;
+    let flat = sub(c, scale(n, dot(sub(c, m), n)));
+    if !lifted {
+        return Some(flat);
     }
+    lift(pts, n, flat)
+}
+
+/// The point of the polygon `pts` over `c` (a point of the kernel of its projection along the
+/// unit normal `n`): Σ wᵢ·aᵢ with wᵢ the mean value coordinates of the projection of `c` in the
+/// projected polygon (Floater 2003). They are positive wherever the polygon is star-shaped, and
+/// they reproduce linear functions, so the point projects onto `c` and is a convex combination
+/// of the corners: a bent face's centre lies among its corners rather than on the plane through
+/// their mean, which can cross to the far side of a neighbour (issue #31: two mirror-image cavity
+/// faces, each on its side of the mirror plane, with centres on the wrong sides). `None` when a
+/// weight is not positive.
+fn lift(pts: &[P3], n: P3, c: P3) -> Option<P3> {
+    let k = pts.len();
+    // Offsets from c in the plane normal to n.
+    let d: Vec<P3> = pts
+        .iter()
+        .map(|p| {
+            let v = sub(*p, c);
+            sub(v, scale(n, dot(v, n)))
+        })
+        .collect();
+    let r: Vec<f64> = d.iter().map(|v| norm(*v)).collect();
+    // tan(αᵢ/2) for the angle αᵢ at c between corners i and i + 1.
+    let mut half = Vec::with_capacity(k);
+    for i in 0..k {
+        let j = (i + 1) % k;
+        let s = dot(cross(d[i], d[j]), n);
+        let cosr = r[i] * r[j] + dot(d[i], d[j]);
+        // s > 0 puts the angle in (0, π), where r·r' + d·d' = r·r'·(1 + cos α) > 0.
+        if s <= 0.0 {
+            return None;
+        }
+        half.push(s / cosr);
+    }
+    let mut w = Vec::with_capacity(k);
+    for i in 0..k {
+        if r[i] <= 0.0 {
+            return None;
+        }
+        w.push((half[(i + k - 1) % k] + half[i]) / r[i]);
+    }
+    let total: f64 = w.iter().sum();
+    let positive = |x: f64| x.is_finite() && x > 0.0;
+    if !positive(total) || !w.iter().all(|&x| positive(x)) {
+        return None;
+    }
+    let mut out = [0.0; 3];
+    for (p, x) in pts.iter().zip(&w) {
+        out = add(out, scale(*p, x / total));
+    }
+    Some(out)
 }
 
 /// A point `c` around which the loop `rim` is fanned with every triangle (c, rᵢ, rᵢ₊₁) seen from
@@ -345,6 +418,49 @@ mod tests {
         assert!(
             dot(n, sub(c, chevron[0])).abs() < 1e-9,
             "{c:?} off the plane"
+        );
+    }
+
+    #[test]
+    fn a_lifted_kernel_point_lies_on_a_flat_face_and_among_the_corners_of_a_bent_one() {
+        // The tilted chevron of the test above is flat: mean value coordinates reproduce linear
+        // functions, so the lifted point is the kernel point itself, in the face's plane, and it
+        // sees every side.
+        let (cs, sn) = (0.6, 0.8);
+        let chevron: Vec<P3> = CHEVRON
+            .iter()
+            .map(|p| [p[0], cs * p[1], sn * p[1] + 3.0])
+            .collect();
+        let n = [0.0, -sn, cs];
+        let c = star_point(&chevron).unwrap();
+        assert!(dot(n, sub(c, chevron[0])).abs() < 1e-9, "{c:?}");
+        assert!((0..6).all(|i| {
+            let (a, b) = (chevron[i], chevron[(i + 1) % 6]);
+            dot(n, cross(sub(a, c), sub(b, c))) > 0.0
+        }));
+        // Bend the chevron: corners with x < 1 are raised by (1 − x)², a function the mean value
+        // coordinates do not reproduce. Every corner has z ≥ 0 and one has z > 0, so a convex
+        // combination with positive weights lies strictly above z = 0, where a point on the plane
+        // through the mean need not (the mean plane of a bent face passes below its high corners
+        // and above its low ones).
+        let bent: Vec<P3> = CHEVRON
+            .iter()
+            .map(|p| {
+                [
+                    p[0],
+                    p[1],
+                    if p[0] < 1.0 {
+                        (1.0 - p[0]).powi(2)
+                    } else {
+                        0.0
+                    },
+                ]
+            })
+            .collect();
+        let c = star_point(&bent).expect("the bent chevron's projection has a kernel");
+        assert!(
+            c[2] > 0.0 && c[2] < 1.0,
+            "{c:?} not among the corners' heights"
         );
     }
 }

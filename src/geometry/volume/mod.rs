@@ -52,5 +52,6 @@ mod placement;
 mod step;
 
 pub use cells::{GeoEdge, GeoFace, GeoVolume, InnerFan, Reading, SolidGeometry, P3};
+pub use centres::star_point;
 pub use evaluate::{evaluate_assembly, evaluate_volume, least_thickness};
 pub use placement::{default_placement, place_assembly, solid_corners, Placement};
