@@ -907,6 +907,65 @@ fn prusa_slicer_slices_every_library_solid_at_level_2() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Issue #31's Done-when: the level-3 solids of cube-C2 (C2 edges, A1, V1) and of the
+/// tetrahedron with C2 edges under A1 and V1 embed, and PrusaSlicer slices them as lacuna orients
+/// them (with supports where lacuna says no face rests on the bed). Ignored by a plain
+/// `cargo test` (it needs prusa-slicer, and each slice takes a minute or more).
+#[test]
+#[ignore]
+fn prusa_slicer_slices_cube_c2_and_tetrahedron_c2_at_level_3() {
+    let dir = std::env::temp_dir().join(format!("lacuna-prusa3-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (k, name) in ["cube-C2", "tetrahedron C2 | B2 B2 B2 | A1 | B2 B2 | V1"]
+        .iter()
+        .enumerate()
+    {
+        let stl = dir.join(format!("{k}.stl"));
+        let gcode = dir.join(format!("{k}.gcode"));
+        let (code, out, err) = common::lacuna(&[
+            "render",
+            name,
+            "--level",
+            "3",
+            "--orient",
+            "auto",
+            "--stl",
+            stl.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{name}: {out}{err}");
+        assert!(out.contains("no two triangles cross"), "{name}: {out}");
+        let mut slicer = std::process::Command::new("prusa-slicer");
+        if err.contains("no face rests on the bed") {
+            slicer.arg("--support-material");
+        }
+        let o = slicer
+            .arg("--export-gcode")
+            .arg(&stl)
+            .arg("-o")
+            .arg(&gcode)
+            .output()
+            .expect("prusa-slicer runs (Debian package prusa-slicer)");
+        let text = format!(
+            "{}{}",
+            String::from_utf8_lossy(&o.stdout),
+            String::from_utf8_lossy(&o.stderr)
+        );
+        assert!(o.status.success(), "{name}: {text}");
+        let g = std::fs::read_to_string(&gcode).unwrap();
+        assert!(g.contains("G1"), "{name}: no moves in the G-code");
+        assert_eq!(
+            common::admesh_finds_nothing_to_repair(&stl, name),
+            {
+                // admesh counts facets; every triangle of the binary STL is one.
+                let bytes = std::fs::read(&stl).unwrap();
+                u32::from_le_bytes(bytes[80..84].try_into().unwrap()).to_string()
+            },
+            "{name}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// The printability object of a plate and of a volume: the plate's area on the bed, from the
 /// union of its cells' polygons, equals the area of the downward triangles on the bed of the
 /// mesh built from them (two derivations); a plate has no overhang; a volume's figures say what

@@ -2,12 +2,12 @@
 //! and truncated tetrahedron × {C2, C3, B3} × {A1, A2} × {V1, V2}, each through `measure` at
 //! level 3 by `docs/volume-sweep.sh` with the release binary.
 //!
-//! Issue #31 asks for every case to embed or be proved infeasible; that is not reached yet. This
-//! test keeps what holds and stops it from getting worse: every case either embeds, folds (only
-//! the two listed below, each a Cantor edge under V1, the state last measured) or is refused by
-//! `--max-cells` before the work (E0501, a limit and never a verdict); no case fails any other
-//! way, and at least 39 embed. A case that folds and is not listed, or an
-//! error that is not the limit, fails it. When a listed case embeds, remove it from the list.
+//! Issue #31 asks for every case to embed or be proved infeasible within the default limits;
+//! that is not reached yet. This test keeps what holds and stops it from getting worse: every
+//! case runs within the default limits (`--max-cells` admits the largest, 1,500,066 faces at
+//! level 3) and either embeds or folds — only the two listed below, each a Cantor edge under V1,
+//! the state last measured — and at least 58 embed. A case that folds and is not listed, or any
+//! error (a limit included), fails it. When a listed case embeds, remove it from the list.
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -45,8 +45,8 @@ fn release_binary() -> PathBuf {
 }
 
 #[test]
-#[ignore = "builds the release binary and measures 60 volumes at level 3 (about 6 minutes of CPU); .ci/run runs it"]
-fn the_level_three_sweep_folds_no_case_beyond_the_known_seven() {
+#[ignore = "builds the release binary and measures 60 volumes at level 3 (about 16 minutes of CPU, 4.6 GB at most); .ci/run runs it"]
+fn the_level_three_sweep_embeds_every_case_but_the_known_folds() {
     let lacuna = release_binary();
     let out = Command::new("sh")
         .arg("docs/volume-sweep.sh")
@@ -59,18 +59,12 @@ fn the_level_three_sweep_folds_no_case_beyond_the_known_seven() {
     assert!(out.status.success());
     let text = String::from_utf8_lossy(&out.stdout);
     let mut folds = Vec::new();
-    let mut refused = 0usize;
     let mut totals = None;
     for line in text.lines() {
         if let Some(case) = line.strip_prefix("fold: ") {
             folds.push(case.to_string());
-        } else if let Some(rest) = line.strip_prefix("other (exit ") {
-            // A limit refused before the work: exit 2 with E0501, never another failure.
-            assert!(
-                rest.starts_with("2)") && rest.contains("E0501"),
-                "a case failed otherwise than by the cell limit: {line}"
-            );
-            refused += 1;
+        } else if line.starts_with("other (exit ") {
+            panic!("a case failed otherwise than by folding: {line}\n{text}");
         } else if let Some(rest) = line.strip_prefix("level 3: ") {
             let n: Vec<usize> = rest
                 .split(", ")
@@ -83,12 +77,12 @@ fn the_level_three_sweep_folds_no_case_beyond_the_known_seven() {
     }
     let (embed, fold, other) = totals.expect("the sweep prints its totals");
     assert_eq!(embed + fold + other, 60, "{text}");
-    assert_eq!((fold, other), (folds.len(), refused), "{text}");
+    assert_eq!((fold, other), (folds.len(), 0), "{text}");
     for case in &folds {
         assert!(
             KNOWN_FOLDS.contains(&case.as_str()),
             "a new fold at level 3: {case}\n{text}"
         );
     }
-    assert!(embed >= 39, "fewer cases embed than before: {text}");
+    assert!(embed >= 58, "fewer cases embed than before: {text}");
 }

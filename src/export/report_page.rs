@@ -63,7 +63,8 @@ pub fn faces_report_page(
 
 /// The report of a volume file (one volume or several glued face to face) named `name`: its
 /// closure, the exact level-n solid (levels 0 to `level`, at least 3), the level-`level` mesh
-/// checked against the exact topology (at most `max_cells` faces, 400 000 when `None`) with its
+/// checked against the exact topology (at most `max_cells` faces,
+/// [`MAX_REPORT_FACES`](crate::mesh::MAX_REPORT_FACES) when `None`) with its
 /// sizes, a WebGL view and an SVG projection. Verified when no two triangles of the mesh cross
 /// (`warning` then says which do).
 pub fn volume_report_page(
@@ -97,7 +98,7 @@ pub fn volume_report_page(
         &set,
         u64::from(level),
         crate::mesh::DEFAULT_WIDTH,
-        max_cells.unwrap_or(crate::mesh::MAX_SOLID_FACES),
+        max_cells.unwrap_or(crate::mesh::MAX_REPORT_FACES),
         limits,
     )?;
     let sizes = vs.sizes(

@@ -125,6 +125,37 @@ fn face_directions(tris: &[Tri]) -> Vec<[f64; 3]> {
             .unwrap_or(std::cmp::Ordering::Equal)
             .then(x.0.cmp(&y.0))
     });
+    // Tiny triangles of one flat face (level 3, 0.1 mm sides at 100 mm) give `f32` normals that
+    // differ by more than the grid above, so one face fell into several groups and was offered
+    // as several directions. Groups whose mean normals lie within 10⁻³ rad of a larger group's
+    // join it.
+    let unit = |n: [f64; 3]| {
+        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        n.map(|x| x / len)
+    };
+    let mut merged: Vec<([i64; 3], f64, [f64; 3])> = Vec::new();
+    for (k, a, n) in v {
+        let u = unit(n);
+        let near = merged.iter_mut().find(|(_, _, m)| {
+            let w = unit(*m);
+            u[0] * w[0] + u[1] * w[1] + u[2] * w[2] > 1.0 - 5e-7
+        });
+        match near {
+            Some(g) => {
+                g.1 += a;
+                for (acc, x) in g.2.iter_mut().zip(n) {
+                    *acc += x;
+                }
+            }
+            None => merged.push((k, a, n)),
+        }
+    }
+    let mut v = merged;
+    v.sort_by(|x, y| {
+        y.1.partial_cmp(&x.1)
+            .unwrap_or(std::cmp::Ordering::Equal)
+            .then(x.0.cmp(&y.0))
+    });
     v.into_iter()
         .take(MAX_FACE_DIRECTIONS)
         .filter_map(|(_, _, n)| {
@@ -625,6 +656,28 @@ mod tests {
     /// the bed. The bar's underside is an overhang of 10 × 4: a bridge of
     /// span 4 (the largest disc of a 10 × 4 rectangle has diameter 4); the cube's underside is
     /// on the bed and its top faces up: no overhang.
+    #[test]
+    fn one_flat_face_of_tiny_triangles_is_one_direction() {
+        // Two triangles of the plane x + y + z = 0 whose normals, as `f32` rounding of tiny
+        // triangles makes them, differ by 3·10⁻⁴ in one coordinate (more than the 10⁻⁴ grid, so
+        // they were two groups) but by far less than 10⁻³ rad: one direction, not two. A third
+        // triangle of another plane stays apart.
+        let s = 1.0 / 3f64.sqrt();
+        let tri = |n: [f64; 3], a: f64| -> Tri { ([[0.0; 3]; 3], n, a) };
+        let tilt = {
+            let m = [s + 3e-4, s, s];
+            let l = (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt();
+            m.map(|x| x / l)
+        };
+        let d = face_directions(&[tri([s, s, s], 2.0), tri(tilt, 1.0), tri([s, -s, s], 0.5)]);
+        assert_eq!(d.len(), 2, "{d:?}");
+        assert!(
+            (d[0][0] - s).abs() < 2e-4 && (d[0][1] - s).abs() < 2e-4,
+            "{d:?}"
+        );
+        assert!(d[1][1] < 0.0, "{d:?}");
+    }
+
     #[test]
     fn the_largest_bridge_is_the_widest_overhang_seen_from_below() {
         let mut bar = cuboid(10.0, 4.0, 1.0);
