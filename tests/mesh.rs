@@ -870,23 +870,8 @@ fn prusa_slicer_slices_every_library_solid_at_level_2() {
         assert_eq!(code, 0, "{name}: {out}{err}");
         assert!(out.contains("orientation: "), "{name}: {out}");
         let supports = err.contains("no face rests on the bed");
-        let mut slicer = std::process::Command::new("prusa-slicer");
-        if supports {
-            slicer.arg("--support-material");
-        }
-        let o = slicer
-            .arg("--export-gcode")
-            .arg(&stl)
-            .arg("-o")
-            .arg(&gcode)
-            .output()
-            .expect("prusa-slicer runs (Debian package prusa-slicer)");
-        let text = format!(
-            "{}{}",
-            String::from_utf8_lossy(&o.stdout),
-            String::from_utf8_lossy(&o.stderr)
-        );
-        assert!(o.status.success(), "{name} (supports: {supports}): {text}");
+        let (sliced, text) = common::prusa_slice(&stl, &gcode, supports);
+        assert!(sliced, "{name} (supports: {supports}): {text}");
         assert!(
             !text.contains("no extrusions in the first layer"),
             "{name}: {text}"
@@ -896,14 +881,8 @@ fn prusa_slicer_slices_every_library_solid_at_level_2() {
     }
     // The shell needs the supports lacuna asked for: without them PrusaSlicer refuses it.
     let stl = dir.join("quad-patch-3d.stl");
-    let o = std::process::Command::new("prusa-slicer")
-        .arg("--export-gcode")
-        .arg(&stl)
-        .arg("-o")
-        .arg(dir.join("bare.gcode"))
-        .output()
-        .expect("prusa-slicer runs");
-    assert!(!o.status.success(), "the shell sliced without supports");
+    let (sliced, _) = common::prusa_slice(&stl, &dir.join("bare.gcode"), false);
+    assert!(!sliced, "the shell sliced without supports");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -934,23 +913,9 @@ fn prusa_slicer_slices_cube_c2_and_tetrahedron_c2_at_level_3() {
         ]);
         assert_eq!(code, 0, "{name}: {out}{err}");
         assert!(out.contains("no two triangles cross"), "{name}: {out}");
-        let mut slicer = std::process::Command::new("prusa-slicer");
-        if err.contains("no face rests on the bed") {
-            slicer.arg("--support-material");
-        }
-        let o = slicer
-            .arg("--export-gcode")
-            .arg(&stl)
-            .arg("-o")
-            .arg(&gcode)
-            .output()
-            .expect("prusa-slicer runs (Debian package prusa-slicer)");
-        let text = format!(
-            "{}{}",
-            String::from_utf8_lossy(&o.stdout),
-            String::from_utf8_lossy(&o.stderr)
-        );
-        assert!(o.status.success(), "{name}: {text}");
+        let supports = err.contains("no face rests on the bed");
+        let (sliced, text) = common::prusa_slice(&stl, &gcode, supports);
+        assert!(sliced, "{name} (supports: {supports}): {text}");
         let g = std::fs::read_to_string(&gcode).unwrap();
         assert!(g.contains("G1"), "{name}: no moves in the G-code");
         assert_eq!(

@@ -195,3 +195,31 @@ pub fn admesh_finds_nothing_to_repair(path: &std::path::Path, what: &str) -> Str
     }
     field("Number of facets")[0].clone()
 }
+
+/// Slices `stl` into `gcode` with Debian's PrusaSlicer command line (`.ci/run` installs it),
+/// with supports when asked: (whether it succeeded, its stdout and stderr).
+pub fn prusa_slice(
+    stl: &std::path::Path,
+    gcode: &std::path::Path,
+    supports: bool,
+) -> (bool, String) {
+    let mut slicer = Command::new("prusa-slicer");
+    if supports {
+        slicer.arg("--support-material");
+    }
+    let o = slicer
+        .arg("--export-gcode")
+        .arg(stl)
+        .arg("-o")
+        .arg(gcode)
+        .output()
+        .expect("prusa-slicer runs (Debian package prusa-slicer)");
+    (
+        o.status.success(),
+        format!(
+            "{}{}",
+            String::from_utf8_lossy(&o.stdout),
+            String::from_utf8_lossy(&o.stderr)
+        ),
+    )
+}
