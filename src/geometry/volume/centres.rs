@@ -386,6 +386,17 @@ mod tests {
         assert_eq!(radial_centre(o, &turned), None);
     }
 
+    /// The chevron tilted out of its plane by a rotation about the x axis (cos 0.6, sin 0.8),
+    /// lifted to z ≥ 3, and its unit normal.
+    fn tilted_chevron() -> (Vec<P3>, P3) {
+        let (cs, sn) = (0.6, 0.8);
+        let chevron = CHEVRON
+            .iter()
+            .map(|p| [p[0], cs * p[1], sn * p[1] + 3.0])
+            .collect();
+        (chevron, [0.0, -sn, cs])
+    }
+
     #[test]
     fn a_face_centre_is_its_mean_unless_the_mean_is_outside_its_kernel() {
         // A square: its mean.
@@ -399,12 +410,7 @@ mod tests {
         // The chevron above, tilted out of its plane by a rotation about the x axis: the mean
         // lies beyond the reflex corner, and the centre chosen instead lies in the face's plane
         // and sees every side counter-clockwise about the face's normal.
-        let (cs, sn) = (0.6, 0.8);
-        let chevron: Vec<P3> = CHEVRON
-            .iter()
-            .map(|p| [p[0], cs * p[1], sn * p[1] + 3.0])
-            .collect();
-        let n = [0.0, -sn, cs];
+        let (chevron, n) = tilted_chevron();
         let sees = |c: P3| {
             (0..6).all(|i| {
                 let (a, b) = (chevron[i], chevron[(i + 1) % 6]);
@@ -426,12 +432,7 @@ mod tests {
         // The tilted chevron of the test above is flat: mean value coordinates reproduce linear
         // functions, so the lifted point is the kernel point itself, in the face's plane, and it
         // sees every side.
-        let (cs, sn) = (0.6, 0.8);
-        let chevron: Vec<P3> = CHEVRON
-            .iter()
-            .map(|p| [p[0], cs * p[1], sn * p[1] + 3.0])
-            .collect();
-        let n = [0.0, -sn, cs];
+        let (chevron, n) = tilted_chevron();
         let c = star_point(&chevron).unwrap();
         assert!(dot(n, sub(c, chevron[0])).abs() < 1e-9, "{c:?}");
         assert!((0..6).all(|i| {
