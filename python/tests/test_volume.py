@@ -285,13 +285,14 @@ def test_errors_of_volume_methods():
 
 
 def test_a_solid_that_folds_is_not_written(tmp_path):
-    # The tetrahedron with Cantor edges C3 under A1 and V1 folds at level 3 under all three
-    # inner-face rules (two triangles cross; docs/VOLUMES.md, the command line's test
+    # The cube whose top is turned by 160° (fixtures/twisted-cube-160.txt) folds at level 2 under
+    # all three inner-face rules (two triangles cross; docs/VOLUMES.md, the command line's test
     # `a_solid_that_folds_is_not_written`): a mesh would not be the verified structure, so nothing
-    # is written (E1041). C2 folded too until the third rule (issue #31).
-    v = lacuna.Volume("tetrahedron C3 | B2 B2 B2 | A1 | B2 B2 | V1")
+    # is written (E1041). The tetrahedron C3 A1 V1 at level 3 folded too until boundary faces were
+    # fanned around a point of their own kernel (issue #31).
+    v = lacuna.Volume.from_file(REPO / "fixtures" / "twisted-cube-160.txt")
     with pytest.raises(lacuna.GeometryError) as e:
-        v.render(3, stl=tmp_path / "t3.stl")
+        v.render(2, stl=tmp_path / "t3.stl")
     assert e.value.code == "E1041"
     assert not (tmp_path / "t3.stl").exists()
 
