@@ -241,7 +241,9 @@ fn fan_centre(poly: &[[f64; 3]], centre: [f64; 3]) -> [f64; 3] {
         ]
     });
     towards
-        .chain(crate::geometry::star_point(poly))
+        // Lazily: the kernel point costs two small LPs, spent only when no point towards a
+        // corner will do.
+        .chain(std::iter::once_with(|| crate::geometry::star_point(poly)).flatten())
         .chain(ears)
         .find(|&p| star_fan(poly, nrm, p))
         .unwrap_or(centre)
