@@ -137,7 +137,11 @@ fn face_fan(g: &SolidGeometry, r: &Reading) -> (Option<[f64; 3]>, Vec<[usize; 3]
         return (None, vec![[0, 1, 2]]);
     }
     let corners: Vec<[f64; 3]> = r.corners.iter().map(|&c| g.points[c]).collect();
-    let centre = fan_centre(&corners, g.faces[r.face].center);
+    let f = &g.faces[r.face];
+    let centre = match f.fan_fixed {
+        true => f.center,
+        false => fan_centre(&corners, f.center),
+    };
     (Some(centre), (0..n).map(|i| [n, i, (i + 1) % n]).collect())
 }
 

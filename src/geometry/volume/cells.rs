@@ -45,6 +45,11 @@ pub struct GeoFace {
     /// The centre: inner points are placed towards it, and the face is triangulated as a fan
     /// around it.
     pub center: P3,
+    /// Whether the step chose the centre so that every triangle of the fan around it is seen
+    /// from the centre of its volume's parent (the inner faces of [`InnerFan::Radial`]): the
+    /// mesh then fans the face around this point and no other, which the rule's argument
+    /// covers, even where the face is bent too much to look star-shaped along its mean normal.
+    pub fan_fixed: bool,
 }
 
 /// One face of a volume's surface as the volume reads it (counter-clockwise from outside).

@@ -342,6 +342,40 @@ mod tests {
         assert_eq!(reach([0.0; 3], &fan, &behind), None);
     }
 
+    #[test]
+    fn corners_pulled_in_unevenly_keep_a_fan_below_its_evenly_pulled_copy() {
+        // The radial rule's per-sub-volume shrink (issue #31): a sub-volume's inner face is its
+        // rim fan with every point p moved to o + αₚ(p − o), where αₚ is at most the sub-volume's
+        // own α (a corner shared with a neighbour takes the neighbour's smaller α). On the ray
+        // through a point Σλᵢvᵢ of a fan triangle, the moved triangle lies at 1/Σ(λᵢ/αᵢ) ≤ α of
+        // it, so its reach over any patch the fan reaches with ρ is at least ρ/α. Checked on
+        // the patch of the test above with the slanted fan (ρ = 3/4) and α = 1/2, with corner
+        // fractions drawn from [1/50, 1/2] by a fixed linear congruential sequence.
+        let patch = [[[1.0, 0.0, 1.0], [0.0, 1.0, 1.0], [-0.5, -0.5, 1.0]]];
+        let fan = [[12.0, 0.0, 4.0], [-0.8, 1.6, 0.8], [-0.8, -1.6, 0.8]];
+        let rho = reach([0.0; 3], &[fan], &patch).unwrap();
+        let mut x: u64 = 12345;
+        let mut next = || {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            0.02 + 0.48 * ((x >> 11) as f64 / (1u64 << 53) as f64)
+        };
+        for _ in 0..200 {
+            let a = [next(), next(), next()];
+            let moved = [0, 1, 2].map(|i| scale(fan[i], a[i]));
+            let r = reach([0.0; 3], &[moved], &patch).unwrap();
+            assert!(r >= rho / 0.5 * (1.0 - 1e-12), "{a:?}: {r} < {}", rho / 0.5);
+        }
+        // All at ½ gives exactly ρ/½.
+        let even = [0, 1, 2].map(|i| scale(fan[i], 0.5));
+        let r = reach([0.0; 3], &[even], &patch).unwrap();
+        assert!((r - rho / 0.5).abs() < 1e-12, "{r}");
+        // One corner further out than ½ breaks the bound on some ray.
+        let out = [scale(fan[0], 0.9), scale(fan[1], 0.5), scale(fan[2], 0.5)];
+        assert!(reach([0.0; 3], &[out], &patch).unwrap() < rho / 0.5);
+    }
+
     /// Whether every fan triangle (c, rᵢ, rᵢ₊₁) turns counter-clockwise seen from `o`.
     fn sees_all(o: P3, c: P3, rim: &[P3]) -> bool {
         let m = rim.len();

@@ -66,6 +66,7 @@ impl Builder {
             face,
             corners,
             center,
+            fan_fixed: false,
         });
         self.faces.len() - 1
     }
@@ -332,7 +333,10 @@ impl Builder {
     /// faces are seen from behind and the sub-volumes over them fold.
     ///
     /// `seen`: the faces whose fan triangles the point must see (the volume's own faces when
-    /// empty).
+    /// empty). When no point sees all of them, the point of the kernel of the volume's own faces
+    /// is taken instead, if it has one: at level 3 of the truncated tetrahedron with `C3` edges
+    /// (A1, V1) 24 volumes have no point that sees every sub-face of their level-1 surface, and
+    /// their means folded the solid where their own kernel points do not (issue #31).
     fn star_centre(&self, gv: &GeoVolume, seen: &[&Reading]) -> P3 {
         let m = mean(
             gv.faces
@@ -344,7 +348,8 @@ impl Builder {
         let mut planes: Vec<(P3, P3)> = Vec::new();
         let mut size = 0.0f64;
         let own: Vec<&Reading> = gv.faces.iter().collect();
-        let seen = if seen.is_empty() { &own[..] } else { seen };
+        let given = !seen.is_empty();
+        let seen = if given { seen } else { &own[..] };
         for r in seen.iter().copied() {
             let c = self.faces[r.face].center;
             let n = r.corners.len();
@@ -368,7 +373,11 @@ impl Builder {
         if margin(m) > 1e-9 * size {
             return m;
         }
-        kernel_point(&planes, m, size).unwrap_or(m)
+        match kernel_point(&planes, m, size) {
+            Some(k) => k,
+            None if given => self.star_centre(gv, &[]),
+            None => m,
+        }
     }
 
     fn volume_step(&mut self, v: &Volume) -> Result<Rc<VolumeSubdivision>> {
@@ -396,17 +405,16 @@ impl Builder {
         } else {
             self.star_centre(gv, &[])
         };
-        let (shrink, radial_centres) = if radial {
+        let (shrinks, radial_centres) = if radial {
             self.radial_fans(&step, &subs, vcenter)
         } else {
-            (SHRINK, Vec::new())
+            (vec![SHRINK; step.subvolumes.len()], Vec::new())
         };
         // Every rim point goes [`SHRINK`] of the way to the volume's centre: the side face over a
         // rim edge lies in the cone from the centre over that edge, so the side faces of two rim
         // edges meet only along the radial edge they share, and the inner face is the rim loop
         // shrunk towards the centre (no offset along summed normals, which folds where the
         // volume is not convex).
-        let inner_of = |me: &mut Builder, p: usize| -> P3 { lerp(me.points[p], vcenter, shrink) };
         let mut out = Vec::with_capacity(step.subvolumes.len());
         if v.delay >= 2 {
             let s = &step.subvolumes[0];
@@ -463,6 +471,16 @@ impl Builder {
                 }
             }
         }
+        // The shrink of a radial slot: the largest of its sub-volumes' (the point nearest the
+        // centre), so that each inner face lies, on every ray from the centre, no further out
+        // than its own sub-volume's shrink allows (see [`Builder::radial_fans`]).
+        let mut slot_shrink: HashMap<usize, f64> = HashMap::new();
+        for (s, sv) in step.subvolumes.iter().enumerate() {
+            for i in 0..sv.sides.len() {
+                let t = slot_shrink.entry(dsu.find(offsets[s] + i)).or_insert(0.0);
+                *t = t.max(shrinks[s]);
+            }
+        }
         let mut radial: HashMap<usize, (usize, usize)> = HashMap::new();
         let mut slot_edge = |me: &mut Builder, s: usize, i: usize| -> (usize, usize) {
             let root = dsu.find(offsets[s] + i);
@@ -470,7 +488,7 @@ impl Builder {
                 return x;
             }
             let (_, _, a, _) = rim(s, i);
-            let inner = inner_of(me, a);
+            let inner = lerp(me.points[a], vcenter, slot_shrink[&root]);
             let ia = me.point(inner);
             let e = me.edge(a, ia, v.radial);
             radial.insert(root, (e, ia));
@@ -523,14 +541,14 @@ impl Builder {
                     .get(s)
                     .copied()
                     .flatten()
-                    .map(|c| lerp(c, vcenter, shrink)),
+                    .map(|c| lerp(c, vcenter, shrinks[s])),
                 InnerFan::PatchPoint => {
                     let rim_of = |i: usize| {
                         let (e, _, a, _) = rim(s, i);
                         (e, a)
                     };
                     self.patch_point(sv, &subs, (0..m).map(rim_of).collect())
-                        .map(|p| lerp(p, vcenter, shrink))
+                        .map(|p| lerp(p, vcenter, shrinks[s]))
                 }
             };
             let faces = self.fill(&sv.volume, faces, None, centre)?;
@@ -542,26 +560,34 @@ impl Builder {
         Ok(out)
     }
 
-    /// The inner faces of [`InnerFan::Radial`]: the fraction of the way from a rim point to `o`
-    /// at which the step places inner corners, and for every sub-volume the point its inner
-    /// face is fanned around before that shrink (`None` where no fan of its rim is seen from
-    /// `o`; the mean of its rim is used then).
+    /// The inner faces of [`InnerFan::Radial`]: for every sub-volume, the fraction `t` of the way
+    /// from a rim point to `o` at which its inner corners may lie, and the point its inner face
+    /// is fanned around before that shrink (`None` where no fan of its rim is seen from `o`; the
+    /// mean of its rim is used then).
     ///
     /// The fan centre of a sub-volume is the mean of its rim when every fan triangle around it
     /// is seen from `o` counter-clockwise from outside, else a point of the cone of such centres
-    /// ([`radial_centre`]). The fraction is [`SHRINK`] times the least [`reach`] of the fans over
-    /// their patches (at most 1): the inner face then lies, on every ray from `o`, at most half of
-    /// the way from `o` to the patch, so it cannot meet the patch, and it stays in the cone over
-    /// the patch, which the other sub-volumes do not enter.
+    /// ([`radial_centre`]). With ρ its fan's [`reach`] over its patch (at most 1), `1 − t` is
+    /// [`SHRINK`]·ρ: the fan scaled about `o` by `1 − t` lies, on every ray from `o`, at most
+    /// half of the way from `o` to the patch. A radial slot shared by several sub-volumes takes
+    /// the largest of their `t` (the step does), and the inner face's centre its own: a triangle
+    /// whose corners lie on the rays of a triangle T, each at most a fraction α of the way out,
+    /// lies on every ray through it at most α of the way to T (a point `Σλᵢvᵢ` of T is met at
+    /// `1/Σ(λᵢ/αᵢ)` of it, and `Σλᵢ/αᵢ ≥ 1/α`). So each inner face stays below its patch and in
+    /// the cone over it, which the other sub-volumes do not enter. One fraction for all, the
+    /// least reach of the whole step, was used before: a single patch bent towards `o` (reach
+    /// 0.09 at level 2 of prism-3 with `C3` edges, A2, V1) then drew every inner corner of the
+    /// step within a twentieth of the way from `o`, where the gap faces of neighbouring
+    /// sub-volumes were slivers that crossed (issue #31).
     fn radial_fans(
         &self,
         step: &VolumeSubdivision,
         subs: &[SubReadings],
         o: P3,
-    ) -> (f64, Vec<Option<P3>>) {
-        let mut least = 1.0f64;
+    ) -> (Vec<f64>, Vec<Option<P3>>) {
+        let mut shrinks = vec![SHRINK; step.subvolumes.len()];
         let mut centres = Vec::with_capacity(step.subvolumes.len());
-        for sv in &step.subvolumes {
+        for (s, sv) in step.subvolumes.iter().enumerate() {
             let pts: Vec<P3> = sv
                 .sides
                 .iter()
@@ -585,10 +611,10 @@ impl Builder {
                 }
             }
             if let Some(t) = reach(o, &fan, &patch) {
-                least = least.min(t);
+                shrinks[s] = 1.0 - (1.0 - SHRINK) * t.min(1.0);
             }
         }
-        (1.0 - (1.0 - SHRINK) * least.min(1.0), centres)
+        (shrinks, centres)
     }
 
     /// The point M of [`InnerFan::PatchPoint`] for sub-volume `sv`, whose rim is `rim` ((edge,
@@ -668,6 +694,8 @@ impl Builder {
                 })
                 .or(centre);
             let id = self.face(surface.faces[u].clone(), corners.clone(), center);
+            self.faces[id].fan_fixed =
+                self.fan == InnerFan::Radial && push_to.is_none() && centre.is_some();
             faces[u] = Some(Reading {
                 face: id,
                 corners,
