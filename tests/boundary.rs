@@ -89,3 +89,18 @@ fn the_text_report_has_a_boundary_line() {
     );
     assert!(line.contains("upper bound"), "{line}");
 }
+
+#[test]
+fn an_overlapping_system_has_no_boundary_value_and_says_why() {
+    // The lemniscate fractal's pieces coincide (the identity is a neighbour map): the graph of
+    // neighbour maps is not finite, and `boundary_dimension` carries only the reason.
+    let (code, out, err) = lacuna(&["measure", "lemniscate-fractal", "--level", "1", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("JSON");
+    let b = &v["boundary_dimension"];
+    assert!(b.get("states").is_none(), "{b}");
+    assert!(
+        b["note"].as_str().is_some_and(|n| n.contains("identity")),
+        "{b}"
+    );
+}

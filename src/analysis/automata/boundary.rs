@@ -7,7 +7,7 @@
 //! piece `g_u(A_q)` meets the piece `g_v(A_r)`, seen in q's chart. The balanced refinement of the
 //! search splits it: when `ratio(h) ≤ 1`, `B_h = ⋃_{e: q ← w} g_e(B_{g_e⁻¹ ∘ h})` (an edge of
 //! the operator's ratio), else `B_h = ⋃_{e: r ← w} B_{h ∘ g_e}` (an edge of ratio 1). A child
-//! whose maps fails the ball test has `B = ∅`, so the children kept by the search are all that
+//! whose map fails the ball test has `B = ∅`, so the children kept by the search are all that
 //! count, and when the open-set search closes (finite type) its kept maps and these edges form a
 //! finite graph ([`crate::analysis::automata::neighbour_maps::map_graph`]), whose nodes start at
 //! the maps `g_a⁻¹ ∘ g_b` of two different operators out of one state.
