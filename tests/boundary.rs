@@ -90,17 +90,57 @@ fn the_text_report_has_a_boundary_line() {
     assert!(line.contains("upper bound"), "{line}");
 }
 
-#[test]
-fn an_overlapping_system_has_no_boundary_value_and_says_why() {
-    // The lemniscate fractal's pieces coincide (the identity is a neighbour map): the graph of
-    // neighbour maps is not finite, and `boundary_dimension` carries only the reason.
-    let (code, out, err) = lacuna(&["measure", "lemniscate-fractal", "--level", "1", "--json"]);
-    assert_eq!(code, 0, "{err}");
+/// `measure NAME --json`'s `boundary_dimension` when there is no value: only a note.
+fn no_boundary(name: &str) -> String {
+    let (code, out, err) = lacuna(&["measure", name, "--level", "1", "--json"]);
+    assert_eq!(code, 0, "{name}: {err}");
     let v: serde_json::Value = serde_json::from_str(&out).expect("JSON");
     let b = &v["boundary_dimension"];
-    assert!(b.get("states").is_none(), "{b}");
+    assert!(b.get("states").is_none(), "{name}: {b}");
+    assert_eq!(
+        b.as_object().map(|o| o.len()),
+        Some(1),
+        "{name}: only a note in {b}"
+    );
+    b["note"]
+        .as_str()
+        .unwrap_or_else(|| panic!("{name}: no note in {b}"))
+        .to_string()
+}
+
+#[test]
+fn the_sierpinski_triangle_and_carpet_are_their_own_boundaries() {
+    // Similarity dimensions log 3/log 2 and log 8/log 3, both < 2: Lebesgue measure 0, no
+    // interior, so each set is its own boundary and no boundary dimension of a tile is reported
+    // (the set where their pieces touch has dimension 0 and 1, which is not their boundary).
+    for name in ["sierpinski-triangle", "sierpinski-carpet"] {
+        let note = no_boundary(name);
+        assert!(
+            note.starts_with("not a tile: similarity dimension < 2")
+                && note.contains("its own boundary"),
+            "{name}: {note}"
+        );
+    }
+    let (code, out, err) = lacuna(&["measure", "sierpinski-triangle", "--level", "1"]);
+    assert_eq!(code, 0, "{err}");
+    let line = out
+        .lines()
+        .find(|l| l.starts_with("boundary dimension: "))
+        .unwrap_or_else(|| panic!("no boundary line in {out}"));
     assert!(
-        b["note"].as_str().is_some_and(|n| n.contains("identity")),
-        "{b}"
+        line.starts_with("boundary dimension: none (not a tile"),
+        "{line}"
+    );
+}
+
+#[test]
+fn an_overlapping_system_below_dimension_two_is_not_a_tile() {
+    // The lemniscate fractal's pieces coincide (the open-set condition fails), but its
+    // similarity dimension, an upper bound of the Hausdorff dimension in any case, is < 2: no
+    // interior, no value, and the note says so.
+    let note = no_boundary("lemniscate-fractal");
+    assert!(
+        note.starts_with("not a tile: similarity dimension < 2"),
+        "{note}"
     );
 }

@@ -56,7 +56,7 @@ pub use automata::automaton_resolve::{
     Resolved,
 };
 pub use automata::boundary::{
-    boundary_dimension, BoundaryDimension, BoundaryGraph, StateBoundary, MAX_COMPONENT,
+    boundary_dimension, not_a_tile, BoundaryDimension, BoundaryGraph, StateBoundary, MAX_COMPONENT,
 };
 pub use automata::contraction::{
     check_contraction, check_contraction_within, difference_restriction, ContractionReport,

@@ -67,7 +67,14 @@ pub struct AutomatonMeasure {
 pub enum BoundaryReport {
     /// The exact values per state.
     Decided(BoundaryDimension),
-    /// Why there is no value (limits reached, no neighbour maps, …): never a verdict.
+    /// The attractors are not tiles, or not known to be (similarity dimension < 2 in the
+    /// plane, or the open-set condition not proved): the boundary of a set without interior is
+    /// the set itself, and the contact set is not reported.
+    NotATile {
+        /// Why.
+        note: String,
+    },
+    /// A tile, but no value (limits reached, no neighbour maps, …): never a verdict.
     NotDecided {
         /// The reason.
         note: String,
@@ -365,6 +372,9 @@ impl AutomatonMeasure {
                     .collect();
                 o += &format!("boundary dimension: {} ({})\n", per.join("; "), b.note);
             }
+            BoundaryReport::NotATile { note } => {
+                o += &format!("boundary dimension: none ({note})\n")
+            }
             BoundaryReport::NotDecided { note } => {
                 o += &format!("boundary dimension: not decided ({note})\n")
             }
@@ -407,10 +417,17 @@ pub fn automaton_measure(
             Ok(s) => (Some(s), None),
             Err(n) => (None, Some(n)),
         };
-    let boundary_dimension = match crate::analysis::boundary_dimension(model, &resolved.ops, digits)
-    {
-        Ok(b) => BoundaryReport::Decided(b),
-        Err(note) => BoundaryReport::NotDecided { note },
+    let boundary_dimension = match &similarity_dimension {
+        None => BoundaryReport::NotATile {
+            note: "not known to be a tile: no similarity dimension".into(),
+        },
+        Some(sim) => match crate::analysis::not_a_tile(model, sim) {
+            Some(note) => BoundaryReport::NotATile { note },
+            None => match crate::analysis::boundary_dimension(model, &resolved.ops, sim, digits) {
+                Ok(b) => BoundaryReport::Decided(b),
+                Err(note) => BoundaryReport::NotDecided { note },
+            },
+        },
     };
     AutomatonMeasure {
         boundary_dimension,

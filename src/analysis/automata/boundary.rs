@@ -34,28 +34,45 @@
 //! come within the margin μ, so a kept node may have `B_h = ∅`: [`BoundaryDimension`] always
 //! says upper bound. When the attractors are tiles (the closure of their interior, pieces with
 //! disjoint interiors), `B_h ⊂ ∂A_q`; points of `∂A_q` that no neighbouring piece touches (the
-//! outer boundary of a tile that touches nothing of its own system there) are not counted. For
-//! attractors without interior `∂A_q = A_q`, and the value is that of the contact set only.
+//! outer boundary of a tile that touches nothing of its own system there) are not counted.
+//!
+//! **When it applies.** Only to tiles: a value is computed for the states of a cyclic part whose
+//! similarity dimension is exactly 2 (`u* = σ`, found exactly) in the plane and whose open-set
+//! condition is proved with a witness ([`part_tiling`]). Under the open-set condition a strongly
+//! connected graph-directed system of similarity dimension s has `0 < H^s(A_q) < ∞` for every
+//! state (Mauldin–Williams 1988); with s = 2, H² is a multiple of Lebesgue measure, so every
+//! `A_q` has positive area. That it then has interior and is the closure of it is Schief's
+//! theorem (1994) for one state; for several states we rely on its graph-directed analogue (as
+//! used for self-affine multi-tiles, Lagarias–Wang), not re-proved here. When the similarity
+//! dimension is < 2 (with or without the open-set condition, since it bounds the Hausdorff
+//! dimension) the attractor has area 0, no interior, and is its own boundary: no value is given
+//! ([`not_a_tile`] says why), because the dimension of the contact set (0 for the Sierpinski
+//! triangle, 1 for the carpet) is not that of the boundary. Above 2, or at 2 without a proved
+//! open-set condition, the attractor is not known to be a tile and no value is given either.
 //!
 //! **Not decided** (an error, never a verdict) when the open-set search does not close within
 //! its limits ([`crate::analysis::automata::neighbour_maps::MAX_NEIGHBOUR_MAPS`],
 //! [`crate::analysis::automata::neighbour_maps::MAX_NEIGHBOUR_TESTS`]) or finds the identity, or
-//! when the similarity dimension does not apply.
+//! when the similarity dimension does not apply. The open-set search is not rerun when the
+//! similarity dimension's witness already holds its closed set of maps.
 
 use crate::algebra::algebraic::RealAlgebraic;
 use crate::algebra::kmatrix::KMatrix;
 use crate::algebra::poly::Poly;
-use crate::analysis::automata::neighbour_maps::{map_graph, search, MapEdge, Search};
-use crate::analysis::automata::open_set::neighbour_system;
+use crate::analysis::automata::neighbour_maps::{
+    map_graph, search, Closed, KAffine, MapEdge, Search,
+};
+use crate::analysis::automata::open_set::{neighbour_system, NeighbourWitness};
 use crate::analysis::automata::similarity::{
-    certified_decimal, compare, equals, exact_text, frames, part_polynomial, similarity_dimension,
-    smallest_root, NotApplicable, PartValue,
+    certified_decimal, compare, equals, exact_text, frames, part_polynomial, smallest_root,
+    NotApplicable, PartValue, PartWitness, SimilarityDimension,
 };
 use crate::input::automaton_model::AutomatonModel;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed};
 use serde::Serialize;
+use std::cmp::Ordering;
 
 /// The most classes of nodes (after lumping) of one strongly connected component whose
 /// polynomial is computed (the interpolated determinant costs about `n⁴` in their number):
@@ -297,28 +314,149 @@ fn has_cycle(
     false
 }
 
-/// The boundary dimension of every state of the automaton's cyclic parts, with `digits`
-/// certified digits, or why it is not decided.
+/// Whether a cyclic part's attractors are tiles, or why not.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) enum Tiling {
+    /// The part's similarity dimension is exactly 2 in the plane and the open-set condition
+    /// holds for it (proved, with a witness): its attractors have positive Lebesgue measure and
+    /// are the closure of their interior (module doc, "When it applies").
+    Tile,
+    /// The part's similarity dimension is < 2 (exact): its attractors have Lebesgue measure 0,
+    /// no interior, and each is its own boundary.
+    NoInterior,
+    /// Not known to be a tile, and why: not in the plane, the similarity dimension is > 2 or
+    /// not separated from 2, or the open-set condition is not proved.
+    Unknown(String),
+}
+
+/// Whether the part's attractors are tiles ([`Tiling`]), decided exactly from its witness:
+/// `s = 2` is `u* = σ` (found exactly, `rational == Some(2)`), `s < 2` by certified enclosures
+/// of `s ≠ 2`.
+pub(crate) fn part_tiling(m: &AutomatonModel, part: &PartWitness) -> Tiling {
+    let two = BigRational::from_integer(2.into());
+    let value = PartValue {
+        u: part.u.clone(),
+        sigma: part.sigma.clone(),
+        exact: String::new(),
+        rational: part.rational.clone(),
+    };
+    let against = PartValue {
+        rational: Some(two.clone()),
+        ..value.clone()
+    };
+    let order = match &part.rational {
+        Some(r) => r.cmp(&two),
+        None => compare(&m.field, &value, &against),
+    };
+    if order == Ordering::Less {
+        return Tiling::NoInterior;
+    }
+    if m.space != 2 {
+        return Tiling::Unknown("the boundary dimension is computed in the plane only".into());
+    }
+    if order == Ordering::Greater || part.rational.is_none() {
+        return Tiling::Unknown(
+            "the similarity dimension is not 2 (above it: the pieces overlap)".into(),
+        );
+    }
+    let osc = part.open_set.is_some()
+        || matches!(part.neighbour_maps, Some(NeighbourWitness::Holds { .. }));
+    if osc {
+        Tiling::Tile
+    } else {
+        Tiling::Unknown(
+            "the similarity dimension is 2 but the open-set condition is not proved".into(),
+        )
+    }
+}
+
+/// Why no cyclic part of the similarity dimension is a tile ([`part_tiling`]), or `None` when
+/// some part is one (its states get a boundary dimension).
+pub fn not_a_tile(m: &AutomatonModel, sim: &SimilarityDimension) -> Option<String> {
+    let verdicts: Vec<Tiling> = sim.witness.iter().map(|p| part_tiling(m, p)).collect();
+    if verdicts.contains(&Tiling::Tile) {
+        return None;
+    }
+    if verdicts.iter().all(|t| *t == Tiling::NoInterior) {
+        return Some(
+            "not a tile: similarity dimension < 2, so the attractor has no interior and is its own boundary".into(),
+        );
+    }
+    let why: Vec<String> = verdicts
+        .into_iter()
+        .filter_map(|t| match t {
+            Tiling::Unknown(w) => Some(w),
+            _ => None,
+        })
+        .collect();
+    Some(format!("not known to be a tile: {}", why.join("; ")))
+}
+
+/// The kept maps of the part's open-set search when the neighbour maps proved the condition
+/// (the same coordinates as [`neighbour_system`], so the same search): no need to run it again.
+fn closed_of(part: &PartWitness) -> Option<Closed> {
+    match &part.neighbour_maps {
+        Some(NeighbourWitness::Holds {
+            radius,
+            margin,
+            maps,
+            ..
+        }) => Some(Closed {
+            radius: radius.clone(),
+            margin: margin.clone(),
+            maps: maps
+                .iter()
+                .map(|h| {
+                    (
+                        h.q,
+                        h.r,
+                        KAffine {
+                            a: h.a.clone(),
+                            b: h.b.clone(),
+                        },
+                    )
+                })
+                .collect(),
+        }),
+        _ => None,
+    }
+}
+
+/// The boundary dimension of every state of the automaton's tiles: the states of the cyclic
+/// parts of `sim` (the similarity dimension of the same automaton and operators) whose
+/// attractors are tiles ([`part_tiling`]), with `digits` certified digits, or why it is not
+/// decided (and [`not_a_tile`]'s reason when no part is a tile).
 pub fn boundary_dimension(
     m: &AutomatonModel,
     ops: &[KMatrix],
+    sim: &SimilarityDimension,
     digits: usize,
 ) -> Result<BoundaryDimension, NotApplicable> {
+    if let Some(why) = not_a_tile(m, sim) {
+        return Err(why);
+    }
     let a = &m.automaton;
     let k = &m.field;
-    let sim = similarity_dimension(m, ops, digits)?;
     let frames = frames(m, ops);
     let mut states = Vec::new();
     let mut graphs = Vec::new();
+    let mut others = Vec::new();
     for part in &sim.witness {
+        if part_tiling(m, part) != Tiling::Tile {
+            others.extend(part.states.iter().map(|&s| a.states[s].name.clone()));
+            continue;
+        }
         let (centres, kedges, op_of) = neighbour_system(m, ops, &frames, &part.states)
             .map_err(|why| format!("no neighbour maps: {why}"))?;
-        let closed = match search(k, &centres, &kedges) {
-            Search::Closed(c) => c,
-            Search::Identity(..) => {
-                return Err("the identity is a neighbour map (two pieces coincide)".into())
-            }
-            Search::Undecided(why) => return Err(format!("not decided: {why}")),
+        let closed = match closed_of(part) {
+            Some(c) => c,
+            None => match search(k, &centres, &kedges) {
+                Search::Closed(c) => c,
+                Search::Identity(..) => {
+                    return Err("the identity is a neighbour map (two pieces coincide)".into())
+                }
+                Search::Undecided(why) => return Err(format!("not decided: {why}")),
+            },
         };
         let graph = map_graph(k, &centres, &kedges, &closed)
             .ok_or("the kept neighbour maps are not closed under refinement")?;
@@ -455,11 +593,19 @@ pub fn boundary_dimension(
             )
         })
         .collect();
+    let skipped = if others.is_empty() {
+        String::new()
+    } else {
+        format!(
+            "; states {} are not tiles and get no value",
+            others.join(", ")
+        )
+    };
     Ok(BoundaryDimension {
         states,
         upper_bound: true,
         note: format!(
-            "an upper bound of the dimension of the set where pieces touch (the boundary of a tile as seen by its neighbour pieces): exact Mauldin–Williams value of the graph of neighbour maps ({}); it is the dimension when the dominant component's sets are non-empty and satisfy the open-set condition, not proved here",
+            "an upper bound of the dimension of the boundary of each tile as seen by its neighbour pieces (the set where pieces touch): exact Mauldin–Williams value of the graph of neighbour maps ({}); it is the dimension when the dominant component's sets are non-empty and satisfy the open-set condition, not proved here{skipped}",
             sizes.join("; ")
         ),
         graphs,
@@ -477,7 +623,9 @@ mod tests {
         };
         let r = crate::analysis::automata::automaton_resolve::resolve(&model, &[], 64)
             .expect("resolves");
-        boundary_dimension(&model, &r.ops, 12).unwrap_or_else(|e| panic!("{name}: {e}"))
+        let sim = crate::analysis::automata::similarity::similarity_dimension(&model, &r.ops, 12)
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        boundary_dimension(&model, &r.ops, &sim, 12).unwrap_or_else(|e| panic!("{name}: {e}"))
     }
 
     #[test]
@@ -511,6 +659,26 @@ mod tests {
         for s in &b.states {
             assert_eq!(s.exact, "1", "{s:?}");
         }
+    }
+
+    fn tiling(name: &str) -> Vec<Tiling> {
+        let Loaded::Automaton { model, .. } = load_any(name).expect("library input") else {
+            panic!("{name} is an automaton");
+        };
+        let r = crate::analysis::automata::automaton_resolve::resolve(&model, &[], 64)
+            .expect("resolves");
+        let sim = crate::analysis::automata::similarity::similarity_dimension(&model, &r.ops, 12)
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        sim.witness.iter().map(|p| part_tiling(&model, p)).collect()
+    }
+
+    #[test]
+    fn only_parts_of_similarity_dimension_two_with_the_open_set_condition_are_tiles() {
+        // log 3/log 2 < 2: no interior. Robinson triangles and the dragon: s = 2, open set proved.
+        assert_eq!(tiling("sierpinski-triangle"), vec![Tiling::NoInterior]);
+        assert_eq!(tiling("sierpinski-carpet"), vec![Tiling::NoInterior]);
+        assert_eq!(tiling("penrose-robinson"), vec![Tiling::Tile]);
+        assert_eq!(tiling("heighway-dragon"), vec![Tiling::Tile]);
     }
 
     #[test]

@@ -380,6 +380,7 @@ fn rat_det(mut m: Vec<Vec<BigRational>>) -> BigRational {
 }
 
 /// One part's dimension `s = 2·ln u*/ln σ`: `(u*, σ)`.
+#[derive(Clone)]
 pub(crate) struct PartValue {
     /// u*, the smallest root in (0, 1] of `det(I − M(u))`.
     pub u: RealAlgebraic,
