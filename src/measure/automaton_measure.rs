@@ -419,7 +419,7 @@ pub fn automaton_measure(
         };
     let boundary_dimension = match &similarity_dimension {
         None => BoundaryReport::NotATile {
-            note: "not known to be a tile: no similarity dimension".into(),
+            note: "not known to be a tile: the similarity dimension does not apply".into(),
         },
         Some(sim) => match crate::analysis::not_a_tile(model, sim) {
             Some(note) => BoundaryReport::NotATile { note },
