@@ -356,7 +356,8 @@ pub(crate) fn part_tiling(m: &AutomatonModel, part: &PartWitness) -> Tiling {
     }
     if order == Ordering::Greater || part.rational.is_none() {
         return Tiling::Unknown(
-            "the similarity dimension is not 2 (above it: the pieces overlap)".into(),
+            "the similarity dimension is above 2 (the pieces overlap) or not separated from 2"
+                .into(),
         );
     }
     let osc = part.open_set.is_some()
