@@ -55,6 +55,9 @@ pub use automata::automaton_resolve::{
     analyse_attractor, constraints_failing, failures, resolve, Attractor, Failing, ResolveVerdict,
     Resolved,
 };
+pub use automata::boundary::{
+    boundary_dimension, not_a_tile, BoundaryDimension, BoundaryGraph, StateBoundary, MAX_COMPONENT,
+};
 pub use automata::contraction::{
     check_contraction, check_contraction_within, difference_restriction, ContractionReport,
     DEFAULT_MAX_PRODUCTS, MAX_CYCLES,

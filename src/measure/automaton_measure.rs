@@ -1,9 +1,10 @@
 //! Measures of an automaton's attractor, drawn to level n: the total length (polylines and polygon
 //! boundaries) and area (polygons) per level, and a box-counting dimension estimate, with the exact
-//! similarity dimension where it applies ([`crate::analysis::similarity_dimension`]). Floats
-//! measure; they decide nothing.
+//! similarity dimension where it applies ([`crate::analysis::similarity_dimension`]) and the
+//! boundary dimension of each state from the graph of neighbour maps
+//! ([`crate::analysis::boundary_dimension`], an upper bound). Floats measure; they decide nothing.
 
-use crate::analysis::{ContractionReport, ResolveVerdict, SimilarityDimension};
+use crate::analysis::{BoundaryDimension, ContractionReport, ResolveVerdict, SimilarityDimension};
 use crate::geometry::{fit_line, Evaluator, Shape, ShapeKind};
 use serde::Serialize;
 use std::collections::HashSet;
@@ -56,6 +57,28 @@ pub struct AutomatonMeasure {
     /// Why there is no similarity dimension.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub similarity_note: Option<String>,
+    /// The boundary dimension of each state (an upper bound), or why it is not decided.
+    pub boundary_dimension: BoundaryReport,
+}
+
+/// The boundary dimension as `measure` reports it: the values, or why there are none.
+#[derive(Clone, Debug, Serialize)]
+#[serde(untagged)]
+pub enum BoundaryReport {
+    /// The exact values per state.
+    Decided(BoundaryDimension),
+    /// The attractors are not tiles, or not known to be (similarity dimension < 2 in the
+    /// plane, or the open-set condition not proved): the boundary of a set without interior is
+    /// the set itself, and the contact set is not reported.
+    NotATile {
+        /// Why.
+        note: String,
+    },
+    /// A tile, but no value (limits reached, no neighbour maps, …): never a verdict.
+    NotDecided {
+        /// The reason.
+        note: String,
+    },
 }
 
 fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
@@ -340,6 +363,22 @@ impl AutomatonMeasure {
             (None, Some(n)) => o += &format!("similarity dimension: not applicable ({n})\n"),
             _ => {}
         }
+        match &self.boundary_dimension {
+            BoundaryReport::Decided(b) => {
+                let per: Vec<String> = b
+                    .states
+                    .iter()
+                    .map(|s| format!("{} ≤ {} = {}…", s.state, s.exact, s.decimal))
+                    .collect();
+                o += &format!("boundary dimension: {} ({})\n", per.join("; "), b.note);
+            }
+            BoundaryReport::NotATile { note } => {
+                o += &format!("boundary dimension: none ({note})\n")
+            }
+            BoundaryReport::NotDecided { note } => {
+                o += &format!("boundary dimension: not decided ({note})\n")
+            }
+        }
         o += &format!(
             "the solver's verdict, the contraction{} are certified by the steps `lacuna verify {} --certificate OUT.json` writes; lengths, areas and box counting are floating-point estimates\n",
             match self.similarity_dimension {
@@ -378,7 +417,20 @@ pub fn automaton_measure(
             Ok(s) => (Some(s), None),
             Err(n) => (None, Some(n)),
         };
+    let boundary_dimension = match &similarity_dimension {
+        None => BoundaryReport::NotATile {
+            note: "not known to be a tile: the similarity dimension does not apply".into(),
+        },
+        Some(sim) => match crate::analysis::not_a_tile(model, sim) {
+            Some(note) => BoundaryReport::NotATile { note },
+            None => match crate::analysis::boundary_dimension(model, &resolved.ops, sim, digits) {
+                Ok(b) => BoundaryReport::Decided(b),
+                Err(note) => BoundaryReport::NotDecided { note },
+            },
+        },
+    };
     AutomatonMeasure {
+        boundary_dimension,
         input: name.to_string(),
         space: model.space,
         level,

@@ -13,7 +13,7 @@ pub(crate) mod morph;
 
 pub use automaton_measure::{
     automaton_measure, box_dimension, level_measures, shape_measure, AutomatonLevel,
-    AutomatonMeasure, BoxDimension, OPEN_SET_NOT_CERTIFIED,
+    AutomatonMeasure, BoundaryReport, BoxDimension, OPEN_SET_NOT_CERTIFIED,
 };
 pub use certify::placement_certificate;
 pub use density::{density_map, density_raster, DensityMap, DensitySummary};

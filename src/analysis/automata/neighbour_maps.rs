@@ -231,6 +231,112 @@ type Words = (Vec<usize>, Vec<usize>);
 /// One operator of the part: `(q, w, g)` with `g: chart w → chart q` a similitude.
 pub(crate) type KEdge = (usize, usize, KAffine);
 
+/// The ball test, exact: `|h(c_r) − c_q|² ≤ (R + ρ̄·R + μ)²` with `ρ̄ ≥ ρ = ratio(h)` rational
+/// (`h_r2` = ρ²): false proves that `A_q` and `h(A_r)` are at least μ apart.
+fn ball_test(
+    k: &NumberField,
+    centres: &[Vec<FieldElement>],
+    radius: &BigRational,
+    margin: &BigRational,
+    (q, r, h): (usize, usize, &KAffine),
+    h_r2: &FieldElement,
+) -> bool {
+    let bound = radius + sqrt_up(&upper(k, h_r2)) * radius + margin;
+    let d2 = dist2(k, &h.apply(k, &centres[r]), &centres[q]);
+    k.sign(&k.sub(&d2, &k.rational(&bound * &bound))) != Ordering::Greater
+}
+
+/// The child of `h: r → q` (squared ratio `h_r2`) under the operator `g: w → (q or r)` (squared
+/// ratio and inverse given): `g⁻¹ ∘ h: r → w` when the left side is refined (`refine_u`), else
+/// `h ∘ g: w → q`; with its squared ratio.
+fn child(
+    k: &NumberField,
+    (g_r2, g_inv): (&FieldElement, &KAffine),
+    refine_u: bool,
+    (w, g): (usize, &KAffine),
+    (q, r, h): (usize, usize, &KAffine),
+    h_r2: &FieldElement,
+) -> Option<(usize, usize, KAffine, FieldElement)> {
+    if refine_u {
+        Some((w, r, g_inv.then(k, h), k.div(h_r2, g_r2)?))
+    } else {
+        Some((q, w, h.then(k, g), k.mul(h_r2, g_r2)))
+    }
+}
+
+/// One edge of the graph of a closed set of neighbour maps: the child's index in
+/// [`Closed::maps`], the operator (index into the edges) and whether the left side was refined
+/// (the child's set is then mapped back by the operator, of its ratio; else by the identity).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct MapEdge {
+    /// The child's index in the kept maps.
+    pub child: usize,
+    /// The operator that refined.
+    pub operator: usize,
+    /// True when the left side (u, the chart of q) was refined.
+    pub left: bool,
+}
+
+/// The graph of a closed search: for every kept map, its children under the balanced refinement
+/// that pass the same exact ball test, as indices into `closed.maps` (every such child is kept:
+/// the search closed). `None` when a child passing the test is not kept (not a closed set for
+/// these centres and operators) or an operator is not an invertible similitude.
+pub(crate) fn map_graph(
+    k: &NumberField,
+    centres: &[Vec<FieldElement>],
+    edges: &[KEdge],
+    closed: &Closed,
+) -> Option<Vec<Vec<MapEdge>>> {
+    let one = k.rational(BigRational::one());
+    let mut ratio2 = Vec::with_capacity(edges.len());
+    let mut inverse = Vec::with_capacity(edges.len());
+    for (_, _, g) in edges {
+        ratio2.push(g.similitude_ratio2(k)?);
+        inverse.push(g.inverse(k)?);
+    }
+    let index: std::collections::HashMap<(usize, usize, &KAffine), usize> = closed
+        .maps
+        .iter()
+        .enumerate()
+        .map(|(i, (q, r, h))| ((*q, *r, h), i))
+        .collect();
+    let mut out = Vec::with_capacity(closed.maps.len());
+    for (q, r, h) in &closed.maps {
+        let h_r2 = h.similitude_ratio2(k)?;
+        let refine_u = k.sign(&k.sub(&h_r2, &one)) != Ordering::Greater;
+        let mut kids = Vec::new();
+        for (e, (s, w, g)) in edges.iter().enumerate() {
+            if *s != if refine_u { *q } else { *r } {
+                continue;
+            }
+            let (nq, nr, nh, n_r2) = child(
+                k,
+                (&ratio2[e], &inverse[e]),
+                refine_u,
+                (*w, g),
+                (*q, *r, h),
+                &h_r2,
+            )?;
+            if ball_test(
+                k,
+                centres,
+                &closed.radius,
+                &closed.margin,
+                (nq, nr, &nh),
+                &n_r2,
+            ) {
+                kids.push(MapEdge {
+                    child: *index.get(&(nq, nr, &nh))?,
+                    operator: e,
+                    left: refine_u,
+                });
+            }
+        }
+        out.push(kids);
+    }
+    Some(out)
+}
+
 /// The neighbour-map search over the part's states (indices into `centres`, one point per state
 /// in its chart) and operators.
 pub(crate) fn search(k: &NumberField, centres: &[Vec<FieldElement>], edges: &[KEdge]) -> Search {
@@ -270,11 +376,8 @@ pub(crate) fn search(k: &NumberField, centres: &[Vec<FieldElement>], edges: &[KE
         return Search::Undecided("the attractors are points".into());
     }
     let margin = &radius / BigRational::from_integer(16.into());
-    // The ball test, exact: |h(c_r) − c_q|² ≤ (R + ρ̄·R + μ)² with ρ̄ ≥ ρ rational.
     let passes = |q: usize, r: usize, h: &KAffine, h_r2: &FieldElement| {
-        let bound = &radius + sqrt_up(&upper(k, h_r2)) * &radius + &margin;
-        let d2 = dist2(k, &h.apply(k, &centres[r]), &centres[q]);
-        k.sign(&k.sub(&d2, &k.rational(&bound * &bound))) != Ordering::Greater
+        ball_test(k, centres, &radius, &margin, (q, r, h), h_r2)
     };
     let mut seen: HashSet<(usize, usize, KAffine)> = HashSet::new();
     let mut kept: Vec<(usize, usize, KAffine)> = Vec::new();
@@ -306,7 +409,7 @@ pub(crate) fn search(k: &NumberField, centres: &[Vec<FieldElement>], edges: &[KE
         }
         let refine_u = below_one(&h_r2) != Ordering::Greater;
         for (e, (s, w, g)) in edges.iter().enumerate() {
-            if (refine_u && *s != q) || (!refine_u && *s != r) {
+            if *s != if refine_u { q } else { r } {
                 continue;
             }
             tests += 1;
@@ -315,13 +418,15 @@ pub(crate) fn search(k: &NumberField, centres: &[Vec<FieldElement>], edges: &[KE
                     "the neighbour-map search reached its limit of {MAX_NEIGHBOUR_TESTS} tested maps"
                 ));
             }
-            let (nq, nr, nh, n_r2) = if refine_u {
-                let Some(x) = k.div(&h_r2, &ratio2[e]) else {
-                    continue;
-                };
-                (*w, r, inverse[e].then(k, &h), x)
-            } else {
-                (q, *w, h.then(k, g), k.mul(&h_r2, &ratio2[e]))
+            let Some((nq, nr, nh, n_r2)) = child(
+                k,
+                (&ratio2[e], &inverse[e]),
+                refine_u,
+                (*w, g),
+                (q, r, &h),
+                &h_r2,
+            ) else {
+                continue;
             };
             if passes(nq, nr, &nh, &n_r2) && seen.insert((nq, nr, nh.clone())) {
                 let (mut u, mut v) = words.clone();

@@ -289,9 +289,9 @@ pub(crate) fn cyclic_parts(m: &AutomatonModel) -> Vec<Vec<usize>> {
     out
 }
 
-/// `det(I − M(u))` for the part's matrix of `Σ u^k`, as a polynomial (by interpolation at
-/// `u = 0, 1, …, deg`).
-fn part_polynomial(n: usize, entries: &[Vec<Vec<usize>>]) -> Poly {
+/// `det(I − M(u))` for the part's matrix of `Σ u^k` (`entries[i][j]` the exponents k of the
+/// edges from i to j), as a polynomial (by interpolation at `u = 0, 1, …, deg`).
+pub(crate) fn part_polynomial(n: usize, entries: &[Vec<Vec<usize>>]) -> Poly {
     let deg = n * entries
         .iter()
         .flatten()
@@ -330,6 +330,28 @@ fn part_polynomial(n: usize, entries: &[Vec<Vec<usize>>]) -> Poly {
     p
 }
 
+/// The smallest root u* in (0, 1] of `det(I − M(u))` (exact, from its factors over Q).
+pub(crate) fn smallest_root(p: &Poly) -> Result<RealAlgebraic, NotApplicable> {
+    let factors = crate::algebra::factor::factor(&p.square_free_part())
+        .map_err(|_| "the part's polynomial could not be factored".to_string())?;
+    let zero = RealAlgebraic::rational(q(0));
+    let onea = RealAlgebraic::rational(q(1));
+    let mut best: Option<RealAlgebraic> = None;
+    for (f, _) in factors {
+        for r in RealAlgebraic::real_roots(&f) {
+            if r.cmp_exact(&zero) == Ordering::Greater
+                && r.cmp_exact(&onea) != Ordering::Greater
+                && best
+                    .as_ref()
+                    .is_none_or(|b| r.cmp_exact(b) == Ordering::Less)
+            {
+                best = Some(r);
+            }
+        }
+    }
+    best.ok_or_else(|| "no root of det(I − M(u)) in (0, 1]".to_string())
+}
+
 fn rat_det(mut m: Vec<Vec<BigRational>>) -> BigRational {
     let n = m.len();
     let mut det = q(1);
@@ -357,13 +379,17 @@ fn rat_det(mut m: Vec<Vec<BigRational>>) -> BigRational {
     det
 }
 
-/// One part's dimension: `(u*, σ)`.
-struct PartValue {
-    u: RealAlgebraic,
-    sigma: FieldElement,
-    exact: String,
+/// One part's dimension `s = 2·ln u*/ln σ`: `(u*, σ)`.
+#[derive(Clone)]
+pub(crate) struct PartValue {
+    /// u*, the smallest root in (0, 1] of `det(I − M(u))`.
+    pub u: RealAlgebraic,
+    /// σ, the base of the squared ratios.
+    pub sigma: FieldElement,
+    /// The exact text ([`exact_text`]).
+    pub exact: String,
     /// The dimension when it is rational (found exactly).
-    rational: Option<BigRational>,
+    pub rational: Option<BigRational>,
 }
 
 /// The similarity dimension of the attractor of the start state, or why it does not apply.
@@ -472,24 +498,7 @@ pub fn similarity_dimension(
         }
         exponents.sort_unstable();
         let p = part_polynomial(n, &entries);
-        let factors = crate::algebra::factor::factor(&p.square_free_part())
-            .map_err(|_| "the part's polynomial could not be factored".to_string())?;
-        let zero = RealAlgebraic::rational(q(0));
-        let onea = RealAlgebraic::rational(q(1));
-        let mut best: Option<RealAlgebraic> = None;
-        for (f, _) in factors {
-            for r in RealAlgebraic::real_roots(&f) {
-                if r.cmp_exact(&zero) == Ordering::Greater
-                    && r.cmp_exact(&onea) != Ordering::Greater
-                    && best
-                        .as_ref()
-                        .is_none_or(|b| r.cmp_exact(b) == Ordering::Less)
-                {
-                    best = Some(r);
-                }
-            }
-        }
-        let u = best.ok_or_else(|| "no root of det(I − M(u)) in (0, 1]".to_string())?;
+        let u = smallest_root(&p)?;
         let (exact, rational) = exact_text(k, &u, &sigma);
         values.push((
             names,
@@ -559,7 +568,7 @@ pub fn similarity_dimension(
 
 /// An exact text for `s = 2·ln u/ln σ`, and its value when it is rational (`u^(2b) = σ^a`
 /// for small a, b when u and σ are rational; `u = σ^j` otherwise).
-fn exact_text(
+pub(crate) fn exact_text(
     k: &NumberField,
     u: &RealAlgebraic,
     sigma: &FieldElement,
@@ -620,7 +629,7 @@ fn rational_sqrt(x: &BigRational) -> Option<BigRational> {
 }
 
 /// Whether the algebraic `u` equals the field element `x`.
-fn equals(k: &NumberField, u: &RealAlgebraic, x: &FieldElement) -> bool {
+pub(crate) fn equals(k: &NumberField, u: &RealAlgebraic, x: &FieldElement) -> bool {
     if let Some(ur) = u.as_rational() {
         return x.as_rational().as_ref() == Some(ur);
     }
@@ -662,7 +671,9 @@ fn bounds(k: &NumberField, v: &PartValue, bits: u32) -> Option<(BigRational, Big
     log_ratio_bounds(&q(2), (&ulo, &uhi), (&slo, &shi), bits)
 }
 
-fn compare(k: &NumberField, a: &PartValue, b: &PartValue) -> Ordering {
+/// Compares two parts' dimensions by certified enclosures (equal when 4096 bits do not separate
+/// them).
+pub(crate) fn compare(k: &NumberField, a: &PartValue, b: &PartValue) -> Ordering {
     let mut bits = 64;
     while bits <= 4096 {
         if let (Some((alo, ahi)), Some((blo, bhi))) = (bounds(k, a, bits), bounds(k, b, bits)) {
@@ -682,7 +693,7 @@ fn compare(k: &NumberField, a: &PartValue, b: &PartValue) -> Ordering {
 }
 
 /// Certified digits: enclosures refined until the truncated decimal is decided.
-fn certified_decimal(k: &NumberField, v: &PartValue, digits: usize) -> String {
+pub(crate) fn certified_decimal(k: &NumberField, v: &PartValue, digits: usize) -> String {
     let digits = digits.max(1);
     if let Some(r) = &v.rational {
         return decide_digits(r, r, digits, true).expect("exact");

@@ -39,7 +39,7 @@ use self::neighbours::{attractor_centres, balance, neighbour_edges};
 use crate::algebra::algebraic::FieldElement;
 use crate::algebra::kmatrix::KMatrix;
 use crate::analysis::automata::contraction::control_graph;
-use crate::analysis::automata::neighbour_maps::{search, Search};
+use crate::analysis::automata::neighbour_maps::{search, KEdge, Search};
 use crate::input::automaton_model::AutomatonModel;
 use num_rational::BigRational;
 use num_traits::One;
@@ -279,4 +279,57 @@ pub(crate) fn part_verdict(
         }
     };
     undecided(format!("undecided: neither the convex hulls of the attractors nor the square on the segment is a feasible open set, and the neighbour maps decide nothing: {why} (the condition may still hold)"))
+}
+
+/// The coordinates of the part's neighbour-map search, exactly as [`part_verdict`] builds them
+/// (the same states' coordinates, centres and rescaling, so the same search): one centre per
+/// state of the part (in part order), the part's operators as similitudes between the states'
+/// coordinates, and the operator index of each. The boundary graph
+/// ([`crate::analysis::automata::boundary`]) runs the search on them; an `Err` says why it
+/// cannot.
+pub(crate) type NeighbourSystem = (Vec<Vec<FieldElement>>, Vec<KEdge>, Vec<usize>);
+
+/// The part's [`NeighbourSystem`], or why there is none.
+pub(crate) fn neighbour_system(
+    m: &AutomatonModel,
+    ops: &[KMatrix],
+    frames: &[Option<KMatrix>],
+    part: &[usize],
+) -> Result<NeighbourSystem, String> {
+    let a = &m.automaton;
+    let k = &m.field;
+    let g = control_graph(m);
+    let mut raw = Vec::new();
+    for &q in part {
+        for &o in &g[q] {
+            let w = a.operators[o].from;
+            if part.binary_search(&w).is_ok() {
+                raw.push((q, w, o));
+            }
+        }
+    }
+    if raw.len() > MAX_EDGES {
+        return Err(format!("more than {MAX_EDGES} operators in the part"));
+    }
+    let dims: Vec<usize> = part.iter().map(|&s| a.states[s].dim).collect();
+    let d = match (dims.iter().all(|&x| x == dims[0]), dims[0], m.space) {
+        (true, 2, _) => 1,
+        (true, 3, 2) => 2,
+        _ => {
+            return Err(
+                "the neighbour maps work on states of 2 points, or of 3 points in the plane".into(),
+            )
+        }
+    };
+    let edges: Vec<Edge> = raw
+        .iter()
+        .map(|&(q, w, o)| (q, w, chart_map(k, &ops[o], d), o))
+        .collect();
+    let (_, centres, kedges) = neighbour_edges(k, part, &edges, frames, d)?;
+    let centres = attractor_centres(k, &centres, &kedges);
+    let (centres, kedges) = match balance(k, &centres, &kedges) {
+        Some((c, e, _)) => (c, e),
+        None => (centres, kedges),
+    };
+    Ok((centres, kedges, raw.iter().map(|x| x.2).collect()))
 }
