@@ -79,10 +79,7 @@ fn the_fractal_kite_and_dart_have_boundaries_above_one() {
 fn the_text_report_has_a_boundary_line() {
     let (code, out, err) = lacuna(&["measure", "heighway-dragon", "--level", "1"]);
     assert_eq!(code, 0, "{err}");
-    let line = out
-        .lines()
-        .find(|l| l.starts_with("boundary dimension: "))
-        .unwrap_or_else(|| panic!("no boundary line in {out}"));
+    let line = boundary_line(&out);
     assert!(
         line.contains("left ≤ ") && line.contains("1.5236270862"),
         "{line}"
@@ -123,10 +120,7 @@ fn the_sierpinski_triangle_and_carpet_are_their_own_boundaries() {
     }
     let (code, out, err) = lacuna(&["measure", "sierpinski-triangle", "--level", "1"]);
     assert_eq!(code, 0, "{err}");
-    let line = out
-        .lines()
-        .find(|l| l.starts_with("boundary dimension: "))
-        .unwrap_or_else(|| panic!("no boundary line in {out}"));
+    let line = boundary_line(&out);
     assert!(
         line.starts_with("boundary dimension: none (not a tile"),
         "{line}"
@@ -143,4 +137,11 @@ fn an_overlapping_system_below_dimension_two_is_not_a_tile() {
         note.starts_with("not a tile: similarity dimension < 2"),
         "{note}"
     );
+}
+
+/// The `boundary dimension: …` line of a text report.
+fn boundary_line(out: &str) -> &str {
+    out.lines()
+        .find(|l| l.starts_with("boundary dimension: "))
+        .unwrap_or_else(|| panic!("no boundary line in {out}"))
 }

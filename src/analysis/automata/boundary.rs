@@ -618,7 +618,8 @@ mod tests {
     use super::*;
     use crate::input::library::{load_any, Loaded};
 
-    fn run(name: &str) -> BoundaryDimension {
+    /// A library automaton, its resolved operators and its similarity dimension (12 digits).
+    fn analysed(name: &str) -> (AutomatonModel, Vec<KMatrix>, SimilarityDimension) {
         let Loaded::Automaton { model, .. } = load_any(name).expect("library input") else {
             panic!("{name} is an automaton");
         };
@@ -626,7 +627,12 @@ mod tests {
             .expect("resolves");
         let sim = crate::analysis::automata::similarity::similarity_dimension(&model, &r.ops, 12)
             .unwrap_or_else(|e| panic!("{name}: {e}"));
-        boundary_dimension(&model, &r.ops, &sim, 12).unwrap_or_else(|e| panic!("{name}: {e}"))
+        (*model, r.ops, sim)
+    }
+
+    fn run(name: &str) -> BoundaryDimension {
+        let (model, ops, sim) = analysed(name);
+        boundary_dimension(&model, &ops, &sim, 12).unwrap_or_else(|e| panic!("{name}: {e}"))
     }
 
     #[test]
@@ -663,13 +669,7 @@ mod tests {
     }
 
     fn tiling(name: &str) -> Vec<Tiling> {
-        let Loaded::Automaton { model, .. } = load_any(name).expect("library input") else {
-            panic!("{name} is an automaton");
-        };
-        let r = crate::analysis::automata::automaton_resolve::resolve(&model, &[], 64)
-            .expect("resolves");
-        let sim = crate::analysis::automata::similarity::similarity_dimension(&model, &r.ops, 12)
-            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        let (model, _, sim) = analysed(name);
         sim.witness.iter().map(|p| part_tiling(&model, p)).collect()
     }
 

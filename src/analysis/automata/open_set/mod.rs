@@ -145,15 +145,7 @@ pub(crate) fn part_verdict(
         witness: None,
         neighbour: None,
     };
-    let mut raw = Vec::new();
-    for &q in part {
-        for &o in &g[q] {
-            let w = a.operators[o].from;
-            if part.binary_search(&w).is_ok() {
-                raw.push((q, w, o));
-            }
-        }
-    }
+    let raw = part_operators(m, &g, part);
     if raw.len() > MAX_EDGES {
         return undecided(format!(
             "undecided: more than {MAX_EDGES} operators in the part (the exact check is not attempted)"
@@ -299,15 +291,7 @@ pub(crate) fn neighbour_system(
     let a = &m.automaton;
     let k = &m.field;
     let g = control_graph(m);
-    let mut raw = Vec::new();
-    for &q in part {
-        for &o in &g[q] {
-            let w = a.operators[o].from;
-            if part.binary_search(&w).is_ok() {
-                raw.push((q, w, o));
-            }
-        }
-    }
+    let raw = part_operators(m, &g, part);
     if raw.len() > MAX_EDGES {
         return Err(format!("more than {MAX_EDGES} operators in the part"));
     }
@@ -332,4 +316,23 @@ pub(crate) fn neighbour_system(
         None => (centres, kedges),
     };
     Ok((centres, kedges, raw.iter().map(|x| x.2).collect()))
+}
+
+/// The operators `o: q ← w` with both ends in the strongly connected part `part` (sorted), as
+/// `(q, w, o)`: the system the open-set search and the boundary graph work on.
+fn part_operators(
+    m: &AutomatonModel,
+    g: &[Vec<usize>],
+    part: &[usize],
+) -> Vec<(usize, usize, usize)> {
+    let mut raw = Vec::new();
+    for &q in part {
+        for &o in &g[q] {
+            let w = m.automaton.operators[o].from;
+            if part.binary_search(&w).is_ok() {
+                raw.push((q, w, o));
+            }
+        }
+    }
+    raw
 }
