@@ -120,59 +120,25 @@ pub struct BoundaryGraph {
     pub components: Vec<(usize, Poly, String)>,
 }
 
-/// Strongly connected components (Tarjan, iterative): the component of every node, numbered so
-/// that an edge never leads to a component of larger number.
+/// Strongly connected components (petgraph's iterative Tarjan, as `topology::class` uses): the
+/// component of every node, numbered so that an edge never leads to a component of larger
+/// number (petgraph lists the components sinks first).
 fn components(succ: &[Vec<usize>]) -> (Vec<usize>, usize) {
-    let n = succ.len();
-    let mut index = vec![usize::MAX; n];
-    let mut low = vec![0; n];
-    let mut on = vec![false; n];
-    let mut stack = Vec::new();
-    let mut comp = vec![usize::MAX; n];
-    let (mut counter, mut count) = (0, 0);
-    for root in 0..n {
-        if index[root] != usize::MAX {
-            continue;
-        }
-        index[root] = counter;
-        low[root] = counter;
-        counter += 1;
-        stack.push(root);
-        on[root] = true;
-        let mut call: Vec<(usize, usize)> = vec![(root, 0)];
-        while let Some(&(v, i)) = call.last() {
-            if i < succ[v].len() {
-                call.last_mut().expect("non-empty").1 += 1;
-                let w = succ[v][i];
-                if index[w] == usize::MAX {
-                    index[w] = counter;
-                    low[w] = counter;
-                    counter += 1;
-                    stack.push(w);
-                    on[w] = true;
-                    call.push((w, 0));
-                } else if on[w] {
-                    low[v] = low[v].min(index[w]);
-                }
-            } else {
-                call.pop();
-                if let Some(&(p, _)) = call.last() {
-                    low[p] = low[p].min(low[v]);
-                }
-                if low[v] == index[v] {
-                    while let Some(w) = stack.pop() {
-                        on[w] = false;
-                        comp[w] = count;
-                        if w == v {
-                            break;
-                        }
-                    }
-                    count += 1;
-                }
-            }
+    let mut g = petgraph::graph::DiGraph::<(), ()>::new();
+    let node: Vec<_> = succ.iter().map(|_| g.add_node(())).collect();
+    for (v, ws) in succ.iter().enumerate() {
+        for &w in ws {
+            g.add_edge(node[v], node[w], ());
         }
     }
-    (comp, count)
+    let sccs = petgraph::algo::tarjan_scc(&g);
+    let mut comp = vec![0; succ.len()];
+    for (c, scc) in sccs.iter().enumerate() {
+        for v in scc {
+            comp[v.index()] = c;
+        }
+    }
+    (comp, sccs.len())
 }
 
 /// The value `s = 2·ln u/ln σ` when it is an integer j that [`exact_text`] does not see, with

@@ -410,11 +410,12 @@ impl Builder {
         } else {
             (vec![SHRINK; step.subvolumes.len()], Vec::new())
         };
-        // Every rim point goes [`SHRINK`] of the way to the volume's centre: the side face over a
-        // rim edge lies in the cone from the centre over that edge, so the side faces of two rim
-        // edges meet only along the radial edge they share, and the inner face is the rim loop
-        // shrunk towards the centre (no offset along summed normals, which folds where the
-        // volume is not convex).
+        // Every rim point goes [`SHRINK`] of the way to the volume's centre (under
+        // [`InnerFan::Radial`], its slot's fraction, below): the side face over a rim edge lies
+        // in the cone from the centre over that edge, so the side faces of two rim edges meet
+        // only along the radial edge they share, and the inner face is the rim loop shrunk
+        // towards the centre (no offset along summed normals, which folds where the volume is
+        // not convex).
         let mut out = Vec::with_capacity(step.subvolumes.len());
         if v.delay >= 2 {
             let s = &step.subvolumes[0];
