@@ -494,9 +494,12 @@ fn neighbour_map_forgeries_are_rejected_at_the_similarity_step() {
         report.to_text()
     );
     assert_rejected("a failure of the dragon", &c, step);
-    // Without the witness the step still checks, as an upper bound.
+    // Without the witness the boundary step has no proved tile and fails; without both, the
+    // step still checks, as an upper bound.
     let mut c = base.clone();
     similarity(&mut c).parts[0].neighbour_maps = None;
+    assert_rejected("a boundary without the witness", &c, "boundary-dimension");
+    c.steps.retain(|s| s.name() != "boundary-dimension");
     let report = check(&c);
     assert!(report.all_proved(), "{}", report.to_text());
     assert!(report
@@ -907,6 +910,7 @@ fn lacuna_and_the_checker_compile_mixed_rules_alike() {
                 contraction_fails: None,
                 similarity: None,
                 similarity_note: None,
+                boundary: None,
             };
             let cert = lacuna::certificate::certificate_for_model("mixed", &model, &attractor)
                 .expect("certifiable");

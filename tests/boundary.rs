@@ -1,8 +1,11 @@
 //! The boundary dimension of `lacuna measure --json` (`boundary_dimension`), against values
-//! derived by hand and published (`src/analysis/automata/boundary.rs`, THEORY §12).
+//! derived by hand and published (`src/analysis/automata/boundary.rs`, THEORY §12), and its
+//! certificate step `boundary-dimension`: proved for the library's tiles, every forgery
+//! rejected.
 
 mod common;
-use common::lacuna;
+use common::{assert_proved, assert_rejected, automaton_certificate, lacuna};
+use lacuna::certificate::{BoundaryStep, Certificate, NeighbourMaps, Step};
 
 /// `measure NAME --json`'s `boundary_dimension`, each state's `(name, exact, decimal)`, after
 /// checking that the value is labelled an upper bound.
@@ -144,4 +147,178 @@ fn boundary_line(out: &str) -> &str {
     out.lines()
         .find(|l| l.starts_with("boundary dimension: "))
         .unwrap_or_else(|| panic!("no boundary line in {out}"))
+}
+
+fn boundary_step(cert: &mut Certificate) -> &mut BoundaryStep {
+    cert.steps
+        .iter_mut()
+        .find_map(|s| match s {
+            Step::BoundaryDimension(b) => Some(b),
+            _ => None,
+        })
+        .expect("a boundary-dimension step")
+}
+
+#[test]
+fn the_dragon_s_boundary_is_certified_and_forgeries_fail() {
+    // The published value 2·log₂ λ = 1.52362708620249… (λ³ − λ² − 2 = 0), for both states.
+    let base = automaton_certificate("heighway-dragon");
+    assert_proved("heighway-dragon", &base);
+    let names: Vec<&str> = base.steps.iter().map(Step::name).collect();
+    assert_eq!(
+        names,
+        [
+            "constraints-hold",
+            "contraction",
+            "similarity-dimension",
+            "boundary-dimension",
+            "rule-compilation"
+        ]
+    );
+    let mut c = base.clone();
+    let b = boundary_step(&mut c).clone();
+    assert_eq!(b.parts.len(), 1);
+    let part = &b.parts[0];
+    // The part's own neighbour maps are the graph's nodes: the step does not repeat them.
+    assert!(part.maps.is_none());
+    for s in &part.states {
+        assert!(s.decimal.starts_with("1.5236270862"), "{s:?}");
+    }
+    let report = lacuna::checker::check(&base);
+    assert!(
+        report
+            .claims()
+            .iter()
+            .any(|l| l.starts_with("boundary dimension left ≤ 1.5236270862")),
+        "{}",
+        report.to_text()
+    );
+    let dominant = part.states[0].component.expect("a cycle is reachable");
+    // A component of value 0 (the pieces meet in single points there) is reachable too:
+    // claiming it as the largest is a lie the product's Sturm count catches.
+    let zero = part
+        .components
+        .iter()
+        .position(|x| x.rational.as_deref() == Some("0"))
+        .expect("a component of points");
+    let mut c = base.clone();
+    boundary_step(&mut c).parts[0].states[0] = lacuna::certificate::BoundaryState {
+        component: Some(zero),
+        decimal: format!("0.{}", "0".repeat(b.digits)),
+    };
+    assert_rejected("a smaller component claimed", &c, "boundary-dimension");
+    let mut c = base.clone();
+    boundary_step(&mut c).parts[0].states[0].component = None;
+    boundary_step(&mut c).parts[0].states[0].decimal = format!("0.{}", "0".repeat(b.digits));
+    assert_rejected("no cycle claimed", &c, "boundary-dimension");
+    let mut c = base.clone();
+    let d = &mut boundary_step(&mut c).parts[0].states[1].decimal;
+    *d = d.replace("1.5236270862", "1.5236270863");
+    assert_rejected("a wrong digit", &c, "boundary-dimension");
+    let mut c = base.clone();
+    let classes = &mut boundary_step(&mut c).parts[0].components[dominant].classes;
+    classes.iter_mut().for_each(|x| *x = 0);
+    assert_rejected("one class for all nodes", &c, "boundary-dimension");
+    let mut c = base.clone();
+    boundary_step(&mut c).parts[0].components.remove(zero);
+    assert_rejected("a component dropped", &c, "boundary-dimension");
+    let mut c = base.clone();
+    boundary_step(&mut c).parts[0].components[dominant]
+        .nodes
+        .pop();
+    assert_rejected("a node dropped", &c, "boundary-dimension");
+    // u* replaced by the other ends of its polynomial's sign change: 2u³ + u − 1 has its one
+    // real root in (1/2, 3/5) (at 1/2: −1/4, at 3/5: 1/50); (3/5, 1) holds none.
+    let mut c = base.clone();
+    let u = &mut boundary_step(&mut c).parts[0].components[dominant].u;
+    u.lo = "3/5".into();
+    u.hi = "1".into();
+    assert_rejected("an interval without u*", &c, "boundary-dimension");
+    let mut c = base.clone();
+    let maps = match &c.steps[2] {
+        Step::SimilarityDimension(s) => match &s.parts[0].neighbour_maps {
+            Some(NeighbourMaps::Holds(h)) => h.clone(),
+            other => panic!("neighbour maps expected, got {other:?}"),
+        },
+        _ => unreachable!(),
+    };
+    boundary_step(&mut c).parts[0].maps = Some(maps);
+    assert_rejected("maps given twice", &c, "boundary-dimension");
+    let mut c = base.clone();
+    c.steps.remove(2);
+    assert_rejected("no similarity step", &c, "boundary-dimension");
+}
+
+#[test]
+fn straight_edges_are_certified_to_touch_along_sets_of_dimension_one() {
+    // Robinson triangles: σ = 1/φ² and u* = 1/φ, both irrational; s = 1 is certified through
+    // u*² = σ. gasket-4 (a square cut in four): the step carries its own neighbour maps, since
+    // the part's open-set condition is proved by convex sets.
+    for name in ["penrose-robinson", "gasket-4"] {
+        let base = automaton_certificate(name);
+        assert_proved(name, &base);
+        let mut c = base.clone();
+        let b = boundary_step(&mut c).clone();
+        for p in &b.parts {
+            for s in &p.states {
+                assert!(s.decimal.starts_with("1.000000"), "{name}: {s:?}");
+            }
+        }
+        if name == "penrose-robinson" {
+            // The forgeries below on the cheaper gasket (the Robinson check takes seconds).
+            continue;
+        }
+        let one = b.parts[0].states[0].component.expect("reachable");
+        for wrong in ["3/2", "2"] {
+            let mut c = base.clone();
+            boundary_step(&mut c).parts[0].components[one].rational = Some(wrong.into());
+            assert_rejected(&format!("{name}: s = {wrong}"), &c, "boundary-dimension");
+        }
+        {
+            assert!(b.parts[0].maps.is_some(), "{name}: the step's own maps");
+            let mut c = base.clone();
+            let maps = boundary_step(&mut c).parts[0].maps.as_mut().expect("maps");
+            let last = maps.maps.pop().expect("a map");
+            assert_rejected(&format!("{name}: a map dropped"), &c, "boundary-dimension");
+            let mut c = base.clone();
+            let maps = boundary_step(&mut c).parts[0].maps.as_mut().expect("maps");
+            maps.maps.push(last);
+            assert_rejected(
+                &format!("{name}: a map listed twice"),
+                &c,
+                "boundary-dimension",
+            );
+        }
+    }
+}
+
+#[test]
+fn no_boundary_step_is_written_for_what_is_not_a_tile() {
+    // log 3/log 2 < 2: no interior; and the step cannot be moved onto such a claim.
+    let tri = automaton_certificate("sierpinski-triangle");
+    assert!(tri.steps.iter().all(|s| s.name() != "boundary-dimension"));
+    let mut dragon = automaton_certificate("heighway-dragon");
+    let step = boundary_step(&mut dragon).clone();
+    let mut c = tri.clone();
+    c.steps.insert(3, Step::BoundaryDimension(step));
+    assert_rejected("a tile's step on a triangle", &c, "boundary-dimension");
+}
+
+#[test]
+fn verify_prints_and_certifies_the_boundary() {
+    let dir = std::env::temp_dir().join(format!("lacuna-boundary-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join("kite-dart.json");
+    let p = path.to_str().expect("utf-8");
+    let (code, out, err) = lacuna(&["verify", "kite-dart", "--certificate", p]);
+    assert_eq!(code, 0, "{err}");
+    let line = out
+        .lines()
+        .find(|l| l.starts_with("boundary dimension (an upper bound, tiles): "))
+        .unwrap_or_else(|| panic!("no boundary line in {out}"));
+    assert!(line.contains("a ≤ ") && line.contains("b ≤ "), "{line}");
+    let (code, out, err) = lacuna(&["check", p]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("boundary dimension a ≤ 1.26"), "{out}");
+    std::fs::remove_dir_all(&dir).ok();
 }

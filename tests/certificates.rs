@@ -530,10 +530,11 @@ fn wrong_versions_are_rejected() {
     // version 4 no attractor steps, version 5 no solid-homology step nor shared faces, version
     // 6 no neighbour-map witnesses nor degeneracy step, version 7 no volume-solution-space
     // step, version 8 no solid-recurrence step, version 9 no level-one step, version 10 no
-    // gluing of an assembly's faces) are refused by their version, not by a parse error.
-    for old in ["1", "2", "3", "4", "5", "6", "7", "8", "9", "10"] {
+    // gluing of an assembly's faces, version 11 no boundary-dimension step) are refused by
+    // their version, not by a parse error.
+    for old in ["1", "2", "3", "4", "5", "6", "7", "8", "9", "10", "11"] {
         let json = face_certificate("F0").to_json().replacen(
-            "\"version\":11",
+            "\"version\":12",
             &format!("\"version\":{old}"),
             1,
         );

@@ -26,8 +26,9 @@ mod system_steps;
 mod volume_steps;
 
 pub use automaton_steps::{
-    ConstraintFailsStep, ConstraintsHoldStep, ContractionStep, NeighbourFails, NeighbourHolds,
-    NeighbourMap, NeighbourMaps, RuleCompilationStep, SimilarityPart, SimilarityStep,
+    BoundaryComponent, BoundaryPart, BoundaryState, BoundaryStep, ConstraintFailsStep,
+    ConstraintsHoldStep, ContractionStep, NeighbourFails, NeighbourHolds, NeighbourMap,
+    NeighbourMaps, RuleCompilationStep, SimilarityPart, SimilarityStep,
 };
 pub use claims::{
     AttractorClaim, AutomatonClaim, AutomatonOperator, AutomatonState, Edge, Face, FacesClaim,
@@ -53,7 +54,7 @@ use serde::{Deserialize, Serialize};
 pub const FORMAT: &str = "lacuna-certificate";
 
 /// The format version this code writes and checks.
-pub const VERSION: u32 = 11;
+pub const VERSION: u32 = 12;
 
 /// A certificate: the claim (what was given, in canonical form) and the steps that prove every
 /// verdict about it.
@@ -255,6 +256,20 @@ pub enum Step {
     /// that the claimed `u*` is the smallest root of D in (0, 1]; then `ρ(M(u*)) = 1` and
     /// `s = 2·ln u*/ln σ`. The decimal digits are re-derived from enclosures of logarithms.
     SimilarityDimension(SimilarityStep),
+    /// **An upper bound of the boundary dimension** of every state of a tile part (a part of
+    /// similarity dimension exactly 2 in the plane): the dimension of the set where the pieces
+    /// of the state's attractor touch other pieces. Justification: the checker re-derives the
+    /// part's σ, exponents and `s = 2` as the similarity-dimension step does, proves the
+    /// open-set condition with the neighbour maps (a finite set closed under refinement,
+    /// without the identity, so the attractors are tiles) and rebuilds the graph of their
+    /// refinements that pass the ball test; each kept map's set `B_h` is covered by the sets of
+    /// its children, mapped back with the refining operator's ratio (left) or 1 (right), so the
+    /// Mauldin–Williams value of the strongly connected components reachable from a state's
+    /// maps bounds the dimension. It checks the components, an equitable partition of each
+    /// (whose quotient has the same spectral radius), `u*` the smallest root of
+    /// `det(I − Q(u))` in (0, 1], that the claimed component's `u*` is the smallest over the
+    /// components reachable from the state (Sturm counts on their product), and the digits.
+    BoundaryDimension(BoundaryStep),
 }
 
 impl Certificate {
@@ -301,6 +316,7 @@ impl Step {
             Step::ConstraintFails(_) => "constraint-fails",
             Step::Contraction(_) => "contraction",
             Step::SimilarityDimension(_) => "similarity-dimension",
+            Step::BoundaryDimension(_) => "boundary-dimension",
         }
     }
 }

@@ -466,6 +466,7 @@ fn slots(c: &Claim) -> &'static [(&'static [&'static str], bool)] {
                 (GIVEN, true),
                 (&["contraction"], false),
                 (&["similarity-dimension"], false),
+                (&["boundary-dimension"], false),
                 (&["rule-compilation"], false),
             ]
         }
@@ -473,6 +474,7 @@ fn slots(c: &Claim) -> &'static [(&'static [&'static str], bool)] {
             (SYSTEM, true),
             (&["contraction"], false),
             (&["similarity-dimension"], false),
+            (&["boundary-dimension"], false),
             (&["rule-compilation"], false),
         ],
         Claim::System(_) => &[(SYSTEM, true)],

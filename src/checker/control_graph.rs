@@ -49,12 +49,23 @@ pub(super) fn graph(a: &AutomatonClaim) -> Result<Graph, String> {
 }
 
 /// The strongly connected parts of the reachable control graph that hold a cycle, each sorted,
-/// ordered by smallest state (iterative Kosaraju).
+/// ordered by smallest state.
 pub(super) fn cyclic_parts(a: &AutomatonClaim, g: &Graph) -> Vec<Vec<usize>> {
     let n = a.states.len();
     let succ: Vec<Vec<usize>> = (0..n)
         .map(|q| g.out[q].iter().map(|&o| a.operators[o].from).collect())
         .collect();
+    cyclic_components(&succ, |q| g.reachable[q])
+}
+
+/// The strongly connected components of the graph `succ` restricted to the nodes `include`
+/// accepts that hold a cycle (more than one node, or a loop), each sorted, ordered by smallest
+/// node (iterative Kosaraju).
+pub(super) fn cyclic_components(
+    succ: &[Vec<usize>],
+    include: impl Fn(usize) -> bool,
+) -> Vec<Vec<usize>> {
+    let n = succ.len();
     let mut pred = vec![Vec::new(); n];
     for (q, s) in succ.iter().enumerate() {
         for &w in s {
@@ -64,7 +75,7 @@ pub(super) fn cyclic_parts(a: &AutomatonClaim, g: &Graph) -> Vec<Vec<usize>> {
     // First pass: finishing order.
     let mut seen = vec![false; n];
     let mut order = Vec::new();
-    for r in (0..n).filter(|&q| g.reachable[q]) {
+    for r in (0..n).filter(|&q| include(q)) {
         if seen[r] {
             continue;
         }
@@ -74,7 +85,7 @@ pub(super) fn cyclic_parts(a: &AutomatonClaim, g: &Graph) -> Vec<Vec<usize>> {
             if i < succ[v].len() {
                 stack.push((v, i + 1));
                 let w = succ[v][i];
-                if !seen[w] {
+                if !seen[w] && include(w) {
                     seen[w] = true;
                     stack.push((w, 0));
                 }
@@ -96,7 +107,7 @@ pub(super) fn cyclic_parts(a: &AutomatonClaim, g: &Graph) -> Vec<Vec<usize>> {
         let mut stack = vec![r];
         while let Some(v) = stack.pop() {
             for &w in &pred[v] {
-                if g.reachable[w] && part[w] == usize::MAX {
+                if include(w) && part[w] == usize::MAX {
                     part[w] = id;
                     members.push(w);
                     stack.push(w);

@@ -164,6 +164,22 @@ pub(super) fn sign_changes(chain: &[P], x: &Q) -> usize {
     signs.windows(2).filter(|w| w[0] != w[1]).count()
 }
 
+/// The sign of `q(x)` for every x in `[lo, hi]` when interval Horner evaluation shows it is the
+/// same (the enclosure excludes 0), else `None`.
+fn horner_sign(q: &[Q], lo: &Q, hi: &Q) -> Option<i32> {
+    let (mut a, mut b) = (Q::zero(), Q::zero());
+    for c in q.iter().rev() {
+        let ps = [&a * lo, &a * hi, &b * lo, &b * hi];
+        a = ps.iter().min().expect("four").clone() + c;
+        b = ps.iter().max().expect("four").clone() + c;
+    }
+    match (a.is_positive(), b.is_negative()) {
+        (true, _) => Some(1),
+        (_, true) => Some(-1),
+        _ => None,
+    }
+}
+
 /// A real algebraic number: the only root of the squarefree `p` in `[lo, hi]`.
 pub(super) struct Root {
     pub(super) p: P,
@@ -171,6 +187,9 @@ pub(super) struct Root {
     pub(super) hi: Q,
     /// The Sturm chain of `p` (empty for a rational root, `lo = hi`).
     chain: Vec<P>,
+    /// A narrower interval around the root, `2^−64` wide, made on the first sign asked for:
+    /// most signs are decided on it by one interval evaluation, without the exact zero test.
+    narrow: std::cell::OnceCell<(Q, Q)>,
 }
 
 impl Root {
@@ -195,6 +214,7 @@ impl Root {
                     lo,
                     hi,
                     chain: Vec::new(),
+                    narrow: std::cell::OnceCell::new(),
                 }),
                 false => Err(format!(
                     "{what}: the interval [{lo}, {hi}] is not the rational root {root}"
@@ -207,7 +227,13 @@ impl Root {
         let chain =
             sturm_chain(&p).ok_or_else(|| format!("{what}'s polynomial is not squarefree"))?;
         match sign_changes(&chain, &lo).checked_sub(sign_changes(&chain, &hi)) {
-            Some(1) => Ok(Root { p, lo, hi, chain }),
+            Some(1) => Ok(Root {
+                p,
+                lo,
+                hi,
+                chain,
+                narrow: std::cell::OnceCell::new(),
+            }),
             _ => Err(format!(
                 "{what}: [{lo}, {hi}] does not hold exactly one root of its polynomial"
             )),
@@ -273,28 +299,26 @@ impl Root {
     /// bisections of `[lo, hi]` until the enclosure excludes 0 (it does, `z(ρ)` being nonzero);
     /// `None` if that takes more than 4000 bisections.
     pub(super) fn sign(&self, z: &[Q]) -> Option<i32> {
-        if self.is_zero(z) {
+        let q = self.reduce(z);
+        if q.is_empty() {
             return Some(0);
         }
-        let q = self.reduce(z);
-        let (mut lo, mut hi) = (self.lo.clone(), self.hi.clone());
-        let s_lo = eval(&self.p, &lo).is_positive();
+        // An enclosure that excludes 0 decides a sign without the zero test (a gcd).
+        let (nlo, nhi) = self.narrow.get_or_init(|| self.bisect(64));
+        if let Some(s) = horner_sign(&q, nlo, nhi) {
+            return Some(s);
+        }
+        if self.is_zero(&q) {
+            return Some(0);
+        }
+        let (mut lo, mut hi) = (nlo.clone(), nhi.clone());
+        let s_lo = eval(&self.p, &self.lo).is_positive();
         for _ in 0..4000 {
             if lo == hi || eval(&self.p, &lo).is_zero() {
                 return Some(if eval(&q, &lo).is_positive() { 1 } else { -1 });
             }
-            // Interval Horner: [a, b] ∋ q(x) for every x in [lo, hi].
-            let (mut a, mut b) = (Q::zero(), Q::zero());
-            for c in q.iter().rev() {
-                let ps = [&a * &lo, &a * &hi, &b * &lo, &b * &hi];
-                a = ps.iter().min().expect("four").clone() + c;
-                b = ps.iter().max().expect("four").clone() + c;
-            }
-            if a.is_positive() {
-                return Some(1);
-            }
-            if b.is_negative() {
-                return Some(-1);
+            if let Some(s) = horner_sign(&q, &lo, &hi) {
+                return Some(s);
             }
             let mid = (&lo + &hi) / Q::from_integer(2.into());
             let pm = eval(&self.p, &mid);
@@ -307,6 +331,29 @@ impl Root {
             }
         }
         None
+    }
+
+    /// `[lo, hi]` bisected (by the sign of p, which changes at the root only) to at most
+    /// `2^−bits` wide; a rational root gives `[root, root]`.
+    fn bisect(&self, bits: u64) -> (Q, Q) {
+        let (mut lo, mut hi) = (self.lo.clone(), self.hi.clone());
+        let width = Q::new(BigInt::one(), BigInt::one() << bits);
+        let s_lo = eval(&self.p, &lo).is_positive();
+        while &hi - &lo > width {
+            if eval(&self.p, &lo).is_zero() {
+                return (lo.clone(), lo);
+            }
+            let mid = (&lo + &hi) / Q::from_integer(2.into());
+            let pm = eval(&self.p, &mid);
+            if pm.is_zero() {
+                return (mid.clone(), mid);
+            } else if pm.is_positive() == s_lo {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        (lo, hi)
     }
 
     /// The inverse of `z` in `Q[x]/(p)` by the extended Euclidean algorithm, confirmed: `y·z − 1`

@@ -49,6 +49,7 @@
 //! [`Step`]: crate::certificate::Step
 
 mod automaton;
+mod boundary;
 mod choice;
 mod claim;
 mod closure;
@@ -438,6 +439,11 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
     let mut volume_closure: Option<&crate::certificate::VolumeClosureStep> = None;
     let mut volume_system: Option<&crate::certificate::VolumeSystemStep> = None;
     let mut solution: Option<&crate::certificate::SolutionStep> = None;
+    // The proved similarity step and its parts' graphs of neighbour maps.
+    let mut similarity: Option<(
+        &crate::certificate::SimilarityStep,
+        Vec<Option<self::neighbour::Refinements>>,
+    )> = None;
     let given = match &cert.claim {
         Claim::Substitution(s) => Some(Substitution::of_claim(s)),
         Claim::Faces(_) | Claim::Automaton(_) | Claim::System(_) | Claim::Volumes(_) => None,
@@ -533,10 +539,21 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
                 _ => Err("a contraction step in a certificate whose claim is no automaton".into()),
             },
             Step::SimilarityDimension(s) => match &cert.claim {
-                Claim::Automaton(a) => self::similarity::check_similarity(a, s),
+                Claim::Automaton(a) => {
+                    self::similarity::check_similarity(a, s).map(|(m, v, graphs)| {
+                        similarity = Some((s, graphs));
+                        (m, v)
+                    })
+                }
                 _ => Err(
                     "a similarity-dimension step in a certificate whose claim is no automaton"
                         .into(),
+                ),
+            },
+            Step::BoundaryDimension(b) => match &cert.claim {
+                Claim::Automaton(a) => self::boundary::check_boundary(a, similarity.as_ref(), b),
+                _ => Err(
+                    "a boundary-dimension step in a certificate whose claim is no automaton".into(),
                 ),
             },
             Step::SolutionSpace(s) => check_solution(s, tie).inspect(|_| solution = Some(s)),

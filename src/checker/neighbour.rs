@@ -74,6 +74,8 @@ use crate::certificate::{
     AutomatonClaim, FieldCoords, NeighbourFails, NeighbourHolds, NeighbourMap, NeighbourMaps,
 };
 use num_traits::{One, Signed};
+use std::collections::HashMap;
+#[cfg(test)]
 use std::collections::HashSet;
 
 /// The most maps of a witness, and the longest word of a failure.
@@ -86,6 +88,16 @@ pub(super) enum Decided {
     Holds(usize, &'static str),
     /// The condition fails: the two words, named.
     Fails(String, String),
+}
+
+/// The graph of a closed set of neighbour maps: every listed map's refinements that pass the
+/// ball test (each is in the set).
+pub(super) struct Refinements {
+    /// The states (indices) `(q, r)` of every listed map, in order.
+    pub(super) ends: Vec<(usize, usize)>,
+    /// `(map, child, operator, left)`: the child (a listed map) of a map refined by an operator,
+    /// on the left side (u, the chart of q, ratio of the operator) or the right (ratio 1).
+    pub(super) edges: Vec<(usize, usize, usize, bool)>,
 }
 
 /// An affine map `x ↦ A·x + b` of K^d (d = 1 or 2), `A` row-major.
@@ -272,8 +284,8 @@ struct Part<'a> {
     d: usize,
 }
 
-/// Checks a part's neighbour-map witness (module doc). `inside` lists the part's operators,
-/// increasing.
+/// Checks a part's neighbour-map witness (module doc), with the graph of refinements when it
+/// holds. `inside` lists the part's operators, increasing.
 pub(super) fn check_neighbour_maps(
     k: &Field,
     a: &AutomatonClaim,
@@ -282,7 +294,7 @@ pub(super) fn check_neighbour_maps(
     members: &[usize],
     inside: &[usize],
     w: &NeighbourMaps,
-) -> Result<Decided, String> {
+) -> Result<(Decided, Option<Refinements>), String> {
     let d = charts(k, a, ops, frames, members, inside)?;
     let part = Part {
         k,
@@ -294,9 +306,33 @@ pub(super) fn check_neighbour_maps(
         d,
     };
     match w {
-        NeighbourMaps::Fails(f) => check_fails(&part, f),
-        NeighbourMaps::Holds(h) => check_holds(&part, h),
+        NeighbourMaps::Fails(f) => check_fails(&part, f).map(|d| (d, None)),
+        NeighbourMaps::Holds(h) => check_holds(&part, h).map(|(d, r)| (d, Some(r))),
     }
+}
+
+/// Checks that a part's neighbour maps hold (module doc) and returns the graph of their
+/// refinements. `inside` lists the part's operators, increasing.
+pub(super) fn refinements(
+    k: &Field,
+    a: &AutomatonClaim,
+    ops: &[KMat],
+    frames: &[Option<KMat>],
+    members: &[usize],
+    inside: &[usize],
+    h: &NeighbourHolds,
+) -> Result<Refinements, String> {
+    let d = charts(k, a, ops, frames, members, inside)?;
+    let part = Part {
+        k,
+        a,
+        ops,
+        frames,
+        members,
+        inside,
+        d,
+    };
+    check_holds(&part, h).map(|(_, r)| r)
 }
 
 fn check_fails(part: &Part, f: &NeighbourFails) -> Result<Decided, String> {
@@ -388,7 +424,7 @@ struct Operator {
     inv_r2: P,
 }
 
-fn check_holds(part: &Part, h: &NeighbourHolds) -> Result<Decided, String> {
+fn check_holds(part: &Part, h: &NeighbourHolds) -> Result<(Decided, Refinements), String> {
     let Part {
         k,
         a,
@@ -500,7 +536,7 @@ fn check_holds(part: &Part, h: &NeighbourHolds) -> Result<Decided, String> {
         });
     }
     // The listed maps: similitudes between states of the part, no identity, no repetition.
-    let mut set: HashSet<(usize, usize, Vec<P>)> = HashSet::with_capacity(h.maps.len());
+    let mut set: HashMap<(usize, usize, Vec<P>), usize> = HashMap::with_capacity(h.maps.len());
     let mut listed: Vec<(usize, usize, Map, P)> = Vec::with_capacity(h.maps.len());
     for (i, m) in h.maps.iter().enumerate() {
         let (Some(pq), Some(pr)) = (pos(m.q), pos(m.r)) else {
@@ -516,7 +552,7 @@ fn check_holds(part: &Part, h: &NeighbourHolds) -> Result<Decided, String> {
                 a.states[m.q].name
             ));
         }
-        if !set.insert((pq, pr, map.key(k))) {
+        if set.insert((pq, pr, map.key(k)), i).is_some() {
             return Err(format!("map {i} is listed twice"));
         }
         listed.push((pq, pr, map, r2));
@@ -525,9 +561,10 @@ fn check_holds(part: &Part, h: &NeighbourHolds) -> Result<Decided, String> {
         let e2 = dist2(k, &map.apply(k, &centres[pr]), &centres[pq]);
         ball_test(k, &e2, r2, &radius, &margin)
     };
+    // The index of a map that passes the ball test in the set (`None`: it fails the test).
     let require = |pq: usize, pr: usize, map: &Map, r2: &P, what: &dyn Fn() -> String| {
         if !ball(pq, pr, map, r2)? {
-            return Ok(());
+            return Ok(None);
         }
         if pq == pr && map.is_identity(k) {
             return Err(format!(
@@ -535,9 +572,9 @@ fn check_holds(part: &Part, h: &NeighbourHolds) -> Result<Decided, String> {
                 what()
             ));
         }
-        match set.contains(&(pq, pr, map.key(k))) {
-            true => Ok(()),
-            false => Err(format!(
+        match set.get(&(pq, pr, map.key(k))) {
+            Some(&j) => Ok(Some(j)),
+            None => Err(format!(
                 "{} passes the ball test but is not in the set",
                 what()
             )),
@@ -562,6 +599,7 @@ fn check_holds(part: &Part, h: &NeighbourHolds) -> Result<Decided, String> {
     }
     // 4. Closed under refinement.
     let one = Field::rational(Q::one());
+    let mut edges = Vec::new();
     for (i, (pq, pr, map, r2)) in listed.iter().enumerate() {
         let refine_u = k.sign(&k.sub(r2, &one))? <= 0;
         let state = members[if refine_u { *pq } else { *pr }];
@@ -571,18 +609,28 @@ fn check_holds(part: &Part, h: &NeighbourHolds) -> Result<Decided, String> {
                 true => (pw, *pr, e.inverse.then(k, map), k.mul(r2, &e.inv_r2)),
                 false => (*pq, pw, map.then(k, &e.g), k.mul(r2, &e.r2)),
             };
-            require(nq, nr, &next, &n_r2, &|| {
+            let child = require(nq, nr, &next, &n_r2, &|| {
                 format!(
                     "map {i} refined by {} ({})",
                     a.operators[e.o].name,
                     if refine_u { "u" } else { "v" }
                 )
             })?;
+            if let Some(j) = child {
+                edges.push((i, j, e.o, refine_u));
+            }
         }
     }
-    Ok(Decided::Holds(
-        listed.len(),
-        if drawing { "drawing" } else { "charts" },
+    let graph = Refinements {
+        ends: listed
+            .iter()
+            .map(|(pq, pr, ..)| (members[*pq], members[*pr]))
+            .collect(),
+        edges,
+    };
+    Ok((
+        Decided::Holds(listed.len(), if drawing { "drawing" } else { "charts" }),
+        graph,
     ))
 }
 

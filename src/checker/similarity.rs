@@ -7,8 +7,8 @@ use super::control_graph::{cyclic_parts, graph, Graph};
 use super::convex_open_set::check_open_set;
 use super::enclosure::{decimal, enclose, enclose_root, ln_bounds};
 use super::field::{self, Root, P};
-use super::ifs::{constraints_hold, gram, instance, Checked, Field, KMat};
-use super::neighbour::{self, Decided};
+use super::ifs::{constraints_hold, gram, instance, Field, KMat};
+use super::neighbour::{self, Decided, Refinements};
 use super::{rat, Q};
 use crate::certificate::{AutomatonClaim, SimilarityPart, SimilarityStep};
 use num_bigint::BigInt;
@@ -21,7 +21,7 @@ const MAX_BITS: u64 = 1 << 14;
 /// The frames: the start state's points (a `space × m` matrix, columns are points), then
 /// `F_w = F_q·T` along the first subdivision operator reaching w breadth first (operators of a
 /// state in index order).
-fn frames(
+pub(super) fn frames(
     k: &Field,
     a: &AutomatonClaim,
     g: &Graph,
@@ -65,7 +65,7 @@ fn frames(
     Ok(frames)
 }
 
-fn power(k: &Field, x: &[Q], e: u32) -> P {
+pub(super) fn power(k: &Field, x: &[Q], e: u32) -> P {
     let mut acc = Field::rational(Q::one());
     for _ in 0..e {
         acc = k.mul(&acc, x);
@@ -75,7 +75,7 @@ fn power(k: &Field, x: &[Q], e: u32) -> P {
 
 /// `det(I − M(u))` for `M(u)_(i,j) = Σ u^k` over the exponents of the operators from member i
 /// to member j, by interpolation at `u = 0, 1, …, n·max k` (Newton's divided differences).
-fn part_polynomial(n: usize, entries: &[Vec<Vec<u32>>]) -> Result<P, String> {
+pub(super) fn part_polynomial(n: usize, entries: &[Vec<Vec<u32>>]) -> Result<P, String> {
     let top = entries
         .iter()
         .flatten()
@@ -148,7 +148,7 @@ fn det(mut m: Vec<Vec<Q>>) -> Q {
 }
 
 /// The number of distinct roots of `p` in `(a, b]` (Sturm, on the squarefree part).
-fn roots_in(p: &[Q], a: &Q, b: &Q) -> usize {
+pub(super) fn roots_in(p: &[Q], a: &Q, b: &Q) -> usize {
     let (squarefree, _) = field::divide(p, &field::gcd(p, &field::derivative(p)));
     if squarefree.len() < 2 {
         return 0;
@@ -159,12 +159,10 @@ fn roots_in(p: &[Q], a: &Q, b: &Q) -> usize {
 }
 
 /// One part re-derived: its σ (in K), u* and the rational value when claimed.
-struct PartValue {
-    sigma: P,
-    u: Root,
-    rational: Option<Q>,
-    /// What the step's open-set witness proves.
-    open_set: OpenSet,
+pub(super) struct PartValue {
+    pub(super) sigma: P,
+    pub(super) u: Root,
+    pub(super) rational: Option<Q>,
 }
 
 /// The open-set condition of a part, as its witness proves it.
@@ -174,12 +172,13 @@ enum OpenSet {
     /// Holds: convex sets in the charts.
     Convex,
     /// Holds: a closed set of this many neighbour maps without the identity, in these
-    /// coordinates.
-    Neighbour(usize, &'static str),
+    /// coordinates, and the graph of their refinements.
+    Neighbour(usize, &'static str, Refinements),
     /// Fails: the two words (named) with the same map.
     Fails(String, String),
 }
 
+/// A part checked with its open-set witness.
 fn check_part(
     k: &Field,
     a: &AutomatonClaim,
@@ -188,7 +187,52 @@ fn check_part(
     frames: &[Option<KMat>],
     members: &[usize],
     p: &SimilarityPart,
-) -> Result<PartValue, String> {
+) -> Result<(PartValue, OpenSet), String> {
+    let (value, inside) = part_value(k, a, g, ops, frames, members, p)?;
+    let label = || {
+        members
+            .iter()
+            .map(|&q| a.states[q].name.as_str())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let open_set = match (&p.open_set, &p.neighbour_maps) {
+        (None, None) => OpenSet::Unproved,
+        (Some(sets), None) => {
+            check_open_set(k, a, ops, frames, members, &inside, sets)
+                .map_err(|e| format!("part {{{}}}: the open-set witness: {e}", label()))?;
+            OpenSet::Convex
+        }
+        (None, Some(w)) => {
+            match neighbour::check_neighbour_maps(k, a, ops, frames, members, &inside, w)
+                .map_err(|e| format!("part {{{}}}: the neighbour maps: {e}", label()))?
+            {
+                (Decided::Holds(n, coordinates), Some(r)) => OpenSet::Neighbour(n, coordinates, r),
+                (Decided::Holds(..), None) => unreachable!("a holding witness has its graph"),
+                (Decided::Fails(u, v), _) => OpenSet::Fails(u, v),
+            }
+        }
+        (Some(_), Some(_)) => {
+            return Err(format!(
+                "part {{{}}}: two open-set witnesses (convex sets and neighbour maps): give one",
+                label()
+            ))
+        }
+    };
+    Ok((value, open_set))
+}
+
+/// A part's σ, exponents, u* and rational value re-derived (not its open-set witness), and
+/// the part's operators (increasing).
+pub(super) fn part_value(
+    k: &Field,
+    a: &AutomatonClaim,
+    g: &Graph,
+    ops: &[KMat],
+    frames: &[Option<KMat>],
+    members: &[usize],
+    p: &SimilarityPart,
+) -> Result<(PartValue, Vec<usize>), String> {
     let label = || {
         members
             .iter()
@@ -332,89 +376,107 @@ fn check_part(
     }
     let rational = match &p.rational {
         None => None,
-        Some(s) => {
-            let v = rat(s)?;
-            if v.is_negative() {
-                return Err(format!("part {{{}}}: a negative dimension", label()));
-            }
-            // s = a/b iff u^(2b) = σ^a.
-            let (num, den) = (v.numer().clone(), v.denom().clone());
-            let (an, bn): (u32, u32) = match (u32::try_from(&num), u32::try_from(&den)) {
-                (Ok(x), Ok(y)) if x <= 4096 && y <= 4096 => (x, y),
-                _ => {
-                    return Err(format!(
-                        "part {{{}}}: the rational dimension {v} is too large",
-                        label()
-                    ))
-                }
-            };
-            let sa = power(k, &sigma, an);
-            let holds = match (u.p.len() == 2, sa.len() <= 1) {
-                _ if u_field.is_some() => {
-                    let ub = power(k, u_field.as_ref().expect("given"), 2 * bn);
-                    k.is_zero(&k.sub(&ub, &sa))
-                }
-                (true, _) => {
-                    let ur = u.lo.clone();
-                    let ub = power(k, &[ur], 2 * bn);
-                    k.is_zero(&k.sub(&ub, &sa))
-                }
-                (false, true) => {
-                    // u^(2b) − σ^a vanishes at u (σ^a rational).
-                    let mut z = vec![Q::zero(); 2 * bn as usize + 1];
-                    z[2 * bn as usize] = Q::one();
-                    z[0] = -sa.first().cloned().unwrap_or_else(Q::zero);
-                    u.is_zero(&z)
-                }
-                (false, false) => {
-                    return Err(format!(
-                        "part {{{}}}: a rational dimension with u* and σ both irrational needs u* as an element of K (`u_field`)",
-                        label()
-                    ))
-                }
-            };
-            if !holds {
-                return Err(format!(
-                    "part {{{}}}: the dimension is not {v} (u*^{} ≠ σ^{an})",
-                    label(),
-                    2 * bn
-                ));
-            }
-            Some(v)
+        Some(v) => Some(
+            rational_value(k, &sigma, &u, u_field.as_ref(), v)
+                .map_err(|e| format!("part {{{}}}: {e}", label()))?,
+        ),
+    };
+    Ok((PartValue { sigma, u, rational }, inside))
+}
+
+/// Checks a claimed rational dimension `s = a/b` of `s = 2·ln u*/ln σ`: `u*^(2b) = σ^a`,
+/// compared in K when u* is rational or given as an element of K (`u_field`), through u*'s
+/// polynomial when σ^a is rational, and for an integer s with both irrational through
+/// `y = u*²`: with u*'s polynomial `f(x) = f_e(x²) + x·f_o(x²)`, y is a root of
+/// `f_e(y)² − y·f_o(y)²`; σ^s is y when it is a root too and lies in an interval that holds
+/// exactly one root and y (the square of u*'s interval, narrowed until it does).
+pub(super) fn rational_value(
+    k: &Field,
+    sigma: &P,
+    u: &Root,
+    u_field: Option<&P>,
+    s: &str,
+) -> Result<Q, String> {
+    let v = rat(s)?;
+    if v.is_negative() {
+        return Err("a negative dimension".into());
+    }
+    let (num, den) = (v.numer().clone(), v.denom().clone());
+    let (an, bn): (u32, u32) = match (u32::try_from(&num), u32::try_from(&den)) {
+        (Ok(x), Ok(y)) if x <= 4096 && y <= 4096 => (x, y),
+        _ => return Err(format!("the rational dimension {v} is too large")),
+    };
+    let sa = power(k, sigma, an);
+    let holds = match (u.p.len() == 2, sa.len() <= 1) {
+        _ if u_field.is_some() => {
+            let ub = power(k, u_field.expect("given"), 2 * bn);
+            k.is_zero(&k.sub(&ub, &sa))
+        }
+        (true, _) => {
+            let ub = power(k, std::slice::from_ref(&u.lo), 2 * bn);
+            k.is_zero(&k.sub(&ub, &sa))
+        }
+        (false, true) => {
+            // u^(2b) − σ^a vanishes at u (σ^a rational).
+            let mut z = vec![Q::zero(); 2 * bn as usize + 1];
+            z[2 * bn as usize] = Q::one();
+            z[0] = -sa.first().cloned().unwrap_or_else(Q::zero);
+            u.is_zero(&z)
+        }
+        (false, false) if bn == 1 => square_is(k, u, &sa)?,
+        (false, false) => {
+            return Err(
+                "a rational dimension that is no integer, with u* and σ both irrational, needs u* as an element of K (`u_field`)".into(),
+            )
         }
     };
-    let open_set = match (&p.open_set, &p.neighbour_maps) {
-        (None, None) => OpenSet::Unproved,
-        (Some(sets), None) => {
-            check_open_set(k, a, ops, frames, members, &inside, sets)
-                .map_err(|e| format!("part {{{}}}: the open-set witness: {e}", label()))?;
-            OpenSet::Convex
+    match holds {
+        true => Ok(v),
+        false => Err(format!("the dimension is not {v} (u*^{} ≠ σ^{an})", 2 * bn)),
+    }
+}
+
+/// Whether `u² = z` for the irrational root u > 0 and z in K (see [`rational_value`]).
+fn square_is(k: &Field, u: &Root, z: &P) -> Result<bool, String> {
+    let half = |start: usize| -> P { u.p.iter().skip(start).step_by(2).cloned().collect() };
+    let (fe, fo) = (half(0), half(1));
+    let g = field::add(
+        &field::mul(&fe, &fe),
+        &field::scale(
+            &field::mul(&[Q::zero(), Q::one()], &field::mul(&fo, &fo)),
+            &-Q::one(),
+        ),
+    );
+    let g = field::trim(g);
+    let value = g.iter().rev().fold(P::new(), |acc, c| {
+        field::add(&k.mul(&acc, z), &Field::rational(c.clone()))
+    });
+    if !k.is_zero(&value) {
+        return Ok(false);
+    }
+    let mut bits = 32;
+    loop {
+        let (lo, hi) = enclose_root(u, bits)?;
+        if !lo.is_positive() {
+            return Err("u* is not separated from 0".into());
         }
-        (None, Some(w)) => {
-            match neighbour::check_neighbour_maps(k, a, ops, frames, members, &inside, w)
-                .map_err(|e| format!("part {{{}}}: the neighbour maps: {e}", label()))?
-            {
-                Decided::Holds(n, coordinates) => OpenSet::Neighbour(n, coordinates),
-                Decided::Fails(u, v) => OpenSet::Fails(u, v),
-            }
+        let (lo2, hi2) = (&lo * &lo, &hi * &hi);
+        if roots_in(&g, &lo2, &hi2) == 1 {
+            // y = u² is the only root of g in (lo², hi²]; z is a root of g: it is y when it
+            // lies there.
+            let above = k.sign(&k.sub(z, &Field::rational(lo2)))? > 0;
+            let below = k.sign(&k.sub(z, &Field::rational(hi2)))? <= 0;
+            return Ok(above && below);
         }
-        (Some(_), Some(_)) => {
-            return Err(format!(
-                "part {{{}}}: two open-set witnesses (convex sets and neighbour maps): give one",
-                label()
-            ))
+        if bits >= MAX_BITS {
+            return Err(format!("u*² was not isolated at {MAX_BITS} bits"));
         }
-    };
-    Ok(PartValue {
-        sigma,
-        u,
-        rational,
-        open_set,
-    })
+        bits *= 2;
+    }
 }
 
 /// Bounds of a part's dimension `s = 2·ln u*/ln σ` at `bits` bits.
-fn dimension_bounds(k: &Field, v: &PartValue, bits: u64) -> Result<(Q, Q), String> {
+pub(super) fn dimension_bounds(k: &Field, v: &PartValue, bits: u64) -> Result<(Q, Q), String> {
     if let Some(r) = &v.rational {
         return Ok((r.clone(), r.clone()));
     }
@@ -435,8 +497,58 @@ fn dimension_bounds(k: &Field, v: &PartValue, bits: u64) -> Result<(Q, Q), Strin
     Ok((&two * a_lo / &b_hi, &two * a_hi / &b_lo))
 }
 
-/// The step `similarity-dimension`.
-pub(super) fn check_similarity(a: &AutomatonClaim, s: &SimilarityStep) -> Checked {
+/// Checks that `decimal` (with `digits` digits after the point) is the truncation of the
+/// largest of the values' dimensions: `decimal ≤ s < decimal + 10^(−digits)`, from enclosures
+/// refined up to [`MAX_BITS`] bits.
+pub(super) fn check_digits(
+    k: &Field,
+    values: &[&PartValue],
+    claimed: &str,
+    digits: usize,
+) -> Result<(), String> {
+    if digits == 0 || digits > 1000 {
+        return Err(format!("{digits} digits: not in 1..=1000"));
+    }
+    let n = super::parse_decimal(claimed, digits)?;
+    let ten = Q::from_integer(num_traits::pow(BigInt::from(10), digits));
+    let (low, high) = (
+        Q::from_integer(n.clone()) / &ten,
+        Q::from_integer(n + 1) / &ten,
+    );
+    let mut bits = 64u64.max(4 * digits as u64);
+    loop {
+        let mut lo_max = Q::zero();
+        let mut hi_max = Q::zero();
+        for v in values {
+            let (l, h) = dimension_bounds(k, v, bits)?;
+            lo_max = lo_max.max(l);
+            hi_max = hi_max.max(h);
+        }
+        if hi_max < low || lo_max >= high {
+            return Err(format!(
+                "the dimension is not {claimed} (it lies in [{}, {}])",
+                decimal(&lo_max, digits),
+                decimal(&hi_max, digits)
+            ));
+        }
+        if lo_max >= low && hi_max < high {
+            return Ok(());
+        }
+        if bits >= MAX_BITS {
+            return Err(format!(
+                "the digits {claimed} were not decided at {MAX_BITS} bits (a dimension on a decimal boundary must be claimed rational)"
+            ));
+        }
+        bits *= 2;
+    }
+}
+
+/// The step `similarity-dimension`, and for every part whose neighbour maps hold, the graph of
+/// their refinements (for the `boundary-dimension` step).
+pub(super) fn check_similarity(
+    a: &AutomatonClaim,
+    s: &SimilarityStep,
+) -> Result<(String, String, Vec<Option<Refinements>>), String> {
     let k = Field::of(a)?;
     let ops = instance(&k, a, &s.instance)?;
     constraints_hold(&k, a, &ops).map_err(|e| format!("the instance: {e}"))?;
@@ -457,56 +569,19 @@ pub(super) fn check_similarity(a: &AutomatonClaim, s: &SimilarityStep) -> Checke
         return Err("the control graph has no cycle: there is no similarity dimension".into());
     }
     let frames = frames(&k, a, &g, &ops)?;
-    let values: Vec<PartValue> = parts
+    let (values, open_sets): (Vec<PartValue>, Vec<OpenSet>) = parts
         .iter()
         .zip(&s.parts)
         .map(|(m, p)| check_part(&k, a, &g, &ops, &frames, m, p))
-        .collect::<Result<_, _>>()?;
-    // The digits of the largest value.
-    if s.digits == 0 || s.digits > 1000 {
-        return Err(format!("{} digits: not in 1..=1000", s.digits));
-    }
-    let claimed = super::parse_decimal(&s.decimal, s.digits)?;
-    let ten = Q::from_integer(num_traits::pow(BigInt::from(10), s.digits));
-    let (low, high) = (
-        Q::from_integer(claimed.clone()) / &ten,
-        Q::from_integer(claimed + 1) / &ten,
-    );
-    let mut bits = 64u64.max(4 * s.digits as u64);
-    let decided = loop {
-        let mut lo_max = Q::zero();
-        let mut hi_max = Q::zero();
-        for v in &values {
-            let (l, h) = dimension_bounds(&k, v, bits)?;
-            lo_max = lo_max.max(l);
-            hi_max = hi_max.max(h);
-        }
-        if hi_max < low || lo_max >= high {
-            return Err(format!(
-                "the dimension is not {} (it lies in [{}, {}])",
-                s.decimal,
-                decimal(&lo_max, s.digits),
-                decimal(&hi_max, s.digits)
-            ));
-        }
-        if lo_max >= low && hi_max < high {
-            break true;
-        }
-        if bits >= MAX_BITS {
-            break false;
-        }
-        bits *= 2;
-    };
-    if !decided {
-        return Err(format!(
-            "the digits {} were not decided at {MAX_BITS} bits (a dimension on a decimal boundary must be claimed rational)",
-            s.decimal
-        ));
-    }
+        .collect::<Result<Vec<_>, _>>()?
+        .into_iter()
+        .unzip();
+    check_digits(&k, &values.iter().collect::<Vec<_>>(), &s.decimal, s.digits)?;
     let forms: Vec<String> = values
         .iter()
+        .zip(&open_sets)
         .zip(&parts)
-        .map(|(v, m)| {
+        .map(|((v, open_set), m)| {
             let states: Vec<&str> = m.iter().map(|&q| a.states[q].name.as_str()).collect();
             let value = match &v.rational {
                 Some(r) => r.to_string(),
@@ -523,8 +598,8 @@ pub(super) fn check_similarity(a: &AutomatonClaim, s: &SimilarityStep) -> Checke
                     coords_line(&v.sigma)
                 ),
             };
-            let witness = match &v.open_set {
-                OpenSet::Neighbour(n, coordinates) => format!(
+            let witness = match open_set {
+                OpenSet::Neighbour(n, coordinates, _) => format!(
                     ", the open-set condition by {n} neighbour maps in the {coordinates} (a set closed under refinement, without the identity)"
                 ),
                 OpenSet::Fails(u, w) => format!(
@@ -535,7 +610,7 @@ pub(super) fn check_similarity(a: &AutomatonClaim, s: &SimilarityStep) -> Checke
             format!("{{{}}}: s = {value}{witness}", states.join(", "))
         })
         .collect();
-    let hausdorff = hausdorff(a, &parts, &values, &s.decimal);
+    let hausdorff = hausdorff(a, &parts, &open_sets, &s.decimal);
     Ok((
         format!(
             "{}; every operator inside a part is a similitude of squared ratio σ^k on the frames, exactly in {}; u* is the smallest root of det(I − M(u)) in (0, 1] (Sturm), so ρ(M(u*)) = 1; {}; the largest is {}… ({} digits re-derived)",
@@ -553,6 +628,13 @@ pub(super) fn check_similarity(a: &AutomatonClaim, s: &SimilarityStep) -> Checke
                 false => ", of the instance the step completes",
             }
         ),
+        open_sets
+            .into_iter()
+            .map(|o| match o {
+                OpenSet::Neighbour(_, _, r) => Some(r),
+                _ => None,
+            })
+            .collect(),
     ))
 }
 
@@ -560,7 +642,7 @@ pub(super) fn check_similarity(a: &AutomatonClaim, s: &SimilarityStep) -> Checke
 fn hausdorff(
     a: &AutomatonClaim,
     parts: &[Vec<usize>],
-    values: &[PartValue],
+    open_sets: &[OpenSet],
     decimal: &str,
 ) -> String {
     let label = |m: &[usize]| {
@@ -569,10 +651,10 @@ fn hausdorff(
             .collect::<Vec<_>>()
             .join(", ")
     };
-    let fails: Vec<String> = values
+    let fails: Vec<String> = open_sets
         .iter()
         .zip(parts)
-        .filter(|(v, _)| matches!(v.open_set, OpenSet::Fails(..)))
+        .filter(|(v, _)| matches!(v, OpenSet::Fails(..)))
         .map(|(_, m)| format!("part {{{}}}", label(m)))
         .collect();
     if !fails.is_empty() {
@@ -581,9 +663,9 @@ fn hausdorff(
             fails.join(", ")
         );
     }
-    let means: Vec<&str> = values
+    let means: Vec<&str> = open_sets
         .iter()
-        .map(|v| match v.open_set {
+        .map(|v| match v {
             OpenSet::Convex => Some("convex sets in the charts"),
             OpenSet::Neighbour(..) => Some(
                 "neighbour maps, Bandt–Graf: a finite set closed under refinement, without the identity",
@@ -631,6 +713,40 @@ fn coords_line(p: &[Q]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_integer_dimension_with_irrational_u_and_sigma_is_checked_through_the_square() {
+        // K = Q(√5): u = 1/φ = (√5 − 1)/2, the root of x² + x − 1 in (1/2, 1); σ = 1/φ² =
+        // (3 − √5)/2. Then u² = σ: s = 1 holds; s = 2 (u² = σ²) and s = 3 do not.
+        let a = AutomatonClaim {
+            states: Vec::new(),
+            operators: Vec::new(),
+            constraints: Vec::new(),
+            barycentric: Vec::new(),
+            field: Some(crate::certificate::Algebraic {
+                poly: vec!["-5".into(), "0".into(), "1".into()],
+                lo: "2".into(),
+                hi: "3".into(),
+            }),
+            attractor: None,
+            rule: None,
+        };
+        let k = Field::of(&a).unwrap();
+        let u = Root::isolate(&["-1".into(), "1".into(), "1".into()], "1/2", "1", "u").unwrap();
+        let sigma = k.element(&vec!["3/2".into(), "-1/2".into()]).unwrap();
+        assert_eq!(
+            rational_value(&k, &sigma, &u, None, "1").ok(),
+            Some(Q::one())
+        );
+        for wrong in ["2", "3", "0"] {
+            assert!(
+                rational_value(&k, &sigma, &u, None, wrong).is_err(),
+                "{wrong}"
+            );
+        }
+        // A non-integer needs u* in K.
+        assert!(rational_value(&k, &sigma, &u, None, "1/2").is_err());
+    }
 
     #[test]
     fn sturm_counts_distinct_roots() {

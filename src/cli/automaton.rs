@@ -375,6 +375,9 @@ struct AutomatonVerdict<'a> {
     similarity_dimension: &'a Option<lacuna::analysis::SimilarityDimension>,
     /// Why there is no similarity dimension.
     similarity_note: &'a Option<String>,
+    /// The boundary dimension of the tiles (an upper bound), when some part is a tile.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    boundary_dimension: &'a Option<lacuna::analysis::BoundaryDimension>,
     /// The verdict.
     verified: bool,
 }
@@ -382,7 +385,8 @@ struct AutomatonVerdict<'a> {
 /// `lacuna verify` on an automaton file, a library automaton or a rule (compiled): the
 /// constraints, the contraction of the instance drawn (free parameters 0, `param` lines), the
 /// similarity dimension and the open-set condition; `--certificate` writes the steps that
-/// prove them (`constraints-hold` or `solution-space`, `contraction`, `similarity-dimension`).
+/// prove them (`constraints-hold` or `solution-space`, `contraction`, `similarity-dimension`,
+/// `boundary-dimension`).
 pub(super) fn verify(
     arg: &str,
     name: &str,
@@ -409,6 +413,7 @@ pub(super) fn verify(
         contraction_fails: fails,
         similarity,
         similarity_note: note,
+        boundary,
     } = &analysis;
     let free = !resolved.verdict.free_left.is_empty();
     let consistent = resolved.verdict.consistent;
@@ -459,6 +464,16 @@ pub(super) fn verify(
         (None, Some(n)) => o += &format!("similarity dimension: not applicable ({n})\n"),
         (None, None) => {}
     }
+    if let Some(b) = boundary {
+        o += &format!(
+            "boundary dimension (an upper bound, tiles): {}\n",
+            b.states
+                .iter()
+                .map(|s| format!("{} ≤ {} = {}…", s.state, s.exact, s.decimal))
+                .collect::<Vec<_>>()
+                .join("; ")
+        );
+    }
     o += &format!(
         "\nverdict: {}\n",
         match verified {
@@ -499,6 +514,7 @@ pub(super) fn verify(
             contraction_fails: fails,
             similarity_dimension: similarity,
             similarity_note: note,
+            boundary_dimension: boundary,
             verified,
         });
     } else if outputs.to_stdout {

@@ -381,9 +381,12 @@ impl AutomatonMeasure {
         }
         o += &format!(
             "the solver's verdict, the contraction{} are certified by the steps `lacuna verify {} --certificate OUT.json` writes; lengths, areas and box counting are floating-point estimates\n",
-            match self.similarity_dimension {
-                Some(_) => " and the similarity dimension",
-                None => "",
+            match (&self.similarity_dimension, &self.boundary_dimension) {
+                (Some(_), BoundaryReport::Decided(_)) => {
+                    ", the similarity dimension and the boundary dimension"
+                }
+                (Some(_), _) => " and the similarity dimension",
+                (None, _) => "",
             },
             self.input
         );

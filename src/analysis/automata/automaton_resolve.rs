@@ -300,8 +300,9 @@ pub fn failures(a: &Automaton, k: &NumberField, ops: &[KMatrix]) -> Result<Vec<F
 }
 
 /// What `lacuna verify` decides about an automaton's attractor: the operators resolved (free
-/// parameters 0), the contraction of that instance or the cycle that does not contract, and the
-/// similarity dimension (`digits` certified digits) or why there is none.
+/// parameters 0), the contraction of that instance or the cycle that does not contract, the
+/// similarity dimension (`digits` certified digits) or why there is none, and the boundary
+/// dimension of its tiles.
 #[derive(Clone, Debug)]
 pub struct Attractor {
     /// The resolved operators and the verdict on the constraints.
@@ -315,6 +316,8 @@ pub struct Attractor {
     pub similarity: Option<crate::analysis::SimilarityDimension>,
     /// Why there is no similarity dimension.
     pub similarity_note: Option<String>,
+    /// The boundary dimension of the tile parts, when some part is a tile and it is decided.
+    pub boundary: Option<crate::analysis::BoundaryDimension>,
 }
 
 /// Resolves `m`, proves contraction (within `max_products` products) and computes the
@@ -345,11 +348,18 @@ pub fn analyse_attractor(
             Some("the attractor is not proven to exist".to_string()),
         ),
     };
+    let boundary = similarity.as_ref().and_then(|sim| {
+        crate::analysis::not_a_tile(m, sim)
+            .is_none()
+            .then(|| crate::analysis::boundary_dimension(m, &resolved.ops, sim, digits).ok())
+            .flatten()
+    });
     Ok(Attractor {
         resolved,
         contraction,
         contraction_fails,
         similarity,
         similarity_note,
+        boundary,
     })
 }

@@ -62,7 +62,7 @@ use crate::algebra::poly::Poly;
 use crate::analysis::automata::neighbour_maps::{
     map_graph, search, Closed, KAffine, MapEdge, Search,
 };
-use crate::analysis::automata::open_set::{neighbour_system, NeighbourWitness};
+use crate::analysis::automata::open_set::{neighbour_system, NeighbourMap, NeighbourWitness};
 use crate::analysis::automata::similarity::{
     certified_decimal, compare, equals, exact_text, frames, part_polynomial, smallest_root,
     NotApplicable, PartValue, PartWitness, SimilarityDimension,
@@ -106,18 +106,44 @@ pub struct StateBoundary {
     pub decimal: String,
 }
 
-/// The neighbour-map graph of one cyclic part, trimmed to the nodes on or leading to a cycle.
+/// The neighbour-map graph of one tile part: what the certificate step carries.
 #[derive(Clone, Debug)]
 pub struct BoundaryGraph {
+    /// The part's index among the similarity dimension's parts.
+    pub part: usize,
     /// The part's states.
     pub states: Vec<usize>,
-    /// The maps the open-set search kept (nodes before trimming).
+    /// The kept maps and their coordinates, when the search ran here (the part's open-set
+    /// condition was proved by convex sets); `None`: the similarity dimension's own neighbour
+    /// maps, in their order.
+    pub witness: Option<NeighbourWitness>,
+    /// The maps the open-set search kept (the graph's nodes).
     pub nodes: usize,
     /// The nodes on or leading to a cycle.
     pub kept: usize,
-    /// Per cyclic component: its number of classes of nodes, `det(I − Q_C(u))` of the lumped
-    /// matrix and the exact value.
-    pub components: Vec<(usize, Poly, String)>,
+    /// The cyclic strongly connected components, ordered by smallest node.
+    pub components: Vec<BoundaryComponent>,
+    /// For every state of the part, in order: the component of largest value reachable from a
+    /// node with the state on either side (`None`: no cycle is reachable, value 0).
+    pub dominant: Vec<Option<usize>>,
+}
+
+/// One cyclic strongly connected component of the boundary graph.
+#[derive(Clone, Debug)]
+pub struct BoundaryComponent {
+    /// Its nodes (indices of kept maps), increasing.
+    pub nodes: Vec<usize>,
+    /// The class of every node in an equitable partition (classes numbered by first
+    /// appearance).
+    pub classes: Vec<usize>,
+    /// `det(I − Q(u))` of the lumped matrix.
+    pub poly: Poly,
+    /// Its smallest root u* in (0, 1].
+    pub u: RealAlgebraic,
+    /// The value when it is rational.
+    pub rational: Option<BigRational>,
+    /// The exact value.
+    pub exact: String,
 }
 
 /// Strongly connected components (petgraph's iterative Tarjan, as `topology::class` uses): the
@@ -184,8 +210,9 @@ fn odd_integer_value(
 
 /// The coarsest equitable partition of a component (`nodes` increasing, `inside` its membership
 /// test) and its quotient matrix: nodes are in one class when, class by class, their edges
-/// inside the component carry the same multiset of exponents. Returns the number of classes and
-/// `entries[X][Y]`, the exponents of the edges from any node of X into Y.
+/// inside the component carry the same multiset of exponents. Returns the number of classes,
+/// `entries[X][Y]` (the exponents of the edges from any node of X into Y) and the class of
+/// every node (numbered by first appearance).
 ///
 /// The quotient Q(u) has the same spectral radius as the component's M(u) for every u > 0: a
 /// positive eigenvector of Q (Perron, Q irreducible as a quotient of an irreducible M) lifts,
@@ -196,7 +223,7 @@ fn lumped(
     succ: &[Vec<(usize, usize)>],
     nodes: &[usize],
     inside: impl Fn(usize) -> bool,
-) -> (usize, Vec<Vec<Vec<usize>>>) {
+) -> (usize, Vec<Vec<Vec<usize>>>, Vec<usize>) {
     use std::collections::HashMap;
     let pos = |v: usize| nodes.binary_search(&v).expect("member");
     let mut class = vec![0usize; nodes.len()];
@@ -238,7 +265,7 @@ fn lumped(
             entries[class[i]][class[pos(w)]].push(e);
         }
     }
-    (count, entries)
+    (count, entries, class)
 }
 
 /// Whether the graph restricted to `nodes` (a component, as a membership test) and to the edges
@@ -408,30 +435,49 @@ pub fn boundary_dimension(
     let mut states = Vec::new();
     let mut graphs = Vec::new();
     let mut others = Vec::new();
-    for part in &sim.witness {
+    for (index, part) in sim.witness.iter().enumerate() {
         if part_tiling(m, part) != Tiling::Tile {
             others.extend(part.states.iter().map(|&s| a.states[s].name.clone()));
             continue;
         }
-        let (centres, kedges, op_of) = neighbour_system(m, ops, &frames, &part.states)
+        let system = neighbour_system(m, ops, &frames, &part.states)
             .map_err(|why| format!("no neighbour maps: {why}"))?;
-        let closed = match closed_of(part) {
-            Some(c) => c,
-            None => match search(k, &centres, &kedges) {
-                Search::Closed(c) => c,
+        let (closed, witness) = match closed_of(part) {
+            Some(c) => (c, None),
+            None => match search(k, &system.centres, &system.edges) {
+                Search::Closed(c) => {
+                    let witness = NeighbourWitness::Holds {
+                        coordinates: system.coordinates,
+                        centres: system.centres.clone(),
+                        radius: c.radius.clone(),
+                        margin: c.margin.clone(),
+                        maps: c
+                            .maps
+                            .iter()
+                            .map(|(q, r, h)| NeighbourMap {
+                                q: *q,
+                                r: *r,
+                                a: h.a.clone(),
+                                b: h.b.clone(),
+                            })
+                            .collect(),
+                        scales: system.scales.clone(),
+                    };
+                    (c, Some(witness))
+                }
                 Search::Identity(..) => {
                     return Err("the identity is a neighbour map (two pieces coincide)".into())
                 }
                 Search::Undecided(why) => return Err(format!("not decided: {why}")),
             },
         };
-        let graph = map_graph(k, &centres, &kedges, &closed)
+        let graph = map_graph(k, &system.centres, &system.edges, &closed)
             .ok_or("the kept neighbour maps are not closed under refinement")?;
         let exponent = |e: &MapEdge| -> Result<usize, NotApplicable> {
             if !e.left {
                 return Ok(0);
             }
-            let o = op_of[e.operator];
+            let o = system.operators[e.operator];
             part.exponents
                 .iter()
                 .find(|x| x.0 == o)
@@ -454,47 +500,53 @@ pub fn boundary_dimension(
         if has_cycle(&succ, |_| true, |k| k == 0) {
             return Err("a cycle of the boundary graph has only edges of ratio 1".into());
         }
-        // Members of every component, and whether it holds a cycle.
+        // Members of every component (increasing), and the cyclic ones' values.
         let mut members = vec![Vec::new(); count];
         for (v, &c) in comp.iter().enumerate() {
             members[c].push(v);
         }
-        let mut values: Vec<Option<PartValue>> = Vec::with_capacity(count);
-        let mut polys = Vec::new();
+        let mut values: Vec<Option<BoundaryComponent>> = Vec::with_capacity(count);
         for (c, nodes) in members.iter().enumerate() {
             let cyclic = nodes.len() > 1 || succ[nodes[0]].iter().any(|x| x.0 == nodes[0]);
             if !cyclic {
                 values.push(None);
                 continue;
             }
-            let (classes, entries) = lumped(&succ, nodes, |w| comp[w] == c);
+            let (classes, entries, class) = lumped(&succ, nodes, |w| comp[w] == c);
             if classes > MAX_COMPONENT {
                 return Err(format!(
                     "not decided: a component of the boundary graph has {classes} classes of nodes (limit {MAX_COMPONENT})"
                 ));
             }
-            let p = part_polynomial(classes, &entries);
-            let u = smallest_root(&p)?;
+            let poly = part_polynomial(classes, &entries);
+            let u = smallest_root(&poly)?;
             let (exact, rational) = match odd_integer_value(k, &u, &part.sigma) {
                 Some(j) => (j.to_string(), Some(BigRational::from_integer(j.into()))),
                 None => exact_text(k, &u, &part.sigma),
             };
-            polys.push((nodes.len(), p, exact.clone()));
-            values.push(Some(PartValue {
+            values.push(Some(BoundaryComponent {
+                nodes: nodes.clone(),
+                classes: class,
+                poly,
                 u,
-                sigma: part.sigma.clone(),
-                exact,
                 rational,
+                exact,
             }));
         }
+        let value = |c: &BoundaryComponent| PartValue {
+            u: c.u.clone(),
+            sigma: part.sigma.clone(),
+            exact: c.exact.clone(),
+            rational: c.rational.clone(),
+        };
         // The cyclic components ranked by value once (certified comparisons), so that the best
         // one reachable is a maximum of ranks.
         let mut order: Vec<usize> = (0..count).filter(|&c| values[c].is_some()).collect();
         order.sort_by(|&i, &j| {
             compare(
                 k,
-                values[i].as_ref().expect("cyclic"),
-                values[j].as_ref().expect("cyclic"),
+                &value(values[i].as_ref().expect("cyclic")),
+                &value(values[j].as_ref().expect("cyclic")),
             )
         });
         let mut rank = vec![0usize; count];
@@ -522,6 +574,10 @@ pub fn boundary_dimension(
         let kept = (0..graph.len())
             .filter(|&v| best[comp[v]].is_some())
             .count();
+        // The cyclic components in the certificate's order: by smallest node.
+        let mut listed: Vec<usize> = (0..count).filter(|&c| values[c].is_some()).collect();
+        listed.sort_by_key(|&c| members[c][0]);
+        let mut dominant = Vec::with_capacity(part.states.len());
         for (i, &s) in part.states.iter().enumerate() {
             let mut b = None;
             for (v, (q, r, _)) in closed.maps.iter().enumerate() {
@@ -531,11 +587,12 @@ pub fn boundary_dimension(
             }
             let (exact, decimal) = match b {
                 Some(c) => {
-                    let v = values[c].as_ref().expect("cyclic");
-                    (v.exact.clone(), certified_decimal(k, v, digits))
+                    let v = value(values[c].as_ref().expect("cyclic"));
+                    (v.exact.clone(), certified_decimal(k, &v, digits))
                 }
                 None => ("0".into(), format!("0.{}", "0".repeat(digits.max(1)))),
             };
+            dominant.push(b.map(|c| listed.iter().position(|&x| x == c).expect("cyclic")));
             states.push(StateBoundary {
                 state: a.states[s].name.clone(),
                 exact,
@@ -543,10 +600,16 @@ pub fn boundary_dimension(
             });
         }
         graphs.push(BoundaryGraph {
+            part: index,
             states: part.states.clone(),
+            witness,
             nodes: graph.len(),
             kept,
-            components: polys,
+            components: listed
+                .iter()
+                .map(|&c| values[c].take().expect("cyclic"))
+                .collect(),
+            dominant,
         });
     }
     let sizes: Vec<String> = graphs
@@ -613,7 +676,7 @@ mod tests {
         assert!(
             g.components
                 .iter()
-                .any(|(_, p, _)| p.rem(&cubic).is_zero() && p.deg() > 0),
+                .any(|c| c.poly.rem(&cubic).is_zero() && c.poly.deg() > 0),
             "{:?}",
             g.components
         );
@@ -654,8 +717,8 @@ mod tests {
         // both nodes look alike, one class with entries [1, 1]: det = 1 − 2u, u* = 1/2
         // (the full matrix [[u, u], [u, u]] has det(I − M) = 1 − 2u too).
         let succ = vec![vec![(0, 1), (1, 1)], vec![(0, 1), (1, 1)]];
-        let (n, e) = lumped(&succ, &[0, 1], |_| true);
-        assert_eq!((n, &e), (1, &vec![vec![vec![1, 1]]]));
+        let (n, e, class) = lumped(&succ, &[0, 1], |_| true);
+        assert_eq!((n, &e, &class), (1, &vec![vec![vec![1, 1]]], &vec![0, 0]));
         assert_eq!(part_polynomial(n, &e), Poly::from_ints(&[1, -2]));
         // A cycle of exponent-0 edges only is found; one with a contracting edge is not counted.
         let zero_cycle = vec![vec![(1, 0)], vec![(0, 0)]];

@@ -1,5 +1,6 @@
 //! The steps about hand-written automata: a rule's compilation, constraints that hold or fail,
-//! contraction, the similarity dimension and its open-set witnesses (neighbour maps).
+//! contraction, the similarity dimension and its open-set witnesses (neighbour maps), the
+//! boundary dimension of tiles.
 
 use super::{Algebraic, FieldCoords};
 use serde::{Deserialize, Serialize};
@@ -147,5 +148,60 @@ pub struct SimilarityStep {
     /// The number of decimal digits of `decimal`.
     pub digits: usize,
     /// The largest part's s, truncated: `decimal ≤ s < decimal + 10^(−digits)`.
+    pub decimal: String,
+}
+
+/// The step `boundary-dimension`: an upper bound of the dimension of the set where the pieces
+/// of each state's attractor touch, for the states of the tile parts.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoundaryStep {
+    /// One entry per tile part, by increasing part index.
+    pub parts: Vec<BoundaryPart>,
+    /// The number of decimal digits of every state's `decimal`.
+    pub digits: usize,
+}
+
+/// The boundary graph of one tile part.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoundaryPart {
+    /// The part's index in the `similarity-dimension` step (its s must be exactly 2).
+    pub part: usize,
+    /// The neighbour maps whose refinements form the graph, when that part's open-set witness
+    /// is not neighbour maps; absent: the part's own neighbour maps. Either way the checker
+    /// proves them closed under refinement, without the identity.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub maps: Option<NeighbourHolds>,
+    /// Every cyclic strongly connected component of the graph of refinements (nodes are the
+    /// maps, in their order), ordered by smallest node.
+    pub components: Vec<BoundaryComponent>,
+    /// Every state of the part, in order.
+    pub states: Vec<BoundaryState>,
+}
+
+/// One cyclic strongly connected component of the boundary graph and its value.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoundaryComponent {
+    /// Its nodes (map indices), increasing.
+    pub nodes: Vec<usize>,
+    /// The class of every node in an equitable partition: nodes of one class have, class by
+    /// class, the same exponents on their edges inside the component.
+    pub classes: Vec<usize>,
+    /// `u*`, the smallest root in (0, 1] of `det(I − Q(u))`, `Q` the quotient matrix.
+    pub u: Algebraic,
+    /// The value `2·ln u*/ln σ` when it is rational, else `None`.
+    pub rational: Option<String>,
+}
+
+/// One state's claimed bound.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoundaryState {
+    /// The component of largest value reachable from the maps with the state on either side;
+    /// `None` when no cyclic component is reachable (the value is 0).
+    pub component: Option<usize>,
+    /// The value, truncated to the step's digits.
     pub decimal: String,
 }

@@ -1,13 +1,15 @@
 //! Certificates of hand-written automata and automaton models: the automaton claim (operators
 //! in Q or in a field K, the attractor, the rule), the constraint and rule-compilation steps,
-//! contraction, similarity dimension and open-set witnesses, and lacuna's automaton and model
+//! contraction, similarity dimension and open-set witnesses, the boundary dimension of tiles, and
+//! lacuna's automaton and model
 //! read back from a claim.
 
 use super::systems::{algebraic, rational, step_of_system, strings, system};
 use super::CertifyError;
 use crate::certificate::format::{
-    AttractorClaim, ConstraintFailsStep, ConstraintsHoldStep, ContractionStep, FieldCoords,
-    NeighbourFails, NeighbourHolds, NeighbourMap, NeighbourMaps, SimilarityPart, SimilarityStep,
+    AttractorClaim, BoundaryComponent, BoundaryPart, BoundaryState, BoundaryStep,
+    ConstraintFailsStep, ConstraintsHoldStep, ContractionStep, FieldCoords, NeighbourFails,
+    NeighbourHolds, NeighbourMap, NeighbourMaps, SimilarityPart, SimilarityStep,
 };
 use crate::certificate::format::{
     AutomatonClaim, AutomatonOperator, AutomatonState, Certificate, Claim, RuleCompilationStep,
@@ -336,6 +338,10 @@ pub fn certificate_for_model(
                 digits,
                 decimal: sd.decimal.clone(),
             }));
+            if let Some(b) = &attractor.boundary {
+                cert.steps
+                    .push(Step::BoundaryDimension(boundary_step(b, digits)));
+            }
         }
     }
     // A compiled rule, with or without the age and random extensions: the checker compiles its
@@ -345,6 +351,46 @@ pub fn certificate_for_model(
             .push(Step::RuleCompilation(RuleCompilationStep {}));
     }
     Ok(cert)
+}
+
+/// The boundary dimension of the tile parts as the step `boundary-dimension`.
+fn boundary_step(b: &crate::analysis::BoundaryDimension, digits: usize) -> BoundaryStep {
+    let mut decimals = b.states.iter().map(|s| s.decimal.clone());
+    BoundaryStep {
+        parts: b
+            .graphs
+            .iter()
+            .map(|g| BoundaryPart {
+                part: g.part,
+                maps: g
+                    .witness
+                    .as_ref()
+                    .and_then(|w| match neighbour_maps(&g.states, w) {
+                        NeighbourMaps::Holds(h) => Some(h),
+                        NeighbourMaps::Fails(_) => None,
+                    }),
+                components: g
+                    .components
+                    .iter()
+                    .map(|c| BoundaryComponent {
+                        nodes: c.nodes.clone(),
+                        classes: c.classes.clone(),
+                        u: algebraic(&c.u),
+                        rational: c.rational.as_ref().map(ToString::to_string),
+                    })
+                    .collect(),
+                states: g
+                    .dominant
+                    .iter()
+                    .map(|&component| BoundaryState {
+                        component,
+                        decimal: decimals.next().unwrap_or_default(),
+                    })
+                    .collect(),
+            })
+            .collect(),
+        digits,
+    }
 }
 
 fn lacuna_matrix(m: &[Vec<String>]) -> Result<crate::algebra::Matrix, CertifyError> {

@@ -223,14 +223,15 @@ pub(crate) fn part_verdict(
             },
         };
     }
-    let why = match neighbour_edges(k, part, &edges, frames, d) {
+    let why = match neighbour_system(m, ops, frames, part) {
         Err(why) => why,
-        Ok((coordinates, centres, kedges)) => {
-            let centres = attractor_centres(k, &centres, &kedges);
-            let (centres, kedges, scales) = match balance(k, &centres, &kedges) {
-                Some((c, e, x)) => (c, e, Some(x)),
-                None => (centres, kedges, None),
-            };
+        Ok(NeighbourSystem {
+            coordinates,
+            centres,
+            edges: kedges,
+            scales,
+            ..
+        }) => {
             match search(k, &centres, &kedges) {
             Search::Closed(closed) => {
                 return OpenSetVerdict {
@@ -274,12 +275,20 @@ pub(crate) fn part_verdict(
 }
 
 /// The coordinates of the part's neighbour-map search, exactly as [`part_verdict`] builds them
-/// (the same states' coordinates, centres and rescaling, so the same search): one centre per
-/// state of the part (in part order), the part's operators as similitudes between the states'
-/// coordinates, and the operator index of each. The boundary graph
-/// ([`crate::analysis::automata::boundary`]) runs the search on them; an `Err` says why it
-/// cannot.
-pub(crate) type NeighbourSystem = (Vec<Vec<FieldElement>>, Vec<KEdge>, Vec<usize>);
+/// (the same states' coordinates, centres and rescaling, so the same search). The boundary
+/// graph ([`crate::analysis::automata::boundary`]) runs the search on them.
+pub(crate) struct NeighbourSystem {
+    /// The kind of coordinates.
+    pub coordinates: Coordinates,
+    /// One centre per state of the part, in part order.
+    pub centres: Vec<Vec<FieldElement>>,
+    /// The part's operators as similitudes between the states' coordinates.
+    pub edges: Vec<KEdge>,
+    /// The operator index of each edge.
+    pub operators: Vec<usize>,
+    /// The scale of each state's coordinates, when rescaled ([`balance`]).
+    pub scales: Option<Vec<BigRational>>,
+}
 
 /// The part's [`NeighbourSystem`], or why there is none.
 pub(crate) fn neighbour_system(
@@ -309,13 +318,19 @@ pub(crate) fn neighbour_system(
         .iter()
         .map(|&(q, w, o)| (q, w, chart_map(k, &ops[o], d), o))
         .collect();
-    let (_, centres, kedges) = neighbour_edges(k, part, &edges, frames, d)?;
+    let (coordinates, centres, kedges) = neighbour_edges(k, part, &edges, frames, d)?;
     let centres = attractor_centres(k, &centres, &kedges);
-    let (centres, kedges) = match balance(k, &centres, &kedges) {
-        Some((c, e, _)) => (c, e),
-        None => (centres, kedges),
+    let (centres, edges, scales) = match balance(k, &centres, &kedges) {
+        Some((c, e, x)) => (c, e, Some(x)),
+        None => (centres, kedges, None),
     };
-    Ok((centres, kedges, raw.iter().map(|x| x.2).collect()))
+    Ok(NeighbourSystem {
+        coordinates,
+        centres,
+        edges,
+        operators: raw.iter().map(|x| x.2).collect(),
+        scales,
+    })
 }
 
 /// The operators `o: q ← w` with both ends in the strongly connected part `part` (sorted), as
