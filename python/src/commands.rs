@@ -13,7 +13,7 @@ use std::path::PathBuf;
 /// verdict, the page written to `path` too when given (never over the input). A closure that does
 /// not close is a page that says so (not verified), as on the command line.
 #[pyfunction]
-#[pyo3(signature = (input, level=3, path=None, params=Vec::new(), raster=2048, segments=4, max_cells=None, limits=None))]
+#[pyo3(signature = (input, level=3, path=None, params=Vec::new(), raster=2048, segments=4, max_cells=None, limits=None, corners=None, template=None, goals=Vec::new()))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn report(
     py: Python<'_>,
@@ -25,8 +25,12 @@ pub(crate) fn report(
     segments: usize,
     max_cells: Option<u64>,
     limits: Option<&Bound<'_, PyDict>>,
+    corners: Option<String>,
+    template: Option<PathBuf>,
+    goals: Vec<String>,
 ) -> PyResult<(String, bool)> {
-    let g = geo(input, level, params, segments, max_cells, limits)?;
+    let g =
+        geo(input, level, params, segments, max_cells, limits)?.choosing(corners, template, goals);
     run(py, move || {
         if !(16..=8192).contains(&raster) || !raster.is_power_of_two() {
             return Err(out_of_range(
@@ -37,7 +41,11 @@ pub(crate) fn report(
             ));
         }
         refuse_clobbering(&g.input, &[&path])?;
+        if let Some(t) = g.template.as_ref().and_then(|t| t.to_str()) {
+            refuse_clobbering(t, &[&path])?;
+        }
         let page = if let Some((name, v)) = lacuna::input::load_volume_file(&g.input)? {
+            g.faces_only("a volume is placed on its solid or on the corners its file gives")?;
             if !g.params.is_empty() {
                 return Err(Error::Usage(
                     "params apply to faces and automata; a volume is placed on its solid or on the corners its file gives".into(),
@@ -147,10 +155,11 @@ fn choice(
 
 /// `lacuna morph A B [--on INPUT]`: with `on`, A and B are parameter choices of those faces (a
 /// template file, else the exact values, none for the default fit); without, A and B are two
-/// automata of one shape. Returns the report (JSON), every frame's cells, and writes the
-/// animated SVG to `svg` when given.
+/// automata of one shape. Returns the report (JSON), every frame's cells and the files written:
+/// the animated SVG to `svg` and one PNG per frame to `png` (a pattern whose `{}` becomes the
+/// frame number), when given.
 #[pyfunction]
-#[pyo3(signature = (a=None, b=None, a_params=Vec::new(), b_params=Vec::new(), on=None, frames=9, level=2, size=512, seconds=0.5, svg=None, max_cells=200_000, limits=None))]
+#[pyo3(signature = (a=None, b=None, a_params=Vec::new(), b_params=Vec::new(), on=None, frames=9, level=2, size=512, seconds=0.5, svg=None, png=None, max_cells=200_000, limits=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn morph(
     py: Python<'_>,
@@ -164,9 +173,10 @@ pub(crate) fn morph(
     size: u32,
     seconds: f64,
     svg: Option<PathBuf>,
+    png: Option<String>,
     max_cells: u64,
     limits: Option<&Bound<'_, PyDict>>,
-) -> PyResult<(String, Vec<Frame>)> {
+) -> PyResult<(String, Vec<Frame>, Vec<PathBuf>)> {
     let l = self::limits(limits)?;
     run(py, move || {
         if !(2..=1000).contains(&frames) {
@@ -194,8 +204,16 @@ pub(crate) fn morph(
             ));
         }
         l.check_level(u64::from(level))?;
+        let pngs = match &png {
+            Some(p) => lacuna::export::morph_png_paths(p, frames, "png")?,
+            None => Vec::new(),
+        };
+        let outputs: Vec<Option<PathBuf>> = std::iter::once(svg.clone())
+            .chain(pngs.iter().cloned().map(Some))
+            .collect();
+        let outputs: Vec<&Option<PathBuf>> = outputs.iter().collect();
         for i in on.iter().chain(&a).chain(&b) {
-            refuse_clobbering(i, &[&svg])?;
+            refuse_clobbering(i, &outputs)?;
         }
         let (report, drawn) = match &on {
             Some(on) => {
@@ -211,7 +229,14 @@ pub(crate) fn morph(
                     size,
                     max_cells,
                     &l,
-                    |_, _| Ok(()),
+                    |k, inst| {
+                        if let Some(p) = pngs.get(k as usize) {
+                            write_file(p, |w| {
+                                lacuna::export::write_morph_png(inst, level, size, w)
+                            })?;
+                        }
+                        Ok(())
+                    },
                 )
                 .map_err(|e| e.into_error())?
             }
@@ -231,7 +256,14 @@ pub(crate) fn morph(
                     a.as_deref().unwrap_or_default(),
                     b.as_deref().unwrap_or_default()
                 );
-                lacuna::export::morph_automata(&name, &ma, &mb, frames, level, &l, |_, _| Ok(()))?
+                lacuna::export::morph_automata(&name, &ma, &mb, frames, level, &l, |k, ev| {
+                    if let Some(p) = pngs.get(k as usize) {
+                        write_file(p, |w| {
+                            lacuna::export::write_morph_automaton_png(ev, level, size, w)
+                        })?;
+                    }
+                    Ok(())
+                })?
             }
         };
         if let Some(p) = &svg {
@@ -239,6 +271,7 @@ pub(crate) fn morph(
                 lacuna::export::write_morph_svg(&report.name, &drawn, size, seconds, w)
             })?;
         }
+        let written = svg.into_iter().chain(pngs).collect();
         let cells = drawn
             .iter()
             .map(|(cells, _)| {
@@ -253,6 +286,6 @@ pub(crate) fn morph(
                 (types, offsets, xy, closed)
             })
             .collect();
-        Ok((json(&report), cells))
+        Ok((json(&report), cells, written))
     })
 }

@@ -21,6 +21,12 @@ pub(crate) struct Geo {
     pub(crate) segments: usize,
     pub(crate) max_cells: Option<u64>,
     pub(crate) limits: Limits,
+    /// The corners of a single face, as the command line's `--corners` reads them.
+    pub(crate) corners: Option<String>,
+    /// A template file to project instead of the default fit (`--template`).
+    pub(crate) template: Option<PathBuf>,
+    /// Inequality goals, as the command line's `--goal` reads them.
+    pub(crate) goals: Vec<String>,
 }
 
 impl Geo {
@@ -35,17 +41,48 @@ impl Geo {
                 "from 1 to 64",
             ));
         }
-        let input = load_input(&self.input)?;
+        let mut input = load_input(&self.input)?;
+        if let Some(c) = &self.corners {
+            lacuna::input::set_corners(&mut input.assembly, c)?;
+        }
         let mut opts = lacuna::geometry::InstantiateOptions {
             limits: self.limits.clone(),
             ..Default::default()
         };
         opts.degree = input.assembly.coords.degree().unwrap_or(opts.degree);
         opts.values = param_values(&self.params)?;
+        opts.choose(self.template.as_deref(), &self.goals, "goal")?;
         let inst = lacuna::geometry::instantiate(&input, &opts).map_err(geo_error)?;
         lacuna::measure::check_cells(&inst, self.level, self.max_cells.unwrap_or(default_cells))
             .map_err(geo_error)?;
         Ok(inst)
+    }
+
+    /// Refuses `corners`, `template` and `goal` (E0504) for an input that is not faces, saying
+    /// `instead` what that input takes.
+    pub(crate) fn faces_only(&self, instead: &str) -> Result<(), Error> {
+        if self.corners.is_some() || self.template.is_some() || !self.goals.is_empty() {
+            return Err(Error::Usage(format!(
+                "corners, template and goal apply to faces; {instead}"
+            )));
+        }
+        Ok(())
+    }
+
+    /// The same geometry with the parameter choice of faces beyond `params`: `corners`,
+    /// `template` and `goals`, read when the instance is built.
+    pub(crate) fn choosing(
+        self,
+        corners: Option<String>,
+        template: Option<PathBuf>,
+        goals: Vec<String>,
+    ) -> Self {
+        Geo {
+            corners,
+            template,
+            goals,
+            ..self
+        }
     }
 
     /// The automaton's model, resolved, contraction checked, ready to draw.
@@ -63,6 +100,9 @@ impl Geo {
         Error,
     > {
         self.limits.check_level(u64::from(self.level))?;
+        self.faces_only(
+            "an automaton takes its control points from its `points` line and its parameters from `param` lines and params",
+        )?;
         let (name, model) = match load_any(&self.input)? {
             Loaded::Automaton { name, model, .. } => (name, *model),
             Loaded::Faces(_) => {
@@ -100,14 +140,17 @@ pub(crate) fn geo(
         segments,
         max_cells,
         limits: self::limits(limits)?,
+        corners: None,
+        template: None,
+        goals: Vec::new(),
     })
 }
 
 /// Polygons of the level: `(types, offsets, coordinates)`: cell `i` has type `types[i]` and the
 /// points `offsets[i]..offsets[i+1]` of `coordinates` (x, y interleaved), full `f64` precision.
 #[pyfunction]
-#[pyo3(signature = (input, level, params=Vec::new(), segments=4, max_cells=None, limits=None))]
-#[allow(clippy::type_complexity)]
+#[pyo3(signature = (input, level, params=Vec::new(), segments=4, max_cells=None, limits=None, corners=None, template=None, goals=Vec::new()))]
+#[allow(clippy::type_complexity, clippy::too_many_arguments)]
 pub(crate) fn polygons(
     py: Python<'_>,
     input: String,
@@ -116,8 +159,12 @@ pub(crate) fn polygons(
     segments: usize,
     max_cells: Option<u64>,
     limits: Option<&Bound<'_, PyDict>>,
+    corners: Option<String>,
+    template: Option<PathBuf>,
+    goals: Vec<String>,
 ) -> PyResult<(Vec<usize>, Vec<usize>, Vec<f64>)> {
-    let g = geo(input, level, params, segments, max_cells, limits)?;
+    let g =
+        geo(input, level, params, segments, max_cells, limits)?.choosing(corners, template, goals);
     run(py, move || {
         let inst = g.instance(2_000_000)?;
         let (mut types, mut offsets, mut xy) = (Vec::new(), vec![0usize], Vec::new());
@@ -166,7 +213,7 @@ pub(crate) fn automaton_shapes(
 /// pixels wide), binary or ASCII STL (faces only; the solid is built and checked against the
 /// exact topology first). Returns the paths written.
 #[pyfunction]
-#[pyo3(signature = (input, level, params=Vec::new(), svg=None, png=None, stl=None, stl_ascii=false, size=1024, legend=true, transparent=false, width=None, thickness=None, segments=4, max_cells=None, limits=None))]
+#[pyo3(signature = (input, level, params=Vec::new(), svg=None, png=None, stl=None, stl_ascii=false, size=1024, legend=true, transparent=false, width=None, thickness=None, segments=4, max_cells=None, limits=None, corners=None, template=None, goals=Vec::new()))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn render(
     py: Python<'_>,
@@ -185,8 +232,12 @@ pub(crate) fn render(
     segments: usize,
     max_cells: Option<u64>,
     limits: Option<&Bound<'_, PyDict>>,
+    corners: Option<String>,
+    template: Option<PathBuf>,
+    goals: Vec<String>,
 ) -> PyResult<Vec<PathBuf>> {
-    let g = geo(input, level, params, segments, max_cells, limits)?;
+    let g =
+        geo(input, level, params, segments, max_cells, limits)?.choosing(corners, template, goals);
     run(py, move || {
         if svg.is_none() && png.is_none() && stl.is_none() {
             return Err(Error::Usage(
@@ -202,6 +253,9 @@ pub(crate) fn render(
             ));
         }
         refuse_clobbering(&g.input, &[&svg, &png, &stl])?;
+        if let Some(t) = g.template.as_ref().and_then(|t| t.to_str()) {
+            refuse_clobbering(t, &[&svg, &png, &stl])?;
+        }
         let mut wrote = Vec::new();
         if let Loaded::Automaton { .. } = load_any(&g.input)? {
             if stl.is_some() {
@@ -284,7 +338,7 @@ pub(crate) fn render(
 /// The measures of the level as `lacuna measure --json` prints them: of faces (with the
 /// printability at the level), or of an automaton's attractor.
 #[pyfunction]
-#[pyo3(signature = (input, level, params=Vec::new(), raster=2048, max_raster=8192, digits=30, width=None, resolution=None, segments=4, max_cells=None, limits=None))]
+#[pyo3(signature = (input, level, params=Vec::new(), raster=2048, max_raster=8192, digits=30, width=None, resolution=None, segments=4, max_cells=None, limits=None, corners=None, template=None, goals=Vec::new()))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn measure(
     py: Python<'_>,
@@ -299,8 +353,12 @@ pub(crate) fn measure(
     segments: usize,
     max_cells: Option<u64>,
     limits: Option<&Bound<'_, PyDict>>,
+    corners: Option<String>,
+    template: Option<PathBuf>,
+    goals: Vec<String>,
 ) -> PyResult<String> {
-    let g = geo(input, level, params, segments, max_cells, limits)?;
+    let g =
+        geo(input, level, params, segments, max_cells, limits)?.choosing(corners, template, goals);
     run(py, move || {
         let largest = lacuna::measure::LARGEST_RASTER;
         for (flag, r) in [("raster", raster), ("max_raster", max_raster)] {

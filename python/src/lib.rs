@@ -63,9 +63,11 @@ const LIMIT_KEYS: [&str; 9] = [
 
 /// A message as Python users raise its limits: the command line's `--max-level` is
 /// `limits={'max_level': …}` (the keyword every method takes), `--max-cells` the keyword
-/// `max_cells=…`; other text is unchanged.
+/// `max_cells=…`, `--corners` (in the library's message for several faces) `corners=…`; other
+/// text is unchanged.
 fn pythonic(message: &str) -> String {
     let message = message
+        .replace("--corners", "corners=…")
         .replace("--holes-level", "holes_level=…")
         .replace("--volume-levels", "volume_levels=…")
         .replace("--level (lower it)", "level=… (lower it)");

@@ -208,3 +208,68 @@ def test_a_frame_plots_its_cells():
     drawn = sum(len(c.get_paths()) for c in ax.collections)
     assert drawn == len(m.frames[1]) == f.counts(1)[1].faces
     assert "<table>" in m._repr_html_() and m._repr_html_().count("<tr>") == 3
+
+
+# ---------------------------------------------------------------------------------------------
+# morph: PNG frames
+
+
+def _png_size(data):
+    """(width, height) of a PNG: its signature, then the IHDR chunk first."""
+    assert data[:8] == b"\x89PNG\r\n\x1a\n" and data[12:16] == b"IHDR"
+    return tuple(int.from_bytes(data[i : i + 4], "big") for i in (16, 20))
+
+
+def test_morph_of_faces_writes_one_png_per_frame(cli, tmp_path):
+    f = lacuna.load("F0")
+    name = f.solve().parameters[0]
+    svg = tmp_path / "m.svg"
+    m = lacuna.morph(None, {name: 1}, on=f, frames=4, level=1, size=256, svg=svg, png=str(tmp_path / "frame-{}.png"))
+    # `{}` becomes the frame number in three digits, one file per frame and nothing else.
+    pngs = [tmp_path / f"frame-{k:03d}.png" for k in range(4)]
+    assert sorted(tmp_path.iterdir()) == sorted(pngs + [svg])
+    assert m.written == [svg] + pngs
+    for p in pngs:
+        assert _png_size(p.read_bytes())[0] == 256
+    # The ends are the pictures of the two choices, without the legend, as render draws them.
+    start, end = tmp_path / "start.png", tmp_path / "end.png"
+    f.render(1, png=start, size=256, legend=False)
+    f.render(1, png=end, size=256, legend=False, params={name: 1})
+    assert pngs[0].read_bytes() == start.read_bytes()
+    assert pngs[-1].read_bytes() == end.read_bytes() != start.read_bytes()
+    # The frames lacuna morph --png writes, byte for byte.
+    code, _ = cli("morph", "default", f"{name}=1", "--on", "F0", "--frames", 4, "--level", 1, "--size", 256, "--png", tmp_path / "cli-{}.png")
+    assert code == 0
+    for k, p in enumerate(pngs):
+        assert (tmp_path / f"cli-{k:03d}.png").read_bytes() == p.read_bytes(), k
+
+
+def test_morph_of_automata_writes_square_png_frames(cli, tmp_path):
+    # Two automata of one shape (the triangle twice): frames of size × size pixels.
+    a = tmp_path / "a.aut"
+    a.write_text(lacuna.library_text("sierpinski-triangle"))
+    m = lacuna.morph(lacuna.load("sierpinski-triangle"), a, frames=3, level=3, size=64, png=tmp_path / "t{}.png")
+    assert m.written == [tmp_path / f"t{k:03d}.png" for k in range(3)]
+    for p in m.written:
+        assert _png_size(p.read_bytes()) == (64, 64)
+    code, _ = cli("morph", "sierpinski-triangle", a, "--frames", 3, "--level", 3, "--size", 64, "--png", tmp_path / "c{}.png")
+    assert code == 0
+    for k, p in enumerate(m.written):
+        assert (tmp_path / f"c{k:03d}.png").read_bytes() == p.read_bytes(), k
+
+
+def test_morph_png_errors_speak_python(tmp_path):
+    f = lacuna.load("F0")
+    with pytest.raises(lacuna.UsageError) as e:
+        lacuna.morph(None, None, on=f, png=tmp_path / "x.png")
+    assert e.value.code == "E1401" and e.value.message.startswith("png `") and "--" not in e.value.message
+    assert not (tmp_path / "x.png").exists()
+    # A frame never overwrites an input, nor the SVG.
+    b = tmp_path / "b000.aut"
+    b.write_text(lacuna.library_text("sierpinski-triangle"))
+    with pytest.raises(lacuna.UsageError) as e:
+        lacuna.morph("sierpinski-triangle", b, frames=2, level=1, png=tmp_path / "b{}.aut")
+    assert e.value.code == "E0504" and b.read_text() == lacuna.library_text("sierpinski-triangle")
+    with pytest.raises(lacuna.UsageError) as e:
+        lacuna.morph(None, None, on=f, frames=2, level=1, svg=tmp_path / "f001.png", png=tmp_path / "f{}.png")
+    assert e.value.code == "E0504" and not list(tmp_path.glob("f*.png"))

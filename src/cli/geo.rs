@@ -45,41 +45,11 @@ pub(super) fn instance(
     // User control points fix the Bézier degree.
     opts.degree = input.assembly.coords.degree().unwrap_or(opts.degree);
     opts.values = param_values(&geo.params)?;
-    parameter_choice(geo, &mut opts)?;
+    opts.choose(geo.template.as_deref(), &geo.goals, "--goal")?;
     let inst = lacuna::geometry::instantiate(&input, &opts).map_err(geo_error)?;
     lacuna::measure::check_cells(&inst, geo.level, geo.max_cells.unwrap_or(default_cells))
         .map_err(geo_error)?;
     Ok((input, inst))
-}
-
-/// `--template` and `--goal` into the instantiation options.
-pub(super) fn parameter_choice(
-    geo: &GeoArgs,
-    opts: &mut lacuna::geometry::InstantiateOptions,
-) -> Result<(), Error> {
-    if let Some(path) = &geo.template {
-        let text = lacuna::input::read_text(&path.to_string_lossy())?;
-        opts.template = Some(lacuna::Source {
-            name: path.display().to_string(),
-            text,
-        });
-    }
-    for g in &geo.goals {
-        let goal = lacuna::geometry::parse_goal(g).ok_or_else(|| {
-            Error::syntax(
-                "E1030",
-                format!("--goal `{g}`: expected nonnegative, nonnegative=M or min-lacuna=S with exact M, S ≥ 0"),
-                lacuna::Span {
-                    line: 1,
-                    col: 1,
-                    len: g.chars().count().max(1),
-                },
-                Some(&lacuna::Source::command_line(g)),
-            )
-        })?;
-        opts.goals.push(goal);
-    }
-    Ok(())
 }
 
 /// How the parameters were chosen, when a template or goals were given or the automatic area

@@ -27,11 +27,6 @@ fn choice(arg: &str, limits: &Limits) -> Result<InstantiateOptions, Error> {
     Ok(opts)
 }
 
-/// The path of PNG frame `k` from the pattern.
-fn frame_path(pattern: &str, k: u32) -> std::path::PathBuf {
-    std::path::PathBuf::from(pattern.replace("{}", &format!("{k:03}")))
-}
-
 /// A and B as automata, when both are automaton files or library entries.
 fn two_automata(
     args: &MorphArgs,
@@ -56,17 +51,14 @@ fn automata(
     args: &MorphArgs,
     ma: lacuna::input::AutomatonModel,
     mb: lacuna::input::AutomatonModel,
+    pngs: &[std::path::PathBuf],
     limits: &Limits,
 ) -> Result<ExitCode, Error> {
-    let pngs: Vec<std::path::PathBuf> = match &args.png {
-        Some(p) => (0..args.frames).map(|k| frame_path(p, k)).collect(),
-        None => Vec::new(),
-    };
     let mut wanted: Vec<(&str, &std::path::Path)> = Vec::new();
     if let Some(s) = &args.svg {
         wanted.push(("--svg", s));
     }
-    for p in &pngs {
+    for p in pngs {
         wanted.push(("--png", p));
     }
     let inputs = [
@@ -84,8 +76,9 @@ fn automata(
         limits,
         |k, ev| {
             if let Some(p) = pngs.get(k as usize) {
-                let raster = lacuna::export::automaton_raster(ev, args.level, args.size as usize);
-                outputs.write(p, |w| lacuna::export::write_png(&raster, w))?;
+                outputs.write(p, |w| {
+                    lacuna::export::write_morph_automaton_png(ev, args.level, args.size, w)
+                })?;
             }
             Ok(())
         },
@@ -192,23 +185,13 @@ pub(super) fn run(args: MorphArgs, limits: &Limits) -> Result<ExitCode, Error> {
         });
     }
     limits.check_level(u64::from(args.level))?;
-    if let Some(p) = &args.png {
-        if !p.contains("{}") {
-            return Err(Error::syntax(
-                "E1401",
-                format!("--png `{p}`: the pattern needs `{{}}`, replaced by the frame number"),
-                lacuna::Span {
-                    line: 1,
-                    col: 1,
-                    len: p.chars().count().max(1),
-                },
-                Some(&lacuna::Source::command_line(p)),
-            ));
-        }
-    }
+    let pngs = match &args.png {
+        Some(p) => lacuna::export::morph_png_paths(p, args.frames, "--png")?,
+        None => Vec::new(),
+    };
     let Some(on) = &args.on else {
         if let Some((ma, mb)) = two_automata(&args)? {
-            return automata(&args, ma, mb, limits);
+            return automata(&args, ma, mb, &pngs, limits);
         }
         return Err(Error::syntax(
             "E1402",
@@ -220,10 +203,6 @@ pub(super) fn run(args: MorphArgs, limits: &Limits) -> Result<ExitCode, Error> {
             },
             Some(&lacuna::Source::command_line(&args.a)),
         ));
-    };
-    let pngs: Vec<std::path::PathBuf> = match &args.png {
-        Some(p) => (0..args.frames).map(|k| frame_path(p, k)).collect(),
-        None => Vec::new(),
     };
     let mut wanted: Vec<(&str, &std::path::Path)> = Vec::new();
     if let Some(s) = &args.svg {
@@ -242,11 +221,6 @@ pub(super) fn run(args: MorphArgs, limits: &Limits) -> Result<ExitCode, Error> {
     let input = load_input(on)?;
     let a = choice(&args.a, limits)?;
     let b = choice(&args.b, limits)?;
-    let picture = lacuna::export::PictureOptions {
-        width: args.size,
-        legend: false,
-        ..Default::default()
-    };
     let (report, frames) = lacuna::export::morph_faces(
         &input,
         &a,
@@ -260,7 +234,7 @@ pub(super) fn run(args: MorphArgs, limits: &Limits) -> Result<ExitCode, Error> {
             if let Some(p) = pngs.get(k as usize) {
                 outputs
                     .write(p, |w| {
-                        lacuna::export::write_png_picture(inst, args.level, &picture, w)
+                        lacuna::export::write_morph_png(inst, args.level, args.size, w)
                     })
                     .map_err(lacuna::geometry::GeometryError::Lacuna)?;
             }

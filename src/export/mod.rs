@@ -37,7 +37,10 @@ pub use classify::{classify_inputs, ClassifyOptions, ClassifyOutcome};
 pub use generated::{generated_text, GeneratedFormat};
 pub use html::{report_html, report_html_unverified};
 pub use moditere::moditere_text;
-pub use morph::{morph_automata, morph_faces, write_morph_svg, FrameCells, MorphFrames};
+pub use morph::{
+    morph_automata, morph_faces, morph_png_paths, write_morph_automaton_png, write_morph_png,
+    write_morph_svg, FrameCells, MorphFrames,
+};
 pub use operators::{
     design_report, operators_automaton, operators_report, DesignReport, OperatorsReport,
     OperatorsRequest,

@@ -225,6 +225,54 @@ pub fn morph_automata(
     Ok((report, drawn))
 }
 
+/// The paths of a morph's PNG frames: `pattern` with `{}` replaced by each frame number, three
+/// digits from `000`. E1401, naming `flag` (the command line's `--png`, Python's `png`), when the
+/// pattern has no `{}`.
+pub fn morph_png_paths(
+    pattern: &str,
+    frames: u32,
+    flag: &str,
+) -> Result<Vec<std::path::PathBuf>, Error> {
+    if !pattern.contains("{}") {
+        return Err(Error::syntax(
+            "E1401",
+            format!("{flag} `{pattern}`: the pattern needs `{{}}`, replaced by the frame number"),
+            crate::Span {
+                line: 1,
+                col: 1,
+                len: pattern.chars().count().max(1),
+            },
+            Some(&crate::Source::command_line(pattern)),
+        ));
+    }
+    Ok((0..frames)
+        .map(|k| pattern.replace("{}", &format!("{k:03}")).into())
+        .collect())
+}
+
+/// Writes one frame of a morph of faces as its PNG frame: the cells of `level`, `size` pixels
+/// wide, without the legend.
+pub fn write_morph_png<W: Write>(inst: &Instance, level: u32, size: u32, out: W) -> io::Result<()> {
+    let picture = crate::export::picture::PictureOptions {
+        width: size,
+        legend: false,
+        ..Default::default()
+    };
+    crate::export::bitmap::write_png_picture(inst, level, &picture, out)
+}
+
+/// Writes one frame of a morph of automata as its PNG frame: the pieces of `level` on a raster
+/// of `size` × `size` pixels.
+pub fn write_morph_automaton_png<W: Write>(
+    ev: &Evaluator,
+    level: u32,
+    size: u32,
+    out: W,
+) -> io::Result<()> {
+    let raster = crate::export::automaton_writer::automaton_raster(ev, level, size as usize);
+    crate::export::writer::write_png(&raster, out)
+}
+
 /// The discrete `values` and `keyTimes` that show frame `k` of `n` during [k/n, (k+1)/n).
 fn key_times(k: usize, n: usize) -> (String, String) {
     let t = |i: usize| format!("{}", i as f64 / n as f64);

@@ -141,6 +141,43 @@ pub struct InstantiateOptions {
     pub goals: Vec<crate::geometry::lp::Goal>,
 }
 
+impl InstantiateOptions {
+    /// Sets the parameter choice the command line takes as `--template` and `--goal` (Python as
+    /// `template` and `goal`): the template file at `template`, read as a source named by its
+    /// path, and each goal as [`parse_goal`](crate::geometry::parse_goal) reads it (E1030,
+    /// naming `goal_flag`, for one it does not).
+    pub fn choose(
+        &mut self,
+        template: Option<&std::path::Path>,
+        goals: &[String],
+        goal_flag: &str,
+    ) -> Result<(), crate::Error> {
+        if let Some(path) = template {
+            let text = crate::input::read_text(&path.to_string_lossy())?;
+            self.template = Some(crate::Source {
+                name: path.display().to_string(),
+                text,
+            });
+        }
+        for g in goals {
+            let goal = crate::geometry::lp::parse_goal(g).ok_or_else(|| {
+                crate::Error::syntax(
+                    "E1030",
+                    format!("{goal_flag} `{g}`: expected nonnegative, nonnegative=M or min-lacuna=S with exact M, S ≥ 0"),
+                    crate::Span {
+                        line: 1,
+                        col: 1,
+                        len: g.chars().count().max(1),
+                    },
+                    Some(&crate::Source::command_line(g)),
+                )
+            })?;
+            self.goals.push(goal);
+        }
+        Ok(())
+    }
+}
+
 impl Default for InstantiateOptions {
     fn default() -> Self {
         InstantiateOptions {

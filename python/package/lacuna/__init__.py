@@ -104,6 +104,10 @@ __all__ = [
 PathLike = Union[str, "os.PathLike[str]"]
 Limits = Optional[Mapping[str, int]]
 Params = Optional[Mapping[str, Union[str, int, Fraction]]]
+#: The corners of a single face: ``"X Y, X Y, …"`` as ``--corners`` reads it, or (x, y) pairs.
+Corners = Union[str, Sequence[Sequence[Union[str, int, Fraction]]], None]
+#: One goal (``"nonnegative"``, ``"nonnegative=M"``, ``"min-lacuna=S"``) or several.
+Goals = Union[str, Sequence[str], None]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -138,6 +142,22 @@ def _params(params: Params) -> List[Tuple[str, str]]:
             )
         out.append((str(k), str(v)))
     return out
+
+
+def _face_choice(corners: Corners, template: Optional[PathLike], goal: Goals) -> Dict[str, Any]:
+    """The parameter choice of faces beyond ``params`` as the native module's keywords: the
+    corners of a single face as the command line's ``--corners`` text (``"0 0, 1 0, 0 1"``, or
+    (x, y) pairs of exact values), a template file (``--template``) and the goals (``--goal``,
+    one or several)."""
+    if corners is not None and not isinstance(corners, str):
+        pairs = []
+        for pt in corners:
+            if any(isinstance(c, float) for c in pt):
+                raise UsageError("E0504", f"corner {tuple(pt)!r}: give exact values (a Fraction, an int or a string such as '1/7')")
+            pairs.append(" ".join(str(c) for c in pt))
+        corners = ", ".join(pairs)
+    goals = [] if goal is None else [goal] if isinstance(goal, str) else [str(g) for g in goal]
+    return {"corners": corners, "template": _path(template), "goals": goals}
 
 
 def _natural(name: str, value) -> int:
@@ -935,6 +955,9 @@ class Structure(_Operators):
         width: Optional[float] = None,
         thickness: Optional[float] = None,
         params: Params = None,
+        corners: Corners = None,
+        template: Optional[PathLike] = None,
+        goal: Goals = None,
         segments: int = 4,
         max_cells: Optional[int] = None,
         limits: Limits = None,
@@ -942,12 +965,17 @@ class Structure(_Operators):
         """Instantiates the verified model (default parameters, or ``params`` {name: exact value})
         and returns the polygons of level ``level`` as NumPy arrays; writes an SVG, a PNG (``size``
         pixels wide) and a printable STL (``width``/``thickness`` in mm; checked against the exact
-        topology before writing) when their paths are given."""
+        topology before writing) when their paths are given. As ``lacuna render``'s
+        ``--corners``, ``--template`` and ``--goal``: ``corners`` places a single face (``"X Y,
+        X Y, …"`` or (x, y) pairs, exact, counter-clockwise), ``template`` is a template file
+        projected exactly instead of the default fit, ``goal`` one inequality goal or several
+        (``"nonnegative"``, ``"nonnegative=M"``, ``"min-lacuna=S"``) met through an LP."""
         import numpy as np
 
         p = _params(params)
         lim = _limits(limits)
-        types, offsets, xy = _lacuna.polygons(self.source, int(level), p, int(segments), max_cells, lim)
+        chosen = _face_choice(corners, template, goal)
+        types, offsets, xy = _lacuna.polygons(self.source, int(level), p, int(segments), max_cells, lim, **chosen)
         pts = np.asarray(xy, dtype=float).reshape(-1, 2)
         polygons = [pts[offsets[i] : offsets[i + 1]] for i in range(len(types))]
         written: List[Path] = []
@@ -970,10 +998,20 @@ class Structure(_Operators):
                     int(segments),
                     max_cells,
                     lim,
+                    **chosen,
                 )
             ]
         picture = lambda lv, png, size: self.render(  # noqa: E731
-            lv, png=png, size=size, params=params, segments=segments, max_cells=max_cells, limits=limits
+            lv,
+            png=png,
+            size=size,
+            params=params,
+            corners=corners,
+            template=template,
+            goal=goal,
+            segments=segments,
+            max_cells=max_cells,
+            limits=limits,
         )
         return Rendering(
             polygons=polygons, types=np.asarray(types, dtype=int), written=written, _render=picture, _level=int(level)
@@ -1000,6 +1038,9 @@ class Structure(_Operators):
         level: int,
         *,
         params: Params = None,
+        corners: Corners = None,
+        template: Optional[PathLike] = None,
+        goal: Goals = None,
         raster: int = 2048,
         max_raster: int = 8192,
         width: Optional[float] = None,
@@ -1010,7 +1051,8 @@ class Structure(_Operators):
     ) -> Record:
         """Area, perimeter, F_A, F_P, box-counting dimension, density, holes and components per
         level against the exact counts (``.verified``), and the printability at the level, as
-        ``lacuna measure --json`` reports them."""
+        ``lacuna measure --json`` reports them; the parameters chosen by ``params``, ``corners``,
+        ``template`` and ``goal`` as in :meth:`render`."""
         return Record(
             json.loads(
                 _lacuna.measure(
@@ -1025,6 +1067,7 @@ class Structure(_Operators):
                     int(segments),
                     max_cells,
                     _limits(limits),
+                    **_face_choice(corners, template, goal),
                 )
             )
         )
@@ -1036,6 +1079,9 @@ class Structure(_Operators):
         level: int = 3,
         *,
         params: Params = None,
+        corners: Corners = None,
+        template: Optional[PathLike] = None,
+        goal: Goals = None,
         raster: int = 2048,
         segments: int = 4,
         max_cells: Optional[int] = None,
@@ -1044,12 +1090,13 @@ class Structure(_Operators):
         """The self-contained HTML report ``lacuna report`` writes: the verdict line, the
         verification (levels 0 to ``level``, at least 5), pictures of levels 0 to ``level`` and
         the measures (``raster`` pixels for box counting, ``segments`` per Bézier edge; at most
-        ``max_cells`` cells, 200 000 by default). Written to ``path`` (never over the input),
-        which is returned; with ``path`` None the HTML text is returned instead. A closure that
-        does not close is a page that says so."""
+        ``max_cells`` cells, 200 000 by default), the parameters chosen by ``params``,
+        ``corners``, ``template`` and ``goal`` as in :meth:`render`. Written to ``path`` (never
+        over the input or the template), which is returned; with ``path`` None the HTML text is
+        returned instead. A closure that does not close is a page that says so."""
         from ._commands import _report
 
-        return _report(self.source, path, level, params, raster, segments, max_cells, limits)
+        return _report(self.source, path, level, params, raster, segments, max_cells, limits, _face_choice(corners, template, goal))
 
 
 def _path(p: Optional[PathLike]) -> Optional[str]:

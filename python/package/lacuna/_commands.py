@@ -31,9 +31,11 @@ def _report(
     segments: int,
     max_cells: Optional[int],
     limits: Limits,
+    choice: Optional[Dict[str, Any]] = None,
 ) -> Union[Path, str]:
     """The HTML page of ``lacuna report`` of ``source``: written to ``path`` (returned as a
-    :class:`~pathlib.Path`), or returned as text when ``path`` is None."""
+    :class:`~pathlib.Path`), or returned as text when ``path`` is None; ``choice`` holds the
+    keywords of faces' ``corners``, ``template`` and ``goals`` (``lacuna._face_choice``)."""
     html, _verified = _lacuna.report(
         source,
         _natural("level", level),
@@ -43,6 +45,7 @@ def _report(
         _natural("segments", segments),
         max_cells,
         _limits(limits),
+        **(choice or {}),
     )
     return html if path is None else Path(os.fspath(path))
 
@@ -316,6 +319,7 @@ def morph(
     size: int = 512,
     seconds: float = 0.5,
     svg: Optional[PathLike] = None,
+    png: Optional[str] = None,
     max_cells: int = 200_000,
     limits: Limits = None,
 ) -> Morph:
@@ -328,14 +332,16 @@ def morph(
     ``size`` pixels against the exact counts (at most ``max_cells`` cells a frame). Without
     ``on``, ``a`` and ``b`` are two automata of one shape (Automaton objects or sources), moved
     operator by operator. The animated SVG (``size`` pixels wide, ``seconds`` a frame) is
-    written to ``svg`` when given."""
+    written to ``svg`` when given, and one PNG per frame (``size`` pixels wide, as ``lacuna morph
+    --png``) when ``png`` is a pattern: its ``{}`` becomes the frame number, three digits from
+    ``000`` (``"frame-{}.png"``). Neither overwrites an input; ``written`` lists the files."""
     import numpy as np
 
     if on is None:
         ta, va, tb, vb = _source(a), [], _source(b), []
     else:
         (ta, va), (tb, vb) = _choice(a), _choice(b)
-    report, cells = _lacuna.morph(
+    report, cells, written = _lacuna.morph(
         ta,
         tb,
         va,
@@ -346,6 +352,7 @@ def morph(
         _natural("size", size),
         float(seconds),
         _path(svg),
+        png if png is None else os.fspath(png),
         _natural("max_cells", max_cells),
         _limits(limits),
     )
@@ -376,5 +383,5 @@ def morph(
         frames=out,
         verified=bool(d["verified"]),
         first_failure=d.get("first_failure"),
-        written=[] if svg is None else [Path(os.fspath(svg))],
+        written=[Path(w) for w in written],
     )

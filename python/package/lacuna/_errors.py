@@ -38,8 +38,8 @@ class LacunaError(Exception):
 
 class InputError(LacunaError, ValueError):
     """A text that cannot be read: face notation, an assembly, AutoFrac2D, automaton, template or
-    volume or rule file, a parameter value (codes E01xx, E02xx, E03xx, E07xx, E09xx, E1007, E102x,
-    E12xx, E13xx)."""
+    volume or rule file, a parameter value, a goal (codes E01xx, E02xx, E03xx, E07xx, E09xx,
+    E1007, E102x, E1030, E12xx, E13xx)."""
 
 
 class FileError(LacunaError, OSError):
@@ -57,8 +57,8 @@ class RunawayError(LacunaError):
 
 
 class UsageError(LacunaError, ValueError):
-    """Arguments that do not fit the input or each other (E0504), or a value outside the range a
-    keyword accepts (E0503)."""
+    """Arguments that do not fit the input or each other (E0504), a value outside the range a
+    keyword accepts (E0503), or a PNG pattern of :func:`~lacuna.morph` without ``{}`` (E1401)."""
 
 
 class AnalysisError(LacunaError):
@@ -77,13 +77,13 @@ def error_class(code: str) -> type:
         return LimitError
     if code == "E0502":
         return RunawayError
-    if code in ("E0503", "E0504"):
+    if code in ("E0503", "E0504", "E1401"):
         return UsageError
     if code in ("E0601", "E0602", "E1005"):
         return FileError
     if code in ("E0401", "E0801"):
         return AnalysisError
-    if code == "E1007" or code.startswith("E102") or code[:3] in ("E01", "E02", "E03", "E07", "E09", "E12", "E13"):
+    if code in ("E1007", "E1030") or code.startswith("E102") or code[:3] in ("E01", "E02", "E03", "E07", "E09", "E12", "E13"):
         return InputError
     if code.startswith("E1"):
         return GeometryError

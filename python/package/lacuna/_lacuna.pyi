@@ -61,8 +61,12 @@ def polygons(
     segments: int = 4,
     max_cells: Optional[int] = None,
     limits: _Limits = None,
+    corners: Optional[str] = None,
+    template: Optional[str] = None,
+    goals: List[str] = ...,
 ) -> Tuple[List[int], List[int], List[float]]:
-    """(types, offsets, interleaved x y coordinates) of the cells of the level."""
+    """(types, offsets, interleaved x y coordinates) of the cells of the level; faces placed by
+    `corners` and chosen by `template` and `goals` (`--corners`, `--template`, `--goal`)."""
 
 def automaton_shapes(
     input: str,
@@ -89,6 +93,9 @@ def render(
     segments: int = 4,
     max_cells: Optional[int] = None,
     limits: _Limits = None,
+    corners: Optional[str] = None,
+    template: Optional[str] = None,
+    goals: List[str] = ...,
 ) -> List[Path]:
     """Writes the files asked for; returns their paths."""
 
@@ -104,6 +111,9 @@ def measure(
     segments: int = 4,
     max_cells: Optional[int] = None,
     limits: _Limits = None,
+    corners: Optional[str] = None,
+    template: Optional[str] = None,
+    goals: List[str] = ...,
 ) -> str:
     """The measures, as `lacuna measure --json`."""
 
@@ -237,6 +247,9 @@ def report(
     segments: int = 4,
     max_cells: Optional[int] = None,
     limits: _Limits = None,
+    corners: Optional[str] = None,
+    template: Optional[str] = None,
+    goals: List[str] = ...,
 ) -> Tuple[str, bool]:
     """`lacuna report INPUT --out PATH`: the HTML page of faces, an automaton or volumes and its
     verdict; written to `path` too when given."""
@@ -263,8 +276,10 @@ def morph(
     size: int = 512,
     seconds: float = 0.5,
     svg: Optional[str] = None,
+    png: Optional[str] = None,
     max_cells: int = 200000,
     limits: _Limits = None,
-) -> Tuple[str, List[Tuple[List[int], List[int], List[float], List[bool]]]]:
-    """`lacuna morph A B [--on INPUT] --json` and every frame's cells (types, point offsets,
-    x/y interleaved, closed); the animated SVG written to `svg` when given."""
+) -> Tuple[str, List[Tuple[List[int], List[int], List[float], List[bool]]], List[Path]]:
+    """`lacuna morph A B [--on INPUT] --json`, every frame's cells (types, point offsets, x/y
+    interleaved, closed) and the files written: the animated SVG to `svg`, one PNG per frame to
+    the pattern `png` (`{}` the frame number) when given."""
