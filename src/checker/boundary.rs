@@ -44,7 +44,8 @@ use super::field::{self, Root, P};
 use super::ifs::{instance, Checked, Field};
 use super::neighbour::{refinements, Refinements};
 use super::similarity::{
-    check_digits, frames, part_polynomial, part_value, rational_value, roots_in, PartValue,
+    check_digits, frames, part_polynomial, part_value, rational_value, roots_in, states_label,
+    PartValue,
 };
 use super::Q;
 use crate::certificate::{AutomatonClaim, BoundaryComponent, NeighbourMaps, SimilarityStep};
@@ -86,11 +87,7 @@ pub(super) fn check_boundary(
         last = Some(bp.part);
         let members = &parts[bp.part];
         let sp = &sim.parts[bp.part];
-        let label = members
-            .iter()
-            .map(|&q| a.states[q].name.as_str())
-            .collect::<Vec<_>>()
-            .join(", ");
+        let label = states_label(a, members);
         let fail = |e: String| format!("part {{{label}}}: {e}");
         let (value, inside) = part_value(&k, a, &g, &ops, &frames, members, sp)?;
         if value.rational != Some(Q::from_integer(2.into())) {

@@ -284,6 +284,29 @@ struct Part<'a> {
     d: usize,
 }
 
+impl<'a> Part<'a> {
+    /// The part, its frames and operators checked fit for charts ([`charts`]).
+    fn new(
+        k: &'a Field,
+        a: &'a AutomatonClaim,
+        ops: &'a [KMat],
+        frames: &'a [Option<KMat>],
+        members: &'a [usize],
+        inside: &'a [usize],
+    ) -> Result<Self, String> {
+        let d = charts(k, a, ops, frames, members, inside)?;
+        Ok(Part {
+            k,
+            a,
+            ops,
+            frames,
+            members,
+            inside,
+            d,
+        })
+    }
+}
+
 /// Checks a part's neighbour-map witness (module doc), with the graph of refinements when it
 /// holds. `inside` lists the part's operators, increasing.
 pub(super) fn check_neighbour_maps(
@@ -295,16 +318,7 @@ pub(super) fn check_neighbour_maps(
     inside: &[usize],
     w: &NeighbourMaps,
 ) -> Result<(Decided, Option<Refinements>), String> {
-    let d = charts(k, a, ops, frames, members, inside)?;
-    let part = Part {
-        k,
-        a,
-        ops,
-        frames,
-        members,
-        inside,
-        d,
-    };
+    let part = Part::new(k, a, ops, frames, members, inside)?;
     match w {
         NeighbourMaps::Fails(f) => check_fails(&part, f).map(|d| (d, None)),
         NeighbourMaps::Holds(h) => check_holds(&part, h).map(|(d, r)| (d, Some(r))),
@@ -322,17 +336,7 @@ pub(super) fn refinements(
     inside: &[usize],
     h: &NeighbourHolds,
 ) -> Result<Refinements, String> {
-    let d = charts(k, a, ops, frames, members, inside)?;
-    let part = Part {
-        k,
-        a,
-        ops,
-        frames,
-        members,
-        inside,
-        d,
-    };
-    check_holds(&part, h).map(|(_, r)| r)
+    check_holds(&Part::new(k, a, ops, frames, members, inside)?, h).map(|(_, r)| r)
 }
 
 fn check_fails(part: &Part, f: &NeighbourFails) -> Result<Decided, String> {

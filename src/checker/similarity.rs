@@ -178,6 +178,15 @@ enum OpenSet {
     Fails(String, String),
 }
 
+/// The names of a part's states, comma-separated.
+pub(super) fn states_label(a: &AutomatonClaim, members: &[usize]) -> String {
+    members
+        .iter()
+        .map(|&q| a.states[q].name.as_str())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// A part checked with its open-set witness.
 fn check_part(
     k: &Field,
@@ -189,13 +198,7 @@ fn check_part(
     p: &SimilarityPart,
 ) -> Result<(PartValue, OpenSet), String> {
     let (value, inside) = part_value(k, a, g, ops, frames, members, p)?;
-    let label = || {
-        members
-            .iter()
-            .map(|&q| a.states[q].name.as_str())
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
+    let label = || states_label(a, members);
     let open_set = match (&p.open_set, &p.neighbour_maps) {
         (None, None) => OpenSet::Unproved,
         (Some(sets), None) => {
@@ -233,13 +236,7 @@ pub(super) fn part_value(
     members: &[usize],
     p: &SimilarityPart,
 ) -> Result<(PartValue, Vec<usize>), String> {
-    let label = || {
-        members
-            .iter()
-            .map(|&q| a.states[q].name.as_str())
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
+    let label = || states_label(a, members);
     let sigma = k.element(&p.sigma)?;
     if k.sign(&sigma)? <= 0 || k.sign(&k.sub(&sigma, &Field::rational(Q::one())))? >= 0 {
         return Err(format!("part {{{}}}: σ is not in (0, 1)", label()));
@@ -645,12 +642,7 @@ fn hausdorff(
     open_sets: &[OpenSet],
     decimal: &str,
 ) -> String {
-    let label = |m: &[usize]| {
-        m.iter()
-            .map(|&q| a.states[q].name.as_str())
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
+    let label = |m: &[usize]| states_label(a, m);
     let fails: Vec<String> = open_sets
         .iter()
         .zip(parts)
