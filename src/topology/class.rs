@@ -6,6 +6,9 @@
 //! lengths of its cycles. petgraph has no periodicity routine, so the period is computed here by
 //! the classical BFS argument: with `level` the BFS depth from any member, the period is the gcd of
 //! `level(u) + 1 − level(v)` over the arcs `u → v` inside the class.
+//!
+//! [`strong_components`] numbers the components of any successor-list graph; the limit valences
+//! and the automata analyses (cyclic parts, the boundary graph) use it too.
 
 use num_integer::Integer;
 use petgraph::graph::{DiGraph, NodeIndex};
