@@ -1,7 +1,8 @@
 // Meshes of 3D automata (issue #14, brief autofin): `render X.aut --stl/--3mf` writes the open
 // surface of the polygon leaves, and with `--thickness T` a closed shell. The written files are
-// read back with readers that are not the writers (`stl_io`; `zip` and a minimal XML scan) and
-// their combinatorics counted here, independently of `lacuna::mesh::check`.
+// read back with readers that are not the writers (`stl_io`; `zip` and a minimal XML scan, in
+// tests/common/mesh_files.rs) and their combinatorics counted here, independently of
+// `lacuna::mesh::check`.
 //
 // Hand counts for fixtures/quad-patch-3d.aut at level 3: 4³ = 64 quad leaves on an 8 × 8 grid of
 // the parameter square, so 9 × 9 = 81 distinct corners, 2 · 64 = 128 triangles (a fan of two per
@@ -12,26 +13,18 @@
 
 mod common;
 use common::lacuna;
+use common::mesh_files::{cross, model_xml, Read3};
 use std::collections::HashMap;
-use std::io::{Cursor, Read};
 
-struct Mesh {
-    vertices: Vec<[f32; 3]>,
-    triangles: Vec<[usize; 3]>,
-}
-
-fn read_stl(path: &std::path::Path) -> Mesh {
+/// Reads back the STL at `path` (which need not be closed).
+fn read_stl(path: &std::path::Path) -> Read3 {
     let bytes = std::fs::read(path).expect("the STL was written");
-    let m = stl_io::read_stl(&mut Cursor::new(bytes)).expect("stl_io reads it");
-    Mesh {
-        vertices: m.vertices.iter().map(|v| v.0).collect(),
-        triangles: m.faces.iter().map(|f| f.vertices).collect(),
-    }
+    common::mesh_files::read_stl(&bytes, &path.display().to_string())
 }
 
 /// Directed edge counts: (edges in one triangle, edges in two with opposite directions, edges
 /// traversed twice the same way or in more than two triangles).
-fn edges(m: &Mesh) -> (usize, usize, usize) {
+fn edges(m: &Read3) -> (usize, usize, usize) {
     let mut dir: HashMap<(usize, usize), usize> = HashMap::new();
     for t in &m.triangles {
         for k in 0..3 {
@@ -58,7 +51,7 @@ fn edges(m: &Mesh) -> (usize, usize, usize) {
     (one, two, bad)
 }
 
-fn signed_volume(m: &Mesh) -> f64 {
+fn signed_volume(m: &Read3) -> f64 {
     m.triangles
         .iter()
         .map(|t| {
@@ -70,32 +63,19 @@ fn signed_volume(m: &Mesh) -> f64 {
         / 6.0
 }
 
-fn area(m: &Mesh) -> f64 {
+fn area(m: &Read3) -> f64 {
     m.triangles
         .iter()
         .map(|t| {
-            let [a, b, c] = t.map(|v| m.vertices[v].map(f64::from));
-            let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-            let w = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-            let n = [
-                u[1] * w[2] - u[2] * w[1],
-                u[2] * w[0] - u[0] * w[2],
-                u[0] * w[1] - u[1] * w[0],
-            ];
+            let n = cross(t.map(|v| m.vertices[v].map(f64::from)));
             (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt() / 2.0
         })
         .sum()
 }
 
-fn dir(tag: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("lacuna-autmesh-{tag}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
 #[test]
 fn the_open_patch_is_a_disc_and_its_shell_a_sphere() {
-    let d = dir("shell");
+    let d = common::scratch("autmesh-shell");
     let open = d.join("open.stl");
     let shell = d.join("shell.stl");
     let (code, _, err) = lacuna(&[
@@ -178,7 +158,7 @@ fn the_open_patch_is_a_disc_and_its_shell_a_sphere() {
 fn the_3mf_and_obj_shells_have_the_same_counts() {
     // Level 4: 16 × 16 quads, 17² = 289 corners, 512 triangles, 64 boundary edges; the shell has
     // 578 vertices and 2 · 512 + 2 · 64 = 1152 triangles.
-    let d = dir("3mf");
+    let d = common::scratch("autmesh-3mf");
     let mf = d.join("p.3mf");
     let obj = d.join("p.obj");
     let (code, _, err) = lacuna(&[
@@ -194,12 +174,7 @@ fn the_3mf_and_obj_shells_have_the_same_counts() {
         obj.to_str().unwrap(),
     ]);
     assert_eq!(code, 0, "{err}");
-    let mut z = zip::ZipArchive::new(Cursor::new(std::fs::read(&mf).unwrap())).unwrap();
-    let mut model = String::new();
-    z.by_name("3D/3dmodel.model")
-        .unwrap()
-        .read_to_string(&mut model)
-        .unwrap();
+    let model = model_xml(&std::fs::read(&mf).unwrap());
     assert!(model.contains(r#"unit="millimeter""#));
     assert_eq!(model.matches("<vertex ").count(), 578);
     assert_eq!(model.matches("<triangle ").count(), 1152);
@@ -221,7 +196,7 @@ fn an_automaton_without_polygons_has_no_mesh() {
 #[test]
 #[ignore]
 fn admesh_finds_the_shell_closed() {
-    let d = dir("admesh");
+    let d = common::scratch("autmesh-admesh");
     let shell = d.join("shell.stl");
     let (code, _, err) = lacuna(&[
         "render",
@@ -265,7 +240,7 @@ fn exact_and_tolerance_identities_agree_on_the_patch() {
 /// file. The open surface is no solid: `--claims` without `--thickness` is refused (exit 2).
 #[test]
 fn a_shell_checks_with_the_claims_render_writes() {
-    let d = dir("claims");
+    let d = common::scratch("autmesh-claims");
     let (stl, claims) = (d.join("patch.stl"), d.join("patch.json"));
     let p = |x: &std::path::Path| x.to_string_lossy().to_string();
     let (code, out, err) = lacuna(&[
@@ -321,7 +296,7 @@ fn a_shell_checks_with_the_claims_render_writes() {
 /// resolution, `--strict` fails with E1042 (exit 1) and nothing is written.
 #[test]
 fn the_shells_wall_bound_is_its_thickness_and_strict_refuses_a_thin_one() {
-    let d = dir("walls");
+    let d = common::scratch("autmesh-walls");
     let stl = d.join("patch.stl").to_string_lossy().to_string();
     let (code, out, err) = lacuna(&[
         "render",
@@ -368,8 +343,8 @@ fn the_shells_wall_bound_is_its_thickness_and_strict_refuses_a_thin_one() {
 /// then narrower. A shell wider than the width is refused.
 #[test]
 fn the_width_is_the_printed_shell_s_extent() {
-    let d = dir("width");
-    let extent = |m: &Mesh| {
+    let d = common::scratch("autmesh-width");
+    let extent = |m: &Read3| {
         let xs = m.vertices.iter().map(|v| f64::from(v[0]));
         xs.clone().fold(f64::MIN, f64::max) - xs.fold(f64::MAX, f64::min)
     };

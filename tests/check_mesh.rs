@@ -5,15 +5,6 @@
 
 mod common;
 use common::{lacuna, number_after};
-use std::path::PathBuf;
-
-/// A fresh folder for one test's files.
-fn folder(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("lacuna-check-mesh-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 fn s(p: &std::path::Path) -> String {
     p.display().to_string()
@@ -44,7 +35,7 @@ fn check_json(args: &[&str]) -> (i32, serde_json::Value) {
 
 #[test]
 fn a_face_mesh_checks_with_its_claims() {
-    let d = folder("face");
+    let d = common::scratch("check-mesh-face");
     let (stl, claims) = (d.join("f0.stl"), d.join("f0.json"));
     let (code, out, err) = lacuna(&[
         "render",
@@ -88,7 +79,7 @@ fn a_face_mesh_checks_with_its_claims() {
 
 #[test]
 fn a_volume_mesh_checks_as_stl_and_3mf() {
-    let d = folder("volume");
+    let d = common::scratch("check-mesh-volume");
     let (stl, mf, claims) = (d.join("c.stl"), d.join("c.3mf"), d.join("c.json"));
     let (code, out, err) = lacuna(&[
         "render",
@@ -144,7 +135,7 @@ fn a_volume_mesh_checks_as_stl_and_3mf() {
 
 #[test]
 fn a_truncated_stl_is_bad_input_and_a_flipped_triangle_fails_naming_its_edge() {
-    let d = folder("broken");
+    let d = common::scratch("check-mesh-broken");
     let stl = d.join("f0.stl");
     let (code, _, err) = lacuna(&["render", "F0", "--level", "1", "--stl", &s(&stl)]);
     assert_eq!(code, 0, "{err}");
@@ -198,7 +189,7 @@ fn a_truncated_stl_is_bad_input_and_a_flipped_triangle_fails_naming_its_edge() {
 
 #[test]
 fn claims_need_a_mesh() {
-    let d = folder("claims");
+    let d = common::scratch("check-mesh-claims");
     let c = d.join("c.json");
     let (code, _, err) = lacuna(&[
         "render",

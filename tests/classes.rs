@@ -312,15 +312,9 @@ fn lacuna_template(dir: &std::path::Path, name: &str, factor: f64) -> String {
     path.to_str().unwrap().to_string()
 }
 
-fn scratch(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("lacuna-classes-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 #[test]
 fn morph_between_two_templates_of_f0_keeps_every_frame_verified() {
-    let dir = scratch("morph");
+    let dir = common::scratch("classes-morph");
     let a = lacuna_template(&dir, "a.txt", 1.0);
     let b = lacuna_template(&dir, "b.txt", 0.5);
     let svg = dir.join("m.svg");
@@ -380,7 +374,7 @@ fn morph_through_a_collapse_fails_at_the_frame_where_it_happens() {
     // t = 1/2 targets every lacuna point at the centre: the exact projection is affine in the
     // targets, so that frame's lacunas have no width. Frames 0 and 1 (t = 1/4: lacunas at half
     // size) stay verified; frame 2 is the first to fail.
-    let dir = scratch("collapse");
+    let dir = common::scratch("classes-collapse");
     let a = lacuna_template(&dir, "a.txt", 1.0);
     let b = lacuna_template(&dir, "b.txt", -1.0);
     let (code, out, err) = lacuna(&[
@@ -421,7 +415,7 @@ fn morph_between_two_automata_of_one_shape() {
     // [1/3, 1], columns B(1/3), (2/3)P1 + (1/3)P2, P2. The constraints are linear in the
     // operators (T0·B1 = T1·B0 holds at both ends), so every frame satisfies them; each frame's
     // cycles are triangular with diagonals in (0, 1], so they contract.
-    let dir = scratch("automata");
+    let dir = common::scratch("classes-automata");
     let text = std::fs::read_to_string(
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/de-casteljau-edge.aut"),
     )

@@ -683,36 +683,16 @@ fn change(leaf: &mut serde_json::Value, how: usize) {
 }
 
 fn small_face() -> impl Strategy<Value = lacuna::topology::Face> {
-    let edge = (
-        prop_oneof![
-            Just(lacuna::topology::EdgeKind::B),
-            Just(lacuna::topology::EdgeKind::C)
-        ],
-        2u32..=3,
-        prop_oneof![4 => Just(1u32), 1 => Just(2u32)],
-    )
-        .prop_map(|(k, n, d)| lacuna::topology::EdgeType::new(k, n).delayed(d));
-    let param = prop_oneof![
-        Just(lacuna::topology::EdgeKind::B),
-        Just(lacuna::topology::EdgeKind::C)
-    ]
-    .prop_map(|k| lacuna::topology::EdgeType::new(k, 2));
-    (
-        proptest::collection::vec(edge, 1..=3),
-        (param.clone(), param.clone(), param),
+    common::strategies::face(
+        common::strategies::edge(2..=3, prop_oneof![4 => Just(1u32), 1 => Just(2u32)]),
+        1..=3,
+        common::strategies::edge(2..=2, Just(1u32)),
         prop_oneof![
             Just(lacuna::topology::Algorithm::a1()),
             Just(lacuna::topology::Algorithm::a2())
         ],
+        Just(1u32),
     )
-        .prop_map(
-            |(boundary, (ea, el, ec), algorithm)| lacuna::topology::Face {
-                boundary,
-                params: lacuna::topology::Params { ea, el, ec },
-                algorithm,
-                delay: 1,
-            },
-        )
 }
 
 proptest! {

@@ -6,16 +6,8 @@
 
 mod common;
 use common::lacuna;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Stdio};
-
-/// A fresh temporary folder for one test.
-fn folder(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("lacuna-hardening-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 /// Runs the binary in `dir` with `stdin` as standard input: (exit code, stdout bytes, stderr).
 fn run_in(dir: &Path, args: &[&str], stdin: &[u8]) -> (i32, Vec<u8>, String) {
@@ -53,7 +45,7 @@ fn names(dir: &Path) -> Vec<String> {
 
 #[test]
 fn hardening_03_one_edge_face_is_refused_by_every_command_that_places_it() {
-    let d = folder("03");
+    let d = common::scratch("hardening-03");
     let face = "B2 | B2 C2 C2 | A1";
     let svg = s(&d.join("one.svg"));
     let html = s(&d.join("one.html"));
@@ -107,7 +99,7 @@ fn hardening_05_one_json_document() {
     let v: serde_json::Value = serde_json::from_str(&out).expect("one JSON document");
     assert_eq!(v["error"]["code"], "E1005", "{out}");
     // When the certificate is written, the report is the one document.
-    let d = folder("05");
+    let d = common::scratch("hardening-05");
     let cert = s(&d.join("c.json"));
     let (code, out, err) = lacuna(&[
         "verify",
@@ -166,7 +158,7 @@ fn hardening_06_write_failures_are_e1005_and_the_guide_writes_no_target() {
 
 #[test]
 fn hardening_07_outputs_are_checked_complete_and_never_an_input() {
-    let d = folder("07");
+    let d = common::scratch("hardening-07");
     // A failed final flush is an error, not "wrote /dev/full".
     if Path::new("/dev/full").exists() {
         let (code, out, err) = lacuna(&["render", "F0", "--level", "1", "--svg", "/dev/full"]);
@@ -329,7 +321,7 @@ fn hardening_12_messages_name_ranges_and_resolution_truthfully() {
 
 #[test]
 fn hardening_14_fractions_sample_levels_and_byte_order_marks() {
-    let d = folder("14");
+    let d = common::scratch("hardening-14");
     // --thickness accepts a fraction like every other number: a solid 1/2 mm thick (the OBJ
     // writes the shortest decimal of each f32 coordinate).
     let obj = s(&d.join("t.obj"));
@@ -385,7 +377,7 @@ fn hardening_14_fractions_sample_levels_and_byte_order_marks() {
 
 #[test]
 fn hardening_15_report_of_a_runaway_is_a_negative_verdict_with_the_measure_raster() {
-    let d = folder("15");
+    let d = common::scratch("hardening-15");
     let html = s(&d.join("r.html"));
     // The runaway of docs/GUIDE.md: verify exits 1, and so does report, writing its page.
     let face = "B2 C3 | B2 B2 C3 | {joint}";
@@ -456,7 +448,7 @@ fn hardening_16_help_standard_streams_completions_and_man_page() {
     }
     assert!(!help.contains("--max-boundary"), "check: {help}");
     // `-` is standard input, and `--svg -` standard output (no file named `-`).
-    let d = folder("16");
+    let d = common::scratch("hardening-16");
     let f0 = std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/fixtures/F0.txt")).unwrap();
     let (code, out, err) = run_in(&d, &["counts", "-", "--levels", "1"], &f0);
     assert_eq!(code, 0, "{err}");
@@ -517,7 +509,7 @@ fn hardening_16_help_standard_streams_completions_and_man_page() {
 
 #[test]
 fn hardening_17_autofrac_numbers_sections_and_utf8() {
-    let d = folder("17");
+    let d = common::scratch("hardening-17");
     let faces = "f\nC_2_0 - B_2_0 - C_2_0 - B_2_0 / C_2_0 - B_2_0 - B_2_0 / 0 / 1\n";
     // 1e-400 is not 0: refused where the points are read (by the commands that place faces).
     let tiny = d.join("tiny.txt");
@@ -569,7 +561,7 @@ fn hardening_17_autofrac_numbers_sections_and_utf8() {
 /// name, and `check` on a file that is no certificate (bad input, exit 2, not a failed proof).
 #[test]
 fn standard_input_notation_misspelt_names_and_files_that_are_no_certificate() {
-    let d = folder("stdin-names");
+    let d = common::scratch("hardening-stdin-names");
     // N^C_1 = 6 sub-faces and N^L_1 = 5/2 lacunas for this face (the same as its notation on
     // the command line gives; the two must agree).
     let face = "C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1";
@@ -602,7 +594,7 @@ fn standard_input_notation_misspelt_names_and_files_that_are_no_certificate() {
 /// rather than written with a misleading name; a name of no known format is left to the user.
 #[test]
 fn an_output_named_for_another_format_is_refused() {
-    let d = folder("extensions");
+    let d = common::scratch("hardening-extensions");
     for (flag, name) in [
         ("--png", "out.jpg"),
         ("--svg", "out.png"),

@@ -1,17 +1,20 @@
 // Printable solids (issue #13, THEORY §11): the written STL (binary and ASCII) and 3MF are read back
 // with readers that are not the writers (the `stl_io` crate; the `zip` crate and a minimal XML
-// scan written here) and checked here, independently of `lacuna::mesh::check`: one part per
+// scan, in tests/common/mesh_files.rs) and checked here, independently of `lacuna::mesh::check`: one part per
 // component, every edge in exactly two triangles with opposite orientations, no facet wound
 // against its normal, outward orientation, and the Euler characteristic 2 − 2·holes with the
 // holes derived by hand below.
 
 mod common;
+use common::mesh_files::{
+    attr, attribute, binary_stl_triangles, model_xml, read_closed_stl, Read3,
+};
 use lacuna::mesh::{build, Size, Solid};
 use lacuna::{
     geometry::instantiate, geometry::Instance, geometry::InstantiateOptions, input::load_input,
 };
 use std::collections::HashMap;
-use std::io::{Cursor, Read};
+use std::io::Cursor;
 
 fn inst(name: &str) -> Instance {
     let input = load_input(name).unwrap_or_else(|e| panic!("{name}: {e}"));
@@ -21,13 +24,6 @@ fn inst(name: &str) -> Instance {
 fn solid(i: &Instance, level: u32) -> Solid {
     build(i, level, 4, Size::default())
         .unwrap_or_else(|e| panic!("{} level {level}: {} {e}", i.name, e.code()))
-}
-
-/// A triangle mesh as read back: positions and index triples (vertices merged by identical
-/// coordinates, which is what a slicer does with STL).
-struct Read3 {
-    vertices: Vec<[f32; 3]>,
-    triangles: Vec<[usize; 3]>,
 }
 
 /// Per connected piece: (V, E, F). Panics unless every directed edge occurs once and its reverse
@@ -92,49 +88,10 @@ fn euler((v, e, f): (usize, usize, usize)) -> i64 {
     v as i64 - e as i64 + f as i64
 }
 
-/// Reads an STL with `stl_io`; checks every facet's normal agrees with its winding.
-fn read_stl(bytes: &[u8], what: &str) -> Read3 {
-    let mesh = stl_io::read_stl(&mut Cursor::new(bytes)).unwrap_or_else(|e| panic!("{what}: {e}"));
-    mesh.validate()
-        .unwrap_or_else(|e| panic!("{what}: stl_io's validation: {e}"));
-    let vertices: Vec<[f32; 3]> = mesh.vertices.iter().map(|v| v.0).collect();
-    for (i, f) in mesh.faces.iter().enumerate() {
-        let [a, b, c] = f.vertices.map(|v| vertices[v].map(f64::from));
-        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let w = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-        let n = [
-            u[1] * w[2] - u[2] * w[1],
-            u[2] * w[0] - u[0] * w[2],
-            u[0] * w[1] - u[1] * w[0],
-        ];
-        let dot: f64 = (0..3).map(|k| n[k] * f64::from(f.normal.0[k])).sum();
-        assert!(dot > 0.0, "{what}: facet {i} is wound against its normal");
-    }
-    Read3 {
-        vertices,
-        triangles: mesh.faces.iter().map(|f| f.vertices).collect(),
-    }
-}
-
-/// The value of attribute `name` in an XML element's text.
-fn attr<'a>(el: &'a str, name: &str) -> &'a str {
-    let key = format!(" {name}=\"");
-    let at = el.find(&key).unwrap_or_else(|| panic!("no {name} in {el}")) + key.len();
-    &el[at..at + el[at..].find('"').unwrap()]
-}
-
 /// Reads a 3MF package with the `zip` crate and scans its model: the unit and, per object, its
 /// mesh.
 fn read_3mf(bytes: &[u8]) -> (String, Vec<Read3>) {
-    let mut z = zip::ZipArchive::new(Cursor::new(bytes)).expect("a zip archive");
-    for name in ["[Content_Types].xml", "_rels/.rels"] {
-        assert!(z.by_name(name).is_ok(), "3MF without {name}");
-    }
-    let mut xml = String::new();
-    z.by_name("3D/3dmodel.model")
-        .expect("the model part")
-        .read_to_string(&mut xml)
-        .unwrap();
+    let xml = model_xml(bytes);
     let model = &xml[xml.find("<model").unwrap()..];
     let unit = attr(&model[..model.find('>').unwrap()], "unit").to_string();
     let mut objects = Vec::new();
@@ -175,7 +132,7 @@ fn check_written(s: &Solid, expected_euler: &[i64], what: &str) {
     let mut ascii = Vec::new();
     lacuna::mesh::stl::write_ascii(s, &mut ascii).unwrap();
     for (bytes, kind) in [(&bin, "binary STL"), (&ascii, "ASCII STL")] {
-        let m = read_stl(bytes, &format!("{what} {kind}"));
+        let m = read_closed_stl(bytes, &format!("{what} {kind}"));
         let p = pieces(&m, &format!("{what} {kind}"));
         let mut eu: Vec<i64> = p.iter().map(|&x| euler(x)).collect();
         eu.sort();
@@ -367,7 +324,7 @@ fn crossing_cells_are_refused_and_nothing_is_written() {
     );
     let bytes = std::fs::read(&path).unwrap();
     assert_eq!(
-        pieces(&read_stl(&bytes, "min-lacuna=0.5"), "min-lacuna=0.5").len(),
+        pieces(&read_closed_stl(&bytes, "min-lacuna=0.5"), "min-lacuna=0.5").len(),
         1
     );
     let _ = std::fs::remove_dir_all(&dir);
@@ -475,7 +432,7 @@ mod random {
                 Ok(s) => {
                     let mut bin = Vec::new();
                     lacuna::mesh::stl::write_binary(&s, &mut bin).unwrap();
-                    let p = pieces(&read_stl(&bin, &f.to_string()), &f.to_string());
+                    let p = pieces(&read_closed_stl(&bin, &f.to_string()), &f.to_string());
                     prop_assert_eq!(p.len(), 1);
                     prop_assert_eq!(euler(p[0]), 2 - 2 * holes, "{}", f);
                 }
@@ -687,7 +644,7 @@ mod random_volumes {
                 // Read back by a reader that is not the writer.
                 let mut bin = Vec::new();
                 lacuna::mesh::stl::write_binary(&s.solid, &mut bin).unwrap();
-                let m = super::read_stl(&bin, "random volume");
+                let m = super::read_closed_stl(&bin, "random volume");
                 let total: i64 = super::pieces(&m, "random volume").into_iter().map(super::euler).sum();
                 prop_assert_eq!(total, 2 * chi);
             }
@@ -920,11 +877,8 @@ fn prusa_slicer_slices_cube_c2_and_tetrahedron_c2_at_level_3() {
         assert!(g.contains("G1"), "{name}: no moves in the G-code");
         assert_eq!(
             common::admesh_finds_nothing_to_repair(&stl, name),
-            {
-                // admesh counts facets; every triangle of the binary STL is one.
-                let bytes = std::fs::read(&stl).unwrap();
-                u32::from_le_bytes(bytes[80..84].try_into().unwrap()).to_string()
-            },
+            // admesh counts facets; every triangle of the binary STL is one.
+            binary_stl_triangles(&std::fs::read(&stl).unwrap()).to_string(),
             "{name}"
         );
     }
@@ -1059,7 +1013,7 @@ fn the_coloured_3mf_names_a_material_per_type_on_every_triangle() {
     assert_eq!(code, 0, "{out}{err}");
     let (code, out, _) = common::lacuna(&["check-mesh", &path, "--expect-euler", "-72"]);
     assert_eq!(code, 0, "{out}");
-    let xml = model_xml(&mf);
+    let xml = model_xml(&std::fs::read(&mf).unwrap());
     assert_eq!(xml.matches("<base ").count(), 5);
     let triangles = xml.matches("<triangle ").count();
     assert!(triangles > 0);
@@ -1089,7 +1043,7 @@ fn the_coloured_3mf_names_a_material_per_type_on_every_triangle() {
         "--3mf-colours",
     ]);
     assert_eq!(code, 0, "{out}{err}");
-    let xml = model_xml(&cube);
+    let xml = model_xml(&std::fs::read(&cube).unwrap());
     assert_eq!(xml.matches("<base ").count(), 3);
     let used: std::collections::BTreeSet<&str> = xml
         .match_indices(" p1=\"")
@@ -1110,21 +1064,6 @@ fn the_coloured_3mf_names_a_material_per_type_on_every_triangle() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("--3mf-colours"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
-}
-
-/// The model part of a 3MF package.
-fn model_xml(path: &std::path::Path) -> String {
-    let mut zip = zip::ZipArchive::new(std::fs::File::open(path).unwrap()).unwrap();
-    let mut xml = String::new();
-    std::io::Read::read_to_string(&mut zip.by_name("3D/3dmodel.model").unwrap(), &mut xml).unwrap();
-    xml
-}
-
-/// The value of attribute `name` in the element text `el`.
-fn attribute<'a>(el: &'a str, name: &str) -> Option<&'a str> {
-    let key = format!(" {name}=\"");
-    let at = el.find(&key)? + key.len();
-    Some(&el[at..at + el[at..].find('"')?])
 }
 
 /// Reads the mesh objects of a 3MF model on its own (no lacuna code): for each, its name,
@@ -1219,7 +1158,7 @@ fn the_3mf_parts_hold_each_type_s_cells_as_closed_shells() {
         "--3mf-parts",
     ]);
     assert_eq!(code, 0, "{out}{err}");
-    let xml = model_xml(&faces);
+    let xml = model_xml(&std::fs::read(&faces).unwrap());
     let objects = closed_shells(&xml);
     let mut by_edges: Vec<(usize, usize)> = objects
         .iter()
@@ -1260,7 +1199,7 @@ fn the_3mf_parts_hold_each_type_s_cells_as_closed_shells() {
             .unwrap();
         line.split_whitespace().nth(1).unwrap().parse().unwrap()
     };
-    let mut got: Vec<(usize, usize)> = closed_shells(&model_xml(&cube))
+    let mut got: Vec<(usize, usize)> = closed_shells(&model_xml(&std::fs::read(&cube).unwrap()))
         .iter()
         .map(|(name, _, shells)| (faces_of(name), *shells))
         .collect();
@@ -1328,7 +1267,7 @@ fn render_json_gives_one_printability_object_for_every_kind() {
             assert!(p.get(key).is_some(), "{args:?}: no {key} in {p}");
         }
         assert_eq!(p["kinds"]["wall_thickness"][0], *wall_kind, "{args:?}");
-        let m = read_stl(&std::fs::read(stl).unwrap(), stl);
+        let m = read_closed_stl(&std::fs::read(stl).unwrap(), stl);
         for d in 0..3 {
             let (lo, hi) = m.vertices.iter().fold((f64::MAX, f64::MIN), |(l, h), v| {
                 (l.min(f64::from(v[d])), h.max(f64::from(v[d])))

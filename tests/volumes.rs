@@ -294,18 +294,12 @@ fn a_bad_volume_file_is_exit_2_with_its_line_and_column() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-fn scratch(what: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("lacuna-volgeo-{what}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
 /// A thick spherical shell pierced by k holes (one per face of the solid, each face's central
 /// lacuna opening the cavity) is a handlebody of genus k − 1; its surface has Euler
 /// characteristic 2 − 2(k − 1). The cube has k = 6: genus 5, χ = −8 (THEORY §10).
 #[test]
 fn render_a_volume_writes_a_checked_mesh_and_pictures() {
-    let d = scratch("render");
+    let d = common::scratch("volgeo-render");
     let f = |n: &str| d.join(n).to_string_lossy().into_owned();
     let (code, out, err) = lacuna(&[
         "render",
@@ -364,7 +358,7 @@ fn a_solid_that_folds_is_not_written() {
     // would not be the verified structure, so nothing is written and the verdict is negative.
     // (This was tetrahedron C3 A1 V1 at level 3 until boundary faces were fanned around a point
     // of their own kernel, issue #31; tests/volume_sweep.rs runs that case.)
-    let d = scratch("fold");
+    let d = common::scratch("volgeo-fold");
     let stl = d.join("t3.stl");
     let (code, _, err) = lacuna(&[
         "render",
@@ -423,7 +417,7 @@ fn measure_and_report_a_volume() {
         "--strict",
     ]);
     assert_eq!(code, 1);
-    let d = scratch("report");
+    let d = common::scratch("volgeo-report");
     let page = d.join("t.html");
     let (code, _, err) = lacuna(&[
         "report",
@@ -445,7 +439,7 @@ fn measure_and_report_a_volume() {
 /// triangle, and the count agrees with the mesh line.
 #[test]
 fn render_writes_the_solids_that_folded_before() {
-    let d = scratch("unfold");
+    let d = common::scratch("volgeo-unfold");
     for (i, (text, level)) in [
         ("cube C2 | B2 B2 B2 | A1 | B2 B2 | V1", "2"),
         ("cube B2 | B2 B2 B2 | A1 | B2 B2 | V2", "2"),
@@ -475,7 +469,7 @@ fn render_writes_the_solids_that_folded_before() {
             );
         }
         let bytes = std::fs::read(&stl).unwrap();
-        let n = u32::from_le_bytes(bytes[80..84].try_into().unwrap()) as usize;
+        let n = common::mesh_files::binary_stl_triangles(&bytes);
         assert_eq!(bytes.len(), 84 + 50 * n, "{text}");
         assert!(out.contains(&format!("{n} triangles")), "{text}: {n} {out}");
     }
@@ -526,7 +520,7 @@ fn a_volume_on_user_coordinates() {
 /// The second cube is laid beside the first: 100 × 200 × 100 mm.
 #[test]
 fn an_assembly_is_drawn_as_one_solid() {
-    let d = scratch("assembly");
+    let d = common::scratch("volgeo-assembly");
     let stl = d.join("two.stl");
     let (code, out, err) = lacuna(&[
         "render",
@@ -557,7 +551,7 @@ fn an_assembly_is_drawn_as_one_solid() {
 
 #[test]
 fn bad_coordinates_are_coded_errors_with_their_place() {
-    let d = scratch("coords");
+    let d = common::scratch("volgeo-coords");
     let pyramid = std::fs::read_to_string("fixtures/pyramid.txt").unwrap();
     let cases: [(&str, String, &str); 5] = [
         // s2 gives the base's corner (1 1 0) as (1 1 0.5).
@@ -616,7 +610,7 @@ fn an_assembly_solves_with_its_shared_face_read_from_both_sides() {
         assert_eq!(code, 0, "{err}");
         serde_json::from_str(&out).unwrap()
     };
-    let d = scratch("solve-assembly");
+    let d = common::scratch("volgeo-solve-assembly");
     let both = std::fs::read_to_string("fixtures/two-boxes.txt").unwrap();
     // Box A alone: the lines up to the end of its block.
     let one: String = both

@@ -154,14 +154,7 @@ pub fn check_part(part: &Part) -> Result<PartCheck, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn tetra() -> Part {
-        Part {
-            vertices: vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
-            triangles: vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]],
-            holes: None,
-        }
-    }
+    use crate::mesh::solid::tests::tetra;
 
     #[test]
     fn a_tetrahedron_is_a_sphere() {

@@ -608,11 +608,12 @@ pub fn verdict(
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use num_bigint::BigUint;
 
-    fn tetra() -> Part {
+    /// A unit tetrahedron, wound outward (shared with the checker's tests).
+    pub(in crate::mesh) fn tetra() -> Part {
         Part {
             vertices: vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
             triangles: vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]],

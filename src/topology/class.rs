@@ -6,6 +6,9 @@
 //! lengths of its cycles. petgraph has no periodicity routine, so the period is computed here by
 //! the classical BFS argument: with `level` the BFS depth from any member, the period is the gcd of
 //! `level(u) + 1 − level(v)` over the arcs `u → v` inside the class.
+//!
+//! [`strong_components`] numbers the components of any successor-list graph; the limit valences
+//! and the automata analyses (cyclic parts, the boundary graph) use it too.
 
 use num_integer::Integer;
 use petgraph::graph::{DiGraph, NodeIndex};
@@ -52,37 +55,57 @@ impl ClassStructure {
                 }
             }
         }
-        let mut graph: DiGraph<usize, ()> = DiGraph::new();
-        let mut node = vec![NodeIndex::end(); n];
-        for t in (0..n).filter(|&t| reached[t]) {
-            node[t] = graph.add_node(t);
+        // The reached types, renumbered in ascending order, and the arcs between them.
+        let reached_types: Vec<usize> = (0..n).filter(|&t| reached[t]).collect();
+        let mut local = vec![usize::MAX; n];
+        for (i, &t) in reached_types.iter().enumerate() {
+            local[t] = i;
         }
-        for t in (0..n).filter(|&t| reached[t]) {
-            for &s in &succ[t] {
-                graph.add_edge(node[t], node[s], ());
-            }
-        }
-        // tarjan_scc lists sinks first; reverse for a topological order.
-        let mut sccs = petgraph::algo::tarjan_scc(&graph);
-        sccs.reverse();
-        let mut class_of = vec![None; n];
-        let mut classes = Vec::with_capacity(sccs.len());
-        for (c, scc) in sccs.iter().enumerate() {
-            let mut members: Vec<usize> = scc.iter().map(|&v| graph[v]).collect();
-            members.sort_unstable();
-            for &m in &members {
-                class_of[m] = Some(c);
-            }
-            classes.push(Class {
-                members,
+        let sub: Vec<Vec<usize>> = reached_types
+            .iter()
+            .map(|&t| succ[t].iter().map(|&s| local[s]).collect())
+            .collect();
+        // Components are numbered sinks first; count down for a topological order.
+        let (comp, count) = strong_components(&sub);
+        let mut classes: Vec<Class> = (0..count)
+            .map(|_| Class {
+                members: Vec::new(),
                 period: None,
-            });
+            })
+            .collect();
+        let mut class_of = vec![None; n];
+        for (i, &t) in reached_types.iter().enumerate() {
+            let c = count - 1 - comp[i];
+            classes[c].members.push(t);
+            class_of[t] = Some(c);
         }
         for (c, class) in classes.iter_mut().enumerate() {
             class.period = period(succ, &class_of, c, &class.members);
         }
         ClassStructure { classes, class_of }
     }
+}
+
+/// The strongly connected components of the graph `succ` (successor lists; repeated arcs
+/// allowed), by petgraph's iterative Tarjan: the component of every node and their number. The
+/// components are numbered so that an arc never leads to a component of larger number (sinks
+/// first, as petgraph lists them).
+pub(crate) fn strong_components(succ: &[Vec<usize>]) -> (Vec<usize>, usize) {
+    let mut graph = DiGraph::<(), ()>::new();
+    let node: Vec<NodeIndex> = succ.iter().map(|_| graph.add_node(())).collect();
+    for (v, ws) in succ.iter().enumerate() {
+        for &w in ws {
+            graph.add_edge(node[v], node[w], ());
+        }
+    }
+    let sccs = petgraph::algo::tarjan_scc(&graph);
+    let mut comp = vec![0; succ.len()];
+    for (c, scc) in sccs.iter().enumerate() {
+        for v in scc {
+            comp[v.index()] = c;
+        }
+    }
+    (comp, sccs.len())
 }
 
 /// The period of class `c`, or `None` when it has no arc inside (a transient type).
@@ -129,6 +152,20 @@ mod tests {
         let s = ClassStructure::new(&[vec![0, 0, 0]], &[0]);
         assert_eq!(s.classes.len(), 1);
         assert_eq!(s.classes[0].period, Some(1));
+    }
+
+    #[test]
+    fn strong_components_never_number_upwards() {
+        // 0 → 1 ⇄ 2 → 3, 3 ↺: components {0}, {1, 2}, {3}; every arc goes down in number.
+        let succ = vec![vec![1], vec![2], vec![1, 3], vec![3]];
+        let (comp, count) = strong_components(&succ);
+        assert_eq!(count, 3);
+        assert_eq!(comp[1], comp[2]);
+        for (v, s) in succ.iter().enumerate() {
+            for &w in s {
+                assert!(comp[w] <= comp[v]);
+            }
+        }
     }
 
     #[test]

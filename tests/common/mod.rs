@@ -3,6 +3,7 @@
 
 use std::process::Command;
 
+pub mod mesh_files;
 pub mod strategies;
 
 /// Runs the built binary in the crate's directory: (exit code, stdout, stderr).
@@ -17,6 +18,15 @@ pub fn lacuna(args: &[&str]) -> (i32, String, String) {
         String::from_utf8(out.stdout).expect("utf-8 stdout"),
         String::from_utf8(out.stderr).expect("utf-8 stderr"),
     )
+}
+
+/// A fresh folder `lacuna-{name}-{pid}` in the system's temporary folder for one test's files
+/// (emptied first, should an earlier run of the same process id have left it).
+pub fn scratch(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("lacuna-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
 }
 
 /// STYLE rule 5: a pipeline test also emits the certificate of what it computed (closure,

@@ -68,6 +68,7 @@ use crate::analysis::automata::similarity::{
     NotApplicable, PartValue, PartWitness, SimilarityDimension,
 };
 use crate::input::automaton_model::AutomatonModel;
+use crate::topology::class::strong_components;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed};
@@ -144,27 +145,6 @@ pub struct BoundaryComponent {
     pub rational: Option<BigRational>,
     /// The exact value.
     pub exact: String,
-}
-
-/// Strongly connected components (petgraph's iterative Tarjan, as `topology::class` uses): the
-/// component of every node, numbered so that an edge never leads to a component of larger
-/// number (petgraph lists the components sinks first).
-fn components(succ: &[Vec<usize>]) -> (Vec<usize>, usize) {
-    let mut g = petgraph::graph::DiGraph::<(), ()>::new();
-    let node: Vec<_> = succ.iter().map(|_| g.add_node(())).collect();
-    for (v, ws) in succ.iter().enumerate() {
-        for &w in ws {
-            g.add_edge(node[v], node[w], ());
-        }
-    }
-    let sccs = petgraph::algo::tarjan_scc(&g);
-    let mut comp = vec![0; succ.len()];
-    for (c, scc) in sccs.iter().enumerate() {
-        for v in scc {
-            comp[v.index()] = c;
-        }
-    }
-    (comp, sccs.len())
 }
 
 /// The value `s = 2·ln u/ln σ` when it is an integer j that [`exact_text`] does not see, with
@@ -496,7 +476,7 @@ pub fn boundary_dimension(
             .iter()
             .map(|v| v.iter().map(|x| x.0).collect())
             .collect();
-        let (comp, count) = components(&plain);
+        let (comp, count) = strong_components(&plain);
         if has_cycle(&succ, |_| true, |k| k == 0) {
             return Err("a cycle of the boundary graph has only edges of ratio 1".into());
         }
@@ -725,19 +705,5 @@ mod tests {
         assert!(has_cycle(&zero_cycle, |_| true, |k| k == 0));
         let mixed = vec![vec![(1, 0)], vec![(0, 1)]];
         assert!(!has_cycle(&mixed, |_| true, |k| k == 0));
-    }
-
-    #[test]
-    fn tarjan_orders_components_successors_first() {
-        // 0 → 1 ⇄ 2 → 3, 3 ↺: components {0}, {1, 2}, {3}; every edge goes down in number.
-        let succ = vec![vec![1], vec![2], vec![1, 3], vec![3]];
-        let (comp, count) = components(&succ);
-        assert_eq!(count, 3);
-        assert_eq!(comp[1], comp[2]);
-        for (v, s) in succ.iter().enumerate() {
-            for &w in s {
-                assert!(comp[w] <= comp[v]);
-            }
-        }
     }
 }

@@ -20,6 +20,7 @@ use crate::algebra::reallog::{log_ratio_bounds, round_out};
 use crate::analysis::automata::contraction::{control_graph, reachable};
 use crate::analysis::automata::open_set::NeighbourWitness;
 use crate::input::automaton_model::AutomatonModel;
+use crate::topology::class::strong_components;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
@@ -212,79 +213,26 @@ fn squared_ratio(k: &NumberField, fq: &KMatrix, fw: &KMatrix, t: &KMatrix) -> Op
     (scaled == h.data && k.sign(&r2) == Ordering::Greater).then_some(r2)
 }
 
-/// Tarjan's state while finding strongly connected parts.
-struct Tarjan {
-    succ: Vec<Vec<usize>>,
-    index: Vec<usize>,
-    low: Vec<usize>,
-    on: Vec<bool>,
-    stack: Vec<usize>,
-    parts: Vec<Vec<usize>>,
-    counter: usize,
-}
-
-impl Tarjan {
-    fn visit(&mut self, v: usize) {
-        self.index[v] = self.counter;
-        self.low[v] = self.counter;
-        self.counter += 1;
-        self.stack.push(v);
-        self.on[v] = true;
-        for w in self.succ[v].clone() {
-            if self.index[w] == usize::MAX {
-                self.visit(w);
-                self.low[v] = self.low[v].min(self.low[w]);
-            } else if self.on[w] {
-                self.low[v] = self.low[v].min(self.index[w]);
-            }
-        }
-        if self.low[v] == self.index[v] {
-            let mut comp = Vec::new();
-            while let Some(w) = self.stack.pop() {
-                self.on[w] = false;
-                comp.push(w);
-                if w == v {
-                    break;
-                }
-            }
-            self.parts.push(comp);
-        }
-    }
-}
-
-/// Strongly connected parts of the reachable control graph that hold a cycle (Tarjan; the
-/// recursion is as deep as the number of states, at most 4096: checked by the caller).
+/// Strongly connected parts of the reachable control graph that hold a cycle, each sorted,
+/// ordered by smallest state.
 pub(crate) fn cyclic_parts(m: &AutomatonModel) -> Vec<Vec<usize>> {
     let a = &m.automaton;
     let g = control_graph(m);
     let reach = reachable(m);
-    let n = a.states.len();
-    let succ: Vec<Vec<usize>> = (0..n)
-        .map(|v| g[v].iter().map(|&o| a.operators[o].from).collect())
+    let succ: Vec<Vec<usize>> = g
+        .iter()
+        .map(|ops| ops.iter().map(|&o| a.operators[o].from).collect())
         .collect();
-    let mut t = Tarjan {
-        succ,
-        index: vec![usize::MAX; n],
-        low: vec![0; n],
-        on: vec![false; n],
-        stack: Vec::new(),
-        parts: Vec::new(),
-        counter: 0,
-    };
-    for (v, &r) in reach.iter().enumerate() {
-        if r && t.index[v] == usize::MAX {
-            t.visit(v);
-        }
+    let (comp, count) = strong_components(&succ);
+    let mut parts = vec![Vec::new(); count];
+    for (v, &c) in comp.iter().enumerate() {
+        parts[c].push(v);
     }
-    let succ = std::mem::take(&mut t.succ);
-    let mut out: Vec<Vec<usize>> = t
-        .parts
+    // A part is reached whole or not at all: reachability follows the same arcs.
+    let mut out: Vec<Vec<usize>> = parts
         .into_iter()
-        .filter(|c| c.len() > 1 || succ[c[0]].contains(&c[0]))
+        .filter(|c| reach[c[0]] && (c.len() > 1 || succ[c[0]].contains(&c[0])))
         .collect();
-    for c in &mut out {
-        c.sort_unstable();
-    }
     out.sort();
     out
 }

@@ -4,9 +4,9 @@
 
 use super::link::{canonical, Item, Local};
 use crate::error::{Error, Result};
+use crate::topology::class::strong_components;
 use crate::topology::closure::TypeSet;
 use num_bigint::BigUint;
-use petgraph::graph::{DiGraph, NodeIndex};
 use serde::Serialize;
 use std::collections::{BTreeSet, HashMap};
 
@@ -108,21 +108,9 @@ pub(super) fn limit_valence(
             })
             .collect()
     };
-    let mut graph: DiGraph<usize, ()> = DiGraph::new();
-    let nodes: Vec<NodeIndex> = (0..sectors.len()).map(|i| graph.add_node(i)).collect();
-    for i in 0..sectors.len() {
-        for j in fan_of(i) {
-            graph.add_edge(nodes[i], nodes[j], ());
-        }
-    }
-    // Sinks first: every class is listed after the classes it reaches.
-    let sccs = petgraph::algo::tarjan_scc(&graph);
-    let mut class_of = vec![0usize; sectors.len()];
-    for (k, scc) in sccs.iter().enumerate() {
-        for v in scc {
-            class_of[graph[*v]] = k;
-        }
-    }
+    // Sinks first: every class is numbered below the classes that reach it.
+    let fans: Vec<Vec<usize>> = (0..sectors.len()).map(fan_of).collect();
+    let (class_of, _) = strong_components(&fans);
     let on_cycle = |i: usize| fan_of(i).iter().any(|&j| class_of[j] == class_of[i]);
     if let Some(b) = (0..sectors.len()).find(|&b| on_cycle(b) && fan_of(b).len() >= 2) {
         return Ok(LimitValence::Unbounded {
@@ -130,18 +118,17 @@ pub(super) fn limit_valence(
         });
     }
     let mut lim = vec![0usize; sectors.len()];
-    for scc in &sccs {
-        for v in scc {
-            let i = graph[*v];
-            lim[i] = if on_cycle(i) {
-                1
-            } else {
-                fan_of(i)
-                    .iter()
-                    .try_fold(0usize, |acc, &j| acc.checked_add(lim[j]))
-                    .ok_or_else(|| Error::Analysis("a limit valence above 2^64".into()))?
-            };
-        }
+    let mut order: Vec<usize> = (0..sectors.len()).collect();
+    order.sort_by_key(|&i| class_of[i]);
+    for i in order {
+        lim[i] = if on_cycle(i) {
+            1
+        } else {
+            fan_of(i)
+                .iter()
+                .try_fold(0usize, |acc, &j| acc.checked_add(lim[j]))
+                .ok_or_else(|| Error::Analysis("a limit valence above 2^64".into()))?
+        };
     }
     let mut valences: BTreeSet<usize> = BTreeSet::new();
     for link in born {

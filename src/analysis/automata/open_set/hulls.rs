@@ -5,6 +5,7 @@
 use super::{MAX_ROUNDS, MAX_VERTICES};
 use crate::algebra::algebraic::{FieldElement, NumberField};
 use crate::algebra::kmatrix::KMatrix;
+use crate::analysis::automata::neighbour_maps::KAffine;
 use num_rational::BigRational;
 use num_traits::{One, Zero};
 use std::cmp::Ordering;
@@ -12,20 +13,13 @@ use std::cmp::Ordering;
 /// A point of a chart (1 or 2 coordinates).
 pub(super) type Pt = Vec<FieldElement>;
 
-/// An operator as an affine map between charts: `x ↦ A·x + b`, `A` row-major `d × d`.
-#[derive(Clone, Debug, PartialEq)]
-pub(super) struct Map {
-    pub(super) a: Vec<FieldElement>,
-    pub(super) b: Vec<FieldElement>,
-}
-
 pub(super) fn q0(k: &NumberField) -> FieldElement {
     k.rational(BigRational::zero())
 }
 
 /// The chart map of `T: q ← w` (both states of `d + 1` points): the child's chart point x has
 /// barycentric coordinates `(1 − Σx, x)`, its image `T·(1 − Σx, x)` read in the parent's chart.
-pub(super) fn chart_map(k: &NumberField, t: &KMatrix, d: usize) -> Map {
+pub(super) fn chart_map(k: &NumberField, t: &KMatrix, d: usize) -> KAffine {
     // Image of x = Σ_j x_j e_j: T·(e_0 + Σ x_j (e_j − e_0)); chart rows 1..=d.
     let mut a = Vec::with_capacity(d * d);
     let mut b = Vec::with_capacity(d);
@@ -35,61 +29,27 @@ pub(super) fn chart_map(k: &NumberField, t: &KMatrix, d: usize) -> Map {
         }
         b.push(t.get(r, 0).clone());
     }
-    Map { a, b }
+    KAffine { a, b }
 }
 
-impl Map {
-    fn apply(&self, k: &NumberField, x: &Pt) -> Pt {
-        let d = x.len();
-        (0..d)
-            .map(|r| {
-                let mut acc = self.b[r].clone();
-                for (j, xj) in x.iter().enumerate() {
-                    acc = k.add(&acc, &k.mul(&self.a[r * d + j], xj));
-                }
-                acc
-            })
-            .collect()
-    }
-
-    /// `self ∘ other`.
-    fn then(&self, k: &NumberField, o: &Map) -> Map {
-        let d = self.b.len();
-        let mut a = vec![q0(k); d * d];
-        for r in 0..d {
-            for c in 0..d {
-                let mut acc = q0(k);
-                for j in 0..d {
-                    acc = k.add(&acc, &k.mul(&self.a[r * d + j], &o.a[j * d + c]));
-                }
-                a[r * d + c] = acc;
-            }
+/// The fixed point of `m`, when `I − A` is invertible (d = 1 or 2).
+fn fixed_point(k: &NumberField, m: &KAffine) -> Option<Pt> {
+    let one = k.rational(BigRational::one());
+    match m.b.len() {
+        1 => {
+            let den = k.sub(&one, &m.a[0]);
+            Some(vec![k.div(&m.b[0], &den)?])
         }
-        Map {
-            a,
-            b: self.apply(k, &o.b),
+        2 => {
+            // (I − A) x = b by Cramer's rule.
+            let (m00, m01) = (k.sub(&one, &m.a[0]), k.sub(&q0(k), &m.a[1]));
+            let (m10, m11) = (k.sub(&q0(k), &m.a[2]), k.sub(&one, &m.a[3]));
+            let det = k.sub(&k.mul(&m00, &m11), &k.mul(&m01, &m10));
+            let x = k.sub(&k.mul(&m.b[0], &m11), &k.mul(&m01, &m.b[1]));
+            let y = k.sub(&k.mul(&m00, &m.b[1]), &k.mul(&m10, &m.b[0]));
+            Some(vec![k.div(&x, &det)?, k.div(&y, &det)?])
         }
-    }
-
-    /// The fixed point, when `I − A` is invertible (d = 1 or 2).
-    fn fixed_point(&self, k: &NumberField) -> Option<Pt> {
-        let one = k.rational(BigRational::one());
-        match self.b.len() {
-            1 => {
-                let den = k.sub(&one, &self.a[0]);
-                Some(vec![k.div(&self.b[0], &den)?])
-            }
-            2 => {
-                // (I − A) x = b by Cramer's rule.
-                let (m00, m01) = (k.sub(&one, &self.a[0]), k.sub(&q0(k), &self.a[1]));
-                let (m10, m11) = (k.sub(&q0(k), &self.a[2]), k.sub(&one, &self.a[3]));
-                let det = k.sub(&k.mul(&m00, &m11), &k.mul(&m01, &m10));
-                let x = k.sub(&k.mul(&self.b[0], &m11), &k.mul(&m01, &self.b[1]));
-                let y = k.sub(&k.mul(&m00, &self.b[1]), &k.mul(&m10, &self.b[0]));
-                Some(vec![k.div(&x, &det)?, k.div(&y, &det)?])
-            }
-            _ => None,
-        }
+        _ => None,
     }
 }
 
@@ -187,7 +147,7 @@ fn contains(k: &NumberField, outer: &[Pt], inner: &[Pt]) -> bool {
 }
 
 /// The part's operators as chart maps: (source state q, target state w, map, operator).
-pub(super) type Edge = (usize, usize, Map, usize);
+pub(super) type Edge = (usize, usize, KAffine, usize);
 
 /// Whether a family of polygons (one per state of the part, in part order) is feasible: every
 /// piece inside its state's polygon, and the pieces out of one state with disjoint interiors.
@@ -265,16 +225,16 @@ pub(super) fn attractor_hulls(
         for &pe in &path[1..] {
             m = m.then(k, &edges[pe].2);
         }
-        sets[i].push(m.fixed_point(k)?);
+        sets[i].push(fixed_point(k, &m)?);
         // And the fixed points of every cycle of one or two operators through q.
         for (s1, w1, m1, _) in edges.iter().filter(|e| e.0 == q) {
             if *w1 == q {
-                sets[i].extend(m1.fixed_point(k));
+                sets[i].extend(fixed_point(k, m1));
                 continue;
             }
             for (_, _, m2, _) in edges.iter().filter(|e| e.0 == *w1 && e.1 == *s1) {
                 if edges.len() <= 512 {
-                    sets[i].extend(m1.then(k, m2).fixed_point(k));
+                    sets[i].extend(fixed_point(k, &m1.then(k, m2)));
                 }
             }
         }
@@ -360,10 +320,10 @@ mod tests {
         // x ↦ −x/2 + (3/2, 3): fixed point x = (1, 2).
         let k = qk();
         let r = |n: i64, d: i64| k.rational(BigRational::new(n.into(), d.into()));
-        let m = Map {
+        let m = KAffine {
             a: vec![r(-1, 2), r(0, 1), r(0, 1), r(-1, 2)],
             b: vec![r(3, 2), r(3, 1)],
         };
-        assert_eq!(m.fixed_point(&k).unwrap(), p(&k, 1, 2, 1));
+        assert_eq!(fixed_point(&k, &m).unwrap(), p(&k, 1, 2, 1));
     }
 }

@@ -1,7 +1,7 @@
 //! The coordinates of the neighbour-map search: the centres of a part's attractor pieces, their
 //! rescaling to balance the edges, and the neighbour edges in those coordinates.
 
-use super::hulls::{cmp, q0, Edge, Map};
+use super::hulls::{cmp, q0, Edge};
 use super::Coordinates;
 use crate::algebra::algebraic::{FieldElement, NumberField};
 use crate::algebra::kmatrix::KMatrix;
@@ -196,14 +196,10 @@ pub(super) fn neighbour_edges(
     d: usize,
 ) -> Result<Neighbourhood, String> {
     let pos = |s: usize| part.binary_search(&s).expect("in part");
-    let chart = |m: &Map| KAffine {
-        a: m.a.clone(),
-        b: m.b.clone(),
-    };
     let half = k.rational(BigRational::new(1.into(), 2.into()));
     let in_charts: Vec<KEdge> = edges
         .iter()
-        .map(|(s, w, m, _)| (pos(*s), pos(*w), chart(m)))
+        .map(|(s, w, m, _)| (pos(*s), pos(*w), m.clone()))
         .collect();
     let one = k.rational(BigRational::one());
     let contracting = |q: &[KEdge]| {
@@ -251,7 +247,7 @@ pub(super) fn neighbour_edges(
         .iter()
         .map(|(s, w, m, _)| {
             let (i, j) = (pos(*s), pos(*w));
-            (i, j, embed[i].0.then(k, &chart(m)).then(k, &embed[j].1))
+            (i, j, embed[i].0.then(k, m).then(k, &embed[j].1))
         })
         .collect();
     Ok((Coordinates::Drawing, centres, q))
