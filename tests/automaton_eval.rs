@@ -910,4 +910,10 @@ fn state_is_refused_for_unknown_names_and_for_faces() {
         err.contains("E0504") && err.contains("faces have no states"),
         "{err}"
     );
+    let (code, _, err) = lacuna(&["render", "cube-B2", "--state", "a", "--svg", "/dev/null"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("E0504") && err.contains("a volume has no states"),
+        "{err}"
+    );
 }
