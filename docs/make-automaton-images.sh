@@ -26,8 +26,10 @@ $L morph fixtures/octagonal-gasket-product.aut fixtures/carpet-product.aut --fra
 $L morph fixtures/gasket-to-hexagonal-start.aut fixtures/gasket-to-hexagonal-end.aut --frames 8 --level 4 --svg docs/images/gasket-to-hexagonal.svg
 $L morph fixtures/gasket-to-carpet-start.aut fixtures/gasket-to-carpet-end.aut --frames 8 --level 3 --svg docs/images/gasket-to-carpet.svg
 $L morph fixtures/hexagonal-gasket-samples.aut lemniscate-fractal --frames 8 --level 3 --svg docs/images/hexagonal-gasket-to-lemniscate.svg
-# Seed 004's fractal kite (docs/GALLERY.md, docs/GUIDE.md).
+# Seed 004's fractal kite and dart (docs/GALLERY.md, docs/GUIDE.md): the kite is the start state
+# a, the dart state b, drawn from its frame.
 $L render kite-dart --level 14 --png docs/images/kite-dart.png
+$L render kite-dart --state b --level 14 --png docs/images/kite-dart-b.png
 # Seed 001's pictures (docs/GALLERY.md): the Takagi curve, the parabola's osculating circles.
 $L render fixtures/takagi.aut --level 8 --size 480 --png docs/images/seed001-takagi.png
 $L operators de-casteljau-edge --points '0 0; 1 1; 2 0' --svg docs/images/seed001-bezier-osculating.svg > /dev/null

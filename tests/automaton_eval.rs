@@ -681,3 +681,239 @@ fn an_undecided_contraction_is_its_own_error_and_a_larger_limit_proves_it() {
     assert!(out.contains("within 6 operators"), "{out}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The output flags of `render` on an automaton, into `dir` with the file stem `stem`.
+fn render_files(dir: &std::path::Path, stem: &str) -> Vec<std::path::PathBuf> {
+    ["svg", "png", "json", "obj"]
+        .iter()
+        .map(|ext| dir.join(format!("{stem}.{ext}")))
+        .collect()
+}
+
+#[test]
+fn the_start_state_by_name_draws_what_render_draws_without_it() {
+    // `--state` of the start state changes nothing: the same bytes in every output, for the
+    // two-state kite and dart and for a one-state automaton.
+    let dir = std::env::temp_dir().join(format!("lacuna-state-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, start) in [("kite-dart", "a"), ("sierpinski-triangle", "t")] {
+        let mut outputs = Vec::new();
+        for state in [None, Some(start)] {
+            let stem = format!("{name}-{}", state.unwrap_or("none"));
+            let files = render_files(&dir, &stem);
+            let mut args = vec!["render", name, "--level", "5", "--size", "128"];
+            let paths: Vec<String> = files.iter().map(|p| p.display().to_string()).collect();
+            for (flag, p) in ["--svg", "--png", "--json-out", "--obj"].iter().zip(&paths) {
+                args.push(flag);
+                args.push(p);
+            }
+            if let Some(s) = state {
+                args.extend(["--state", s]);
+            }
+            let (code, out, err) = lacuna(&args);
+            assert_eq!(code, 0, "{name} {state:?}: {err}");
+            assert_eq!(out.matches("wrote").count(), 4, "{out}");
+            outputs.push(
+                files
+                    .iter()
+                    .map(|f| std::fs::read(f).unwrap())
+                    .collect::<Vec<_>>(),
+            );
+        }
+        for (k, ext) in ["svg", "png", "json", "obj"].iter().enumerate() {
+            assert!(
+                outputs[0][k] == outputs[1][k],
+                "{name}: the {ext} with --state {start} differs"
+            );
+        }
+    }
+}
+
+/// The kite and dart's evaluator, drawing `state` (`None`: the start, the kite).
+fn kite_dart(state: Option<&str>) -> lacuna::geometry::Evaluator {
+    let m = model("kite-dart");
+    let r = resolve(&m, &[], 100).unwrap();
+    let ev = lacuna::geometry::Evaluator::new(&m, &r);
+    match state {
+        Some(s) => ev.with_start(s).unwrap(),
+        None => ev,
+    }
+}
+
+/// The area of a triangle's first three points (shoelace).
+fn triangle_area(p: &[[f64; 3]]) -> f64 {
+    ((p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1])).abs()
+        / 2.0
+}
+
+#[test]
+fn the_dart_is_drawn_from_its_frame() {
+    // The first operator reaching b from the start a is a.T0 (`a <- b`), the identity, so the
+    // dart's frame is the kite's: F_b = F_a · I = the points (−4, −1/2), (4, −1/2), (0, 5).
+    let dart = kite_dart(Some("b"));
+    let level0 = dart.shapes(0);
+    assert_eq!(level0.len(), 1);
+    assert_eq!(dart.names[level0[0].state], "b");
+    assert_eq!(
+        level0[0].points,
+        vec![[-4.0, -0.5, 0.0], [4.0, -0.5, 0.0], [0.0, 5.0, 0.0]]
+    );
+    // Level 1 follows b's operators, not a's: b.T0 (to b) and b.T1 (to a) are both similitudes
+    // of ratio r = 1/φ, so both leaves have the frame's area 8 · 11/2 / 2 = 22 times
+    // r² = (3 − √5)/2; the kite's first leaf is a.T0's, the identity, of area 22.
+    let r2 = (3.0 - 5f64.sqrt()) / 2.0;
+    let dart1 = dart.shapes(1);
+    let states: Vec<&str> = dart1.iter().map(|s| dart.names[s.state].as_str()).collect();
+    assert_eq!(states, ["b", "a"]);
+    for s in &dart1 {
+        assert!((triangle_area(&s.points) - 22.0 * r2).abs() < 1e-9);
+    }
+    let kite1 = kite_dart(None).shapes(1);
+    assert!((triangle_area(&kite1[0].points) - 22.0).abs() < 1e-9);
+    assert!((triangle_area(&kite1[1].points) - 22.0 * r2).abs() < 1e-9);
+}
+
+/// The area of the union of the triangles of a level, counted on a grid of `n × n` pixel centres
+/// over [−2, 2] × [−1/2, 7/2].
+fn covered_area(shapes: &[lacuna::geometry::Shape], n: usize) -> f64 {
+    let (x0, y0, h) = (-2.0, -0.5, 4.0 / n as f64);
+    let mut grid = vec![false; n * n];
+    for s in shapes {
+        let [a, b, c] = [s.points[0], s.points[1], s.points[2]];
+        let det = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+        let cell = |v: f64, lo: f64| (((v - lo) / h).floor().max(0.0) as usize).min(n - 1);
+        let (i0, i1) = (
+            cell(a[0].min(b[0]).min(c[0]), x0),
+            cell(a[0].max(b[0]).max(c[0]), x0),
+        );
+        let (j0, j1) = (
+            cell(a[1].min(b[1]).min(c[1]), y0),
+            cell(a[1].max(b[1]).max(c[1]), y0),
+        );
+        for j in j0..=j1 {
+            let y = y0 + (j as f64 + 0.5) * h;
+            for i in i0..=i1 {
+                let x = x0 + (i as f64 + 0.5) * h;
+                let u = ((x - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (y - a[1])) / det;
+                let v = ((b[0] - a[0]) * (y - a[1]) - (x - a[0]) * (b[1] - a[1])) / det;
+                if u >= 0.0 && v >= 0.0 && u + v <= 1.0 {
+                    grid[j * n + i] = true;
+                }
+            }
+        }
+    }
+    grid.iter().filter(|&&g| g).count() as f64 * h * h
+}
+
+#[test]
+fn the_kite_and_the_dart_have_areas_in_ratio_phi() {
+    // With the open-set condition, |A| = |B| + r²|A| and |B| = r²|B| + r²|A| (r = 1/φ), so
+    // |A| / |B| = φ. The leaves of level 14 cover each tile with a margin along its boundary
+    // that shrinks with the level (1.585 at level 10, 1.605 at 14, 1.612 at 18 on this grid):
+    // within 0.03 of φ at level 14, where one tile drawn twice would give 1.
+    let phi = (1.0 + 5f64.sqrt()) / 2.0;
+    let kite = covered_area(&kite_dart(None).shapes(14), 400);
+    let dart = covered_area(&kite_dart(Some("b")).shapes(14), 400);
+    assert!((kite / dart - phi).abs() < 0.03, "{kite} / {dart}");
+}
+
+/// Two states drawn, p and q, and a third, z, that p does not reach. p.T1 is the first operator
+/// reaching q (p.T2 reaches it too, later in the index order).
+const FRAMES: &str = "state p 2\nstate q 2\nstate z 2\nsub p.T0 : p <- p = [1 1/2; 0 1/2]\nsub p.T1 : p <- q = [1/2 0; 1/2 1]\nsub p.T2 : p <- q = [1 0; 0 1]\nsub q.T0 : q <- q = [1 1/2; 0 1/2]\nsub z.T0 : z <- z = [1 1/2; 0 1/2]\nbarycentric\nspace 2\nstart p\npoints [0 0; 4 0]\nprimitive p polyline\nprimitive q polyline\nprimitive z polyline\n";
+
+#[test]
+fn a_state_is_drawn_from_the_first_operator_reaching_it() {
+    let m = parse_model(&Source {
+        name: "frames.aut".into(),
+        text: FRAMES.into(),
+    })
+    .unwrap();
+    let r = resolve(&m, &[], 100).unwrap();
+    let ev = lacuna::geometry::Evaluator::new(&m, &r);
+    // F_q = F_p · p.T1: the columns (1/2, 1/2) and (0, 1) of p.T1 weigh P0 = (0, 0) and
+    // P1 = (4, 0): (2, 0) and (4, 0). p.T2 would give (0, 0) and (4, 0).
+    let at_q = ev.clone().with_start("q").unwrap();
+    let s = at_q.shapes(0);
+    assert_eq!(s.len(), 1);
+    assert_eq!(s[0].points, vec![[2.0, 0.0, 0.0], [4.0, 0.0, 0.0]]);
+    // Level 1 of q: q.T0 halves toward its first point, (2, 0) and (3, 0).
+    assert_eq!(
+        at_q.shapes(1)[0].points,
+        vec![[2.0, 0.0, 0.0], [3.0, 0.0, 0.0]]
+    );
+    // The exact side restarted at q walks the same frame.
+    let mq = lacuna::geometry::restarted(&m, &r, 1).unwrap();
+    assert_eq!(mq.start, 1);
+    let pts = rational_points(&mq, &r, &[]);
+    assert_eq!(pts, vec![vec![q(2, 1), q(0, 1)], vec![q(4, 1), q(0, 1)]]);
+    for (state, why) in [("z", "not reachable"), ("y", "not a state")] {
+        let e = ev.clone().with_start(state).unwrap_err();
+        assert_eq!(e.code(), "E0504");
+        let text = e.to_string();
+        assert!(
+            text.contains(&format!("`{state}`")) && text.contains(why) && text.contains("p, q"),
+            "{text}"
+        );
+    }
+    // On the command line: exit 2 with the message, nothing written.
+    let dir = std::env::temp_dir().join(format!("lacuna-frames-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let f = dir.join("frames.aut");
+    std::fs::write(&f, FRAMES).unwrap();
+    let svg = dir.join("z.svg");
+    let (code, _, err) = lacuna(&[
+        "render",
+        f.to_str().unwrap(),
+        "--state",
+        "z",
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("E0504") && err.contains("`z`") && err.contains("p, q"),
+        "{err}"
+    );
+    assert!(!svg.exists());
+    let json = dir.join("q.json");
+    let (code, _, err) = lacuna(&[
+        "render",
+        f.to_str().unwrap(),
+        "--state",
+        "q",
+        "--level",
+        "0",
+        "--json-out",
+        json.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(v["shapes"][0]["state"], "q");
+    assert_eq!(
+        v["shapes"][0]["points"],
+        serde_json::json!([[2, 0], [4, 0]])
+    );
+}
+
+#[test]
+fn state_is_refused_for_unknown_names_and_for_faces() {
+    let (code, _, err) = lacuna(&["render", "kite-dart", "--state", "c", "--svg", "/dev/null"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("E0504") && err.contains("`c` is not a state") && err.contains("a, b"),
+        "{err}"
+    );
+    let (code, _, err) = lacuna(&["render", "F0", "--state", "a", "--svg", "/dev/null"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("E0504") && err.contains("faces have no states"),
+        "{err}"
+    );
+    let (code, _, err) = lacuna(&["render", "cube-B2", "--state", "a", "--svg", "/dev/null"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("E0504") && err.contains("a volume has no states"),
+        "{err}"
+    );
+}

@@ -554,7 +554,8 @@ fn figure_10_is_a_morph_from_the_circle_samples_to_the_lemniscate() {
 /// after them.
 struct Figure {
     verify: Option<String>,
-    render: Option<Vec<String>>,
+    /// The `lacuna render` commands of its pictures (the kite and dart have two).
+    render: Vec<Vec<String>>,
     row: Vec<String>,
 }
 
@@ -569,7 +570,7 @@ fn gallery_figures() -> Vec<Figure> {
             figures.extend(current.take());
             current = Some(Figure {
                 verify: Some(rest.trim().to_string()),
-                render: None,
+                render: Vec::new(),
                 row: Vec::new(),
             });
         } else if line.starts_with("lacuna solve ") {
@@ -577,10 +578,13 @@ fn gallery_figures() -> Vec<Figure> {
             figures.extend(current.take());
         } else if let Some(rest) = line.strip_prefix("lacuna render ") {
             if let Some(f) = current.as_mut() {
-                f.render = Some(rest.split_whitespace().map(String::from).collect());
+                f.render
+                    .push(rest.split_whitespace().map(String::from).collect());
             }
         } else if line.starts_with("|---") {
-            if let Some(f) = current.as_mut().filter(|f| f.row.is_empty()) {
+            // The figure's numbers: the first table whose row is not pictures side by side.
+            let pictures = lines.peek().is_some_and(|r| r.starts_with("| !["));
+            if let Some(f) = current.as_mut().filter(|f| f.row.is_empty() && !pictures) {
                 let row = lines.next().expect("a row under the table's header");
                 f.row = row
                     .trim_matches('|')
@@ -650,8 +654,15 @@ fn the_gallery_numbers_are_what_verify_prints_now() {
 fn the_gallery_pictures_are_what_render_draws_now() {
     let dir = std::env::temp_dir().join(format!("lacuna-gallery-png-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    for f in gallery_figures() {
-        let args = f.render.expect("a render command");
+    let figures = gallery_figures();
+    assert!(
+        figures.iter().any(|f| f.render.len() == 2),
+        "the kite and dart"
+    );
+    for args in figures.iter().flat_map(|f| {
+        assert!(!f.render.is_empty(), "{:?}: a render command", f.verify);
+        &f.render
+    }) {
         let png = args.iter().position(|a| a == "--png").expect("--png") + 1;
         let committed = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(&args[png]);
         let fresh = dir.join("fresh.png");

@@ -27,6 +27,8 @@ pub(crate) struct Geo {
     pub(crate) template: Option<PathBuf>,
     /// Inequality goals, as the command line's `--goal` reads them.
     pub(crate) goals: Vec<String>,
+    /// The state of an automaton whose attractor is drawn (`render --state`; `None`: the start).
+    pub(crate) state: Option<String>,
 }
 
 impl Geo {
@@ -112,8 +114,9 @@ impl Geo {
                 )))
             }
         };
-        let (resolved, contraction, ev) = lacuna::geometry::prepare_automaton(
+        let (resolved, contraction, ev) = lacuna::geometry::prepare_automaton_at(
             &model,
+            self.state.as_deref(),
             &param_values(&self.params)?,
             self.level,
             self.max_cells.unwrap_or(default_cells),
@@ -143,6 +146,7 @@ pub(crate) fn geo(
         corners: None,
         template: None,
         goals: Vec::new(),
+        state: None,
     })
 }
 
@@ -184,7 +188,7 @@ pub(crate) fn polygons(
 /// The shapes of an automaton's attractor at the level, as JSON (the `--json-out` file of
 /// `lacuna render` on an automaton), with the state names and whether the constraints hold.
 #[pyfunction]
-#[pyo3(signature = (input, level, params=Vec::new(), max_cells=None, limits=None))]
+#[pyo3(signature = (input, level, params=Vec::new(), max_cells=None, limits=None, state=None))]
 pub(crate) fn automaton_shapes(
     py: Python<'_>,
     input: String,
@@ -192,8 +196,12 @@ pub(crate) fn automaton_shapes(
     params: Vec<(String, String)>,
     max_cells: Option<u64>,
     limits: Option<&Bound<'_, PyDict>>,
+    state: Option<String>,
 ) -> PyResult<(String, Vec<String>, bool)> {
-    let g = geo(input, level, params, 4, max_cells, limits)?;
+    let g = Geo {
+        state,
+        ..geo(input, level, params, 4, max_cells, limits)?
+    };
     run(py, move || {
         let (_, resolved, _, ev, _) = g.automaton(2_000_000)?;
         let mut buf = Vec::new();
@@ -211,9 +219,10 @@ pub(crate) fn automaton_shapes(
 
 /// Writes the pictures and solids of the level of faces or of an automaton: SVG, PNG (`size`
 /// pixels wide), binary or ASCII STL (faces only; the solid is built and checked against the
-/// exact topology first). Returns the paths written.
+/// exact topology first). Returns the paths written. `state` draws that state of an automaton
+/// instead of its start state (`render --state`).
 #[pyfunction]
-#[pyo3(signature = (input, level, params=Vec::new(), svg=None, png=None, stl=None, stl_ascii=false, size=1024, legend=true, transparent=false, width=None, thickness=None, segments=4, max_cells=None, limits=None, corners=None, template=None, goals=Vec::new()))]
+#[pyo3(signature = (input, level, params=Vec::new(), svg=None, png=None, stl=None, stl_ascii=false, size=1024, legend=true, transparent=false, width=None, thickness=None, segments=4, max_cells=None, limits=None, corners=None, template=None, goals=Vec::new(), state=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn render(
     py: Python<'_>,
@@ -235,9 +244,12 @@ pub(crate) fn render(
     corners: Option<String>,
     template: Option<PathBuf>,
     goals: Vec<String>,
+    state: Option<String>,
 ) -> PyResult<Vec<PathBuf>> {
-    let g =
-        geo(input, level, params, segments, max_cells, limits)?.choosing(corners, template, goals);
+    let g = Geo {
+        state,
+        ..geo(input, level, params, segments, max_cells, limits)?.choosing(corners, template, goals)
+    };
     run(py, move || {
         if svg.is_none() && png.is_none() && stl.is_none() {
             return Err(Error::Usage(
@@ -287,6 +299,11 @@ pub(crate) fn render(
                 wrote.push(p.clone());
             }
             return Ok(wrote);
+        }
+        if let Some(state) = &g.state {
+            return Err(Error::Usage(format!(
+                "state `{state}` names a state of an automaton, but faces have no states: draw them without state"
+            )));
         }
         let vector = svg.is_some() || stl.is_some();
         let inst = g.instance(if vector { 2_000_000 } else { 100_000_000 })?;

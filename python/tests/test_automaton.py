@@ -4,6 +4,7 @@ import math
 import struct
 
 import numpy as np
+import pytest
 
 import lacuna
 
@@ -53,3 +54,32 @@ def test_automaton_files_written(tmp_path):
     assert svg.read_text().lstrip().startswith(("<?xml", "<svg"))
     b = png.read_bytes()
     assert b[:8] == b"\x89PNG\r\n\x1a\n" and struct.unpack(">I", b[16:20])[0] == 200
+
+
+def test_state_draws_the_dart_from_its_frame(cli, tmp_path):
+    import json
+
+    from lacuna import UsageError
+
+    kd = lacuna.load("kite-dart")
+    # The start state by name is the picture without a state.
+    kite, kite_a = kd.render(4), kd.render(4, state="a")
+    assert kite.states == kite_a.states
+    assert all(np.array_equal(p, q) for p, q in zip(kite.points, kite_a.points))
+    # The dart: its frame is the kite's (a.T0, the first operator reaching b, is the identity),
+    # and its level 3 is its own pieces, not the kite's.
+    dart0 = kd.render(0, state="b")
+    assert dart0.states == ["b"]
+    assert np.allclose(dart0.points[0], [[-4, -0.5], [4, -0.5], [0, 5]])
+    dart = kd.render(3, state="b")
+    out = tmp_path / "b.json"
+    code, _ = cli("render", "kite-dart", "--state", "b", "--level", 3, "--json-out", out)
+    data = json.loads(out.read_text())
+    assert code == 0 and dart.states == [x["state"] for x in data["shapes"]]
+    assert all(np.allclose(np.array(x["points"]), p) for x, p in zip(data["shapes"], dart.points))
+    assert any(not np.allclose(p, q) for p, q in zip(dart.points, kd.render(3).points))
+    png = tmp_path / "b.png"
+    assert kd.render(3, state="b", png=png, size=100).written == [png]
+    with pytest.raises(UsageError) as e:
+        kd.render(1, state="c")
+    assert e.value.code == "E0504" and "`c`" in str(e.value) and "a, b" in str(e.value)

@@ -560,6 +560,11 @@ pub(crate) struct RenderArgs {
     /// Write the default template (the targets to edit for --template) to this file.
     #[arg(long, value_name = "FILE")]
     pub(crate) write_template: Option<std::path::PathBuf>,
+    /// An automaton: draw the attractor of this state instead of the start state's, from its
+    /// frame (the start's points carried by the first operator reaching it, breadth first), in
+    /// every output. The start must reach it.
+    #[arg(long, value_name = "NAME")]
+    pub(crate) state: Option<String>,
 }
 
 /// Sizes for printing (THEORY §11), shared by `render` and `measure`.

@@ -36,19 +36,39 @@ pub(super) fn prepare(
     limits: &Limits,
     default_cells: u64,
 ) -> Result<Prepared, Error> {
+    prepare_at(geo, name, model, None, limits, default_cells)
+}
+
+/// [`prepare`] drawing the attractor of `state` (`render --state`; `None`: the start state):
+/// the evaluator starts there from its frame, and the model kept for the exact meshes is the
+/// one restarted there ([`lacuna::geometry::restarted`]).
+pub(super) fn prepare_at(
+    geo: &GeoArgs,
+    name: String,
+    model: AutomatonModel,
+    state: Option<&str>,
+    limits: &Limits,
+    default_cells: u64,
+) -> Result<Prepared, Error> {
     limits.check_level(u64::from(geo.level))?;
     if geo.template.is_some() || !geo.goals.is_empty() || geo.corners.is_some() {
         return Err(Error::Usage(
             "--template, --goal and --corners apply to faces; an automaton takes its control points from its `points` line and its parameters from `param` lines and --param".into(),
         ));
     }
-    let (resolved, contraction, ev) = lacuna::geometry::prepare_automaton(
+    let (resolved, contraction, ev) = lacuna::geometry::prepare_automaton_at(
         &model,
+        state,
         &param_values(&geo.params)?,
         geo.level,
         geo.max_cells.unwrap_or(default_cells),
         limits,
     )?;
+    let model = match ev.start() == model.start {
+        true => model,
+        false => lacuna::geometry::restarted(&model, &resolved, ev.start())
+            .expect("the evaluator's start is reachable"),
+    };
     Ok(Prepared {
         name,
         input: geo.input.clone(),

@@ -29,6 +29,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         density,
         density_grid,
         write_template,
+        state,
     } = args;
     let wanted: Vec<(&str, &std::path::Path)> = [
         ("--write-template", &write_template),
@@ -129,7 +130,16 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         (_, true) => lacuna::mesh::threemf::Style::Parts,
         _ => lacuna::mesh::threemf::Style::Plain,
     };
+    let no_states = |what: &str| {
+        Error::Usage(format!(
+            "--state `{}` names a state of an automaton, but {what}: draw without --state",
+            state.as_deref().unwrap_or_default()
+        ))
+    };
     if let Some((name, v)) = lacuna::input::load_volume_file(&geo.input)? {
+        if state.is_some() {
+            return Err(no_states("a volume has no states"));
+        }
         if json_out.is_some() || density.is_some() || write_template.is_some() {
             return Err(Error::Usage(
                 "--json-out, --density and --write-template apply to faces; a volume is written with --svg, --png, --stl, --3mf or --obj".into(),
@@ -162,10 +172,11 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             ));
         }
         let vector = svg.is_some() || json_out.is_some() || obj.is_some();
-        let p = automaton::prepare(
+        let p = automaton::prepare_at(
             &geo,
             name,
             model,
+            state.as_deref(),
             limits,
             if vector { 2_000_000 } else { 20_000_000 },
         )?;
@@ -190,6 +201,9 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
             (size, background.into(), !no_legend),
         )?;
         return Ok(finish(&geo, &outputs, code));
+    }
+    if state.is_some() {
+        return Err(no_states("faces have no states"));
     }
     let vector = svg.is_some() || json_out.is_some() || mesh.any();
     let (_, inst) = instance(&geo, limits, if vector { 2_000_000 } else { 100_000_000 })?;

@@ -96,6 +96,67 @@ impl Evaluator {
         }
     }
 
+    /// The same automaton drawn from another state: the attractor of `state`, from its frame.
+    /// The frames are those of the exact side ([`crate::analysis::frames`]), in `f64` with the
+    /// evaluator's own operators: the start state's points, then `F_w = F_q · T` along the first
+    /// subdivision operator `T: q ← w` reaching w breadth first (the operators of a state in
+    /// index order). The start state gives the evaluator back unchanged. A state that is not
+    /// there, or that the start does not reach, is a usage error (E0504) naming the reachable
+    /// states.
+    pub fn with_start(self, state: &str) -> crate::error::Result<Self> {
+        let frames = self.frames();
+        let reachable: Vec<&str> = (0..self.names.len())
+            .filter(|&q| frames[q].is_some())
+            .map(|q| self.names[q].as_str())
+            .collect();
+        let Some(w) = self.names.iter().position(|n| n == state) else {
+            return Err(crate::error::Error::Usage(format!(
+                "`{state}` is not a state of this automaton: its states reachable from the start `{}` are {}",
+                self.names[self.start],
+                reachable.join(", ")
+            )));
+        };
+        let Some(points) = frames[w].clone() else {
+            return Err(crate::error::Error::Usage(format!(
+                "the state `{state}` is not reachable from the start `{}`: it has no frame to be drawn from; the reachable states are {}",
+                self.names[self.start],
+                reachable.join(", ")
+            )));
+        };
+        if w == self.start {
+            return Ok(self);
+        }
+        Ok(Evaluator {
+            start: w,
+            start_points: points,
+            ..self
+        })
+    }
+
+    /// The index of the state drawn (the start state, or the one [`Evaluator::with_start`] chose).
+    pub fn start(&self) -> usize {
+        self.start
+    }
+
+    /// The frame (control points) of every state reachable from the start, in `f64`: the start
+    /// state's points, then `F_w = F_q · T` along the first operator reaching w breadth first.
+    fn frames(&self) -> Vec<Option<Vec<[f64; 3]>>> {
+        let mut frames: Vec<Option<Vec<[f64; 3]>>> = vec![None; self.out.len()];
+        frames[self.start] = Some(self.start_points.clone());
+        let mut queue = std::collections::VecDeque::from([self.start]);
+        while let Some(q) = queue.pop_front() {
+            for edge in &self.out[q] {
+                let w = edge.3;
+                if frames[w].is_none() {
+                    let f = child_points(frames[q].as_ref().expect("visited"), edge);
+                    frames[w] = Some(f);
+                    queue.push_back(w);
+                }
+            }
+        }
+        frames
+    }
+
     /// The number of leaves at level n (a state without subdivision operators is a leaf where it
     /// is reached), saturating; computed before any walk.
     pub fn count(&self, level: u32) -> u128 {
@@ -130,19 +191,8 @@ impl Evaluator {
                 f(q, d, &pts);
                 continue;
             }
-            for (t, rows, cols, w) in self.out[q].iter().rev() {
-                let mut child = vec![[0.0; 3]; *cols];
-                for (j, c) in child.iter_mut().enumerate() {
-                    for i in 0..*rows {
-                        let a = t[i * cols + j];
-                        if a != 0.0 {
-                            for x in 0..3 {
-                                c[x] += a * pts[i][x];
-                            }
-                        }
-                    }
-                }
-                stack.push((*w, d + 1, child));
+            for edge in self.out[q].iter().rev() {
+                stack.push((edge.3, d + 1, child_points(&pts, edge)));
             }
         }
     }
@@ -181,6 +231,23 @@ impl Evaluator {
     }
 }
 
+/// The points `F · T` of the node an operator leads to, from the points `F` of its parent (the
+/// columns of F; T's entry (i, j) weighs the parent's point i in the child's point j).
+fn child_points(pts: &[[f64; 3]], (t, rows, cols, _): &Edge) -> Vec<[f64; 3]> {
+    let mut child = vec![[0.0; 3]; *cols];
+    for (j, c) in child.iter_mut().enumerate() {
+        for i in 0..*rows {
+            let a = t[i * cols + j];
+            if a != 0.0 {
+                for x in 0..3 {
+                    c[x] += a * pts[i][x];
+                }
+            }
+        }
+    }
+    child
+}
+
 /// An automaton made ready to draw at `level`: its unknowns resolved with the parameter
 /// `values`, its contraction proved within `limits.max_products`, and the pieces of the level
 /// counted against `max_cells` before any drawing (E0501). The command line's `render`,
@@ -192,11 +259,29 @@ pub fn prepare_automaton(
     max_cells: u64,
     limits: &crate::topology::Limits,
 ) -> crate::error::Result<(Resolved, crate::analysis::ContractionReport, Evaluator)> {
+    prepare_automaton_at(m, None, values, level, max_cells, limits)
+}
+
+/// [`prepare_automaton`] drawing the attractor of `state` (by name; `None`: the start state)
+/// from its frame ([`Evaluator::with_start`]): the pieces counted are that state's, and a state
+/// the start does not reach is refused (E0504) before anything is counted.
+pub fn prepare_automaton_at(
+    m: &AutomatonModel,
+    state: Option<&str>,
+    values: &[(String, num_rational::BigRational)],
+    level: u32,
+    max_cells: u64,
+    limits: &crate::topology::Limits,
+) -> crate::error::Result<(Resolved, crate::analysis::ContractionReport, Evaluator)> {
     limits.check_level(u64::from(level))?;
     let resolved = crate::analysis::resolve(m, values, limits.max_unknowns)?;
     let contraction =
         crate::analysis::check_contraction_within(m, &resolved.ops, limits.max_products)?;
     let ev = Evaluator::new(m, &resolved);
+    let ev = match state {
+        Some(name) => ev.with_start(name)?,
+        None => ev,
+    };
     let count = ev.count(level);
     if count > u128::from(max_cells) {
         return Err(crate::error::Error::limit(
@@ -207,6 +292,25 @@ pub fn prepare_automaton(
         ));
     }
     Ok((resolved, contraction, ev))
+}
+
+/// The model drawn from another state: `state` becomes the start and its exact frame
+/// ([`crate::analysis::frames`], `F_w = F_q · T` breadth first from the start's points) its
+/// control points, so that [`exact_points`] and [`exact_polygons`] walk that state's attractor
+/// as [`Evaluator::with_start`] draws it. `None` when the start does not reach `state`.
+pub fn restarted(m: &AutomatonModel, r: &Resolved, state: usize) -> Option<AutomatonModel> {
+    if state == m.start {
+        return Some(m.clone());
+    }
+    let f = crate::analysis::frames(m, &r.ops).get(state)?.clone()?;
+    let points = (0..f.cols)
+        .map(|c| (0..f.rows).map(|d| f.get(d, c).clone()).collect())
+        .collect();
+    Some(AutomatonModel {
+        start: state,
+        points: Some(points),
+        ..m.clone()
+    })
 }
 
 /// The exact control points (columns of `space × m`) of the node reached from the start by the

@@ -1194,14 +1194,17 @@ class Automaton(_Operators):
         params: Params = None,
         max_cells: Optional[int] = None,
         limits: Limits = None,
+        state: Optional[str] = None,
     ) -> Shapes:
         """The attractor at ``level`` (operators resolved with ``params``, every cycle checked to
-        contract): its pieces as NumPy arrays; writes an SVG and a PNG when their paths are given."""
+        contract): its pieces as NumPy arrays; writes an SVG and a PNG when their paths are given.
+        ``state`` draws the attractor of that state instead of the start state's, from its frame
+        (``lacuna render --state``): the start's points carried by the first operator reaching it."""
         import numpy as np
 
         p = _params(params)
         lim = _limits(limits)
-        text, _names, consistent = _lacuna.automaton_shapes(self.source, int(level), p, max_cells, lim)
+        text, _names, consistent = _lacuna.automaton_shapes(self.source, int(level), p, max_cells, lim, state)
         d = json.loads(text)
         shapes = d.get("shapes", [])
         space = int(d.get("space", 2))
@@ -1211,10 +1214,10 @@ class Automaton(_Operators):
                 Path(w)
                 for w in _lacuna.render(
                     self.source, int(level), p, _path(svg), _path(png), None, False, int(size), True, False,
-                    None, None, 4, max_cells, lim,
+                    None, None, 4, max_cells, lim, None, None, [], state,
                 )
             ]
-        picture = lambda lv, png, size: self.render(lv, png=png, size=size, params=params, max_cells=max_cells, limits=limits)  # noqa: E731
+        picture = lambda lv, png, size: self.render(lv, png=png, size=size, params=params, max_cells=max_cells, limits=limits, state=state)  # noqa: E731
         return Shapes(
             points=[np.asarray(s["points"], dtype=float).reshape(-1, space) for s in shapes],
             states=[s["state"] for s in shapes],

@@ -74,8 +74,10 @@ def automaton_shapes(
     params: _Params = ...,
     max_cells: Optional[int] = None,
     limits: _Limits = None,
+    state: Optional[str] = None,
 ) -> Tuple[str, List[str], bool]:
-    """(shapes JSON, state names, whether the constraints hold)."""
+    """(shapes JSON, state names, whether the constraints hold); `state` draws that state's
+    attractor instead of the start state's."""
 
 def render(
     input: str,
@@ -96,8 +98,10 @@ def render(
     corners: Optional[str] = None,
     template: Optional[str] = None,
     goals: List[str] = ...,
+    state: Optional[str] = None,
 ) -> List[Path]:
-    """Writes the files asked for; returns their paths."""
+    """Writes the files asked for; returns their paths (`state`: that state of an automaton
+    instead of its start state)."""
 
 def measure(
     input: str,
