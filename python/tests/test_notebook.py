@@ -25,8 +25,8 @@ def test_the_notebook_runs_and_draws(tmp_path):
     assert not [o for o in outputs if o.output_type == "error"]
     pngs = [o for o in outputs if "image/png" in o.get("data", {})]
     # F0's R_i, F0 at level 3, the type graph, |R_i − R|, the √17 cycle, the half-tangent curves,
-    # Koch's curve.
-    assert len(pngs) == 7
+    # Koch's curve, three frames of F0's morph.
+    assert len(pngs) == 8
     # The cube's WebGL view, inline.
     html = [o["data"]["text/html"] for o in outputs if "text/html" in o.get("data", {})]
     assert any("<canvas" in h and "getContext('webgl'" in h for h in html)
@@ -35,3 +35,6 @@ def test_the_notebook_runs_and_draws(tmp_path):
     assert "log 4 / log 3" in text
     assert "minimal counterexample: C2 | B2 B2 B2 | A1 breaks no-collapse" in text
     assert "degrees of freedom 2" in text and "all proved: True" in text
+    # Seed 002: the lemniscate fractal's pieces coincide in pairs, the rose's in triples.
+    assert "same class: False" in text
+    assert "5 frames, every one verified: True" in text
