@@ -270,6 +270,16 @@ fn kind(py: Python<'_>, input: String) -> PyResult<(String, String)> {
     })
 }
 
+/// The rule text an automaton was compiled from (a rule file or a library entry written as a
+/// rule), `None` for a hand-written automaton; faces and volumes are refused.
+#[pyfunction]
+fn rule_text(py: Python<'_>, input: String) -> PyResult<Option<String>> {
+    run(py, move || match load_any(&input)? {
+        Loaded::Automaton { model, .. } => Ok(model.rule.clone()),
+        Loaded::Faces(_) => Err(Error::Usage(format!("`{input}` is faces, not a rule"))),
+    })
+}
+
 /// The start faces of faces (notation, a file or a library name): the canonical notation of
 /// each, and the number of shared edges between them.
 #[pyfunction]
@@ -545,6 +555,7 @@ fn refuse_clobbering(input: &str, outputs: &[&Option<PathBuf>]) -> Result<(), Er
 fn _lacuna(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(kind, m)?)?;
+    m.add_function(wrap_pyfunction!(rule_text, m)?)?;
     m.add_function(wrap_pyfunction!(canonical, m)?)?;
     m.add_function(wrap_pyfunction!(start_faces, m)?)?;
     m.add_function(wrap_pyfunction!(library, m)?)?;

@@ -40,6 +40,11 @@ def test_load_gives_the_kind_of_each_entry(cli):
         assert is_automaton or (REPO / "fixtures" / f"{name}.txt").exists()
         assert isinstance(obj, lacuna.Automaton) == is_automaton
         assert isinstance(obj, lacuna.Structure) == (not is_automaton)
+        # A production rule is a Rule (an Automaton) that keeps its text: the fixture's.
+        rule = REPO / "fixtures" / f"{name}.rule"
+        assert isinstance(obj, lacuna.Rule) == rule.exists(), name
+        if rule.exists():
+            assert obj.text == rule.read_text(encoding="utf-8"), name
         if not is_automaton:
             # One face without shared edges is a Face (issue #33: load("F0") gave an Assembly);
             # more are an Assembly. A fixture of faces has one `face NAME:` line per face.
@@ -72,3 +77,18 @@ def test_the_module_docstring_examples_run():
 
     result = doctest.testmod(lacuna)
     assert result.attempted >= 4 and result.failed == 0
+
+
+def test_a_rule_is_only_what_a_rule_compiles_to():
+    assert "initiator" in lacuna.Rule("koch").text
+    with pytest.raises(lacuna.UsageError, match="hand-written automaton, not a rule"):
+        lacuna.Rule("sierpinski-triangle")
+    with pytest.raises(lacuna.UsageError):
+        lacuna.Rule("F0")
+
+
+def test_a_face_from_its_notation_is_the_face():
+    f = lacuna.Face.from_notation("B2 C2 B2 C2 B2 C2 | C2 B2 B2 | A1")
+    # Canonical: the least rotation of the boundary, as Face() gives it.
+    assert f.notation == lacuna.Face("C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1").notation
+    assert isinstance(f, lacuna.Face)

@@ -53,6 +53,7 @@ __all__ = [
     "Face",
     "Assembly",
     "Automaton",
+    "Rule",
     "Volume",
     "Structure",
     "Closure",
@@ -1122,6 +1123,11 @@ class Face(Structure):
         Structure.__init__(f, source)
         return f
 
+    @classmethod
+    def from_notation(cls, notation: str) -> "Face":
+        """The face written in lacuna's notation (the same as ``Face(notation)``)."""
+        return cls(notation)
+
     def __repr__(self) -> str:
         return f"Face({self.notation!r})"
 
@@ -1290,16 +1296,31 @@ def library_text(name: str) -> str:
     raise FileError("E0601", f"cannot read `{name}`: no such library entry")
 
 
+class Rule(Automaton):
+    """A production rule (Kaandorp's initiator and generators, lacuna's rule format) compiled to
+    an automaton: a rule file or a library entry written as a rule (``koch``,
+    ``heighway-dragon``, …). ``text`` is the rule text; everything else is the
+    :class:`Automaton`'s. Raises :class:`UsageError` for a hand-written automaton."""
+
+    def __init__(self, source: str):
+        super().__init__(source)
+        text = _lacuna.rule_text(source)
+        if text is None:
+            raise UsageError("E0504", f"`{source}` is a hand-written automaton, not a rule")
+        self.text = text
+
+
 def load(source: PathLike) -> Union[Face, Assembly, Automaton, "Volume"]:
     """What ``source`` names, as the command line reads it: face notation, or a file or a library
     name of one face without shared edges (a :class:`Face`; ``load("F0")``), a file or a library
-    name of several faces (an :class:`Assembly`), of an automaton (an :class:`Automaton`), or
+    name of several faces (an :class:`Assembly`), of an automaton (an :class:`Automaton`; a
+    :class:`Rule` when it is compiled from a rule), or
     volume notation, a volume file or a library name of volumes (a :class:`Volume`, one volume or
     several glued face to face)."""
     s = os.fspath(source)
     kind, _ = _lacuna.kind(s)
     if kind == "automaton":
-        return Automaton(s)
+        return Rule(s) if _lacuna.rule_text(s) is not None else Automaton(s)
     if kind == "volume":
         return Volume(s)
     if "|" in s:

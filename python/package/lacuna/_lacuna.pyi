@@ -18,6 +18,9 @@ _Path = Optional[Union[str, PathLike[str]]]
 def kind(input: str) -> Tuple[str, str]:
     """(``"faces"`` | ``"automaton"`` | ``"volume"``, name); parses the input completely."""
 
+def rule_text(input: str) -> Optional[str]:
+    """The rule text an automaton was compiled from; None for a hand-written automaton."""
+
 def start_faces(input: str) -> Tuple[List[str], int]:
     """The canonical notation of each start face of faces, and the number of shared edges."""
 
