@@ -26,3 +26,16 @@ def test_the_closure_of_f0_is_a_table_of_its_one_type():
     assert "<td>6×T0</td>" in html
     assert "<td>5/2</td>" in html
     assert "B2 C2 B2 C2 B2 C2 | C2 B2 B2 | A1" in html
+
+
+def test_counts_and_verdicts_are_tables():
+    # F0 (THEORY §5): N^C_i = 6^i, N^L_i = (6^i − 1)/2 (each lacuna counted once), so at level 2
+    # 36 faces and 35/2 lacunas, R_2 = (35/2)/(35/2 + 36) = 35/107.
+    rows = lacuna.load("F0").counts(2)
+    assert isinstance(rows, list) and len(rows) == 3
+    html = rows._repr_html_()
+    assert html.count("<tr>") == 4 and "<td>36</td>" in html and "<td>35/2</td>" in html
+    assert "<td>35/107</td>" in html
+    v = lacuna.load("F0").verify(2)
+    html = v._repr_html_()
+    assert "<td>verified</td><td>True</td>" in html

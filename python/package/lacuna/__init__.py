@@ -54,6 +54,7 @@ __all__ = [
     "Assembly",
     "Automaton",
     "Rule",
+    "Counts",
     "Volume",
     "Structure",
     "Closure",
@@ -212,6 +213,11 @@ class Record:
 
     def __eq__(self, other: object) -> bool:
         return isinstance(other, Record) and other.data == self.data
+
+    def _repr_html_(self) -> str:
+        """A notebook shows a report (a verdict of ``verify``, a measure, …) as a table of its
+        fields, long values shortened."""
+        return _html_table(["field", "value"], [[k, _short(v)] for k, v in self.data.items()])
 
 
 def _png_bytes(render, level: int, size: int) -> bytes:
@@ -381,6 +387,17 @@ class LevelCount:
     faces: int
     lacunas: Fraction
     ratio: Fraction
+
+
+class Counts(list):
+    """The :class:`LevelCount` of every level from 0, in order (a list); a notebook shows them
+    as a table."""
+
+    def _repr_html_(self) -> str:
+        return _html_table(
+            ["level", "N^C", "N^L", "R"],
+            [[c.level, c.faces, c.lacunas, c.ratio] for c in self],
+        )
 
 
 @dataclass(frozen=True)
@@ -902,13 +919,14 @@ class Structure(_Operators):
         stated bound; a runaway is a result (``closed`` False), not an error."""
         return _closure(json.loads(_lacuna.closure(self.source, _limits(limits))))
 
-    def counts(self, levels: int, *, limits: Limits = None) -> List[LevelCount]:
-        """Exact counts for levels 0..levels: N^C_i (int), N^L_i and R_i (Fractions)."""
+    def counts(self, levels: int, *, limits: Limits = None) -> "Counts":
+        """Exact counts for levels 0..levels: N^C_i (int), N^L_i and R_i (Fractions), as a list
+        (:class:`Counts`) that a notebook shows as a table."""
         d = json.loads(_lacuna.counts(self.source, _natural("levels", levels), _limits(limits)))
-        return [
+        return Counts(
             LevelCount(int(r["level"]), int(r["faces"]), Fraction(r["lacunas"]), Fraction(r["ratio"]))
             for r in d["levels"]
-        ]
+        )
 
     def ratio(self, digits: int = 30, *, limits: Limits = None) -> Ratio:
         """The exact limit ratio R by eigen analysis, with ``digits`` certified decimals."""
