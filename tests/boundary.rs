@@ -219,6 +219,14 @@ fn the_dragon_s_boundary_is_certified_and_forgeries_fail() {
     let classes = &mut boundary_step(&mut c).parts[0].components[dominant].classes;
     classes.iter_mut().for_each(|x| *x = 0);
     assert_rejected("one class for all nodes", &c, "boundary-dimension");
+    // Numbers near 2^64 (found by the certificate_forgery fuzz target): a class number past
+    // the nodes, digits out of range — refused, never an overflow.
+    let mut c = base.clone();
+    boundary_step(&mut c).parts[0].components[dominant].classes[0] = usize::MAX;
+    assert_rejected("a class number of 2^64 − 1", &c, "boundary-dimension");
+    let mut c = base.clone();
+    boundary_step(&mut c).digits = usize::MAX;
+    assert_rejected("2^64 − 1 digits", &c, "boundary-dimension");
     let mut c = base.clone();
     boundary_step(&mut c).parts[0].components.remove(zero);
     assert_rejected("a component dropped", &c, "boundary-dimension");

@@ -74,6 +74,9 @@ pub(super) fn check_boundary(
     if b.parts.is_empty() {
         return Err("the step lists no tile part".into());
     }
+    if b.digits == 0 || b.digits > 1000 {
+        return Err(format!("{} digits: not in 1..=1000", b.digits));
+    }
     let mut messages = Vec::new();
     let mut bounds = Vec::new();
     let mut last: Option<usize> = None;
@@ -238,7 +241,7 @@ pub(super) fn check_boundary(
                 .iter()
                 .zip(&values)
                 .map(|(c, v)| {
-                    let classes = c.classes.iter().max().map_or(0, |m| m + 1);
+                    let classes = c.classes.iter().max().map_or(0, |m| m.saturating_add(1));
                     match &v.rational {
                         Some(s) => format!("{} nodes in {classes} classes, s = {s}", c.nodes.len()),
                         None => format!(
@@ -274,6 +277,13 @@ fn component_value(
         return Err(format!(
             "{} classes for {} nodes",
             c.classes.len(),
+            c.nodes.len()
+        ));
+    }
+    if let Some(x) = c.classes.iter().find(|&&x| x >= c.nodes.len()) {
+        return Err(format!(
+            "class {x}: the classes of {} nodes are numbered below {}",
+            c.nodes.len(),
             c.nodes.len()
         ));
     }
