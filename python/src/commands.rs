@@ -89,7 +89,7 @@ pub(crate) fn report(
 /// `lacuna classify A B --json`: the comparison of the invariants of two inputs, as the command
 /// line prints it, with its text under `text`.
 #[pyfunction]
-#[pyo3(signature = (a, b, levels=4, volume_levels=2, max_cells=200_000, multiplicity="contacts".to_string(), limits=None))]
+#[pyo3(signature = (a, b, levels=4, volume_levels=2, max_cells=200_000, multiplicity="coincidences".to_string(), limits=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn classify(
     py: Python<'_>,

@@ -330,12 +330,12 @@ pub(crate) struct CountsArgs {
     pub(crate) json: bool,
 }
 
-/// The multiplicity `classify` compares for automata.
+/// What `classify` reads of an automaton's multiplicity.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub(crate) enum MultiplicityArg {
-    /// Pieces meeting at the images of fixed corners.
+    /// Also count the pieces meeting at the images of fixed corners (shown, not compared).
     Contacts,
-    /// Pieces that are one exact map (seed 002).
+    /// Pieces that are one exact map (seed 002), compared.
     Coincidences,
 }
 
@@ -358,10 +358,11 @@ pub(crate) struct ClassifyArgs {
     /// Refuse before the work when a volume's level-k complex has more cells than this.
     #[arg(long, default_value_t = 200_000)]
     pub(crate) max_cells: u64,
-    /// For an automaton, the multiplicity compared: `contacts` (how many pieces meet at each
-    /// image of a fixed corner) or `coincidences` (seed 002's, eq. (18): how many pieces of a
-    /// level are one exact map, the points a curve defines more than once).
-    #[arg(long, value_enum, default_value_t = MultiplicityArg::Contacts)]
+    /// For an automaton: `coincidences` compares seed 002's multiplicity (eq. (18): how many
+    /// pieces of a level are one exact map, the points a curve defines more than once);
+    /// `contacts` also counts the pieces meeting at each image of a fixed corner, shown in a
+    /// note and not compared (those points depend on how the automaton is written).
+    #[arg(long, value_enum, default_value_t = MultiplicityArg::Coincidences)]
     pub(crate) multiplicity: MultiplicityArg,
     /// Print JSON: `{"same_class", "differs", …}`.
     #[arg(long)]

@@ -29,7 +29,7 @@ impl Default for ClassifyOptions {
             levels: 4,
             volume_levels: 2,
             max_cells: 200_000,
-            multiplicity: AutomatonMultiplicity::Contacts,
+            multiplicity: AutomatonMultiplicity::Coincidences,
         }
     }
 }
@@ -145,16 +145,6 @@ fn load(arg: &str, limits: &Limits) -> Result<Structure> {
     }
 }
 
-/// The order bound of a structure's recurrences (faces with bounded valences only).
-fn order(s: &Structure, limits: &Limits) -> Result<Option<usize>> {
-    Ok(match s {
-        Structure::Faces(_, ts, glue) => {
-            crate::topology::multiplicity(ts, glue, 0, limits.max_types)?.order
-        }
-        _ => None,
-    })
-}
-
 /// For each valence, the corners of one level's complex with that many edges.
 type Valences = BTreeMap<usize, u64>;
 
@@ -232,6 +222,7 @@ fn invariants(
                 resolved,
                 levels,
                 opts.multiplicity,
+                limits.max_products,
             )?,
             None,
         ),
@@ -254,7 +245,7 @@ pub fn classify_inputs(
     let (mut ib, mut lb) = invariants(&b, opts.levels, opts, limits)?;
     let mut c = crate::analysis::classify(&ia, &ib);
     if c.same_class && !c.every_level {
-        let (oa, ob) = (order(&a, limits)?, order(&b, limits)?);
+        let (oa, ob) = (ia.order, ib.order);
         if crate::analysis::levels_needed(oa, ob).is_some() {
             let levels = crate::analysis::levels_for(opts.levels, oa, ob, limits.max_level)?;
             (ia, la) = invariants(&a, levels, opts, limits)?;

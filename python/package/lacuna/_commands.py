@@ -208,7 +208,7 @@ def classify(
     levels: int = 4,
     volume_levels: int = 2,
     max_cells: int = 200_000,
-    multiplicity: str = "contacts",
+    multiplicity: str = "coincidences",
     limits: Limits = None,
 ) -> Classification:
     """The topological classes of two or more inputs (faces, assemblies, volumes, automata; the
@@ -216,8 +216,9 @@ def classify(
     does: cell counts and valences at levels 0 to ``levels`` (more when the recurrences of faces
     need more to decide every level), the limit valences and their shares. A volume's level-k
     complexes are built for k up to ``volume_levels`` (at most ``max_cells`` cells);
-    ``multiplicity`` is what is compared of an automaton: ``"contacts"`` (pieces meeting at the
-    images of fixed corners) or ``"coincidences"`` (pieces that are one exact map, seed 002)."""
+    an automaton's multiplicity is seed 002's (pieces that are one exact map, decided at every
+    level when its distinct maps satisfy the open-set condition); ``multiplicity="contacts"``
+    also counts the pieces meeting at the images of fixed corners, in a note, never compared."""
     if len(inputs) < 2:
         raise UsageError("E0504", f"classify needs two inputs or more, got {len(inputs)}")
     sources = [_source(x) for x in inputs]

@@ -47,8 +47,15 @@ pub struct Invariants {
     pub kind: &'static str,
     /// Per level from 0: cell counts (faces and lacunas; volumes' cells; automata's pieces).
     pub cardinality: Vec<Vec<Named>>,
-    /// Per level from 0: the number of vertices of each valence (empty where not derived).
+    /// Per level from 0: the number of vertices of each valence (empty where not derived); for
+    /// an automaton, seed 002's multiplicity (how many pieces are one exact map).
     pub multiplicity: Vec<Vec<Named>>,
+    /// Per level from 0, for an automaton when asked: where its pieces meet at the images of
+    /// fixed corners. Shown, never compared: which corners a map fixes depends on how the
+    /// automaton is written (the Sierpinski triangle written on its corners has 6 such points
+    /// at level 1, written on its centre and two corners 5).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub contacts: Vec<Vec<Named>>,
     /// Invariants of the limit (the valences that vertices settle at, or unbounded).
     pub limit: Vec<Named>,
     /// The limit share of each valence among the vertices of level k, as k grows (exact, or
@@ -151,6 +158,7 @@ pub fn face_invariants(
         kind: "faces",
         cardinality,
         multiplicity,
+        contacts: Vec::new(),
         limit,
         limit_shares: limit_shares(&m)?,
         order: m.order,
@@ -224,6 +232,7 @@ pub fn volume_invariants(
         kind: "volume",
         cardinality,
         multiplicity,
+        contacts: Vec::new(),
         limit: Vec::new(),
         limit_shares: LimitShares::NotDecided {
             reason: "the limit of a volume's valences is not decided by enumeration".into(),
@@ -235,26 +244,29 @@ pub fn volume_invariants(
     })
 }
 
-/// Which multiplicity of an automaton [`automaton_invariants`] reads.
+/// What [`automaton_invariants`] reads besides seed 002's multiplicity, which it always compares.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum AutomatonMultiplicity {
-    /// Where pieces meet: how many pieces share each image of a fixed corner (module doc).
-    #[default]
+    /// Also where pieces meet: how many pieces share each image of a fixed corner (module doc),
+    /// shown and never compared.
     Contacts,
-    /// Seed 002's (eq. (18)): how many pieces of a level are the same map — the points a curve
-    /// defines more than once, `L_r` times — whatever the pieces touch.
+    /// Seed 002's (eq. (18)) only: how many pieces of a level are the same map — the points a
+    /// curve defines more than once, `L_r` times — whatever the pieces touch.
+    #[default]
     Coincidences,
 }
 
 /// The invariants of an automaton with its resolved operators: pieces per level from the start
-/// state, and the multiplicity of levels 1 and on (`how`: at the images of fixed corners, or
-/// seed 002's coinciding pieces).
+/// state, and seed 002's multiplicity of levels 1 and on — at every level when the distinct maps
+/// are proved free ([`free_reduction`], within `max_products` products for the contraction),
+/// else by enumeration — and, when `how` asks, the contacts at the images of fixed corners.
 pub fn automaton_invariants(
     name: &str,
     model: &AutomatonModel,
     resolved: &Resolved,
     levels: u64,
     how: AutomatonMultiplicity,
+    max_products: usize,
 ) -> Result<Invariants> {
     let a = &model.automaton;
     let n = a.states.len();
@@ -277,45 +289,221 @@ pub fn automaton_invariants(
         }
         v = next;
     }
-    let (per_level, cut) = multiplicities(model, resolved, &subs, levels, MAX_CONTACT_PIECES, how)?;
-    let (total, each, what) = match how {
-        AutomatonMultiplicity::Contacts => (
-            "fixed-corner images",
-            "points where {m} pieces meet",
-            "at the exact images of fixed corners; contacts elsewhere and the limit are not decided",
-        ),
-        AutomatonMultiplicity::Coincidences => (
-            "distinct maps",
-            "maps of {m} pieces",
-            "seed 002's multiplicity: the pieces of a level that are one exact map (a point the curve defines L times); the limit is not decided",
-        ),
+    // Seed 002's multiplicity: at every level when the distinct maps are proved free (module
+    // doc), else enumerated while a level is small enough.
+    let (coincidences, order, mut notes) = match free_reduction(
+        model,
+        resolved,
+        &subs,
+        max_products,
+    )? {
+        Ok(free) => {
+            let rows = free_levels(model, &free, levels);
+            let note = format!(
+                "{name}: seed 002's multiplicity (the pieces of a level that are one exact map, eq. (18)) decided at every level: its {} distinct maps satisfy the open-set condition ({}), so no two different words of them are one map, and each count of level k is a linear recurrence of order {} (its states)",
+                free.ops.len(),
+                free.criterion,
+                model.automaton.states.len()
+            );
+            (rows, Some(model.automaton.states.len()), vec![note])
+        }
+        Err(why) => {
+            let (per_level, cut) = multiplicities(
+                model,
+                resolved,
+                &subs,
+                levels,
+                MAX_CONTACT_PIECES,
+                AutomatonMultiplicity::Coincidences,
+            )?;
+            let rows = rows_of(&per_level, "distinct maps", "maps of {m} pieces");
+            let mut notes = vec![format!(
+                "{name}: seed 002's multiplicity (the pieces of a level that are one exact map, eq. (18)) enumerated at levels 1 to {}; deeper coincidences and the limit are not decided: {why}",
+                per_level.len()
+            )];
+            notes.extend(cut);
+            (rows, None, notes)
+        }
     };
     let mut multiplicity = vec![Vec::new(); levels as usize + 1];
-    for (i, (hist, points)) in per_level.iter().enumerate() {
-        let row = &mut multiplicity[i + 1];
-        row.push((total.to_string(), points.to_string()));
-        row.extend(
-            hist.iter()
-                .map(|(m, k)| (each.replace("{m}", &m.to_string()), k.to_string())),
-        );
+    for (i, row) in coincidences.into_iter().enumerate() {
+        multiplicity[i + 1] = row;
     }
-    let mut notes = vec![format!(
-        "automaton multiplicity: levels 1 to {}, {what}",
-        per_level.len()
-    )];
-    notes.extend(cut);
+    let mut contacts = Vec::new();
+    if how == AutomatonMultiplicity::Contacts {
+        let (per_level, cut) =
+            multiplicities(model, resolved, &subs, levels, MAX_CONTACT_PIECES, how)?;
+        contacts = vec![Vec::new(); levels as usize + 1];
+        for (i, row) in rows_of(
+            &per_level,
+            "fixed-corner images",
+            "points where {m} pieces meet",
+        )
+        .into_iter()
+        .enumerate()
+        {
+            contacts[i + 1] = row;
+        }
+        notes.push(format!(
+            "{name}: contacts at the exact images of fixed corners counted at levels 1 to {} (shown, not compared)",
+            per_level.len()
+        ));
+        notes.extend(cut);
+    }
     Ok(Invariants {
         name: name.to_string(),
         kind: "automaton",
         cardinality,
         multiplicity,
+        contacts,
         limit: Vec::new(),
         limit_shares: LimitShares::NotDecided {
             reason: "the valences of an automaton's levels are not derived".into(),
         },
-        order: None,
+        order,
         notes,
     })
+}
+
+/// One row of named counts per level: the total under `total`, and how many are of each size
+/// m under `each` (`{m}` replaced).
+fn rows_of(per_level: &[Contacts], total: &str, each: &str) -> Vec<Vec<Named>> {
+    per_level
+        .iter()
+        .map(|(hist, points)| {
+            let mut row = vec![(total.to_string(), points.to_string())];
+            row.extend(
+                hist.iter()
+                    .map(|(m, k)| (each.replace("{m}", &m.to_string()), k.to_string())),
+            );
+            row
+        })
+        .collect()
+}
+
+/// An automaton's sub-operators with equal maps merged, proved free: no two different words of
+/// the merged maps (of one length, from the start state) are one map.
+#[derive(Clone, Debug)]
+struct FreeReduction {
+    /// Each distinct map: an operator that has it, and how many sub-operators have it (same
+    /// states, equal exact matrix).
+    ops: Vec<(usize, u64)>,
+    /// The open-set criterion that proved it.
+    criterion: String,
+}
+
+/// Merges the sub-operators with one map (same states, equal exact matrix) and proves the
+/// merged system free, or says why it is not proved (the inner `Err`).
+///
+/// **Why the open-set condition proves it.** Let the merged system be contracting with open
+/// sets `U_s ≠ ∅`, `f_o(U_from) ⊂ U_to` and, for two different operators into one state,
+/// disjoint images. Two different words u, v of one length from the start state first differ
+/// at some letter; below that letter their pieces lie in disjoint images, so
+/// `f_u(U) ∩ f_v(U) = ∅` and, both being non-empty, `f_u ≠ f_v` (a word ending in another state
+/// is another piece anyway). Every state reached must lie in the one cyclic part whose
+/// condition is proved, so that the condition covers every operator a word can use.
+fn free_reduction(
+    model: &AutomatonModel,
+    resolved: &Resolved,
+    subs: &[usize],
+    max_products: usize,
+) -> Result<std::result::Result<FreeReduction, String>> {
+    let a = &model.automaton;
+    let mut ops: Vec<(usize, u64)> = Vec::new();
+    for &o in subs {
+        let op = &a.operators[o];
+        let same = ops.iter_mut().find(|(r, _)| {
+            let rep = &a.operators[*r];
+            rep.from == op.from && rep.to == op.to && resolved.ops[*r] == resolved.ops[o]
+        });
+        match same {
+            Some((_, w)) => *w += 1,
+            None => ops.push((o, 1)),
+        }
+    }
+    // The merged automaton: its sub-operators only, each distinct map once.
+    let mut reduced = model.clone();
+    reduced.automaton.operators = ops.iter().map(|&(o, _)| a.operators[o].clone()).collect();
+    reduced.automaton.constraints.clear();
+    reduced.automaton.barycentric = (0..ops.len())
+        .filter(|&i| a.barycentric.contains(&ops[i].0))
+        .collect();
+    reduced.kvalues = ops
+        .iter()
+        .map(|&(o, _)| model.kvalues.get(o).cloned().flatten())
+        .collect();
+    reduced.field_ops = (0..ops.len())
+        .filter(|&i| model.field_ops.contains(&ops[i].0))
+        .collect();
+    let matrices: Vec<KMatrix> = ops.iter().map(|&(o, _)| resolved.ops[o].clone()).collect();
+    match crate::analysis::check_contraction_within(&reduced, &matrices, max_products) {
+        Ok(_) => {}
+        Err(e) if e.code().starts_with("E07") => {
+            return Ok(Err(format!("the contraction is not proved ({e})")))
+        }
+        Err(e) => return Err(e),
+    }
+    let parts = crate::analysis::similarity::cyclic_parts(&reduced);
+    let reach = crate::analysis::contraction::reachable(&reduced);
+    let reached = reach.iter().filter(|&&r| r).count();
+    if parts.len() != 1 || parts[0].len() != reached {
+        return Ok(Err(
+            "the states reached are not one strongly connected part".to_string(),
+        ));
+    }
+    let sim = match crate::analysis::similarity_dimension(&reduced, &matrices, 4) {
+        Ok(sim) => sim,
+        Err(why) => {
+            return Ok(Err(format!(
+                "no open-set analysis of the distinct maps: {why}"
+            )))
+        }
+    };
+    if !sim.open_set_witnessed() {
+        return Ok(Err(format!(
+            "the open-set condition of the distinct maps is not proved: {}",
+            sim.open_set
+        )));
+    }
+    Ok(Ok(FreeReduction {
+        ops,
+        criterion: sim.open_set,
+    }))
+}
+
+/// Seed 002's multiplicity at levels 1 to `levels` of a free reduction: a map of level k is one
+/// word of the distinct maps, and the pieces that are that map number the product of its
+/// letters' counts. Counted state by state (how many words end in each state with each
+/// product), so the levels cost no enumeration of pieces.
+fn free_levels(model: &AutomatonModel, free: &FreeReduction, levels: u64) -> Vec<Vec<Named>> {
+    let a = &model.automaton;
+    let mut words: Vec<BTreeMap<BigUint, BigUint>> = vec![BTreeMap::new(); a.states.len()];
+    words[model.start].insert(BigUint::from(1u32), BigUint::from(1u32));
+    let mut rows = Vec::new();
+    for _ in 1..=levels {
+        let mut next: Vec<BTreeMap<BigUint, BigUint>> = vec![BTreeMap::new(); a.states.len()];
+        for &(o, w) in &free.ops {
+            let op = &a.operators[o];
+            for (m, c) in &words[op.to] {
+                *next[op.from].entry(m * w).or_insert_with(BigUint::zero) += c;
+            }
+        }
+        words = next;
+        let mut hist: BTreeMap<BigUint, BigUint> = BTreeMap::new();
+        for per_state in &words {
+            for (m, c) in per_state {
+                *hist.entry(m.clone()).or_insert_with(BigUint::zero) += c;
+            }
+        }
+        let total: BigUint = hist.values().sum();
+        let mut row = vec![("distinct maps".to_string(), total.to_string())];
+        row.extend(
+            hist.iter()
+                .map(|(m, k)| (format!("maps of {m} pieces"), k.to_string())),
+        );
+        rows.push(row);
+    }
+    rows
 }
 
 /// The contacts of one level: for each number m of pieces, the points where exactly m meet; and
@@ -487,6 +675,21 @@ pub fn classify(a: &Invariants, b: &Invariants) -> Classification {
         }
     }
     let every_level = needed.is_some_and(|n| n <= levels);
+    if !a.contacts.is_empty() && !b.contacts.is_empty() {
+        let top = levels.min(a.contacts.len().min(b.contacts.len()) as u64 - 1);
+        let first = (1..=top as usize)
+            .find_map(|l| differ("contacts", Some(l as u64), &a.contacts[l], &b.contacts[l]));
+        notes.push(match first {
+            Some(d) => format!(
+                "contacts at the images of fixed corners differ at level {}: {}: A has {}, B has {} (not a class invariant: which corners a map fixes depends on how each automaton is written)",
+                d.level.unwrap_or(0),
+                d.invariant,
+                d.a,
+                d.b
+            ),
+            None => format!("contacts at the images of fixed corners: equal at levels 1 to {top}"),
+        });
+    }
     let mut differs = first_difference(a, b, levels);
     if differs.is_none() {
         let (d, share_notes) = share_difference(&a.limit_shares, &b.limit_shares);
@@ -845,7 +1048,33 @@ mod tests {
         })
         .unwrap();
         let resolved = crate::analysis::resolve(&model, &[], 1_000_000).unwrap();
-        automaton_invariants("test", &model, &resolved, 2, Default::default()).unwrap()
+        automaton_invariants(
+            "test",
+            &model,
+            &resolved,
+            2,
+            AutomatonMultiplicity::Contacts,
+            100_000,
+        )
+        .unwrap()
+    }
+
+    fn lib_text(name: &str) -> &'static str {
+        crate::input::library()
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, t)| *t)
+            .expect("a library entry")
+    }
+
+    fn model(text: &str) -> (AutomatonModel, Resolved) {
+        let model = crate::input::parse_model(&crate::Source {
+            name: "test".into(),
+            text: text.into(),
+        })
+        .unwrap();
+        let resolved = crate::analysis::resolve(&model, &[], 1_000_000).unwrap();
+        (model, resolved)
     }
 
     #[test]
@@ -867,8 +1096,12 @@ mod tests {
             &resolved,
             2,
             AutomatonMultiplicity::Coincidences,
+            100_000,
         )
         .unwrap();
+        // The two distinct maps are free (the open interval (0, 1) is an open set), so these
+        // rows come from counting words of the distinct maps, not from enumerating pieces.
+        assert_eq!(i.order, Some(1), "{:?}", i.notes);
         let named = |v: &[(&str, &str)]| -> Vec<Named> {
             v.iter()
                 .map(|(a, b)| (a.to_string(), b.to_string()))
@@ -933,7 +1166,7 @@ mod tests {
             vec![("pieces".to_string(), "9".to_string())]
         );
         assert_eq!(
-            s.multiplicity[1],
+            s.contacts[1],
             vec![
                 ("fixed-corner images".to_string(), "6".to_string()),
                 ("points where 1 pieces meet".to_string(), "3".to_string()),
@@ -944,19 +1177,25 @@ mod tests {
         // that are corners of a small triangle (3·(3^2 + 1)/2): the 3 outer corners lie in one
         // piece, the other 12 in two (27 = 3 + 2·12 corner incidences).
         assert_eq!(
-            s.multiplicity[2],
+            s.contacts[2],
             vec![
                 ("fixed-corner images".to_string(), "15".to_string()),
                 ("points where 1 pieces meet".to_string(), "3".to_string()),
                 ("points where 2 pieces meet".to_string(), "12".to_string()),
             ]
         );
-        assert!(s.notes[0].contains("levels 1 to 2"), "{:?}", s.notes);
+        assert!(
+            s.notes
+                .iter()
+                .any(|n| n.contains("fixed corners counted at levels 1 to 2")),
+            "{:?}",
+            s.notes
+        );
         // Cantor: T0 fixes end 0, T1 end 1; images (1,0), (2/3,1/3), (1/3,2/3), (0,1): four
         // points, no two pieces meet.
         let c = automaton(include_str!("../../../fixtures/cantor-set.aut"));
         assert_eq!(
-            c.multiplicity[1],
+            c.contacts[1],
             vec![
                 ("fixed-corner images".to_string(), "4".to_string()),
                 ("points where 1 pieces meet".to_string(), "4".to_string()),
@@ -964,11 +1203,126 @@ mod tests {
         );
         // Level 2: 4 intervals of length 1/9, 8 distinct ends (the gaps keep them apart).
         assert_eq!(
-            c.multiplicity[2],
+            c.contacts[2],
             vec![
                 ("fixed-corner images".to_string(), "8".to_string()),
                 ("points where 1 pieces meet".to_string(), "8".to_string()),
             ]
+        );
+    }
+
+    #[test]
+    fn free_counts_agree_with_enumerated_pieces() {
+        // Two independent computations of seed 002's multiplicity: words of the distinct maps
+        // (each of product weight) against every piece of the level with its exact map. They
+        // must agree wherever the distinct maps are proved free.
+        for name in [
+            "lemniscate-fractal",
+            "rose-fractal",
+            "gasket-5",
+            "sierpinski-carpet",
+            "penrose-robinson",
+        ] {
+            let text = lib_text(name);
+            let (m, r) = model(text);
+            let subs: Vec<usize> = (0..m.automaton.operators.len())
+                .filter(|&o| m.automaton.operators[o].kind == OpKind::Sub)
+                .collect();
+            let free = free_reduction(&m, &r, &subs, 100_000)
+                .unwrap()
+                .unwrap_or_else(|why| panic!("{name}: {why}"));
+            let (enumerated, cut) = multiplicities(
+                &m,
+                &r,
+                &subs,
+                3,
+                MAX_CONTACT_PIECES,
+                AutomatonMultiplicity::Coincidences,
+            )
+            .unwrap();
+            assert!(cut.is_none(), "{name}");
+            assert_eq!(
+                free_levels(&m, &free, 3),
+                rows_of(&enumerated, "distinct maps", "maps of {m} pieces"),
+                "{name}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_lemniscate_multiplies_its_crossing_level_by_level() {
+        // Hand count: five distinct maps, the crossing of weight 2 and four of weight 1. A word
+        // of k letters with j crossings is the map of 2^j pieces, and there are C(k, j)·4^(k−j)
+        // such words: level 2 gives 16 of 1 piece, 8 of 2 and 1 of 4 (25 maps, 36 pieces).
+        let (m, r) = model(lib_text("lemniscate-fractal"));
+        let i = automaton_invariants(
+            "lemniscate",
+            &m,
+            &r,
+            2,
+            AutomatonMultiplicity::Coincidences,
+            100_000,
+        )
+        .unwrap();
+        let named = |v: &[(&str, &str)]| -> Vec<Named> {
+            v.iter()
+                .map(|(a, b)| (a.to_string(), b.to_string()))
+                .collect()
+        };
+        assert_eq!(
+            i.multiplicity[2],
+            named(&[
+                ("distinct maps", "25"),
+                ("maps of 1 pieces", "16"),
+                ("maps of 2 pieces", "8"),
+                ("maps of 4 pieces", "1")
+            ])
+        );
+        assert_eq!(i.cardinality[2], named(&[("pieces", "36")]));
+        assert_eq!(i.order, Some(1));
+    }
+
+    #[test]
+    fn words_that_coincide_deeper_leave_the_limit_open() {
+        // Three maps x/2 + t on [0, 1], t = 0, 1/4, 1/2: all distinct at level 1, but the words
+        // (t = 0 then 1/2) and (1/4 then 0) are both x/4 + 1/4 at level 2 (0 + 1/2·1/2 = 1/4 +
+        // 0). Their ratios sum to 3/2 > 1, so no open set exists: the limit is not decided and
+        // level 2's coincidence is found by enumeration, never claimed for every level.
+        let text = "state e 2\nsub e.T0 : e <- e = [1 1/2; 0 1/2]\nsub e.T1 : e <- e = [3/4 1/4; 1/4 3/4]\nsub e.T2 : e <- e = [1/2 0; 1/2 1]\nspace 2\npoints [0 0; 1 0]\n";
+        let (m, r) = model(text);
+        let i = automaton_invariants("t", &m, &r, 2, AutomatonMultiplicity::Coincidences, 100_000)
+            .unwrap();
+        assert_eq!(i.order, None);
+        assert!(i.notes[0].contains("not decided"), "{:?}", i.notes);
+        assert_eq!(
+            i.multiplicity[1][0],
+            ("distinct maps".to_string(), "3".to_string())
+        );
+        // Level 2: 9 words x/4 + t1 + t2/2, 7 distinct maps: t1 + t2/2 is one of 0, 1/8, 1/4,
+        // 3/8, 1/2, 5/8, 3/4, and 1/4 (0 + 1/4 = 1/4 + 0) and 1/2 (1/4 + 1/4 = 1/2 + 0) twice.
+        assert_eq!(
+            i.multiplicity[2][0],
+            ("distinct maps".to_string(), "7".to_string())
+        );
+    }
+
+    #[test]
+    fn presentations_of_one_set_are_one_class() {
+        // The Sierpinski triangle written on its corners and written on its centre and two
+        // corners (gasket-3): the same three maps, so one class at every level — though their
+        // fixed corners differ (6 and 5 images at level 1), which is why contacts only show.
+        let lib = |n: &str| model(lib_text(n));
+        let inv = |n: &str| {
+            let (m, r) = lib(n);
+            automaton_invariants(n, &m, &r, 4, AutomatonMultiplicity::Contacts, 100_000).unwrap()
+        };
+        let (a, b) = (inv("sierpinski-triangle"), inv("gasket-3"));
+        assert_ne!(a.contacts[1], b.contacts[1]);
+        let c = classify(&a, &b);
+        assert!(c.same_class && c.every_level, "{c:?}");
+        assert!(
+            c.notes.iter().any(|n| n.contains("not a class invariant")),
+            "{c:?}"
         );
     }
 }
