@@ -71,8 +71,9 @@ pub use families::explore::{
     ExploreSpec, Failure, Outcome, Property, Shrunk, Summary, Witness, MAX_FAMILY,
 };
 
+pub use invariants::automaton::{automaton_invariants, AutomatonMultiplicity};
 pub use invariants::classes::{
-    automaton_invariants, classify, face_invariants, levels_for, levels_needed, volume_invariants,
-    AutomatonMultiplicity, Classification, Difference, Invariants, Named,
+    classify, face_invariants, levels_for, levels_needed, volume_invariants, Classification,
+    Difference, Invariants, Named,
 };
 pub use invariants::shares::{limit_shares, shares_of, LimitShare, LimitShares};

@@ -5,5 +5,6 @@
 //! The shares stand on the limit ratio's spectral tools ([`crate::analysis::ratio`]); the
 //! invariants of an automaton on its resolved operators ([`crate::analysis::automata`]).
 
+pub(crate) mod automaton;
 pub(crate) mod classes;
 pub(crate) mod shares;
