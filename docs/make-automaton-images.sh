@@ -22,6 +22,7 @@ $L render gasket-7 --level 5 --png docs/images/gasket-7.png
 $L render gasket-8 --level 4 --png docs/images/gasket-8.png
 $L render lemniscate-fractal --level 6 --png docs/images/lemniscate-fractal.png
 $L render rose-fractal --level 6 --png docs/images/rose-fractal.png
+$L render fixtures/triangle-hexagon-alternating.aut --level 6 --png docs/images/triangle-hexagon-alternating.png
 $L morph fixtures/octagonal-gasket-product.aut fixtures/carpet-product.aut --frames 8 --level 3 --svg docs/images/octagonal-gasket-to-carpet.svg
 $L morph fixtures/gasket-to-hexagonal-start.aut fixtures/gasket-to-hexagonal-end.aut --frames 8 --level 4 --svg docs/images/gasket-to-hexagonal.svg
 $L morph fixtures/gasket-to-carpet-start.aut fixtures/gasket-to-carpet-end.aut --frames 8 --level 3 --svg docs/images/gasket-to-carpet.svg

@@ -1348,3 +1348,92 @@ fn seed_001_commands_print_what_the_gallery_shows_and_the_hand_derived_values() 
         "the seed 001 commands of docs/GALLERY.md"
     );
 }
+
+// ---- Seed 002, Fig. 3: the triangle's and the hexagon's levels in turn ----
+
+/// Fig. 3's points of level k by eq. (10)–(11) directly: every sum `Σ_i h_i` where level i adds
+/// `e^(jθ)/2^(i−1)` with θ in {2π/3, 4π/3, 2π} at odd i and `e^(jθ)/3^(i−1)` with θ = uπ/3 at
+/// even i (a_f = a_g = 1, as the fixture takes them).
+fn figure_3(level: u32) -> Vec<[f64; 2]> {
+    let mut points = vec![[0.0, 0.0]];
+    for i in 1..=level {
+        let (angles, amp): (Vec<f64>, f64) = if i % 2 == 1 {
+            (
+                (1..=3).map(|u| 2.0 * PI * u as f64 / 3.0).collect(),
+                0.5f64.powi(i as i32 - 1),
+            )
+        } else {
+            (
+                (1..=6).map(|u| PI * u as f64 / 3.0).collect(),
+                (1.0f64 / 3.0).powi(i as i32 - 1),
+            )
+        };
+        points = points
+            .iter()
+            .flat_map(|p| {
+                angles
+                    .iter()
+                    .map(move |t| [p[0] + amp * t.cos(), p[1] + amp * t.sin()])
+            })
+            .collect();
+    }
+    points
+}
+
+#[test]
+fn figure_3_alternates_the_triangle_s_levels_and_the_hexagon_s() {
+    let file = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/fixtures/triangle-hexagon-alternating.aut"
+    );
+    for level in [1u32, 2, 3] {
+        let mut drawn: Vec<[f64; 2]> = pieces(file, &level.to_string())
+            .iter()
+            .map(|s| s[0])
+            .collect();
+        let mut want = figure_3(level);
+        // 3, 18, 54 pieces: three and six in turn.
+        assert_eq!(drawn.len(), want.len(), "level {level}");
+        let key = |p: &[f64; 2]| ((p[0] * 1e6).round() as i64, (p[1] * 1e6).round() as i64);
+        drawn.sort_by_key(key);
+        want.sort_by_key(key);
+        for (d, w) in drawn.iter().zip(&want) {
+            assert!(
+                close(d[0], w[0], 1e-9) && close(d[1], w[1], 1e-9),
+                "level {level}: drawn {d:?}, eq. (10) gives {w:?}"
+            );
+        }
+    }
+    // Its cardinality is neither gasket's: 18 pieces at level 2 against the triangle's 9.
+    let (code, out, err) = lacuna(&["classify", file, "gasket-3", "--json"]);
+    assert_eq!(code, 1, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["differs"]["group"], "cardinality");
+    assert_eq!(v["differs"]["level"], 2);
+    assert_eq!(
+        (v["differs"]["a"].clone(), v["differs"]["b"].clone()),
+        ("18".into(), "9".into())
+    );
+    // The gallery's picture is what render draws now.
+    let dir = std::env::temp_dir().join(format!("lacuna-fig3-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let fresh = dir.join("fresh.png");
+    let (code, _, err) = lacuna(&[
+        "render",
+        file,
+        "--level",
+        "6",
+        "--png",
+        fresh.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let committed = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/docs/images/triangle-hexagon-alternating.png"
+    );
+    assert!(
+        std::fs::read(&fresh).unwrap() == std::fs::read(committed).unwrap(),
+        "docs/images/triangle-hexagon-alternating.png differs: run docs/make-automaton-images.sh"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -377,9 +377,9 @@ impl DcfData {
         };
         let case = match (self.lambda1_negative, self.lambda2_negative) {
             (false, false) => "λ1 > 0, λ2 > 0: one DCF per starting point",
-            (true, false) => "λ1 < 0: even iterates on c + t·v1 + β·t^α·v2, odd ones on c − t·v1 + β·t^α·v2 (two sub-sequences, on both sides of c)",
+            (true, false) => "λ1 < 0: even iterates on c + t·v1 + β·t^α·v2, odd ones on c − t·v1 + β·t^α·v2 (two sub-sequences, on both sides of c, with one β: x1 → λ1·x1 and x2 → λ2·x2 leave x2/|x1|^α unchanged, so each side's κ range serves both parities)",
             (false, true) => "λ2 < 0: even iterates on c + t·v1 + β·t^α·v2, odd ones on c + t·v1 − β·t^α·v2 (two sub-sequences, β of both signs)",
-            (true, true) => "λ1 < 0 and λ2 < 0: even iterates on c + t·v1 + β·t^α·v2, odd ones on c − t·v1 − β·t^α·v2",
+            (true, true) => "λ1 < 0 and λ2 < 0: even iterates on c + t·v1 + β·t^α·v2, odd ones on c − t·v1 − β·t^α·v2 (one |β| for both: each side's κ range serves both parities)",
         };
         let class = class_of(self);
         let starts = starts
