@@ -27,6 +27,7 @@ $L morph fixtures/octagonal-gasket-product.aut fixtures/carpet-product.aut --fra
 $L morph fixtures/gasket-to-hexagonal-start.aut fixtures/gasket-to-hexagonal-end.aut --frames 8 --level 4 --svg docs/images/gasket-to-hexagonal.svg
 $L morph fixtures/gasket-to-carpet-start.aut fixtures/gasket-to-carpet-end.aut --frames 8 --level 3 --svg docs/images/gasket-to-carpet.svg
 $L morph fixtures/hexagonal-gasket-samples.aut lemniscate-fractal --frames 8 --level 3 --svg docs/images/hexagonal-gasket-to-lemniscate.svg
+$L morph fixtures/twisted-circle-circle-view.aut fixtures/twisted-circle-lemniscate-view.aut --frames 8 --level 3 --svg docs/images/twisted-circle-circle-to-lemniscate.svg
 # Seed 004's fractal kite and dart (docs/GALLERY.md, docs/GUIDE.md): the kite is the start state
 # a, the dart state b, drawn from its frame.
 $L render kite-dart --level 14 --png docs/images/kite-dart.png

@@ -1437,3 +1437,86 @@ fn figure_3_alternates_the_triangle_s_levels_and_the_hexagon_s() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn figure_9_lifts_the_lemniscate_to_a_space_curve_whose_views_are_the_two_sets() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/fixtures/");
+    let circle = format!("{dir}twisted-circle-circle-view.aut");
+    let lemniscate = format!("{dir}twisted-circle-lemniscate-view.aut");
+    // The views' level-1 points: the samples θ = uπ/3 of (cos θ, sin θ) and (sin θ, sin 2θ).
+    for (file, curve) in [
+        (
+            &circle,
+            (|t: f64| [t.cos(), t.sin()]) as fn(f64) -> [f64; 2],
+        ),
+        (&lemniscate, |t: f64| [t.sin(), (2.0 * t).sin()]),
+    ] {
+        let drawn = pieces(file, "1");
+        assert_eq!(drawn.len(), 6, "{file}");
+        for (k, d) in drawn.iter().enumerate() {
+            let p = curve((k + 1) as f64 * PI / 3.0);
+            assert!(
+                close(d[0][0], p[0], 1e-12) && close(d[0][1], p[1], 1e-12),
+                "{file}: T{k} draws {:?}, the curve's sample is {p:?}",
+                d[0]
+            );
+        }
+    }
+    // The two views are one automaton: the morph moves control points only.
+    let (code, out, err) = lacuna(&[
+        "morph",
+        &circle,
+        &lemniscate,
+        "--frames",
+        "3",
+        "--level",
+        "2",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("0 of 6 operators change") && out.contains("VERIFIED: every frame"),
+        "{out}"
+    );
+    // In R^3 the six maps are distinct (the crossing is two points of the lift): six distinct
+    // maps against the lemniscate fractal's five.
+    let lift = format!("{dir}twisted-circle.aut");
+    let (code, out, err) = lacuna(&["classify", &lift, "lemniscate-fractal", "--json"]);
+    assert_eq!(code, 1, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["differs"]["invariant"], "distinct maps");
+    assert_eq!(
+        (v["differs"]["a"].clone(), v["differs"]["b"].clone()),
+        ("6".into(), "5".into())
+    );
+    let (code, out, err) = lacuna(&["classify", &lift, "gasket-6", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["same_class"], true);
+    // The gallery's animation is what the morph draws now.
+    let tmp = std::env::temp_dir().join(format!("lacuna-fig9-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    let fresh = tmp.join("fresh.svg");
+    // Relative paths, as the script writes them (the SVG's title names the files); cargo runs
+    // tests from the package root.
+    let (code, _, err) = lacuna(&[
+        "morph",
+        "fixtures/twisted-circle-circle-view.aut",
+        "fixtures/twisted-circle-lemniscate-view.aut",
+        "--frames",
+        "8",
+        "--level",
+        "3",
+        "--svg",
+        fresh.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let committed = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/docs/images/twisted-circle-circle-to-lemniscate.svg"
+    );
+    assert!(
+        std::fs::read(&fresh).unwrap() == std::fs::read(committed).unwrap(),
+        "{committed} differs: run docs/make-automaton-images.sh"
+    );
+    std::fs::remove_dir_all(&tmp).ok();
+}
