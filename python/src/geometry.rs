@@ -355,7 +355,7 @@ pub(crate) fn render(
 /// The measures of the level as `lacuna measure --json` prints them: of faces (with the
 /// printability at the level), or of an automaton's attractor.
 #[pyfunction]
-#[pyo3(signature = (input, level, params=Vec::new(), raster=2048, max_raster=8192, digits=30, width=None, resolution=None, segments=4, max_cells=None, limits=None, corners=None, template=None, goals=Vec::new()))]
+#[pyo3(signature = (input, level, params=Vec::new(), raster=2048, max_raster=8192, digits=30, width=None, resolution=None, segments=4, max_cells=None, limits=None, corners=None, template=None, goals=Vec::new(), state=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn measure(
     py: Python<'_>,
@@ -373,9 +373,12 @@ pub(crate) fn measure(
     corners: Option<String>,
     template: Option<PathBuf>,
     goals: Vec<String>,
+    state: Option<String>,
 ) -> PyResult<String> {
-    let g =
-        geo(input, level, params, segments, max_cells, limits)?.choosing(corners, template, goals);
+    let g = Geo {
+        state,
+        ..geo(input, level, params, segments, max_cells, limits)?.choosing(corners, template, goals)
+    };
     run(py, move || {
         let largest = lacuna::measure::LARGEST_RASTER;
         for (flag, r) in [("raster", raster), ("max_raster", max_raster)] {
@@ -407,16 +410,26 @@ pub(crate) fn measure(
             }
             g.limits.check_digits(digits)?;
             let (model, resolved, contraction, ev, name) = g.automaton(2_000_000)?;
-            let m = lacuna::measure::automaton_measure(
+            // Another state: measured as the automaton restarted there (`measure --state`).
+            let restarted = (ev.start() != model.start)
+                .then(|| lacuna::geometry::restarted(&model, &resolved, ev.start()))
+                .flatten();
+            let mut m = lacuna::measure::automaton_measure(
                 &name,
-                &model,
+                restarted.as_ref().unwrap_or(&model),
                 &resolved,
                 &contraction,
                 &ev,
                 g.level,
                 digits,
             );
+            m.state = restarted.map(|r| r.automaton.states[r.start].name.clone());
             return Ok(json(&m));
+        }
+        if let Some(state) = &g.state {
+            return Err(Error::Usage(format!(
+                "state `{state}` names a state of an automaton, but faces have no states: measure them without state"
+            )));
         }
         let inst = g.instance(20_000_000)?;
         let opts = lacuna::measure::MeasureOptions {

@@ -83,3 +83,17 @@ def test_state_draws_the_dart_from_its_frame(cli, tmp_path):
     with pytest.raises(UsageError) as e:
         kd.render(1, state="c")
     assert e.value.code == "E0504" and "`c`" in str(e.value) and "a, b" in str(e.value)
+
+
+def test_measure_state_is_the_cli_s_and_the_areas_tend_to_phi(cli):
+    kd = lacuna.load("kite-dart")
+    dart = kd.measure(10, state="b")
+    code, data = cli("measure", "kite-dart", "--state", "b", "--level", 10, "--json")
+    assert code == 0
+    assert data["state"] == "b" and dart["state"] == "b"
+    assert [x["area"] for x in data["levels"]] == [x["area"] for x in dart["levels"]]
+    kite = kd.measure(10)
+    assert "state" not in kite.data
+    # The kite and dart areas are in ratio φ in the limit (Bandt–Gummelt); at level 10 within 1e-2.
+    phi = (1 + 5 ** 0.5) / 2
+    assert abs(kite["levels"][10]["area"] / dart["levels"][10]["area"] - phi) < 1e-2

@@ -679,6 +679,10 @@ pub(crate) struct MeasureArgs {
     /// `lacuna verify --certificate` certifies the exact figures.
     #[arg(long, value_name = "OUT.json")]
     pub(crate) certificate: Option<std::path::PathBuf>,
+    /// An automaton: measure the attractor of this state instead of the start state's, from
+    /// its frame (as `render --state` draws it). The start must reach it.
+    #[arg(long, value_name = "NAME")]
+    pub(crate) state: Option<String>,
 }
 
 /// The arguments of `lacuna report`.

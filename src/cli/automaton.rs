@@ -15,6 +15,8 @@ pub(super) struct Prepared {
     resolved: Resolved,
     contraction: ContractionReport,
     ev: Evaluator,
+    /// Whether the evaluator starts at another state than the model's start (`--state`).
+    restarted: bool,
 }
 
 /// The automaton named by the input, when it is one (else `None`: faces).
@@ -64,9 +66,10 @@ pub(super) fn prepare_at(
         geo.max_cells.unwrap_or(default_cells),
         limits,
     )?;
-    let model = match ev.start() == model.start {
-        true => model,
-        false => lacuna::geometry::restarted(&model, &resolved, ev.start())
+    let restarted = ev.start() != model.start;
+    let model = match restarted {
+        false => model,
+        true => lacuna::geometry::restarted(&model, &resolved, ev.start())
             .expect("the evaluator's start is reachable"),
     };
     Ok(Prepared {
@@ -76,6 +79,7 @@ pub(super) fn prepare_at(
         resolved,
         contraction,
         ev,
+        restarted,
     })
 }
 
@@ -340,7 +344,10 @@ pub(super) fn measure(
     limits: &Limits,
 ) -> Result<ExitCode, Error> {
     warn(&p);
-    let m = measures(geo, &p, digits, limits)?;
+    let mut m = measures(geo, &p, digits, limits)?;
+    if p.restarted {
+        m.state = Some(p.model.automaton.states[p.model.start].name.clone());
+    }
     if json {
         print_json(&m);
     } else {

@@ -13,6 +13,7 @@ pub(super) fn run(args: MeasureArgs, limits: &Limits) -> Result<ExitCode, Error>
         json,
         digits,
         certificate,
+        state,
     } = args;
     check_raster("--raster", raster, lacuna::measure::LARGEST_RASTER)?;
     check_raster("--max-raster", max_raster, lacuna::measure::LARGEST_RASTER)?;
@@ -45,9 +46,18 @@ pub(super) fn run(args: MeasureArgs, limits: &Limits) -> Result<ExitCode, Error>
                 .into(),
         )
     };
+    let no_states = |what: &str| {
+        Error::Usage(format!(
+            "--state `{}` names a state of an automaton, but {what}: measure without --state",
+            state.as_deref().unwrap_or_default()
+        ))
+    };
     if let Some((name, v)) = lacuna::input::load_volume_file(&geo.input)? {
         if certificate.is_some() {
             return Err(faces_only());
+        }
+        if state.is_some() {
+            return Err(no_states("a volume has no states"));
         }
         return volume::measure(&name, &v, &geo, &print, json, limits);
     }
@@ -55,8 +65,11 @@ pub(super) fn run(args: MeasureArgs, limits: &Limits) -> Result<ExitCode, Error>
         if certificate.is_some() {
             return Err(faces_only());
         }
-        let p = automaton::prepare(&geo, name, model, limits, 2_000_000)?;
+        let p = automaton::prepare_at(&geo, name, model, state.as_deref(), limits, 2_000_000)?;
         return automaton::measure(&geo, p, digits, json, limits);
+    }
+    if state.is_some() {
+        return Err(no_states("faces have no states"));
     }
     let (_, inst) = instance(&geo, limits, 20_000_000)?;
     let opts = lacuna::measure::MeasureOptions {

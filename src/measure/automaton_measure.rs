@@ -59,6 +59,10 @@ pub struct AutomatonMeasure {
     pub similarity_note: Option<String>,
     /// The boundary dimension of each state (an upper bound), or why it is not decided.
     pub boundary_dimension: BoundaryReport,
+    /// The state measured when it is not the start (`measure --state`): the automaton restarted
+    /// there, from its frame.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub state: Option<String>,
 }
 
 /// The boundary dimension as `measure` reports it: the values, or why there are none.
@@ -298,8 +302,15 @@ impl AutomatonMeasure {
     /// The human-readable report.
     pub fn to_text(&self) -> String {
         let mut o = format!(
-            "{}: automaton in space {}, level {}\n",
-            self.input, self.space, self.level
+            "{}: automaton in space {}, level {}{}\n",
+            self.input,
+            self.space,
+            self.level,
+            match &self.state {
+                Some(s) =>
+                    format!(", the attractor of state {s} (restarted there, from its frame)"),
+                None => String::new(),
+            }
         );
         o += &format!(
             "solver ({}): {}\n",
@@ -379,6 +390,13 @@ impl AutomatonMeasure {
                 o += &format!("boundary dimension: not decided ({note})\n")
             }
         }
+        if let Some(state) = &self.state {
+            o += &format!(
+                "the exact figures above are computed for the automaton restarted at state {state}, as `lacuna verify` computes them; its certificate (`lacuna verify {} --certificate OUT.json`) covers the start state's, not this restart; lengths, areas and box counting are floating-point estimates\n",
+                self.input
+            );
+            return o;
+        }
         o += &format!(
             "the solver's verdict, the contraction{} are certified by the steps `lacuna verify {} --certificate OUT.json` writes; lengths, areas and box counting are floating-point estimates\n",
             match (&self.similarity_dimension, &self.boundary_dimension) {
@@ -443,5 +461,6 @@ pub fn automaton_measure(
         box_dimension,
         similarity_dimension,
         similarity_note,
+        state: None,
     }
 }

@@ -1267,12 +1267,16 @@ class Automaton(_Operators):
         (never over the input)."""
         return _lacuna.export(self.source, str(format), _path(path), _natural("degree", degree), str(cantor_gap), _limits(limits))
 
-    def measure(self, level: int, *, digits: int = 30, params: Params = None, max_cells: Optional[int] = None, limits: Limits = None) -> Record:
+    def measure(self, level: int, *, digits: int = 30, params: Params = None, max_cells: Optional[int] = None, limits: Limits = None, state: Optional[str] = None) -> Record:
         """Lengths and areas per level, a box-counting estimate and the exact similarity dimension
-        with ``digits`` certified digits, as ``lacuna measure --json`` reports them."""
+        with ``digits`` certified digits, as ``lacuna measure --json`` reports them; ``state``
+        measures that state's attractor instead of the start state's (``measure --state``)."""
         return Record(
             json.loads(
-                _lacuna.measure(self.source, int(level), _params(params), 2048, 8192, int(digits), None, None, 4, max_cells, _limits(limits))
+                _lacuna.measure(
+                    self.source, int(level), _params(params), 2048, 8192, int(digits), None, None, 4,
+                    max_cells, _limits(limits), None, None, [], state,
+                )
             )
         )
 

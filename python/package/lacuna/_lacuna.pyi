@@ -121,8 +121,9 @@ def measure(
     corners: Optional[str] = None,
     template: Optional[str] = None,
     goals: List[str] = ...,
+    state: Optional[str] = None,
 ) -> str:
-    """The measures, as `lacuna measure --json`."""
+    """The measures, as `lacuna measure --json` (`state`: that state of an automaton)."""
 
 # Volumes and volume assemblies (volume notation, a volume file or a library name of volumes).
 
