@@ -417,3 +417,49 @@ fn cli_curvature_estimate_of_the_parabola() {
         assert!((side[k].as_f64().unwrap() - want).abs() < 1e-9, "{side}");
     }
 }
+
+#[test]
+fn koch_s_rotations_are_analysed_over_q_sqrt3() {
+    // The Koch maps on [0, 1] as complex maps: f1(z) = e^(iπ/3)·z/3 + 1/3 and
+    // f2(z) = e^(−iπ/3)·z/3 + 1/2 + i√3/6. Their linear parts are rotations by ±60° of ratio
+    // 1/3: χ = (x − 1)(x² − x/3 + 1/9) over Q although the entries hold √3, so no real
+    // eigenvalue but 1 — spiralling — and every other modulus 1/3 < 1 — contractive. Fixed
+    // points by hand: f1: z = (1/3)/(1 − e^(iπ/3)/3) = (5 + i√3)/14; f2: z = (1/2 + i√3/6)/(1 −
+    // e^(−iπ/3)/3) = (3 + i√3)/(5 + i√3) = (9 + i√3)/14. In barycentric coordinates of the frame
+    // (0, 0), (1, 0), (0, 1): (1 − x − y, x, y).
+    let (code, out, err) = common::lacuna(&["operators", "koch", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let ops = v["automaton"]["operators"].as_array().unwrap();
+    let op = |name: &str| {
+        ops.iter()
+            .find(|o| o["name"] == name)
+            .unwrap_or_else(|| panic!("{name} is analysed: {v}"))
+    };
+    for (name, fixed) in [
+        ("koch.T1", ["(9 - sqrt(3))/14", "5/14", "sqrt(3)/14"]),
+        ("koch.T2", ["(5 - sqrt(3))/14", "9/14", "sqrt(3)/14"]),
+    ] {
+        let o = op(name);
+        assert_eq!(o["behaviour"]["case"], "spiralling", "{o}");
+        assert_eq!(o["contractive"], true, "{o}");
+        assert_eq!(o["fixed_point"], serde_json::json!(fixed), "{name}");
+        // Two complex eigenvalues of modulus 1/3: real part 1/6, imaginary √3/6.
+        let pair = o["eigenvalues"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|e| e["real"] == false)
+            .expect("a complex pair");
+        assert_eq!(pair["min_poly"], "x^2 - 1/3*x + 1/9", "{pair}");
+    }
+    // Nothing of the curve's state is skipped for its field any more; the curve is not read.
+    let skipped = v["automaton"]["skipped"].as_array().unwrap();
+    assert!(
+        skipped
+            .iter()
+            .all(|s| s.as_str().unwrap().starts_with("initiator.")),
+        "{skipped:?}"
+    );
+    assert_eq!(v["automaton"]["curves"][0]["joined"], false);
+}

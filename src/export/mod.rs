@@ -42,8 +42,8 @@ pub use morph::{
     write_morph_svg, FrameCells, MorphFrames,
 };
 pub use operators::{
-    design_report, operators_automaton, operators_report, DesignReport, OperatorsReport,
-    OperatorsRequest,
+    design_report, operators_automaton, operators_report, DesignReport, OperatorsInput,
+    OperatorsReport, OperatorsRequest,
 };
 pub use palette::{
     density_colour, hex, lightness, outline_colour, type_colour, Rgb, MUTED, OUTSIDE,

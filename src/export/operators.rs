@@ -62,11 +62,33 @@ impl OperatorsReport {
     }
 }
 
-/// The automaton whose operators `lacuna operators` analyses: an automaton file's own, or the
-/// instantiated automaton of faces (default parameters, an exact point of the solution space).
-pub fn operators_automaton(loaded: Loaded, limits: &Limits) -> Result<Automaton, Error> {
+/// The automaton whose operators `lacuna operators` analyses, with the values over its number
+/// field of the operators whose entries lie outside Q (automaton files with a `field` line).
+#[derive(Clone, Debug)]
+pub struct OperatorsInput {
+    /// The automaton (operators over Q have their value).
+    pub automaton: Automaton,
+    /// The field and every operator's value over it, when the file declares a field.
+    pub field: Option<(
+        crate::algebra::NumberField,
+        Vec<Option<crate::algebra::KMatrix>>,
+    )>,
+}
+
+/// The automaton whose operators `lacuna operators` analyses: an automaton file's own (with its
+/// number field's values), or the instantiated automaton of faces (default parameters, an exact
+/// point of the solution space).
+pub fn operators_automaton(loaded: Loaded, limits: &Limits) -> Result<OperatorsInput, Error> {
     match loaded {
-        Loaded::Automaton { automaton, .. } => Ok(automaton),
+        Loaded::Automaton {
+            automaton, model, ..
+        } => Ok(OperatorsInput {
+            field: model
+                .field_decl
+                .is_some()
+                .then(|| (model.field.clone(), model.kvalues.clone())),
+            automaton,
+        }),
         Loaded::Faces(faces) => {
             let mut opts = crate::geometry::InstantiateOptions {
                 limits: limits.clone(),
@@ -82,7 +104,10 @@ pub fn operators_automaton(loaded: Loaded, limits: &Limits) -> Result<Automaton,
                     source: None,
                 })),
             })?;
-            Ok(inst.instantiated_automaton())
+            Ok(OperatorsInput {
+                automaton: inst.instantiated_automaton(),
+                field: None,
+            })
         }
     }
 }
@@ -90,16 +115,20 @@ pub fn operators_automaton(loaded: Loaded, limits: &Limits) -> Result<Automaton,
 /// The analyses of `lacuna operators` on `automaton` (when given) and `request`, every matrix
 /// checked against `--max-matrix` before any is analysed.
 pub fn operators_report(
-    automaton: Option<&Automaton>,
+    input: Option<&OperatorsInput>,
     request: &OperatorsRequest<'_>,
     limits: &Limits,
 ) -> Result<OperatorsReport, Error> {
+    let automaton = input.map(|i| &i.automaton);
+    let field = input.and_then(|i| i.field.as_ref().map(|(k, v)| (k, v.as_slice())));
     // The eigen analysis of a dense n×n matrix grows with n (a 20×20 of random digits takes a
     // fraction of a second, repeated eigenvalues cost more): every matrix is checked against
     // --max-matrix before any is analysed.
     if let Some(a) = automaton {
-        for op in &a.operators {
-            if op.kind == OpKind::Sub && op.value.is_some() && op.to == op.from {
+        for (o, op) in a.operators.iter().enumerate() {
+            let known = op.value.is_some()
+                || field.is_some_and(|(_, v)| v.get(o).is_some_and(Option::is_some));
+            if op.kind == OpKind::Sub && known && op.to == op.from {
                 limits.check_matrix(a.states[op.to].dim)?;
             }
         }
@@ -113,7 +142,7 @@ pub fn operators_report(
         limits.check_matrix(m.rows.max(m.cols))?;
     }
     let analysed = automaton
-        .map(|a| analyse_automaton_only(a, request.op))
+        .map(|a| analyse_automaton_only(a, request.op, field))
         .transpose()?;
     let matrices = parsed
         .iter()

@@ -189,18 +189,29 @@ pub fn automaton_report_page(
     })
 }
 
-/// The operators' eigen analysis (as `lacuna operators` prints it) for rational operators.
+/// The operators' eigen analysis (as `lacuna operators` prints it): rational operators over Q,
+/// the others over the automaton's field.
 fn classes_text(model: &AutomatonModel, resolved: &Resolved) -> String {
     let mut a = model.automaton.clone();
+    let mut in_field = vec![None; a.operators.len()];
     for (o, op) in a.operators.iter_mut().enumerate() {
         let k = &resolved.ops[o];
         let data: Option<Vec<_>> = k.data.iter().map(|v| v.as_rational()).collect();
         match data {
-            Some(d) => op.value = Some(crate::algebra::Matrix { rows: k.rows, cols: k.cols, data: d }),
-            None => return format!("operators with entries in {}: the eigen analysis of `lacuna operators` works over Q only", resolved.verdict.field),
+            Some(d) => {
+                op.value = Some(crate::algebra::Matrix {
+                    rows: k.rows,
+                    cols: k.cols,
+                    data: d,
+                })
+            }
+            None => {
+                op.value = None;
+                in_field[o] = Some(k.clone());
+            }
         }
     }
-    match crate::analysis::analyse_automaton(&a) {
+    match crate::analysis::analyse_automaton_only(&a, None, Some((&model.field, &in_field))) {
         Ok(r) => r.to_text(),
         Err(e) => format!("not analysed: {e}"),
     }

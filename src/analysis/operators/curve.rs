@@ -3,11 +3,13 @@
 //! and joining points of each curve with their one-sided behaviour, and a float estimate of the
 //! curvature range in the finite class (geometry: never a verdict).
 
-use crate::algebra::algebraic::FieldElement;
+use crate::algebra::algebraic::{FieldElement, NumberField};
 use crate::algebra::fieldpoly::{apply, null_space, rationals};
+use crate::algebra::kmatrix::KMatrix;
 use crate::algebra::matrix::Matrix;
 use crate::analysis::operators::operator::{
-    analyse_matrix, op_error, render_vec, Behaviour, CurvatureClass, OperatorReport, TangentData,
+    analyse_kmatrix, analyse_matrix, op_error, render_vec, Behaviour, CurvatureClass,
+    OperatorReport, TangentData,
 };
 use crate::constraint::automaton::{Automaton, OpKind, Operator};
 use crate::error::Result;
@@ -76,12 +78,21 @@ pub struct AutomatonOperators {
 /// Analyses every known `sub` operator that maps a state to itself, and the end and joining
 /// points of every state with at least two such operators (THEORY §8, dyadic points).
 pub fn analyse_automaton(a: &Automaton) -> Result<AutomatonOperators> {
-    analyse_automaton_only(a, None)
+    analyse_automaton_only(a, None, None)
 }
 
-/// [`analyse_automaton`] restricted to the operator named `only` (no curves are read then).
-/// Error E0910 when there is no such sub-operator.
-pub fn analyse_automaton_only(a: &Automaton, only: Option<&str>) -> Result<AutomatonOperators> {
+/// The values over a number field of an automaton's operators whose entries lie outside Q
+/// (`None` for the others), with the field.
+pub type FieldValues<'a> = (&'a NumberField, &'a [Option<KMatrix>]);
+
+/// [`analyse_automaton`] restricted to the operator named `only` (no curves are read then), and
+/// with the operators valued in a number field analysed too (`field`: their values; see
+/// [`analyse_kmatrix`] for what is decided). Error E0910 when there is no such sub-operator.
+pub fn analyse_automaton_only(
+    a: &Automaton,
+    only: Option<&str>,
+    field: Option<FieldValues<'_>>,
+) -> Result<AutomatonOperators> {
     if let Some(name) = only {
         if !a
             .operators
@@ -96,22 +107,31 @@ pub fn analyse_automaton_only(a: &Automaton, only: Option<&str>) -> Result<Autom
     }
     let mut operators = Vec::new();
     let mut skipped = Vec::new();
-    for op in a
+    for (o, op) in a
         .operators
         .iter()
-        .filter(|o| o.kind == OpKind::Sub && only.is_none_or(|n| o.name == n))
+        .enumerate()
+        .filter(|(_, o)| o.kind == OpKind::Sub && only.is_none_or(|n| o.name == n))
     {
+        let in_field = field.and_then(|(k, v)| v.get(o).cloned().flatten().map(|m| (k, m)));
         match (&op.value, op.to == op.from) {
             (_, false) => skipped.push(format!(
                 "{}: maps {} to {} (not an iterated map of one state)",
                 op.name, a.states[op.from].name, a.states[op.to].name
             )),
-            (None, true) => {
-                skipped.push(format!(
-                    "{}: no value over Q (unknown until the automaton is solved, or entries in a declared number field: the eigen analysis works over Q only)",
+            (None, true) => match in_field {
+                Some((k, m)) => match analyse_kmatrix(k, &m)? {
+                    Ok(mut r) => {
+                        r.name = Some(op.name.clone());
+                        operators.push(r);
+                    }
+                    Err(why) => skipped.push(format!("{}: {why}", op.name)),
+                },
+                None => skipped.push(format!(
+                    "{}: no value (unknown until the automaton is solved)",
                     op.name
-                ))
-            }
+                )),
+            },
             (Some(m), true) => {
                 let mut r = analyse_matrix(m)?;
                 r.name = Some(op.name.clone());
@@ -143,6 +163,11 @@ pub fn analyse_automaton_only(a: &Automaton, only: Option<&str>) -> Result<Autom
         };
         if reports.len() != ops.len() {
             curve.note = Some("some operators are unknown".into());
+        } else if ops.iter().any(|o| o.value.is_none()) {
+            curve.note = Some(
+                "some operators have entries outside Q: the joints and end points are read over Q only"
+                    .into(),
+            );
         } else {
             let mats: Vec<&Matrix> = ops.iter().filter_map(|o| o.value.as_ref()).collect();
             match curve_points(&names, &mats, &reports) {

@@ -31,9 +31,11 @@ use serde::Serialize;
 use std::cmp::Ordering;
 
 mod classify;
+mod field;
 
 use classify::classify;
 pub(crate) use classify::{cmp_abs_with_square, negate};
+pub use field::analyse_kmatrix;
 
 /// The pseudo-curvature class at a fixed point, from α = log|λ2| / log λ1.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
