@@ -437,19 +437,10 @@ pub(super) fn render(
         wrote(outputs, p);
     }
     if let Some(p) = t.claims {
-        // The surface pieces are the components and the voids; Σχ of the surface is 2χ of the
-        // solid; its genus is the number of tunnels (THEORY §10).
-        let x = &vs.exact;
-        let euler = num_traits::ToPrimitive::to_i64(&(num_bigint::BigInt::from(2) * &x.euler));
-        let genus = x.tunnels.as_ref().and_then(num_traits::ToPrimitive::to_i64);
-        let c = super::render::mesh_claims(
+        let c = lacuna::export::volume_solid_claims(
             format!("{} level {}", geo.input, geo.level),
             t.mesh,
-            solid.triangle_count(),
-            x.components.zip(x.voids).map(|(b0, b2)| b0 + b2),
-            euler,
-            genus,
-            None,
+            &vs,
         );
         super::render::write_claims(outputs, p, &c)?;
     }
@@ -510,29 +501,17 @@ pub(super) fn measure(
     lacuna::mesh::check_size("--resolution", print.resolution).map_err(mesh_error)?;
     let (vs, set) = checked_solid(name, v, geo, print.width, limits)?;
     let sizes = vs.sizes(print.layers, print.resolution);
-    let below = sizes.below(print.resolution);
-    let embedded = vs.crossing.is_none();
-    let verified = embedded && (!print.strict || below.is_empty());
+    let verified =
+        vs.crossing.is_none() && (!print.strict || sizes.below(print.resolution).is_empty());
     if json {
-        print_json(&serde_json::json!({
-            "input": name,
-            "level": geo.level,
-            "verified": verified,
-            "solid": vs.exact,
-            "mesh": {
-                "parts": vs.solid.parts.len(),
-                "triangles": vs.solid.triangle_count(),
-                "surface_euler": vs.euler,
-                "surface_pieces": vs.surfaces,
-                "genus": vs.genus,
-                "embedded": embedded,
-                "crossing": vs.crossing,
-            },
-            "sizes": sizes,
-            "printability": sizes.report(&vs.solid.parts, geo.level, print.resolution, print.bed),
-            "resolution_mm": print.resolution,
-            "below_resolution": below,
-        }));
+        print_json(&lacuna::export::volume_measure_json(
+            name,
+            &vs,
+            &sizes,
+            print.resolution,
+            print.bed,
+            verified,
+        ));
     } else {
         let levels = lacuna::topology::volume::solid_topology_of(
             &set,
