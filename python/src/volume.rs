@@ -144,42 +144,8 @@ pub(crate) fn volume_verify(
                 return Ok(json(&r));
             }
         };
-        let mut failures = Vec::new();
-        for (i, t) in set.types.iter().enumerate() {
-            for (k, s) in t.subdivision.subvolumes.iter().enumerate() {
-                if let Err(e) = s.volume.surface.check() {
-                    failures.push(format!("V{i} sub-volume {k}: {e}"));
-                }
-            }
-        }
-        let counts = volume_counts(&set, levels);
-        let solid = solid_topology_of(&set, levels, &v.assembly.start_cells())?;
-        let r = lacuna::export::volume_ratio(&set, 30)?;
-        // A limit on the solve leaves the constraints undecided (a limit, not a verdict); any
-        // other error is the input's.
-        let solver = match lacuna::constraint::solve_volumes(
-            &set,
-            &lacuna::constraint::shared_readings(&v.assembly),
-            Default::default(),
-            &l,
-        ) {
-            Ok(s) => Ok(s),
-            Err(e @ (Error::Limit { .. } | Error::ProvedAboveLimit { .. })) => Err(e),
-            Err(e) => return Err(e),
-        };
-        let verified = failures.is_empty() && solver.as_ref().is_ok_and(|s| s.ok());
-        Ok(json(&serde_json::json!({
-            "input": name,
-            "verified": verified,
-            "volume_types": set.types.len(),
-            "failures": failures,
-            "counts": counts,
-            "solid": solid,
-            "ratio": r,
-            "solver": solver.as_ref().ok(),
-            "constraints_undecided": solver.as_ref().err().map(|e| e.to_string()),
-            "solid_certified_levels": lacuna::certificate::solid_rows(&solid).len(),
-        })))
+        let report = lacuna::export::volume_verify(&set, &v.assembly, levels, &l)?;
+        Ok(json(&report.json(&name, &set)))
     })
 }
 
@@ -293,12 +259,8 @@ fn write_threemf(
     p: &std::path::Path,
     f: impl FnOnce(&mut std::io::Cursor<Vec<u8>>) -> std::io::Result<()>,
 ) -> Result<(), Error> {
-    let mut zip = std::io::Cursor::new(Vec::new());
-    f(&mut zip).map_err(|e| Error::Write {
-        path: p.display().to_string(),
-        reason: e.to_string(),
-    })?;
-    write_file(p, |w| w.write_all(zip.get_ref()))
+    let zip = lacuna::mesh::threemf::in_memory(p, f)?;
+    write_file(p, |w| w.write_all(&zip))
 }
 
 /// The level-n solid of a volume as `lacuna render` builds it, with the files asked for written:
@@ -502,12 +464,7 @@ fn render(
         match style {
             Style::Plain => write_threemf(p, |zip| lacuna::mesh::threemf::write(solid, zip))?,
             Style::Colours => {
-                let colours = lacuna::mesh::threemf::Colours {
-                    materials: (0..set.types.len())
-                        .map(|k| (type_name(k), lacuna::export::type_colour(k)))
-                        .collect(),
-                    per_triangle: vs.triangle_types(&set)?,
-                };
+                let colours = lacuna::export::volume_type_colours(&vs, &set)?;
                 write_threemf(p, |zip| {
                     lacuna::mesh::threemf::write_with(solid, Some(&colours), zip)
                 })?;

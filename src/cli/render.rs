@@ -432,12 +432,8 @@ pub(super) fn write_threemf(
     p: &std::path::Path,
     f: impl FnOnce(&mut std::io::Cursor<Vec<u8>>) -> std::io::Result<()>,
 ) -> Result<(), Error> {
-    let mut zip = std::io::Cursor::new(Vec::new());
-    f(&mut zip).map_err(|e| Error::Write {
-        path: p.display().to_string(),
-        reason: e.to_string(),
-    })?;
-    outputs.write(p, |w| w.write_all(zip.get_ref()))
+    let zip = lacuna::mesh::threemf::in_memory(p, f)?;
+    outputs.write(p, |w| w.write_all(&zip))
 }
 
 /// `--3mf-parts`: the type parts turned as the solid was (`o`), each named by `name` and of its

@@ -1,10 +1,23 @@
 //! What the command line and the Python package say of a mesh they built: the claims file of
 //! `render --claims` and the measures of a volume's level-n solid (`measure --json`).
 
+use crate::mesh::threemf::Colours;
 use crate::mesh::volume::{VolumeSizes, VolumeSolid};
 use crate::mesh::Targets;
 use crate::meshcheck::{Claims, PartClaim, CLAIMS_FORMAT, CLAIMS_VERSION};
+use crate::topology::volume::VolumeTypeSet;
 use serde_json::Value;
+
+/// The 3MF colours of a volume's level-n solid by volume type: a material `V{k}` of the type's
+/// picture colour per type of `set`, and the type of every triangle.
+pub fn volume_type_colours(vs: &VolumeSolid, set: &VolumeTypeSet) -> crate::error::Result<Colours> {
+    Ok(Colours {
+        materials: (0..set.types.len())
+            .map(|k| (format!("V{k}"), crate::export::palette::type_colour(k)))
+            .collect(),
+        per_triangle: vs.triangle_types(set)?,
+    })
+}
 
 /// What a mesh written to `targets` is claimed to be: `source` names what was rendered, the
 /// meshes are the file names of `targets`' STL and 3MF files.
