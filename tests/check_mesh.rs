@@ -4,25 +4,7 @@
 //! naming its edge.
 
 mod common;
-use common::{lacuna, number_after};
-
-fn s(p: &std::path::Path) -> String {
-    p.display().to_string()
-}
-
-/// The integer before `label` in `text`.
-fn number_before(text: &str, label: &str) -> i64 {
-    let at = text
-        .find(label)
-        .unwrap_or_else(|| panic!("no `{label}` in {text}"));
-    let n: String = text[..at]
-        .trim_end()
-        .chars()
-        .rev()
-        .take_while(|c| c.is_ascii_digit())
-        .collect();
-    n.chars().rev().collect::<String>().parse().unwrap()
-}
+use common::{lacuna, number_after, number_before, s};
 
 fn check_json(args: &[&str]) -> (i32, serde_json::Value) {
     let mut all = vec!["check-mesh"];

@@ -3,11 +3,12 @@
 // recovers known dimensions. Also writes the pictures of docs/images/ (made by the code).
 
 mod common;
+use common::inst;
 use lacuna::{
     export::write_json, export::write_obj, export::write_png, export::write_svg,
-    geometry::box_dimension, geometry::instantiate, geometry::BBox, geometry::Instance,
-    geometry::InstantiateOptions, geometry::Raster, input::load_input, measure::check_cells,
-    measure::exact_topology, measure::measure, measure::MeasureOptions, topology::counts,
+    geometry::box_dimension, geometry::instantiate, geometry::BBox, geometry::InstantiateOptions,
+    geometry::Raster, input::load_input, measure::check_cells, measure::exact_topology,
+    measure::measure, measure::MeasureOptions, topology::counts,
 };
 
 const BUILT_IN: [&str; 5] = [
@@ -17,11 +18,6 @@ const BUILT_IN: [&str; 5] = [
     "two-quads",
     "cycle-sqrt17",
 ];
-
-fn inst(name: &str) -> Instance {
-    let input = load_input(name).unwrap_or_else(|e| panic!("{name}: {e}"));
-    instantiate(&input, &InstantiateOptions::default()).unwrap_or_else(|e| panic!("{name}: {e}"))
-}
 
 #[test]
 fn instantiated_faces_satisfy_every_equation_exactly() {
@@ -638,8 +634,7 @@ fn stl_prisms_are_closed_surfaces() {
 
 #[test]
 fn html_report_is_self_contained_and_complete() {
-    let dir = std::env::temp_dir().join(format!("lacuna-report-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::scratch("report");
     let path = dir.join("f0.html");
     let (code, _, err) = common::lacuna(&[
         "report",
@@ -690,8 +685,7 @@ fn two_edge_faces_have_their_hand_derived_outline_or_are_a_forced_collapse() {
         true => 1.0 / 2.0,
         false => 0.0,
     };
-    let dir = std::env::temp_dir().join(format!("lacuna-two-edge-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::scratch("two-edge");
     for algorithm in ["A1", "A3"] {
         for e0 in ["B2", "C2", "B3", "C3"] {
             for e1 in ["B2", "C2", "B3", "C3"] {

@@ -5,7 +5,7 @@
 //! src/geometry/point.rs.)
 
 mod common;
-use common::lacuna;
+use common::{lacuna, s};
 use std::path::Path;
 use std::process::{Command, Stdio};
 
@@ -27,10 +27,6 @@ fn run_in(dir: &Path, args: &[&str], stdin: &[u8]) -> (i32, Vec<u8>, String) {
         out.stdout,
         String::from_utf8_lossy(&out.stderr).into_owned(),
     )
-}
-
-fn s(p: &Path) -> String {
-    p.to_string_lossy().into_owned()
 }
 
 /// The files of a folder (to check that no temporary file is left behind).

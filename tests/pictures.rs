@@ -4,17 +4,12 @@
 // type; outlines scale with the cells of the level.
 
 mod common;
+use common::inst;
 use lacuna::export::{
     density_colour, outline, stroke_width, type_colour, write_density_picture, write_png_picture,
     write_svg_picture, Background, DensityPicture, Frame, PictureOptions,
 };
-use lacuna::geometry::{instantiate, signed_area, Instance, InstantiateOptions, Point};
-use lacuna::input::load_input;
-
-fn inst(name: &str) -> Instance {
-    let input = load_input(name).unwrap_or_else(|e| panic!("{name}: {e}"));
-    instantiate(&input, &InstantiateOptions::default()).unwrap_or_else(|e| panic!("{name}: {e}"))
-}
+use lacuna::geometry::{signed_area, Instance, Point};
 
 /// Decodes an 8-bit RGBA PNG: (width, height, pixels).
 fn decode(bytes: &[u8]) -> (u32, u32, Vec<[u8; 4]>) {
@@ -263,8 +258,7 @@ fn ink(w: u32, px: &[[u8; 4]], rows: u32) -> ([u32; 4], usize) {
 /// picture (the frame triangle of every leaf contains its piece).
 #[test]
 fn automaton_pictures_are_coloured_centred_and_visible() {
-    let dir = std::env::temp_dir().join(format!("lacuna-apng-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::scratch("apng");
     let render = |name: &str, level: &str| {
         let path = dir.join(format!("{name}.png"));
         let out = std::process::Command::new(env!("CARGO_BIN_EXE_lacuna"))
@@ -331,8 +325,7 @@ fn automaton_pictures_are_coloured_centred_and_visible() {
 /// bright as the brightest).
 #[test]
 fn volume_pictures_are_centred_and_every_side_in_view_is_lit() {
-    let dir = std::env::temp_dir().join(format!("lacuna-vpng-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::scratch("vpng");
     let render = |name: &str, level: &str| {
         let path = dir.join("v.png");
         let out = std::process::Command::new(env!("CARGO_BIN_EXE_lacuna"))
@@ -383,8 +376,7 @@ fn volume_pictures_are_centred_and_every_side_in_view_is_lit() {
 /// blocks that wrap instead of scrolling (a long mesh line is never cut).
 #[test]
 fn every_kind_of_report_has_one_layout() {
-    let dir = std::env::temp_dir().join(format!("lacuna-report-layout-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::scratch("report-layout");
     for (name, level) in [("F0", "1"), ("cube-C2", "1"), ("sierpinski-triangle", "2")] {
         let out = dir.join(format!("{name}.html"));
         let (code, _, err) = common::lacuna(&[

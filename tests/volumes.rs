@@ -216,8 +216,7 @@ fn two_cubes_by_hand() {
 
 #[test]
 fn an_assembly_file_verifies_and_certifies() {
-    let dir = std::env::temp_dir().join(format!("lacuna-volasm-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::scratch("volasm");
     // A tetrahedron block (corners 0 1 2 3, faces counter-clockwise from outside) glued to a
     // shorthand tetrahedron along one triangle.
     let file = dir.join("pair.txt");
@@ -277,8 +276,7 @@ fn face_counts_name_their_cells() {
 
 #[test]
 fn a_bad_volume_file_is_exit_2_with_its_line_and_column() {
-    let dir = std::env::temp_dir().join(format!("lacuna-volbad-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::scratch("volbad");
     let file = dir.join("open.txt");
     // A square with only two of its edges glued: edge 1 is not glued (E1225, at the face's
     // name on line 3, column 8).

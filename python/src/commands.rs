@@ -2,7 +2,7 @@
 //! command line calls, their pages, comparisons and frames returned to the Python half.
 
 use crate::geometry::geo;
-use crate::{json, limits, out_of_range, param_values, refuse_clobbering, run, write_file};
+use crate::{json, out_of_range, param_values, refuse_clobbering, run, run_limited, write_file};
 use lacuna::input::{load_any, load_input, Loaded};
 use lacuna::Error;
 use pyo3::prelude::*;
@@ -101,8 +101,7 @@ pub(crate) fn classify(
     multiplicity: String,
     limits: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let l = self::limits(limits)?;
-    run(py, move || {
+    run_limited(py, limits, move |l| {
         let multiplicity = match multiplicity.as_str() {
             "contacts" => lacuna::analysis::AutomatonMultiplicity::Contacts,
             "coincidences" => lacuna::analysis::AutomatonMultiplicity::Coincidences,
@@ -177,8 +176,7 @@ pub(crate) fn morph(
     max_cells: u64,
     limits: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<(String, Vec<Frame>, Vec<PathBuf>)> {
-    let l = self::limits(limits)?;
-    run(py, move || {
+    run_limited(py, limits, move |l| {
         if !(2..=1000).contains(&frames) {
             return Err(out_of_range(
                 "frames",

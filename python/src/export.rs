@@ -1,7 +1,7 @@
 //! `lacuna export` from Python: the automaton generated from the closure of faces, in lacuna's
 //! automaton format or as the MODITERE Python model, as text (and written to a file).
 
-use super::{gen_options, limits, refuse_clobbering, run, write_file};
+use super::{gen_options, refuse_clobbering, run_limited, write_file};
 use lacuna::export::GeneratedFormat;
 use lacuna::Error;
 use pyo3::prelude::*;
@@ -20,8 +20,7 @@ pub(crate) fn export(
     cantor_gap: String,
     limits: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let l = self::limits(limits)?;
-    run(py, move || {
+    run_limited(py, limits, move |l| {
         let format = match format.as_str() {
             "aut" => GeneratedFormat::Aut,
             "moditere" => GeneratedFormat::Moditere,

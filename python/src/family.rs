@@ -2,7 +2,7 @@
 //! family into shards and hands them to any `concurrent.futures.Executor`), `lacuna census`, and
 //! the independent mesh checker of `lacuna check-mesh`.
 
-use super::{json, limits, run};
+use super::{json, run, run_limited};
 use lacuna::analysis::ExploreSpec;
 use lacuna::Error;
 use pyo3::prelude::*;
@@ -31,8 +31,7 @@ pub(crate) fn explore_shard(
     max_holes_cells: u64,
     limits: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let l = self::limits(limits)?;
-    run(py, move || {
+    run_limited(py, limits, move |l| {
         let algorithm = lacuna::topology::Algorithm::parse(algorithm.trim(), 1, &[])
             .map_err(|e| e.within(&lacuna::Source::command_line(&algorithm), 1, 0))?;
         let properties = lacuna::analysis::parse_properties(&properties)?;
@@ -78,8 +77,7 @@ pub(crate) fn census(
     threads: Option<usize>,
     limits: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let l = self::limits(limits)?;
-    run(py, move || {
+    run_limited(py, limits, move |l| {
         let mut spec =
             lacuna::analysis::CensusSpec::parse(&edges, &params, &algorithms, max_length, threads)?;
         spec.per_face = true;

@@ -11,7 +11,7 @@
 #![warn(missing_docs)]
 
 use lacuna::input::{load_any, load_input, Loaded};
-use lacuna::topology::{Closure, Limits};
+use lacuna::topology::{Closure, Limits, TypeSet};
 use lacuna::{Diagnostic, Error};
 use num_rational::BigRational;
 use pyo3::prelude::*;
@@ -100,6 +100,17 @@ fn pythonic(message: &str) -> String {
 /// Runs `work` with the Python thread detached and maps its error to a Python exception.
 fn run<T: Send>(py: Python<'_>, work: impl FnOnce() -> Result<T, Error> + Send) -> PyResult<T> {
     py.detach(work).map_err(|e| py_err(py, e))
+}
+
+/// Reads the `limits=` keyword, then runs `work` on the limits with the Python thread detached
+/// (the body of every function that takes `limits`).
+fn run_limited<T: Send>(
+    py: Python<'_>,
+    overrides: Option<&Bound<'_, PyDict>>,
+    work: impl FnOnce(Limits) -> Result<T, Error> + Send,
+) -> PyResult<T> {
+    let l = limits(overrides)?;
+    run(py, move || work(l))
 }
 
 /// A coded error without a source span (the library's geometry and mesh errors carry a code and a
@@ -315,12 +326,18 @@ fn library() -> Vec<(String, String)> {
         .collect()
 }
 
+/// The faces `input` names and their closed set of types (E0502 when the closure runs away).
+fn closed_faces(input: &str, l: &Limits) -> Result<(lacuna::input::Input, TypeSet), Error> {
+    let input = load_input(input)?;
+    let ts = lacuna::topology::close_or_error(&input.faces(), l)?;
+    Ok((input, ts))
+}
+
 /// The closure as `lacuna closure --json` prints it (closed or runaway).
 #[pyfunction]
 #[pyo3(signature = (input, limits=None))]
 fn closure(py: Python<'_>, input: String, limits: Option<&Bound<'_, PyDict>>) -> PyResult<String> {
-    let l = self::limits(limits)?;
-    run(py, move || {
+    run_limited(py, limits, move |l| {
         let input = load_input(&input)?;
         let c = Closure::of(&input.faces(), &l)?;
         Ok(json(&lacuna::export::closure_json(&c)))
@@ -336,11 +353,9 @@ fn counts(
     levels: u64,
     limits: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let l = self::limits(limits)?;
-    run(py, move || {
+    run_limited(py, limits, move |l| {
         l.check_level(levels)?;
-        let input = load_input(&input)?;
-        let ts = lacuna::topology::close_or_error(&input.faces(), &l)?;
+        let (input, ts) = closed_faces(&input, &l)?;
         Ok(json(&lacuna::export::counts_json(&ts, &input, levels)))
     })
 }
@@ -354,11 +369,9 @@ fn ratio(
     digits: usize,
     limits: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let l = self::limits(limits)?;
-    run(py, move || {
+    run_limited(py, limits, move |l| {
         l.check_digits(digits)?;
-        let input = load_input(&input)?;
-        let ts = lacuna::topology::close_or_error(&input.faces(), &l)?;
+        let (_, ts) = closed_faces(&input, &l)?;
         Ok(json(&lacuna::export::ratio_of(&ts, digits)?))
     })
 }
@@ -375,8 +388,7 @@ fn solve(
     cantor_gap: String,
     limits: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let l = self::limits(limits)?;
-    run(py, move || {
+    run_limited(py, limits, move |l| {
         let opts = gen_options(degree, &cantor_gap)?;
         let report = match load_any(&input)? {
             Loaded::Automaton { model, .. } if !model.field_ops.is_empty() => {
@@ -406,8 +418,7 @@ fn verify(
     levels: u64,
     limits: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let l = self::limits(limits)?;
-    run(py, move || {
+    run_limited(py, limits, move |l| {
         l.check_level(levels)?;
         let input = load_input(&input)?;
         let c = Closure::of(&input.faces(), &l)?;
@@ -426,10 +437,8 @@ fn certificate(
     input: String,
     limits: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let l = self::limits(limits)?;
-    run(py, move || {
-        let input = load_input(&input)?;
-        let ts = lacuna::topology::close_or_error(&input.faces(), &l)?;
+    run_limited(py, limits, move |l| {
+        let (input, ts) = closed_faces(&input, &l)?;
         let cert = lacuna::certificate::certificate_for_assembly(
             &input.name,
             &ts,
@@ -451,8 +460,7 @@ fn automaton_certificate(
     input: String,
     limits: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let l = self::limits(limits)?;
-    run(py, move || {
+    run_limited(py, limits, move |l| {
         let (name, model) = match load_any(&input)? {
             Loaded::Automaton { name, model, .. } => (name, model),
             Loaded::Faces(_) => {

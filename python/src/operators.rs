@@ -2,7 +2,7 @@
 //! subdivision operators and of matrices given by hand, with the curves' DCFs and pseudo-curvature
 //! ranges, as the library's report that the command line prints with `--json`.
 
-use super::{json, limits, run};
+use super::{json, run_limited};
 use lacuna::input::load_any;
 use lacuna::Error;
 use pyo3::prelude::*;
@@ -60,8 +60,7 @@ pub(crate) fn operators(
     curvature: Option<String>,
     limits: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let l = self::limits(limits)?;
-    run(py, move || {
+    run_limited(py, limits, move |l| {
         let automaton = input
             .as_deref()
             .map(|i| load_any(i).and_then(|x| lacuna::export::operators_automaton(x, &l)))

@@ -7,7 +7,9 @@
 //! public API with the same checks in the same order, so an input gets the same code and message
 //! from Python as from the command line.
 
-use crate::{json, limits, mesh_error, out_of_range, refuse_clobbering, run, write_file};
+use crate::{
+    json, limits, mesh_error, out_of_range, refuse_clobbering, run, run_limited, write_file,
+};
 use lacuna::input::VolumeFile;
 use lacuna::topology::volume::{solid_topology_of, volume_counts, VolumeClosure, VolumeTypeSet};
 use lacuna::topology::Limits;
@@ -33,6 +35,19 @@ fn closed(v: &VolumeFile, limits: &Limits) -> Result<VolumeTypeSet, Error> {
     }
 }
 
+/// The volume file `input` names and the closed set of its volumes, with `check` (a keyword's
+/// range) between the two, in the command line's order.
+fn load_closed(
+    input: &str,
+    limits: &Limits,
+    check: impl FnOnce() -> Result<(), Error>,
+) -> Result<(String, VolumeFile, VolumeTypeSet), Error> {
+    let (name, v) = load(input)?;
+    check()?;
+    let set = closed(&v, limits)?;
+    Ok((name, v, set))
+}
+
 /// The closure of volume types as `lacuna closure --json` prints it (closed or runaway).
 #[pyfunction]
 #[pyo3(signature = (input, limits=None))]
@@ -41,8 +56,7 @@ pub(crate) fn volume_closure(
     input: String,
     limits: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let l = self::limits(limits)?;
-    run(py, move || {
+    run_limited(py, limits, move |l| {
         let (name, v) = load(&input)?;
         let c = VolumeClosure::of(&v.assembly.volumes, &l)?;
         Ok(json(&lacuna::export::volume_closure_json(&name, &c)))
@@ -59,11 +73,8 @@ pub(crate) fn volume_counts_json(
     levels: u64,
     limits: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let l = self::limits(limits)?;
-    run(py, move || {
-        let (name, v) = load(&input)?;
-        l.check_level(levels)?;
-        let set = closed(&v, &l)?;
+    run_limited(py, limits, move |l| {
+        let (name, v, set) = load_closed(&input, &l, || l.check_level(levels))?;
         let c = volume_counts(&set, levels);
         let solid = solid_topology_of(&set, levels, &v.assembly.start_cells())?;
         Ok(json(&serde_json::json!({
@@ -84,11 +95,8 @@ pub(crate) fn volume_ratio(
     digits: usize,
     limits: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let l = self::limits(limits)?;
-    run(py, move || {
-        let (_, v) = load(&input)?;
-        l.check_digits(digits)?;
-        let set = closed(&v, &l)?;
+    run_limited(py, limits, move |l| {
+        let (_, _, set) = load_closed(&input, &l, || l.check_digits(digits))?;
         Ok(json(&lacuna::export::volume_ratio(&set, digits)?))
     })
 }
@@ -104,11 +112,9 @@ pub(crate) fn volume_solve(
     cantor_gap: String,
     limits: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let l = self::limits(limits)?;
-    run(py, move || {
+    run_limited(py, limits, move |l| {
         let opts = crate::gen_options(degree, &cantor_gap)?;
-        let (_, v) = load(&input)?;
-        let set = closed(&v, &l)?;
+        let (_, v, set) = load_closed(&input, &l, || Ok(()))?;
         let shared = lacuna::constraint::shared_readings(&v.assembly);
         Ok(json(&lacuna::constraint::solve_volumes(
             &set, &shared, opts, &l,
@@ -126,8 +132,7 @@ pub(crate) fn volume_verify(
     levels: u64,
     limits: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let l = self::limits(limits)?;
-    run(py, move || {
+    run_limited(py, limits, move |l| {
         let (name, v) = load(&input)?;
         l.check_level(levels)?;
         let set = match VolumeClosure::of(&v.assembly.volumes, &l)? {
@@ -139,42 +144,8 @@ pub(crate) fn volume_verify(
                 return Ok(json(&r));
             }
         };
-        let mut failures = Vec::new();
-        for (i, t) in set.types.iter().enumerate() {
-            for (k, s) in t.subdivision.subvolumes.iter().enumerate() {
-                if let Err(e) = s.volume.surface.check() {
-                    failures.push(format!("V{i} sub-volume {k}: {e}"));
-                }
-            }
-        }
-        let counts = volume_counts(&set, levels);
-        let solid = solid_topology_of(&set, levels, &v.assembly.start_cells())?;
-        let r = lacuna::export::volume_ratio(&set, 30)?;
-        // A limit on the solve leaves the constraints undecided (a limit, not a verdict); any
-        // other error is the input's.
-        let solver = match lacuna::constraint::solve_volumes(
-            &set,
-            &lacuna::constraint::shared_readings(&v.assembly),
-            Default::default(),
-            &l,
-        ) {
-            Ok(s) => Ok(s),
-            Err(e @ (Error::Limit { .. } | Error::ProvedAboveLimit { .. })) => Err(e),
-            Err(e) => return Err(e),
-        };
-        let verified = failures.is_empty() && solver.as_ref().is_ok_and(|s| s.ok());
-        Ok(json(&serde_json::json!({
-            "input": name,
-            "verified": verified,
-            "volume_types": set.types.len(),
-            "failures": failures,
-            "counts": counts,
-            "solid": solid,
-            "ratio": r,
-            "solver": solver.as_ref().ok(),
-            "constraints_undecided": solver.as_ref().err().map(|e| e.to_string()),
-            "solid_certified_levels": lacuna::certificate::solid_rows(&solid).len(),
-        })))
+        let report = lacuna::export::volume_verify(&set, &v.assembly, levels, &l)?;
+        Ok(json(&report.json(&name, &set)))
     })
 }
 
@@ -188,11 +159,8 @@ pub(crate) fn volume_certificate(
     levels: u64,
     limits: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let l = self::limits(limits)?;
-    run(py, move || {
-        let (name, v) = load(&input)?;
-        l.check_level(levels)?;
-        let set = closed(&v, &l)?;
+    run_limited(py, limits, move |l| {
+        let (name, v, set) = load_closed(&input, &l, || l.check_level(levels))?;
         let lacuna_error = |e| match e {
             lacuna::certificate::CertifyError::Lacuna(e) => e,
             e => Error::Usage(format!("certificate: {e}")),
@@ -291,12 +259,8 @@ fn write_threemf(
     p: &std::path::Path,
     f: impl FnOnce(&mut std::io::Cursor<Vec<u8>>) -> std::io::Result<()>,
 ) -> Result<(), Error> {
-    let mut zip = std::io::Cursor::new(Vec::new());
-    f(&mut zip).map_err(|e| Error::Write {
-        path: p.display().to_string(),
-        reason: e.to_string(),
-    })?;
-    write_file(p, |w| w.write_all(zip.get_ref()))
+    let zip = lacuna::mesh::threemf::in_memory(p, f)?;
+    write_file(p, |w| w.write_all(&zip))
 }
 
 /// The level-n solid of a volume as `lacuna render` builds it, with the files asked for written:
@@ -500,12 +464,7 @@ fn render(
         match style {
             Style::Plain => write_threemf(p, |zip| lacuna::mesh::threemf::write(solid, zip))?,
             Style::Colours => {
-                let colours = lacuna::mesh::threemf::Colours {
-                    materials: (0..set.types.len())
-                        .map(|k| (type_name(k), lacuna::export::type_colour(k)))
-                        .collect(),
-                    per_triangle: vs.triangle_types(&set)?,
-                };
+                let colours = lacuna::export::volume_type_colours(&vs, &set)?;
                 write_threemf(p, |zip| {
                     lacuna::mesh::threemf::write_with(solid, Some(&colours), zip)
                 })?;
@@ -535,35 +494,8 @@ fn render(
         written.push(p.clone());
     }
     if let Some(p) = &t.claims {
-        // The surface pieces are the components and the voids; Σχ of the surface is 2χ of the
-        // solid; its genus is the number of tunnels (THEORY §10).
-        let x = &vs.exact;
-        let meshes = [&mesh.stl, &mesh.threemf]
-            .into_iter()
-            .flatten()
-            .map(|p| {
-                p.file_name().map_or_else(
-                    || p.display().to_string(),
-                    |f| f.to_string_lossy().to_string(),
-                )
-            })
-            .collect();
-        let claims = lacuna::meshcheck::Claims {
-            format: lacuna::meshcheck::CLAIMS_FORMAT.into(),
-            version: lacuna::meshcheck::CLAIMS_VERSION,
-            source: format!("{input} level {level}"),
-            meshes,
-            triangles: solid.triangle_count() as u64,
-            parts: x.components.zip(x.voids).map(|(b0, b2)| b0 + b2),
-            euler: x
-                .euler
-                .to_string()
-                .parse::<i64>()
-                .ok()
-                .and_then(|e| e.checked_mul(2)),
-            genus: x.tunnels.as_ref().and_then(|g| g.to_string().parse().ok()),
-            per_part: None,
-        };
+        let claims =
+            lacuna::export::volume_solid_claims(format!("{input} level {level}"), &mesh, &vs);
         write_file(p, |w| w.write_all(claims.to_json().as_bytes()))?;
         written.push(p.clone());
     }
@@ -623,27 +555,15 @@ pub(crate) fn volume_measure(
         let (name, v) = load(&input)?;
         let (vs, _) = checked_solid(&name, &v, level, print.width, max_cells, &l)?;
         let sizes = vs.sizes(print.layers, print.resolution);
-        let below = sizes.below(print.resolution);
-        let embedded = vs.crossing.is_none();
-        let verified = embedded && (!print.strict || below.is_empty());
-        Ok(json(&serde_json::json!({
-            "input": name,
-            "level": level,
-            "verified": verified,
-            "solid": vs.exact,
-            "mesh": {
-                "parts": vs.solid.parts.len(),
-                "triangles": vs.solid.triangle_count(),
-                "surface_euler": vs.euler,
-                "surface_pieces": vs.surfaces,
-                "genus": vs.genus,
-                "embedded": embedded,
-                "crossing": vs.crossing,
-            },
-            "sizes": sizes,
-            "printability": sizes.report(&vs.solid.parts, vs.solid.level, print.resolution, print.bed),
-            "resolution_mm": print.resolution,
-            "below_resolution": below,
-        })))
+        let verified =
+            vs.crossing.is_none() && (!print.strict || sizes.below(print.resolution).is_empty());
+        Ok(json(&lacuna::export::volume_measure_json(
+            &name,
+            &vs,
+            &sizes,
+            print.resolution,
+            print.bed,
+            verified,
+        )))
     })
 }

@@ -247,7 +247,7 @@ fn write_meshes(p: &Prepared, level: u32, m: &MeshOut, outputs: &mut Outputs) ->
                 })
             })
             .collect();
-        let claims = super::render::mesh_claims(
+        let claims = lacuna::export::mesh_claims(
             format!(
                 "{} level {level} (shell {} mm thick; figures from lacuna's check of the written mesh, not from an exact topology)",
                 p.name, m.size.thickness

@@ -327,7 +327,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
                 })
                 .collect();
             let genus = holds(&e.holes);
-            let c = mesh_claims(
+            let c = lacuna::export::mesh_claims(
                 format!("{} level {level}", geo.input),
                 &mesh,
                 solid.triangle_count(),
@@ -373,39 +373,6 @@ fn finish(geo: &GeoArgs, outputs: &Outputs, code: ExitCode) -> ExitCode {
         }));
     }
     code
-}
-
-/// What a mesh written to `targets` is claimed to be.
-pub(super) fn mesh_claims(
-    source: String,
-    targets: &lacuna::mesh::Targets,
-    triangles: usize,
-    parts: Option<u64>,
-    euler: Option<i64>,
-    genus: Option<i64>,
-    per_part: Option<Vec<lacuna::meshcheck::PartClaim>>,
-) -> lacuna::meshcheck::Claims {
-    let meshes = [&targets.stl, &targets.threemf]
-        .into_iter()
-        .flatten()
-        .map(|p| {
-            p.file_name().map_or_else(
-                || p.display().to_string(),
-                |f| f.to_string_lossy().to_string(),
-            )
-        })
-        .collect();
-    lacuna::meshcheck::Claims {
-        format: lacuna::meshcheck::CLAIMS_FORMAT.into(),
-        version: lacuna::meshcheck::CLAIMS_VERSION,
-        source,
-        meshes,
-        triangles: triangles as u64,
-        parts,
-        euler,
-        genus,
-        per_part,
-    }
 }
 
 /// Writes a claims file (`render --claims`).
@@ -465,12 +432,8 @@ pub(super) fn write_threemf(
     p: &std::path::Path,
     f: impl FnOnce(&mut std::io::Cursor<Vec<u8>>) -> std::io::Result<()>,
 ) -> Result<(), Error> {
-    let mut zip = std::io::Cursor::new(Vec::new());
-    f(&mut zip).map_err(|e| Error::Write {
-        path: p.display().to_string(),
-        reason: e.to_string(),
-    })?;
-    outputs.write(p, |w| w.write_all(zip.get_ref()))
+    let zip = lacuna::mesh::threemf::in_memory(p, f)?;
+    outputs.write(p, |w| w.write_all(&zip))
 }
 
 /// `--3mf-parts`: the type parts turned as the solid was (`o`), each named by `name` and of its

@@ -121,33 +121,15 @@ pub(super) fn verify(
         }
         return closure(name, v, json, limits).map(|_| ExitCode::from(EXIT_FAILED));
     };
-    let mut failures = Vec::new();
-    for (i, t) in set.types.iter().enumerate() {
-        for (k, s) in t.subdivision.subvolumes.iter().enumerate() {
-            if let Err(e) = s.volume.surface.check() {
-                failures.push(format!("V{i} sub-volume {k}: {e}"));
-            }
-        }
-    }
-    let counts = volume_counts(&set, levels);
-    let solid = lacuna::topology::volume::solid_topology_of(&set, levels, &v.start_cells())?;
-    let r = lacuna::export::volume_ratio(&set, 30)?;
     // The constraints of THEORY §10, with the faces shared between volumes read from both sides.
     // A limit on the solve leaves the constraints undecided; the rest is still reported (and
     // certified: the constraints are the volume-solution-space step, with the faces an assembly's
     // volumes share).
+    let report = lacuna::export::volume_verify(&set, v, levels, limits)?;
     let opts = lacuna::constraint::GenOptions::default();
-    let solved = match lacuna::constraint::solve_volumes_with_system(
-        &set,
-        &lacuna::constraint::shared_readings(v),
-        opts.clone(),
-        limits,
-    ) {
-        Ok(s) => Ok(s),
-        Err(e @ (Error::Limit { .. } | Error::ProvedAboveLimit { .. })) => Err(e),
-        Err(e) => return Err(e),
-    };
-    let system_step = match &solved {
+    let verified = report.verified();
+    let decided = report.solved.is_ok();
+    let system_step = match &report.solved {
         Ok(s) => lacuna::certificate::volume_system_step(&set, s, &opts).map_err(|e| match e {
             lacuna::certificate::CertifyError::Lacuna(e) => e,
             e => Error::Usage(format!("--certificate: {e}")),
@@ -155,10 +137,7 @@ pub(super) fn verify(
         Err(_) => Vec::new(),
     };
     let system_certified = !system_step.is_empty();
-    let solver = solved.map(|s| s.report);
-    let decided = solver.is_ok();
-    let verified = failures.is_empty() && solver.as_ref().is_ok_and(|s| s.ok());
-    let certified = lacuna::certificate::solid_rows(&solid).len();
+    let certified = lacuna::certificate::solid_rows(&report.solid).len();
     let has_voids = lacuna::certificate::recurrence_has_voids(&set);
     let cert = match certificate {
         Some(_) => {
@@ -173,18 +152,7 @@ pub(super) fn verify(
         None => None,
     };
     if json {
-        print_json(&serde_json::json!({
-            "input": name,
-            "verified": verified,
-            "volume_types": set.types.len(),
-            "failures": failures,
-            "counts": counts,
-            "solid": solid,
-            "ratio": r,
-            "solver": solver.as_ref().ok(),
-            "constraints_undecided": solver.as_ref().err().map(|e| e.to_string()),
-            "solid_certified_levels": certified,
-        }));
+        print_json(&report.json(name, &set));
     } else {
         let mut t =
             lacuna::export::volume_closure_text("verify", name, &VolumeClosure::Closed(set));
@@ -192,13 +160,14 @@ pub(super) fn verify(
             "\nstructure: every sub-volume's boundary is a sphere{}\n\ncounts\n",
             if verified { "" } else { ": FAILED" }
         );
-        for f in &failures {
+        for f in &report.failures {
             t += &format!("  {f}\n");
         }
-        t += &lacuna::export::volume_counts_table(&counts);
+        t += &lacuna::export::volume_counts_table(&report.counts);
         // Voids and tunnels that neither step certifies: past the levels built cell by cell,
         // when the recurrence claims none (a delayed volume).
-        let loose: Vec<String> = solid
+        let loose: Vec<String> = report
+            .solid
             .iter()
             .filter(|l| l.level as usize >= certified && l.level > 0)
             .filter(|l| l.voids.is_some() && !has_voids)
@@ -222,11 +191,12 @@ pub(super) fn verify(
                 ),
             }
         );
-        t += &lacuna::export::solid_table(&solid);
+        t += &lacuna::export::solid_table(&report.solid);
         t += "\n";
-        t += &lacuna::export::ratio_text(&r);
-        match &solver {
-            Ok(solver) => {
+        t += &lacuna::export::ratio_text(&report.ratio);
+        match &report.solved {
+            Ok(solved) => {
+                let solver = &solved.report;
                 t += &format!(
                     "\nconstraints (faces and volumes, Bézier degree 2; exact, {}): {} unknowns, {} equations, {}\n",
                     match system_certified {
@@ -281,7 +251,7 @@ pub(super) fn verify(
     // A failure found or a solve that decided against is a verdict; a limit alone is not.
     Ok(if verified {
         ExitCode::SUCCESS
-    } else if decided || !failures.is_empty() {
+    } else if decided || !report.failures.is_empty() {
         ExitCode::from(EXIT_FAILED)
     } else {
         ExitCode::from(EXIT_BAD_INPUT)
@@ -414,12 +384,7 @@ pub(super) fn render(
                 lacuna::mesh::threemf::write(solid, zip)
             })?,
             Style::Colours => {
-                let colours = lacuna::mesh::threemf::Colours {
-                    materials: (0..set.types.len())
-                        .map(|k| (type_name(k), lacuna::export::type_colour(k)))
-                        .collect(),
-                    per_triangle: vs.triangle_types(&set)?,
-                };
+                let colours = lacuna::export::volume_type_colours(&vs, &set)?;
                 super::render::write_threemf(outputs, p, |zip| {
                     lacuna::mesh::threemf::write_with(solid, Some(&colours), zip)
                 })?;
@@ -437,19 +402,10 @@ pub(super) fn render(
         wrote(outputs, p);
     }
     if let Some(p) = t.claims {
-        // The surface pieces are the components and the voids; Σχ of the surface is 2χ of the
-        // solid; its genus is the number of tunnels (THEORY §10).
-        let x = &vs.exact;
-        let euler = num_traits::ToPrimitive::to_i64(&(num_bigint::BigInt::from(2) * &x.euler));
-        let genus = x.tunnels.as_ref().and_then(num_traits::ToPrimitive::to_i64);
-        let c = super::render::mesh_claims(
+        let c = lacuna::export::volume_solid_claims(
             format!("{} level {}", geo.input, geo.level),
             t.mesh,
-            solid.triangle_count(),
-            x.components.zip(x.voids).map(|(b0, b2)| b0 + b2),
-            euler,
-            genus,
-            None,
+            &vs,
         );
         super::render::write_claims(outputs, p, &c)?;
     }
@@ -510,29 +466,17 @@ pub(super) fn measure(
     lacuna::mesh::check_size("--resolution", print.resolution).map_err(mesh_error)?;
     let (vs, set) = checked_solid(name, v, geo, print.width, limits)?;
     let sizes = vs.sizes(print.layers, print.resolution);
-    let below = sizes.below(print.resolution);
-    let embedded = vs.crossing.is_none();
-    let verified = embedded && (!print.strict || below.is_empty());
+    let verified =
+        vs.crossing.is_none() && (!print.strict || sizes.below(print.resolution).is_empty());
     if json {
-        print_json(&serde_json::json!({
-            "input": name,
-            "level": geo.level,
-            "verified": verified,
-            "solid": vs.exact,
-            "mesh": {
-                "parts": vs.solid.parts.len(),
-                "triangles": vs.solid.triangle_count(),
-                "surface_euler": vs.euler,
-                "surface_pieces": vs.surfaces,
-                "genus": vs.genus,
-                "embedded": embedded,
-                "crossing": vs.crossing,
-            },
-            "sizes": sizes,
-            "printability": sizes.report(&vs.solid.parts, geo.level, print.resolution, print.bed),
-            "resolution_mm": print.resolution,
-            "below_resolution": below,
-        }));
+        print_json(&lacuna::export::volume_measure_json(
+            name,
+            &vs,
+            &sizes,
+            print.resolution,
+            print.bed,
+            verified,
+        ));
     } else {
         let levels = lacuna::topology::volume::solid_topology_of(
             &set,

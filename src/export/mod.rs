@@ -21,6 +21,7 @@ pub(crate) mod picture;
 pub(crate) mod plot;
 pub(crate) mod report;
 pub(crate) mod report_page;
+pub(crate) mod volume_mesh;
 pub(crate) mod volume_picture;
 pub(crate) mod volume_report;
 pub(crate) mod writer;
@@ -56,13 +57,14 @@ pub use report::{
     VerifyReport,
 };
 pub use report_page::{automaton_report_page, faces_report_page, volume_report_page, ReportPage};
+pub use volume_mesh::{mesh_claims, volume_measure_json, volume_solid_claims, volume_type_colours};
 pub use volume_picture::{
     volume_report_html, volume_svg, volume_viewer, volume_viewer_with_id, write_volume_png,
     write_volume_svg,
 };
 pub use volume_report::{
     solid_table, surface_summary, volume_closure_json, volume_closure_text, volume_counts_table,
-    volume_ratio,
+    volume_ratio, volume_verify, VolumeVerify,
 };
 pub use writer::{
     render_raster, triangulate, write_density_png, write_json, write_obj, write_png, write_stl,

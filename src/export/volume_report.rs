@@ -2,13 +2,92 @@
 //! and the limit ratio.
 
 use crate::analysis::ratio::{analyse, RatioReport};
+use crate::constraint::{shared_readings, solve_volumes_with_system, GenOptions, SolvedVolumes};
 use crate::error::{Error, Result};
 use crate::export::report::{aligned_table, ratio_decimal};
-use crate::topology::volume::{SolidLevel, Volume, VolumeClosure, VolumeLevelCount, VolumeTypeSet};
+use crate::topology::limits::Limits;
+use crate::topology::volume::{
+    solid_topology_of, volume_counts, SolidLevel, Volume, VolumeAssembly, VolumeClosure,
+    VolumeLevelCount, VolumeTypeSet,
+};
 use num_rational::BigRational;
 use serde_json::{json, Value};
 use std::collections::BTreeMap;
 use std::fmt::Write;
+
+/// What `lacuna verify` finds on a closed set of volumes (THEORY §10): every sub-volume's
+/// surface a sphere, counts, the level-n solid, R and the constraints (the faces shared between
+/// volumes read from both sides).
+#[derive(Debug)]
+pub struct VolumeVerify {
+    /// Every sub-volume whose surface is not a sphere (empty when every one is).
+    pub failures: Vec<String>,
+    /// Exact counts per level.
+    pub counts: Vec<VolumeLevelCount>,
+    /// The level-n solid's topology per level.
+    pub solid: Vec<SolidLevel>,
+    /// The limit ratio, 30 digits.
+    pub ratio: RatioReport,
+    /// The constraints solved, with their system; the limit that left them undecided otherwise.
+    pub solved: std::result::Result<SolvedVolumes, Error>,
+}
+
+/// The checks of `lacuna verify` on the closed set `set` of the volumes of `assembly`, levels 0
+/// to `levels`. A limit on the solve leaves the constraints undecided (a limit, not a verdict);
+/// any other error is the input's.
+pub fn volume_verify(
+    set: &VolumeTypeSet,
+    assembly: &VolumeAssembly,
+    levels: u64,
+    limits: &Limits,
+) -> Result<VolumeVerify> {
+    let failures = set.sub_volume_failures();
+    let counts = volume_counts(set, levels);
+    let solid = solid_topology_of(set, levels, &assembly.start_cells())?;
+    let ratio = volume_ratio(set, 30)?;
+    let solved = match solve_volumes_with_system(
+        set,
+        &shared_readings(assembly),
+        GenOptions::default(),
+        limits,
+    ) {
+        Ok(s) => Ok(s),
+        Err(e @ (Error::Limit { .. } | Error::ProvedAboveLimit { .. })) => Err(e),
+        Err(e) => return Err(e),
+    };
+    Ok(VolumeVerify {
+        failures,
+        counts,
+        solid,
+        ratio,
+        solved,
+    })
+}
+
+impl VolumeVerify {
+    /// Whether the volume is verified: every sub-volume a sphere and the constraints solved and
+    /// consistent.
+    pub fn verified(&self) -> bool {
+        self.failures.is_empty() && self.solved.as_ref().is_ok_and(|s| s.report.ok())
+    }
+
+    /// The report as `lacuna verify --json` prints it for the volumes `name` closing to `set`.
+    pub fn json(&self, name: &str, set: &VolumeTypeSet) -> Value {
+        let solver = self.solved.as_ref().map(|s| &s.report);
+        json!({
+            "input": name,
+            "verified": self.verified(),
+            "volume_types": set.types.len(),
+            "failures": self.failures,
+            "counts": self.counts,
+            "solid": self.solid,
+            "ratio": self.ratio,
+            "solver": solver.as_ref().ok(),
+            "constraints_undecided": solver.as_ref().err().map(|e| e.to_string()),
+            "solid_certified_levels": crate::certificate::solid_rows(&self.solid).len(),
+        })
+    }
+}
 
 /// The exact limit ratio of the start volumes of a closed set, with `digits` certified decimals
 /// (the eigen analysis of THEORY §5 on the volume substitution and contributions).

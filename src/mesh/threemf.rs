@@ -58,6 +58,21 @@ pub struct Colours {
 /// The id of the base materials resource (objects are numbered from 1).
 const MATERIALS_ID: usize = 1;
 
+/// The bytes of a 3MF package `f` builds in memory (a ZIP is written with seeks, so it is built
+/// whole before the file at `path` is written): an error of `f` is the write error (E1005) of
+/// `path`.
+pub fn in_memory(
+    path: &std::path::Path,
+    f: impl FnOnce(&mut io::Cursor<Vec<u8>>) -> io::Result<()>,
+) -> crate::error::Result<Vec<u8>> {
+    let mut zip = io::Cursor::new(Vec::new());
+    f(&mut zip).map_err(|e| crate::error::Error::Write {
+        path: path.display().to_string(),
+        reason: e.to_string(),
+    })?;
+    Ok(zip.into_inner())
+}
+
 /// Writes a solid as a 3MF package.
 pub fn write<W: Write + Seek>(solid: &Solid, out: W) -> io::Result<()> {
     write_with(solid, None, out)

@@ -29,6 +29,18 @@ pub fn scratch(name: &str) -> std::path::PathBuf {
     d
 }
 
+/// The instance of a named input (notation, file or library name) with the default geometry.
+pub fn inst(name: &str) -> lacuna::geometry::Instance {
+    let input = lacuna::input::load_input(name).unwrap_or_else(|e| panic!("{name}: {e}"));
+    lacuna::geometry::instantiate(&input, &lacuna::geometry::InstantiateOptions::default())
+        .unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// A path as command-line text.
+pub fn s(p: &std::path::Path) -> String {
+    p.to_string_lossy().into_owned()
+}
+
 /// STYLE rule 5: a pipeline test also emits the certificate of what it computed (closure,
 /// solution space of the generated system, limit ratio), round-trips it through JSON and has the
 /// independent checker prove every step.
@@ -97,6 +109,20 @@ pub fn number_after(text: &str, label: &str) -> i64 {
         .collect();
     n.parse()
         .unwrap_or_else(|_| panic!("no number after `{label}` in {text}"))
+}
+
+/// The integer before `label` in `text`.
+pub fn number_before(text: &str, label: &str) -> i64 {
+    let at = text
+        .find(label)
+        .unwrap_or_else(|| panic!("no `{label}` in {text}"));
+    let n: String = text[..at]
+        .trim_end()
+        .chars()
+        .rev()
+        .take_while(|c| c.is_ascii_digit())
+        .collect();
+    n.chars().rev().collect::<String>().parse().unwrap()
 }
 
 /// The certificate of a volume (or an assembly of volumes) of the library, with counts to

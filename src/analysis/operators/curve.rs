@@ -8,8 +8,8 @@ use crate::algebra::fieldpoly::{apply, null_space, rationals};
 use crate::algebra::kmatrix::KMatrix;
 use crate::algebra::matrix::Matrix;
 use crate::analysis::operators::operator::{
-    analyse_kmatrix, analyse_matrix, op_error, render_vec, Behaviour, CurvatureClass,
-    OperatorReport, TangentData,
+    analyse_kmatrix, analyse_matrix, images_f64, mat_f64, mat_vec, op_error, render_vec, Behaviour,
+    CurvatureClass, OperatorReport, TangentData,
 };
 use crate::constraint::automaton::{Automaton, OpKind, Operator};
 use crate::error::Result;
@@ -187,12 +187,6 @@ pub fn analyse_automaton_only(
     })
 }
 
-fn mat_vec(t: &Matrix, v: &[BigRational]) -> Vec<BigRational> {
-    (0..t.rows)
-        .map(|i| v.iter().enumerate().map(|(j, x)| t.get(i, j) * x).sum())
-        .collect()
-}
-
 /// The side seen through `map` (identity when `None`) of the operator `r` at its fixed point.
 fn side(through: String, r: &OperatorReport, map: Option<&Matrix>) -> Side {
     let tangent = r.exact.as_ref().map(|d| match map {
@@ -336,16 +330,6 @@ fn f64s(v: &[BigRational]) -> Vec<f64> {
     v.iter().map(|x| x.to_f64().unwrap_or(f64::NAN)).collect()
 }
 
-fn mat_f64(m: &Matrix) -> Vec<Vec<f64>> {
-    (0..m.rows)
-        .map(|i| {
-            (0..m.cols)
-                .map(|j| m.get(i, j).to_f64().unwrap_or(f64::NAN))
-                .collect()
-        })
-        .collect()
-}
-
 /// Estimates the range of curvatures at the fixed point of `ops[index]` when its class is finite
 /// (α = 2) with a real λ2 = ±λ1²: near the fixed point c, an attractor point p is
 /// `c + a1·v1 + a2·v2 + …` (a_i from the left eigenvectors), its images under T^j follow
@@ -452,19 +436,7 @@ pub fn estimate_curvature(
         })
         .collect();
     let fm: Vec<Vec<Vec<f64>>> = ops.iter().map(mat_f64).collect();
-    let mut pts = seeds;
-    for _ in 0..level {
-        pts = pts
-            .iter()
-            .flat_map(|p| {
-                fm.iter().map(move |m| {
-                    m.iter()
-                        .map(|row| row.iter().zip(p).map(|(a, b)| a * b).sum())
-                        .collect()
-                })
-            })
-            .collect();
-    }
+    let pts = images_f64(&fm, seeds, level);
     let mut pos: Option<[f64; 2]> = None;
     let mut neg: Option<[f64; 2]> = None;
     let mut used = 0;

@@ -37,6 +37,22 @@ pub struct VolumeTypeSet {
     pub start: Vec<usize>,
 }
 
+impl VolumeTypeSet {
+    /// Every sub-volume whose surface is not a sphere, as `V{type} sub-volume {k}: {why}` (the
+    /// structure check of `verify`); empty when every one is.
+    pub fn sub_volume_failures(&self) -> Vec<String> {
+        let mut failures = Vec::new();
+        for (i, t) in self.types.iter().enumerate() {
+            for (k, s) in t.subdivision.subvolumes.iter().enumerate() {
+                if let Err(e) = s.volume.surface.check() {
+                    failures.push(format!("V{i} sub-volume {k}: {e}"));
+                }
+            }
+        }
+        failures
+    }
+}
+
 /// The outcome of closing a set of volumes.
 #[derive(Clone, Debug)]
 #[allow(clippy::large_enum_variant)]

@@ -5,7 +5,7 @@
 
 use super::{dcf_data, q, Dcf, DcfData, Kappa};
 use crate::algebra::matrix::Matrix;
-use crate::analysis::operators::operator::op_error;
+use crate::analysis::operators::operator::{images_f64, mat_f64, mat_vec, mat_vec_f64, op_error};
 use crate::error::Result;
 use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive, Zero};
@@ -144,22 +144,6 @@ pub struct CurveCurvature {
     pub note: String,
 }
 
-fn to_f64s(m: &Matrix) -> Vec<Vec<f64>> {
-    (0..m.rows)
-        .map(|i| {
-            (0..m.cols)
-                .map(|j| m.get(i, j).to_f64().unwrap_or(f64::NAN))
-                .collect()
-        })
-        .collect()
-}
-
-fn mat_vec(t: &Matrix, v: &[BigRational]) -> Vec<BigRational> {
-    (0..t.rows)
-        .map(|i| v.iter().enumerate().map(|(j, x)| t.get(i, j) * x).sum())
-        .collect()
-}
-
 /// Parses an I-adic t in [0, 1] into its digits (`t = Σ σ_i·I^−(i+1)`). Error E0911.
 fn digits(t: &BigRational, base: usize) -> Result<Vec<usize>> {
     let bad = || {
@@ -248,23 +232,15 @@ pub fn curve_curvature(
     while (ops.len() as u64).saturating_pow(level) * (starts.len() as u64) > 1 << 14 && level > 0 {
         level -= 1;
     }
-    let fm: Vec<Vec<Vec<f64>>> = ops.iter().map(to_f64s).collect();
-    let mut samples: Vec<Vec<f64>> = starts
-        .iter()
-        .map(|(_, p)| p.iter().map(|x| x.to_f64().unwrap_or(f64::NAN)).collect())
-        .collect();
-    for _ in 0..level {
-        samples = samples
+    let fm: Vec<Vec<Vec<f64>>> = ops.iter().map(mat_f64).collect();
+    let samples = images_f64(
+        &fm,
+        starts
             .iter()
-            .flat_map(|p| {
-                fm.iter().map(move |m| {
-                    m.iter()
-                        .map(|row| row.iter().zip(p).map(|(a, b)| a * b).sum())
-                        .collect()
-                })
-            })
-            .collect();
-    }
+            .map(|(_, p)| p.iter().map(|x| x.to_f64().unwrap_or(f64::NAN)).collect())
+            .collect(),
+        level,
+    );
     let betas: Vec<Vec<(f64, f64)>> = data
         .iter()
         .map(|d| {
@@ -334,7 +310,7 @@ pub fn curve_curvature(
         })
     };
     let project = |w: &Matrix| -> Vec<Vec<f64>> {
-        let wf = to_f64s(w);
+        let wf = mat_f64(w);
         proj0
             .iter()
             .map(|row| {
@@ -404,25 +380,11 @@ pub fn curve_curvature(
     while line.len() * base <= 1 << 12 {
         line = fm
             .iter()
-            .flat_map(|m| {
-                line.iter().map(move |p| {
-                    m.iter()
-                        .map(|row| row.iter().zip(p).map(|(a, b)| a * b).sum())
-                        .collect::<Vec<f64>>()
-                })
-            })
+            .flat_map(|m| line.iter().map(move |p| mat_vec_f64(m, p)))
             .collect();
     }
     line.push(cl.iter().map(|x| x.to_f64().unwrap_or(f64::NAN)).collect());
-    let polyline = line
-        .iter()
-        .map(|p| {
-            proj0
-                .iter()
-                .map(|row| row.iter().zip(p).map(|(a, b)| a * b).sum())
-                .collect()
-        })
-        .collect();
+    let polyline = line.iter().map(|p| mat_vec_f64(&proj0, p)).collect();
     let mut note = String::from("classes and DCF coefficients exact; κ ranges of the finite class from the β of exact attractor points evaluated in floating point (an inner estimate of [κinf, κsup])");
     if fixed_points
         .iter()

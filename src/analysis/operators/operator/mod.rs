@@ -224,6 +224,44 @@ pub(crate) fn f64_of(k: &NumberField, a: &FieldElement) -> f64 {
     k.decimal(a, 17).parse().unwrap_or(f64::NAN)
 }
 
+/// `t·v` over Q (the point `v` mapped by the operator `t`).
+pub(crate) fn mat_vec(t: &Matrix, v: &[BigRational]) -> Vec<BigRational> {
+    (0..t.rows)
+        .map(|i| v.iter().enumerate().map(|(j, x)| t.get(i, j) * x).sum())
+        .collect()
+}
+
+/// The entries of `m` as floats, row by row (NaN where one does not fit).
+pub(crate) fn mat_f64(m: &Matrix) -> Vec<Vec<f64>> {
+    (0..m.rows)
+        .map(|i| {
+            (0..m.cols)
+                .map(|j| m.get(i, j).to_f64().unwrap_or(f64::NAN))
+                .collect()
+        })
+        .collect()
+}
+
+/// `m·p` in floating point.
+pub(crate) fn mat_vec_f64(m: &[Vec<f64>], p: &[f64]) -> Vec<f64> {
+    m.iter()
+        .map(|row| row.iter().zip(p).map(|(a, b)| a * b).sum())
+        .collect()
+}
+
+/// The images of `points` under every word of length `level` of the float operators `ms`, in
+/// floating point: each point in turn mapped by each operator, `level` times (attractor samples).
+pub(crate) fn images_f64(ms: &[Vec<Vec<f64>>], points: Vec<Vec<f64>>, level: u32) -> Vec<Vec<f64>> {
+    let mut pts = points;
+    for _ in 0..level {
+        pts = pts
+            .iter()
+            .flat_map(|p| ms.iter().map(move |m| mat_vec_f64(m, p)))
+            .collect();
+    }
+    pts
+}
+
 /// A real eigenvalue with its factor's multiplicity.
 struct RealRoot {
     value: RealAlgebraic,
