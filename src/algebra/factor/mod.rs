@@ -217,19 +217,26 @@ fn fp_sub(a: &[u64], b: &[u64], p: u64) -> Fp {
 }
 
 fn fp_mul(a: &[u64], b: &[u64], p: u64) -> Fp {
+    debug_assert!(p < 1 << 31);
     if a.is_empty() || b.is_empty() {
         return Vec::new();
     }
+    // p < 2^31: products are below p² < 2^62, and sums are kept below p² by subtracting it
+    // (no division in the inner loop); one reduction per coefficient at the end.
+    let pp = p * p;
     let mut c = vec![0u64; a.len() + b.len() - 1];
     for (i, &x) in a.iter().enumerate() {
         if x == 0 {
             continue;
         }
-        for (j, &y) in b.iter().enumerate() {
-            c[i + j] = (c[i + j] + x * y) % p;
+        for (ci, &y) in c[i..].iter_mut().zip(b) {
+            *ci += x * y;
+            if *ci >= pp {
+                *ci -= pp;
+            }
         }
     }
-    trim(c)
+    trim(c.into_iter().map(|x| x % p).collect())
 }
 
 fn fp_divrem(a: &[u64], b: &[u64], p: u64) -> (Fp, Fp) {
@@ -238,20 +245,27 @@ fn fp_divrem(a: &[u64], b: &[u64], p: u64) -> (Fp, Fp) {
         return (Vec::new(), a.to_vec());
     }
     let inv = inv_mod(b[db], p);
+    // Residues of −b: the update adds t·(p − b_j). As in fp_mul, the entries of r stay below
+    // p² (p < 2^31) and are reduced mod p only when read as a leading coefficient, and at the end.
+    let neg: Vec<u64> = b.iter().map(|&x| (p - x % p) % p).collect();
+    let pp = p * p;
     let mut r = a.to_vec();
     let mut q = vec![0u64; a.len() - db];
     for i in (0..q.len()).rev() {
-        let t = r[i + db] * inv % p;
+        let t = (r[i + db] % p) * inv % p;
         q[i] = t;
         if t == 0 {
             continue;
         }
-        for (j, &bj) in b.iter().enumerate() {
-            r[i + j] = (r[i + j] + p - t * bj % p) % p;
+        for (ri, &nb) in r[i..i + db].iter_mut().zip(&neg) {
+            *ri += t * nb;
+            if *ri >= pp {
+                *ri -= pp;
+            }
         }
     }
     r.truncate(db);
-    (trim(q), trim(r))
+    (trim(q), trim(r.into_iter().map(|x| x % p).collect()))
 }
 
 fn fp_rem(a: &[u64], b: &[u64], p: u64) -> Fp {
