@@ -265,9 +265,18 @@ pub(crate) fn adjugate_eigenvector(
         })
         .collect();
     let dq = BigRational::from_integer(d.clone());
-    let p: Vec<BigInt> = (0..=n)
-        .map(|i| (chi.coeff(i) * dq.pow((n - i) as i32)).to_integer())
+    // p_i = c_i·d^(n−i), an integer: one exact integer division each, no rational arithmetic.
+    let mut dpow = BigInt::one();
+    let mut p: Vec<BigInt> = (0..=n)
+        .rev()
+        .map(|i| {
+            let c = chi.coeff(i);
+            let x = c.numer() * &dpow / c.denom();
+            dpow *= &d;
+            x
+        })
         .collect();
+    p.reverse();
     // Powers 1, μ, …, μ^(n−1) of μ = d·λ in K.
     let mu = k.scale(lambda, &dq);
     let mut pows = vec![k.rational(BigRational::one())];

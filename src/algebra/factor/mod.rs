@@ -13,7 +13,7 @@
 use crate::algebra::poly::Poly;
 use num_bigint::{BigInt, BigUint};
 use num_integer::Integer;
-use num_traits::{One, Signed, ToPrimitive, Zero};
+use num_traits::{One, Signed, Zero};
 
 /// Factorisation gave up: too many factors modulo every prime tried.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -87,10 +87,20 @@ pub(crate) fn primes() -> impl Iterator<Item = u64> {
         .filter(|&n| n % 2 == 1 && is_prime(n))
 }
 
+/// `a mod p` in `[0, p)` for a prime `p < 2^31` (as [`Integer::mod_floor`]): Horner on the 32-bit
+/// digits of |a|, most significant first, in u64 — no big division and no allocation.
 fn residue(a: &BigInt, p: u64) -> u64 {
-    a.mod_floor(&BigInt::from(p))
-        .to_u64()
-        .expect("residue below p")
+    debug_assert!(p < 1 << 31);
+    let r = a
+        .magnitude()
+        .iter_u32_digits()
+        .rev()
+        .fold(0u64, |r, d| ((r << 32) | u64::from(d)) % p);
+    if a.sign() == num_bigint::Sign::Minus && r != 0 {
+        p - r
+    } else {
+        r
+    }
 }
 
 /// `x mod m` in `(−m/2, m/2]`.
