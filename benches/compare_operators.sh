@@ -14,7 +14,7 @@ cargo build --release --quiet
 bin=${CARGO_TARGET_DIR:-target}/release/lacuna
 # lacuna's kernel clock (benches/operators.rs), release profile: it shares the library just built.
 kernel_bin=$(cargo build --release --quiet --bench operators --message-format=json \
-  | sed -n 's/.*"executable":"\([^"]*\)".*/\1/p' | tail -1)
+  | sed -n 's|.*"executable":"\([^"]*/deps/operators-[^"]*\)".*|\1|p' | tail -1)
 dir=target/bench-operators
 mkdir -p "$dir"
 start=$(date +%s.%N)

@@ -86,7 +86,7 @@ cargo build --release --quiet
 # The in-process clock of lacuna's operator kernel (benches/operators.rs), built with the release
 # profile so that it shares the library just built.
 kernel_bin=$(cargo build --release --quiet --bench operators --message-format=json \
-  | sed -n 's/.*"executable":"\([^"]*\)".*/\1/p' | tail -1)
+  | sed -n 's|.*"executable":"\([^"]*/deps/operators-[^"]*\)".*|\1|p' | tail -1)
 load_before=$(load)
 bin=$target/release/lacuna
 
