@@ -83,6 +83,10 @@ load() { cut -d ' ' -f 1-3 /proc/loadavg 2> /dev/null || echo "?"; }
 
 echo "== build (release) and benches" >&2
 cargo build --release --quiet
+# The in-process clock of lacuna's operator kernel (benches/operators.rs), built with the release
+# profile so that it shares the library just built.
+kernel_bin=$(cargo build --release --quiet --bench operators --message-format=json \
+  | sed -n 's|.*"executable":"\([^"]*/deps/operators-[^"]*\)".*|\1|p' | tail -1)
 load_before=$(load)
 bin=$target/release/lacuna
 
@@ -215,6 +219,7 @@ for op in json.load(open(sys.argv[1]))["automaton"]["operators"]:
   echo "$res" >&2
   flint_kernel=$(echo "$res" | sed -n 's/^python-flint.*: wall \([0-9.]*\) s,.*/\1/p')
   lac=$(echo "$res" | sed -n 's/^lacuna operators.*: wall \([0-9.]*\) s,.*/\1/p')
+  lac_kernel=$("$kernel_bin" --matrices "$out/matrices.txt" | sed -n 's/^lacuna kernel.*: \([0-9.]*\) s$/\1/p')
 fi
 if [ -n "${flint_kernel:-}" ] && [ -n "${lac:-}" ]; then
   args=()
@@ -222,6 +227,8 @@ if [ -n "${flint_kernel:-}" ] && [ -n "${lac:-}" ]; then
   lac_mb=$(peak_mb "$bin" operators "${args[@]}")
   flint_process=$(best_of 5 "$py" benches/flint_operators.py "$out/matrices.txt" --flint-only || echo "-")
   flint_mb=$(peak_mb "$py" benches/flint_operators.py "$out/matrices.txt" --flint-only)
+  row "operators of F0 ($n matrices), both kernels in process" "${lac_kernel:--}" "$flint_kernel" "$(ratio "$flint_kernel" "${lac_kernel:--}")" "-" "-" \
+    "lacuna: analyse_matrix on each (benches/operators.rs, best of 20); FLINT: charpoly, factor, roots only; best of 5"
   row "operators of F0 ($n matrices), FLINT in process" "$lac" "$flint_kernel" "$(ratio "$flint_kernel" "$lac")" "$lac_mb" "-" \
     "lacuna: whole process; FLINT: charpoly, factor, roots only; best of 5"
   row "operators of F0 ($n matrices), both whole processes" "$lac" "$flint_process" "$(ratio "$flint_process" "$lac")" "$lac_mb" "$flint_mb" \

@@ -516,7 +516,20 @@ impl NumberField {
     /// `(Σ ints_i x^i / den) mod f` over Q, by a pseudo-remainder over Z: integer arithmetic
     /// throughout, one gcd per coefficient of the result at the end (instead of one per
     /// rational operation).
-    fn reduce(&self, mut r: Vec<BigInt>, mut den: BigInt) -> Poly {
+    fn reduce(&self, r: Vec<BigInt>, den: BigInt) -> Poly {
+        let (r, den) = self.reduce_ints(r, den);
+        Poly::new(
+            r.into_iter()
+                .map(|x| BigRational::new(x, den.clone()))
+                .collect(),
+        )
+    }
+
+    /// `(Σ ints_i x^i / den) mod f` as `(integers, denominator)`, unreduced: the pseudo-remainder
+    /// of [`NumberField::reduce`] without its final gcds (the denominator is `den` times a power
+    /// of the leading coefficient of the primitive minimal polynomial, so it stays positive when
+    /// `den` is).
+    pub(crate) fn reduce_ints(&self, mut r: Vec<BigInt>, mut den: BigInt) -> (Vec<BigInt>, BigInt) {
         let f = &self.f_int;
         let d = f.len() - 1;
         let lc = &f[d];
@@ -538,11 +551,7 @@ impl NumberField {
                 }
             }
         }
-        Poly::new(
-            r.into_iter()
-                .map(|x| BigRational::new(x, den.clone()))
-                .collect(),
-        )
+        (r, den)
     }
 
     /// The element α.

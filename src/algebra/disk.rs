@@ -144,7 +144,7 @@ pub fn root_disks(f: &Poly) -> Option<Vec<Disk>> {
     }
     let fi = f.primitive_int();
     let dfi: Vec<BigInt> = (1..fi.len()).map(|i| &fi[i] * BigInt::from(i)).collect();
-    let nn = BigRational::from_integer((n as i64).into());
+    let nn = BigInt::from(n);
     let mut disks = Vec::with_capacity(n);
     for (x, y) in approx_roots(f) {
         if !x.is_finite() || !y.is_finite() {
@@ -164,15 +164,24 @@ pub fn root_disks(f: &Poly) -> Option<Vec<Disk>> {
             return None;
         }
         // f(z) = F/D^n, f'(z) = F'/D^(n−1): |f/f'|² = |F|² / (|F'|²·D²).
-        let r2 = &nn * &nn * BigRational::new(&fa * &fa + &fb * &fb, den * &d * &d);
+        // Left unreduced (a gcd of two large integers saved): sqrt_up only compares and
+        // converts it, and both work on its value.
+        let r2 = BigRational::new_raw(&nn * &nn * (&fa * &fa + &fb * &fb), den * &d * &d);
         disks.push(Disk {
             re: BigRational::new(a, d.clone()),
             im: BigRational::new(b, d),
             r: sqrt_up(&r2),
         });
     }
+    let approx: Vec<[f64; 3]> = disks
+        .iter()
+        .map(|d| [&d.re, &d.im, &d.r].map(|x| x.to_f64().unwrap_or(f64::NAN)))
+        .collect();
     for i in 0..n {
         for j in i + 1..n {
+            if apart_f64(&approx[i], &approx[j]) {
+                continue;
+            }
             let (a, b) = (&disks[i], &disks[j]);
             let dre = &a.re - &b.re;
             let dim = &a.im - &b.im;
@@ -183,6 +192,26 @@ pub fn root_disks(f: &Poly) -> Option<Vec<Disk>> {
         }
     }
     Some(disks)
+}
+
+/// Whether the disks `[re, im, r]` (each number within a few units in the last place of the
+/// rational it approximates) are certainly disjoint: the distance of the centres, bounded below
+/// with every rounding error, exceeds the sum of the radii bounded above. `false` means "not
+/// decided in floats" (the caller then compares exactly), never "they meet".
+fn apart_f64(a: &[f64; 3], b: &[f64; 3]) -> bool {
+    // A relative error far above the few ulps of the conversions and operations, and floors that
+    // keep every square a normal float.
+    const E: f64 = 1e-9;
+    const FLOOR: f64 = 1e-140;
+    if !a.iter().chain(b).all(|x| x.is_finite()) {
+        return false;
+    }
+    let lower = |x: f64, y: f64| ((x - y).abs() * (1.0 - E) - E * (x.abs() + y.abs())).max(0.0);
+    let (dre, dim) = (lower(a[0], b[0]), lower(a[1], b[1]));
+    let dist2 = (dre * dre + dim * dim) * (1.0 - E);
+    let s = ((a[2].abs() + b[2].abs()) * (1.0 + E)).max(FLOOR);
+    let s2 = s * s * (1.0 + E);
+    dist2.is_finite() && s2.is_finite() && dist2 > FLOOR && dist2 > s2
 }
 
 impl Disk {

@@ -265,9 +265,18 @@ pub(crate) fn adjugate_eigenvector(
         })
         .collect();
     let dq = BigRational::from_integer(d.clone());
-    let p: Vec<BigInt> = (0..=n)
-        .map(|i| (chi.coeff(i) * dq.pow((n - i) as i32)).to_integer())
+    // p_i = c_i·d^(n−i), an integer: one exact integer division each, no rational arithmetic.
+    let mut dpow = BigInt::one();
+    let mut p: Vec<BigInt> = (0..=n)
+        .rev()
+        .map(|i| {
+            let c = chi.coeff(i);
+            let x = c.numer() * &dpow / c.denom();
+            dpow *= &d;
+            x
+        })
         .collect();
+    p.reverse();
     // Powers 1, μ, …, μ^(n−1) of μ = d·λ in K.
     let mu = k.scale(lambda, &dq);
     let mut pows = vec![k.rational(BigRational::one())];
@@ -296,6 +305,19 @@ pub(crate) fn adjugate_eigenvector(
             w = next;
         }
         ws.reverse(); // ws[i] = w_i
+        if gen && k.degree() >= 3 {
+            // Integers only: Σ (w_i)_r·d^i·x^i reduced over Z, then the primitive vector.
+            if let Some(v) = primitive_generator_column(k, &ws, &d) {
+                return Some(v);
+            }
+            continue;
+        }
+        if let Some(q) = lambda.as_rational() {
+            if let Some(v) = rational_column(k, &ws, &(q * &dq)) {
+                return Some(v);
+            }
+            continue;
+        }
         let v: Vec<FieldElement> = (0..n)
             .map(|r| {
                 if gen {
@@ -328,6 +350,127 @@ pub(crate) fn adjugate_eigenvector(
         }
     }
     None
+}
+
+/// The column `Σ_i μ^i·w_i` for a rational `μ = a/b` (b > 0), as the integers
+/// `V_r = Σ_i (w_i)_r·a^i·b^(n−1−i)` (a positive multiple), normalised like
+/// [`adjugate_eigenvector`]: last non-zero coordinate 1 when K has degree ≤ 2, else coprime
+/// integers. One gcd per coordinate instead of one per rational operation. `None` when the column
+/// vanishes.
+fn rational_column(
+    k: &NumberField,
+    ws: &[Vec<num_bigint::BigInt>],
+    mu: &BigRational,
+) -> Option<Vec<FieldElement>> {
+    use num_bigint::BigInt;
+    use num_integer::Integer;
+    let n = ws.len();
+    let (a, b) = (mu.numer(), mu.denom());
+    let v: Vec<BigInt> = (0..n)
+        .map(|r| {
+            // Horner on the homogeneous form: ((w_{n−1}·a + w_{n−2}·b)·a + w_{n−3}·b²)…
+            let mut acc = BigInt::zero();
+            let mut bp = BigInt::one();
+            for w in ws.iter().rev() {
+                acc = acc * a + &w[r] * &bp;
+                bp *= b;
+            }
+            acc
+        })
+        .collect();
+    let last = v.iter().rev().find(|x| !x.is_zero())?.clone();
+    if k.degree() <= 2 {
+        return Some(
+            v.into_iter()
+                .map(|x| k.rational(BigRational::new(x, last.clone())))
+                .collect(),
+        );
+    }
+    let g = v.iter().fold(BigInt::zero(), |acc, x| acc.gcd(x));
+    Some(
+        v.into_iter()
+            .map(|x| k.rational(BigRational::from_integer(x / &g)))
+            .collect(),
+    )
+}
+
+/// The column `Σ_i λ^i·d^i·w_i` for λ the generator of K (degree ≥ 3), each coordinate reduced
+/// modulo the minimal polynomial over Z ([`NumberField::reduce_ints`]) and the vector brought to
+/// coprime integers on the power basis — the result of [`primitive_vector`], without the rational
+/// arithmetic. `None` when the column vanishes.
+fn primitive_generator_column(
+    k: &NumberField,
+    ws: &[Vec<num_bigint::BigInt>],
+    d: &num_bigint::BigInt,
+) -> Option<Vec<FieldElement>> {
+    use num_bigint::BigInt;
+    use num_integer::Integer;
+    use num_traits::Signed;
+    let n = ws.len();
+    let rows: Vec<(Vec<BigInt>, BigInt)> = (0..n)
+        .map(|r| {
+            let mut dp = BigInt::one();
+            let c: Vec<BigInt> = ws
+                .iter()
+                .map(|x| {
+                    let c = &x[r] * &dp;
+                    dp *= d;
+                    c
+                })
+                .collect();
+            let (mut ints, mut den) = k.reduce_ints(c, BigInt::one());
+            if den.is_negative() {
+                den = -den;
+                ints.iter_mut().for_each(|x| *x = -&*x);
+            }
+            (ints, den)
+        })
+        .collect();
+    if rows.iter().all(|(c, _)| c.iter().all(Zero::is_zero)) {
+        return None;
+    }
+    let common = rows.iter().fold(
+        BigInt::one(),
+        |acc, (_, den)| {
+            if &acc == den {
+                acc
+            } else {
+                acc.lcm(den)
+            }
+        },
+    );
+    let mut ints: Vec<Vec<BigInt>> = rows
+        .into_iter()
+        .map(|(c, den)| {
+            if den == common {
+                c
+            } else {
+                let m = &common / &den;
+                c.into_iter().map(|x| x * &m).collect()
+            }
+        })
+        .collect();
+    let mut g = BigInt::zero();
+    for x in ints.iter().flatten() {
+        if !x.is_zero() {
+            g = g.gcd(x);
+            if g.is_one() {
+                break;
+            }
+        }
+    }
+    if !g.is_one() {
+        ints.iter_mut().flatten().for_each(|x| *x = &*x / &g);
+    }
+    Some(
+        ints.into_iter()
+            .map(|c| {
+                k.element(&Poly::new(
+                    c.into_iter().map(BigRational::from_integer).collect(),
+                ))
+            })
+            .collect(),
+    )
 }
 
 /// `v` scaled by a positive rational so that every coordinate on the power basis is an integer

@@ -97,6 +97,10 @@ impl Poly {
         if self.is_zero() {
             return Poly::zero();
         }
+        // Already monic: no rational product (and no gcd) per coefficient.
+        if self.c.last().is_some_and(One::is_one) {
+            return self.clone();
+        }
         self.scale(&self.lc().recip())
     }
 

@@ -13,7 +13,7 @@
 use crate::algebra::poly::Poly;
 use num_bigint::{BigInt, BigUint};
 use num_integer::Integer;
-use num_traits::{One, Signed, ToPrimitive, Zero};
+use num_traits::{One, Signed, Zero};
 
 /// Factorisation gave up: too many factors modulo every prime tried.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -87,10 +87,20 @@ pub(crate) fn primes() -> impl Iterator<Item = u64> {
         .filter(|&n| n % 2 == 1 && is_prime(n))
 }
 
+/// `a mod p` in `[0, p)` for a prime `p < 2^31` (as [`Integer::mod_floor`]): Horner on the 32-bit
+/// digits of |a|, most significant first, in u64 — no big division and no allocation.
 fn residue(a: &BigInt, p: u64) -> u64 {
-    a.mod_floor(&BigInt::from(p))
-        .to_u64()
-        .expect("residue below p")
+    debug_assert!(p < 1 << 31);
+    let r = a
+        .magnitude()
+        .iter_u32_digits()
+        .rev()
+        .fold(0u64, |r, d| ((r << 32) | u64::from(d)) % p);
+    if a.sign() == num_bigint::Sign::Minus && r != 0 {
+        p - r
+    } else {
+        r
+    }
 }
 
 /// `x mod m` in `(−m/2, m/2]`.
@@ -217,19 +227,26 @@ fn fp_sub(a: &[u64], b: &[u64], p: u64) -> Fp {
 }
 
 fn fp_mul(a: &[u64], b: &[u64], p: u64) -> Fp {
+    debug_assert!(p < 1 << 31);
     if a.is_empty() || b.is_empty() {
         return Vec::new();
     }
+    // p < 2^31: products are below p² < 2^62, and sums are kept below p² by subtracting it
+    // (no division in the inner loop); one reduction per coefficient at the end.
+    let pp = p * p;
     let mut c = vec![0u64; a.len() + b.len() - 1];
     for (i, &x) in a.iter().enumerate() {
         if x == 0 {
             continue;
         }
-        for (j, &y) in b.iter().enumerate() {
-            c[i + j] = (c[i + j] + x * y) % p;
+        for (ci, &y) in c[i..].iter_mut().zip(b) {
+            *ci += x * y;
+            if *ci >= pp {
+                *ci -= pp;
+            }
         }
     }
-    trim(c)
+    trim(c.into_iter().map(|x| x % p).collect())
 }
 
 fn fp_divrem(a: &[u64], b: &[u64], p: u64) -> (Fp, Fp) {
@@ -238,20 +255,27 @@ fn fp_divrem(a: &[u64], b: &[u64], p: u64) -> (Fp, Fp) {
         return (Vec::new(), a.to_vec());
     }
     let inv = inv_mod(b[db], p);
+    // Residues of −b: the update adds t·(p − b_j). As in fp_mul, the entries of r stay below
+    // p² (p < 2^31) and are reduced mod p only when read as a leading coefficient, and at the end.
+    let neg: Vec<u64> = b.iter().map(|&x| (p - x % p) % p).collect();
+    let pp = p * p;
     let mut r = a.to_vec();
     let mut q = vec![0u64; a.len() - db];
     for i in (0..q.len()).rev() {
-        let t = r[i + db] * inv % p;
+        let t = (r[i + db] % p) * inv % p;
         q[i] = t;
         if t == 0 {
             continue;
         }
-        for (j, &bj) in b.iter().enumerate() {
-            r[i + j] = (r[i + j] + p - t * bj % p) % p;
+        for (ri, &nb) in r[i..i + db].iter_mut().zip(&neg) {
+            *ri += t * nb;
+            if *ri >= pp {
+                *ri -= pp;
+            }
         }
     }
     r.truncate(db);
-    (trim(q), trim(r))
+    (trim(q), trim(r.into_iter().map(|x| x % p).collect()))
 }
 
 fn fp_rem(a: &[u64], b: &[u64], p: u64) -> Fp {

@@ -206,14 +206,22 @@ pub(crate) fn char_poly(t: &Matrix) -> Poly {
         .collect();
     // det(x·I − d·T) = d^n · χ_T(x/d).
     let p = charpoly(&ints);
-    let n = t.rows as i32;
-    Poly::new(
-        p.coeffs()
-            .iter()
-            .enumerate()
-            .map(|(i, c)| c * dr.pow(i as i32 - n))
-            .collect(),
-    )
+    let n = t.rows;
+    // c_i / d^(n−i): one gcd per coefficient, no rational power or product.
+    let mut dpow = BigInt::one();
+    let mut c: Vec<BigRational> = p
+        .coeffs()
+        .iter()
+        .rev()
+        .map(|c| {
+            let x = BigRational::new(c.numer().clone(), c.denom() * &dpow);
+            dpow *= &d;
+            x
+        })
+        .collect();
+    c.reverse();
+    debug_assert_eq!(c.len(), n + 1);
+    Poly::new(c)
 }
 
 pub(crate) fn render_vec(k: &NumberField, v: &[FieldElement]) -> Vec<String> {
