@@ -36,7 +36,8 @@ fn main() {
             let limits = lacuna::topology::Limits::default();
             let loaded = lacuna::input::load_any(input).expect("input");
             let a = lacuna::export::operators_automaton(loaded, &limits).expect("automaton");
-            a.operators
+            a.automaton
+                .operators
                 .iter()
                 .filter(|o| o.kind == OpKind::Sub && o.to == o.from)
                 .filter_map(|o| o.value.clone())
