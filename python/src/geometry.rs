@@ -71,6 +71,16 @@ impl Geo {
         Ok(())
     }
 
+    /// Refuses `state` (E0504) for faces, telling to `verb` (draw, measure) them without it.
+    pub(crate) fn no_state(&self, verb: &str) -> Result<(), Error> {
+        match &self.state {
+            Some(state) => Err(Error::Usage(format!(
+                "state `{state}` names a state of an automaton, but faces have no states: {verb} them without state"
+            ))),
+            None => Ok(()),
+        }
+    }
+
     /// The same geometry with the parameter choice of faces beyond `params`: `corners`,
     /// `template` and `goals`, read when the instance is built.
     pub(crate) fn choosing(
@@ -300,11 +310,7 @@ pub(crate) fn render(
             }
             return Ok(wrote);
         }
-        if let Some(state) = &g.state {
-            return Err(Error::Usage(format!(
-                "state `{state}` names a state of an automaton, but faces have no states: draw them without state"
-            )));
-        }
+        g.no_state("draw")?;
         let vector = svg.is_some() || stl.is_some();
         let inst = g.instance(if vector { 2_000_000 } else { 100_000_000 })?;
         let picture = lacuna::export::PictureOptions {
@@ -411,9 +417,7 @@ pub(crate) fn measure(
             g.limits.check_digits(digits)?;
             let (model, resolved, contraction, ev, name) = g.automaton(2_000_000)?;
             // Another state: measured as the automaton restarted there (`measure --state`).
-            let restarted = (ev.start() != model.start)
-                .then(|| lacuna::geometry::restarted(&model, &resolved, ev.start()))
-                .flatten();
+            let restarted = lacuna::geometry::evaluated_model(&model, &resolved, &ev);
             let mut m = lacuna::measure::automaton_measure(
                 &name,
                 restarted.as_ref().unwrap_or(&model),
@@ -426,11 +430,7 @@ pub(crate) fn measure(
             m.state = restarted.map(|r| r.automaton.states[r.start].name.clone());
             return Ok(json(&m));
         }
-        if let Some(state) = &g.state {
-            return Err(Error::Usage(format!(
-                "state `{state}` names a state of an automaton, but faces have no states: measure them without state"
-            )));
-        }
+        g.no_state("measure")?;
         let inst = g.instance(20_000_000)?;
         let opts = lacuna::measure::MeasureOptions {
             level: g.level,

@@ -6,6 +6,7 @@
 //! hand: [`crate::algebra::poly`] works over Q only, and these few routines are all the analysis needs.
 
 use crate::algebra::algebraic::{FieldElement, NumberField, RealAlgebraic};
+use crate::algebra::kmatrix::KMatrix;
 use crate::algebra::matrix::Matrix;
 use crate::algebra::poly::Poly;
 use num_rational::BigRational;
@@ -510,6 +511,27 @@ pub(crate) fn shifted(
                         k.sub(&e, lambda)
                     } else {
                         e
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// `T − λ·I` for a matrix over K ([`shifted`] for a rational one).
+pub(crate) fn shifted_k(
+    k: &NumberField,
+    t: &KMatrix,
+    lambda: &FieldElement,
+) -> Vec<Vec<FieldElement>> {
+    (0..t.rows)
+        .map(|i| {
+            (0..t.cols)
+                .map(|j| {
+                    if i == j {
+                        k.sub(t.get(i, j), lambda)
+                    } else {
+                        t.get(i, j).clone()
                     }
                 })
                 .collect()

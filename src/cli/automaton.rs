@@ -66,11 +66,9 @@ pub(super) fn prepare_at(
         geo.max_cells.unwrap_or(default_cells),
         limits,
     )?;
-    let restarted = ev.start() != model.start;
-    let model = match restarted {
-        false => model,
-        true => lacuna::geometry::restarted(&model, &resolved, ev.start())
-            .expect("the evaluator's start is reachable"),
+    let (model, restarted) = match lacuna::geometry::evaluated_model(&model, &resolved, &ev) {
+        Some(m) => (m, true),
+        None => (model, false),
     };
     Ok(Prepared {
         name,
@@ -81,6 +79,15 @@ pub(super) fn prepare_at(
         ev,
         restarted,
     })
+}
+
+/// The refusal of `--state` for an input without states (`what`: faces, a volume), telling to
+/// `verb` (draw, measure) without it.
+pub(super) fn no_states(state: Option<&str>, what: &str, verb: &str) -> Error {
+    Error::Usage(format!(
+        "--state `{}` names a state of an automaton, but {what}: {verb} without --state",
+        state.unwrap_or_default()
+    ))
 }
 
 /// Prints the solver's warnings on standard error.

@@ -46,12 +46,7 @@ pub(super) fn run(args: MeasureArgs, limits: &Limits) -> Result<ExitCode, Error>
                 .into(),
         )
     };
-    let no_states = |what: &str| {
-        Error::Usage(format!(
-            "--state `{}` names a state of an automaton, but {what}: measure without --state",
-            state.as_deref().unwrap_or_default()
-        ))
-    };
+    let no_states = |what: &str| automaton::no_states(state.as_deref(), what, "measure");
     if let Some((name, v)) = lacuna::input::load_volume_file(&geo.input)? {
         if certificate.is_some() {
             return Err(faces_only());

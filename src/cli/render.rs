@@ -130,12 +130,7 @@ pub(super) fn run(args: RenderArgs, limits: &Limits) -> Result<ExitCode, Error> 
         (_, true) => lacuna::mesh::threemf::Style::Parts,
         _ => lacuna::mesh::threemf::Style::Plain,
     };
-    let no_states = |what: &str| {
-        Error::Usage(format!(
-            "--state `{}` names a state of an automaton, but {what}: draw without --state",
-            state.as_deref().unwrap_or_default()
-        ))
-    };
+    let no_states = |what: &str| automaton::no_states(state.as_deref(), what, "draw");
     if let Some((name, v)) = lacuna::input::load_volume_file(&geo.input)? {
         if state.is_some() {
             return Err(no_states("a volume has no states"));

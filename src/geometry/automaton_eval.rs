@@ -313,6 +313,15 @@ pub fn restarted(m: &AutomatonModel, r: &Resolved, state: usize) -> Option<Autom
     })
 }
 
+/// The model `ev` draws when it starts at another state than `m`'s start (`render --state`,
+/// `measure --state`): `m` [`restarted`] there; `None` when it starts at `m`'s start.
+pub fn evaluated_model(m: &AutomatonModel, r: &Resolved, ev: &Evaluator) -> Option<AutomatonModel> {
+    (ev.start() != m.start).then(|| {
+        // `Evaluator::with_start` refuses a state the start does not reach.
+        restarted(m, r, ev.start()).expect("the evaluator's start is reachable")
+    })
+}
+
 /// The exact control points (columns of `space × m`) of the node reached from the start by the
 /// operators `word` (each `T: q ← w` continuing from state q); `None` when the word does not
 /// follow the control graph.

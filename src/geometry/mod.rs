@@ -21,8 +21,8 @@ pub(crate) mod volume;
 pub(crate) mod volume_valence;
 
 pub use automaton_eval::{
-    approx as field_approx, exact_points, exact_polygons, prepare_automaton, prepare_automaton_at,
-    restarted, Evaluator, Shape, ShapeKind,
+    approx as field_approx, evaluated_model, exact_points, exact_polygons, prepare_automaton,
+    prepare_automaton_at, restarted, Evaluator, Shape, ShapeKind,
 };
 pub use choose::{project_exact, Choice, ExactColumn, Projection};
 pub use flatten::flatten_bezier;

@@ -26,6 +26,7 @@ use num_bigint::BigUint;
 use num_rational::BigRational;
 use num_traits::Zero;
 use std::collections::{BTreeMap, HashMap};
+use std::fmt::Display;
 
 /// What [`automaton_invariants`] reads besides seed 002's multiplicity, which it always compares.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -74,21 +75,26 @@ pub fn automaton_invariants(
     }
     // Seed 002's multiplicity: at every level when the distinct maps are proved free (module
     // doc), else enumerated while a level is small enough.
-    let (coincidences, order, mut notes) = match free_reduction(
+    let (multiplicity, order, mut notes) = match free_reduction(
         model,
         resolved,
         &subs,
         max_products,
     )? {
         Ok(free) => {
-            let rows = free_levels(model, &free, levels);
+            let rows = rows_of(
+                &free_levels(model, &free, levels),
+                "distinct maps",
+                "maps of {m} pieces",
+                levels,
+            );
             let note = format!(
                 "{name}: seed 002's multiplicity (the pieces of a level that are one exact map, eq. (18)) decided at every level: its {} distinct maps satisfy the open-set condition ({}), so no two different words of them are one map, and each count of level k is a linear recurrence of order {} (its states)",
                 free.ops.len(),
                 free.criterion,
-                model.automaton.states.len()
+                n
             );
-            (rows, Some(model.automaton.states.len()), vec![note])
+            (rows, Some(n), vec![note])
         }
         Err(why) => {
             let (per_level, cut) = multiplicities(
@@ -99,7 +105,7 @@ pub fn automaton_invariants(
                 MAX_CONTACT_PIECES,
                 AutomatonMultiplicity::Coincidences,
             )?;
-            let rows = rows_of(&per_level, "distinct maps", "maps of {m} pieces");
+            let rows = rows_of(&per_level, "distinct maps", "maps of {m} pieces", levels);
             let mut notes = vec![format!(
                 "{name}: seed 002's multiplicity (the pieces of a level that are one exact map, eq. (18)) enumerated at levels 1 to {}; deeper coincidences and the limit are not decided: {why}",
                 per_level.len()
@@ -108,25 +114,16 @@ pub fn automaton_invariants(
             (rows, None, notes)
         }
     };
-    let mut multiplicity = vec![Vec::new(); levels as usize + 1];
-    for (i, row) in coincidences.into_iter().enumerate() {
-        multiplicity[i + 1] = row;
-    }
     let mut contacts = Vec::new();
     if how == AutomatonMultiplicity::Contacts {
         let (per_level, cut) =
             multiplicities(model, resolved, &subs, levels, MAX_CONTACT_PIECES, how)?;
-        contacts = vec![Vec::new(); levels as usize + 1];
-        for (i, row) in rows_of(
+        contacts = rows_of(
             &per_level,
             "fixed-corner images",
             "points where {m} pieces meet",
-        )
-        .into_iter()
-        .enumerate()
-        {
-            contacts[i + 1] = row;
-        }
+            levels,
+        );
         notes.push(format!(
             "{name}: contacts at the exact images of fixed corners counted at levels 1 to {} (shown, not compared)",
             per_level.len()
@@ -148,20 +145,24 @@ pub fn automaton_invariants(
     })
 }
 
-/// One row of named counts per level: the total under `total`, and how many are of each size
+/// The named counts of levels 0 to `levels` from the histograms of levels 1 on (level 0 and
+/// the levels not counted have no row): the total under `total`, and how many are of each size
 /// m under `each` (`{m}` replaced).
-fn rows_of(per_level: &[Contacts], total: &str, each: &str) -> Vec<Vec<Named>> {
-    per_level
-        .iter()
-        .map(|(hist, points)| {
-            let mut row = vec![(total.to_string(), points.to_string())];
-            row.extend(
-                hist.iter()
-                    .map(|(m, k)| (each.replace("{m}", &m.to_string()), k.to_string())),
-            );
-            row
-        })
-        .collect()
+fn rows_of<K: Display, V: Display, T: Display>(
+    per_level: &[(BTreeMap<K, V>, T)],
+    total: &str,
+    each: &str,
+    levels: u64,
+) -> Vec<Vec<Named>> {
+    let mut rows = vec![Vec::new(); levels as usize + 1];
+    for (row, (hist, points)) in rows[1..].iter_mut().zip(per_level) {
+        row.push((total.to_string(), points.to_string()));
+        row.extend(
+            hist.iter()
+                .map(|(m, k)| (each.replace("{m}", &m.to_string()), k.to_string())),
+        );
+    }
+    rows
 }
 
 /// An automaton's sub-operators with equal maps merged, proved free: no two different words of
@@ -258,11 +259,15 @@ fn free_reduction(
 /// word of the distinct maps, and the pieces that are that map number the product of its
 /// letters' counts. Counted state by state (how many words end in each state with each
 /// product), so the levels cost no enumeration of pieces.
-fn free_levels(model: &AutomatonModel, free: &FreeReduction, levels: u64) -> Vec<Vec<Named>> {
+fn free_levels(
+    model: &AutomatonModel,
+    free: &FreeReduction,
+    levels: u64,
+) -> Vec<(BTreeMap<BigUint, BigUint>, BigUint)> {
     let a = &model.automaton;
     let mut words: Vec<BTreeMap<BigUint, BigUint>> = vec![BTreeMap::new(); a.states.len()];
     words[model.start].insert(BigUint::from(1u32), BigUint::from(1u32));
-    let mut rows = Vec::new();
+    let mut out = Vec::new();
     for _ in 1..=levels {
         let mut next: Vec<BTreeMap<BigUint, BigUint>> = vec![BTreeMap::new(); a.states.len()];
         for &(o, w) in &free.ops {
@@ -279,14 +284,9 @@ fn free_levels(model: &AutomatonModel, free: &FreeReduction, levels: u64) -> Vec
             }
         }
         let total: BigUint = hist.values().sum();
-        let mut row = vec![("distinct maps".to_string(), total.to_string())];
-        row.extend(
-            hist.iter()
-                .map(|(m, k)| (format!("maps of {m} pieces"), k.to_string())),
-        );
-        rows.push(row);
+        out.push((hist, total));
     }
-    rows
+    out
 }
 
 /// The contacts of one level: for each number m of pieces, the points where exactly m meet; and
@@ -647,9 +647,10 @@ mod tests {
             )
             .unwrap();
             assert!(cut.is_none(), "{name}");
+            let (total, each) = ("distinct maps", "maps of {m} pieces");
             assert_eq!(
-                free_levels(&m, &free, 3),
-                rows_of(&enumerated, "distinct maps", "maps of {m} pieces"),
+                rows_of(&free_levels(&m, &free, 3), total, each, 3),
+                rows_of(&enumerated, total, each, 3),
                 "{name}"
             );
         }

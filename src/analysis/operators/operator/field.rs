@@ -14,9 +14,9 @@
 //!
 //! When `χ_T` has a coefficient outside Q, no analysis is made and the reason is returned.
 
-use super::{analyse_matrix, OperatorReport};
+use super::{analyse_matrix, render_vec, OperatorReport};
 use crate::algebra::algebraic::{FieldElement, NumberField};
-use crate::algebra::fieldpoly::null_space;
+use crate::algebra::fieldpoly::{null_space, shifted_k};
 use crate::algebra::kmatrix::KMatrix;
 use crate::algebra::matrix::Matrix;
 use crate::error::Result;
@@ -45,32 +45,12 @@ fn companion(c: &[BigRational]) -> Matrix {
     Matrix::from_rows(rows)
 }
 
-/// The rows of `T − λI` over K.
-fn shifted_k(k: &NumberField, t: &KMatrix, lam: &FieldElement) -> Vec<Vec<FieldElement>> {
-    (0..t.rows)
-        .map(|i| {
-            (0..t.cols)
-                .map(|j| {
-                    if i == j {
-                        k.sub(t.get(i, j), lam)
-                    } else {
-                        t.get(i, j).clone()
-                    }
-                })
-                .collect()
-        })
-        .collect()
-}
-
 /// `[a b; c d]` with K's entries rendered.
 fn render_matrix(k: &NumberField, t: &KMatrix) -> String {
-    let rows: Vec<String> = (0..t.rows)
-        .map(|i| {
-            (0..t.cols)
-                .map(|j| k.render(t.get(i, j)))
-                .collect::<Vec<_>>()
-                .join(" ")
-        })
+    let rows: Vec<String> = t
+        .data
+        .chunks(t.cols)
+        .map(|row| render_vec(k, row).join(" "))
         .collect();
     format!("[{}]", rows.join("; "))
 }
@@ -93,7 +73,7 @@ pub fn analyse_kmatrix(
         .map(FieldElement::as_rational)
         .collect::<Option<Vec<BigRational>>>()
     else {
-        let shown: Vec<String> = chi.iter().map(|c| k.render(c)).collect();
+        let shown = render_vec(k, &chi);
         return Ok(Err(format!(
             "its characteristic polynomial over the field has coefficients outside Q ({}, lowest degree first): the eigen analysis over a number field covers rational characteristic polynomials only",
             shown.join(", ")
@@ -107,7 +87,7 @@ pub fn analyse_kmatrix(
         e.eigenvectors = match e.exact.as_deref().map(str::parse::<BigRational>) {
             Some(Ok(lam)) if e.real => null_space(k, shifted_k(k, t, &k.rational(lam)))
                 .iter()
-                .map(|v| v.iter().map(|x| k.render(x)).collect())
+                .map(|v| render_vec(k, v))
                 .collect(),
             _ => Vec::new(),
         };
@@ -130,7 +110,7 @@ pub fn analyse_kmatrix(
                         .iter()
                         .map(FieldElement::as_rational)
                         .collect::<Option<Vec<_>>>();
-                    r.fixed_point = Some(p.iter().map(|x| k.render(x)).collect());
+                    r.fixed_point = Some(render_vec(k, &p));
                 }
                 None => {
                     r.fixed_point_note = Some(
@@ -150,7 +130,7 @@ pub fn analyse_kmatrix(
     r.tangent = match r.lambda1.as_deref().map(str::parse::<BigRational>) {
         Some(Ok(l1)) => null_space(k, shifted_k(k, t, &k.rational(l1)))
             .first()
-            .map(|v| v.iter().map(|x| k.render(x)).collect()),
+            .map(|v| render_vec(k, v)),
         _ => None,
     };
     r.exact = None;
