@@ -502,20 +502,13 @@ pub(crate) fn shifted(
     t: &Matrix,
     lambda: &FieldElement,
 ) -> Vec<Vec<FieldElement>> {
-    (0..t.rows)
-        .map(|i| {
-            (0..t.cols)
-                .map(|j| {
-                    let e = k.rational(t.get(i, j).clone());
-                    if i == j {
-                        k.sub(&e, lambda)
-                    } else {
-                        e
-                    }
-                })
-                .collect()
-        })
-        .collect()
+    shifted_entries(
+        k,
+        t.rows,
+        t.cols,
+        |i, j| k.rational(t.get(i, j).clone()),
+        lambda,
+    )
 }
 
 /// `T − λ·I` for a matrix over K ([`shifted`] for a rational one).
@@ -524,14 +517,26 @@ pub(crate) fn shifted_k(
     t: &KMatrix,
     lambda: &FieldElement,
 ) -> Vec<Vec<FieldElement>> {
-    (0..t.rows)
+    shifted_entries(k, t.rows, t.cols, |i, j| t.get(i, j).clone(), lambda)
+}
+
+/// The rows of `T − λ·I` for the `rows × cols` matrix whose entry (i, j) is `entry(i, j)`.
+fn shifted_entries(
+    k: &NumberField,
+    rows: usize,
+    cols: usize,
+    entry: impl Fn(usize, usize) -> FieldElement,
+    lambda: &FieldElement,
+) -> Vec<Vec<FieldElement>> {
+    (0..rows)
         .map(|i| {
-            (0..t.cols)
+            (0..cols)
                 .map(|j| {
+                    let e = entry(i, j);
                     if i == j {
-                        k.sub(t.get(i, j), lambda)
+                        k.sub(&e, lambda)
                     } else {
-                        t.get(i, j).clone()
+                        e
                     }
                 })
                 .collect()
