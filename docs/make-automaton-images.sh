@@ -28,6 +28,8 @@ $L morph fixtures/gasket-to-hexagonal-start.aut fixtures/gasket-to-hexagonal-end
 $L morph fixtures/gasket-to-carpet-start.aut fixtures/gasket-to-carpet-end.aut --frames 8 --level 3 --svg docs/images/gasket-to-carpet.svg
 $L morph fixtures/hexagonal-gasket-samples.aut lemniscate-fractal --frames 8 --level 3 --svg docs/images/hexagonal-gasket-to-lemniscate.svg
 $L morph fixtures/twisted-circle-circle-view.aut fixtures/twisted-circle-lemniscate-view.aut --frames 8 --level 3 --svg docs/images/twisted-circle-circle-to-lemniscate.svg
+# Seed 003's fig. 12 (docs/GALLERY.md): the arrowhead from triangles.
+$L render fixtures/sierpinski-arrowhead-triangles.rule --level 6 --png docs/images/sierpinski-arrowhead-triangles.png
 # Seed 004's fractal kite and dart (docs/GALLERY.md, docs/GUIDE.md): the kite is the start state
 # a, the dart state b, drawn from its frame.
 $L render kite-dart --level 14 --png docs/images/kite-dart.png

@@ -565,43 +565,16 @@ mod random_volumes {
     //! manifold whose cells and Euler characteristic are the exact ones (checked inside
     //! `volume_solid`: cell counts, 2χ, components, voids, genus), and its surface read back has
     //! Euler characteristic 2χ with χ from the exact topology.
-    use lacuna::topology::volume::{solid_topology, Solid, Volume, VolumeClosure, VolumeRule};
-    use lacuna::topology::{EdgeType, Face};
+    use super::common;
+    use lacuna::topology::volume::{solid_topology, Volume, VolumeClosure};
     use proptest::prelude::*;
 
     fn volume() -> impl Strategy<Value = Volume> {
-        let solid = prop_oneof![
-            Just(Solid::Cube),
-            Just(Solid::Tetrahedron),
-            Just(Solid::Octahedron),
-            (3usize..6).prop_map(Solid::Prism),
-            Just(Solid::TruncatedTetrahedron)
-        ];
-        let edge = proptest::sample::select(vec!["B2", "B3", "C2", "C3", "B2^2"]);
-        (
-            solid,
-            proptest::collection::vec(edge, 18),
-            proptest::sample::select(vec!["B2 B2 B2", "C2 B2 B2", "B2 B2 C2"]),
-            proptest::sample::select(vec!["A1", "A2"]),
-            proptest::sample::select(vec![VolumeRule::V1, VolumeRule::V2]),
-            1u32..3,
+        common::random_volume::volume(
+            vec!["B2", "B3", "C2", "C3", "B2^2"],
+            vec!["B2 B2 B2", "C2 B2 B2", "B2 B2 C2"],
+            vec!["A1", "A2"],
         )
-            .prop_map(|(solid, edges, e, a, rule, delay)| {
-                let template = Face::parse(&format!("B2 B2 B2 | {e} | {a}")).unwrap();
-                let edges: Vec<EdgeType> = edges
-                    .iter()
-                    .map(|t| EdgeType::parse(t, 1).unwrap())
-                    .collect();
-                Volume {
-                    surface: solid.surface_with(|k| edges[k % edges.len()], &template),
-                    radial: EdgeType::parse("B2", 1).unwrap(),
-                    inner: EdgeType::parse("B2", 1).unwrap(),
-                    params: template.params,
-                    algorithm: template.algorithm,
-                    rule,
-                    delay,
-                }
-            })
     }
 
     proptest! {

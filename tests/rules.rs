@@ -539,6 +539,55 @@ fn each_rules_automaton_draws_the_replacement_exactly() {
     }
 }
 
+/// Kaandorp's fig. 12: the arrowhead from disconnected triangles. Level n of the rule is the
+/// boundary of the 3^n triangles of the Sierpinski triangle at depth n, computed here directly
+/// (each triangle replaced by the three half-size triangles at its corners), exactly.
+#[test]
+fn the_arrowhead_from_triangles_draws_the_sides_of_the_sierpinski_triangles() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/fixtures/sierpinski-arrowhead-triangles.rule"
+    );
+    let r = rule(&std::fs::read_to_string(path).unwrap());
+    let m = model(path);
+    let k = &r.field;
+    let q = |n: i64, d: i64| k.rational(BigRational::new(n.into(), d.into()));
+    let half = q(1, 2);
+    let mid = |a: &P, b: &P| -> P {
+        [
+            k.mul(&half, &k.add(&a[0], &b[0])),
+            k.mul(&half, &k.add(&a[1], &b[1])),
+        ]
+    };
+    // s = √3 is the field's generator: the apex is (1/2, s/2).
+    let s = k.generator_element();
+    let mut triangles: Vec<[P; 3]> = vec![[
+        [q(0, 1), q(0, 1)],
+        [q(1, 1), q(0, 1)],
+        [q(1, 2), k.mul(&half, &s)],
+    ]];
+    for level in 0..=4u32 {
+        let sides: Vec<(P, P)> = triangles
+            .iter()
+            .flat_map(|t| (0..3).map(move |i| (t[i].clone(), t[(i + 1) % 3].clone())))
+            .collect();
+        assert_eq!(sides.len(), 3usize.pow(level + 1));
+        let drawn = automaton_segments(&m, level);
+        assert_eq!(keys(&drawn), keys(&sides), "level {level}");
+        triangles = triangles
+            .iter()
+            .flat_map(|[a, b, c]| {
+                let (ab, bc, ca) = (mid(a, b), mid(b, c), mid(c, a));
+                [
+                    [a.clone(), ab.clone(), ca.clone()],
+                    [ab, b.clone(), bc.clone()],
+                    [ca, bc, c.clone()],
+                ]
+            })
+            .collect();
+    }
+}
+
 #[test]
 fn random_choices_are_reproducible_per_occurrence_and_frozen_below_the_depth() {
     // depth 2: the initiator's segment (place [0]) and its children (places [0, j]) draw on their

@@ -4,7 +4,12 @@
 use std::process::Command;
 
 pub mod mesh_files;
+pub mod random_volume;
 pub mod strategies;
+
+/// The library under the name `random_volume` uses for it (the unit tests include that file
+/// with `crate` under this name).
+use lacuna as lib;
 
 /// Runs the built binary in the crate's directory: (exit code, stdout, stderr).
 pub fn lacuna(args: &[&str]) -> (i32, String, String) {

@@ -4,7 +4,7 @@
 //! **Every cell is born inside exactly one cell of the level before.** A step creates, inside a
 //! volume, its sub-volumes, the side faces (one per spoke edge, shared by the two sub-volumes, and
 //! one per wall edge), the inner faces, the radial edges (one per fan of sub-volumes around a rim
-//! point), the inner edges and the inner corners ([`crate::topology::volume::step::interior`]);
+//! point), the inner edges and the inner corners ([`crate::topology::volume::VolumeSubdivision::interior`], computed with the step);
 //! inside a face, its sub-faces, its spokes Ea, lacuna edges El and gap sides Ec, its lacuna
 //! corners and gap points; inside an edge, its pieces and the joints or gap ends between them; a
 //! corner stays a corner. A face shared by two volumes is one cell of the complex and is
@@ -27,7 +27,6 @@ use crate::topology::face::Face;
 use crate::topology::subdivision::{subdivide, Origin};
 use crate::topology::volume::assembly::StartCells;
 use crate::topology::volume::closure::VolumeTypeSet;
-use crate::topology::volume::step::interior;
 use num_bigint::{BigInt, BigUint};
 use num_traits::Zero;
 use serde::Serialize;
@@ -199,7 +198,7 @@ pub fn solid_topology_of(
     // Whether each type's level-1 surface has a hole (its cavity opens).
     let mut opens = Vec::with_capacity(set.types.len());
     for t in &set.types {
-        let int = interior(&t.volume)?;
+        let int = &t.subdivision.interior;
         all_connected &= int.children_connected;
         opens.push(int.opens);
         any_delayed |= t.volume.delay >= 2;
@@ -207,7 +206,7 @@ pub fn solid_topology_of(
         edges.extend(vec![t.volume.inner; int.inner_edges]);
         births.push(Birth {
             volumes: t.children.clone(),
-            faces: int.faces,
+            faces: int.faces.clone(),
             edges,
             corners: int.radial_edges as u64,
         });

@@ -24,7 +24,7 @@ pub use closure::{
 };
 pub use complex::{face_cells, faces_cells, solid_topology, solid_topology_of, SolidLevel};
 pub use solid::{parse_volume, Solid};
-pub use step::{interior, subdivide_volume, Interior, Patch, Placed, SubVolume, VolumeSubdivision};
+pub use step::{subdivide_volume, Interior, Patch, Placed, SubVolume, VolumeSubdivision};
 pub use surface::Surface;
 
 use crate::topology::edge::EdgeType;

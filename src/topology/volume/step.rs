@@ -79,6 +79,9 @@ pub struct VolumeSubdivision {
     /// The two sides `(face of S, sub-face, position)` of every spoke edge, each pair once (the
     /// sub-volumes on either side share the side face over it).
     pub spoke_pairs: Vec<(Side, Side)>,
+    /// The cells the step creates inside the volume, read off the same level-1 surface (the
+    /// solid's counts use them: nothing is subdivided twice).
+    pub interior: Interior,
 }
 
 /// The level-1 surface of a volume: every face subdivided, and the pairing of sides.
@@ -202,9 +205,12 @@ impl Level1 {
 pub fn subdivide_volume(v: &Volume) -> Result<VolumeSubdivision> {
     let l1 = Level1::of(v)?;
     if v.delay >= 2 {
+        let subvolumes = vec![delayed(v, &l1)];
+        let interior = interior_cells(v, &l1, &subvolumes);
         return Ok(VolumeSubdivision {
-            subvolumes: vec![delayed(v, &l1)],
+            subvolumes,
             spoke_pairs: Vec::new(),
+            interior,
         });
     }
     let all = l1.subfaces();
@@ -239,9 +245,11 @@ pub fn subdivide_volume(v: &Volume) -> Result<VolumeSubdivision> {
         .map(|(&a, &b)| (a, b))
         .collect();
     spoke_pairs.sort();
+    let interior = interior_cells(v, &l1, &subvolumes);
     Ok(VolumeSubdivision {
         subvolumes,
         spoke_pairs,
+        interior,
     })
 }
 
@@ -453,10 +461,9 @@ pub struct Interior {
     pub children_connected: bool,
 }
 
-/// The interior cells of one step of `v` (see [`Interior`]).
-pub fn interior(v: &Volume) -> Result<Interior> {
-    let l1 = Level1::of(v)?;
-    let sub = subdivide_volume(v)?;
+/// The interior cells of the step of `v` whose level-1 surface is `l1` and whose sub-volumes
+/// are `subvolumes` (see [`Interior`]).
+fn interior_cells(v: &Volume, l1: &Level1, subvolumes: &[SubVolume]) -> Interior {
     let all = l1.subfaces();
     let sides: Vec<Side> = all
         .iter()
@@ -479,13 +486,13 @@ pub fn interior(v: &Volume) -> Result<Interior> {
                 v.inner_face(boundary).canonical().0
             })
             .collect();
-        return Ok(Interior {
+        return Interior {
             faces,
             radial_edges: 0,
             inner_edges: 0,
             opens,
             children_connected: true,
-        });
+        };
     }
     // Side faces: a spoke edge once (from its smaller side), a wall edge once; then the inner
     // faces, one per sub-volume.
@@ -506,7 +513,7 @@ pub fn interior(v: &Volume) -> Result<Interior> {
     }
     faces.extend(walls);
     let inner_edges = faces.len();
-    for s in &sub.subvolumes {
+    for s in subvolumes {
         let m = s.patch.as_ref().map_or(0, |p| p.spoke_sides + p.wall_sides);
         faces.push(v.inner_face(vec![v.inner; m]).canonical().0);
     }
@@ -557,8 +564,7 @@ pub fn interior(v: &Volume) -> Result<Interior> {
     }
     // The sub-volumes are joined when their patches share an edge of the level-1 surface (the
     // sub-volumes of one fan share its point, and a fan is joined across paired sides).
-    let index: HashMap<(usize, usize), usize> = sub
-        .subvolumes
+    let index: HashMap<(usize, usize), usize> = subvolumes
         .iter()
         .enumerate()
         .flat_map(|(i, s)| {
@@ -573,16 +579,16 @@ pub fn interior(v: &Volume) -> Result<Interior> {
                 .unwrap_or_default()
         })
         .collect();
-    let mut uf = Dsu::new(sub.subvolumes.len());
+    let mut uf = Dsu::new(subvolumes.len());
     for (&a, &b) in &l1.partner {
         uf.union(index[&(a.0, a.1)], index[&(b.0, b.1)]);
     }
     let children_connected = uf.classes() == 1;
-    Ok(Interior {
+    Interior {
         faces,
         radial_edges,
         inner_edges,
         opens,
         children_connected,
-    })
+    }
 }

@@ -3,6 +3,12 @@
 use super::*;
 use crate::topology::limits::Limits;
 
+/// The library under the name the shared random volumes use for it.
+use crate as lib;
+
+#[path = "../../../tests/common/random_volume.rs"]
+mod random_volume;
+
 fn cube(rule: &str) -> Volume {
     parse_volume(&format!("cube B2 | B2 B2 B2 | A1 | B2 B2 | {rule}")).unwrap()
 }
@@ -156,50 +162,14 @@ mod random {
     //! Property tests over random volumes: small solids with random B/C edges, random E and
     //! algorithms, both rules, delays 1 and 2.
     use super::*;
-    use crate::topology::edge::EdgeType;
-    use crate::topology::face::Face;
     use proptest::prelude::*;
 
-    fn edge_type() -> impl Strategy<Value = EdgeType> {
-        prop_oneof![
-            Just("B2"),
-            Just("B3"),
-            Just("C2"),
-            Just("C3"),
-            Just("B2^2"),
-            Just("C2^2")
-        ]
-        .prop_map(|t| EdgeType::parse(t, 1).unwrap())
-    }
-
     fn volume() -> impl Strategy<Value = Volume> {
-        let solid = prop_oneof![
-            Just(Solid::Cube),
-            Just(Solid::Tetrahedron),
-            Just(Solid::Octahedron),
-            (3usize..6).prop_map(Solid::Prism),
-            Just(Solid::TruncatedTetrahedron)
-        ];
-        (
-            solid,
-            proptest::collection::vec(edge_type(), 18),
-            proptest::sample::select(vec!["B2 B2 B2", "C2 B2 B2", "B2 B2 C2", "B3 C2 B2"]),
-            proptest::sample::select(vec!["A1", "A2", "A3"]),
-            proptest::sample::select(vec![VolumeRule::V1, VolumeRule::V2]),
-            1u32..3,
+        super::random_volume::volume(
+            vec!["B2", "B3", "C2", "C3", "B2^2", "C2^2"],
+            vec!["B2 B2 B2", "C2 B2 B2", "B2 B2 C2", "B3 C2 B2"],
+            vec!["A1", "A2", "A3"],
         )
-            .prop_map(|(solid, edges, e, a, rule, delay)| {
-                let template = Face::parse(&format!("B2 B2 B2 | {e} | {a}")).unwrap();
-                Volume {
-                    surface: solid.surface_with(|k| edges[k % edges.len()], &template),
-                    radial: EdgeType::parse("B2", 1).unwrap(),
-                    inner: EdgeType::parse("B2", 1).unwrap(),
-                    params: template.params,
-                    algorithm: template.algorithm,
-                    rule,
-                    delay,
-                }
-            })
     }
 
     proptest! {
