@@ -10,6 +10,7 @@
 //! is decided. Written by hand (the crates that do this are LGPL: `algebraics`).
 
 use crate::algebra::poly::{descartes_bound, largest_root_interval, sign_at_int, Poly};
+use crate::algebra::square_part::square_split;
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
@@ -775,29 +776,6 @@ impl NumberField {
             format!("({inner})/{c}")
         }
     }
-}
-
-/// `(k, d)` with `n = k²·d`, `d` free of the square factors found by trial division up to 10⁴
-/// (a larger square factor may stay in `d`; the form is still exact).
-fn square_split(n: &BigInt) -> (BigInt, BigInt) {
-    let mut k = BigInt::one();
-    let mut d = n.clone();
-    let mut i = BigInt::from(2);
-    let limit = BigInt::from(10_000);
-    while i <= limit && &i * &i <= d {
-        let sq = &i * &i;
-        while (&d % &sq).is_zero() {
-            d /= &sq;
-            k *= &i;
-        }
-        i += 1;
-    }
-    let r = d.sqrt();
-    if &r * &r == d {
-        k *= &r;
-        d = BigInt::one();
-    }
-    (k, d)
 }
 
 #[cfg(test)]

@@ -13,6 +13,7 @@ pub(crate) mod kmatrix;
 pub(crate) mod matrix;
 pub(crate) mod poly;
 pub(crate) mod reallog;
+pub(crate) mod square_part;
 
 pub use algebraic::{FieldElement, NumberField, RealAlgebraic};
 pub use kmatrix::KMatrix;
