@@ -29,6 +29,13 @@ fn contraction(cert: &mut Certificate) -> &mut lacuna::certificate::ContractionS
     }
 }
 
+fn multiplicity(cert: &mut Certificate) -> &mut lacuna::certificate::MultiplicityStep {
+    match step(cert, "multiplicity") {
+        Step::Multiplicity(m) => m,
+        _ => unreachable!(),
+    }
+}
+
 fn similarity(cert: &mut Certificate) -> &mut lacuna::certificate::SimilarityStep {
     match step(cert, "similarity-dimension") {
         Step::SimilarityDimension(s) => s,
@@ -51,7 +58,12 @@ fn sierpinski_triangle_is_certified_as_derived_by_hand() {
     let names: Vec<&str> = cert.steps.iter().map(Step::name).collect();
     assert_eq!(
         names,
-        ["constraints-hold", "contraction", "similarity-dimension"]
+        [
+            "constraints-hold",
+            "contraction",
+            "similarity-dimension",
+            "multiplicity"
+        ]
     );
     let c = contraction(&mut cert);
     assert_eq!(c.walks, vec![vec![0], vec![1], vec![2]]);
@@ -82,6 +94,7 @@ fn koch_curve_in_q_sqrt3_is_certified() {
             "constraints-hold",
             "contraction",
             "similarity-dimension",
+            "multiplicity",
             "rule-compilation"
         ]
     );
@@ -175,6 +188,66 @@ fn similarity_forgeries_are_rejected() {
     assert!(s.parts[0].u_field.is_some(), "kite-dart gives u* in K");
     s.parts[0].u_field = Some(vec!["1/2".into()]);
     assert_rejected("u* in K changed", &c, "similarity-dimension");
+}
+
+#[test]
+fn seed_002_multiplicity_is_certified_as_counted_by_hand_and_forgeries_fail() {
+    // The Sierpinski triangle: three maps of ratio 1/2 towards three different corners, so the
+    // 3^k words of level k are 3^k different maps, one piece each. The step lists the levels
+    // of at most 4096 pieces: 3^7 = 2187, 3^8 = 6561.
+    let mut tri = automaton_certificate("sierpinski-triangle");
+    let hand: Vec<Vec<(usize, u64)>> = (1..=7u32).map(|k| vec![(1, 3u64.pow(k))]).collect();
+    assert_eq!(multiplicity(&mut tri).levels, hand);
+    assert_eq!(
+        multiplicity(&mut tri).prime,
+        None,
+        "rational entries: no field"
+    );
+    // The lemniscate fractal (seed 002, Fig. 7(a)): four maps and the crossing, one map that
+    // two operators have. A word of level k with j letters on the crossing is one of
+    // 4^(k−j)·C(k, j) maps, each of 2^j pieces.
+    let mut lem = automaton_certificate("lemniscate-fractal");
+    assert_proved("lemniscate-fractal", &lem);
+    let levels = multiplicity(&mut lem).levels.clone();
+    assert!(levels.len() >= 3, "{levels:?}");
+    for (i, level) in levels.iter().enumerate() {
+        let k = i as u32 + 1;
+        let binom = |j: u32| (0..j).fold(1u64, |c, t| c * u64::from(k - t) / u64::from(t + 1));
+        let hand: Vec<(usize, u64)> = (0..=k)
+            .map(|j| (1usize << j, 4u64.pow(k - j) * binom(j)))
+            .collect();
+        assert_eq!(level, &hand, "level {k}");
+    }
+    assert!(multiplicity(&mut lem).prime.is_some(), "entries in a field");
+    // Forgeries.
+    let mut c = tri.clone();
+    multiplicity(&mut c).levels[1] = vec![(1, 8)];
+    assert_rejected("a level's count changed", &c, "multiplicity");
+    let mut c = tri.clone();
+    multiplicity(&mut c).levels[0] = vec![(1, 1), (2, 1)];
+    assert_rejected("two pieces claimed one map", &c, "multiplicity");
+    let mut c = tri.clone();
+    // Level 8 has 3^8 = 6561 pieces, more than the producer lists but within the checker's
+    // reach: a right level appended is proved, a wrong one is not.
+    multiplicity(&mut c).levels.push(vec![(1, 6561)]);
+    assert_proved("level 8 appended, right", &c);
+    multiplicity(&mut c).levels[7] = vec![(1, 6560)];
+    assert_rejected("level 8 appended, wrong", &c, "multiplicity");
+    let mut c = lem.clone();
+    let m = multiplicity(&mut c);
+    m.levels[0] = vec![(1, 6)];
+    assert_rejected("the crossing denied", &c, "multiplicity");
+    // The lemniscate's field is Q(√3): modulo 11, x² − 3 splits (5² = 25 ≡ 3), so 11 proves
+    // nothing; no prime is no proof.
+    let mut c = lem.clone();
+    multiplicity(&mut c).prime = Some(11);
+    assert_rejected("a prime modulo which x² − 3 splits", &c, "multiplicity");
+    let mut c = lem.clone();
+    multiplicity(&mut c).prime = None;
+    assert_rejected("no prime", &c, "multiplicity");
+    let mut c = lem.clone();
+    multiplicity(&mut c).prime = Some(4);
+    assert_rejected("not a prime", &c, "multiplicity");
 }
 
 #[test]

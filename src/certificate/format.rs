@@ -27,8 +27,8 @@ mod volume_steps;
 
 pub use automaton_steps::{
     BoundaryComponent, BoundaryPart, BoundaryState, BoundaryStep, ConstraintFailsStep,
-    ConstraintsHoldStep, ContractionStep, NeighbourFails, NeighbourHolds, NeighbourMap,
-    NeighbourMaps, RuleCompilationStep, SimilarityPart, SimilarityStep,
+    ConstraintsHoldStep, ContractionStep, MultiplicityStep, NeighbourFails, NeighbourHolds,
+    NeighbourMap, NeighbourMaps, RuleCompilationStep, SimilarityPart, SimilarityStep,
 };
 pub use claims::{
     AttractorClaim, AutomatonClaim, AutomatonOperator, AutomatonState, Edge, Face, FacesClaim,
@@ -54,7 +54,7 @@ use serde::{Deserialize, Serialize};
 pub const FORMAT: &str = "lacuna-certificate";
 
 /// The format version this code writes and checks.
-pub const VERSION: u32 = 12;
+pub const VERSION: u32 = 13;
 
 /// A certificate: the claim (what was given, in canonical form) and the steps that prove every
 /// verdict about it.
@@ -270,6 +270,14 @@ pub enum Step {
     /// `det(I − Q(u))` in (0, 1], that the claimed component's `u*` is the smallest over the
     /// components reachable from the state (Sturm counts on their product), and the digits.
     BoundaryDimension(BoundaryStep),
+    /// **Seed 002's multiplicity at levels 1 to n** (eq. (18)): how many pieces of a level are
+    /// one exact map. Justification: the checker completes the instance (every constraint
+    /// holding), enumerates the pieces of the start state level by level with its own code — a
+    /// piece is a state and the product `T_1·T_2·…·T_k` of the subdivision operators of its
+    /// word, each `T_(i+1)` into the state `T_i` comes from — groups the pieces whose state and
+    /// product are equal (exactly in K, entries reduced modulo the field's polynomial), and
+    /// compares each level's histogram with the listed one.
+    Multiplicity(MultiplicityStep),
 }
 
 impl Certificate {
@@ -317,6 +325,7 @@ impl Step {
             Step::Contraction(_) => "contraction",
             Step::SimilarityDimension(_) => "similarity-dimension",
             Step::BoundaryDimension(_) => "boundary-dimension",
+            Step::Multiplicity(_) => "multiplicity",
         }
     }
 }

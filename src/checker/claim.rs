@@ -467,6 +467,7 @@ fn slots(c: &Claim) -> &'static [(&'static [&'static str], bool)] {
                 (&["contraction"], false),
                 (&["similarity-dimension"], false),
                 (&["boundary-dimension"], false),
+                (&["multiplicity"], false),
                 (&["rule-compilation"], false),
             ]
         }
@@ -475,6 +476,7 @@ fn slots(c: &Claim) -> &'static [(&'static [&'static str], bool)] {
             (&["contraction"], false),
             (&["similarity-dimension"], false),
             (&["boundary-dimension"], false),
+            (&["multiplicity"], false),
             (&["rule-compilation"], false),
         ],
         Claim::System(_) => &[(SYSTEM, true)],

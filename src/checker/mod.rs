@@ -63,6 +63,7 @@ mod field;
 mod ifs;
 mod level_one;
 mod linear;
+mod multiplicity;
 mod neighbour;
 mod ranks;
 mod ratio;
@@ -555,6 +556,10 @@ fn check_unescaped(cert: &Certificate) -> CheckReport {
                 _ => Err(
                     "a boundary-dimension step in a certificate whose claim is no automaton".into(),
                 ),
+            },
+            Step::Multiplicity(m) => match &cert.claim {
+                Claim::Automaton(a) => self::multiplicity::check_multiplicity(a, m),
+                _ => Err("a multiplicity step in a certificate whose claim is no automaton".into()),
             },
             Step::SolutionSpace(s) => check_solution(s, tie).inspect(|_| solution = Some(s)),
             Step::Degeneracy(d) => match (&cert.claim, &closure, solution) {

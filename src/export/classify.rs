@@ -229,6 +229,20 @@ fn invariants(
     })
 }
 
+/// What a certificate proves of an automaton's invariants: the multiplicity of its first levels
+/// (the `multiplicity` step), not the comparison or its extension to every level.
+fn certified_levels(name: &str, model: &crate::input::AutomatonModel) -> String {
+    if crate::certificate::multiplicity_certifiable(model) {
+        format!(
+            "{name}: its multiplicity at the levels of at most 4096 pieces (up to level 8) is certified by the step `multiplicity` of `lacuna verify {name} --certificate OUT`; the extension to every level (the open-set condition of the merged maps, the recurrence's order) is not in a certificate"
+        )
+    } else {
+        format!(
+            "{name}: its multiplicity is not certified: no prime below 10^4 proves its field's polynomial irreducible, which the checker needs to compare maps"
+        )
+    }
+}
+
 /// Classifies two inputs (face notation, files or library names of faces, assemblies, volumes or
 /// automata): the levels asked first (a difference there is a difference); only when they agree
 /// and the order bounds say that more levels decide every level are those compared too.
@@ -251,6 +265,11 @@ pub fn classify_inputs(
             (ia, la) = invariants(&a, levels, opts, limits)?;
             (ib, lb) = invariants(&b, levels, opts, limits)?;
             c = crate::analysis::classify(&ia, &ib);
+        }
+    }
+    for s in [&a, &b] {
+        if let Structure::Automaton(name, model, _) = s {
+            c.notes.push(certified_levels(name, model));
         }
     }
     Ok(ClassifyOutcome {

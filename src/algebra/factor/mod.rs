@@ -15,6 +15,9 @@ use num_bigint::{BigInt, BigUint};
 use num_integer::Integer;
 use num_traits::{One, Signed, Zero};
 
+mod irreducible;
+pub(crate) use irreducible::irreducibility_prime;
+
 /// Factorisation gave up: too many factors modulo every prime tried.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("factorisation of a degree-{degree} polynomial needs more than {budget} recombination trials ({modular} factors modulo {prime})")]

@@ -145,6 +145,31 @@ pub fn automaton_invariants(
     })
 }
 
+/// Seed 002's multiplicity of levels 1 to at most `levels`, enumerated piece by piece: for each
+/// level, how many distinct maps (a state and the word's product) are m pieces of it, by m. It
+/// stops before a level of more than `max_pieces` pieces. What a certificate's `multiplicity`
+/// step lists for the checker to enumerate again.
+pub fn coincidence_histograms(
+    model: &AutomatonModel,
+    resolved: &Resolved,
+    levels: u64,
+    max_pieces: usize,
+) -> Result<Vec<BTreeMap<usize, u64>>> {
+    let a = &model.automaton;
+    let subs: Vec<usize> = (0..a.operators.len())
+        .filter(|&o| a.operators[o].kind == OpKind::Sub)
+        .collect();
+    let (per_level, _) = multiplicities(
+        model,
+        resolved,
+        &subs,
+        levels,
+        max_pieces,
+        AutomatonMultiplicity::Coincidences,
+    )?;
+    Ok(per_level.into_iter().map(|(h, _)| h).collect())
+}
+
 /// The named counts of levels 0 to `levels` from the histograms of levels 1 on (level 0 and
 /// the levels not counted have no row): the total under `total`, and how many are of each size
 /// m under `each` (`{m}` replaced).

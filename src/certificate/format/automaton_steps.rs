@@ -1,6 +1,6 @@
 //! The steps about hand-written automata: a rule's compilation, constraints that hold or fail,
 //! contraction, the similarity dimension and its open-set witnesses (neighbour maps), the
-//! boundary dimension of tiles.
+//! boundary dimension of tiles, seed 002's multiplicity level by level.
 
 use super::{Algebraic, FieldCoords};
 use serde::{Deserialize, Serialize};
@@ -204,4 +204,21 @@ pub struct BoundaryState {
     pub component: Option<usize>,
     /// The value, truncated to the step's digits.
     pub decimal: String,
+}
+
+/// The step `multiplicity` (seed 002, eq. (18)): the pieces of the start state's levels 1 to n,
+/// grouped by their exact map.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MultiplicityStep {
+    /// The values of the claim's unknown operators in the instance (as in `contraction`).
+    pub instance: Vec<(usize, Vec<Vec<FieldCoords>>)>,
+    /// For a claim with a field: an odd prime q, not dividing the leading coefficient of the
+    /// field's polynomial, modulo which that polynomial is irreducible — so it is irreducible
+    /// over Q and the reduced coordinates of an element of K are canonical.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub prime: Option<u64>,
+    /// Level by level from 1: for each m (increasing), how many distinct maps — a state and
+    /// the product of the word's operators — are exactly m pieces of the level.
+    pub levels: Vec<Vec<(usize, u64)>>,
 }

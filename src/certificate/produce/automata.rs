@@ -1,15 +1,15 @@
 //! Certificates of hand-written automata and automaton models: the automaton claim (operators
 //! in Q or in a field K, the attractor, the rule), the constraint and rule-compilation steps,
-//! contraction, similarity dimension and open-set witnesses, the boundary dimension of tiles, and
-//! lacuna's automaton and model
-//! read back from a claim.
+//! contraction, similarity dimension and open-set witnesses, the boundary dimension of tiles,
+//! seed 002's multiplicity of the first levels, and lacuna's automaton and model read back from a
+//! claim.
 
 use super::systems::{algebraic, rational, step_of_system, strings, system};
 use super::CertifyError;
 use crate::certificate::format::{
     AttractorClaim, BoundaryComponent, BoundaryPart, BoundaryState, BoundaryStep,
-    ConstraintFailsStep, ConstraintsHoldStep, ContractionStep, FieldCoords, NeighbourFails,
-    NeighbourHolds, NeighbourMap, NeighbourMaps, SimilarityPart, SimilarityStep,
+    ConstraintFailsStep, ConstraintsHoldStep, ContractionStep, FieldCoords, MultiplicityStep,
+    NeighbourFails, NeighbourHolds, NeighbourMap, NeighbourMaps, SimilarityPart, SimilarityStep,
 };
 use crate::certificate::format::{
     AutomatonClaim, AutomatonOperator, AutomatonState, Certificate, Claim, RuleCompilationStep,
@@ -309,7 +309,7 @@ pub fn certificate_for_model(
         if !sd.witness.is_empty() {
             let digits = sd.decimal.split('.').nth(1).map_or(0, str::len);
             cert.steps.push(Step::SimilarityDimension(SimilarityStep {
-                instance,
+                instance: instance.clone(),
                 parts: sd
                     .witness
                     .iter()
@@ -344,6 +344,9 @@ pub fn certificate_for_model(
             }
         }
     }
+    if let Some(step) = multiplicity_step(m, &attractor.resolved, &claim, instance)? {
+        cert.steps.push(Step::Multiplicity(step));
+    }
     // A compiled rule, with or without the age and random extensions: the checker compiles its
     // text again.
     if m.rule.is_some() {
@@ -351,6 +354,61 @@ pub fn certificate_for_model(
             .push(Step::RuleCompilation(RuleCompilationStep {}));
     }
     Ok(cert)
+}
+
+/// Whether the checker can compare the maps of `m` canonically, and how: `Some(None)` for
+/// rational entries, `Some(Some(q))` with a prime q modulo which the field's polynomial is
+/// irreducible, `None` when no prime below 10⁴ proves it.
+fn canonical_prime(claim: &AutomatonClaim) -> Option<Option<u64>> {
+    match &claim.field {
+        None => Some(None),
+        Some(f) => {
+            let poly: Option<Vec<num_bigint::BigInt>> =
+                f.poly.iter().map(|c| c.parse().ok()).collect();
+            poly.and_then(|p| crate::algebra::factor::irreducibility_prime(&p))
+                .map(Some)
+        }
+    }
+}
+
+/// Whether `lacuna verify --certificate` certifies seed 002's multiplicity of the first levels
+/// of `m` (a `multiplicity` step): its entries are rational, or a prime proves its field's
+/// polynomial irreducible.
+pub fn multiplicity_certifiable(m: &crate::input::AutomatonModel) -> bool {
+    canonical_prime(&model_claim(m)).is_some()
+}
+
+/// The levels a `multiplicity` step lists at most, and the pieces of a level it enumerates at
+/// most (the step stops before a larger level).
+const MULTIPLICITY_LEVELS: u64 = 8;
+
+/// Seed 002's multiplicity of the first levels as the step `multiplicity` (levels of at most
+/// [`MAX_CONTACT_PIECES`](crate::analysis::invariants::automaton::MAX_CONTACT_PIECES) pieces,
+/// at most [`MULTIPLICITY_LEVELS`]); `None` when the claim's field has no prime proving its
+/// polynomial irreducible (the checker could not compare maps canonically) or no level is small
+/// enough.
+fn multiplicity_step(
+    m: &crate::input::AutomatonModel,
+    resolved: &crate::analysis::automata::automaton_resolve::Resolved,
+    claim: &AutomatonClaim,
+    instance: Vec<(usize, Vec<Vec<FieldCoords>>)>,
+) -> Result<Option<MultiplicityStep>, CertifyError> {
+    use crate::analysis::invariants::automaton::{coincidence_histograms, MAX_CONTACT_PIECES};
+    let Some(prime) = canonical_prime(claim) else {
+        return Ok(None);
+    };
+    let levels = coincidence_histograms(m, resolved, MULTIPLICITY_LEVELS, MAX_CONTACT_PIECES)?;
+    if levels.is_empty() {
+        return Ok(None);
+    }
+    Ok(Some(MultiplicityStep {
+        instance,
+        prime,
+        levels: levels
+            .into_iter()
+            .map(|h| h.into_iter().collect())
+            .collect(),
+    }))
 }
 
 /// The boundary dimension of the tile parts as the step `boundary-dimension`.
