@@ -140,8 +140,11 @@ struct Piece {
 /// Subdivides a face (THEORY §3). The face should be canonical: edge indices in the origins refer
 /// to its boundary as given.
 pub fn subdivide(face: &Face) -> Result<Subdivision> {
-    let mut pieces: Vec<Piece> = Vec::new();
-    let mut junctions: Vec<Junction> = Vec::new();
+    // One piece and one junction per sub-edge: sized once, so that the junctions the step keeps
+    // carry no spare capacity.
+    let total: usize = face.boundary.iter().map(|e| e.piece_count() as usize).sum();
+    let mut pieces: Vec<Piece> = Vec::with_capacity(total);
+    let mut junctions: Vec<Junction> = Vec::with_capacity(total);
     let len = face.boundary.len();
     for (i, e) in face.boundary.iter().enumerate() {
         let count = e.piece_count() as usize;
