@@ -7,8 +7,9 @@
 #   FULL=1 benches/compare_peers.sh     every constraint system of the solver bench (up to 1.2
 #                                       million unknowns; SymPy then needs about 2 GB)
 #   PEER_BIN=/path/to/AutoFrac2DCLI benches/compare_peers.sh
-#                                       also times the seed authors' tool (PEER_ARGS: extra
-#                                       arguments placed before the input file)
+#                                       also times the seed authors' tool (PEER_ARGS: the
+#                                       arguments placed before the input file, default -a: the
+#                                       files give the corner points only)
 #
 # Rows: closure (AutoFrac2DCLI), solve (SymPy sparse DomainMatrix rref), R digits (SymPy/mpmath),
 # operators (python-flint), STL throughput (a plain Python struct writer). The Python peers go
@@ -113,17 +114,42 @@ has_module() {
 }
 
 # 1. closure against AutoFrac2DCLI on AutoFrac2D input files. lacuna's side is what the tool
-# produces from such a file: the closure and the MODITERE model (`export --format moditere`).
+# produces from such a file: the closure and the MODITERE model (`export --format moditere`);
+# on the wide faces, whose constraint systems are far larger than the tool's output, the closure
+# alone (`lacuna closure`). Every file gives the corner points of its faces, which is what the
+# tool reads with -a (it reads past the end of its list of points without them).
 echo "== 1. closure (AutoFrac2DCLI)" >&2
+peer_args=${PEER_ARGS--a}
+# A one-face AutoFrac2D file: the face line $2 and its corners on a circle, into $1.
+autofrac_face() {
+  printf 'f\n%s\nc\np\n' "$2" > "$1"
+  awk -v n="$(echo "${2%% / *}" | awk -F ' - ' '{ print NF }')" 'BEGIN {
+    for (i = 0; i < n; i++) printf "%.6f %.6f\n", 100 * cos(6.283185307 * i / n), 100 * sin(6.283185307 * i / n) }' >> "$1"
+}
 cp fixtures/autofrac-two-quads.txt "$out/two-quads.txt"
-printf 'f\n%s\n' "B_4_0 - C_4_0 - B_3_2 - C_4_0 - B_4_0 - C_3_0 - B_2_1 / C_3_0 - B_2_0 - C_3_0 / 0 / 0" \
-  > "$out/twenty-types.txt"
-for input in two-quads twenty-types; do
+autofrac_face "$out/twenty-types.txt" "B_4_0 - C_4_0 - B_3_2 - C_4_0 - B_4_0 - C_3_0 - B_2_1 / C_3_0 - B_2_0 - C_3_0 / 0 / 0"
+# Wide faces: E's edges (or some boundary edges) of 800 and 2000 sub-edges, so that every type's
+# step has thousands of sub-faces; the closure is the whole work. Issue #34's memory figures.
+autofrac_face "$out/wide-800.txt" "B_4_0 - C_4_0 - B_3_2 - C_4_0 - B_4_0 - C_3_0 - B_2_1 / C_800_0 - B_800_0 - C_800_0 / 0 / 0"
+autofrac_face "$out/wide-2000.txt" "B_4_0 - C_4_0 - B_3_2 - C_4_0 - B_4_0 - C_3_0 - B_2_1 / C_2000_0 - B_2000_0 - C_2000_0 / 0 / 0"
+autofrac_face "$out/wide-800-boundary.txt" "B_800_0 - C_800_0 - B_3_2 - C_4_0 - B_4_0 - C_3_0 - B_2_1 / C_800_0 - B_800_0 - C_800_0 / 0 / 0"
+for input in two-quads twenty-types wide-800 wide-2000 wide-800-boundary; do
   file=$out/$input.txt
-  types=$("$bin" closure "$file" | awk '/^closure:/ { print $3; exit }')
-  lac=$(best_of 5 "$bin" export "$file" --format moditere -o "$out/$input.py")
-  lac_mb=$(peak_mb "$bin" export "$file" --format moditere -o "$out/$input.py")
-  what="closure + MODITERE model, $input.txt ($types types)"
+  case $input in
+    wide-*)
+      wide=(--max-subedges 2000)
+      types=$("$bin" closure "$file" "${wide[@]}" | awk '/^closure:/ { print $3; exit }')
+      lac=$(best_of 5 "$bin" closure "$file" "${wide[@]}")
+      lac_mb=$(peak_mb "$bin" closure "$file" "${wide[@]}")
+      what="closure, $input.txt ($types types)"
+      ;;
+    *)
+      types=$("$bin" closure "$file" | awk '/^closure:/ { print $3; exit }')
+      lac=$(best_of 5 "$bin" export "$file" --format moditere -o "$out/$input.py")
+      lac_mb=$(peak_mb "$bin" export "$file" --format moditere -o "$out/$input.py")
+      what="closure + MODITERE model, $input.txt ($types types)"
+      ;;
+  esac
   if [ -z "${PEER_BIN:-}" ]; then
     row "$what" "$lac" "-" "-" "$lac_mb" "-" "skipped: set PEER_BIN"
   elif [ ! -x "$PEER_BIN" ]; then
@@ -131,8 +157,8 @@ for input in two-quads twenty-types; do
   else
     mkdir -p "$out/peer-$input"
     # shellcheck disable=SC2086 # PEER_ARGS is a list of words
-    if peer=$(cd "$out/peer-$input" && best_of 5 timeout 600 "$PEER_BIN" ${PEER_ARGS:-} "$file"); then
-      peer_mb=$(cd "$out/peer-$input" && peak_mb timeout 600 "$PEER_BIN" ${PEER_ARGS:-} "$file")
+    if peer=$(cd "$out/peer-$input" && best_of 5 timeout 600 "$PEER_BIN" $peer_args "$file"); then
+      peer_mb=$(cd "$out/peer-$input" && peak_mb timeout 600 "$PEER_BIN" $peer_args "$file")
       row "$what" "$lac" "$peer" "$(ratio "$peer" "$lac")" "$lac_mb" "$peer_mb" "whole processes, best of 5"
     else
       row "$what" "$lac" "-" "-" "$lac_mb" "-" "skipped: $PEER_BIN failed or ran over 600 s"

@@ -128,7 +128,7 @@ proptest! {
                     let parent = Face::parse(&w[0]).unwrap();
                     let child = Face::parse(&w[1]).unwrap();
                     let sub = subdivide(&parent).unwrap();
-                    prop_assert!(sub.subfaces.iter().any(|s| s.face == child));
+                    prop_assert!(sub.subfaces.iter().any(|s| *s.face == child));
                 }
             }
             Ok(Closure::Closed(ts)) => {

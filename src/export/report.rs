@@ -244,23 +244,25 @@ impl VerifyReport {
 
     /// The closure part of the report only (`lacuna closure`).
     pub fn closure_text(&self) -> String {
-        let mut only = self.clone();
-        only.counts.clear();
-        only.per_face.clear();
-        only.ratio = None;
-        only.solver = None;
-        only.text("closure")
+        self.text("closure")
     }
 
+    /// The report of `command`; `closure` leaves out the counts, the ratio and the constraints
+    /// (its text ends with the closure's verdict), and the per-face counts of its assembly line.
     fn text(&self, command: &str) -> String {
+        let per_face: &[FaceCounts] = if command == "closure" {
+            &[]
+        } else {
+            &self.per_face
+        };
         let mut o = String::new();
         let _ = writeln!(o, "lacuna {command}: {}", self.input);
-        if self.shared_edges > 0 || !self.per_face.is_empty() {
+        if self.shared_edges > 0 || !per_face.is_empty() {
             let _ = writeln!(
                 o,
                 "assembly: {} face{}, {} shared edge{} (types and delays match)",
-                self.per_face.len().max(1),
-                if self.per_face.len() > 1 { "s" } else { "" },
+                per_face.len().max(1),
+                if per_face.len() > 1 { "s" } else { "" },
                 self.shared_edges,
                 if self.shared_edges == 1 { "" } else { "s" }
             );

@@ -164,7 +164,7 @@ impl Closable for Face {
     }
 
     fn children(step: &Subdivision) -> Vec<&Face> {
-        step.subfaces.iter().map(|s| &s.face).collect()
+        step.subfaces.iter().map(|s| &*s.face).collect()
     }
 }
 
@@ -468,7 +468,7 @@ impl TypeSet {
             }
             for (s, &c) in ty.subdivision.subfaces.iter().zip(&ty.children) {
                 match self.types.get(c) {
-                    Some(ct) if ct.face == s.face => {}
+                    Some(ct) if ct.face == *s.face => {}
                     _ => return Err(format!("type T{t}: sub-face `{}` is not type T{c}", s.face)),
                 }
             }

@@ -98,24 +98,30 @@ pub trait SpokeChooser: fmt::Debug + Send + Sync {
 #[derive(Clone, Debug)]
 pub enum Algorithm {
     /// A spoke set; A1 = {joint, gap}, A2 = A1 + corner, A3 = A1 + delayed-corner,
-    /// AF1 = A1 + delayed-corner-not-b.
-    Spokes(BTreeSet<SpokeItem>),
+    /// AF1 = A1 + delayed-corner-not-b. Shared: every sub-face of a closure carries its parent's
+    /// algorithm, so a clone is a reference count, not a new set.
+    Spokes(Arc<BTreeSet<SpokeItem>>),
     /// A custom algorithm, identified by its name.
     Custom(Arc<dyn SpokeChooser>),
 }
 
 impl Algorithm {
+    /// The spoke set `items`.
+    pub fn spoke_set(items: BTreeSet<SpokeItem>) -> Self {
+        Algorithm::Spokes(Arc::new(items))
+    }
+
     /// `A1`: spokes at every joint and gap.
     pub fn a1() -> Self {
-        Algorithm::Spokes([SpokeItem::Joint, SpokeItem::Gap].into())
+        Algorithm::spoke_set([SpokeItem::Joint, SpokeItem::Gap].into())
     }
     /// `A2`: A1 plus every corner.
     pub fn a2() -> Self {
-        Algorithm::Spokes([SpokeItem::Joint, SpokeItem::Gap, SpokeItem::Corner].into())
+        Algorithm::spoke_set([SpokeItem::Joint, SpokeItem::Gap, SpokeItem::Corner].into())
     }
     /// `A3`: A1 plus every corner next to a delayed edge.
     pub fn a3() -> Self {
-        Algorithm::Spokes([SpokeItem::Joint, SpokeItem::Gap, SpokeItem::DelayedCorner].into())
+        Algorithm::spoke_set([SpokeItem::Joint, SpokeItem::Gap, SpokeItem::DelayedCorner].into())
     }
 
     /// `AF1`, AutoFrac2D's algorithm 1 ("surround delay and Bézier"): A1 plus every corner where
@@ -124,7 +130,7 @@ impl Algorithm {
     /// of a Bézier edge after it; next to a Cantor or another delayed edge it is cut off. Without
     /// delayed edges AF1 = A1.
     pub fn af1() -> Self {
-        Algorithm::Spokes(
+        Algorithm::spoke_set(
             [
                 SpokeItem::Joint,
                 SpokeItem::Gap,
@@ -239,7 +245,7 @@ impl Algorithm {
                 text.chars().count(),
             );
         }
-        Ok(Algorithm::Spokes(items))
+        Ok(Algorithm::spoke_set(items))
     }
 }
 

@@ -7,9 +7,11 @@
 
 use crate::error::{Error, Result};
 use crate::topology::edge::{EdgeType, JunctionKind};
-use crate::topology::face::Face;
+use crate::topology::face::{least_rotation, Face};
 use crate::topology::rule::Junction;
 use serde::Serialize;
+use std::collections::HashSet;
+use std::sync::Arc;
 
 /// Where an edge of a sub-face comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
@@ -49,8 +51,9 @@ pub enum Origin {
 /// A sub-face: its canonical face type and, aligned with its boundary, where each edge comes from.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SubFace {
-    /// The sub-face, in canonical form.
-    pub face: Face,
+    /// The sub-face, in canonical form. Interned: the sub-faces of one step that are the same
+    /// type share one face (a wide edge gives hundreds of equal sub-faces).
+    pub face: Arc<Face>,
     /// `origins[k]` is the origin of `face.boundary[k]`.
     pub origins: Vec<Origin>,
 }
@@ -137,8 +140,11 @@ struct Piece {
 /// Subdivides a face (THEORY §3). The face should be canonical: edge indices in the origins refer
 /// to its boundary as given.
 pub fn subdivide(face: &Face) -> Result<Subdivision> {
-    let mut pieces: Vec<Piece> = Vec::new();
-    let mut junctions: Vec<Junction> = Vec::new();
+    // One piece and one junction per sub-edge: sized once, so that the junctions the step keeps
+    // carry no spare capacity.
+    let total: usize = face.boundary.iter().map(|e| e.piece_count() as usize).sum();
+    let mut pieces: Vec<Piece> = Vec::with_capacity(total);
+    let mut junctions: Vec<Junction> = Vec::with_capacity(total);
     let len = face.boundary.len();
     for (i, e) in face.boundary.iter().enumerate() {
         let count = e.piece_count() as usize;
@@ -206,7 +212,7 @@ pub fn subdivide(face: &Face) -> Result<Subdivision> {
                 raw.extend(gap_sides(m));
             }
         }
-        let sub = make_subface(face, face.delay - 1, raw);
+        let sub = make_subface(face, face.delay - 1, raw, &mut HashSet::new());
         return Ok(Subdivision {
             junctions,
             spokes: Vec::new(),
@@ -227,6 +233,7 @@ pub fn subdivide(face: &Face) -> Result<Subdivision> {
     let s = spokes.len();
     let p = face.params;
     let mut subfaces = Vec::with_capacity(s);
+    let mut interned = HashSet::new();
     for k in 0..s {
         let start = spokes[k];
         let end = spokes[(k + 1) % s];
@@ -260,7 +267,7 @@ pub fn subdivide(face: &Face) -> Result<Subdivision> {
         if junctions[start].kind == JunctionKind::Gap {
             raw.push(gap_sides(start)[1]);
         }
-        subfaces.push(make_subface(face, 1, raw));
+        subfaces.push(make_subface(face, 1, raw, &mut interned));
     }
     let position = |sub: &SubFace, o: Origin| {
         sub.origins
@@ -299,16 +306,32 @@ pub fn subdivide(face: &Face) -> Result<Subdivision> {
     })
 }
 
-fn make_subface(parent: &Face, delay: u32, raw: Vec<(EdgeType, Origin)>) -> SubFace {
-    let (boundary, mut origins): (Vec<EdgeType>, Vec<Origin>) = raw.into_iter().unzip();
+/// The sub-face of `parent` with the edges and origins of `raw`, rotated to canonical form; its
+/// face is the one of `interned` when an earlier sub-face of the step has the same type.
+fn make_subface(
+    parent: &Face,
+    delay: u32,
+    raw: Vec<(EdgeType, Origin)>,
+    interned: &mut HashSet<Arc<Face>>,
+) -> SubFace {
+    let (mut boundary, mut origins): (Vec<EdgeType>, Vec<Origin>) = raw.into_iter().unzip();
+    let r = least_rotation(&boundary);
+    boundary.rotate_left(r);
+    origins.rotate_left(r);
     let face = Face {
         boundary,
         params: parent.params,
         algorithm: parent.algorithm.clone(),
         delay,
     };
-    let (face, r) = face.canonical();
-    origins.rotate_left(r);
+    let face = match interned.get(&face) {
+        Some(f) => Arc::clone(f),
+        None => {
+            let f = Arc::new(face);
+            interned.insert(Arc::clone(&f));
+            f
+        }
+    };
     SubFace { face, origins }
 }
 
@@ -581,7 +604,9 @@ mod tests {
         assert_eq!(sub.spokes.len(), 6);
         assert_eq!(sub.subfaces.len(), 6);
         for s in &sub.subfaces {
-            assert_eq!(s.face, f0);
+            assert_eq!(*s.face, f0);
+            // Equal sub-faces of one step share one interned face.
+            assert!(Arc::ptr_eq(&s.face, &sub.subfaces[0].face));
         }
         // The level-1 complex by hand: points = 3 joints (valence 3: two pieces and a spoke),
         // 6 corners (2), 6 gap ends (2: a piece and an Ec), 3 spoke points inside the gaps (3: two
@@ -613,7 +638,7 @@ mod tests {
         assert_eq!(sub.subfaces.len(), 1);
         // Run: B2(second half) C2 [B2 B2] C2 B2(first half), then Ea El Ea.
         let want = face("B2 C2 B2 B2 C2 B2 C2 B2 C2 | C2 B2 B2 | {joint}");
-        assert_eq!(sub.subfaces[0].face, want);
+        assert_eq!(*sub.subfaces[0].face, want);
     }
 
     #[test]
@@ -624,7 +649,7 @@ mod tests {
         assert_eq!(sub.subfaces.len(), 1);
         // C3 -> C3 [B3 B3] C3 [B3 B3] C3, B2^2 -> B2.
         assert_eq!(
-            sub.subfaces[0].face,
+            *sub.subfaces[0].face,
             face("C3 B3 B3 C3 B3 B3 C3 B2 | B2 B2 B3 | A1 | 2")
         );
     }

@@ -40,7 +40,7 @@ pub fn algorithm(
         3 => Just(Algorithm::a1()),
         2 => Just(Algorithm::a2()),
         2 => Just(Algorithm::a3()),
-        2 => proptest::collection::btree_set(items, 1..most).prop_map(Algorithm::Spokes),
+        2 => proptest::collection::btree_set(items, 1..most).prop_map(Algorithm::spoke_set),
     ]
 }
 

@@ -323,7 +323,7 @@ pub fn lacuna_face(f: &Face) -> crate::topology::Face {
             el: lacuna_edge(&f.params.el),
             ec: lacuna_edge(&f.params.ec),
         },
-        algorithm: crate::topology::Algorithm::Spokes(items),
+        algorithm: crate::topology::Algorithm::spoke_set(items),
         delay: f.delay,
     }
 }

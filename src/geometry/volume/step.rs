@@ -305,7 +305,7 @@ impl Builder {
                     id
                 }
                 None => {
-                    let id = self.face(s.face.clone(), corners.clone(), None);
+                    let id = self.face(s.face.as_ref().clone(), corners.clone(), None);
                     self.subface.insert((g, subkey), id);
                     id
                 }

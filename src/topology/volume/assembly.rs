@@ -147,8 +147,8 @@ pub fn mirror_consistent(f: &Face, limits: &Limits) -> Result<std::result::Resul
             )));
         }
         for s in here.subfaces {
-            if !seen.contains(&s.face) {
-                queue.push_back(s.face);
+            if !seen.contains(&*s.face) {
+                queue.push_back(std::sync::Arc::unwrap_or_clone(s.face));
             }
         }
     }

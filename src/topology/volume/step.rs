@@ -317,7 +317,7 @@ fn raise(v: &Volume, l1: &Level1, n: usize, patch: &[(usize, usize)]) -> Result<
     let mut faces = Vec::with_capacity(patch.len() + m + 1);
     let mut glue: Vec<Vec<(usize, usize)>> = Vec::new();
     for &(f, k) in patch {
-        faces.push(l1.subs[f].subfaces[k].face.clone());
+        faces.push(l1.subs[f].subfaces[k].face.as_ref().clone());
         glue.push(vec![(usize::MAX, 0); l1.len(f, k)]);
     }
     for &s in &sides {
@@ -384,7 +384,7 @@ fn delayed(v: &Volume, l1: &Level1) -> SubVolume {
     let mut glue: Vec<Vec<(usize, usize)>> = Vec::new();
     let mut holes = Vec::new();
     for &(f, k) in &all {
-        faces.push(l1.subs[f].subfaces[k].face.clone());
+        faces.push(l1.subs[f].subfaces[k].face.as_ref().clone());
         glue.push(
             (0..l1.len(f, k))
                 .map(|p| match l1.partner.get(&(f, k, p)) {
