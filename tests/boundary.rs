@@ -172,6 +172,7 @@ fn the_dragon_s_boundary_is_certified_and_forgeries_fail() {
             "contraction",
             "similarity-dimension",
             "boundary-dimension",
+            "multiplicity",
             "rule-compilation"
         ]
     );

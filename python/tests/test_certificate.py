@@ -56,6 +56,7 @@ def test_an_automaton_certificate_checks_here_and_on_the_command_line(cli, tmp_p
         "constraints-hold",
         "contraction",
         "similarity-dimension",
+        "multiplicity",
         "rule-compilation",
     ]
     report = lacuna.check(path)
