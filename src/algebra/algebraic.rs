@@ -17,6 +17,7 @@ use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 use std::cmp::Ordering;
 use std::fmt;
+mod mirror;
 
 /// The number of digits after the point printed by default.
 pub const DEFAULT_DIGITS: usize = 30;

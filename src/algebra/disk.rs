@@ -70,26 +70,7 @@ pub fn approx_roots(f: &Poly) -> Vec<(f64, f64)> {
             (p.0 * scale, p.1 * scale)
         })
         .collect();
-    for _ in 0..500 {
-        let mut moved = 0.0f64;
-        for i in 0..n {
-            let num = eval(z[i]);
-            let mut den = (1.0, 0.0);
-            for j in 0..n {
-                if i != j {
-                    den = cx_mul(den, (z[i].0 - z[j].0, z[i].1 - z[j].1));
-                }
-            }
-            if den.0 * den.0 + den.1 * den.1 > 0.0 {
-                let quo = cx_div(num, den);
-                z[i] = (z[i].0 - quo.0, z[i].1 - quo.1);
-                moved = moved.max(quo.0.hypot(quo.1) / z[i].0.hypot(z[i].1).max(1e-300));
-            }
-        }
-        if moved < 1e-17 {
-            break;
-        }
-    }
+    dk_sweeps(&mut z, eval, true);
     for zi in z.iter_mut() {
         for _ in 0..3 {
             let d = deval(*zi);
@@ -101,6 +82,38 @@ pub fn approx_roots(f: &Poly) -> Vec<(f64, f64)> {
         }
     }
     z
+}
+
+/// Durand–Kerner sweeps over `z` (in place, in order), at most 500, until the largest relative
+/// step is below 1e-17. With `stop_when_still`, also after a sweep that left every `z[i]` bit for
+/// bit unchanged: every later sweep would repeat that one exactly (the same inputs in the same
+/// order), so stopping there gives the same result as running on.
+fn dk_sweeps(z: &mut [(f64, f64)], eval: impl Fn((f64, f64)) -> (f64, f64), stop_when_still: bool) {
+    let n = z.len();
+    let bits = |w: (f64, f64)| (w.0.to_bits(), w.1.to_bits());
+    for _ in 0..500 {
+        let mut moved = 0.0f64;
+        let mut still = true;
+        for i in 0..n {
+            let num = eval(z[i]);
+            let mut den = (1.0, 0.0);
+            for j in 0..n {
+                if i != j {
+                    den = cx_mul(den, (z[i].0 - z[j].0, z[i].1 - z[j].1));
+                }
+            }
+            if den.0 * den.0 + den.1 * den.1 > 0.0 {
+                let quo = cx_div(num, den);
+                let next = (z[i].0 - quo.0, z[i].1 - quo.1);
+                still &= bits(next) == bits(z[i]);
+                z[i] = next;
+                moved = moved.max(quo.0.hypot(quo.1) / z[i].0.hypot(z[i].1).max(1e-300));
+            }
+        }
+        if moved < 1e-17 || stop_when_still && still {
+            break;
+        }
+    }
 }
 
 /// `(Re, Im)` of `D^n·p((a + b·i)/D)` for the integer polynomial `p` of degree n (lowest
@@ -250,6 +263,36 @@ impl Disk {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// Stopping after a sweep that moved nothing gives, bit for bit, the approximations of
+        /// all 500 sweeps (or of the relative-step test), from the same start as approx_roots.
+        #[test]
+        fn still_sweep_stop_is_exact(c in prop::collection::vec(-50i32..=50, 2..=10), s in 0.1f64..3.0) {
+            let n = c.len() - 1;
+            prop_assume!(c[n] != 0);
+            let c: Vec<f64> = c.iter().map(|&x| f64::from(x) / f64::from(c[n])).collect();
+            let eval = |z: (f64, f64)| {
+                c.iter().rev().fold((0.0, 0.0), |acc, &a| {
+                    let m = cx_mul(acc, z);
+                    (m.0 + a, m.1)
+                })
+            };
+            let (w, wn) = ((0.4f64, 0.9f64), 0.4f64.hypot(0.9));
+            let start: Vec<(f64, f64)> = (0..n)
+                .map(|i| {
+                    let p = (0..i).fold((1.0, 0.0), |acc, _| cx_mul(acc, (w.0 / wn, w.1 / wn)));
+                    (p.0 * s, p.1 * s)
+                })
+                .collect();
+            let (mut fast, mut full) = (start.clone(), start);
+            dk_sweeps(&mut fast, eval, true);
+            dk_sweeps(&mut full, eval, false);
+            let bits = |v: &[(f64, f64)]| v.iter().map(|z| (z.0.to_bits(), z.1.to_bits())).collect::<Vec<_>>();
+            prop_assert_eq!(bits(&fast), bits(&full));
+        }
+    }
 
     #[test]
     fn disks_of_known_roots() {

@@ -230,7 +230,95 @@ pub(crate) fn null_space(k: &NumberField, mut a: Vec<Vec<FieldElement>>) -> Vec<
         .collect()
 }
 
-/// An eigenvector of the rational matrix `t` for an eigenvalue `lambda` ∈ K of geometric
+/// The integer data of [`adjugate_eigenvector`] for one matrix `T`, shared by all its
+/// eigenvalues: `A = d·T` (d the lcm of the denominators), the monic integer characteristic
+/// polynomial `p(x) = d^n·χ(x/d)` of A and, per column j, the chain `w_{n−1} = e_j`,
+/// `w_{i−1} = A·w_i + p_i·e_j` (computed on first use). None of it depends on the eigenvalue.
+pub(crate) struct AdjugateChains {
+    d: num_bigint::BigInt,
+    a: Vec<Vec<num_bigint::BigInt>>,
+    p: Vec<num_bigint::BigInt>,
+    /// Per column, `ws[i] = w_i`.
+    chains: Vec<std::cell::OnceCell<Vec<Vec<num_bigint::BigInt>>>>,
+}
+
+impl AdjugateChains {
+    /// The data of the square matrix `t` with characteristic polynomial `chi`.
+    pub(crate) fn new(t: &Matrix, chi: &Poly) -> Self {
+        use num_bigint::BigInt;
+        use num_integer::Integer;
+        let n = t.rows;
+        let chi = chi.monic();
+        // Over Z: A = d·T has the eigenvalue μ = d·λ; adj(μI − A) = d^(n−1)·adj(λI − T).
+        let d = t.data.iter().fold(BigInt::one(), |acc, x| {
+            if x.denom().is_one() {
+                acc
+            } else {
+                acc.lcm(x.denom())
+            }
+        });
+        let scaled = |x: &BigRational| {
+            if x.denom().is_one() {
+                x.numer() * &d
+            } else {
+                x.numer() * (&d / x.denom())
+            }
+        };
+        let a: Vec<Vec<BigInt>> = (0..n)
+            .map(|i| (0..n).map(|j| scaled(t.get(i, j))).collect())
+            .collect();
+        // p_i = c_i·d^(n−i), an integer: one exact integer division each.
+        let mut dpow = BigInt::one();
+        let mut p: Vec<BigInt> = (0..=n)
+            .rev()
+            .map(|i| {
+                let c = chi.coeff(i);
+                let x = c.numer() * &dpow / c.denom();
+                dpow *= &d;
+                x
+            })
+            .collect();
+        p.reverse();
+        AdjugateChains {
+            d,
+            a,
+            p,
+            chains: (0..n).map(|_| std::cell::OnceCell::new()).collect(),
+        }
+    }
+
+    /// `ws[i] = w_i` for column `col`.
+    fn column(&self, col: usize) -> &[Vec<num_bigint::BigInt>] {
+        use num_bigint::BigInt;
+        self.chains[col].get_or_init(|| {
+            let n = self.a.len();
+            let mut w = vec![BigInt::zero(); n];
+            w[col] = BigInt::one();
+            let mut ws = vec![w.clone()];
+            for i in (1..n).rev() {
+                let mut next: Vec<BigInt> = self
+                    .a
+                    .iter()
+                    .map(|row| {
+                        row.iter()
+                            .zip(&w)
+                            .filter(|(x, y)| !x.is_zero() && !y.is_zero())
+                            .map(|(x, y)| x * y)
+                            .sum()
+                    })
+                    .collect();
+                next[col] += &self.p[i];
+                ws.push(next.clone());
+                w = next;
+            }
+            ws.reverse();
+            ws
+        })
+    }
+}
+
+/// An eigenvector of the rational matrix `t` (whose [`AdjugateChains`] are `chains`, computed
+/// once for all its eigenvalues) for an eigenvalue `lambda` ∈ K of geometric
 /// multiplicity 1, from a non-zero column of the adjugate `adj(λ·I − T) = Σ_i λ^i·Q_i` with
 /// `Q_{n−1} = I`, `Q_{i−1} = T·Q_i + c_i·I` (`χ = Σ c_i x^i` monic; `(x·I − T)·Σ x^i Q_i = χ(x)·I`
 /// by Cayley–Hamilton). Column j needs only n rational matrix–vector products; the field enters at
@@ -240,81 +328,38 @@ pub(crate) fn null_space(k: &NumberField, mut a: Vec<Vec<FieldElement>>) -> Vec<
 /// K has degree ≤ 2; in a field of degree ≥ 3, to coprime integer coordinates on the power basis
 /// (normalising would need an inversion in K and make the coordinates much larger).
 pub(crate) fn adjugate_eigenvector(
+    chains: &AdjugateChains,
     k: &NumberField,
-    t: &Matrix,
-    chi: &Poly,
     lambda: &FieldElement,
 ) -> Option<Vec<FieldElement>> {
     use num_bigint::BigInt;
-    use num_integer::Integer;
-    let n = t.rows;
-    let chi = chi.monic();
-    // Over Z: A = d·T (d the lcm of the denominators) has the eigenvalue μ = d·λ and the monic
-    // integer characteristic polynomial p(x) = d^n·χ(x/d); adj(μI − A) = d^(n−1)·adj(λI − T).
-    let d = t
-        .data
-        .iter()
-        .fold(BigInt::one(), |acc, x| acc.lcm(x.denom()));
-    let a: Vec<Vec<BigInt>> = (0..n)
-        .map(|i| {
-            (0..n)
-                .map(|j| {
-                    let x = t.get(i, j);
-                    x.numer() * (&d / x.denom())
-                })
-                .collect()
-        })
-        .collect();
+    let n = chains.a.len();
+    let d = &chains.d;
     let dq = BigRational::from_integer(d.clone());
-    // p_i = c_i·d^(n−i), an integer: one exact integer division each, no rational arithmetic.
-    let mut dpow = BigInt::one();
-    let mut p: Vec<BigInt> = (0..=n)
-        .rev()
-        .map(|i| {
-            let c = chi.coeff(i);
-            let x = c.numer() * &dpow / c.denom();
-            dpow *= &d;
-            x
+    // Powers 1, μ, …, μ^(n−1) of μ = d·λ in K, for the general case only.
+    let pows = std::cell::OnceCell::new();
+    let pows = || {
+        pows.get_or_init(|| {
+            let mu = k.scale(lambda, &dq);
+            let mut pows = vec![k.rational(BigRational::one())];
+            for i in 1..n {
+                pows.push(k.mul(&pows[i - 1], &mu));
+            }
+            pows
         })
-        .collect();
-    p.reverse();
-    // Powers 1, μ, …, μ^(n−1) of μ = d·λ in K.
-    let mu = k.scale(lambda, &dq);
-    let mut pows = vec![k.rational(BigRational::one())];
-    for i in 1..n {
-        pows.push(k.mul(&pows[i - 1], &mu));
-    }
+    };
     let gen = is_generator(k, lambda);
     for col in 0..n {
-        // w_{n−1} = e_col, w_{i−1} = A·w_i + p_i·e_col, all integers.
-        let mut w = vec![BigInt::zero(); n];
-        w[col] = BigInt::one();
-        let mut ws = vec![w.clone()];
-        for i in (1..n).rev() {
-            let mut next: Vec<BigInt> = a
-                .iter()
-                .map(|row| {
-                    row.iter()
-                        .zip(&w)
-                        .filter(|(x, y)| !x.is_zero() && !y.is_zero())
-                        .map(|(x, y)| x * y)
-                        .sum()
-                })
-                .collect();
-            next[col] += &p[i];
-            ws.push(next.clone());
-            w = next;
-        }
-        ws.reverse(); // ws[i] = w_i
+        let ws = chains.column(col);
         if gen && k.degree() >= 3 {
             // Integers only: Σ (w_i)_r·d^i·x^i reduced over Z, then the primitive vector.
-            if let Some(v) = primitive_generator_column(k, &ws, &d) {
+            if let Some(v) = primitive_generator_column(k, ws, d) {
                 return Some(v);
             }
             continue;
         }
         if let Some(q) = lambda.as_rational() {
-            if let Some(v) = rational_column(k, &ws, &(q * &dq)) {
+            if let Some(v) = rational_column(k, ws, &(q * &dq)) {
                 return Some(v);
             }
             continue;
@@ -328,13 +373,13 @@ pub(crate) fn adjugate_eigenvector(
                         .iter()
                         .map(|x| {
                             let c = BigRational::from_integer(&x[r] * &dp);
-                            dp *= &d;
+                            dp *= d;
                             c
                         })
                         .collect();
                     return k.element(&Poly::new(c));
                 }
-                ws.iter().zip(&pows).filter(|(x, _)| !x[r].is_zero()).fold(
+                ws.iter().zip(pows()).filter(|(x, _)| !x[r].is_zero()).fold(
                     k.rational(BigRational::zero()),
                     |acc, (x, p)| {
                         k.add(&acc, &k.scale(p, &BigRational::from_integer(x[r].clone())))

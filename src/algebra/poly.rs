@@ -490,17 +490,25 @@ fn sign_variations(c: &[BigInt]) -> usize {
 /// the sign variations of `(1 + x)^n · p((a + b·x)/(1 + x))`. It is at least the number of
 /// roots and of the same parity, so 0 means none and 1 means exactly one.
 pub fn descartes_bound(p: &[BigInt], a: &BigRational, b: &BigRational) -> usize {
-    let n = p.len().saturating_sub(1);
     let d = a.denom().lcm(b.denom());
     let (aa, bb) = (a.numer() * (&d / a.denom()), b.numer() * (&d / b.denom()));
+    if let Some(v) = descartes_bound_i128(p, &aa, &bb, &d) {
+        return v;
+    }
+    descartes_bound_big(p, &aa, &bb, &d)
+}
+
+/// [`descartes_bound`] on `(aa/d, bb/d)`, in big integers.
+fn descartes_bound_big(p: &[BigInt], aa: &BigInt, bb: &BigInt, d: &BigInt) -> usize {
+    let n = p.len().saturating_sub(1);
     // g(y) = d^n p(y / d), integral; then g(aa + (bb − aa) x), then reverse and shift by 1.
     let mut dpow = BigInt::one();
     let mut g: Vec<BigInt> = vec![BigInt::zero(); n + 1];
     for i in (0..=n).rev() {
         g[i] = &p[i] * &dpow;
-        dpow *= &d;
+        dpow *= d;
     }
-    taylor_shift(&mut g, &aa);
+    taylor_shift(&mut g, aa);
     let h = bb - aa;
     let mut hpow = BigInt::one();
     for x in g.iter_mut() {
@@ -510,6 +518,49 @@ pub fn descartes_bound(p: &[BigInt], a: &BigRational, b: &BigRational) -> usize 
     g.reverse();
     taylor_shift(&mut g, &BigInt::one());
     sign_variations(&g)
+}
+
+/// [`descartes_bound_big`] in `i128` with checked arithmetic: the same count whenever every
+/// intermediate value fits, `None` as soon as one would overflow (never a wrapped value).
+fn descartes_bound_i128(p: &[BigInt], aa: &BigInt, bb: &BigInt, d: &BigInt) -> Option<usize> {
+    let small = |x: &BigInt| i128::try_from(x).ok();
+    let (aa, bb, d) = (small(aa)?, small(bb)?, small(d)?);
+    let shift = |c: &mut [i128], a: i128| -> Option<()> {
+        let n = c.len();
+        for i in 0..n.saturating_sub(1) {
+            for j in (i..n - 1).rev() {
+                c[j] = c[j].checked_add(c[j + 1].checked_mul(a)?)?;
+            }
+        }
+        Some(())
+    };
+    let mut g = vec![0i128; p.len()];
+    let mut dpow = 1i128;
+    for (k, (gi, pi)) in g.iter_mut().zip(p).rev().enumerate() {
+        if k > 0 {
+            dpow = dpow.checked_mul(d)?;
+        }
+        *gi = small(pi)?.checked_mul(dpow)?;
+    }
+    shift(&mut g, aa)?;
+    let h = bb.checked_sub(aa)?;
+    let mut hpow = 1i128;
+    for (k, x) in g.iter_mut().enumerate() {
+        if k > 0 {
+            hpow = hpow.checked_mul(h)?;
+        }
+        *x = x.checked_mul(hpow)?;
+    }
+    g.reverse();
+    shift(&mut g, 1)?;
+    let signs = g.iter().map(|x| x.signum()).filter(|&s| s != 0);
+    let mut v = 0;
+    let mut last = 0;
+    for s in signs {
+        v += usize::from(last != 0 && s != last);
+        last = s;
+    }
+    Some(v)
 }
 
 /// An open interval `(a, b)` holding exactly one root of the square-free `p`, its largest real
@@ -598,7 +649,37 @@ mod tests {
         assert_eq!(largest_root_interval(&Poly::from_ints(&[1, 0, 1])), None);
     }
 
+    #[test]
+    fn descartes_fast_path_fits_small_and_refuses_huge() {
+        let ints: Vec<BigInt> = [-2i64, 0, 1].iter().map(|&c| c.into()).collect();
+        let (a, b, d) = (BigInt::from(1), BigInt::from(3), BigInt::from(2));
+        assert_eq!(descartes_bound_i128(&ints, &a, &b, &d), Some(1));
+        let huge = BigInt::from(1) << 100u32;
+        assert_eq!(descartes_bound_i128(&ints, &a, &b, &huge), None);
+        assert_eq!(descartes_bound_big(&ints, &a, &b, &huge), 0);
+    }
+
     proptest! {
+        /// The i128 fast path of Descartes' bound gives the big-integer count whenever it
+        /// answers; the coefficient and end-point sizes reach both sides of the overflow line.
+        #[test]
+        fn descartes_fast_path_agrees(
+            c in prop::collection::vec(-(1i64 << 40)..(1i64 << 40), 2..=10),
+            shift in 0u32..40,
+            a in -(1i64 << 40)..(1i64 << 40),
+            w in 1i64..(1i64 << 30),
+            k in 0u32..30,
+        ) {
+            let ints: Vec<BigInt> = c.iter().map(|&x| BigInt::from(x) >> shift).collect();
+            prop_assume!(!ints.last().expect("nonempty").is_zero());
+            let d = BigInt::from(1) << k;
+            let aa = BigInt::from(a) >> shift;
+            let bb = &aa + w;
+            if let Some(v) = descartes_bound_i128(&ints, &aa, &bb, &d) {
+                prop_assert_eq!(v, descartes_bound_big(&ints, &aa, &bb, &d));
+            }
+        }
+
         #[test]
         fn division_identity(a in arb_poly(6), b in arb_poly(4)) {
             prop_assume!(!b.is_zero());

@@ -15,7 +15,9 @@ use num_bigint::{BigInt, BigUint};
 use num_integer::Integer;
 use num_traits::{One, Signed, Zero};
 
+mod hensel;
 mod irreducible;
+use hensel::hensel;
 pub(crate) use irreducible::irreducibility_prime;
 
 /// Factorisation gave up: too many factors modulo every prime tried.
@@ -229,6 +231,27 @@ fn fp_sub(a: &[u64], b: &[u64], p: u64) -> Fp {
     )
 }
 
+/// `⌊(2^64 − 1)/p⌋`, the constant of [`reduce`].
+fn barrett(p: u64) -> u64 {
+    u64::MAX / p
+}
+
+/// `x mod p` for `2 ≤ p < 2^31` with `m = barrett(p)`, without a division: the estimate
+/// `⌊x·m / 2^64⌋` lies in `(x/p − 3, x/p]`, so `x − q·p` is in `[0, 3p)` and two conditional
+/// subtractions finish it.
+#[inline]
+fn reduce(x: u64, p: u64, m: u64) -> u64 {
+    let q = ((u128::from(x) * u128::from(m)) >> 64) as u64;
+    let mut r = x - q * p;
+    if r >= p {
+        r -= p;
+    }
+    if r >= p {
+        r -= p;
+    }
+    r
+}
+
 fn fp_mul(a: &[u64], b: &[u64], p: u64) -> Fp {
     debug_assert!(p < 1 << 31);
     if a.is_empty() || b.is_empty() {
@@ -249,7 +272,8 @@ fn fp_mul(a: &[u64], b: &[u64], p: u64) -> Fp {
             }
         }
     }
-    trim(c.into_iter().map(|x| x % p).collect())
+    let m = barrett(p);
+    trim(c.into_iter().map(|x| reduce(x, p, m)).collect())
 }
 
 fn fp_divrem(a: &[u64], b: &[u64], p: u64) -> (Fp, Fp) {
@@ -261,11 +285,17 @@ fn fp_divrem(a: &[u64], b: &[u64], p: u64) -> (Fp, Fp) {
     // Residues of −b: the update adds t·(p − b_j). As in fp_mul, the entries of r stay below
     // p² (p < 2^31) and are reduced mod p only when read as a leading coefficient, and at the end.
     let neg: Vec<u64> = b.iter().map(|&x| (p - x % p) % p).collect();
-    let pp = p * p;
+    let (pp, m) = (p * p, barrett(p));
     let mut r = a.to_vec();
     let mut q = vec![0u64; a.len() - db];
     for i in (0..q.len()).rev() {
-        let t = (r[i + db] % p) * inv % p;
+        let lead = reduce(r[i + db], p, m);
+        // Monic divisors (the usual case) need no second product.
+        let t = if inv == 1 {
+            lead
+        } else {
+            reduce(lead * inv, p, m)
+        };
         q[i] = t;
         if t == 0 {
             continue;
@@ -278,7 +308,10 @@ fn fp_divrem(a: &[u64], b: &[u64], p: u64) -> (Fp, Fp) {
         }
     }
     r.truncate(db);
-    (trim(q), trim(r.into_iter().map(|x| x % p).collect()))
+    (
+        trim(q),
+        trim(r.into_iter().map(|x| reduce(x, p, m)).collect()),
+    )
 }
 
 fn fp_rem(a: &[u64], b: &[u64], p: u64) -> Fp {
@@ -438,13 +471,35 @@ pub(crate) fn modular_quotient(
     unreachable!("there are enough primes below 2^31")
 }
 
+/// `Σ c_i·rows[i]` over GF(p) (`c` no longer than `rows`).
+fn fp_combine(c: &[u64], rows: &[Fp], p: u64) -> Fp {
+    let width = rows.iter().map(Vec::len).max().unwrap_or(0);
+    let (pp, m) = (p * p, barrett(p));
+    let mut acc = vec![0u64; width];
+    for (&ci, row) in c.iter().zip(rows) {
+        for (a, &r) in acc.iter_mut().zip(row) {
+            *a += ci * r;
+            if *a >= pp {
+                *a -= pp;
+            }
+        }
+    }
+    trim(acc.into_iter().map(|x| reduce(x, p, m)).collect())
+}
+
 /// Distinct-degree factorisation of a square-free monic `f`: `(product, degree)` pairs.
 fn ddf(f: &[u64], p: u64) -> Vec<(Fp, usize)> {
     let mut out = Vec::new();
+    let f0 = f;
     let mut f = f.to_vec();
     let x: Fp = vec![0, 1];
     let mut h = x.clone();
     let pe = BigUint::from(p);
+    // Rows x^(i·p) mod f0 of the Frobenius map, built at the second step: then h^p = h(x^p)
+    // (coefficients in GF(p)) is one combination of rows instead of a power, and reducing it
+    // mod the current f (which divides f0) gives exactly h^p mod f.
+    let mut frobenius: Vec<Fp> = Vec::new();
+    let mut xp: Fp = Vec::new();
     let mut d = 0;
     while f.len() > 1 {
         d += 1;
@@ -453,7 +508,20 @@ fn ddf(f: &[u64], p: u64) -> Vec<(Fp, usize)> {
             out.push((f, deg));
             break;
         }
-        h = fp_powmod(&h, &pe, &f, p);
+        h = if d == 1 {
+            // f = f0 and h = x here: x^p mod f0, kept for the Frobenius rows.
+            xp = fp_powmod(&x, &pe, f0, p);
+            xp.clone()
+        } else {
+            if frobenius.is_empty() {
+                frobenius.push(vec![1]);
+                for i in 1..f0.len() - 1 {
+                    let next = fp_rem(&fp_mul(&frobenius[i - 1], &xp, p), f0, p);
+                    frobenius.push(next);
+                }
+            }
+            fp_rem(&fp_combine(&h, &frobenius, p), &f, p)
+        };
         let g = fp_gcd(&f, &fp_sub(&h, &x, p), p);
         if g.len() > 1 {
             f = fp_divrem(&f, &g, p).0;
@@ -536,49 +604,6 @@ fn factor_monic(f: &[BigInt]) -> Result<Vec<Vec<BigInt>>, FactorError> {
     let bound = (BigInt::one() << n) * norm1;
     let (lifted, m) = hensel(f, &gs, p, &bound);
     recombine(f, lifted, &m, p)
-}
-
-/// Lifts `f ≡ Π gs (mod p)` to `f ≡ Π lifted (mod m)` with `m = p^k > 2·bound`.
-fn hensel(f: &[BigInt], gs: &[Fp], p: u64, bound: &BigInt) -> (Vec<Vec<BigInt>>, BigInt) {
-    let fp: Fp = f.iter().map(|a| residue(a, p)).collect();
-    // a_i = (f / g_i)^{-1} mod g_i: then Σ a_i f/g_i ≡ 1, the partial-fraction identity.
-    let inverses: Vec<Fp> = gs
-        .iter()
-        .map(|g| fp_inverse_mod(&fp_divrem(&fp, g, p).0, g, p))
-        .collect();
-    let mut lifted: Vec<Vec<BigInt>> = gs
-        .iter()
-        .map(|g| g.iter().map(|&x| BigInt::from(x)).collect())
-        .collect();
-    let mut m = BigInt::from(p);
-    let pb = BigInt::from(p);
-    while m <= bound * 2 {
-        let mp = &m * &pb;
-        let mut prod = vec![BigInt::one()];
-        for g in &lifted {
-            let mut c = vec![BigInt::zero(); prod.len() + g.len() - 1];
-            for (i, x) in prod.iter().enumerate() {
-                for (j, y) in g.iter().enumerate() {
-                    c[i + j] += x * y;
-                }
-            }
-            prod = c.iter().map(|x| x.mod_floor(&mp)).collect();
-        }
-        let err: Fp = trim(
-            f.iter()
-                .zip(&prod)
-                .map(|(a, b)| residue(&((a - b).mod_floor(&mp) / &m), p))
-                .collect(),
-        );
-        for ((g, g0), a) in lifted.iter_mut().zip(gs).zip(&inverses) {
-            let delta = fp_rem(&fp_mul(&err, a, p), g0, p);
-            for (x, &d) in g.iter_mut().zip(&delta) {
-                *x += &m * d;
-            }
-        }
-        m = mp;
-    }
-    (lifted, m)
 }
 
 /// Monic division over Z: `Some(a / b)` when exact.

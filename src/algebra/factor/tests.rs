@@ -1,3 +1,4 @@
+use super::hensel::{lift_error_big, lift_error_u64};
 use super::*;
 use proptest::prelude::*;
 
@@ -94,5 +95,95 @@ proptest! {
         prop_assert_eq!(p.coeff(2), num_rational::BigRational::from_integer((-tr).into()));
         prop_assert_eq!(p.coeff(0), num_rational::BigRational::from_integer((-det).into()));
         prop_assert_eq!(p.coeff(3), num_rational::BigRational::one());
+    }
+}
+
+proptest! {
+    /// Barrett reduction is `%` for every 64-bit value and every modulus below 2^31, the
+    /// largest products (near p², near 2^64) included.
+    #[test]
+    fn barrett_reduction_is_remainder(x in any::<u64>(), p in 2u64..(1 << 31), k in 0u64..4) {
+        let m = barrett(p);
+        prop_assert_eq!(reduce(x, p, m), x % p);
+        let near = (p * p).saturating_sub(k);
+        prop_assert_eq!(reduce(near, p, m), near % p);
+        prop_assert_eq!(reduce(u64::MAX - k, p, m), (u64::MAX - k) % p);
+    }
+}
+
+/// Distinct-degree factorisation as it was before the Frobenius rows: one power h^p per step.
+fn ddf_by_powers(f: &[u64], p: u64) -> Vec<(Fp, usize)> {
+    let mut out = Vec::new();
+    let mut f = f.to_vec();
+    let x: Fp = vec![0, 1];
+    let mut h = x.clone();
+    let pe = BigUint::from(p);
+    let mut d = 0;
+    while f.len() > 1 {
+        d += 1;
+        if f.len() - 1 < 2 * d {
+            let deg = f.len() - 1;
+            out.push((f, deg));
+            break;
+        }
+        h = fp_powmod(&h, &pe, &f, p);
+        let g = fp_gcd(&f, &fp_sub(&h, &x, p), p);
+        if g.len() > 1 {
+            f = fp_divrem(&f, &g, p).0;
+            h = fp_rem(&h, &f, p);
+            out.push((g, d));
+        }
+    }
+    out
+}
+
+proptest! {
+    /// The distinct-degree factorisation through the Frobenius rows is the one by powers, on
+    /// random monic square-free polynomials modulo small and word-size primes.
+    #[test]
+    fn ddf_frobenius_is_ddf_by_powers(
+        c in prop::collection::vec(any::<u64>(), 2..=12),
+        which in 0usize..4,
+    ) {
+        let p = [3u64, 7, 101, 2_147_483_629][which];
+        let mut f: Fp = c.iter().map(|x| x % p).collect();
+        f.push(1);
+        let df = trim((1..f.len()).map(|i| f[i] * (i as u64 % p) % p).collect());
+        prop_assume!(fp_gcd(&f, &df, p).len() == 1);
+        prop_assert_eq!(ddf(&f, p), ddf_by_powers(&f, p));
+    }
+}
+
+proptest! {
+    /// The lifting error in machine integers is the one in big integers whenever it answers,
+    /// for random lifted factors below m = p^k and random f (positive and negative, small and
+    /// large); with m·p ≥ 2^63 it declines.
+    #[test]
+    fn lift_error_u64_is_lift_error_big(
+        which in 0usize..3,
+        k in 1u32..3,
+        gs in prop::collection::vec(prop::collection::vec(any::<u64>(), 1..=4), 1..=4),
+        fs in prop::collection::vec(any::<i64>(), 1..=14),
+        wide in any::<bool>(),
+    ) {
+        let p = [3u64, 65_521, 2_147_483_629][which];
+        let m = BigInt::from(p).pow(k);
+        let mp = &m * p;
+        let lifted: Vec<Vec<BigInt>> = gs
+            .iter()
+            .map(|g| g.iter().map(|&x| BigInt::from(x) % &m).collect())
+            .collect();
+        let n: usize = lifted.iter().map(|g| g.len() - 1).sum::<usize>() + 1;
+        let f: Vec<BigInt> = (0..n)
+            .map(|i| {
+                let x = BigInt::from(fs[i % fs.len()]);
+                if wide { x * BigInt::from(u64::MAX) } else { x }
+            })
+            .collect();
+        let big = lift_error_big(&f, &lifted, &m, &mp, p);
+        match lift_error_u64(&f, &lifted, &m, &mp, p) {
+            Some(e) => prop_assert_eq!(e, big),
+            None => prop_assert!(mp >= BigInt::from(1u64 << 63)),
+        }
     }
 }

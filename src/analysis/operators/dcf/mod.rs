@@ -30,7 +30,7 @@ pub use curvature::{curve_curvature, CurveCurvature, DyadicPoint, SideRange};
 use crate::algebra::algebraic::{FieldElement, NumberField, RealAlgebraic};
 use crate::algebra::disk::root_disks;
 use crate::algebra::factor::factor;
-use crate::algebra::fieldpoly::adjugate_eigenvector;
+use crate::algebra::fieldpoly::{adjugate_eigenvector, AdjugateChains};
 use crate::algebra::matrix::Matrix;
 use crate::analysis::operators::operator::{
     char_poly, cmp_abs_with_square, eigenvector_in, f64_of, negate, render_vec,
@@ -297,13 +297,14 @@ pub(crate) fn dcf_data(t: &Matrix) -> std::result::Result<DcfData, String> {
         (k2, g)
     };
     let tt = transpose(t);
-    let v1 = eigenvector_in(&k1, t, &chi, &lambda1)
+    let (ct, ctt) = (AdjugateChains::new(t, &chi), AdjugateChains::new(&tt, &chi));
+    let v1 = eigenvector_in(&k1, t, &ct, &lambda1)
         .ok_or_else(|| String::from("no eigenvector of λ1"))?;
-    let v2 = eigenvector_in(&k2, t, &chi, &lambda2)
+    let v2 = eigenvector_in(&k2, t, &ct, &lambda2)
         .ok_or_else(|| String::from("no eigenvector of λ2"))?;
-    let u1 = eigenvector_in(&k1, &tt, &chi, &lambda1)
+    let u1 = eigenvector_in(&k1, &tt, &ctt, &lambda1)
         .ok_or_else(|| String::from("no left eigenvector of λ1"))?;
-    let u2 = eigenvector_in(&k2, &tt, &chi, &lambda2)
+    let u2 = eigenvector_in(&k2, &tt, &ctt, &lambda2)
         .ok_or_else(|| String::from("no left eigenvector of λ2"))?;
     let s1 = k1
         .inv(&dot(&k1, &u1, &v1))
@@ -314,7 +315,7 @@ pub(crate) fn dcf_data(t: &Matrix) -> std::result::Result<DcfData, String> {
     let u1: Vec<FieldElement> = u1.iter().map(|x| k1.mul(x, &s1)).collect();
     let u2: Vec<FieldElement> = u2.iter().map(|x| k2.mul(x, &s2)).collect();
     let qk = crate::algebra::fieldpoly::rationals();
-    let cv = adjugate_eigenvector(&qk, t, &chi, &qk.rational(BigRational::one()))
+    let cv = adjugate_eigenvector(&ct, &qk, &qk.rational(BigRational::one()))
         .ok_or_else(|| String::from("no fixed point"))?;
     let cv: Vec<BigRational> = cv.iter().map(|x| x.as_rational().expect("Q")).collect();
     let sum: BigRational = cv.iter().sum();

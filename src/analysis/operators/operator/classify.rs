@@ -5,7 +5,8 @@
 use super::{eigenvector_in, q, Behaviour, ComplexFactor, CurvatureClass, RealRoot, TangentData};
 use crate::algebra::algebraic::{NumberField, RealAlgebraic};
 use crate::algebra::fieldpoly::{
-    circle_position, inside_unit_disk, k_divrem, k_eval, k_scale_var, to_k, Position,
+    circle_position, inside_unit_disk, k_divrem, k_eval, k_scale_var, to_k, AdjugateChains,
+    Position,
 };
 use crate::algebra::matrix::Matrix;
 use crate::algebra::poly::Poly;
@@ -115,6 +116,7 @@ fn reflect(f: &Poly) -> Poly {
 pub(super) fn classify(
     t: &Matrix,
     chi: &Poly,
+    chains: &AdjugateChains,
     mult_one: usize,
     reals: &[RealRoot],
     complex: &[ComplexFactor],
@@ -148,7 +150,8 @@ pub(super) fn classify(
                 }
             }
             Ordering::Less => {
-                let a = negate(&r.value);
+                // `reals` hold the roots exactly as isolated (see `RealRoot`): mirror them.
+                let a = r.value.negated_isolated();
                 if neg
                     .as_ref()
                     .is_none_or(|(p, _)| a.cmp_exact(p) == Ordering::Greater)
@@ -247,7 +250,7 @@ pub(super) fn classify(
         return degenerate(format!("λ1 = {rho} is not below 1: not contractive"));
     }
     // Tangent case: λ1 = ρ simple and strictly dominant. v1 over Q(λ1).
-    let v1 = eigenvector_in(&k, t, chi, &rho_k).expect("a simple eigenvalue has an eigenvector");
+    let v1 = eigenvector_in(&k, t, chains, &rho_k).expect("a simple eigenvalue has an eigenvector");
     let r2 = k.mul(&rho_k, &rho_k);
     // The other eigenvalues against the circle of radius λ1².
     let mut outside = false;
@@ -343,7 +346,7 @@ pub(super) fn classify(
             .iter()
             .any(|r| r.mult > 1 && cmp_abs_with_square(&r.value, &rho, &k) == Ordering::Equal);
         if second.is_none() && !multiple {
-            if let Some(v) = eigenvector_in(&k, t, chi, &l2) {
+            if let Some(v) = eigenvector_in(&k, t, chains, &l2) {
                 second = Some((l2, v));
             }
         }

@@ -18,7 +18,7 @@ use crate::algebra::algebraic::{FieldElement, NumberField, RealAlgebraic};
 use crate::algebra::disk::{approx_roots, root_disks, sqrt_up, Disk};
 use crate::algebra::factor::{charpoly, factor};
 use crate::algebra::fieldpoly::{
-    adjugate_eigenvector, inside_unit_disk, null_space, rationals, shifted, to_k,
+    adjugate_eigenvector, inside_unit_disk, null_space, rationals, shifted, to_k, AdjugateChains,
 };
 use crate::algebra::matrix::Matrix;
 use crate::algebra::poly::Poly;
@@ -270,7 +270,8 @@ pub(crate) fn images_f64(ms: &[Vec<Vec<f64>>], points: Vec<Vec<f64>>, level: u32
     pts
 }
 
-/// A real eigenvalue with its factor's multiplicity.
+/// A real eigenvalue with its factor's multiplicity. `value` is exactly as
+/// [`RealAlgebraic::real_roots`] isolated it, never refined (`classify` mirrors it).
 struct RealRoot {
     value: RealAlgebraic,
     mult: usize,
@@ -296,13 +297,14 @@ pub fn analyse_matrix(t: &Matrix) -> Result<OperatorReport> {
         .iter()
         .find(|(f, _)| *f == one)
         .map_or(0, |(_, m)| *m);
+    let chains = AdjugateChains::new(t, &chi);
     let mut eigen = Vec::new();
     let mut reals: Vec<RealRoot> = Vec::new();
     let mut complex_disks: Vec<ComplexFactor> = Vec::new();
     for (f, mult) in &factors {
         let roots = RealAlgebraic::real_roots(f);
         for r in &roots {
-            let rendered = real_eigenvectors(t, &chi, r, *mult);
+            let rendered = real_eigenvectors(t, &chains, r, *mult);
             let approx = r.decimal(12);
             eigen.push(Eigenvalue {
                 min_poly: f.to_string(),
@@ -353,7 +355,7 @@ pub fn analyse_matrix(t: &Matrix) -> Result<OperatorReport> {
         )
     } else {
         let one_k = qk.rational(BigRational::one());
-        let ns = match (mult_one, adjugate_eigenvector(&qk, t, &chi, &one_k)) {
+        let ns = match (mult_one, adjugate_eigenvector(&chains, &qk, &one_k)) {
             (1, Some(v)) => vec![v],
             _ => null_space(&qk, shifted(&qk, t, &one_k)),
         };
@@ -388,7 +390,7 @@ pub fn analyse_matrix(t: &Matrix) -> Result<OperatorReport> {
     // Contraction: 1 simple, every other root of χ in the open unit disk.
     let contractive = mult_one == 1 && contracts(&reals, &complex_disks);
 
-    let (behaviour, exact) = classify(t, &chi, mult_one, &reals, &complex_disks);
+    let (behaviour, exact) = classify(t, &chi, &chains, mult_one, &reals, &complex_disks);
     let (lambda1, tangent, alpha_approx) = match &exact {
         Some(d) => {
             let l1 = d.lambda1.decimal(17).parse::<f64>().unwrap_or(f64::NAN);
@@ -509,14 +511,20 @@ struct ComplexFactor {
 
 /// Exact eigenvectors of the real eigenvalue `r` (a root of a factor of multiplicity `mult`),
 /// rendered. Simple: a column of the adjugate
-/// ([`adjugate_eigenvector`]), no elimination over Q(r). Repeated: null space over Q(r).
-fn real_eigenvectors(t: &Matrix, chi: &Poly, r: &RealAlgebraic, mult: usize) -> Vec<Vec<String>> {
+/// ([`adjugate_eigenvector`] on the matrix's `chains`), no elimination over Q(r).
+/// Repeated: null space over Q(r).
+fn real_eigenvectors(
+    t: &Matrix,
+    chains: &AdjugateChains,
+    r: &RealAlgebraic,
+    mult: usize,
+) -> Vec<Vec<String>> {
     let k = NumberField::new(r.clone());
     let lam = k.generator_element();
     let vecs = if mult > 1 {
         null_space(&k, shifted(&k, t, &lam))
     } else {
-        match adjugate_eigenvector(&k, t, chi, &lam) {
+        match adjugate_eigenvector(chains, &k, &lam) {
             Some(v) => vec![v],
             None => null_space(&k, shifted(&k, t, &lam)),
         }
@@ -524,14 +532,15 @@ fn real_eigenvectors(t: &Matrix, chi: &Poly, r: &RealAlgebraic, mult: usize) -> 
     vecs.iter().map(|v| render_vec(&k, v)).collect()
 }
 
-/// One eigenvector of the simple eigenvalue `lam` ∈ K.
+/// One eigenvector of the simple eigenvalue `lam` ∈ K of `t` (whose [`AdjugateChains`] are
+/// `chains`).
 pub(crate) fn eigenvector_in(
     k: &NumberField,
     t: &Matrix,
-    chi: &Poly,
+    chains: &AdjugateChains,
     lam: &FieldElement,
 ) -> Option<Vec<FieldElement>> {
-    adjugate_eigenvector(k, t, chi, lam)
+    adjugate_eigenvector(chains, k, lam)
         .or_else(|| null_space(k, shifted(k, t, lam)).into_iter().next())
 }
 
