@@ -526,18 +526,20 @@ fn wrong_versions_are_rejected() {
     cert.version = 99;
     assert_rejected("version 99", &cert, "header");
     assert!(check_json("{").failed());
-    // Files of versions 1 to 7 (other step forms: version 2 had no recipe, version 3 no claim,
+    // Files of versions 1 to 12 (other step forms: version 2 had no recipe, version 3 no claim,
     // version 4 no attractor steps, version 5 no solid-homology step nor shared faces, version
     // 6 no neighbour-map witnesses nor degeneracy step, version 7 no volume-solution-space
     // step, version 8 no solid-recurrence step, version 9 no level-one step, version 10 no
-    // gluing of an assembly's faces, version 11 no boundary-dimension step) are refused by
-    // their version, not by a parse error.
-    for old in ["1", "2", "3", "4", "5", "6", "7", "8", "9", "10", "11"] {
-        let json = face_certificate("F0").to_json().replacen(
-            "\"version\":12",
-            &format!("\"version\":{old}"),
-            1,
-        );
+    // gluing of an assembly's faces, version 11 no boundary-dimension step, version 12 no
+    // multiplicity step) are refused by their version, not by a parse error.
+    let current = format!("\"version\":{}", lacuna::certificate::VERSION);
+    for old in [
+        "1", "2", "3", "4", "5", "6", "7", "8", "9", "10", "11", "12",
+    ] {
+        let json =
+            face_certificate("F0")
+                .to_json()
+                .replacen(&current, &format!("\"version\":{old}"), 1);
         let report = check_json(&json);
         assert!(report.failed(), "{}", report.to_text());
         assert!(
