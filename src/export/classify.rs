@@ -234,7 +234,9 @@ fn invariants(
 fn certified_levels(name: &str, model: &crate::input::AutomatonModel) -> String {
     if crate::certificate::multiplicity_certifiable(model) {
         format!(
-            "{name}: its multiplicity at the levels of at most 4096 pieces (up to level 8) is certified by the step `multiplicity` of `lacuna verify {name} --certificate OUT`; the extension to every level (the open-set condition of the merged maps, the recurrence's order) is not in a certificate"
+            "{name}: its multiplicity at the levels of at most {} pieces (up to level {}) is certified by the step `multiplicity` of `lacuna verify {name} --certificate OUT`; the extension to every level (the open-set condition of the merged maps, the recurrence's order) is not in a certificate",
+            crate::analysis::invariants::automaton::MAX_CONTACT_PIECES,
+            crate::certificate::MULTIPLICITY_LEVELS,
         )
     } else {
         format!(

@@ -54,9 +54,7 @@ pub fn automaton_invariants(
 ) -> Result<Invariants> {
     let a = &model.automaton;
     let n = a.states.len();
-    let subs: Vec<usize> = (0..a.operators.len())
-        .filter(|&o| a.operators[o].kind == OpKind::Sub)
-        .collect();
+    let subs = sub_operators(model);
     let mut v = vec![BigUint::zero(); n];
     v[model.start] = BigUint::from(1u32);
     let mut cardinality = Vec::new();
@@ -155,10 +153,7 @@ pub fn coincidence_histograms(
     levels: u64,
     max_pieces: usize,
 ) -> Result<Vec<BTreeMap<usize, u64>>> {
-    let a = &model.automaton;
-    let subs: Vec<usize> = (0..a.operators.len())
-        .filter(|&o| a.operators[o].kind == OpKind::Sub)
-        .collect();
+    let subs = sub_operators(model);
     let (per_level, _) = multiplicities(
         model,
         resolved,
@@ -168,6 +163,14 @@ pub fn coincidence_histograms(
         AutomatonMultiplicity::Coincidences,
     )?;
     Ok(per_level.into_iter().map(|(h, _)| h).collect())
+}
+
+/// The subdivision operators of the automaton, by index.
+fn sub_operators(model: &AutomatonModel) -> Vec<usize> {
+    let a = &model.automaton;
+    (0..a.operators.len())
+        .filter(|&o| a.operators[o].kind == OpKind::Sub)
+        .collect()
 }
 
 /// The named counts of levels 0 to `levels` from the histograms of levels 1 on (level 0 and

@@ -378,9 +378,10 @@ pub fn multiplicity_certifiable(m: &crate::input::AutomatonModel) -> bool {
     canonical_prime(&model_claim(m)).is_some()
 }
 
-/// The levels a `multiplicity` step lists at most, and the pieces of a level it enumerates at
-/// most (the step stops before a larger level).
-const MULTIPLICITY_LEVELS: u64 = 8;
+/// The most levels a `multiplicity` step lists (it also stops before a level of more than
+/// [`MAX_CONTACT_PIECES`](crate::analysis::invariants::automaton::MAX_CONTACT_PIECES) pieces);
+/// `classify`'s note names both bounds.
+pub const MULTIPLICITY_LEVELS: u64 = 8;
 
 /// Seed 002's multiplicity of the first levels as the step `multiplicity` (levels of at most
 /// [`MAX_CONTACT_PIECES`](crate::analysis::invariants::automaton::MAX_CONTACT_PIECES) pieces,

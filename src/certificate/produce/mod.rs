@@ -20,7 +20,7 @@ mod volumes;
 
 pub use automata::{
     automaton_claim, certificate_for_automaton, certificate_for_model, certify_model,
-    lacuna_automaton, model_claim, model_of_claim, multiplicity_certifiable,
+    lacuna_automaton, model_claim, model_of_claim, multiplicity_certifiable, MULTIPLICITY_LEVELS,
 };
 pub use faces::{
     certificate_for, certificate_for_assembly, certificate_for_substitution, closure_step,
