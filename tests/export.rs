@@ -125,7 +125,8 @@ fn moditere_model_is_python_with_the_predicted_cells_and_constraints() {
     for (k, name) in cases.iter().enumerate() {
         let input = load_input(name).unwrap();
         let ts = close_or_error(&input.faces(), &Limits::default()).unwrap();
-        let text = moditere_text(&input, &ts, GenOptions::default()).unwrap();
+        let g = automaton_of(&ts, GenOptions::default());
+        let text = moditere_text(&input, &ts, &g, &Limits::default()).unwrap();
         let file = dir.join(format!("m{k}.py"));
         std::fs::write(&file, &text).unwrap();
         assert!(python_parses(&file), "{name}: not valid Python");

@@ -207,6 +207,29 @@ fn hardening_10_solve_memory_estimated_before_solving() {
     assert_eq!(code, 2, "{out}{err}");
     assert!(err.contains("--max-memory"), "{err}");
     assert!(t < BEFORE_THE_WORK, "{t:?}");
+    // The MODITERE export writes the exact particular solution, so it solves the same system
+    // and is held to the same estimate (it checked only the unknowns before: a face with E's
+    // edges of 800 sub-edges, estimated at 7973 MiB, ran 56 s and peaked at 5.2 GB under the
+    // default limit of 1024 MiB). Here the 1.76-million-unknown system again, and nothing written.
+    let out_file = scratch("refused-model.py", "");
+    std::fs::remove_file(&out_file).unwrap();
+    let (code, out, err, t) = timed(&[
+        "export",
+        face,
+        "--max-boundary",
+        "1000",
+        "--format",
+        "moditere",
+        "-o",
+        &out_file,
+    ]);
+    assert_eq!(code, 2, "{out}{err}");
+    assert!(
+        err.contains("error[E0501]") && err.contains("--max-memory"),
+        "{err}"
+    );
+    assert!(t < BEFORE_THE_WORK, "{t:?}");
+    assert!(!std::path::Path::new(&out_file).exists());
     // A small automaton still solves: state e 3 with one unknown 3×3 operator, barycentric:
     // 9 unknowns, 3 column sums, 6 degrees of freedom.
     let file = scratch(

@@ -534,10 +534,18 @@ impl SolveReport {
     }
 }
 
-/// Solves the automaton's constraint system exactly.
-pub fn solve_automaton(a: &Automaton) -> Result<(SolveReport, Linearized, Solution)> {
+/// Solves the automaton's constraint system exactly, without the report: for the callers that
+/// only read the solution (exports, certificates). Naming every free unknown and basis entry of
+/// the report costs more than the solve on systems of thousands of unknowns.
+pub fn solve_system(a: &Automaton) -> Result<(Linearized, Solution)> {
     let lin = a.linearize()?;
     let solution = linsys::solve(&lin.system);
+    Ok((lin, solution))
+}
+
+/// Solves the automaton's constraint system exactly, with the report of what was found.
+pub fn solve_automaton(a: &Automaton) -> Result<(SolveReport, Linearized, Solution)> {
+    let (lin, solution) = solve_system(a)?;
     let mut report = SolveReport {
         unknowns: lin.system.unknowns,
         equations: lin.system.rows.len(),

@@ -12,8 +12,8 @@ pub(crate) mod presolve;
 pub(crate) mod volume;
 
 pub use automaton::{
-    solve_automaton, Automaton, Constraint, ConstraintKind, Factor, Linearized, OpKind, Operator,
-    RowOrigin, SolveReport, State,
+    solve_automaton, solve_system, Automaton, Constraint, ConstraintKind, Factor, Linearized,
+    OpKind, Operator, RowOrigin, SolveReport, State,
 };
 pub use generate::{
     automaton_of, collapses, collapses_at, degeneracies, solve_closure, Collapses, GenOptions,

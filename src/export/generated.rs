@@ -70,9 +70,8 @@ pub fn generated_text(
                     )
                 }
                 GeneratedFormat::Moditere => {
-                    let g = automaton_of(&ts, opts.clone());
-                    limits.check_unknowns(g.automaton.unknown_count())?;
-                    super::moditere_text(&input, &ts, opts)?
+                    let g = automaton_of(&ts, opts);
+                    super::moditere_text(&input, &ts, &g, limits)?
                 }
             }
         }

@@ -12,11 +12,11 @@
 //! `from __future__ import division`.
 
 use crate::algebra::matrix::Matrix;
-use crate::constraint::{automaton_of, solve_automaton, GenOptions, Solution};
+use crate::constraint::{solve_system, Generated, Solution};
 use crate::input::{CoordKind, Input};
-use crate::topology::{Algorithm, EdgeKind, EdgeType, Face, TypeSet};
+use crate::topology::{Algorithm, EdgeKind, EdgeType, Face, Limits, TypeSet};
 use num_rational::BigRational;
-use std::collections::BTreeSet;
+use std::collections::{BTreeSet, HashMap};
 
 /// AutoFrac2D's name of an edge state: `B2`, or `C2_2` for lacuna's `C2^3` (remaining delay).
 fn edge_name(e: &EdgeType) -> String {
@@ -107,18 +107,36 @@ fn interns(m: usize) -> Vec<String> {
     }
 }
 
-/// Writes the MODITERE model of `input`, whose closure is `ts`, with the generated automaton's
-/// options `opts` (Bézier degree, Cantor layout).
+/// Writes the MODITERE model of `input`, whose closure is `ts` and whose generated automaton
+/// (`automaton_of(ts, opts)`) is `g`. The model carries the exact particular solution of the
+/// constraint system, so the solve's unknowns and estimated memory are checked against `limits`
+/// before it runs.
 pub fn moditere_text(
     input: &Input,
     ts: &TypeSet,
-    opts: GenOptions,
+    g: &Generated,
+    limits: &Limits,
 ) -> crate::error::Result<String> {
-    let g = automaton_of(ts, opts);
+    limits.check_unknowns(g.automaton.unknown_count())?;
+    limits.check_memory(g.automaton.solve_memory_estimate())?;
     let a = &g.automaton;
-    let (_, lin, solution) = solve_automaton(a)?;
+    let (lin, solution) = solve_system(a)?;
+    // Operators and states by name, looked up once per sub-face and edge: a linear search per
+    // lookup made the export quadratic in the number of sub-faces (a wide face has 10⁵).
+    let op_index: HashMap<&str, usize> = a
+        .operators
+        .iter()
+        .enumerate()
+        .map(|(i, o)| (o.name.as_str(), i))
+        .collect();
+    let state_index: HashMap<&str, usize> = a
+        .states
+        .iter()
+        .enumerate()
+        .map(|(i, s)| (s.name.as_str(), i))
+        .collect();
     let op_value = |name: &str| -> Option<Matrix> {
-        let o = a.operators.iter().position(|x| x.name == name)?;
+        let o = *op_index.get(name)?;
         let op = &a.operators[o];
         if let Some(v) = &op.value {
             return Some(v.clone());
@@ -134,14 +152,7 @@ pub fn moditere_text(
             data: space.particular[base..base + r * c].to_vec(),
         })
     };
-    let dim = |e: &EdgeType| {
-        a.states[a
-            .states
-            .iter()
-            .position(|s| s.name == e.to_string())
-            .expect("edge state")]
-        .dim
-    };
+    let dim = |e: &EdgeType| a.states[state_index[e.to_string().as_str()]].dim;
     let mut o = String::new();
     let mut line = |s: &str| {
         o.push_str(s);
@@ -399,7 +410,7 @@ pub fn moditere_text(
     line("    ");
     line("    ##############################");
     line("    # control points");
-    let q = opts_degree(&g);
+    let q = opts_degree(g);
     for (i, f) in faces.iter().enumerate() {
         let pts = control_points(input, i, f, q, rotation[i]);
         let count: usize = f.boundary.iter().map(|e| dim(e) - 1).sum();

@@ -43,7 +43,7 @@ pub fn certificate_for_automaton(
         cert.steps.push(given_step(automaton, &k, &values)?);
         return Ok(cert);
     }
-    let (_, lin, solution) = crate::constraint::solve_automaton(automaton)?;
+    let (lin, solution) = crate::constraint::solve_system(automaton)?;
     let source = format!("the constraints of the automaton `{name}`");
     cert.steps.push(step_of_system(
         system(&source, &lin.system, None),
@@ -291,7 +291,7 @@ pub fn certificate_for_model(
         // Every operator given: the resolved values are the given ones.
         cert.steps.push(given_step(&m.automaton, &m.field, ops)?);
     } else {
-        let (_, lin, solution) = crate::constraint::solve_automaton(&m.automaton)?;
+        let (lin, solution) = crate::constraint::solve_system(&m.automaton)?;
         let source = format!("the constraints of the automaton `{name}`");
         cert.steps.push(step_of_system(
             system(&source, &lin.system, None),

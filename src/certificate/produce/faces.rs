@@ -56,7 +56,7 @@ pub fn certificate_for_assembly(
         opts.degree, opts.cantor_gap
     );
     let generated = crate::constraint::automaton_of(ts, opts);
-    let (_, lin, solution) = crate::constraint::solve_automaton(&generated.automaton)?;
+    let (lin, solution) = crate::constraint::solve_system(&generated.automaton)?;
     let recipe = Recipe {
         unknowns: lin
             .unknown_entries
