@@ -439,6 +439,7 @@ pub(super) fn verify(
         ));
     }
     limits.check_unknowns(model.automaton.unknown_count())?;
+    limits.check_memory(model.automaton.solve_memory_estimate())?;
     let analysis =
         lacuna::analysis::analyse_attractor(model, limits.max_unknowns, limits.max_products, 30)?;
     let lacuna::analysis::Attractor {
