@@ -93,6 +93,25 @@ pub trait SpokeChooser: fmt::Debug + Send + Sync {
     fn spokes(&self, junctions: &[Junction]) -> Vec<bool>;
 }
 
+/// The built-in spoke sets by name; each lists distinct items. A1 = {joint, gap}, A2 = A1 +
+/// corner, A3 = A1 + delayed-corner, AF1 = A1 + delayed-corner-not-b.
+const BUILTINS: [(&str, &[SpokeItem]); 4] = [
+    ("A1", &[SpokeItem::Joint, SpokeItem::Gap]),
+    ("A2", &[SpokeItem::Joint, SpokeItem::Gap, SpokeItem::Corner]),
+    (
+        "A3",
+        &[SpokeItem::Joint, SpokeItem::Gap, SpokeItem::DelayedCorner],
+    ),
+    (
+        "AF1",
+        &[
+            SpokeItem::Joint,
+            SpokeItem::Gap,
+            SpokeItem::DelayedCornerNotB,
+        ],
+    ),
+];
+
 /// A subdivision algorithm: a set of spoke items (the built-ins are such sets), or a custom
 /// [`SpokeChooser`].
 #[derive(Clone, Debug)]
@@ -113,15 +132,15 @@ impl Algorithm {
 
     /// `A1`: spokes at every joint and gap.
     pub fn a1() -> Self {
-        Algorithm::spoke_set([SpokeItem::Joint, SpokeItem::Gap].into())
+        Self::builtin(0)
     }
     /// `A2`: A1 plus every corner.
     pub fn a2() -> Self {
-        Algorithm::spoke_set([SpokeItem::Joint, SpokeItem::Gap, SpokeItem::Corner].into())
+        Self::builtin(1)
     }
     /// `A3`: A1 plus every corner next to a delayed edge.
     pub fn a3() -> Self {
-        Algorithm::spoke_set([SpokeItem::Joint, SpokeItem::Gap, SpokeItem::DelayedCorner].into())
+        Self::builtin(2)
     }
 
     /// `AF1`, AutoFrac2D's algorithm 1 ("surround delay and Bézier"): A1 plus every corner where
@@ -130,27 +149,25 @@ impl Algorithm {
     /// of a Bézier edge after it; next to a Cantor or another delayed edge it is cut off. Without
     /// delayed edges AF1 = A1.
     pub fn af1() -> Self {
-        Algorithm::spoke_set(
-            [
-                SpokeItem::Joint,
-                SpokeItem::Gap,
-                SpokeItem::DelayedCornerNotB,
-            ]
-            .into(),
-        )
+        Self::builtin(3)
     }
 
-    /// The built-in name (`A1`, `A2`, `A3`, `AF1`) if this is one of them.
+    /// The `k`-th entry of [`BUILTINS`] as an algorithm.
+    fn builtin(k: usize) -> Self {
+        Algorithm::spoke_set(BUILTINS[k].1.iter().copied().collect())
+    }
+
+    /// The built-in name (`A1`, `A2`, `A3`, `AF1`) if this is one of them. Compared item by item
+    /// against [`BUILTINS`], without building the sets: every face's name asks this, and a wide
+    /// closure names some 10⁵ sub-faces.
     pub fn builtin_name(&self) -> Option<&'static str> {
-        [
-            ("A1", Self::a1()),
-            ("A2", Self::a2()),
-            ("A3", Self::a3()),
-            ("AF1", Self::af1()),
-        ]
-        .into_iter()
-        .find(|(_, a)| a == self)
-        .map(|(n, _)| n)
+        let Algorithm::Spokes(items) = self else {
+            return None;
+        };
+        BUILTINS
+            .iter()
+            .find(|(_, b)| items.len() == b.len() && b.iter().all(|i| items.contains(i)))
+            .map(|&(n, _)| n)
     }
 
     /// True for the spoke sets whose closure the tool can bound in advance (A1, A2, A3, AF1).
@@ -377,6 +394,18 @@ mod tests {
         );
         let a = Algorithm::parse("{joint corner(C,B2)  gap}", 1, &[]).unwrap();
         assert_eq!(a.to_string(), "{joint gap corner(C,B2)}");
+        // A subset or a superset of a built-in is not it: {joint} and {joint gap corner
+        // delayed-corner} (A2 and A3 together) have no name; A2 with corner replaced is A3.
+        for (text, name) in [
+            ("{joint}", None),
+            ("{joint gap corner delayed-corner}", None),
+            ("{gap joint delayed-corner}", Some("A3")),
+            ("{delayed-corner-not-b joint gap}", Some("AF1")),
+            ("{corner gap joint}", Some("A2")),
+        ] {
+            let a = Algorithm::parse(text, 1, &[]).unwrap();
+            assert_eq!(a.builtin_name(), name, "{text}");
+        }
     }
 
     #[test]

@@ -522,15 +522,20 @@ impl Subdivision {
                 }
             }
         }
-        let mut number: std::collections::HashMap<usize, usize> = Default::default();
+        // Classes numbered in order of first appearance, through a table indexed by the root.
+        let mut number = vec![usize::MAX; uf.len()];
+        let mut next = 0;
         subs.iter()
             .enumerate()
             .map(|(k, s)| {
                 (0..s.origins.len())
                     .map(|p| {
                         let r = find(&mut uf, id(k, p));
-                        let next = number.len();
-                        *number.entry(r).or_insert(next)
+                        if number[r] == usize::MAX {
+                            number[r] = next;
+                            next += 1;
+                        }
+                        number[r]
                     })
                     .collect()
             })
@@ -548,12 +553,24 @@ impl Subdivision {
         // Each shared Ea is one edge seen from two sub-faces.
         let edges = slots - self.adjacencies.len();
         let mut valence = vec![0usize; vertices];
-        let shared: std::collections::HashSet<(usize, usize)> =
-            self.adjacencies.iter().map(|a| a.second).collect();
+        // The second side of each adjacency, as a flag per (sub-face, position) slot.
+        let mut start = Vec::with_capacity(self.subfaces.len());
+        let mut total = 0;
+        for s in &self.subfaces {
+            start.push(total);
+            total += s.origins.len();
+        }
+        let mut shared = vec![false; total];
+        for a in &self.adjacencies {
+            let (k, p) = a.second;
+            if self.subfaces.get(k).is_some_and(|s| p < s.origins.len()) {
+                shared[start[k] + p] = true;
+            }
+        }
         for (k, s) in self.subfaces.iter().enumerate() {
             let n = s.origins.len();
             for p in 0..n {
-                if shared.contains(&(k, p)) {
+                if shared[start[k] + p] {
                     continue;
                 }
                 valence[class[k][p]] += 1;
