@@ -335,6 +335,74 @@ fn make_subface(
     SubFace { face, origins }
 }
 
+/// A dense numbering of the origins a step of `parent` with `spokes` spokes can have: the pieces
+/// of each edge, the two sides of each gap of a Cantor edge, the two directions of each spoke and
+/// the lacuna sides (one per spoke). [`Subdivision::verify`] counts the uses of each in a vector
+/// instead of a hash map (a wide face's step has 10⁵ origins).
+struct OriginSlots {
+    /// Per edge: the slot of its piece 0 and its piece count.
+    pieces: Vec<(usize, usize)>,
+    /// Per edge: the slot of its gap 0's first side and its gap count (0 without gaps).
+    gaps: Vec<(usize, usize)>,
+    /// The slot of spoke 0 inward; spoke `j` takes `2j` (inward) and `2j + 1`.
+    spoke: usize,
+    /// The slot of lacuna side 0.
+    lacuna: usize,
+    /// The number of spokes.
+    spokes: usize,
+    /// The number of slots.
+    total: usize,
+}
+
+impl OriginSlots {
+    fn of(parent: &Face, spokes: usize) -> Self {
+        let mut total = 0;
+        let mut pieces = Vec::with_capacity(parent.boundary.len());
+        let mut gaps = Vec::with_capacity(parent.boundary.len());
+        for e in &parent.boundary {
+            let n = e.piece_count() as usize;
+            pieces.push((total, n));
+            total += n;
+            let g = if e.inner_junction() == Some(JunctionKind::Gap) {
+                (e.n as usize).saturating_sub(1)
+            } else {
+                0
+            };
+            gaps.push((total, g));
+            total += 2 * g;
+        }
+        let spoke = total;
+        let lacuna = spoke + 2 * spokes;
+        OriginSlots {
+            pieces,
+            gaps,
+            spoke,
+            lacuna,
+            spokes,
+            total: lacuna + spokes,
+        }
+    }
+
+    /// The slot of `o`, or `None` for an origin outside the step (an index out of range).
+    fn slot(&self, o: Origin) -> Option<usize> {
+        let within = |i: usize, n: usize| (i < n).then_some(i);
+        match o {
+            Origin::Piece { edge, piece } => {
+                let &(base, n) = self.pieces.get(edge)?;
+                Some(base + within(piece, n)?)
+            }
+            Origin::GapSide { edge, gap, after } => {
+                let &(base, n) = self.gaps.get(edge)?;
+                Some(base + 2 * within(gap, n)? + usize::from(after))
+            }
+            Origin::Spoke { spoke, inward } => {
+                Some(self.spoke + 2 * within(spoke, self.spokes)? + usize::from(!inward))
+            }
+            Origin::Lacuna { side } => Some(self.lacuna + within(side, self.spokes)?),
+        }
+    }
+}
+
 impl Subdivision {
     /// Checks every structural identity of the step against the parent face: each sub-edge of each
     /// parent edge is used exactly once and with its type; each gap has both sides closed once; each
@@ -342,8 +410,8 @@ impl Subdivision {
     /// adjacency; the lacuna cycle has one side per sub-face; every edge has the type its origin
     /// demands. Returns the first violation found.
     pub fn verify(&self, parent: &Face) -> std::result::Result<(), String> {
-        use std::collections::HashMap;
-        let mut seen: HashMap<Origin, usize> = HashMap::new();
+        let slots = OriginSlots::of(parent, self.spokes.len());
+        let mut seen = vec![0usize; slots.total];
         for (k, sub) in self.subfaces.iter().enumerate() {
             if sub.face.boundary.len() != sub.origins.len() {
                 return Err(format!(
@@ -367,7 +435,6 @@ impl Subdivision {
                 ));
             }
             for (pos, (o, ty)) in sub.origins.iter().zip(&sub.face.boundary).enumerate() {
-                *seen.entry(*o).or_default() += 1;
                 let want = match *o {
                     Origin::Piece { edge, piece } => {
                         let e = parent
@@ -390,19 +457,24 @@ impl Subdivision {
                         "sub-face {k} position {pos}: edge {ty} but its origin demands {want}"
                     ));
                 }
+                let slot = slots.slot(*o).ok_or_else(|| {
+                    format!("sub-face {k} position {pos}: {o:?} is not a part of this step")
+                })?;
+                seen[slot] += 1;
             }
         }
-        let once = |o: Origin, what: String| match seen.get(&o) {
-            Some(1) => Ok(()),
-            Some(c) => Err(format!("{what} used {c} times")),
-            None => Err(format!("{what} is missing")),
+        // Every slot once; the message is formatted only for a violation.
+        let once = |o: Origin, what: &dyn Fn() -> String| match slots.slot(o).map_or(0, |i| seen[i])
+        {
+            1 => Ok(()),
+            0 => Err(format!("{} is missing", what())),
+            c => Err(format!("{} used {c} times", what())),
         };
         for (i, e) in parent.boundary.iter().enumerate() {
             for piece in 0..e.piece_count() as usize {
-                once(
-                    Origin::Piece { edge: i, piece },
-                    format!("piece {piece} of edge {i}"),
-                )?;
+                once(Origin::Piece { edge: i, piece }, &|| {
+                    format!("piece {piece} of edge {i}")
+                })?;
             }
             if e.inner_junction() == Some(JunctionKind::Gap) {
                 for gap in 0..(e.n - 1) as usize {
@@ -413,7 +485,7 @@ impl Subdivision {
                                 gap,
                                 after,
                             },
-                            format!("side {after} of gap {gap} of edge {i}"),
+                            &|| format!("side {after} of gap {gap} of edge {i}"),
                         )?;
                     }
                 }
@@ -430,16 +502,16 @@ impl Subdivision {
                         spoke: j,
                         inward: true,
                     },
-                    format!("spoke {j} inward"),
+                    &|| format!("spoke {j} inward"),
                 )?;
                 once(
                     Origin::Spoke {
                         spoke: j,
                         inward: false,
                     },
-                    format!("spoke {j} outward"),
+                    &|| format!("spoke {j} outward"),
                 )?;
-                once(Origin::Lacuna { side: j }, format!("lacuna side {j}"))?;
+                once(Origin::Lacuna { side: j }, &|| format!("lacuna side {j}"))?;
             }
             if self.adjacencies.len() != s {
                 return Err(format!(
@@ -472,9 +544,6 @@ impl Subdivision {
         } else if self.subfaces.len() != 1 || s != 0 || !self.adjacencies.is_empty() {
             return Err("a delayed face has exactly one sub-face and no spoke".into());
         }
-        let total: usize = seen.values().sum();
-        let expected: usize = self.subfaces.iter().map(|f| f.origins.len()).sum();
-        debug_assert_eq!(total, expected);
         Ok(())
     }
 
@@ -605,6 +674,44 @@ mod tests {
 
     fn face(s: &str) -> Face {
         Face::parse(s).unwrap().canonical().0
+    }
+
+    #[test]
+    fn verify_rejects_an_origin_outside_the_step() {
+        // F0's step has 6 spokes; a sub-face that claims spoke 9 (an Ea edge, so its type is
+        // right) or a piece past the end of its edge is caught, and so is a spoke used twice.
+        let f0 = face("C2 B2 C2 B2 C2 B2 | C2 B2 B2 | A1");
+        let good = subdivide(&f0).unwrap();
+        assert_eq!(good.verify(&f0), Ok(()));
+        let (k, p) = good.adjacencies[0].first;
+        let mut bad = good.clone();
+        bad.subfaces[k].origins[p] = Origin::Spoke {
+            spoke: 9,
+            inward: true,
+        };
+        let e = bad.verify(&f0).unwrap_err();
+        assert!(e.contains("is not a part of this step"), "{e}");
+        let mut twice = good.clone();
+        let (k2, p2) = good.adjacencies[1].first;
+        twice.subfaces[k2].origins[p2] = good.subfaces[k].origins[p];
+        let e = twice.verify(&f0).unwrap_err();
+        assert!(e.contains("used 2 times") || e.contains("missing"), "{e}");
+        let mut past = good.clone();
+        let (k3, p3) = good
+            .subfaces
+            .iter()
+            .enumerate()
+            .find_map(|(k, s)| {
+                s.origins
+                    .iter()
+                    .position(|o| matches!(o, Origin::Piece { .. }))
+                    .map(|p| (k, p))
+            })
+            .unwrap();
+        if let Origin::Piece { edge, .. } = past.subfaces[k3].origins[p3] {
+            past.subfaces[k3].origins[p3] = Origin::Piece { edge, piece: 7 };
+        }
+        assert!(past.verify(&f0).unwrap_err().contains("out of range"));
     }
 
     #[test]
