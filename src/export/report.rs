@@ -5,10 +5,13 @@ use crate::input::library::Input;
 use crate::topology::class::ClassStructure;
 use crate::topology::closure::{Bound, Closure, Runaway, TypeSet};
 use crate::topology::count::{counts_from, LevelCount};
+use crate::topology::Face;
 use num_rational::BigRational;
 use serde::Serialize;
 use serde_json::{json, Value};
+use std::collections::HashMap;
 use std::fmt::Write as _;
+use std::sync::Arc;
 
 /// One face type as reported.
 #[derive(Clone, Debug, Serialize)]
@@ -149,12 +152,20 @@ pub fn type_rows(ts: &TypeSet) -> Vec<TypeRow> {
         .map(|(k, t)| TypeRow {
             id: format!("T{k}"),
             face: t.face.to_string(),
-            subfaces: t
-                .subdivision
-                .subfaces
-                .iter()
-                .map(|s| s.face.to_string())
-                .collect(),
+            subfaces: {
+                // The sub-faces of a step share their interned faces: each is written once.
+                let mut names: HashMap<*const Face, String> = HashMap::new();
+                t.subdivision
+                    .subfaces
+                    .iter()
+                    .map(|s| {
+                        names
+                            .entry(Arc::as_ptr(&s.face))
+                            .or_insert_with(|| s.face.to_string())
+                            .clone()
+                    })
+                    .collect()
+            },
             children: t.children.iter().map(|c| format!("T{c}")).collect(),
             contribution: BigRational::new(t.contribution_halves().into(), 2.into()).to_string(),
             complex: t.subdivision.level1_complex(&t.face),

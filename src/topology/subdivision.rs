@@ -562,8 +562,13 @@ impl Subdivision {
             union(&mut uf, id(sa, la), id(sb, lb + 1));
             union(&mut uf, id(sa, la + 1), id(sb, lb));
         }
-        let mut at_point: std::collections::BTreeMap<(usize, usize, bool), usize> =
-            Default::default();
+        // The first corner seen at each boundary point, by the point's key (edge, piece, end of
+        // a gap's piece) numbered densely through the pieces' slots.
+        let slots = OriginSlots::of(parent, 0);
+        let mut at_point = vec![usize::MAX; 2 * slots.total];
+        let point = |(edge, piece, end): (usize, usize, bool)| {
+            2 * (slots.pieces[edge].0 + piece) + usize::from(end)
+        };
         for (k, s) in subs.iter().enumerate() {
             for (l, o) in s.origins.iter().enumerate() {
                 let Origin::Piece { edge, piece } = *o else {
@@ -582,11 +587,9 @@ impl Subdivision {
                         ((edge + 1) % parent.boundary.len(), 0, false)
                     };
                     let c = id(k, corner);
-                    match at_point.get(&key) {
-                        Some(&other) => union(&mut uf, c, other),
-                        None => {
-                            at_point.insert(key, c);
-                        }
+                    match at_point[point(key)] {
+                        usize::MAX => at_point[point(key)] = c,
+                        other => union(&mut uf, c, other),
                     }
                 }
             }
