@@ -181,7 +181,7 @@ max_unknowns=10000
 [ "$full" = 1 ] && max_unknowns=999999999
 EXPORT_MAX_UNKNOWNS=$max_unknowns cargo bench --quiet --bench solver -- --export "$out/systems" \
   | tee "$out/solver.txt" >&2
-grep -E '^ +[0-9]+ ' "$out/solver.txt" | while read -r k _types unknowns equations secs consistent face; do
+grep -E '^ +[0-9]+ ' "$out/solver.txt" | while read -r k _types unknowns equations _build secs consistent face; do
   [ "$unknowns" -le "$max_unknowns" ] || continue
   what="solve, $unknowns unknowns × $equations equations"
   # The million-unknown system is estimated above solve's default memory limit of 1 GiB.

@@ -1,6 +1,7 @@
 //! Benchmark (issue #4): the exact solver on the constraint systems of a series of growing
-//! closures. For each face: unknowns, equations, the time to solve (best of 3, release), and
-//! whether the system is consistent. With `--export DIR` it also writes each system as a sparse
+//! closures. For each face: unknowns, equations, the time to build the system from the automaton
+//! (`Automaton::linearize`, best of 3), the time to solve it (best of 3, release), and whether the
+//! system is consistent. Build and solve are timed apart (issue #34). With `--export DIR` it also writes each system as a sparse
 //! text matrix (`lacuna::constraint::write_text`) for the FLINT comparison in `benches/compare_flint.sh`
 //! and the SymPy one in `benches/compare_peers.sh`: the systems of at most 20,000 unknowns, or of
 //! at most `EXPORT_MAX_UNKNOWNS` when that variable is set.
@@ -35,18 +36,18 @@ fn main() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(20_000);
     println!(
-        "{:>3}  {:>6}  {:>9}  {:>9}  {:>10}  {:>10}  face",
-        "#", "types", "unknowns", "equations", "solve (s)", "consistent"
+        "{:>3}  {:>6}  {:>9}  {:>9}  {:>10}  {:>10}  {:>10}  face",
+        "#", "types", "unknowns", "equations", "build (s)", "solve (s)", "consistent"
     );
     for (k, text) in SERIES.iter().enumerate() {
         let face = Face::parse(text).expect("valid face");
         let ts = close_or_error(&[face], &Limits::default()).expect("closes");
         let g = automaton_of(&ts, GenOptions::default());
-        let lin = g.automaton.linearize().expect("linear");
+        let (build, lin) = common::best_of(3, || g.automaton.linearize().expect("linear"));
         let (best, consistent) =
             common::best_of(3, || matches!(solve(&lin.system), Solution::Consistent(_)));
         println!(
-            "{k:>3}  {:>6}  {:>9}  {:>9}  {best:>10.4}  {consistent:>10}  {text}",
+            "{k:>3}  {:>6}  {:>9}  {:>9}  {build:>10.4}  {best:>10.4}  {consistent:>10}  {text}",
             ts.types.len(),
             lin.system.unknowns,
             lin.system.rows.len()

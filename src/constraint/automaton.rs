@@ -8,6 +8,7 @@
 
 use crate::algebra::matrix::Matrix;
 use crate::constraint::linsys::{self, Equation, LinearSystem, Solution};
+use crate::constraint::presolve::Q;
 use crate::error::{Error, Result, Span};
 use num_rational::BigRational;
 use num_traits::{One, Zero};
@@ -373,7 +374,12 @@ impl Automaton {
                         let mut terms = Vec::with_capacity(row.len() * col.len());
                         for &(i, a) in row {
                             for &(j, b) in col {
-                                terms.push((base + i * xc + j, a * b));
+                                // Machine-word product with a checked fallback: the same
+                                // reduced value as `a * b`, without BigInt gcds (issue #34).
+                                terms.push((
+                                    base + i * xc + j,
+                                    Q::from_big(a).mul(&Q::from_big(b)).big(),
+                                ));
                             }
                         }
                         forms.push((terms, BigRational::zero()));

@@ -129,6 +129,13 @@ impl Q {
         Q { n, d: Z::one() }
     }
     fn from_i128(n: i128, d: i128) -> Q {
+        if let (Ok(n), Ok(d)) = (i64::try_from(n), i64::try_from(d)) {
+            return Q::from_i64(n, d);
+        }
+        Q::from_i128_slow(n, d)
+    }
+    /// `n/d` reduced through `i128` arithmetic.
+    fn from_i128_slow(n: i128, d: i128) -> Q {
         let g = gcd_u128(n.unsigned_abs(), d.unsigned_abs()) as i128;
         let (mut n, mut d) = (n / g, d / g);
         if d < 0 {
@@ -137,6 +144,30 @@ impl Q {
         Q {
             n: Z::from_i128(n),
             d: Z::from_i128(d),
+        }
+    }
+    /// `n/d` reduced, `d ≠ 0`, in 64-bit words when neither is `i64::MIN` (hardware division
+    /// instead of the 128-bit library routine); same result as the `i128` path.
+    fn from_i64(n: i64, d: i64) -> Q {
+        if n == i64::MIN || d == i64::MIN {
+            return Q::from_i128_slow(n as i128, d as i128);
+        }
+        if d == 1 {
+            return Q::int(Z::S(n));
+        }
+        let (mut x, mut y) = (n.unsigned_abs(), d.unsigned_abs());
+        while y != 0 {
+            (x, y) = (y, x % y);
+        }
+        // 1 ≤ g ≤ |d| < 2^63, and negating a quotient of a non-MIN value cannot overflow.
+        let g = x as i64;
+        let (mut n, mut d) = (n / g, d / g);
+        if d < 0 {
+            (n, d) = (-n, -d);
+        }
+        Q {
+            n: Z::S(n),
+            d: Z::S(d),
         }
     }
     pub(crate) fn from_big(r: &BigRational) -> Q {
@@ -167,6 +198,10 @@ impl Q {
     }
     pub(crate) fn add(&self, o: &Q) -> Q {
         if let (Z::S(a), Z::S(b), Z::S(c), Z::S(d)) = (&self.n, &self.d, &o.n, &o.d) {
+            if *b == 1 && *d == 1 {
+                // Two integers: the sum is an integer, no gcd needed.
+                return Q::int(Z::from_i128(*a as i128 + *c as i128));
+            }
             let (a, b, c, d) = (*a as i128, *b as i128, *c as i128, *d as i128);
             return Q::from_i128(a * d + c * b, b * d);
         }
@@ -177,6 +212,9 @@ impl Q {
     }
     pub(crate) fn mul(&self, o: &Q) -> Q {
         if let (Z::S(a), Z::S(b), Z::S(c), Z::S(d)) = (&self.n, &self.d, &o.n, &o.d) {
+            if *b == 1 && *d == 1 {
+                return Q::int(Z::from_i128(*a as i128 * *c as i128));
+            }
             return Q::from_i128(*a as i128 * *c as i128, *b as i128 * *d as i128);
         }
         Q::from_big_unreduced(self.big() * o.big())
@@ -220,6 +258,28 @@ pub(crate) fn integer_row(terms: &[(u32, Q)], rhs: &Q) -> (Vec<(u32, Z)>, Z, Q) 
     (row, r, scale)
 }
 
+/// Adds up the coefficients of equal columns in a row sorted by column, in place, and drops the
+/// zeros (one pass, no second vector).
+pub(crate) fn merge_sorted(terms: &mut Vec<(u32, Q)>) {
+    let mut w = 0;
+    for k in 0..terms.len() {
+        if w > 0 && terms[w - 1].0 == terms[k].0 {
+            let sum = terms[w - 1].1.add(&terms[k].1);
+            terms[w - 1].1 = sum;
+        } else {
+            if w > 0 && terms[w - 1].1.is_zero() {
+                w -= 1;
+            }
+            terms.swap(w, k);
+            w += 1;
+        }
+    }
+    if w > 0 && terms[w - 1].1.is_zero() {
+        w -= 1;
+    }
+    terms.truncate(w);
+}
+
 const NONE: u32 = u32::MAX;
 
 /// What a presolved row turned into.
@@ -240,10 +300,9 @@ pub(crate) struct Presolve {
     pub(crate) cols: Vec<u32>,
     pub(crate) coefs: Vec<Q>,
     pub(crate) rhs: Vec<Q>,
-    // union-find: x = f[x]·parent[x] + g[x]
-    parent: Vec<u32>,
-    f: Vec<Q>,
-    g: Vec<Q>,
+    // union-find: x = node[x].f·node[x].parent + node[x].g, the three side by side so that a
+    // find touches one cache line per node
+    node: Vec<Node>,
     size: Vec<u32>,
     orig_parent: Vec<u32>,
     link_row: Vec<u32>,
@@ -269,6 +328,14 @@ pub(crate) struct Presolve {
     queue: Vec<u32>,
 }
 
+/// A union-find node: `x = f·parent + g` (`parent == x`, `f = 1`, `g = 0` for a root).
+#[derive(Clone)]
+struct Node {
+    f: Q,
+    g: Q,
+    parent: u32,
+}
+
 /// A substituted row: distinct roots with nonzero coefficients, and the right-hand side.
 pub(crate) type SubRow = (Vec<(u32, Q)>, Q);
 
@@ -291,9 +358,13 @@ impl Presolve {
             cols,
             coefs,
             rhs,
-            parent: (0..n as u32).collect(),
-            f: vec![Q::int(Z::one()); n],
-            g: vec![Q::zero(); n],
+            node: (0..n as u32)
+                .map(|x| Node {
+                    f: Q::int(Z::one()),
+                    g: Q::zero(),
+                    parent: x,
+                })
+                .collect(),
             size: vec![1; n],
             orig_parent: (0..n as u32).collect(),
             link_row: vec![NONE; n],
@@ -322,29 +393,31 @@ impl Presolve {
 
     /// `(root, F, G)` with `x = F·root + G`, compressing the path.
     pub(crate) fn find(&mut self, x: u32) -> (u32, Q, Q) {
-        let p = self.parent[x as usize];
+        let nx = &self.node[x as usize];
+        let p = nx.parent;
         if p == x {
             return (x, Q::int(Z::one()), Q::zero());
         }
-        if self.parent[p as usize] == p {
-            return (p, self.f[x as usize].clone(), self.g[x as usize].clone());
+        if self.node[p as usize].parent == p {
+            return (p, nx.f.clone(), nx.g.clone());
         }
         let mut path = vec![];
         let mut r = x;
-        while self.parent[r as usize] != r {
+        while self.node[r as usize].parent != r {
             path.push(r);
-            r = self.parent[r as usize];
+            r = self.node[r as usize].parent;
         }
         // Walk back from the node nearest the root, composing relations.
         let (mut cf, mut cg) = (Q::int(Z::one()), Q::zero());
         for &y in path.iter().rev() {
             let y = y as usize;
             // y = f_y·p + g_y and p = cf·r + cg  ⇒  y = (f_y·cf)·r + (f_y·cg + g_y)
-            let nf = self.f[y].mul(&cf);
-            let ng = self.f[y].mul(&cg).add(&self.g[y]);
-            self.parent[y] = r;
-            self.f[y] = nf.clone();
-            self.g[y] = ng.clone();
+            let ny = &mut self.node[y];
+            let nf = ny.f.mul(&cf);
+            let ng = ny.f.mul(&cg).add(&ny.g);
+            ny.parent = r;
+            ny.f = nf.clone();
+            ny.g = ng.clone();
             (cf, cg) = (nf, ng);
         }
         (r, cf, cg)
@@ -359,11 +432,8 @@ impl Presolve {
 
     /// `(root, F, G)` with `x = F·root + G`; only valid right after [`Presolve::compress_all`].
     pub(crate) fn relation(&self, x: u32) -> (u32, &Q, &Q) {
-        (
-            self.parent[x as usize],
-            &self.f[x as usize],
-            &self.g[x as usize],
-        )
+        let nx = &self.node[x as usize];
+        (nx.parent, &nx.f, &nx.g)
     }
 
     /// When the fact about `c` (a fixed root or a linked child) was made.
@@ -398,15 +468,8 @@ impl Presolve {
             }
         }
         terms.sort_unstable_by_key(|t| t.0);
-        let mut out: Vec<(u32, Q)> = Vec::with_capacity(terms.len());
-        for (r, q) in terms {
-            match out.last_mut() {
-                Some((lr, lq)) if *lr == r => *lq = lq.add(&q),
-                _ => out.push((r, q)),
-            }
-        }
-        out.retain(|t| !t.1.is_zero());
-        (out, rhs)
+        merge_sorted(&mut terms);
+        (terms, rhs)
     }
 
     fn push(&mut self, i: u32) {
@@ -497,12 +560,12 @@ impl Presolve {
                 }
                 let (c, p) = (x.0 as usize, y.0);
                 self.time += 1;
-                self.parent[c] = p;
+                self.node[c].parent = p;
                 self.orig_parent[c] = p;
-                self.f[c] = y.1.div(&x.1).neg();
-                self.link_f[c] = self.f[c].clone();
+                self.node[c].f = y.1.div(&x.1).neg();
+                self.link_f[c] = self.node[c].f.clone();
                 self.fact_a[c] = x.1.clone();
-                self.g[c] = rhs.div(&x.1);
+                self.node[c].g = rhs.div(&x.1);
                 self.size[p as usize] += self.size[c];
                 self.link_row[c] = i as u32;
                 self.link_time[c] = self.time;
@@ -586,6 +649,7 @@ impl Presolve {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
 
     fn q(n: i64, d: i64) -> Q {
         Q::from_i128(n as i128, d as i128)
@@ -610,6 +674,55 @@ mod tests {
         );
         assert_eq!(q(2, -4), q(-1, 2));
         assert_eq!(q(1, 3).sub(&q(1, 3)), Q::zero());
+    }
+
+    /// Numbers around the edges of the word fast path: small, near `i64::MAX`/`i64::MIN`, zero.
+    fn edge_i64() -> impl Strategy<Value = i64> {
+        prop_oneof![
+            -20i64..20,
+            Just(i64::MIN),
+            Just(i64::MAX),
+            (i64::MIN..i64::MIN + 4),
+            (i64::MAX - 4..=i64::MAX),
+            any::<i64>(),
+        ]
+    }
+
+    proptest! {
+        /// The 64-bit reduction, the integer shortcuts of `add`/`mul` and the in-place merge agree
+        /// with BigRational arithmetic (issue #34).
+        #[test]
+        fn word_fast_paths_match_big_rationals(
+            a in edge_i64(), b in edge_i64(), c in edge_i64(), d in edge_i64(),
+            ints in any::<bool>(),
+        ) {
+            let (b, d) = if ints { (1, 1) } else { (b, d) };
+            prop_assume!(b != 0 && d != 0);
+            let big = |n: i64, d: i64| BigRational::new(BigInt::from(n), BigInt::from(d));
+            let (x, y) = (Q::from_i128(a as i128, b as i128), Q::from_i128(c as i128, d as i128));
+            prop_assert_eq!(x.big(), big(a, b));
+            prop_assert_eq!(x.add(&y).big(), big(a, b) + big(c, d));
+            prop_assert_eq!(x.mul(&y).big(), big(a, b) * big(c, d));
+            // Canonical: a value that fits is never boxed, the denominator is positive.
+            for q in [x.add(&y), x.mul(&y)] {
+                prop_assert_eq!(Q::from_big(&q.big()), q.clone());
+                prop_assert!(q.big().denom() > &BigInt::from(0));
+            }
+        }
+
+        #[test]
+        fn merge_sorted_matches_a_map(
+            raw in proptest::collection::vec((0u32..6, -3i64..4), 0..12),
+        ) {
+            let mut terms: Vec<(u32, Q)> = raw.iter().map(|&(c, v)| (c, q(v, 1))).collect();
+            terms.sort_by_key(|t| t.0);
+            merge_sorted(&mut terms);
+            let mut want: BTreeMap<u32, i64> = BTreeMap::new();
+            raw.iter().for_each(|&(c, v)| *want.entry(c).or_default() += v);
+            want.retain(|_, v| *v != 0);
+            let want: Vec<(u32, Q)> = want.into_iter().map(|(c, v)| (c, q(v, 1))).collect();
+            prop_assert_eq!(terms, want);
+        }
     }
 
     #[test]

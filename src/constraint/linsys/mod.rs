@@ -31,7 +31,7 @@
 //! Written by hand: crates.io has sparse solvers over `f64` only (rsparse, russell_sparse,
 //! sparsela), none exact, rank-revealing or certifying.
 
-use crate::constraint::presolve::{integer_row, Presolve, RowFate, Q, Z};
+use crate::constraint::presolve::{integer_row, merge_sorted, Presolve, RowFate, Q, Z};
 use num_rational::BigRational;
 use num_traits::Zero;
 use serde::{Deserialize, Serialize};
@@ -131,15 +131,8 @@ pub fn solve(sys: &LinearSystem) -> Solution {
 
 fn merge_terms(t: &mut Vec<(u32, Q)>) -> Vec<(u32, Q)> {
     t.sort_by_key(|x| x.0);
-    let mut out: Vec<(u32, Q)> = Vec::with_capacity(t.len());
-    for (v, q) in t.drain(..) {
-        match out.last_mut() {
-            Some((lv, lq)) if *lv == v => *lq = lq.add(&q),
-            _ => out.push((v, q)),
-        }
-    }
-    out.retain(|x| !x.1.is_zero());
-    out
+    merge_sorted(t);
+    std::mem::take(t)
 }
 
 /// The presolve state and the substituted rows (with weights) whose sum reads `0 = c ≠ 0`.
