@@ -340,3 +340,78 @@ fn small_scale_is_smaller() {
     assert_eq!(scaled::lcm_scale(&g), BigInt::from(64));
     assert_eq!(scaled::small_scale(&g), BigInt::from(8));
 }
+
+/// Equal-degree splitting as it was before the Frobenius rows: `a^((p^d − 1)/2)` as one power.
+fn edf_by_powers(f: &[u64], d: usize, p: u64, seed: &mut u64, out: &mut Vec<Fp>) {
+    let n = f.len() - 1;
+    if n == d {
+        out.push(f.to_vec());
+        return;
+    }
+    let e = (BigUint::from(p).pow(d as u32) - 1u32) / 2u32;
+    loop {
+        let a: Fp = trim(
+            (0..n)
+                .map(|_| {
+                    *seed ^= *seed << 13;
+                    *seed ^= *seed >> 7;
+                    *seed ^= *seed << 17;
+                    *seed % p
+                })
+                .collect(),
+        );
+        if a.len() < 2 {
+            continue;
+        }
+        let b = fp_sub(&fp_powmod(&a, &e, f, p), &[1], p);
+        let g = fp_gcd(f, &b, p);
+        if g.len() > 1 && g.len() < f.len() {
+            let other = fp_divrem(f, &g, p).0;
+            edf_by_powers(&g, d, p, seed, out);
+            edf_by_powers(&other, d, p, seed, out);
+            return;
+        }
+    }
+}
+
+proptest! {
+    /// The power through the Frobenius rows is the plain power `a^((p^d − 1)/2) mod f`, for
+    /// random `a` and random monic `f` (square-free or not) modulo small and word-size primes.
+    #[test]
+    fn pow_half_is_powmod(
+        c in prop::collection::vec(any::<u64>(), 1..=10),
+        a in prop::collection::vec(any::<u64>(), 0..=14),
+        d in 1usize..5,
+        which in 0usize..4,
+    ) {
+        let p = [3u64, 7, 101, 2_147_483_629][which];
+        let mut f: Fp = c.iter().map(|x| x % p).collect();
+        f.push(1);
+        let a = trim(a.iter().map(|x| x % p).collect());
+        let rows = frobenius_rows(&f, p);
+        let e = (BigUint::from(p).pow(d as u32) - 1u32) / 2u32;
+        prop_assert_eq!(fp_pow_half(&a, d, &f, p, &rows), fp_powmod(&a, &e, &f, p));
+    }
+
+    /// Equal-degree splitting with the Frobenius rows gives the factors of the one by powers,
+    /// in the same order (the same random elements split the same way), on the equal-degree
+    /// parts of random square-free polynomials.
+    #[test]
+    fn edf_is_edf_by_powers(
+        c in prop::collection::vec(any::<u64>(), 2..=12),
+        which in 0usize..4,
+    ) {
+        let p = [3u64, 7, 101, 2_147_483_629][which];
+        let mut f: Fp = c.iter().map(|x| x % p).collect();
+        f.push(1);
+        let df = trim((1..f.len()).map(|i| f[i] * (i as u64 % p) % p).collect());
+        prop_assume!(fp_gcd(&f, &df, p).len() == 1);
+        for (g, d) in ddf(&f, p) {
+            let (mut s1, mut s2) = (0x9E37_79B9_7F4A_7C15u64, 0x9E37_79B9_7F4A_7C15u64);
+            let (mut o1, mut o2) = (Vec::new(), Vec::new());
+            edf(&g, d, p, &mut s1, &mut o1);
+            edf_by_powers(&g, d, p, &mut s2, &mut o2);
+            prop_assert_eq!(o1, o2);
+        }
+    }
+}
