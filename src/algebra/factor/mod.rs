@@ -18,8 +18,10 @@ use num_traits::{One, Signed, Zero};
 mod hensel;
 mod irreducible;
 mod scaled;
+mod split;
 use hensel::hensel;
 pub(crate) use irreducible::irreducibility_prime;
+use split::edf;
 
 /// Factorisation gave up: too many factors modulo every prime tried.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -353,15 +355,69 @@ fn fp_inverse_mod(a: &[u64], b: &[u64], p: u64) -> Fp {
 }
 
 fn fp_powmod(a: &[u64], e: &BigUint, f: &[u64], p: u64) -> Fp {
+    let red = Reducer::new(f, p);
     let mut r: Fp = vec![1];
     let base = fp_rem(a, f, p);
     for i in (0..e.bits()).rev() {
-        r = fp_rem(&fp_mul(&r, &r, p), f, p);
+        r = red.rem(fp_mul(&r, &r, p));
         if e.bit(i) {
-            r = fp_rem(&fp_mul(&r, &base, p), f, p);
+            r = red.rem(fp_mul(&r, &base, p));
         }
     }
     r
+}
+
+/// [`fp_rem`] by one divisor `f` many times: the residues of `−f`, the inverse of its leading
+/// coefficient and Barrett's constant are found once, the remainder is formed in the dividend's
+/// own vector and no quotient is kept — the same steps as [`fp_divrem`], so the same remainder.
+struct Reducer {
+    neg: Vec<u64>,
+    inv: u64,
+    p: u64,
+    m: u64,
+}
+
+impl Reducer {
+    fn new(f: &[u64], p: u64) -> Self {
+        let db = f.len() - 1;
+        Reducer {
+            neg: f[..db].iter().map(|&x| (p - x % p) % p).collect(),
+            inv: inv_mod(f[db], p),
+            p,
+            m: barrett(p),
+        }
+    }
+
+    /// `a mod f` for `a` with entries below `p` and no trailing zeros.
+    fn rem(&self, mut r: Fp) -> Fp {
+        let (p, m, db) = (self.p, self.m, self.neg.len());
+        if r.len() <= db {
+            return r;
+        }
+        let pp = p * p;
+        for i in (0..r.len() - db).rev() {
+            let lead = reduce(r[i + db], p, m);
+            let t = if self.inv == 1 {
+                lead
+            } else {
+                reduce(lead * self.inv, p, m)
+            };
+            if t == 0 {
+                continue;
+            }
+            for (ri, &nb) in r[i..i + db].iter_mut().zip(&self.neg) {
+                *ri += t * nb;
+                if *ri >= pp {
+                    *ri -= pp;
+                }
+            }
+        }
+        r.truncate(db);
+        for x in &mut r {
+            *x = reduce(*x, p, m);
+        }
+        trim(r)
+    }
 }
 
 /// `a · b⁻¹ mod (f, p)`, `None` when `b` is not invertible there or `p` divides `lc(f)`.
@@ -531,79 +587,6 @@ fn ddf(f: &[u64], p: u64) -> Vec<(Fp, usize)> {
         }
     }
     out
-}
-
-/// Equal-degree splitting (Cantor–Zassenhaus) of `f`, a product of irreducibles of degree `d`.
-fn edf(f: &[u64], d: usize, p: u64, seed: &mut u64, out: &mut Vec<Fp>) {
-    let rows = if d > 1 && f.len() - 1 > d {
-        frobenius_rows(f, p)
-    } else {
-        Vec::new()
-    };
-    edf_with(f, d, p, seed, out, &rows);
-}
-
-/// The rows `x^(i·p) mod f`, `i < deg f`, of the Frobenius map `h ↦ h^p = h(x^p)` mod `f`.
-fn frobenius_rows(f: &[u64], p: u64) -> Vec<Fp> {
-    let xp = fp_powmod(&[0, 1], &BigUint::from(p), f, p);
-    let mut rows: Vec<Fp> = vec![vec![1]];
-    for i in 1..f.len() - 1 {
-        let next = fp_rem(&fp_mul(&rows[i - 1], &xp, p), f, p);
-        rows.push(next);
-    }
-    rows
-}
-
-/// `a^((p^d − 1)/2) mod f`, as [`fp_powmod`] gives it: the exponent is `(p − 1)/2` times
-/// `1 + p + … + p^(d−1)`, so the power is `(Π_{i<d} a^(p^i))^((p−1)/2)` with each `a^(p^i)` one
-/// step of the Frobenius rows (`rows`, those of `f`, needed when `d > 1`) instead of a power.
-fn fp_pow_half(a: &[u64], d: usize, f: &[u64], p: u64, rows: &[Fp]) -> Fp {
-    let half = BigUint::from((p - 1) / 2);
-    let mut conj = fp_rem(a, f, p);
-    let mut norm = conj.clone();
-    for _ in 1..d {
-        conj = fp_rem(&fp_combine(&conj, rows, p), f, p);
-        norm = fp_rem(&fp_mul(&norm, &conj, p), f, p);
-    }
-    fp_powmod(&norm, &half, f, p)
-}
-
-fn edf_with(f: &[u64], d: usize, p: u64, seed: &mut u64, out: &mut Vec<Fp>, rows: &[Fp]) {
-    let n = f.len() - 1;
-    if n == d {
-        out.push(f.to_vec());
-        return;
-    }
-    loop {
-        let a: Fp = trim(
-            (0..n)
-                .map(|_| {
-                    *seed ^= *seed << 13;
-                    *seed ^= *seed >> 7;
-                    *seed ^= *seed << 17;
-                    *seed % p
-                })
-                .collect(),
-        );
-        if a.len() < 2 {
-            continue;
-        }
-        let b = fp_sub(&fp_pow_half(&a, d, f, p, rows), &[1], p);
-        let g = fp_gcd(f, &b, p);
-        if g.len() > 1 && g.len() < f.len() {
-            let other = fp_divrem(f, &g, p).0;
-            // The rows of a divisor are those of f reduced modulo it.
-            let reduced = |h: &[u64]| -> Vec<Fp> {
-                rows.iter()
-                    .take(h.len() - 1)
-                    .map(|r| fp_rem(r, h, p))
-                    .collect()
-            };
-            edf_with(&g, d, p, seed, out, &reduced(&g));
-            edf_with(&other, d, p, seed, out, &reduced(&other));
-            return;
-        }
-    }
 }
 
 /// The monic irreducible factors of a monic square-free integer polynomial `f` (lowest degree

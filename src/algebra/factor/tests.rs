@@ -1,4 +1,5 @@
 use super::hensel::{lift_error_big, lift_error_u64};
+use super::split::{fp_pow_half, frobenius_rows};
 use super::*;
 use proptest::prelude::*;
 
@@ -413,5 +414,41 @@ proptest! {
             edf_by_powers(&g, d, p, &mut s2, &mut o2);
             prop_assert_eq!(o1, o2);
         }
+    }
+}
+
+/// Powers modulo `f` as they were before [`Reducer`]: every remainder by [`fp_rem`].
+fn powmod_by_rem(a: &[u64], e: &BigUint, f: &[u64], p: u64) -> Fp {
+    let mut r: Fp = vec![1];
+    let base = fp_rem(a, f, p);
+    for i in (0..e.bits()).rev() {
+        r = fp_rem(&fp_mul(&r, &r, p), f, p);
+        if e.bit(i) {
+            r = fp_rem(&fp_mul(&r, &base, p), f, p);
+        }
+    }
+    r
+}
+
+proptest! {
+    /// Powers through the reducer are those through `fp_rem`, for monic and non-monic `f` of
+    /// every degree from 0, random bases and exponents, small and word-size primes.
+    #[test]
+    fn reducer_powmod_is_powmod_by_rem(
+        c in prop::collection::vec(any::<u64>(), 0..=10),
+        lead in 1u64..1000,
+        a in prop::collection::vec(any::<u64>(), 0..=14),
+        e in any::<u64>(),
+        which in 0usize..4,
+    ) {
+        let p = [3u64, 7, 101, 2_147_483_629][which];
+        let mut f: Fp = c.iter().map(|x| x % p).collect();
+        f.push(lead % (p - 1) + 1);
+        let a = trim(a.iter().map(|x| x % p).collect());
+        let e = BigUint::from(e);
+        prop_assert_eq!(fp_powmod(&a, &e, &f, p), powmod_by_rem(&a, &e, &f, p));
+        let r = Reducer::new(&f, p);
+        let prod = fp_mul(&a, &a, p);
+        prop_assert_eq!(r.rem(prod.clone()), fp_rem(&prod, &f, p));
     }
 }
