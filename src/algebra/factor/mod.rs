@@ -17,8 +17,11 @@ use num_traits::{One, Signed, Zero};
 
 mod hensel;
 mod irreducible;
+mod scaled;
+mod split;
 use hensel::hensel;
 pub(crate) use irreducible::irreducibility_prime;
+use split::edf;
 
 /// Factorisation gave up: too many factors modulo every prime tried.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -352,15 +355,69 @@ fn fp_inverse_mod(a: &[u64], b: &[u64], p: u64) -> Fp {
 }
 
 fn fp_powmod(a: &[u64], e: &BigUint, f: &[u64], p: u64) -> Fp {
+    let red = Reducer::new(f, p);
     let mut r: Fp = vec![1];
     let base = fp_rem(a, f, p);
     for i in (0..e.bits()).rev() {
-        r = fp_rem(&fp_mul(&r, &r, p), f, p);
+        r = red.rem(fp_mul(&r, &r, p));
         if e.bit(i) {
-            r = fp_rem(&fp_mul(&r, &base, p), f, p);
+            r = red.rem(fp_mul(&r, &base, p));
         }
     }
     r
+}
+
+/// [`fp_rem`] by one divisor `f` many times: the residues of `−f`, the inverse of its leading
+/// coefficient and Barrett's constant are found once, the remainder is formed in the dividend's
+/// own vector and no quotient is kept — the same steps as [`fp_divrem`], so the same remainder.
+struct Reducer {
+    neg: Vec<u64>,
+    inv: u64,
+    p: u64,
+    m: u64,
+}
+
+impl Reducer {
+    fn new(f: &[u64], p: u64) -> Self {
+        let db = f.len() - 1;
+        Reducer {
+            neg: f[..db].iter().map(|&x| (p - x % p) % p).collect(),
+            inv: inv_mod(f[db], p),
+            p,
+            m: barrett(p),
+        }
+    }
+
+    /// `a mod f` for `a` with entries below `p` and no trailing zeros.
+    fn rem(&self, mut r: Fp) -> Fp {
+        let (p, m, db) = (self.p, self.m, self.neg.len());
+        if r.len() <= db {
+            return r;
+        }
+        let pp = p * p;
+        for i in (0..r.len() - db).rev() {
+            let lead = reduce(r[i + db], p, m);
+            let t = if self.inv == 1 {
+                lead
+            } else {
+                reduce(lead * self.inv, p, m)
+            };
+            if t == 0 {
+                continue;
+            }
+            for (ri, &nb) in r[i..i + db].iter_mut().zip(&self.neg) {
+                *ri += t * nb;
+                if *ri >= pp {
+                    *ri -= pp;
+                }
+            }
+        }
+        r.truncate(db);
+        for x in &mut r {
+            *x = reduce(*x, p, m);
+        }
+        trim(r)
+    }
 }
 
 /// `a · b⁻¹ mod (f, p)`, `None` when `b` is not invertible there or `p` divides `lc(f)`.
@@ -532,45 +589,27 @@ fn ddf(f: &[u64], p: u64) -> Vec<(Fp, usize)> {
     out
 }
 
-/// Equal-degree splitting (Cantor–Zassenhaus) of `f`, a product of irreducibles of degree `d`.
-fn edf(f: &[u64], d: usize, p: u64, seed: &mut u64, out: &mut Vec<Fp>) {
-    let n = f.len() - 1;
-    if n == d {
-        out.push(f.to_vec());
-        return;
-    }
-    let e = (BigUint::from(p).pow(d as u32) - 1u32) / 2u32;
-    loop {
-        let a: Fp = trim(
-            (0..n)
-                .map(|_| {
-                    *seed ^= *seed << 13;
-                    *seed ^= *seed >> 7;
-                    *seed ^= *seed << 17;
-                    *seed % p
-                })
-                .collect(),
-        );
-        if a.len() < 2 {
-            continue;
-        }
-        let b = fp_sub(&fp_powmod(&a, &e, f, p), &[1], p);
-        let g = fp_gcd(f, &b, p);
-        if g.len() > 1 && g.len() < f.len() {
-            let other = fp_divrem(f, &g, p).0;
-            edf(&g, d, p, seed, out);
-            edf(&other, d, p, seed, out);
-            return;
-        }
-    }
-}
-
 /// The monic irreducible factors of a monic square-free integer polynomial `f` (lowest degree
 /// first) of degree ≥ 1 with `f(0) ≠ 0`.
 fn factor_monic(f: &[BigInt]) -> Result<Vec<Vec<BigInt>>, FactorError> {
+    let Some((p, gs)) = modular_factors(f) else {
+        return Ok(vec![f.to_vec()]);
+    };
+    let n = f.len() - 1;
+    // Mignotte: a factor's coefficients are at most 2^n ‖f‖₂ ≤ 2^n ‖f‖₁.
+    let norm1: BigInt = f.iter().map(Signed::abs).sum();
+    let bound = (BigInt::one() << n) * norm1;
+    let (lifted, m) = hensel(f, &gs, p, &bound);
+    recombine(f, lifted, &m, p)
+}
+
+/// The prime [`factor_monic`] works modulo and its monic irreducible factors of `f` there, in
+/// the order the recombination takes them; `None` when `f` is linear or stays irreducible
+/// modulo that prime (then `f` is irreducible).
+fn modular_factors(f: &[BigInt]) -> Option<(u64, Vec<Fp>)> {
     let n = f.len() - 1;
     if n == 1 {
-        return Ok(vec![f.to_vec()]);
+        return None;
     }
     // The best of three suitable primes: fewest modular factors.
     type Choice = (u64, Vec<(Fp, usize)>, usize);
@@ -592,18 +631,14 @@ fn factor_monic(f: &[BigInt]) -> Result<Vec<Vec<BigInt>>, FactorError> {
     }
     let (p, parts, count) = best.expect("some prime keeps f square-free");
     if count == 1 {
-        return Ok(vec![f.to_vec()]);
+        return None;
     }
     let mut seed = 0x9E37_79B9_7F4A_7C15u64;
     let mut gs = Vec::new();
     for (g, d) in &parts {
         edf(g, *d, p, &mut seed, &mut gs);
     }
-    // Mignotte: a factor's coefficients are at most 2^n ‖f‖₂ ≤ 2^n ‖f‖₁.
-    let norm1: BigInt = f.iter().map(Signed::abs).sum();
-    let bound = (BigInt::one() << n) * norm1;
-    let (lifted, m) = hensel(f, &gs, p, &bound);
-    recombine(f, lifted, &m, p)
+    Some((p, gs))
 }
 
 /// Monic division over Z: `Some(a / b)` when exact.
@@ -619,6 +654,18 @@ fn int_div_exact(a: &[BigInt], b: &[BigInt]) -> Option<Vec<BigInt>> {
         q[i] = t;
     }
     r.iter().all(Zero::is_zero).then_some(q)
+}
+
+/// Advances `subset` (increasing indices below `k`) to the next subset of {0..k} of its size in
+/// lexicographic order; `None` after the last one.
+fn next_subset(subset: &mut [usize], k: usize) -> Option<()> {
+    let size = subset.len();
+    let pos = (0..size).rev().find(|&j| subset[j] < k - size + j)?;
+    subset[pos] += 1;
+    for j in pos + 1..size {
+        subset[j] = subset[j - 1] + 1;
+    }
+    Some(())
 }
 
 /// Zassenhaus recombination: products of lifted factors that divide `f`, by increasing size.
@@ -646,6 +693,18 @@ fn recombine(
                     budget: BUDGET,
                 });
             }
+            // The constant term of the product alone first: it is exactly the `h[0]` the full
+            // product below would give (the constant term of each partial product is the
+            // symmetric residue of the previous one times `g[0]`), and most subsets fail here.
+            let h0 = subset
+                .iter()
+                .fold(BigInt::one(), |acc, &i| symmetric(&(acc * &pool[i][0]), m));
+            if h0.is_zero() || !(&f[0] % &h0).is_zero() {
+                if next_subset(&mut subset, k).is_some() {
+                    continue;
+                }
+                break;
+            }
             let mut h = vec![BigInt::one()];
             for &i in &subset {
                 let g = &pool[i];
@@ -668,13 +727,8 @@ fn recombine(
                     continue 'search;
                 }
             }
-            // Next subset of {0..k} of this size in lexicographic order.
-            let Some(pos) = (0..size).rev().find(|&j| subset[j] < k - size + j) else {
+            if next_subset(&mut subset, k).is_none() {
                 break;
-            };
-            subset[pos] += 1;
-            for j in pos + 1..size {
-                subset[j] = subset[j - 1] + 1;
             }
         }
         size += 1;
@@ -704,6 +758,13 @@ fn square_free_mod_some_prime(f: &Poly) -> bool {
 
 /// The monic irreducible factors over Q of `f` with their multiplicities.
 pub fn factor(f: &Poly) -> Result<Vec<(Poly, usize)>, FactorError> {
+    factor_with(f, true)
+}
+
+/// [`factor`]; with `small_scale` each square-free part is factored at the smallest scale
+/// [`scaled::factor_part`] finds, otherwise at the lcm of its denominators only (the result is
+/// the same).
+fn factor_with(f: &Poly, small_scale: bool) -> Result<Vec<(Poly, usize)>, FactorError> {
     let mut out = Vec::new();
     let parts = if square_free_mod_some_prime(f) {
         vec![(f.monic(), 1)]
@@ -711,43 +772,12 @@ pub fn factor(f: &Poly) -> Result<Vec<(Poly, usize)>, FactorError> {
         f.square_free()
     };
     for (g, mult) in parts {
-        // g monic rational, degree n: G(y) = a^n g(y / a) is monic integral for a = lcm of dens.
-        let n = g.deg();
-        let a = g
-            .coeffs()
-            .iter()
-            .fold(BigInt::one(), |acc, c| acc.lcm(c.denom()));
-        let mut big: Vec<BigInt> = Vec::with_capacity(n + 1);
-        let mut apow = BigInt::one();
-        for i in (0..=n).rev() {
-            let c = g.coeff(i) * num_rational::BigRational::from_integer(apow.clone());
-            big.push(c.to_integer());
-            apow *= &a;
-        }
-        big.reverse();
-        let mut zero_root = false;
-        if big[0].is_zero() {
-            big.remove(0);
-            zero_root = true;
-        }
-        let mut parts = if big.len() > 1 {
-            factor_monic(&big)?
+        let found = if small_scale {
+            scaled::factor_part(&g)?
         } else {
-            Vec::new()
+            scaled::factor_scaled(&g, &scaled::lcm_scale(&g))?
         };
-        if zero_root {
-            parts.push(vec![BigInt::zero(), BigInt::one()]);
-        }
-        for h in parts {
-            // back: h(a x), made monic
-            let mut apow = BigInt::one();
-            let mut c = Vec::with_capacity(h.len());
-            for x in &h {
-                c.push(x * &apow);
-                apow *= &a;
-            }
-            out.push((Poly::from_bigints(&c).monic(), mult));
-        }
+        out.extend(found.into_iter().map(|h| (h, mult)));
     }
     out.sort_by_key(|(g, m)| (g.deg(), *m));
     Ok(out)
