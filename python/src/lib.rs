@@ -396,8 +396,7 @@ fn solve(
                 return Ok(json(&r.verdict));
             }
             Loaded::Automaton { automaton, .. } => {
-                l.check_unknowns(automaton.unknown_count())?;
-                l.check_memory(automaton.solve_memory_estimate())?;
+                automaton.check_solve_limits(&l)?;
                 lacuna::constraint::solve_automaton(&automaton)?.0
             }
             Loaded::Faces(input) => {

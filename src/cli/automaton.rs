@@ -438,8 +438,7 @@ pub(super) fn verify(
             "--json and --certificate - would both write to standard output".into(),
         ));
     }
-    limits.check_unknowns(model.automaton.unknown_count())?;
-    limits.check_memory(model.automaton.solve_memory_estimate())?;
+    model.automaton.check_solve_limits(limits)?;
     let analysis =
         lacuna::analysis::analyse_attractor(model, limits.max_unknowns, limits.max_products, 30)?;
     let lacuna::analysis::Attractor {

@@ -75,8 +75,7 @@ pub(super) fn run(args: SolveArgs, limits: &Limits) -> Result<ExitCode, Error> {
                 });
             }
             lacuna::input::Loaded::Automaton { automaton, .. } => {
-                limits.check_unknowns(automaton.unknown_count())?;
-                limits.check_memory(automaton.solve_memory_estimate())?;
+                automaton.check_solve_limits(limits)?;
                 lacuna::constraint::solve_automaton(&automaton)?.0
             }
             lacuna::input::Loaded::Faces(input) => {

@@ -176,6 +176,14 @@ impl Automaton {
             .sum()
     }
 
+    /// Checks the solve of this automaton's system against `limits` before it is built: its
+    /// unknowns against `--max-unknowns` and its [estimated memory](Self::solve_memory_estimate)
+    /// against `--max-memory`. Every command that solves calls this one check.
+    pub fn check_solve_limits(&self, limits: &crate::topology::Limits) -> Result<()> {
+        limits.check_unknowns(self.unknown_count())?;
+        limits.check_memory(self.solve_memory_estimate())
+    }
+
     /// The memory a solve of this automaton takes, in bytes, estimated from its shapes alone
     /// (before the system is built): about 1,100 bytes per unknown (its entry, its value in the
     /// particular solution, its basis direction and report line when free — measured on

@@ -408,8 +408,7 @@ pub fn solve_closure(
     limits: &crate::topology::limits::Limits,
 ) -> crate::error::Result<crate::constraint::automaton::SolveReport> {
     let g = automaton_of(ts, opts);
-    limits.check_unknowns(g.automaton.unknown_count())?;
-    limits.check_memory(g.automaton.solve_memory_estimate())?;
+    g.automaton.check_solve_limits(limits)?;
     let (mut report, lin, solution) = crate::constraint::automaton::solve_automaton(&g.automaton)?;
     if let crate::constraint::linsys::Solution::Consistent(space) = &solution {
         report.degenerate = degeneracies(ts, &g, &lin.offsets, space);

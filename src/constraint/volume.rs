@@ -473,8 +473,7 @@ pub fn solve_volumes_with_system(
     limits: &Limits,
 ) -> Result<SolvedVolumes> {
     let gv = volume_automaton(set, shared, opts, limits)?;
-    limits.check_unknowns(gv.generated.automaton.unknown_count())?;
-    limits.check_memory(gv.generated.automaton.solve_memory_estimate())?;
+    gv.generated.automaton.check_solve_limits(limits)?;
     let (mut report, lin, solution) =
         crate::constraint::automaton::solve_automaton(&gv.generated.automaton)?;
     if let crate::constraint::linsys::Solution::Consistent(space) = &solution {

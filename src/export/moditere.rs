@@ -117,8 +117,7 @@ pub fn moditere_text(
     g: &Generated,
     limits: &Limits,
 ) -> crate::error::Result<String> {
-    limits.check_unknowns(g.automaton.unknown_count())?;
-    limits.check_memory(g.automaton.solve_memory_estimate())?;
+    g.automaton.check_solve_limits(limits)?;
     let a = &g.automaton;
     let (lin, solution) = solve_system(a)?;
     // Operators and states by name, looked up once per sub-face and edge: a linear search per

@@ -169,8 +169,7 @@ fn build(input: &Input, opt: &InstantiateOptions, lift: bool) -> Result<Built, G
     let generated = automaton_of(&types, options.clone());
     let a = &generated.automaton;
     // The solve's size is known from the automaton's shapes: refuse it before the work.
-    opt.limits.check_unknowns(a.unknown_count())?;
-    opt.limits.check_memory(a.solve_memory_estimate())?;
+    a.check_solve_limits(&opt.limits)?;
     let lin = a.linearize()?;
     let Solution::Consistent(space) = solve(&lin.system) else {
         return Err(GeometryError::Inconsistent);
