@@ -19,9 +19,11 @@ mod hensel;
 mod irreducible;
 mod scaled;
 mod split;
+mod subsets;
 use hensel::hensel;
 pub(crate) use irreducible::irreducibility_prime;
 use split::edf;
+use subsets::subsets_in_order;
 
 /// Factorisation gave up: too many factors modulo every prime tried.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -656,82 +658,53 @@ fn int_div_exact(a: &[BigInt], b: &[BigInt]) -> Option<Vec<BigInt>> {
     r.iter().all(Zero::is_zero).then_some(q)
 }
 
-/// Advances `subset` (increasing indices below `k`) to the next subset of {0..k} of its size in
-/// lexicographic order; `None` after the last one.
-fn next_subset(subset: &mut [usize], k: usize) -> Option<()> {
-    let size = subset.len();
-    let pos = (0..size).rev().find(|&j| subset[j] < k - size + j)?;
-    subset[pos] += 1;
-    for j in pos + 1..size {
-        subset[j] = subset[j - 1] + 1;
-    }
-    Some(())
-}
-
 /// Zassenhaus recombination: products of lifted factors that divide `f`, by increasing size.
 fn recombine(
     f: &[BigInt],
-    mut pool: Vec<Vec<BigInt>>,
+    pool: Vec<Vec<BigInt>>,
     m: &BigInt,
     p: u64,
 ) -> Result<Vec<Vec<BigInt>>, FactorError> {
     let (degree, modular) = (f.len() - 1, pool.len());
     let mut f = f.to_vec();
     let mut out = Vec::new();
-    let mut trials = 0u64;
-    let mut size = 1;
-    'search: while 2 * size <= pool.len() {
-        let k = pool.len();
-        let mut subset: Vec<usize> = (0..size).collect();
-        loop {
-            trials += 1;
-            if trials > BUDGET {
-                return Err(FactorError {
-                    degree,
-                    modular,
-                    prime: p,
-                    budget: BUDGET,
-                });
-            }
-            // The constant term of the product alone first: it is exactly the `h[0]` the full
-            // product below would give (the constant term of each partial product is the
-            // symmetric residue of the previous one times `g[0]`), and most subsets fail here.
-            let h0 = subset
-                .iter()
-                .fold(BigInt::one(), |acc, &i| symmetric(&(acc * &pool[i][0]), m));
-            if h0.is_zero() || !(&f[0] % &h0).is_zero() {
-                if next_subset(&mut subset, k).is_some() {
-                    continue;
-                }
-                break;
-            }
-            let mut h = vec![BigInt::one()];
-            for &i in &subset {
-                let g = &pool[i];
-                let mut c = vec![BigInt::zero(); h.len() + g.len() - 1];
-                for (a, x) in h.iter().enumerate() {
-                    for (b, y) in g.iter().enumerate() {
-                        c[a + b] += x * y;
-                    }
-                }
-                h = c.iter().map(|x| symmetric(x, m)).collect();
-            }
-            if !h[0].is_zero() && (&f[0] % &h[0]).is_zero() {
-                if let Some(q) = int_div_exact(&f, &h) {
-                    f = q;
-                    out.push(h);
-                    pool = (0..k)
-                        .filter(|i| !subset.contains(i))
-                        .map(|i| pool[i].clone())
-                        .collect();
-                    continue 'search;
-                }
-            }
-            if next_subset(&mut subset, k).is_none() {
-                break;
-            }
+    let divides = |pool: &[Vec<BigInt>], subset: &[usize]| {
+        // The constant term of the product alone first: it is exactly the `h[0]` the full
+        // product below gives (the constant term of each partial product is the symmetric
+        // residue of the previous one times `g[0]`), and most subsets fail here.
+        let h0 = subset
+            .iter()
+            .fold(BigInt::one(), |acc, &i| symmetric(&(acc * &pool[i][0]), m));
+        if h0.is_zero() || !(&f[0] % &h0).is_zero() {
+            return false;
         }
-        size += 1;
+        let mut h = vec![BigInt::one()];
+        for &i in subset {
+            let g = &pool[i];
+            let mut c = vec![BigInt::zero(); h.len() + g.len() - 1];
+            for (a, x) in h.iter().enumerate() {
+                for (b, y) in g.iter().enumerate() {
+                    c[a + b] += x * y;
+                }
+            }
+            h = c.iter().map(|x| symmetric(x, m)).collect();
+        }
+        match int_div_exact(&f, &h) {
+            Some(q) => {
+                f = q;
+                out.push(h);
+                true
+            }
+            None => false,
+        }
+    };
+    if subsets_in_order(pool, divides).is_none() {
+        return Err(FactorError {
+            degree,
+            modular,
+            prime: p,
+            budget: BUDGET,
+        });
     }
     if f.len() > 1 {
         out.push(f);

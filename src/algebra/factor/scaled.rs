@@ -6,7 +6,7 @@
 //! the order the lcm scale gives them.
 
 use super::{
-    factor_monic, fp_rem, modular_factors, next_subset, residue, trim, FactorError, Fp, BUDGET,
+    factor_monic, fp_rem, modular_factors, residue, subsets_in_order, trim, FactorError, Fp, BUDGET,
 };
 use crate::algebra::poly::Poly;
 use num_bigint::BigInt;
@@ -198,34 +198,20 @@ fn order_at_scale(
 /// more is larger than each of them, and these were found at their own size). `Some(None)` when
 /// the recombination would exceed its trial budget, `None` when what is left at the end is not
 /// one factor (which the argument rules out).
-pub(super) fn replay_recombination(mut pool: Vec<usize>) -> Option<Option<Vec<usize>>> {
+pub(super) fn replay_recombination(pool: Vec<usize>) -> Option<Option<Vec<usize>>> {
     let mut out = Vec::new();
-    let mut trials = 0u64;
-    let mut size = 1;
-    'search: while 2 * size <= pool.len() {
-        let k = pool.len();
-        let mut subset: Vec<usize> = (0..size).collect();
-        loop {
-            trials += 1;
-            if trials > BUDGET {
-                return Some(None);
-            }
-            let j = pool[subset[0]];
-            let whole = pool.iter().filter(|&&o| o == j).count() == size;
-            if whole && subset.iter().all(|&i| pool[i] == j) {
-                out.push(j);
-                pool = (0..k)
-                    .filter(|i| !subset.contains(i))
-                    .map(|i| pool[i])
-                    .collect();
-                continue 'search;
-            }
-            if next_subset(&mut subset, k).is_none() {
-                break;
-            }
+    let whole_factor = |pool: &[usize], subset: &[usize]| {
+        let j = pool[subset[0]];
+        let found = subset.iter().all(|&i| pool[i] == j)
+            && pool.iter().filter(|&&o| o == j).count() == subset.len();
+        if found {
+            out.push(j);
         }
-        size += 1;
-    }
+        found
+    };
+    let Some(pool) = subsets_in_order(pool, whole_factor) else {
+        return Some(None);
+    };
     if let Some(&j) = pool.first() {
         if pool.iter().any(|&o| o != j) {
             return None;
