@@ -563,11 +563,13 @@ impl Subdivision {
             union(&mut uf, id(sa, la + 1), id(sb, lb));
         }
         // The first corner seen at each boundary point, by the point's key (edge, piece, end of
-        // a gap's piece) numbered densely through the pieces' slots.
+        // a gap's piece) numbered densely through the pieces' slots (the keys name pieces of the
+        // parent, which have slots).
         let slots = OriginSlots::of(parent, 0);
         let mut at_point = vec![usize::MAX; 2 * slots.total];
         let point = |(edge, piece, end): (usize, usize, bool)| {
-            2 * (slots.pieces[edge].0 + piece) + usize::from(end)
+            let slot = slots.slot(Origin::Piece { edge, piece });
+            2 * slot.expect("a piece of the parent") + usize::from(end)
         };
         for (k, s) in subs.iter().enumerate() {
             for (l, o) in s.origins.iter().enumerate() {
