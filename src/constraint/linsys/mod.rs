@@ -31,7 +31,7 @@
 //! Written by hand: crates.io has sparse solvers over `f64` only (rsparse, russell_sparse,
 //! sparsela), none exact, rank-revealing or certifying.
 
-use crate::constraint::presolve::{integer_row, merge_sorted, Presolve, RowFate, Q, Z};
+use crate::constraint::presolve::{integer_row, Presolve, RowFate, Q, Z};
 use num_rational::BigRational;
 use num_traits::Zero;
 use serde::{Deserialize, Serialize};
@@ -105,22 +105,19 @@ pub struct Conflict {
 /// # Panics
 /// If a term names an unknown `≥ sys.unknowns`, or `sys.unknowns ≥ 2^32 − 1`.
 pub fn solve(sys: &LinearSystem) -> Solution {
-    let rows = sys.rows.iter().map(|e| {
-        let mut t: Vec<(u32, Q)> = e
-            .terms
-            .iter()
-            .map(|(v, c)| {
-                assert!(*v < sys.unknowns, "unknown {v} out of range");
-                (*v as u32, Q::from_big(c))
-            })
-            .collect();
-        (merge_terms(&mut t), Q::from_big(&e.rhs))
-    });
     assert!(
         sys.unknowns < u32::MAX as usize,
         "at most 2^32 − 2 unknowns"
     );
-    match run(sys.unknowns, rows, true) {
+    let rows = sys.rows.iter().map(|e| {
+        let terms = e.terms.iter().map(|(v, c)| {
+            assert!(*v < sys.unknowns, "unknown {v} out of range");
+            (*v as u32, Q::from_big(c))
+        });
+        (terms, Q::from_big(&e.rhs))
+    });
+    let terms = sys.rows.iter().map(|e| e.terms.len()).sum();
+    match run(sys.unknowns, rows, terms, true) {
         Ok(space) => Solution::Consistent(space),
         Err(failure) => {
             let (ps, seeds) = *failure;
@@ -129,22 +126,17 @@ pub fn solve(sys: &LinearSystem) -> Solution {
     }
 }
 
-fn merge_terms(t: &mut Vec<(u32, Q)>) -> Vec<(u32, Q)> {
-    t.sort_by_key(|x| x.0);
-    merge_sorted(t);
-    std::mem::take(t)
-}
-
 /// The presolve state and the substituted rows (with weights) whose sum reads `0 = c ≠ 0`.
 type Failure = Box<(Presolve, Vec<(usize, Q)>)>;
 
 /// Presolve + core. On inconsistency returns the presolve state and the conflicting combination.
-fn run(
+fn run<T: IntoIterator<Item = (u32, Q)>>(
     n: usize,
-    rows: impl Iterator<Item = (Vec<(u32, Q)>, Q)>,
+    rows: impl ExactSizeIterator<Item = (T, Q)>,
+    terms: usize,
     want_basis: bool,
 ) -> Result<SolutionSpace, Failure> {
-    let mut ps = Presolve::new(n, rows);
+    let mut ps = Presolve::new(n, rows, terms);
     if let Some(bad) = ps.run() {
         return Err(Box::new((ps, vec![(bad, Q::int(Z::one()))])));
     }
@@ -357,13 +349,10 @@ fn minimal(ps: &Presolve, rows: &[usize]) -> Option<Vec<(usize, Q)>> {
         .filter(|(_, &i)| !ps.rhs[i].is_zero())
         .map(|(k, &i)| (k as u32, ps.rhs[i].clone()))
         .collect();
-    let eqs = by_col.into_values().map(|t| (t, Q::zero()));
-    let space = run(
-        rows.len(),
-        eqs.chain(std::iter::once((rhs_row, Q::int(Z::one())))),
-        false,
-    )
-    .ok()?;
+    let mut eqs: Vec<(Vec<(u32, Q)>, Q)> = by_col.into_values().map(|t| (t, Q::zero())).collect();
+    eqs.push((rhs_row, Q::int(Z::one())));
+    let terms = eqs.iter().map(|(t, _)| t.len()).sum();
+    let space = run(rows.len(), eqs.into_iter(), terms, false).ok()?;
     let m: Vec<(usize, Q)> = space
         .particular
         .iter()
