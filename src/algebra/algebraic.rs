@@ -733,12 +733,29 @@ impl NumberField {
         if self.degree() == 2 {
             return self.quadratic_form(a);
         }
+        format!("{}{}", a.0.render("rho"), self.where_rho())
+    }
+
+    /// [`NumberField::render`] of every element, the generator's description (` where rho = …`,
+    /// the same for all) written once.
+    pub fn render_many(&self, v: &[FieldElement]) -> Vec<String> {
+        if self.degree() <= 2 {
+            return v.iter().map(|a| self.render(a)).collect();
+        }
+        let suffix = self.where_rho();
+        v.iter()
+            .map(|a| match a.as_rational() {
+                Some(q) => q.to_string(),
+                None => a.0.render("rho") + &suffix,
+            })
+            .collect()
+    }
+
+    /// ` where rho = root of f in [lo, hi]`: the generator, for degree ≥ 3.
+    fn where_rho(&self) -> String {
         format!(
-            "{} where rho = root of {} in [{}, {}]",
-            a.0.render("rho"),
-            self.gen.min_poly,
-            self.gen.lo,
-            self.gen.hi
+            " where rho = root of {} in [{}, {}]",
+            self.gen.min_poly, self.gen.lo, self.gen.hi
         )
     }
 

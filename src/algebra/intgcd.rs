@@ -54,6 +54,9 @@ fn combine(p: i128, u: &BigUint, q: i128, v: &BigUint) -> BigUint {
 
 /// The gcd of two natural numbers (`gcd(0, 0) = 0`), equal to `BigUint::gcd`.
 pub fn gcd_uint(a: &BigUint, b: &BigUint) -> BigUint {
+    if let (Some(x), Some(y)) = (a.to_u64(), b.to_u64()) {
+        return BigUint::from(gcd_u64(x, y));
+    }
     let (mut u, mut v) = if a >= b {
         (a.clone(), b.clone())
     } else {
@@ -107,6 +110,27 @@ pub fn gcd_uint(a: &BigUint, b: &BigUint) -> BigUint {
 /// The non-negative gcd of two integers, equal to `Integer::gcd` on `BigInt`.
 pub fn gcd(a: &BigInt, b: &BigInt) -> BigInt {
     BigInt::from(gcd_uint(a.magnitude(), b.magnitude()))
+}
+
+/// `|x|`'s decimal digits appended to `out`, as `Display` writes them (`i64` formatting when the
+/// value fits: num-bigint's `Display` builds a digit vector and a string per call).
+pub fn push_int(out: &mut String, x: &BigInt) {
+    use std::fmt::Write;
+    match x.to_i64() {
+        Some(v) => write!(out, "{v}"),
+        None => write!(out, "{x}"),
+    }
+    .expect("writing to a String");
+}
+
+/// `q` appended to `out` as `Display` writes it (`n` or `n/d`), without the intermediate strings
+/// of num-rational's `Display`.
+pub fn push_ratio(out: &mut String, q: &BigRational) {
+    push_int(out, q.numer());
+    if !q.denom().is_one() {
+        out.push('/');
+        push_int(out, q.denom());
+    }
 }
 
 /// The non-negative lcm of two integers, equal to `Integer::lcm` on `BigInt`.
@@ -231,6 +255,22 @@ mod tests {
             prop_assert!(same(sub(&x, &x), &x - &x));
             if !d.is_zero() {
                 prop_assert!(same(ratio(n.clone(), d.clone()), BigRational::new(n, d)));
+            }
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn push_ratio_matches_display(x in arb_rat(), n in any::<i64>(), d in 1i64..) {
+            for q in [x, BigRational::new(n.into(), d.into()), BigRational::from_integer(n.into())] {
+                let mut s = String::new();
+                push_ratio(&mut s, &q);
+                prop_assert_eq!(s, q.to_string());
+            }
+            for v in [i64::MIN, i64::MAX, 0, -1] {
+                let mut s = String::new();
+                push_int(&mut s, &BigInt::from(v));
+                prop_assert_eq!(s, v.to_string());
             }
         }
     }

@@ -310,17 +310,19 @@ impl Poly {
             } else {
                 s.push_str(if neg { " - " } else { " + " });
             }
-            let mono = match i {
-                0 => String::new(),
-                1 => var.to_string(),
-                _ => format!("{var}^{i}"),
-            };
-            if mono.is_empty() {
-                s.push_str(&abs.to_string());
-            } else if abs.is_one() {
-                s.push_str(&mono);
-            } else {
-                s.push_str(&format!("{abs}*{mono}"));
+            // Written in place: `abs`, `abs*x^i` or `x^i` (no string per monomial).
+            if i == 0 || !abs.is_one() {
+                crate::algebra::intgcd::push_ratio(&mut s, &abs);
+                if i > 0 {
+                    s.push('*');
+                }
+            }
+            if i >= 1 {
+                s.push_str(var);
+            }
+            if i >= 2 {
+                s.push('^');
+                s.push_str(&i.to_string());
             }
         }
         s

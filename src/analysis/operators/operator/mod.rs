@@ -225,7 +225,7 @@ pub(crate) fn char_poly(t: &Matrix) -> Poly {
 }
 
 pub(crate) fn render_vec(k: &NumberField, v: &[FieldElement]) -> Vec<String> {
-    v.iter().map(|x| k.render(x)).collect()
+    k.render_many(v)
 }
 
 pub(crate) fn f64_of(k: &NumberField, a: &FieldElement) -> f64 {
