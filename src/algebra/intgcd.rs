@@ -10,7 +10,7 @@
 //! [`lcm`], [`ratio`], [`mul`], [`add`] and [`sub`] build on it; the rationals they return are
 //! reduced with a positive denominator exactly as [`BigRational::new`] reduces them.
 
-use num_bigint::{BigInt, BigUint, Sign};
+use num_bigint::{BigInt, BigUint};
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
@@ -36,20 +36,61 @@ fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
     }
 }
 
+/// Binary gcd of two double words.
+fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
+    if a == 0 {
+        return b;
+    }
+    if b == 0 {
+        return a;
+    }
+    let shift = (a | b).trailing_zeros();
+    a >>= a.trailing_zeros();
+    loop {
+        b >>= b.trailing_zeros();
+        if a > b {
+            std::mem::swap(&mut a, &mut b);
+        }
+        b -= a;
+        if b == 0 {
+            return a << shift;
+        }
+    }
+}
+
+/// `n/d` reduced, positive denominator, for double words (`d ≠ 0`, both above `i128::MIN`).
+fn ratio_small(n: i128, d: i128) -> BigRational {
+    let g = gcd_u128(n.unsigned_abs(), d.unsigned_abs()) as i128;
+    let (n, d) = (n / g, d / g);
+    if d < 0 {
+        BigRational::new_raw(BigInt::from(-n), BigInt::from(-d))
+    } else {
+        BigRational::new_raw(BigInt::from(n), BigInt::from(d))
+    }
+}
+
+/// Numerator and denominator as machine words, when both fit.
+fn small(x: &BigRational) -> Option<(i64, i64)> {
+    Some((x.numer().to_i64()?, x.denom().to_i64()?))
+}
+
 /// The leading 63 bits of `x`, shifted right by `shift` bits.
 fn top_bits(x: &BigUint, shift: u64) -> i128 {
     (x >> shift).to_u64().expect("63 bits") as i128
 }
 
-/// `p·u + q·v` for cofactors of opposite signs (or zero) whose result is known to be ≥ 0.
+/// `p·u + q·v` for cofactors of opposite signs (or zero), `|p|, |q| < 2^64`, whose result is
+/// known to be ≥ 0 (Lehmer's cofactors keep the remainders non-negative).
 fn combine(p: i128, u: &BigUint, q: i128, v: &BigUint) -> BigUint {
-    let term = |c: i128, x: &BigUint| -> BigInt {
-        let m = BigUint::from(c.unsigned_abs()) * x;
-        BigInt::from_biguint(if c < 0 { Sign::Minus } else { Sign::Plus }, m)
-    };
-    (term(p, u) + term(q, v))
-        .to_biguint()
-        .expect("Lehmer's cofactors keep the remainders non-negative")
+    let word = |c: i128| u64::try_from(c.unsigned_abs()).expect("a one-word cofactor");
+    let (pu, qv) = (u * word(p), v * word(q));
+    if p >= 0 && q >= 0 {
+        pu + qv
+    } else if p >= 0 {
+        pu - qv
+    } else {
+        qv - pu
+    }
 }
 
 /// The gcd of two natural numbers (`gcd(0, 0) = 0`), equal to `BigUint::gcd`.
@@ -145,6 +186,9 @@ pub fn lcm(a: &BigInt, b: &BigInt) -> BigInt {
 /// `n/d` reduced with a positive denominator, equal to `BigRational::new(n, d)` (`d ≠ 0`).
 pub fn ratio(n: BigInt, d: BigInt) -> BigRational {
     assert!(!d.is_zero(), "denominator == 0");
+    if let (Some(a), Some(b)) = (n.to_i64(), d.to_i64()) {
+        return ratio_small(a.into(), b.into());
+    }
     if n.is_zero() {
         return BigRational::new_raw(n, BigInt::one());
     }
@@ -162,6 +206,10 @@ pub fn mul(x: &BigRational, y: &BigRational) -> BigRational {
     if x.is_zero() || y.is_zero() {
         return BigRational::zero();
     }
+    if let (Some((a, b)), Some((c, d))) = (small(x), small(y)) {
+        // Products of two words fit in a double word; one gcd of the result.
+        return ratio_small(i128::from(a) * i128::from(c), i128::from(b) * i128::from(d));
+    }
     // Cross gcds: the product of the reduced factors is then reduced already.
     let g1 = gcd(x.numer(), y.denom());
     let g2 = gcd(y.numer(), x.denom());
@@ -172,6 +220,10 @@ pub fn mul(x: &BigRational, y: &BigRational) -> BigRational {
 
 /// `x + y`, equal to the `Add` of [`BigRational`].
 pub fn add(x: &BigRational, y: &BigRational) -> BigRational {
+    if let (Some((a, b)), Some((c, d))) = (small(x), small(y)) {
+        let (a, b, c, d) = (i128::from(a), i128::from(b), i128::from(c), i128::from(d));
+        return ratio_small(a * d + c * b, b * d);
+    }
     if x.denom() == y.denom() {
         return ratio(x.numer() + y.numer(), x.denom().clone());
     }
@@ -183,6 +235,10 @@ pub fn add(x: &BigRational, y: &BigRational) -> BigRational {
 
 /// `x − y`, equal to the `Sub` of [`BigRational`].
 pub fn sub(x: &BigRational, y: &BigRational) -> BigRational {
+    if let (Some((a, b)), Some((c, d))) = (small(x), small(y)) {
+        let (a, b, c, d) = (i128::from(a), i128::from(b), i128::from(c), i128::from(d));
+        return ratio_small(a * d - c * b, b * d);
+    }
     if x.denom() == y.denom() {
         return ratio(x.numer() - y.numer(), x.denom().clone());
     }
@@ -195,6 +251,7 @@ pub fn sub(x: &BigRational, y: &BigRational) -> BigRational {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use num_bigint::Sign;
     use num_integer::Integer;
     use proptest::prelude::*;
 
@@ -254,6 +311,36 @@ mod tests {
             prop_assert!(same(add(&x, &x), &x + &x));
             prop_assert!(same(sub(&x, &x), &x - &x));
             if !d.is_zero() {
+                prop_assert!(same(ratio(n.clone(), d.clone()), BigRational::new(n, d)));
+            }
+        }
+    }
+
+    /// Rationals of one-word numerators and denominators, extremes included: the double-word
+    /// fast paths.
+    fn arb_small_rat() -> impl Strategy<Value = BigRational> {
+        let word = prop_oneof![
+            Just(i64::MIN),
+            Just(i64::MAX),
+            Just(0i64),
+            Just(1i64),
+            -100i64..100,
+            any::<i64>()
+        ];
+        let den = prop_oneof![Just(i64::MAX), Just(1i64), 1i64..100, 1i64..];
+        (word, den).prop_map(|(n, d)| BigRational::new(n.into(), d.into()))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(5000))]
+        #[test]
+        fn small_rational_ops_match(x in arb_small_rat(), y in arb_small_rat(), n in any::<i64>(), d in any::<i64>()) {
+            let same = |r: BigRational, e: BigRational| r.into_raw() == e.into_raw();
+            prop_assert!(same(mul(&x, &y), &x * &y));
+            prop_assert!(same(add(&x, &y), &x + &y));
+            prop_assert!(same(sub(&x, &y), &x - &y));
+            if d != 0 {
+                let (n, d) = (BigInt::from(n), BigInt::from(d));
                 prop_assert!(same(ratio(n.clone(), d.clone()), BigRational::new(n, d)));
             }
         }
