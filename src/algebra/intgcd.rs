@@ -304,7 +304,7 @@ mod tests {
         #[test]
         fn rational_ops_match(x in arb_rat(), y in arb_rat(), n in arb_int(), d in arb_int()) {
             // Representations, not only values: numerators and denominators equal.
-            let same = |r: BigRational, e: BigRational| (r.into_raw() == e.into_raw());
+            let same = |r: BigRational, e: BigRational| r.into_raw() == e.into_raw();
             prop_assert!(same(mul(&x, &y), &x * &y));
             prop_assert!(same(add(&x, &y), &x + &y));
             prop_assert!(same(sub(&x, &y), &x - &y));
