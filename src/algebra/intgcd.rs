@@ -74,16 +74,21 @@ fn small(x: &BigRational) -> Option<(i64, i64)> {
     Some((x.numer().to_i64()?, x.denom().to_i64()?))
 }
 
-/// The leading 63 bits of `x`, shifted right by `shift` bits.
-fn top_bits(x: &BigUint, shift: u64) -> i128 {
-    (x >> shift).to_u64().expect("63 bits") as i128
+/// The leading 62 bits of `x`, shifted right by `shift` bits.
+fn top_bits(x: &BigUint, shift: u64) -> i64 {
+    (x >> shift).to_i64().expect("62 bits")
 }
 
-/// `p·u + q·v` for cofactors of opposite signs (or zero), `|p|, |q| < 2^64`, whose result is
-/// known to be ≥ 0 (Lehmer's cofactors keep the remainders non-negative).
-fn combine(p: i128, u: &BigUint, q: i128, v: &BigUint) -> BigUint {
-    let word = |c: i128| u64::try_from(c.unsigned_abs()).expect("a one-word cofactor");
-    let (pu, qv) = (u * word(p), v * word(q));
+/// `Some(k)` when `x = 2^k`.
+fn power_of_two(x: &BigUint) -> Option<u64> {
+    let k = x.trailing_zeros()?;
+    (x.bits() == k + 1).then_some(k)
+}
+
+/// `p·u + q·v` for cofactors of opposite signs (or zero) whose result is known to be ≥ 0
+/// (Lehmer's cofactors keep the remainders non-negative).
+fn combine(p: i64, u: &BigUint, q: i64, v: &BigUint) -> BigUint {
+    let (pu, qv) = (u * p.unsigned_abs(), v * q.unsigned_abs());
     if p >= 0 && q >= 0 {
         pu + qv
     } else if p >= 0 {
@@ -97,6 +102,14 @@ fn combine(p: i128, u: &BigUint, q: i128, v: &BigUint) -> BigUint {
 pub fn gcd_uint(a: &BigUint, b: &BigUint) -> BigUint {
     if let (Some(x), Some(y)) = (a.to_u64(), b.to_u64()) {
         return BigUint::from(gcd_u64(x, y));
+    }
+    // A power of two (the denominators of dyadic numbers): the gcd is the smaller power of two
+    // dividing both.
+    for (x, y) in [(a, b), (b, a)] {
+        if let Some(k) = power_of_two(x) {
+            let t = y.trailing_zeros().map_or(k, |t| t.min(k));
+            return BigUint::one() << t;
+        }
     }
     let (mut u, mut v) = if a >= b {
         (a.clone(), b.clone())
@@ -121,9 +134,11 @@ pub fn gcd_uint(a: &BigUint, b: &BigUint) -> BigUint {
             u = std::mem::replace(&mut v, r);
             continue;
         }
-        let shift = bits - 63;
+        // 62 bits: the simulated remainders and the cofactors stay below 2^62 in magnitude, so
+        // every sum and product of the loop fits in an i64 (no double-word division).
+        let shift = bits - 62;
         let (mut uh, mut vh) = (top_bits(&u, shift), top_bits(&v, shift));
-        let (mut ca, mut cb, mut cc, mut cd) = (1i128, 0i128, 0i128, 1i128);
+        let (mut ca, mut cb, mut cc, mut cd) = (1i64, 0i64, 0i64, 1i64);
         loop {
             if vh + cc <= 0 || vh + cd <= 0 {
                 break;
