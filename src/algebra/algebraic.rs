@@ -165,7 +165,12 @@ impl RealAlgebraic {
 
     /// One bisection step; `s_lo` is the sign of the minimal polynomial at `lo`.
     fn bisect(&mut self, ints: &[BigInt], s_lo: i32) {
-        let mid = (&self.lo + &self.hi) / two();
+        // (lo + hi)/2 with one gcd (num-rational's sum and quotient reduce twice).
+        let (lo, hi) = (&self.lo, &self.hi);
+        let mid = crate::algebra::intgcd::ratio(
+            lo.numer() * hi.denom() + hi.numer() * lo.denom(),
+            (lo.denom() * hi.denom()) << 1u32,
+        );
         // No rational root: the sign at `mid` is never zero.
         if sign_at_int(ints, &mid) == s_lo {
             self.lo = mid;
@@ -353,8 +358,8 @@ fn newton_interval(
     let sb = eval_fixed(f, &b, p).0.sign();
     let scale = BigInt::one() << p;
     let (a, b) = (
-        BigRational::new(a, scale.clone()),
-        BigRational::new(b, scale),
+        crate::algebra::intgcd::ratio(a, scale.clone()),
+        crate::algebra::intgcd::ratio(b, scale),
     );
     let inside = cmp_rat(&a, lo) != Ordering::Less && cmp_rat(&b, hi) != Ordering::Greater;
     let opposite = sa != sb && sa != num_bigint::Sign::NoSign && sb != num_bigint::Sign::NoSign;
@@ -439,7 +444,7 @@ fn integral(c: &[BigRational]) -> (Vec<BigInt>, BigInt) {
         if x.denom().is_one() {
             acc
         } else {
-            acc.lcm(x.denom())
+            crate::algebra::intgcd::lcm(&acc, x.denom())
         }
     });
     let ints = c
@@ -522,7 +527,7 @@ impl NumberField {
         let (r, den) = self.reduce_ints(r, den);
         Poly::new(
             r.into_iter()
-                .map(|x| BigRational::new(x, den.clone()))
+                .map(|x| crate::algebra::intgcd::ratio(x, den.clone()))
                 .collect(),
         )
     }
@@ -626,7 +631,9 @@ impl NumberField {
             a.0.coeffs()
                 .iter()
                 .chain(b.0.coeffs())
-                .fold(BigInt::one(), |acc, c| acc.lcm(c.denom()));
+                .fold(BigInt::one(), |acc, c| {
+                    crate::algebra::intgcd::lcm(&acc, c.denom())
+                });
         let s = BigRational::from_integer(s);
         let ints = |x: &FieldElement| -> Vec<BigInt> {
             x.0.coeffs().iter().map(|c| (c * &s).to_integer()).collect()
@@ -681,8 +688,8 @@ impl NumberField {
             let (lo, hi) = enclose_fixed(a.0.coeffs(), &g.lo, &g.hi, prec);
             let scale = BigInt::one() << prec;
             let (lo, hi) = (
-                BigRational::new(lo, scale.clone()),
-                BigRational::new(hi, scale),
+                crate::algebra::intgcd::ratio(lo, scale.clone()),
+                crate::algebra::intgcd::ratio(hi, scale),
             );
             if let Some(t) = decide(&lo, &hi) {
                 return t;
@@ -726,12 +733,29 @@ impl NumberField {
         if self.degree() == 2 {
             return self.quadratic_form(a);
         }
+        format!("{}{}", a.0.render("rho"), self.where_rho())
+    }
+
+    /// [`NumberField::render`] of every element, the generator's description (` where rho = …`,
+    /// the same for all) written once.
+    pub fn render_many(&self, v: &[FieldElement]) -> Vec<String> {
+        if self.degree() <= 2 {
+            return v.iter().map(|a| self.render(a)).collect();
+        }
+        let suffix = self.where_rho();
+        v.iter()
+            .map(|a| match a.as_rational() {
+                Some(q) => q.to_string(),
+                None => a.0.render("rho") + &suffix,
+            })
+            .collect()
+    }
+
+    /// ` where rho = root of f in [lo, hi]`: the generator, for degree ≥ 3.
+    fn where_rho(&self) -> String {
         format!(
-            "{} where rho = root of {} in [{}, {}]",
-            a.0.render("rho"),
-            self.gen.min_poly,
-            self.gen.lo,
-            self.gen.hi
+            " where rho = root of {} in [{}, {}]",
+            self.gen.min_poly, self.gen.lo, self.gen.hi
         )
     }
 
@@ -753,10 +777,10 @@ impl NumberField {
         let a_part = u - &v * &p / two();
         let b_part = v * s * BigRational::from_integer(k)
             / (BigRational::from_integer(delta.denom().clone()) * two());
-        let c = a_part.denom().lcm(b_part.denom());
+        let c = crate::algebra::intgcd::lcm(a_part.denom(), b_part.denom());
         let ai = (&a_part * BigRational::from_integer(c.clone())).to_integer();
         let bi = (&b_part * BigRational::from_integer(c.clone())).to_integer();
-        let g = ai.gcd(&bi).gcd(&c);
+        let g = crate::algebra::intgcd::gcd(&crate::algebra::intgcd::gcd(&ai, &bi), &c);
         let (ai, bi, c) = (ai / &g, bi / &g, c / &g);
         let root = if bi.abs().is_one() {
             format!("sqrt({d})")

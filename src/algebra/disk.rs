@@ -142,8 +142,9 @@ pub fn sqrt_up(x: &BigRational) -> BigRational {
         .to_f64()
         .and_then(|v| BigRational::from_f64(v.sqrt() * (1.0 + 1e-12) + f64::MIN_POSITIVE))
         .unwrap_or_else(|| x + BigRational::from_integer(1.into()));
-    while &up * &up < *x {
-        up = &up * &two;
+    // up² < x by cross-multiplication (positive denominators): no gcd for a comparison.
+    while up.numer() * up.numer() * x.denom() < x.numer() * up.denom() * up.denom() {
+        up = crate::algebra::intgcd::mul(&up, &two);
     }
     up
 }
@@ -181,8 +182,8 @@ pub fn root_disks(f: &Poly) -> Option<Vec<Disk>> {
         // converts it, and both work on its value.
         let r2 = BigRational::new_raw(&nn * &nn * (&fa * &fa + &fb * &fb), den * &d * &d);
         disks.push(Disk {
-            re: BigRational::new(a, d.clone()),
-            im: BigRational::new(b, d),
+            re: crate::algebra::intgcd::ratio(a, d.clone()),
+            im: crate::algebra::intgcd::ratio(b, d),
             r: sqrt_up(&r2),
         });
     }
@@ -237,15 +238,25 @@ impl Disk {
     /// Compares the modulus of the root in this disk with a number known to lie in
     /// `[lo, hi]` (`0 ≤ lo ≤ hi`): `Some(Less)` / `Some(Greater)` when decided, `None` otherwise.
     pub fn cmp_modulus(&self, lo: &BigRational, hi: &BigRational) -> Option<Ordering> {
-        let m2 = &self.re * &self.re + &self.im * &self.im;
-        // |w| ≤ |z| + r < lo  ⇐  |z| < lo − r.
-        let a = lo - &self.r;
-        if a.is_positive() && m2 < &a * &a {
-            return Some(Ordering::Less);
+        // Exact comparisons in integers over positive denominators: no gcd (num-rational would
+        // reduce every product and sum only for them to be compared).
+        let (re, im, r) = (&self.re, &self.im, &self.r);
+        let (rd2, id2) = (re.denom() * re.denom(), im.denom() * im.denom());
+        // |z|² = mn / md.
+        let mn = re.numer() * re.numer() * &id2 + im.numer() * im.numer() * &rd2;
+        let md = rd2 * id2;
+        // |w| ≤ |z| + r < lo  ⇐  |z| < lo − r, with lo − r = an / ad.
+        let an = lo.numer() * r.denom() - r.numer() * lo.denom();
+        if an.is_positive() {
+            let ad = lo.denom() * r.denom();
+            if &mn * &ad * &ad < &an * &an * &md {
+                return Some(Ordering::Less);
+            }
         }
-        // |w| ≥ |z| − r > hi  ⇐  |z| > hi + r.
-        let b = hi + &self.r;
-        if m2 > &b * &b {
+        // |w| ≥ |z| − r > hi  ⇐  |z| > hi + r, with hi + r = bn / bd.
+        let bn = hi.numer() * r.denom() + r.numer() * hi.denom();
+        let bd = hi.denom() * r.denom();
+        if &mn * &bd * &bd > &bn * &bn * &md {
             return Some(Ordering::Greater);
         }
         None

@@ -246,7 +246,6 @@ impl AdjugateChains {
     /// The data of the square matrix `t` with characteristic polynomial `chi`.
     pub(crate) fn new(t: &Matrix, chi: &Poly) -> Self {
         use num_bigint::BigInt;
-        use num_integer::Integer;
         let n = t.rows;
         let chi = chi.monic();
         // Over Z: A = d·T has the eigenvalue μ = d·λ; adj(μI − A) = d^(n−1)·adj(λI − T).
@@ -254,7 +253,7 @@ impl AdjugateChains {
             if x.denom().is_one() {
                 acc
             } else {
-                acc.lcm(x.denom())
+                crate::algebra::intgcd::lcm(&acc, x.denom())
             }
         });
         let scaled = |x: &BigRational| {
@@ -409,7 +408,6 @@ fn rational_column(
     mu: &BigRational,
 ) -> Option<Vec<FieldElement>> {
     use num_bigint::BigInt;
-    use num_integer::Integer;
     let n = ws.len();
     let (a, b) = (mu.numer(), mu.denom());
     let v: Vec<BigInt> = (0..n)
@@ -428,11 +426,13 @@ fn rational_column(
     if k.degree() <= 2 {
         return Some(
             v.into_iter()
-                .map(|x| k.rational(BigRational::new(x, last.clone())))
+                .map(|x| k.rational(crate::algebra::intgcd::ratio(x, last.clone())))
                 .collect(),
         );
     }
-    let g = v.iter().fold(BigInt::zero(), |acc, x| acc.gcd(x));
+    let g = v.iter().fold(BigInt::zero(), |acc, x| {
+        crate::algebra::intgcd::gcd(&acc, x)
+    });
     Some(
         v.into_iter()
             .map(|x| k.rational(BigRational::from_integer(x / &g)))
@@ -450,7 +450,6 @@ fn primitive_generator_column(
     d: &num_bigint::BigInt,
 ) -> Option<Vec<FieldElement>> {
     use num_bigint::BigInt;
-    use num_integer::Integer;
     use num_traits::Signed;
     let n = ws.len();
     let rows: Vec<(Vec<BigInt>, BigInt)> = (0..n)
@@ -475,16 +474,13 @@ fn primitive_generator_column(
     if rows.iter().all(|(c, _)| c.iter().all(Zero::is_zero)) {
         return None;
     }
-    let common = rows.iter().fold(
-        BigInt::one(),
-        |acc, (_, den)| {
-            if &acc == den {
-                acc
-            } else {
-                acc.lcm(den)
-            }
-        },
-    );
+    let common = rows.iter().fold(BigInt::one(), |acc, (_, den)| {
+        if &acc == den {
+            acc
+        } else {
+            crate::algebra::intgcd::lcm(&acc, den)
+        }
+    });
     let mut ints: Vec<Vec<BigInt>> = rows
         .into_iter()
         .map(|(c, den)| {
@@ -499,7 +495,7 @@ fn primitive_generator_column(
     let mut g = BigInt::zero();
     for x in ints.iter().flatten() {
         if !x.is_zero() {
-            g = g.gcd(x);
+            g = crate::algebra::intgcd::gcd(&g, x);
             if g.is_one() {
                 break;
             }
@@ -522,18 +518,17 @@ fn primitive_generator_column(
 /// `v` scaled by a positive rational so that every coordinate on the power basis is an integer
 /// and the integers have no common factor (an inversion in K would make the vector larger).
 fn primitive_vector(k: &NumberField, v: Vec<FieldElement>) -> Vec<FieldElement> {
-    use num_integer::Integer;
     let coeffs = v.iter().flat_map(|x| x.coords().iter());
-    let den = coeffs
-        .clone()
-        .fold(num_bigint::BigInt::one(), |acc, c| acc.lcm(c.denom()));
+    let den = coeffs.clone().fold(num_bigint::BigInt::one(), |acc, c| {
+        crate::algebra::intgcd::lcm(&acc, c.denom())
+    });
     let num = coeffs.fold(num_bigint::BigInt::zero(), |acc, c| {
-        acc.gcd(&(c.numer() * (&den / c.denom())))
+        crate::algebra::intgcd::gcd(&acc, &(c.numer() * (&den / c.denom())))
     });
     if num.is_zero() {
         return v;
     }
-    let s = BigRational::new(den, num);
+    let s = crate::algebra::intgcd::ratio(den, num);
     v.iter().map(|x| k.scale(x, &s)).collect()
 }
 

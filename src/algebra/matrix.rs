@@ -104,7 +104,9 @@ impl Matrix {
         (0..self.cols).all(|c| {
             (0..self.rows)
                 .map(|r| self.get(r, c))
-                .sum::<BigRational>()
+                .fold(BigRational::zero(), |acc, x| {
+                    crate::algebra::intgcd::add(&acc, x)
+                })
                 .is_one()
         })
     }

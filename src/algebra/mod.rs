@@ -9,6 +9,7 @@ pub(crate) mod algebraic;
 pub(crate) mod disk;
 pub(crate) mod factor;
 pub(crate) mod fieldpoly;
+pub(crate) mod intgcd;
 pub(crate) mod kmatrix;
 pub(crate) mod matrix;
 pub(crate) mod poly;

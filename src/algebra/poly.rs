@@ -89,7 +89,12 @@ impl Poly {
 
     /// `self * q`.
     pub fn scale(&self, q: &BigRational) -> Poly {
-        Poly::new(self.c.iter().map(|a| a * q).collect())
+        Poly::new(
+            self.c
+                .iter()
+                .map(|a| crate::algebra::intgcd::mul(a, q))
+                .collect(),
+        )
     }
 
     /// `self` divided by its leading coefficient (zero stays zero).
@@ -188,16 +193,17 @@ impl Poly {
 
     /// The positive multiple of `self` with coprime integer coefficients (empty for zero).
     pub fn primitive_int(&self) -> Vec<BigInt> {
-        let den = self
-            .c
-            .iter()
-            .fold(BigInt::one(), |acc, a| acc.lcm(a.denom()));
+        let den = self.c.iter().fold(BigInt::one(), |acc, a| {
+            crate::algebra::intgcd::lcm(&acc, a.denom())
+        });
         let ints: Vec<BigInt> = self
             .c
             .iter()
             .map(|a| a.numer() * (&den / a.denom()))
             .collect();
-        let g = ints.iter().fold(BigInt::zero(), |acc, a| acc.gcd(a));
+        let g = ints.iter().fold(BigInt::zero(), |acc, a| {
+            crate::algebra::intgcd::gcd(&acc, a)
+        });
         if g.is_zero() {
             return Vec::new();
         }
@@ -304,17 +310,19 @@ impl Poly {
             } else {
                 s.push_str(if neg { " - " } else { " + " });
             }
-            let mono = match i {
-                0 => String::new(),
-                1 => var.to_string(),
-                _ => format!("{var}^{i}"),
-            };
-            if mono.is_empty() {
-                s.push_str(&abs.to_string());
-            } else if abs.is_one() {
-                s.push_str(&mono);
-            } else {
-                s.push_str(&format!("{abs}*{mono}"));
+            // Written in place: `abs`, `abs*x^i` or `x^i` (no string per monomial).
+            if i == 0 || !abs.is_one() {
+                crate::algebra::intgcd::push_ratio(&mut s, &abs);
+                if i > 0 {
+                    s.push('*');
+                }
+            }
+            if i >= 1 {
+                s.push_str(var);
+            }
+            if i >= 2 {
+                s.push('^');
+                s.push_str(&i.to_string());
             }
         }
         s
@@ -331,7 +339,11 @@ impl Add for &Poly {
     type Output = Poly;
     fn add(self, o: &Poly) -> Poly {
         let n = self.c.len().max(o.c.len());
-        Poly::new((0..n).map(|i| self.coeff(i) + o.coeff(i)).collect())
+        Poly::new(
+            (0..n)
+                .map(|i| crate::algebra::intgcd::add(&self.coeff(i), &o.coeff(i)))
+                .collect(),
+        )
     }
 }
 
@@ -339,7 +351,11 @@ impl Sub for &Poly {
     type Output = Poly;
     fn sub(self, o: &Poly) -> Poly {
         let n = self.c.len().max(o.c.len());
-        Poly::new((0..n).map(|i| self.coeff(i) - o.coeff(i)).collect())
+        Poly::new(
+            (0..n)
+                .map(|i| crate::algebra::intgcd::sub(&self.coeff(i), &o.coeff(i)))
+                .collect(),
+        )
     }
 }
 
@@ -363,7 +379,8 @@ impl Mul for &Poly {
             }
             for (j, b) in o.c.iter().enumerate() {
                 if !b.is_zero() {
-                    c[i + j] += a * b;
+                    let ab = crate::algebra::intgcd::mul(a, b);
+                    c[i + j] = crate::algebra::intgcd::add(&c[i + j], &ab);
                 }
             }
         }
@@ -490,7 +507,7 @@ fn sign_variations(c: &[BigInt]) -> usize {
 /// the sign variations of `(1 + x)^n · p((a + b·x)/(1 + x))`. It is at least the number of
 /// roots and of the same parity, so 0 means none and 1 means exactly one.
 pub fn descartes_bound(p: &[BigInt], a: &BigRational, b: &BigRational) -> usize {
-    let d = a.denom().lcm(b.denom());
+    let d = crate::algebra::intgcd::lcm(a.denom(), b.denom());
     let (aa, bb) = (a.numer() * (&d / a.denom()), b.numer() * (&d / b.denom()));
     if let Some(v) = descartes_bound_i128(p, &aa, &bb, &d) {
         return v;

@@ -10,15 +10,13 @@ use super::{
 };
 use crate::algebra::poly::Poly;
 use num_bigint::BigInt;
-use num_integer::Integer;
-use num_rational::BigRational;
 use num_traits::{One, Zero};
 
 /// The lcm of the denominators of `g`'s coefficients.
 pub(super) fn lcm_scale(g: &Poly) -> BigInt {
-    g.coeffs()
-        .iter()
-        .fold(BigInt::one(), |acc, c| acc.lcm(c.denom()))
+    g.coeffs().iter().fold(BigInt::one(), |acc, c| {
+        crate::algebra::intgcd::lcm(&acc, c.denom())
+    })
 }
 
 /// A scale `a` making `a^n g(y / a)` integral, at most [`lcm_scale`]: for the primes 2, 3, 5
@@ -42,7 +40,7 @@ pub(super) fn small_scale(g: &Poly) -> BigInt {
             }
             exps[k] = exps[k].max(v.div_ceil(e));
         }
-        rest = rest.lcm(&d);
+        rest = crate::algebra::intgcd::lcm(&rest, &d);
     }
     [2u32, 3, 5, 7]
         .into_iter()
@@ -56,11 +54,13 @@ fn scaled_ints(g: &Poly, a: &BigInt) -> Option<Vec<BigInt>> {
     let mut big: Vec<BigInt> = Vec::with_capacity(n + 1);
     let mut apow = BigInt::one();
     for i in (0..=n).rev() {
-        let c = g.coeff(i) * BigRational::from_integer(apow.clone());
-        if !c.is_integer() {
+        // c·a^i must be an integer: a remainder test, no rational product.
+        let c = g.coeff(i);
+        let (q, r) = num_integer::Integer::div_rem(&(c.numer() * &apow), c.denom());
+        if !r.is_zero() {
             return None;
         }
-        big.push(c.to_integer());
+        big.push(q);
         apow *= a;
     }
     big.reverse();

@@ -24,7 +24,6 @@ use crate::algebra::matrix::Matrix;
 use crate::algebra::poly::Poly;
 use crate::error::{Diagnostic, Error, Result, Source, Span};
 use num_bigint::BigInt;
-use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::{FromPrimitive, One, ToPrimitive, Zero};
 use serde::Serialize;
@@ -192,15 +191,16 @@ pub(crate) fn op_error(code: &'static str, message: impl Into<String>) -> Error 
 
 /// The characteristic polynomial `det(x·I − T)` of a square rational matrix.
 pub(crate) fn char_poly(t: &Matrix) -> Poly {
-    let d = t
-        .data
-        .iter()
-        .fold(BigInt::one(), |acc, x| acc.lcm(x.denom()));
-    let dr = BigRational::from_integer(d.clone());
+    let d = t.data.iter().fold(BigInt::one(), |acc, x| {
+        crate::algebra::intgcd::lcm(&acc, x.denom())
+    });
     let ints: Vec<Vec<BigInt>> = (0..t.rows)
         .map(|i| {
             (0..t.cols)
-                .map(|j| (t.get(i, j) * &dr).to_integer())
+                .map(|j| {
+                    let x = t.get(i, j);
+                    x.numer() * (&d / x.denom())
+                })
                 .collect()
         })
         .collect();
@@ -214,7 +214,7 @@ pub(crate) fn char_poly(t: &Matrix) -> Poly {
         .iter()
         .rev()
         .map(|c| {
-            let x = BigRational::new(c.numer().clone(), c.denom() * &dpow);
+            let x = crate::algebra::intgcd::ratio(c.numer().clone(), c.denom() * &dpow);
             dpow *= &d;
             x
         })
@@ -225,7 +225,7 @@ pub(crate) fn char_poly(t: &Matrix) -> Poly {
 }
 
 pub(crate) fn render_vec(k: &NumberField, v: &[FieldElement]) -> Vec<String> {
-    v.iter().map(|x| k.render(x)).collect()
+    k.render_many(v)
 }
 
 pub(crate) fn f64_of(k: &NumberField, a: &FieldElement) -> f64 {
@@ -372,7 +372,9 @@ pub fn analyse_matrix(t: &Matrix) -> Result<OperatorReport> {
                 .iter()
                 .map(|x| x.as_rational().expect("rational"))
                 .collect();
-            let s: BigRational = v.iter().sum();
+            let s = v.iter().fold(BigRational::zero(), |acc, x| {
+                crate::algebra::intgcd::add(&acc, x)
+            });
             if s.is_zero() {
                 (
                     None,
@@ -382,7 +384,15 @@ pub fn analyse_matrix(t: &Matrix) -> Result<OperatorReport> {
                     ),
                 )
             } else {
-                (Some(v.iter().map(|x| x / &s).collect::<Vec<_>>()), None)
+                let inv = s.recip();
+                (
+                    Some(
+                        v.iter()
+                            .map(|x| crate::algebra::intgcd::mul(x, &inv))
+                            .collect::<Vec<_>>(),
+                    ),
+                    None,
+                )
             }
         }
     };
