@@ -597,7 +597,7 @@ pub fn solve_automaton(a: &Automaton) -> Result<(SolveReport, Linearized, Soluti
                     let m = Matrix {
                         rows: r,
                         cols: c,
-                        data: space.particular[base..base + r * c].to_vec(),
+                        data: space.particular.range(base..base + r * c),
                     };
                     report.particular.insert(op.name.clone(), m.to_string());
                 }
@@ -607,7 +607,7 @@ pub fn solve_automaton(a: &Automaton) -> Result<(SolveReport, Linearized, Soluti
                 .iter()
                 .map(|v| {
                     v.iter()
-                        .map(|(i, x)| (a.entry_name(lin.unknown_entries[*i]), x.to_string()))
+                        .map(|(i, x)| (a.entry_name(lin.unknown_entries[i]), x.to_string()))
                         .collect()
                 })
                 .collect();

@@ -20,8 +20,8 @@ pub use generate::{
     Generated,
 };
 pub use linsys::{
-    forced_equal, solve, write_text, Conflict, Equation, LinearSystem, Parametrization, Solution,
-    SolutionSpace, TextLayout, MINIMIZE_LIMIT,
+    forced_equal, solve, write_text, Conflict, Direction, Directions, Equation, LinearSystem,
+    Parametrization, Rationals, Solution, SolutionSpace, TextLayout, MINIMIZE_LIMIT,
 };
 pub use volume::{
     shared_readings, solve_volumes, solve_volumes_with_system, volume_automaton, GeneratedVolumes,

@@ -148,7 +148,7 @@ pub fn moditere_text(
         Some(Matrix {
             rows: r,
             cols: c,
-            data: space.particular[base..base + r * c].to_vec(),
+            data: space.particular.range(base..base + r * c),
         })
     };
     let dim = |e: &EdgeType| a.states[state_index[e.to_string().as_str()]].dim;

@@ -347,7 +347,7 @@ pub fn project_exact(
     let first = least_squares(n, &rows);
     let unique = first.dof() == 0;
     let s: Vec<Q> = if unique {
-        first.particular.clone()
+        first.particular.to_vec()
     } else {
         // Among the minimisers s = particular + K·z, the one closest to the reference columns.
         let p1 = first.parametrize();
@@ -356,7 +356,7 @@ pub fn project_exact(
             .map(|f| (substitute(f, &p1), one.clone()))
             .collect();
         let second = least_squares(first.dof(), &rows2);
-        let z = &second.particular;
+        let z = second.particular.to_vec();
         (0..n)
             .map(|j| {
                 let (cst, terms) = p1.expression(j);

@@ -163,7 +163,7 @@ pub fn resolve(
                     (None, Some(base)) => Matrix {
                         rows: r,
                         cols: c,
-                        data: space.particular[base..base + r * c].to_vec(),
+                        data: space.particular.range(base..base + r * c),
                     },
                     (None, None) => unreachable!("unknown operators have offsets"),
                 };

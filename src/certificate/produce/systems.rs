@@ -25,12 +25,16 @@ pub fn certificate_for_system(
 }
 
 /// A dense solution vector as the certificate's sparse list: the nonzero entries by index.
-pub(super) fn nonzero(v: &[BigRational]) -> Vec<(usize, String)> {
-    v.iter()
-        .enumerate()
-        .filter(|(_, x)| !x.is_zero())
-        .map(|(i, x)| (i, x.to_string()))
+pub(super) fn nonzero(v: &crate::constraint::Rationals) -> Vec<(usize, String)> {
+    (0..v.len())
+        .filter(|&i| !v.is_zero_at(i))
+        .map(|i| (i, v.text(i)))
         .collect()
+}
+
+/// A direction of a solution space as the certificate's list of `(unknown, coefficient)`.
+pub(super) fn direction(d: crate::constraint::Direction<'_>) -> Vec<(usize, String)> {
+    (0..d.len()).map(|j| (d.unknowns()[j], d.text(j))).collect()
 }
 
 pub(super) fn terms(v: &[(usize, BigRational)]) -> Vec<(usize, String)> {
@@ -73,7 +77,7 @@ pub(super) fn step_of_system(system: System, solution: &crate::constraint::Solut
             system,
             particular: nonzero(&s.particular),
             free: s.free.clone(),
-            basis: s.basis.iter().map(|b| terms(b)).collect(),
+            basis: s.basis.iter().map(direction).collect(),
             pivots: s.pivots.clone(),
             rank: s.rank,
             dof: s.dof(),

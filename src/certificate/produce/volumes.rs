@@ -3,7 +3,7 @@
 //! from a claim.
 
 use super::faces::{closure_step, edge, face, lacuna_edge, lacuna_face};
-use super::systems::{nonzero, ratio_step_in, terms};
+use super::systems::{direction, nonzero, ratio_step_in};
 use super::{CertifyError, SOLID_CELLS};
 use crate::certificate::format::{
     Certificate, Claim, DegeneracyStep, Face, SharedFaceClaim, SolidCountRow, SolidHomologyStep,
@@ -212,7 +212,7 @@ pub fn volume_system_step(
         unknowns: solved.linearized.system.unknowns,
         particular: nonzero(&space.particular),
         free: space.free.clone(),
-        basis: space.basis.iter().map(|b| terms(b)).collect(),
+        basis: space.basis.iter().map(direction).collect(),
         rank: space.rank,
         dof: space.dof(),
     });

@@ -40,13 +40,13 @@ impl SolutionSpace {
             if e.terms.iter().any(|(v, _)| *v >= n) {
                 return Err(format!("equation {i}: unknown out of range"));
             }
-            if row_value(e, &|v| self.particular[v].clone()) != e.rhs {
+            if row_value(e, &|v| self.particular.get(v)) != e.rhs {
                 return Err(format!("equation {i} fails on the particular solution"));
             }
         }
         let mut free_pos = vec![usize::MAX; n];
         for (k, &f) in self.free.iter().enumerate() {
-            if f >= n || free_pos[f] != usize::MAX || !self.particular[f].is_zero() {
+            if f >= n || free_pos[f] != usize::MAX || !self.particular.is_zero_at(f) {
                 return Err(format!(
                     "free unknown {f}: repeated, out of range or nonzero in particular"
                 ));
@@ -59,25 +59,23 @@ impl SolutionSpace {
             e.terms.iter().for_each(|(v, _)| rows_of[*v].push(i as u32));
         }
         for (k, b) in self.basis.iter().enumerate() {
-            if b.windows(2).any(|w| w[0].0 >= w[1].0) || b.last().is_some_and(|t| t.0 >= n) {
+            let xs = b.unknowns();
+            if xs.windows(2).any(|w| w[0] >= w[1]) || xs.last().is_some_and(|&x| x >= n) {
                 return Err(format!("basis vector {k} not sorted by unknown"));
             }
-            for (v, c) in b {
-                let unit = free_pos[*v] == k;
-                if free_pos[*v] != usize::MAX && (unit != c.is_one() || (!unit && !c.is_zero())) {
+            for (v, c) in b.iter() {
+                let unit = free_pos[v] == k;
+                if free_pos[v] != usize::MAX && (unit != c.is_one() || (!unit && !c.is_zero())) {
                     return Err(format!("basis vector {k} is not unit on the free unknowns"));
                 }
             }
-            if b.binary_search_by_key(&self.free[k], |t| t.0).is_err() {
+            if xs.binary_search(&self.free[k]).is_err() {
                 return Err(format!("basis vector {k} misses its free unknown"));
             }
-            let at = |v: usize| {
-                b.binary_search_by_key(&v, |t| t.0)
-                    .map_or_else(|_| BigRational::zero(), |p| b[p].1.clone())
-            };
-            let mut touched: Vec<u32> = b
+            let at = |v: usize| b.at(v);
+            let mut touched: Vec<u32> = xs
                 .iter()
-                .flat_map(|(v, _)| rows_of[*v].iter().copied())
+                .flat_map(|&v| rows_of[v].iter().copied())
                 .collect();
             touched.sort_unstable();
             touched.dedup();
@@ -222,13 +220,16 @@ pub fn forced_equal(
     b: &[(usize, BigRational)],
 ) -> bool {
     let d = difference(a, b);
-    let dot = |v: &mut dyn Iterator<Item = (usize, &BigRational)>| {
-        v.filter_map(|(x, c)| d.get(&x).map(|w| w * c))
-            .fold(BigRational::zero(), |s, t| s + t)
-    };
-    dot(&mut space.particular.iter().enumerate()).is_zero()
-        && space
-            .basis
-            .iter()
-            .all(|bk| dot(&mut bk.iter().map(|(x, c)| (*x, c))).is_zero())
+    let particular = d.iter().fold(BigRational::zero(), |s, (&x, w)| {
+        s + w * space.particular.get(x)
+    });
+    particular.is_zero()
+        && space.basis.iter().all(|bk| {
+            bk.unknowns()
+                .iter()
+                .enumerate()
+                .filter_map(|(j, x)| d.get(x).map(|w| w * bk.coef(j)))
+                .fold(BigRational::zero(), |s, t| s + t)
+                .is_zero()
+        })
 }

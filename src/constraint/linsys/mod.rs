@@ -32,6 +32,7 @@
 //! sparsela), none exact, rank-revealing or certifying.
 
 use crate::constraint::presolve::{integer_row, Presolve, RowFate, Q, Z};
+pub use compact::{Direction, Directions, Rationals};
 use num_rational::BigRational;
 use num_traits::Zero;
 use serde::{Deserialize, Serialize};
@@ -74,14 +75,12 @@ pub struct SolutionSpace {
     /// Rank of the coefficient matrix.
     pub rank: usize,
     /// One solution, with every free parameter 0.
-    #[serde(with = "rat_vec")]
-    pub particular: Vec<BigRational>,
+    pub particular: Rationals,
     /// The unknown serving as free parameter of each direction, increasing.
     pub free: Vec<usize>,
-    /// Sparse direction vectors sorted by unknown; `basis[k]` is 1 at `free[k]` and 0 at the other
-    /// free unknowns.
-    #[serde(with = "rat_basis")]
-    pub basis: Vec<Vec<(usize, BigRational)>>,
+    /// Sparse direction vectors sorted by unknown; direction `k` is 1 at `free[k]` and 0 at the
+    /// other free unknowns.
+    pub basis: Directions,
     /// Rank witness: `(equation, unknown)` pairs whose square minor is nonsingular, in
     /// elimination order (each pivot row only needs earlier ones to isolate its unknown; the
     /// checker eliminates in this order).
@@ -224,7 +223,7 @@ fn assemble(
             None => Q::zero(),
         }
     };
-    let mut particular = Vec::with_capacity(n);
+    let mut particular = Rationals::with_capacity(n);
     let mut free = vec![];
     for x in 0..n as u32 {
         let (r, f, g) = ps.relation(x);
@@ -233,15 +232,15 @@ fn assemble(
             if ps.root_value(x).is_none() && core_of[x as usize] == u32::MAX {
                 free.push(x as usize);
             }
-            particular.push(v.big());
+            push_q(&mut particular, &v);
         } else if let Some(v) = ps.root_value(r).filter(|_| r < x) {
             // Common case (fixed class): no need to revisit the root.
-            particular.push(f.mul(v).add(g).big());
+            push_q(&mut particular, &f.mul(v).add(g));
         } else {
-            particular.push(f.mul(&root_val(r)).add(g).big());
+            push_q(&mut particular, &f.mul(&root_val(r)).add(g));
         }
     }
-    let mut basis = vec![];
+    let mut basis = Directions::default();
     if want_basis {
         // dirs[local core column of a free root]: (pivot root, coefficient of that parameter)
         let mut dirs: Vec<Vec<(u32, Q)>> = vec![vec![]; roots.len()];
@@ -272,18 +271,27 @@ fn assemble(
         drop(fill);
         let one = Q::int(Z::one());
         let none: Vec<(u32, Q)> = vec![];
+        // One scratch vector for every direction: the directions share their storage.
+        let mut v: Vec<(u32, Q)> = vec![];
+        basis = Directions::with_capacity(free.len(), n);
         for &f in &free {
-            let mut v: Vec<(usize, BigRational)> = vec![];
+            v.clear();
             let d = dirs.get(local[f] as usize).unwrap_or(&none);
             for (root, c) in std::iter::once((f as u32, &one)).chain(d.iter().map(|(r, c)| (*r, c)))
             {
                 for &x in &members[start[root as usize] as usize..start[root as usize + 1] as usize]
                 {
-                    v.push((x as usize, ps.relation(x).1.mul(c).big()));
+                    v.push((x, ps.relation(x).1.mul(c)));
                 }
             }
             v.sort_unstable_by_key(|t| t.0);
-            basis.push(v);
+            for (x, q) in &v {
+                match (&q.n, &q.d) {
+                    (Z::S(a), Z::S(b)) => basis.push_small_entry(*x as usize, *a, *b as u64),
+                    _ => basis.push_entry(*x as usize, &q.big()),
+                }
+            }
+            basis.close();
         }
     }
     debug_assert_eq!(pivots.len() + free.len(), n);
@@ -293,6 +301,15 @@ fn assemble(
         free,
         basis,
         pivots,
+    }
+}
+
+/// Appends a presolve value to the compact store, without building a `BigRational` when it is
+/// small.
+fn push_q(out: &mut Rationals, q: &Q) {
+    match (&q.n, &q.d) {
+        (Z::S(a), Z::S(b)) => out.push_small(*a, *b as u64),
+        _ => out.push(&q.big()),
     }
 }
 
@@ -353,12 +370,9 @@ fn minimal(ps: &Presolve, rows: &[usize]) -> Option<Vec<(usize, Q)>> {
     eqs.push((rhs_row, Q::int(Z::one())));
     let terms = eqs.iter().map(|(t, _)| t.len()).sum();
     let space = run(rows.len(), eqs.into_iter(), terms, false).ok()?;
-    let m: Vec<(usize, Q)> = space
-        .particular
-        .iter()
-        .enumerate()
-        .filter(|(_, y)| !y.is_zero())
-        .map(|(k, y)| (rows[k], Q::from_big(y)))
+    let m: Vec<(usize, Q)> = (0..space.particular.len())
+        .filter(|&k| !space.particular.is_zero_at(k))
+        .map(|k| (rows[k], Q::from_big(&space.particular.get(k))))
         .collect();
     Some(m)
 }
@@ -371,19 +385,6 @@ mod rat {
     }
     pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<BigRational, D::Error> {
         String::deserialize(d)?.parse().map_err(D::Error::custom)
-    }
-}
-mod rat_vec {
-    use num_rational::BigRational;
-    use serde::{de::Error, Deserialize, Deserializer, Serializer};
-    pub fn serialize<S: Serializer>(v: &[BigRational], s: S) -> Result<S::Ok, S::Error> {
-        s.collect_seq(v.iter().map(|r| r.to_string()))
-    }
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<BigRational>, D::Error> {
-        Vec::<String>::deserialize(d)?
-            .iter()
-            .map(|s| s.parse().map_err(D::Error::custom))
-            .collect()
     }
 }
 mod rat_terms {
@@ -401,29 +402,6 @@ mod rat_terms {
             .collect()
     }
 }
-mod rat_basis {
-    use num_rational::BigRational;
-    use serde::{de::Error, Deserialize, Deserializer, Serializer};
-    type Basis = Vec<Vec<(usize, BigRational)>>;
-    pub fn serialize<S: Serializer>(v: &Basis, s: S) -> Result<S::Ok, S::Error> {
-        s.collect_seq(v.iter().map(|b| {
-            b.iter()
-                .map(|(i, r)| (*i, r.to_string()))
-                .collect::<Vec<_>>()
-        }))
-    }
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Basis, D::Error> {
-        let raw = Vec::<Vec<(usize, String)>>::deserialize(d)?;
-        raw.into_iter()
-            .map(|b| {
-                b.into_iter()
-                    .map(|(i, s)| Ok((i, s.parse().map_err(D::Error::custom)?)))
-                    .collect()
-            })
-            .collect()
-    }
-}
-
 /// Each unknown as `particular + Σ_k coef·t_k` (the transpose of the basis), for answering many
 /// [`Parametrization::forced_equal`] queries.
 #[derive(Clone, Debug)]
@@ -437,10 +415,10 @@ impl SolutionSpace {
     pub fn parametrize(&self) -> Parametrization {
         let mut params = vec![vec![]; self.particular.len()];
         for (k, b) in self.basis.iter().enumerate() {
-            b.iter().for_each(|(x, c)| params[*x].push((k, c.clone())));
+            b.iter().for_each(|(x, c)| params[x].push((k, c)));
         }
         Parametrization {
-            constant: self.particular.clone(),
+            constant: self.particular.to_vec(),
             params,
         }
     }
@@ -540,6 +518,7 @@ pub fn write_text<W: Write>(sys: &LinearSystem, layout: TextLayout, mut out: W) 
 }
 
 mod check;
+mod compact;
 mod elimination;
 #[cfg(test)]
 mod tests;

@@ -34,10 +34,10 @@ fn conflict(sys: &LinearSystem) -> Conflict {
 }
 /// `x` lies in `particular + span(basis)`: take `t_k = x[free[k]]` and compare.
 fn contains(s: &SolutionSpace, x: &[BigRational]) -> bool {
-    let mut y = s.particular.clone();
+    let mut y = s.particular.to_vec();
     for (k, b) in s.basis.iter().enumerate() {
         let t = &x[s.free[k]];
-        b.iter().for_each(|(v, c)| y[*v] += t * c);
+        b.iter().for_each(|(v, c)| y[v] += t * c);
     }
     y == x
 }
