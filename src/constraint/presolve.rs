@@ -18,6 +18,7 @@ use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::ToPrimitive;
+use std::borrow::Cow;
 use std::collections::BTreeMap;
 
 /// An integer: `S` while it fits an `i64`, else boxed big (never `B` for a value that fits).
@@ -111,120 +112,180 @@ impl Z {
     }
 }
 
-/// A rational `n/d`, `d > 0`, reduced; the fast path computes in `i128`.
+/// A reduced rational, 16 bytes (an `Option<Q>` too): `S(n, d)` is `n/d` with `d > 0`, for
+/// every value whose numerator fits an `i64` and denominator a `u32`; every other value is `B`
+/// (never `B` for a value that fits, so the derived equality is value equality). The fast path
+/// computes in `i128`: with 32-bit denominators no product of two words overflows it.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub(crate) struct Q {
-    pub(crate) n: Z,
-    pub(crate) d: Z,
+pub(crate) enum Q {
+    S(i64, u32),
+    B(Box<BigRational>),
+}
+
+/// `gcd(a, b)` of two words, hardware 64-bit remainders (`gcd(0, b) = b`).
+fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a
 }
 
 impl Q {
     pub(crate) fn zero() -> Q {
-        Q {
-            n: Z::zero(),
-            d: Z::one(),
-        }
+        Q::S(0, 1)
     }
     pub(crate) fn int(n: Z) -> Q {
-        Q { n, d: Z::one() }
+        match n {
+            Z::S(s) => Q::S(s, 1),
+            Z::B(b) => Q::B(Box::new(BigRational::from_integer(*b))),
+        }
     }
+    /// The integer `v`.
+    fn int_i128(v: i128) -> Q {
+        match i64::try_from(v) {
+            Ok(s) => Q::S(s, 1),
+            Err(_) => Q::B(Box::new(BigRational::from_integer(BigInt::from(v)))),
+        }
+    }
+    /// `n/d` reduced, `d ≠ 0`.
+    #[cfg(test)]
     fn from_i128(n: i128, d: i128) -> Q {
-        if let (Ok(n), Ok(d)) = (i64::try_from(n), i64::try_from(d)) {
-            return Q::from_i64(n, d);
-        }
-        Q::from_i128_slow(n, d)
+        Q::reduce((n < 0) != (d < 0), n.unsigned_abs(), d.unsigned_abs())
     }
-    /// `n/d` reduced through `i128` arithmetic.
-    fn from_i128_slow(n: i128, d: i128) -> Q {
-        let g = gcd_u128(n.unsigned_abs(), d.unsigned_abs()) as i128;
-        let (mut n, mut d) = (n / g, d / g);
-        if d < 0 {
-            (n, d) = (-n, -d);
+    /// `±n/d` reduced (`neg` the sign, `d > 0`); in 64-bit words when both fit (hardware
+    /// division instead of the 128-bit library routine).
+    fn reduce(neg: bool, n: u128, d: u128) -> Q {
+        if let (Ok(n), Ok(d)) = (u64::try_from(n), u64::try_from(d)) {
+            if d == 1 {
+                return Q::fit(neg, n, 1);
+            }
+            let g = gcd_u64(n, d);
+            return Q::fit(neg, n / g, d / g);
         }
-        Q {
-            n: Z::from_i128(n),
-            d: Z::from_i128(d),
+        let g = gcd_u128(n, d);
+        let (n, d) = (n / g, d / g);
+        if let (Ok(n), Ok(d)) = (u64::try_from(n), u64::try_from(d)) {
+            return Q::fit(neg, n, d);
         }
+        Q::boxed(neg, BigInt::from(n), BigInt::from(d))
     }
-    /// `n/d` reduced, `d ≠ 0`, in 64-bit words when neither is `i64::MIN` (hardware division
-    /// instead of the 128-bit library routine); same result as the `i128` path.
-    fn from_i64(n: i64, d: i64) -> Q {
-        if n == i64::MIN || d == i64::MIN {
-            return Q::from_i128_slow(n as i128, d as i128);
+    /// `±n/d`, already reduced with `d > 0`: `S` when it fits.
+    fn fit(neg: bool, n: u64, d: u64) -> Q {
+        if let Ok(d) = u32::try_from(d) {
+            if !neg && n <= i64::MAX as u64 {
+                return Q::S(n as i64, d);
+            }
+            // −2^63 = i64::MIN is the one magnitude that fits negated only.
+            if neg && n <= 1 << 63 {
+                return Q::S((n as i64).wrapping_neg(), d);
+            }
         }
-        if d == 1 {
-            return Q::int(Z::S(n));
-        }
-        let (mut x, mut y) = (n.unsigned_abs(), d.unsigned_abs());
-        while y != 0 {
-            (x, y) = (y, x % y);
-        }
-        // 1 ≤ g ≤ |d| < 2^63, and negating a quotient of a non-MIN value cannot overflow.
-        let g = x as i64;
-        let (mut n, mut d) = (n / g, d / g);
-        if d < 0 {
-            (n, d) = (-n, -d);
-        }
-        Q {
-            n: Z::S(n),
-            d: Z::S(d),
-        }
+        Q::boxed(neg, BigInt::from(n), BigInt::from(d))
+    }
+    fn boxed(neg: bool, n: BigInt, d: BigInt) -> Q {
+        let n = if neg { -n } else { n };
+        Q::B(Box::new(BigRational::new_raw(n, d)))
     }
     pub(crate) fn from_big(r: &BigRational) -> Q {
-        let z = |b: &BigInt| match b.to_i64() {
-            Some(s) => Z::S(s),
-            None => Z::B(Box::new(b.clone())),
-        };
-        Q {
-            n: z(r.numer()),
-            d: z(r.denom()),
+        match (r.numer().to_i64(), r.denom().to_u32()) {
+            (Some(n), Some(d)) => Q::S(n, d),
+            _ => Q::B(Box::new(r.clone())),
+        }
+    }
+    /// [`Q::from_big`] without the copy; `r` must be reduced (BigRational arithmetic is).
+    fn from_big_owned(r: BigRational) -> Q {
+        match (r.numer().to_i64(), r.denom().to_u32()) {
+            (Some(n), Some(d)) => Q::S(n, d),
+            _ => Q::B(Box::new(r)),
         }
     }
     pub(crate) fn big(&self) -> BigRational {
-        BigRational::new_raw(self.n.big(), self.d.big())
+        self.big_cow().into_owned()
     }
-    fn from_big_unreduced(r: BigRational) -> Q {
-        // BigRational arithmetic returns reduced values.
-        Q::from_big(&r)
+    fn big_cow(&self) -> Cow<'_, BigRational> {
+        match self {
+            Q::S(n, d) => Cow::Owned(BigRational::new_raw(BigInt::from(*n), BigInt::from(*d))),
+            Q::B(r) => Cow::Borrowed(&**r),
+        }
+    }
+    /// `self ∘ o` through BigRational arithmetic (the slow path).
+    fn big_op(&self, o: &Q, op: fn(&BigRational, &BigRational) -> BigRational) -> Q {
+        Q::from_big_owned(op(&self.big_cow(), &o.big_cow()))
+    }
+    /// The numerator (sign of the value).
+    pub(crate) fn numer(&self) -> Z {
+        match self {
+            Q::S(n, _) => Z::S(*n),
+            Q::B(r) => Z::from_big(r.numer().clone()),
+        }
+    }
+    /// The denominator (positive).
+    pub(crate) fn denom(&self) -> Z {
+        match self {
+            Q::S(_, d) => Z::S(*d as i64),
+            Q::B(r) => Z::from_big(r.denom().clone()),
+        }
+    }
+    /// `(numerator, denominator)` of a value in the small form.
+    pub(crate) fn small(&self) -> Option<(i64, u32)> {
+        match self {
+            Q::S(n, d) => Some((*n, *d)),
+            Q::B(_) => None,
+        }
     }
     pub(crate) fn is_zero(&self) -> bool {
-        self.n.is_zero()
+        matches!(self, Q::S(0, _))
     }
     pub(crate) fn neg(&self) -> Q {
-        Q {
-            n: self.n.neg(),
-            d: self.d.clone(),
+        match self {
+            Q::S(n, d) => match n.checked_neg() {
+                Some(m) => Q::S(m, *d),
+                None => Q::boxed(false, BigInt::from(n.unsigned_abs()), BigInt::from(*d)),
+            },
+            Q::B(r) => Q::from_big_owned(-(**r).clone()),
         }
     }
     pub(crate) fn add(&self, o: &Q) -> Q {
-        if let (Z::S(a), Z::S(b), Z::S(c), Z::S(d)) = (&self.n, &self.d, &o.n, &o.d) {
-            if *b == 1 && *d == 1 {
+        if let (Some((a, b)), Some((c, d))) = (self.small(), o.small()) {
+            if b == 1 && d == 1 {
                 // Two integers: the sum is an integer, no gcd needed.
-                return Q::int(Z::from_i128(*a as i128 + *c as i128));
+                return Q::int_i128(a as i128 + c as i128);
             }
-            let (a, b, c, d) = (*a as i128, *b as i128, *c as i128, *d as i128);
-            return Q::from_i128(a * d + c * b, b * d);
+            // |a·d + c·b| < 2^96 and b·d < 2^64.
+            let (b, d) = (b as i128, d as i128);
+            let n = a as i128 * d + c as i128 * b;
+            return Q::reduce(n < 0, n.unsigned_abs(), (b * d) as u128);
         }
-        Q::from_big_unreduced(self.big() + o.big())
+        self.big_op(o, |x, y| x + y)
     }
     pub(crate) fn sub(&self, o: &Q) -> Q {
-        self.add(&o.neg())
+        if let (Some((a, b)), Some((c, d))) = (self.small(), o.small()) {
+            if b == 1 && d == 1 {
+                return Q::int_i128(a as i128 - c as i128);
+            }
+            let (b, d) = (b as i128, d as i128);
+            let n = a as i128 * d - c as i128 * b;
+            return Q::reduce(n < 0, n.unsigned_abs(), (b * d) as u128);
+        }
+        self.big_op(o, |x, y| x - y)
     }
     pub(crate) fn mul(&self, o: &Q) -> Q {
-        if let (Z::S(a), Z::S(b), Z::S(c), Z::S(d)) = (&self.n, &self.d, &o.n, &o.d) {
-            if *b == 1 && *d == 1 {
-                return Q::int(Z::from_i128(*a as i128 * *c as i128));
+        if let (Some((a, b)), Some((c, d))) = (self.small(), o.small()) {
+            if b == 1 && d == 1 {
+                return Q::int_i128(a as i128 * c as i128);
             }
-            return Q::from_i128(*a as i128 * *c as i128, *b as i128 * *d as i128);
+            let n = a.unsigned_abs() as u128 * c.unsigned_abs() as u128;
+            return Q::reduce((a < 0) != (c < 0), n, b as u128 * d as u128);
         }
-        Q::from_big_unreduced(self.big() * o.big())
+        self.big_op(o, |x, y| x * y)
     }
     /// `self / o`, `o ≠ 0`.
     pub(crate) fn div(&self, o: &Q) -> Q {
-        if let (Z::S(a), Z::S(b), Z::S(c), Z::S(d)) = (&self.n, &self.d, &o.n, &o.d) {
-            return Q::from_i128(*a as i128 * *d as i128, *b as i128 * *c as i128);
+        if let (Some((a, b)), Some((c, d))) = (self.small(), o.small()) {
+            let n = a.unsigned_abs() as u128 * d as u128;
+            return Q::reduce((a < 0) != (c < 0), n, b as u128 * c.unsigned_abs() as u128);
         }
-        Q::from_big_unreduced(self.big() / o.big())
+        self.big_op(o, |x, y| x / y)
     }
 }
 
@@ -232,12 +293,13 @@ impl Q {
 /// Returns the scaled `(coefficients, rhs)`.
 /// The third component is the scale: integer row = scale · rational row.
 pub(crate) fn integer_row(terms: &[(u32, Q)], rhs: &Q) -> (Vec<(u32, Z)>, Z, Q) {
-    let mut l = rhs.d.clone();
+    let mut l = rhs.denom();
     for (_, q) in terms {
-        let g = l.gcd(&q.d);
-        l = l.div_exact(&g).mul(&q.d);
+        let d = q.denom();
+        let g = l.gcd(&d);
+        l = l.div_exact(&g).mul(&d);
     }
-    let scale = |q: &Q| q.n.mul(&l.div_exact(&q.d));
+    let scale = |q: &Q| q.numer().mul(&l.div_exact(&q.denom()));
     let mut row: Vec<(u32, Z)> = terms.iter().map(|(c, q)| (*c, scale(q))).collect();
     let mut r = scale(rhs);
     let mut g = r.clone();
@@ -682,7 +744,7 @@ mod tests {
         // Overflowing small·small falls back to big.
         let p = a.mul(&a);
         assert_eq!(p.big(), a.big() * a.big());
-        assert!(matches!(p.n, Z::B(_)));
+        assert!(matches!(p, Q::B(_)));
         // and back to small when it fits again
         assert_eq!(p.div(&a), a);
         assert_eq!(
@@ -705,6 +767,42 @@ mod tests {
         ]
     }
 
+    /// Denominators around the edges of the small form: 1, small, near `u32::MAX` and `2^32`,
+    /// near `2^63` and around `2^100`.
+    fn edge_denom() -> impl Strategy<Value = BigInt> {
+        let near = |c: u128| (0u128..4).prop_map(move |k| BigInt::from(c - 2 + k));
+        prop_oneof![
+            (1u64..20).prop_map(BigInt::from),
+            near(1 << 32),
+            near(1 << 63),
+            any::<u32>().prop_map(|v| BigInt::from(v) + 1),
+            any::<u128>().prop_map(|v| BigInt::from(v >> 27) + 1),
+        ]
+    }
+
+    /// Numerators: the word edges, `±2^63`, `±2^64`, zero and big values around `2^100`.
+    fn edge_numer() -> impl Strategy<Value = BigInt> {
+        prop_oneof![
+            edge_i64().prop_map(BigInt::from),
+            (-4i128..4).prop_map(|k| BigInt::from((1i128 << 63) + k)),
+            (-4i128..4).prop_map(|k| BigInt::from(-(1i128 << 64) + k)),
+            any::<i128>().prop_map(|v| BigInt::from(v >> 27)),
+            Just(BigInt::from(0)),
+        ]
+    }
+
+    /// A reduced rational from the edge numerators and denominators.
+    fn edge_q() -> impl Strategy<Value = Q> {
+        (edge_numer(), edge_denom()).prop_map(|(n, d)| Q::from_big(&BigRational::new(n, d)))
+    }
+
+    #[test]
+    fn q_is_sixteen_bytes() {
+        assert_eq!(std::mem::size_of::<Q>(), 16);
+        assert_eq!(std::mem::size_of::<Option<Q>>(), 16);
+        assert_eq!(std::mem::size_of::<Node>(), 40);
+    }
+
     proptest! {
         /// The 64-bit reduction, the integer shortcuts of `add`/`mul` and the in-place merge agree
         /// with BigRational arithmetic (issue #34).
@@ -724,6 +822,36 @@ mod tests {
             for q in [x.add(&y), x.mul(&y)] {
                 prop_assert_eq!(Q::from_big(&q.big()), q.clone());
                 prop_assert!(q.big().denom() > &BigInt::from(0));
+            }
+        }
+
+        /// The 16-byte representation around its edges (numerators near `i64::MIN`/`MAX`,
+        /// denominators near `u32::MAX`, big values): every operation agrees with BigRational
+        /// arithmetic and returns the canonical form (`S` exactly when the value fits).
+        #[test]
+        fn small_form_edges_match_big_rationals(x in edge_q(), y in edge_q()) {
+            let (bx, by) = (x.big(), y.big());
+            prop_assert_eq!(Q::from_big(&bx), x.clone());
+            prop_assert_eq!(x.numer().big(), bx.numer().clone());
+            prop_assert_eq!(x.denom().big(), bx.denom().clone());
+            prop_assert_eq!(x.is_zero(), bx == BigRational::from_integer(BigInt::from(0)));
+            let mut results = vec![
+                (x.neg(), -bx.clone()),
+                (x.add(&y), &bx + &by),
+                (x.sub(&y), &bx - &by),
+                (x.mul(&y), &bx * &by),
+            ];
+            if !y.is_zero() {
+                results.push((x.div(&y), &bx / &by));
+            }
+            for (q, want) in results {
+                prop_assert_eq!(q.big(), want.clone());
+                prop_assert_eq!(Q::from_big(&q.big()), q.clone());
+                let fits = want.numer().to_i64().is_some() && want.denom().to_u32().is_some();
+                prop_assert_eq!(q.small().is_some(), fits);
+                if let Some((n, d)) = q.small() {
+                    prop_assert_eq!((Z::S(n), Z::S(d as i64)), (q.numer(), q.denom()));
+                }
             }
         }
 
