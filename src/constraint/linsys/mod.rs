@@ -286,9 +286,9 @@ fn assemble(
             }
             v.sort_unstable_by_key(|t| t.0);
             for (x, q) in &v {
-                match (&q.n, &q.d) {
-                    (Z::S(a), Z::S(b)) => basis.push_small_entry(*x as usize, *a, *b as u64),
-                    _ => basis.push_entry(*x as usize, &q.big()),
+                match q.small() {
+                    Some((a, b)) => basis.push_small_entry(*x as usize, a, b as u64),
+                    None => basis.push_entry(*x as usize, &q.big()),
                 }
             }
             basis.close();
@@ -307,9 +307,9 @@ fn assemble(
 /// Appends a presolve value to the compact store, without building a `BigRational` when it is
 /// small.
 fn push_q(out: &mut Rationals, q: &Q) {
-    match (&q.n, &q.d) {
-        (Z::S(a), Z::S(b)) => out.push_small(*a, *b as u64),
-        _ => out.push(&q.big()),
+    match q.small() {
+        Some((a, b)) => out.push_small(a, b as u64),
+        None => out.push(&q.big()),
     }
 }
 
