@@ -17,6 +17,7 @@ pub fn export_dir() -> Option<String> {
 }
 
 /// Runs `f` `runs` times; the best wall-clock time in seconds and the last result.
+#[allow(dead_code)] // each bench includes this module; the ratio bench calls this one
 pub fn best_of<T>(runs: usize, mut f: impl FnMut() -> T) -> (f64, T) {
     let mut best = f64::INFINITY;
     let mut last = None;
