@@ -388,6 +388,8 @@ pub(crate) struct Presolve {
     live: Vec<u32>,
     queued: Vec<bool>,
     queue: Vec<u32>,
+    /// Scratch for the substituted row of [`Presolve::process`].
+    sub: Vec<(u32, Q)>,
 }
 
 /// A union-find node: `x = f·parent + g` (`parent == x`, `f = 1`, `g = 0` for a root).
@@ -495,6 +497,7 @@ impl Presolve {
             live: vec![0; m],
             queued: vec![false; m],
             queue: vec![],
+            sub: vec![],
         }
     }
 
@@ -562,8 +565,16 @@ impl Presolve {
 
     /// Row `i` after substituting all current facts, roots sorted.
     pub(crate) fn substitute(&mut self, i: usize) -> SubRow {
-        let mut rhs = self.rhs[i].clone();
         let mut terms: Vec<(u32, Q)> = Vec::with_capacity(self.start[i + 1] - self.start[i]);
+        let rhs = self.substitute_into(i, &mut terms);
+        (terms, rhs)
+    }
+
+    /// [`Presolve::substitute`] into a vector the caller reuses (cleared first); returns the
+    /// right-hand side.
+    fn substitute_into(&mut self, i: usize, terms: &mut Vec<(u32, Q)>) -> Q {
+        terms.clear();
+        let mut rhs = self.rhs[i].clone();
         for k in self.start[i]..self.start[i + 1] {
             let (v, a) = (self.cols[k], self.coefs[k].clone());
             let (r, f, g) = self.find(v);
@@ -579,8 +590,8 @@ impl Presolve {
             }
         }
         terms.sort_unstable_by_key(|t| t.0);
-        merge_sorted(&mut terms);
-        (terms, rhs)
+        merge_sorted(terms);
+        rhs
     }
 
     fn push(&mut self, i: u32) {
@@ -642,7 +653,17 @@ impl Presolve {
     }
 
     fn process(&mut self, i: usize) -> Option<usize> {
-        let (terms, rhs) = self.substitute(i);
+        // One substituted-row buffer for the whole presolve, not an allocation per row.
+        let mut terms = std::mem::take(&mut self.sub);
+        let rhs = self.substitute_into(i, &mut terms);
+        let bad = self.decide(i, &terms, rhs);
+        self.sub = terms;
+        bad
+    }
+
+    /// What row `i`, substituted to `terms = rhs`, becomes: redundant, a fact, pending (with
+    /// registrations), or the conflict (`Some(i)`).
+    fn decide(&mut self, i: usize, terms: &[(u32, Q)], rhs: Q) -> Option<usize> {
         match terms.len() {
             0 => {
                 if rhs.is_zero() {
@@ -687,7 +708,7 @@ impl Presolve {
             len => {
                 self.epoch[i] += 1;
                 self.live[i] = len as u32;
-                for (r, _) in terms {
+                for &(r, _) in terms {
                     self.ent_row.push(i as u32);
                     self.ent_epoch.push(self.epoch[i]);
                     self.ent_next.push(self.head[r as usize]);
