@@ -28,15 +28,19 @@ pub(crate) enum Z {
     B(Box<BigInt>),
 }
 
+/// `gcd(a, b)` of two words, hardware 64-bit remainders (`gcd(0, b) = b`).
+fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a
+}
+
 fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
     while b != 0 {
         if a <= u64::MAX as u128 && b <= u64::MAX as u128 {
             // Hardware 64-bit remainders are much cheaper than the 128-bit library routine.
-            let (mut x, mut y) = (a as u64, b as u64);
-            while y != 0 {
-                (x, y) = (y, x % y);
-            }
-            return x as u128;
+            return gcd_u64(a as u64, b as u64) as u128;
         }
         (a, b) = (b, a % b);
     }
@@ -120,14 +124,6 @@ impl Z {
 pub(crate) enum Q {
     S(i64, u32),
     B(Box<BigRational>),
-}
-
-/// `gcd(a, b)` of two words, hardware 64-bit remainders (`gcd(0, b) = b`).
-fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
-    while b != 0 {
-        (a, b) = (b, a % b);
-    }
-    a
 }
 
 impl Q {
