@@ -223,22 +223,16 @@ impl Directions {
     /// by unknown ([`super::SolutionSpace::check`] rejects them otherwise).
     pub fn push<I: IntoIterator<Item = (usize, BigRational)>>(&mut self, v: I) {
         for (x, c) in v {
-            self.unknowns.push(x);
-            self.coefs.push(&c);
+            self.entry(x).push(&c);
         }
         self.close();
     }
 
-    /// Appends one entry to the direction being built (ended by [`Directions::close`]).
-    pub(crate) fn push_entry(&mut self, x: usize, c: &BigRational) {
+    /// Starts an entry of unknown `x` in the direction being built (ended by
+    /// [`Directions::close`]); the caller pushes its one coefficient into the returned store.
+    pub(crate) fn entry(&mut self, x: usize) -> &mut Rationals {
         self.unknowns.push(x);
-        self.coefs.push(c);
-    }
-
-    /// Appends one small entry `n/d` (`d > 0`, reduced) to the direction being built.
-    pub(crate) fn push_small_entry(&mut self, x: usize, n: i64, d: u64) {
-        self.unknowns.push(x);
-        self.coefs.push_small(n, d);
+        &mut self.coefs
     }
 
     /// Ends the direction being built.
@@ -276,7 +270,8 @@ impl<'de> Deserialize<'de> for Directions {
         let mut out = Directions::default();
         for dir in raw {
             for (x, s) in dir {
-                out.push_entry(x, &s.parse::<BigRational>().map_err(D::Error::custom)?);
+                out.entry(x)
+                    .push(&s.parse::<BigRational>().map_err(D::Error::custom)?);
             }
             out.close();
         }

@@ -286,10 +286,7 @@ fn assemble(
             }
             v.sort_unstable_by_key(|t| t.0);
             for (x, q) in &v {
-                match q.small() {
-                    Some((a, b)) => basis.push_small_entry(*x as usize, a, b as u64),
-                    None => basis.push_entry(*x as usize, &q.big()),
-                }
+                push_q(basis.entry(*x as usize), q);
             }
             basis.close();
         }
