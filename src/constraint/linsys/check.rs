@@ -220,9 +220,13 @@ pub fn forced_equal(
     b: &[(usize, BigRational)],
 ) -> bool {
     let d = difference(a, b);
-    let particular = d.iter().fold(BigRational::zero(), |s, (&x, w)| {
-        s + w * space.particular.get(x)
-    });
+    // Unknowns beyond the space count as 0, as when this walked the particular solution.
+    let particular = d
+        .iter()
+        .filter(|(&x, _)| x < space.particular.len())
+        .fold(BigRational::zero(), |s, (&x, w)| {
+            s + w * space.particular.get(x)
+        });
     particular.is_zero()
         && space.basis.iter().all(|bk| {
             bk.unknowns()

@@ -99,6 +99,8 @@ fn spec_worked_example() {
     let u = |v: usize| vec![(v, r(1, 1))];
     assert!(forced_equal(&s, &u(5), &u(12)));
     assert!(!forced_equal(&s, &u(4), &u(13)));
+    // An unknown beyond the 18 of the system takes no part (it is 0 in every direction).
+    assert!(forced_equal(&s, &[(5, r(1, 1)), (40, r(3, 1))], &u(12)));
     let pz = s.parametrize();
     assert!(pz.forced_equal(&u(5), &u(12)) && !pz.forced_equal(&u(4), &u(13)));
     // T_0[0][0] (fixed to 1) equals T_1[2][2] (fixed to 1).
