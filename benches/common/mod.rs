@@ -18,21 +18,12 @@ pub fn export_dir() -> Option<String> {
 
 /// Runs `f` `runs` times; the best wall-clock time in seconds and the last result.
 #[allow(dead_code)] // each bench includes this module; the ratio bench calls this one
-pub fn best_of<T>(runs: usize, mut f: impl FnMut() -> T) -> (f64, T) {
-    let mut best = f64::INFINITY;
-    let mut last = None;
-    for _ in 0..runs.max(1) {
-        let t = Instant::now();
-        let r = f();
-        best = best.min(t.elapsed().as_secs_f64());
-        last = Some(r);
-    }
-    (best, last.expect("ran at least once"))
+pub fn best_of<T>(runs: usize, f: impl FnMut() -> T) -> (f64, T) {
+    best_within(runs, 0.0, f)
 }
 
 /// Like [`best_of`], but keeps running past `min_runs` until `budget` seconds have been spent
 /// (at most 1,000 runs): a best of three is noise for a 2 ms figure, a few hundred are not.
-#[allow(dead_code)] // each bench includes this module; only the solver bench calls this one
 pub fn best_within<T>(min_runs: usize, budget: f64, mut f: impl FnMut() -> T) -> (f64, T) {
     let start = Instant::now();
     let mut best = f64::INFINITY;
