@@ -363,16 +363,17 @@ pub(crate) struct Presolve {
     node: Vec<Node>,
     size: Vec<u32>,
     orig_parent: Vec<u32>,
-    link_row: Vec<u32>,
-    link_time: Vec<u32>,
-    /// Original `f` of a link (before path compression).
-    link_f: Vec<Q>,
+    // The fact about each unknown, if any: a link (the unknown is a child, `orig_parent[x] ≠
+    // x`) or a fixed value (the unknown is a root). One set of arrays serves both kinds, since
+    // an unknown is linked or fixed at most once and never both.
+    /// Row that made the fact, or `NONE`.
+    fact_row: Vec<u32>,
+    /// When the fact was made (facts are numbered 1, 2, … in order).
+    fact_at: Vec<u32>,
+    /// A fixed root's value, or a link's original `f` (before path compression).
+    fact_q: Vec<Q>,
     /// Coefficient of the fact's unknown (child or fixed root) in its substituted row.
     fact_a: Vec<Q>,
-    /// Fixed value of a root, with the row and time that fixed it.
-    value: Vec<Option<Q>>,
-    fix_row: Vec<u32>,
-    fix_time: Vec<u32>,
     pub(crate) fate: Vec<RowFate>,
     pub(crate) time: u32,
     // registration lists (flat linked lists per root) and row bookkeeping
@@ -476,13 +477,10 @@ impl Presolve {
                 .collect(),
             size: vec![1; n],
             orig_parent: (0..n as u32).collect(),
-            link_row: vec![NONE; n],
-            link_time: vec![0; n],
-            link_f: vec![Q::zero(); n],
+            fact_row: vec![NONE; n],
+            fact_at: vec![0; n],
+            fact_q: vec![Q::zero(); n],
             fact_a: vec![Q::zero(); n],
-            value: vec![None; n],
-            fix_row: vec![NONE; n],
-            fix_time: vec![0; n],
             fate: vec![RowFate::Pending; m],
             time: 0,
             head: vec![NONE; n],
@@ -548,15 +546,18 @@ impl Presolve {
 
     /// When the fact about `c` (a fixed root or a linked child) was made.
     pub(crate) fn fact_time(&self, c: u32) -> u32 {
-        match self.value[c as usize] {
-            Some(_) => self.fix_time[c as usize],
-            None => self.link_time[c as usize],
-        }
+        self.fact_at[c as usize]
     }
 
-    /// The fixed value of a root, if any.
+    /// The fixed value of root `r`, if any (a root's only possible fact is a fixed value).
     pub(crate) fn root_value(&self, r: u32) -> Option<&Q> {
-        self.value[r as usize].as_ref()
+        debug_assert_eq!(self.orig_parent[r as usize], r, "a root");
+        (self.fact_row[r as usize] != NONE).then(|| &self.fact_q[r as usize])
+    }
+
+    /// Whether `x` was fixed (it is then a root of its own class).
+    fn fixed(&self, x: usize) -> bool {
+        self.orig_parent[x] as usize == x && self.fact_row[x] != NONE
     }
 
     /// Row `i` after substituting all current facts, roots sorted.
@@ -574,7 +575,7 @@ impl Presolve {
         for k in self.start[i]..self.start[i + 1] {
             let (v, a) = (self.cols[k], self.coefs[k].clone());
             let (r, f, g) = self.find(v);
-            let shift = match &self.value[r as usize] {
+            let shift = match self.root_value(r) {
                 Some(val) => f.mul(val).add(&g),
                 None => {
                     terms.push((r, a.mul(&f)));
@@ -672,10 +673,10 @@ impl Presolve {
             1 => {
                 let (r, a) = &terms[0];
                 self.time += 1;
-                self.value[*r as usize] = Some(rhs.div(a));
+                self.fact_q[*r as usize] = rhs.div(a);
                 self.fact_a[*r as usize] = a.clone();
-                self.fix_row[*r as usize] = i as u32;
-                self.fix_time[*r as usize] = self.time;
+                self.fact_row[*r as usize] = i as u32;
+                self.fact_at[*r as usize] = self.time;
                 self.fate[i] = RowFate::Pivot(*r);
                 self.notify(*r, 2, true, None);
                 None
@@ -691,12 +692,12 @@ impl Presolve {
                 self.node[c].parent = p;
                 self.orig_parent[c] = p;
                 self.node[c].f = y.1.div(&x.1).neg();
-                self.link_f[c] = self.node[c].f.clone();
+                self.fact_q[c] = self.node[c].f.clone();
                 self.fact_a[c] = x.1.clone();
                 self.node[c].g = rhs.div(&x.1);
                 self.size[p as usize] += self.size[c];
-                self.link_row[c] = i as u32;
-                self.link_time[c] = self.time;
+                self.fact_row[c] = i as u32;
+                self.fact_at[c] = self.time;
                 self.fate[i] = RowFate::Pivot(c as u32);
                 self.notify(c as u32, 3, false, Some(p));
                 None
@@ -733,11 +734,7 @@ impl Presolve {
                 continue;
             }
             let x = x as usize;
-            let row = if self.value[x].is_some() {
-                self.fix_row[x]
-            } else {
-                self.link_row[x]
-            };
+            let row = self.fact_row[x];
             self.expand(row as usize, t, &q.div(&self.fact_a[x]), &mut m, &mut w);
         }
         m.retain(|_, q| !q.is_zero());
@@ -762,13 +759,13 @@ impl Presolve {
         for k in self.start[i]..self.start[i + 1] {
             let mut alpha = weight.mul(&self.coefs[k]);
             let mut x = self.cols[k] as usize;
-            while self.orig_parent[x] as usize != x && self.link_time[x] < t {
-                sub(self.link_time[x], x, &alpha);
-                alpha = alpha.mul(&self.link_f[x]);
+            while self.orig_parent[x] as usize != x && self.fact_at[x] < t {
+                sub(self.fact_at[x], x, &alpha);
+                alpha = alpha.mul(&self.fact_q[x]);
                 x = self.orig_parent[x] as usize;
             }
-            if self.value[x].is_some() && self.fix_time[x] < t {
-                sub(self.fix_time[x], x, &alpha);
+            if self.fixed(x) && self.fact_at[x] < t {
+                sub(self.fact_at[x], x, &alpha);
             }
         }
     }
