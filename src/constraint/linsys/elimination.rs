@@ -90,13 +90,15 @@ pub(super) fn eliminate(
     };
     // Column lists are lazy (entries may be stale or repeated; validated when used); the counts of
     // active rows per column are exact and drive the pivot choice.
-    let mut col_rows: Vec<Vec<u32>> = vec![vec![]; ncols];
+    let terms = rows.iter().map(|r| r.cols.len()).sum();
+    let mut col_rows: Lists<u32> = Lists::new(ncols, terms);
     let mut col_count: Vec<u32> = vec![0; ncols];
     let mut buckets: Vec<Vec<u32>> = vec![];
     let mut active = vec![true; rows.len()];
+    let mut others: Vec<u32> = vec![];
     for (i, r) in rows.iter().enumerate() {
         for &c in &r.cols {
-            col_rows[c as usize].push(i as u32);
+            col_rows.push(c, i as u32);
             col_count[c as usize] += 1;
         }
         if buckets.len() <= r.cols.len() {
@@ -127,11 +129,11 @@ pub(super) fn eliminate(
         let (p, a) = (piv.cols[k], piv.vals[k].clone());
         active[i] = false;
         piv.cols.iter().for_each(|&c| col_count[c as usize] -= 1);
-        let mut others = std::mem::take(&mut col_rows[p as usize]);
+        col_rows.take(p, &mut others);
         others.sort_unstable();
         others.dedup();
         others.retain(|&j| active[j as usize] && rows[j as usize].coef(p).is_some());
-        for j in others.into_iter().map(|j| j as usize) {
+        for j in others.drain(..).map(|j| j as usize) {
             let b = rows[j].coef(p).expect("validated").clone();
             let (new, fa, fb, content) = rows[j].combine_with_factors(&a, &rows[i], &b);
             if track {
@@ -154,7 +156,7 @@ pub(super) fn eliminate(
                     x += 1;
                 } else {
                     col_count[cn as usize] += 1;
-                    col_rows[cn as usize].push(j as u32);
+                    col_rows.push(cn, j as u32);
                     y += 1;
                 }
             }
@@ -206,6 +208,55 @@ pub(super) fn eliminate(
         .zip(reduced)
         .map(|((i, p), r)| (i, p, r.expect("reduced")))
         .collect())
+}
+
+/// Lists of items per column, all in one arena (a column's items are linked, newest first): the
+/// core of a million-unknown system has few rows over hundreds of thousands of columns, and a
+/// vector per column cost an allocation each.
+pub(super) struct Lists<T> {
+    head: Vec<u32>,
+    next: Vec<u32>,
+    item: Vec<T>,
+}
+
+impl<T: Copy> Lists<T> {
+    /// Empty lists for `columns` columns, with room for `capacity` items.
+    pub(super) fn new(columns: usize, capacity: usize) -> Lists<T> {
+        Lists {
+            head: vec![u32::MAX; columns],
+            next: Vec::with_capacity(capacity),
+            item: Vec::with_capacity(capacity),
+        }
+    }
+
+    pub(super) fn push(&mut self, c: u32, t: T) {
+        let e = u32::try_from(self.item.len())
+            .ok()
+            .filter(|&e| e != u32::MAX)
+            .expect("fewer than 2^32 − 1 list items");
+        self.next.push(self.head[c as usize]);
+        self.item.push(t);
+        self.head[c as usize] = e;
+    }
+
+    /// Column `c`'s items, newest first.
+    pub(super) fn iter(&self, c: u32) -> impl Iterator<Item = T> + '_ {
+        let mut e = self.head.get(c as usize).copied().unwrap_or(u32::MAX);
+        std::iter::from_fn(move || {
+            (e != u32::MAX).then(|| {
+                let t = self.item[e as usize];
+                e = self.next[e as usize];
+                t
+            })
+        })
+    }
+
+    /// Empties column `c`'s list into `out` (cleared first).
+    fn take(&mut self, c: u32, out: &mut Vec<T>) {
+        out.clear();
+        out.extend(self.iter(c));
+        self.head[c as usize] = u32::MAX;
+    }
 }
 
 /// `(fa·x − fb·y) / content` on sparse combinations sorted by row.

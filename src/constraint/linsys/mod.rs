@@ -197,15 +197,18 @@ fn assemble(
     let n = ps.n;
     // Value (free parameters 0) of each pivot root, and its dependence on free roots.
     let mut core_of: Vec<u32> = vec![u32::MAX; n];
-    let mut pivots: Vec<(usize, usize)> = vec![];
-    let mut facts: Vec<(u32, usize, usize)> = vec![];
+    // The facts in the order they were made: each has its own time, 1 to `ps.time`, so each is
+    // placed at its time without a sort.
+    let mut pivots: Vec<(usize, usize)> = vec![(0, 0); ps.time as usize];
+    pivots.reserve_exact(core.len());
+    let mut placed = 0;
     for (i, fate) in ps.fate.iter().enumerate() {
         if let RowFate::Pivot(c) = fate {
-            facts.push((ps.fact_time(*c), i, *c as usize));
+            pivots[ps.fact_time(*c) as usize - 1] = (i, *c as usize);
+            placed += 1;
         }
     }
-    facts.sort_unstable();
-    pivots.extend(facts.into_iter().map(|(_, i, c)| (i, c)));
+    debug_assert_eq!(placed, ps.time, "one fact per time");
     for (k, (i, p, _)) in core.iter().enumerate() {
         core_of[roots[*p as usize] as usize] = k as u32;
         pivots.push((pending[*i], roots[*p as usize] as usize));
@@ -242,16 +245,21 @@ fn assemble(
     }
     let mut basis = Directions::default();
     if want_basis {
-        // dirs[local core column of a free root]: (pivot root, coefficient of that parameter)
-        let mut dirs: Vec<Vec<(u32, Q)>> = vec![vec![]; roots.len()];
-        for (_, p, row) in &core {
-            let d = Q::int(row.coef(*p).expect("pivot").clone());
-            for (c, v) in row.cols.iter().zip(&row.vals) {
+        // dirs[local core column of a free root]: (pivot k, position of the column in its row);
+        // the parameter's coefficient in pivot root k is −row[position]/row[pivot].
+        let entries = core.iter().map(|(_, _, row)| row.cols.len() - 1).sum();
+        let mut dirs: Lists<(u32, u32)> = Lists::new(roots.len(), entries);
+        for (k, (_, p, row)) in core.iter().enumerate() {
+            for (j, c) in row.cols.iter().enumerate() {
                 if c != p {
-                    dirs[*c as usize].push((roots[*p as usize], Q::int(v.neg()).div(&d)));
+                    dirs.push(*c, (k as u32, j as u32));
                 }
             }
         }
+        let pivot_coef: Vec<Q> = core
+            .iter()
+            .map(|(_, p, row)| Q::int(row.coef(*p).expect("pivot").clone()))
+            .collect();
         let mut local: Vec<u32> = vec![u32::MAX; n];
         roots
             .iter()
@@ -269,19 +277,29 @@ fn assemble(
             fill[r] += 1;
         }
         drop(fill);
+        let class = |r: u32| &members[start[r as usize] as usize..start[r as usize + 1] as usize];
+        let coef = |(k, j): (u32, u32)| {
+            let (_, p, row) = &core[k as usize];
+            let c = Q::int(row.vals[j as usize].neg()).div(&pivot_coef[k as usize]);
+            (roots[*p as usize], c)
+        };
+        // The exact size of the basis, so that its arrays are allocated once.
+        let entries = free.iter().map(|&f| {
+            let d = dirs
+                .iter(local[f])
+                .map(|(k, _)| class(roots[core[k as usize].1 as usize]).len());
+            class(f as u32).len() + d.sum::<usize>()
+        });
+        basis = Directions::with_capacity(free.len(), entries.sum());
         let one = Q::int(Z::one());
-        let none: Vec<(u32, Q)> = vec![];
         // One scratch vector for every direction: the directions share their storage.
         let mut v: Vec<(u32, Q)> = vec![];
-        basis = Directions::with_capacity(free.len(), n);
         for &f in &free {
             v.clear();
-            let d = dirs.get(local[f] as usize).unwrap_or(&none);
-            for (root, c) in std::iter::once((f as u32, &one)).chain(d.iter().map(|(r, c)| (*r, c)))
-            {
-                for &x in &members[start[root as usize] as usize..start[root as usize + 1] as usize]
-                {
-                    v.push((x, ps.relation(x).1.mul(c)));
+            let d = dirs.iter(local[f]).map(coef);
+            for (root, c) in std::iter::once((f as u32, one.clone())).chain(d) {
+                for &x in class(root) {
+                    v.push((x, ps.relation(x).1.mul(&c)));
                 }
             }
             v.sort_unstable_by_key(|t| t.0);
@@ -522,4 +540,4 @@ mod tests;
 
 use check::difference;
 pub use check::forced_equal;
-use elimination::{eliminate, CRow};
+use elimination::{eliminate, CRow, Lists};
