@@ -143,13 +143,20 @@ fn run<T: IntoIterator<Item = (u32, Q)>>(
     let pending: Vec<usize> = (0..ps.rows())
         .filter(|&i| ps.fate[i] == RowFate::Pending)
         .collect();
-    let (crows, roots, _) = build_core(&mut ps, &pending);
-    let core = match eliminate(crows, roots.len(), false) {
+    let Core {
+        rows, roots, local, ..
+    } = build_core(&mut ps, &pending);
+    let core = match eliminate(rows, roots.len(), false) {
         Ok(core) => core,
         Err(_) => {
             // Replay the deterministic elimination, now tracking combinations.
-            let (crows, roots, scales) = build_core(&mut ps, &pending);
-            let (_, combo) = eliminate(crows, roots.len(), true).expect_err("same elimination");
+            let Core {
+                rows,
+                roots,
+                scales,
+                ..
+            } = build_core(&mut ps, &pending);
+            let (_, combo) = eliminate(rows, roots.len(), true).expect_err("same elimination");
             let seeds = combo
                 .into_iter()
                 .map(|(k, w)| (pending[k as usize], w.mul(&scales[k as usize])));
@@ -157,12 +164,29 @@ fn run<T: IntoIterator<Item = (u32, Q)>>(
             return Err(Box::new((ps, seeds)));
         }
     };
-    Ok(assemble(&mut ps, &pending, &roots, core, want_basis))
+    Ok(assemble(
+        &mut ps,
+        &pending,
+        (&roots, &local),
+        core,
+        want_basis,
+    ))
 }
 
-/// The pending rows substituted and cleared to integers over local column ids; the roots of the
-/// local columns; the integer scale of each row.
-fn build_core(ps: &mut Presolve, pending: &[usize]) -> (Vec<CRow>, Vec<u32>, Vec<Q>) {
+/// The rows presolve left, ready for elimination.
+struct Core {
+    /// The pending rows substituted and cleared to integers, over local column ids.
+    rows: Vec<CRow>,
+    /// The root of each local column.
+    roots: Vec<u32>,
+    /// The local column of each root in the core (`u32::MAX` for the other unknowns).
+    local: Vec<u32>,
+    /// The integer scale of each row.
+    scales: Vec<Q>,
+}
+
+/// The core of the pending rows.
+fn build_core(ps: &mut Presolve, pending: &[usize]) -> Core {
     let mut local: Vec<u32> = vec![u32::MAX; ps.n];
     let (mut roots, mut crows, mut scales) = (vec![], Vec::with_capacity(pending.len()), vec![]);
     for &i in pending {
@@ -183,20 +207,25 @@ fn build_core(ps: &mut Presolve, pending: &[usize]) -> (Vec<CRow>, Vec<u32>, Vec
         crows.push(CRow { cols, vals, rhs: r });
         scales.push(scale);
     }
-    (crows, roots, scales)
+    Core {
+        rows: crows,
+        roots,
+        local,
+        scales,
+    }
 }
 
 /// Builds the public solution space from the facts and the reduced core.
 fn assemble(
     ps: &mut Presolve,
     pending: &[usize],
-    roots: &[u32],
+    (roots, local): (&[u32], &[u32]),
     core: Vec<(usize, u32, CRow)>,
     want_basis: bool,
 ) -> SolutionSpace {
     let n = ps.n;
-    // Value (free parameters 0) of each pivot root, and its dependence on free roots.
-    let mut core_of: Vec<u32> = vec![u32::MAX; n];
+    // The pivot of each local core column (`u32::MAX` for a free one).
+    let mut pivot_of: Vec<u32> = vec![u32::MAX; roots.len()];
     // The facts in the order they were made: each has its own time, 1 to `ps.time`, so each is
     // placed at its time without a sort.
     let mut pivots: Vec<(usize, usize)> = vec![(0, 0); ps.time as usize];
@@ -210,16 +239,25 @@ fn assemble(
     }
     debug_assert_eq!(placed, ps.time, "one fact per time");
     for (k, (i, p, _)) in core.iter().enumerate() {
-        core_of[roots[*p as usize] as usize] = k as u32;
+        pivot_of[*p as usize] = k as u32;
         pivots.push((pending[*i], roots[*p as usize] as usize));
     }
+    // The core pivot whose root is `r`, if any.
+    let pivot_of = &pivot_of;
+    let core_pivot = |r: u32| {
+        let c = local[r as usize];
+        pivot_of
+            .get(c as usize)
+            .filter(|&&k| k != u32::MAX)
+            .map(|&k| k as usize)
+    };
     ps.compress_all();
     let ps = &*ps;
     let root_val = |r: u32| -> Q {
         if let Some(v) = ps.root_value(r) {
             return v.clone();
         }
-        match core.get(core_of[r as usize] as usize) {
+        match core_pivot(r).map(|k| &core[k]) {
             Some((_, p, row)) => {
                 Q::int(row.rhs.clone()).div(&Q::int(row.coef(*p).expect("pivot").clone()))
             }
@@ -232,7 +270,7 @@ fn assemble(
         let (r, f, g) = ps.relation(x);
         if r == x {
             let v = root_val(x);
-            if ps.root_value(x).is_none() && core_of[x as usize] == u32::MAX {
+            if ps.root_value(x).is_none() && core_pivot(x).is_none() {
                 free.push(x as usize);
             }
             push_q(&mut particular, &v);
@@ -260,23 +298,18 @@ fn assemble(
             .iter()
             .map(|(_, p, row)| Q::int(row.coef(*p).expect("pivot").clone()))
             .collect();
-        let mut local: Vec<u32> = vec![u32::MAX; n];
-        roots
-            .iter()
-            .enumerate()
-            .for_each(|(k, r)| local[*r as usize] = k as u32);
-        // members of each class (CSR by root)
+        // The members of each class, CSR by root: counted into `start[r]`, summed so that
+        // `start[r]` ends class `r`, then filled from the last unknown down, which moves each
+        // `start[r]` back to where class `r` begins and leaves each class increasing.
         let mut start = vec![0u32; n + 1];
-        (0..n as u32).for_each(|x| start[ps.relation(x).0 as usize + 1] += 1);
-        (0..n).for_each(|i| start[i + 1] += start[i]);
-        let mut fill = start.clone();
+        (0..n as u32).for_each(|x| start[ps.relation(x).0 as usize] += 1);
+        (1..=n).for_each(|i| start[i] += start[i - 1]);
         let mut members = vec![0u32; n];
-        for x in 0..n as u32 {
+        for x in (0..n as u32).rev() {
             let r = ps.relation(x).0 as usize;
-            members[fill[r] as usize] = x;
-            fill[r] += 1;
+            start[r] -= 1;
+            members[start[r] as usize] = x;
         }
-        drop(fill);
         let class = |r: u32| &members[start[r as usize] as usize..start[r as usize + 1] as usize];
         let coef = |(k, j): (u32, u32)| {
             let (_, p, row) = &core[k as usize];
