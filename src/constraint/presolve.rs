@@ -12,7 +12,10 @@
 //! coefficient of its unknown in the substituted row and (links) the original `f`. Links are never
 //! rewritten in `orig_parent`; path compression only touches `parent/f/g`. So the derivation of
 //! any substituted row can be replayed backwards, latest fact first, as a combination of original
-//! rows ([`Presolve::combination`]): this is how conflict certificates are obtained.
+//! rows ([`Presolve::combination`]): this is how conflict certificates are obtained. Only a
+//! certificate reads the rows, coefficients and original parents and factors, so they are kept
+//! only by a presolve made to track them; the solver makes one when a system proves inconsistent,
+//! by replaying the same presolve.
 
 use num_bigint::BigInt;
 use num_integer::Integer;
@@ -362,16 +365,18 @@ pub(crate) struct Presolve {
     // find touches one cache line per node
     node: Vec<Node>,
     size: Vec<u32>,
-    orig_parent: Vec<u32>,
+    /// Whether the arrays below are kept: only a certificate of inconsistency reads them, so a
+    /// solve first runs without them and replays the (deterministic) presolve with them when the
+    /// system turns out inconsistent.
+    track: bool,
     // The fact about each unknown, if any: a link (the unknown is a child, `orig_parent[x] ≠
     // x`) or a fixed value (the unknown is a root). One set of arrays serves both kinds, since
     // an unknown is linked or fixed at most once and never both.
+    orig_parent: Vec<u32>,
     /// Row that made the fact, or `NONE`.
     fact_row: Vec<u32>,
-    /// When the fact was made (facts are numbered 1, 2, … in order).
-    fact_at: Vec<u32>,
-    /// A fixed root's value, or a link's original `f` (before path compression).
-    fact_q: Vec<Q>,
+    /// A link's original `f` (before path compression).
+    link_f: Vec<Q>,
     /// Coefficient of the fact's unknown (child or fixed root) in its substituted row.
     fact_a: Vec<Q>,
     pub(crate) fate: Vec<RowFate>,
@@ -389,12 +394,16 @@ pub(crate) struct Presolve {
     sub: Vec<(u32, Q)>,
 }
 
-/// A union-find node: `x = f·parent + g` (`parent == x`, `f = 1`, `g = 0` for a root).
+/// A union-find node: `x = f·parent + g`. A root has `parent == x` and `f = 1`, and `g = 0`
+/// unless it is fixed, when `g` is its value.
 #[derive(Clone)]
 struct Node {
     f: Q,
     g: Q,
     parent: u32,
+    /// When the fact about `x` was made (facts are numbered 1, 2, … in order), 0 if none: in
+    /// what would be padding, so that it costs no memory.
+    at: u32,
 }
 
 /// A substituted row: distinct roots with nonzero coefficients, and the right-hand side.
@@ -407,10 +416,13 @@ impl Presolve {
     /// The rows are copied into the CSR arrays as given, then each is sorted and merged in
     /// place (through one reused scratch buffer when it needs it), so a row costs no
     /// allocation of its own.
+    ///
+    /// With `track`, it also keeps what [`Presolve::combination`] needs.
     pub(crate) fn new<T: IntoIterator<Item = (u32, Q)>>(
         n: usize,
         rows: impl ExactSizeIterator<Item = (T, Q)>,
         terms: usize,
+        track: bool,
     ) -> Presolve {
         let m = rows.len();
         let mut start = Vec::with_capacity(m + 1);
@@ -473,14 +485,19 @@ impl Presolve {
                     f: Q::int(Z::one()),
                     g: Q::zero(),
                     parent: x,
+                    at: 0,
                 })
                 .collect(),
             size: vec![1; n],
-            orig_parent: (0..n as u32).collect(),
-            fact_row: vec![NONE; n],
-            fact_at: vec![0; n],
-            fact_q: vec![Q::zero(); n],
-            fact_a: vec![Q::zero(); n],
+            track,
+            orig_parent: if track {
+                (0..n as u32).collect()
+            } else {
+                vec![]
+            },
+            fact_row: if track { vec![NONE; n] } else { vec![] },
+            link_f: if track { vec![Q::zero(); n] } else { vec![] },
+            fact_a: if track { vec![Q::zero(); n] } else { vec![] },
             fate: vec![RowFate::Pending; m],
             time: 0,
             head: vec![NONE; n],
@@ -546,18 +563,19 @@ impl Presolve {
 
     /// When the fact about `c` (a fixed root or a linked child) was made.
     pub(crate) fn fact_time(&self, c: u32) -> u32 {
-        self.fact_at[c as usize]
+        self.node[c as usize].at
     }
 
     /// The fixed value of root `r`, if any (a root's only possible fact is a fixed value).
     pub(crate) fn root_value(&self, r: u32) -> Option<&Q> {
-        debug_assert_eq!(self.orig_parent[r as usize], r, "a root");
-        (self.fact_row[r as usize] != NONE).then(|| &self.fact_q[r as usize])
+        let nr = &self.node[r as usize];
+        debug_assert_eq!(nr.parent, r, "a root");
+        (nr.at != 0).then_some(&nr.g)
     }
 
-    /// Whether `x` was fixed (it is then a root of its own class).
+    /// Whether `x` was fixed (it is then a root of its own class); needs tracking.
     fn fixed(&self, x: usize) -> bool {
-        self.orig_parent[x] as usize == x && self.fact_row[x] != NONE
+        self.orig_parent[x] as usize == x && self.node[x].at != 0
     }
 
     /// Row `i` after substituting all current facts, roots sorted.
@@ -673,10 +691,13 @@ impl Presolve {
             1 => {
                 let (r, a) = &terms[0];
                 self.time += 1;
-                self.fact_q[*r as usize] = rhs.div(a);
-                self.fact_a[*r as usize] = a.clone();
-                self.fact_row[*r as usize] = i as u32;
-                self.fact_at[*r as usize] = self.time;
+                let nr = &mut self.node[*r as usize];
+                nr.g = rhs.div(a);
+                nr.at = self.time;
+                if self.track {
+                    self.fact_a[*r as usize] = a.clone();
+                    self.fact_row[*r as usize] = i as u32;
+                }
                 self.fate[i] = RowFate::Pivot(*r);
                 self.notify(*r, 2, true, None);
                 None
@@ -689,15 +710,18 @@ impl Presolve {
                 }
                 let (c, p) = (x.0 as usize, y.0);
                 self.time += 1;
-                self.node[c].parent = p;
-                self.orig_parent[c] = p;
-                self.node[c].f = y.1.div(&x.1).neg();
-                self.fact_q[c] = self.node[c].f.clone();
-                self.fact_a[c] = x.1.clone();
-                self.node[c].g = rhs.div(&x.1);
+                let nc = &mut self.node[c];
+                nc.parent = p;
+                nc.f = y.1.div(&x.1).neg();
+                nc.g = rhs.div(&x.1);
+                nc.at = self.time;
+                if self.track {
+                    self.orig_parent[c] = p;
+                    self.link_f[c] = nc.f.clone();
+                    self.fact_a[c] = x.1.clone();
+                    self.fact_row[c] = i as u32;
+                }
                 self.size[p as usize] += self.size[c];
-                self.fact_row[c] = i as u32;
-                self.fact_at[c] = self.time;
                 self.fate[i] = RowFate::Pivot(c as u32);
                 self.notify(c as u32, 3, false, Some(p));
                 None
@@ -723,7 +747,10 @@ impl Presolve {
     /// normalised to coefficient 1 (for a fixed root, `D_y: y = v`); `D_x` itself is the
     /// substituted fact row divided by `fact_a[x]`, a combination of strictly older facts. So the
     /// weights on the facts are resolved latest first, each exactly once.
+    ///
+    /// Needs a presolve made with `track`.
     pub(crate) fn combination(&self, seeds: &[(usize, Q)]) -> BTreeMap<usize, Q> {
+        assert!(self.track, "a combination needs the tracked facts");
         let mut m: BTreeMap<usize, Q> = BTreeMap::new();
         let mut w: BTreeMap<u32, (u32, Q)> = BTreeMap::new();
         for (r, q) in seeds {
@@ -759,13 +786,13 @@ impl Presolve {
         for k in self.start[i]..self.start[i + 1] {
             let mut alpha = weight.mul(&self.coefs[k]);
             let mut x = self.cols[k] as usize;
-            while self.orig_parent[x] as usize != x && self.fact_at[x] < t {
-                sub(self.fact_at[x], x, &alpha);
-                alpha = alpha.mul(&self.fact_q[x]);
+            while self.orig_parent[x] as usize != x && self.node[x].at < t {
+                sub(self.node[x].at, x, &alpha);
+                alpha = alpha.mul(&self.link_f[x]);
                 x = self.orig_parent[x] as usize;
             }
-            if self.fixed(x) && self.fact_at[x] < t {
-                sub(self.fact_at[x], x, &alpha);
+            if self.fixed(x) && self.node[x].at < t {
+                sub(self.node[x].at, x, &alpha);
             }
         }
     }
@@ -913,7 +940,7 @@ mod tests {
                 .map(|r| (r.iter().map(|&(c, v)| (c, q(v, 1))).collect(), Q::zero()))
                 .collect();
             let terms = input.iter().map(|r| r.0.len()).sum();
-            let p = Presolve::new(6, input.clone().into_iter(), terms);
+            let p = Presolve::new(6, input.clone().into_iter(), terms, true);
             prop_assert_eq!(p.start.len(), input.len() + 1);
             for (i, (row, _)) in input.into_iter().enumerate() {
                 let mut want = row;
@@ -962,7 +989,7 @@ mod tests {
             (vec![(1, q(1, 1)), (2, q(-1, 1))], q(1, 1)),
             (vec![(2, q(1, 1))], q(3, 1)),
         ];
-        let mut p = Presolve::new(3, rows.into_iter(), 5);
+        let mut p = Presolve::new(3, rows.into_iter(), 5, true);
         assert_eq!(p.run(), None);
         for (x, want) in [(0, 8), (1, 4), (2, 3)] {
             let (r, f, g) = p.find(x);
@@ -993,7 +1020,7 @@ mod tests {
             (vec![(0, q(1, 1)), (2, q(5, 1))], q(4, 1)),
             (vec![(1, q(7, 3)), (2, Q::zero())], q(1, 1)),
         ];
-        let p = Presolve::new(3, rows.into_iter(), 11);
+        let p = Presolve::new(3, rows.into_iter(), 11, true);
         assert_eq!(p.start, vec![0, 2, 2, 2, 4, 5]);
         assert_eq!(p.cols, vec![0, 1, 0, 2, 1]);
         assert_eq!(p.coefs, vec![q(2, 1), q(3, 1), q(1, 1), q(5, 1), q(7, 3)]);

@@ -108,18 +108,20 @@ pub fn solve(sys: &LinearSystem) -> Solution {
         sys.unknowns < u32::MAX as usize,
         "at most 2^32 − 2 unknowns"
     );
-    let rows = sys.rows.iter().map(|e| {
-        let terms = e.terms.iter().map(|(v, c)| {
-            assert!(*v < sys.unknowns, "unknown {v} out of range");
-            (*v as u32, Q::from_big(c))
-        });
-        (terms, Q::from_big(&e.rhs))
-    });
+    let rows = || {
+        sys.rows.iter().map(|e| {
+            let terms = e.terms.iter().map(|(v, c)| {
+                assert!(*v < sys.unknowns, "unknown {v} out of range");
+                (*v as u32, Q::from_big(c))
+            });
+            (terms, Q::from_big(&e.rhs))
+        })
+    };
     let terms = sys.rows.iter().map(|e| e.terms.len()).sum();
-    match run(sys.unknowns, rows, terms, true) {
+    match run(sys.unknowns, rows, terms, true, true) {
         Ok(space) => Solution::Consistent(space),
         Err(failure) => {
-            let (ps, seeds) = *failure;
+            let (ps, seeds) = *failure.expect("certified");
             Solution::Inconsistent(certificate(&ps, seeds))
         }
     }
@@ -128,49 +130,66 @@ pub fn solve(sys: &LinearSystem) -> Solution {
 /// The presolve state and the substituted rows (with weights) whose sum reads `0 = c ≠ 0`.
 type Failure = Box<(Presolve, Vec<(usize, Q)>)>;
 
-/// Presolve + core. On inconsistency returns the presolve state and the conflicting combination.
-fn run<T: IntoIterator<Item = (u32, Q)>>(
+/// Presolve + core over the rows `rows()` makes (called a second time, for the same rows, only
+/// when the system is inconsistent and `certify`). On inconsistency returns, with `certify`, the
+/// presolve state that can replay its facts and the conflicting combination.
+fn run<T, I>(
     n: usize,
-    rows: impl ExactSizeIterator<Item = (T, Q)>,
+    rows: impl Fn() -> I,
     terms: usize,
     want_basis: bool,
-) -> Result<SolutionSpace, Failure> {
-    let mut ps = Presolve::new(n, rows, terms);
-    if let Some(bad) = ps.run() {
-        return Err(Box::new((ps, vec![(bad, Q::int(Z::one()))])));
-    }
-    // Core: pending rows over the remaining roots.
-    let pending: Vec<usize> = (0..ps.rows())
-        .filter(|&i| ps.fate[i] == RowFate::Pending)
-        .collect();
-    let Core {
-        rows, roots, local, ..
-    } = build_core(&mut ps, &pending);
-    let core = match eliminate(rows, roots.len(), false) {
-        Ok(core) => core,
-        Err(_) => {
-            // Replay the deterministic elimination, now tracking combinations.
-            let Core {
-                rows,
-                roots,
-                scales,
-                ..
-            } = build_core(&mut ps, &pending);
-            let (_, combo) = eliminate(rows, roots.len(), true).expect_err("same elimination");
-            let seeds = combo
-                .into_iter()
-                .map(|(k, w)| (pending[k as usize], w.mul(&scales[k as usize])));
-            let seeds = seeds.collect();
-            return Err(Box::new((ps, seeds)));
+    certify: bool,
+) -> Result<SolutionSpace, Option<Failure>>
+where
+    T: IntoIterator<Item = (u32, Q)>,
+    I: ExactSizeIterator<Item = (T, Q)>,
+{
+    let mut ps = Presolve::new(n, rows(), terms, false);
+    if ps.run().is_none() {
+        let pending = pending(&ps);
+        let Core {
+            rows, roots, local, ..
+        } = build_core(&mut ps, &pending);
+        if let Ok(core) = eliminate(rows, roots.len(), false) {
+            return Ok(assemble(
+                &mut ps,
+                &pending,
+                (&roots, &local),
+                core,
+                want_basis,
+            ));
         }
-    };
-    Ok(assemble(
-        &mut ps,
-        &pending,
-        (&roots, &local),
-        core,
-        want_basis,
-    ))
+    }
+    if !certify {
+        return Err(None);
+    }
+    // Inconsistent. The presolve and the elimination are deterministic, so both are replayed:
+    // the presolve now keeping the rows and factors of its facts, the elimination now tracking
+    // the combination of rows that each of its rows is.
+    drop(ps);
+    let mut ps = Presolve::new(n, rows(), terms, true);
+    if let Some(bad) = ps.run() {
+        return Err(Some(Box::new((ps, vec![(bad, Q::int(Z::one()))]))));
+    }
+    let pending = pending(&ps);
+    let Core {
+        rows,
+        roots,
+        scales,
+        ..
+    } = build_core(&mut ps, &pending);
+    let (_, combo) = eliminate(rows, roots.len(), true).expect_err("same elimination");
+    let seeds = combo
+        .into_iter()
+        .map(|(k, w)| (pending[k as usize], w.mul(&scales[k as usize])));
+    Err(Some(Box::new((ps, seeds.collect()))))
+}
+
+/// The rows presolve left pending, which make the core.
+fn pending(ps: &Presolve) -> Vec<usize> {
+    (0..ps.rows())
+        .filter(|&i| ps.fate[i] == RowFate::Pending)
+        .collect()
 }
 
 /// The rows presolve left, ready for elimination.
@@ -417,7 +436,8 @@ fn minimal(ps: &Presolve, rows: &[usize]) -> Option<Vec<(usize, Q)>> {
     let mut eqs: Vec<(Vec<(u32, Q)>, Q)> = by_col.into_values().map(|t| (t, Q::zero())).collect();
     eqs.push((rhs_row, Q::int(Z::one())));
     let terms = eqs.iter().map(|(t, _)| t.len()).sum();
-    let space = run(rows.len(), eqs.into_iter(), terms, false).ok()?;
+    let rows_of = || eqs.iter().map(|(t, r)| (t.iter().cloned(), r.clone()));
+    let space = run(rows.len(), rows_of, terms, false, false).ok()?;
     let m: Vec<(usize, Q)> = (0..space.particular.len())
         .filter(|&k| !space.particular.is_zero_at(k))
         .map(|k| (rows[k], Q::from_big(&space.particular.get(k))))
