@@ -247,8 +247,8 @@ fn assemble(
     let mut pivot_of: Vec<u32> = vec![u32::MAX; roots.len()];
     // The facts in the order they were made: each has its own time, 1 to `ps.time`, so each is
     // placed at its time without a sort.
-    let mut pivots: Vec<(usize, usize)> = vec![(0, 0); ps.time as usize];
-    pivots.reserve_exact(core.len());
+    let mut pivots: Vec<(usize, usize)> = Vec::with_capacity(ps.time as usize + core.len());
+    pivots.resize(ps.time as usize, (0, 0));
     let mut placed = 0;
     for (i, fate) in ps.fate.iter().enumerate() {
         if let RowFate::Pivot(c) = fate {
