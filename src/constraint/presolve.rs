@@ -350,8 +350,8 @@ pub(crate) enum RowFate {
     Pending,
     /// Reduced to `0 = 0`.
     Redundant,
-    /// Created a fact (fixed or linked the given unknown, its rank-witness column).
-    Pivot(u32),
+    /// Created a fact (listed in [`Presolve::facts`]).
+    Fact,
 }
 
 /// The presolve state. Rows are stored compactly (CSR, duplicates merged, zeros dropped).
@@ -380,6 +380,9 @@ pub(crate) struct Presolve {
     /// Coefficient of the fact's unknown (child or fixed root) in its substituted row.
     fact_a: Vec<Q>,
     pub(crate) fate: Vec<RowFate>,
+    /// `(row, unknown)` of each fact, in the order they were made: the rank witness, since each
+    /// fact's row isolates its unknown given the earlier facts.
+    pub(crate) facts: Vec<(u32, u32)>,
     pub(crate) time: u32,
     // registration lists (flat linked lists per root) and row bookkeeping
     head: Vec<u32>,
@@ -499,6 +502,7 @@ impl Presolve {
             link_f: if track { vec![Q::zero(); n] } else { vec![] },
             fact_a: if track { vec![Q::zero(); n] } else { vec![] },
             fate: vec![RowFate::Pending; m],
+            facts: Vec::with_capacity(m.min(n)),
             time: 0,
             head: vec![NONE; n],
             ent_row: vec![],
@@ -510,6 +514,28 @@ impl Presolve {
             queue: vec![],
             sub: vec![],
         }
+    }
+
+    /// Frees the rows and what the run kept to find its facts, leaving the facts and the rows'
+    /// fates: once a consistent solve has built its core it reads nothing else, and what is freed
+    /// here (about half of the presolve's memory) is then reused by the elimination and the
+    /// solution space instead of new pages.
+    pub(crate) fn release_rows(&mut self) {
+        debug_assert!(!self.track, "a certificate reads the rows");
+        self.start = vec![];
+        self.cols = vec![];
+        self.coefs = vec![];
+        self.rhs = vec![];
+        self.size = vec![];
+        self.head = vec![];
+        self.ent_row = vec![];
+        self.ent_epoch = vec![];
+        self.ent_next = vec![];
+        self.epoch = vec![];
+        self.live = vec![];
+        self.queued = vec![];
+        self.queue = vec![];
+        self.sub = vec![];
     }
 
     pub(crate) fn rows(&self) -> usize {
@@ -548,22 +574,11 @@ impl Presolve {
         (r, cf, cg)
     }
 
-    /// Compresses every path, after which [`Presolve::relation`] is valid.
-    pub(crate) fn compress_all(&mut self) {
-        for x in 0..self.n as u32 {
-            self.find(x);
-        }
-    }
-
-    /// `(root, F, G)` with `x = F·root + G`; only valid right after [`Presolve::compress_all`].
+    /// `(root, F, G)` with `x = F·root + G`; only valid once [`Presolve::find`] has compressed
+    /// the path of `x` and no fact was made since.
     pub(crate) fn relation(&self, x: u32) -> (u32, &Q, &Q) {
         let nx = &self.node[x as usize];
         (nx.parent, &nx.f, &nx.g)
-    }
-
-    /// When the fact about `c` (a fixed root or a linked child) was made.
-    pub(crate) fn fact_time(&self, c: u32) -> u32 {
-        self.node[c as usize].at
     }
 
     /// The fixed value of root `r`, if any (a root's only possible fact is a fixed value).
@@ -698,7 +713,8 @@ impl Presolve {
                     self.fact_a[*r as usize] = a.clone();
                     self.fact_row[*r as usize] = i as u32;
                 }
-                self.fate[i] = RowFate::Pivot(*r);
+                self.fate[i] = RowFate::Fact;
+                self.facts.push((i as u32, *r));
                 self.notify(*r, 2, true, None);
                 None
             }
@@ -722,7 +738,8 @@ impl Presolve {
                     self.fact_row[c] = i as u32;
                 }
                 self.size[p as usize] += self.size[c];
-                self.fate[i] = RowFate::Pivot(c as u32);
+                self.fate[i] = RowFate::Fact;
+                self.facts.push((i as u32, c as u32));
                 self.notify(c as u32, 3, false, Some(p));
                 None
             }

@@ -150,6 +150,7 @@ where
         let Core {
             rows, roots, local, ..
         } = build_core(&mut ps, &pending);
+        ps.release_rows();
         if let Ok(core) = eliminate(rows, roots.len(), false) {
             return Ok(assemble(
                 &mut ps,
@@ -245,18 +246,8 @@ fn assemble(
     let n = ps.n;
     // The pivot of each local core column (`u32::MAX` for a free one).
     let mut pivot_of: Vec<u32> = vec![u32::MAX; roots.len()];
-    // The facts in the order they were made: each has its own time, 1 to `ps.time`, so each is
-    // placed at its time without a sort.
-    let mut pivots: Vec<(usize, usize)> = Vec::with_capacity(ps.time as usize + core.len());
-    pivots.resize(ps.time as usize, (0, 0));
-    let mut placed = 0;
-    for (i, fate) in ps.fate.iter().enumerate() {
-        if let RowFate::Pivot(c) = fate {
-            pivots[ps.fact_time(*c) as usize - 1] = (i, *c as usize);
-            placed += 1;
-        }
-    }
-    debug_assert_eq!(placed, ps.time, "one fact per time");
+    let mut pivots: Vec<(usize, usize)> = Vec::with_capacity(ps.facts.len() + core.len());
+    pivots.extend(ps.facts.iter().map(|&(i, c)| (i as usize, c as usize)));
     for (k, (i, p, _)) in core.iter().enumerate() {
         pivot_of[*p as usize] = k as u32;
         pivots.push((pending[*i], roots[*p as usize] as usize));
@@ -270,9 +261,7 @@ fn assemble(
             .filter(|&&k| k != u32::MAX)
             .map(|&k| k as usize)
     };
-    ps.compress_all();
-    let ps = &*ps;
-    let root_val = |r: u32| -> Q {
+    let root_val = |ps: &Presolve, r: u32| -> Q {
         if let Some(v) = ps.root_value(r) {
             return v.clone();
         }
@@ -285,21 +274,28 @@ fn assemble(
     };
     let mut particular = Rationals::with_capacity(n);
     let mut free = vec![];
+    // For the basis: each unknown's root, and the size of each class counted into `start[r]`.
+    let mut root_of: Vec<u32> = Vec::with_capacity(if want_basis { n } else { 0 });
+    let mut start = vec![0u32; if want_basis { n + 1 } else { 0 }];
+    // One pass over the unknowns compresses each path and reads the relation it leaves: the
+    // union-find nodes of a million unknowns are far out of cache, so they are read once here.
     for x in 0..n as u32 {
-        let (r, f, g) = ps.relation(x);
-        if r == x {
-            let v = root_val(x);
+        let (r, f, g) = ps.find(x);
+        if want_basis {
+            root_of.push(r);
+            start[r as usize] += 1;
+        }
+        let v = if r == x {
             if ps.root_value(x).is_none() && core_pivot(x).is_none() {
                 free.push(x as usize);
             }
-            push_q(&mut particular, &v);
-        } else if let Some(v) = ps.root_value(r).filter(|_| r < x) {
-            // Common case (fixed class): no need to revisit the root.
-            push_q(&mut particular, &f.mul(v).add(g));
+            root_val(ps, x)
         } else {
-            push_q(&mut particular, &f.mul(&root_val(r)).add(g));
-        }
+            f.mul(&root_val(ps, r)).add(&g)
+        };
+        push_q(&mut particular, &v);
     }
+    let ps = &*ps;
     let mut basis = Directions::default();
     if want_basis {
         // dirs[local core column of a free root]: (pivot k, position of the column in its row);
@@ -317,18 +313,18 @@ fn assemble(
             .iter()
             .map(|(_, p, row)| Q::int(row.coef(*p).expect("pivot").clone()))
             .collect();
-        // The members of each class, CSR by root: counted into `start[r]`, summed so that
-        // `start[r]` ends class `r`, then filled from the last unknown down, which moves each
-        // `start[r]` back to where class `r` begins and leaves each class increasing.
-        let mut start = vec![0u32; n + 1];
-        (0..n as u32).for_each(|x| start[ps.relation(x).0 as usize] += 1);
+        // The members of each class, CSR by root: the counts in `start[r]` are summed so that
+        // `start[r]` ends class `r`, then the members are filled from the last unknown down,
+        // which moves each `start[r]` back to where class `r` begins and leaves each class
+        // increasing.
         (1..=n).for_each(|i| start[i] += start[i - 1]);
         let mut members = vec![0u32; n];
         for x in (0..n as u32).rev() {
-            let r = ps.relation(x).0 as usize;
+            let r = root_of[x as usize] as usize;
             start[r] -= 1;
             members[start[r] as usize] = x;
         }
+        drop(root_of);
         let class = |r: u32| &members[start[r as usize] as usize..start[r as usize + 1] as usize];
         let coef = |(k, j): (u32, u32)| {
             let (_, p, row) = &core[k as usize];
