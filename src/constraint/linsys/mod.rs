@@ -274,16 +274,23 @@ fn assemble(
     };
     let mut particular = Rationals::with_capacity(n);
     let mut free = vec![];
-    // For the basis: each unknown's root, and the size of each class counted into `start[r]`.
+    // For the basis: each unknown's root (`u32::MAX` in a fixed class, which no direction
+    // moves), and the size of each other class counted into `start[r]`.
     let mut root_of: Vec<u32> = Vec::with_capacity(if want_basis { n } else { 0 });
     let mut start = vec![0u32; if want_basis { n + 1 } else { 0 }];
+    let mut moving = 0;
     // One pass over the unknowns compresses each path and reads the relation it leaves: the
     // union-find nodes of a million unknowns are far out of cache, so they are read once here.
     for x in 0..n as u32 {
         let (r, f, g) = ps.find(x);
         if want_basis {
-            root_of.push(r);
-            start[r as usize] += 1;
+            if ps.root_value(r).is_some() {
+                root_of.push(u32::MAX);
+            } else {
+                root_of.push(r);
+                start[r as usize] += 1;
+                moving += 1;
+            }
         }
         let v = if r == x {
             if ps.root_value(x).is_none() && core_pivot(x).is_none() {
@@ -313,19 +320,26 @@ fn assemble(
             .iter()
             .map(|(_, p, row)| Q::int(row.coef(*p).expect("pivot").clone()))
             .collect();
-        // The members of each class, CSR by root: the counts in `start[r]` are summed so that
-        // `start[r]` ends class `r`, then the members are filled from the last unknown down,
-        // which moves each `start[r]` back to where class `r` begins and leaves each class
-        // increasing.
+        // The members of each class that is not fixed, with their factors `F` (`x = F·root +
+        // G`), CSR by root: the counts in `start[r]` are summed so that `start[r]` ends class
+        // `r`, then the members are filled from the last unknown down, which moves each
+        // `start[r]` back to where class `r` begins and leaves each class increasing. Reading
+        // the factors here, in order, spares the directions a read of a union-find node, far
+        // out of cache, for each of their entries.
         (1..=n).for_each(|i| start[i] += start[i - 1]);
-        let mut members = vec![0u32; n];
+        let mut members = vec![0u32; moving];
+        let mut factors = vec![Q::zero(); moving];
         for x in (0..n as u32).rev() {
-            let r = root_of[x as usize] as usize;
-            start[r] -= 1;
-            members[start[r] as usize] = x;
+            let r = root_of[x as usize];
+            if r != u32::MAX {
+                let k = &mut start[r as usize];
+                *k -= 1;
+                members[*k as usize] = x;
+                factors[*k as usize] = ps.relation(x).1.clone();
+            }
         }
         drop(root_of);
-        let class = |r: u32| &members[start[r as usize] as usize..start[r as usize + 1] as usize];
+        let class = |r: u32| start[r as usize] as usize..start[r as usize + 1] as usize;
         let coef = |(k, j): (u32, u32)| {
             let (_, p, row) = &core[k as usize];
             let c = Q::int(row.vals[j as usize].neg()).div(&pivot_coef[k as usize]);
@@ -346,9 +360,13 @@ fn assemble(
             v.clear();
             let d = dirs.iter(local[f]).map(coef);
             for (root, c) in std::iter::once((f as u32, one.clone())).chain(d) {
-                for &x in class(root) {
-                    v.push((x, ps.relation(x).1.mul(&c)));
-                }
+                let k = class(root);
+                v.extend(
+                    members[k.clone()]
+                        .iter()
+                        .zip(&factors[k])
+                        .map(|(&x, f)| (x, f.mul(&c))),
+                );
             }
             v.sort_unstable_by_key(|t| t.0);
             for (x, q) in &v {
