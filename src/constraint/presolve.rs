@@ -945,6 +945,31 @@ mod tests {
             }
         }
 
+        /// A presolve that keeps nothing for certificates makes the same facts, in the same
+        /// order, with the same fates and relations, as one that does: the solver relies on
+        /// replaying the one with the other when a system turns out inconsistent.
+        #[test]
+        fn tracking_changes_no_fact(
+            rows in proptest::collection::vec(
+                (proptest::collection::vec((0u32..8, -2i64..3), 1..5), -2i64..3), 0..12),
+        ) {
+            let input: Vec<(Vec<(u32, Q)>, Q)> = rows
+                .iter()
+                .map(|(r, c)| (r.iter().map(|&(x, v)| (x, q(v, 1))).collect(), q(*c, 1)))
+                .collect();
+            let terms = input.iter().map(|r| r.0.len()).sum();
+            let mut plain = Presolve::new(8, input.clone().into_iter(), terms, false);
+            let mut tracked = Presolve::new(8, input.into_iter(), terms, true);
+            prop_assert_eq!(plain.run(), tracked.run());
+            prop_assert_eq!(&plain.fate, &tracked.fate);
+            prop_assert_eq!(&plain.facts, &tracked.facts);
+            for x in 0..8 {
+                let (a, b) = (plain.find(x), tracked.find(x));
+                prop_assert_eq!(plain.root_value(a.0), tracked.root_value(b.0));
+                prop_assert_eq!(a, b);
+            }
+        }
+
         /// The CSR arrays hold every row sorted and merged, whatever mix of clean rows (moved)
         /// and rows with repeats or zeros (merged) comes in.
         #[test]

@@ -252,7 +252,7 @@ impl<T: Copy> Lists<T> {
     }
 
     /// Empties column `c`'s list into `out` (cleared first).
-    fn take(&mut self, c: u32, out: &mut Vec<T>) {
+    pub(super) fn take(&mut self, c: u32, out: &mut Vec<T>) {
         out.clear();
         out.extend(self.iter(c));
         self.head[c as usize] = u32::MAX;

@@ -413,3 +413,34 @@ fn structured_systems_of_growing_size() {
         s.check(&sys).expect("check");
     }
 }
+
+proptest! {
+    /// The arena lists hold, per column, exactly what a vector per column would, newest first;
+    /// taking a column empties it and leaves the others.
+    #[test]
+    fn arena_lists_match_a_vector_per_column(
+        pushes in proptest::collection::vec((0u32..6, any::<u32>()), 0..60),
+        taken in 0u32..6,
+    ) {
+        let mut lists: Lists<u32> = Lists::new(6, 0);
+        let mut want: Vec<Vec<u32>> = vec![vec![]; 6];
+        for &(c, t) in &pushes {
+            lists.push(c, t);
+            want[c as usize].insert(0, t);
+        }
+        for c in 0..6u32 {
+            prop_assert_eq!(lists.iter(c).collect::<Vec<_>>(), want[c as usize].clone());
+        }
+        // A column beyond the lists (a free root outside the core) is empty.
+        prop_assert_eq!(lists.iter(u32::MAX).count(), 0);
+        let mut out = vec![7];
+        lists.take(taken, &mut out);
+        prop_assert_eq!(&out, &want[taken as usize]);
+        prop_assert_eq!(lists.iter(taken).count(), 0);
+        lists.push(taken, 9);
+        prop_assert_eq!(lists.iter(taken).collect::<Vec<_>>(), vec![9]);
+        for c in (0..6u32).filter(|&c| c != taken) {
+            prop_assert_eq!(lists.iter(c).collect::<Vec<_>>(), want[c as usize].clone());
+        }
+    }
+}
