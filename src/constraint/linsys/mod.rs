@@ -261,14 +261,17 @@ fn assemble(
             .filter(|&&k| k != u32::MAX)
             .map(|&k| k as usize)
     };
+    // The coefficient of each core row's pivot.
+    let pivot_coef: Vec<Q> = core
+        .iter()
+        .map(|(_, p, row)| Q::int(row.coef(*p).expect("pivot").clone()))
+        .collect();
     let root_val = |ps: &Presolve, r: u32| -> Q {
         if let Some(v) = ps.root_value(r) {
             return v.clone();
         }
-        match core_pivot(r).map(|k| &core[k]) {
-            Some((_, p, row)) => {
-                Q::int(row.rhs.clone()).div(&Q::int(row.coef(*p).expect("pivot").clone()))
-            }
+        match core_pivot(r) {
+            Some(k) => Q::int(core[k].2.rhs.clone()).div(&pivot_coef[k]),
             None => Q::zero(),
         }
     };
@@ -316,10 +319,6 @@ fn assemble(
                 }
             }
         }
-        let pivot_coef: Vec<Q> = core
-            .iter()
-            .map(|(_, p, row)| Q::int(row.coef(*p).expect("pivot").clone()))
-            .collect();
         // The members of each class that is not fixed, with their factors `F` (`x = F·root +
         // G`), CSR by root: the counts in `start[r]` are summed so that `start[r]` ends class
         // `r`, then the members are filled from the last unknown down, which moves each
