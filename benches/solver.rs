@@ -57,7 +57,7 @@ fn main() {
             "{k:>3}  {:>6}  {:>9}  {:>9}  {build:>10.4}  {best:>10.4}  {consistent:>10}  {text}",
             ts.types.len(),
             lin.system.unknowns,
-            lin.system.rows.len()
+            lin.system.len()
         );
         if let Some(dir) = &export {
             if lin.system.unknowns <= export_max {

@@ -367,17 +367,13 @@ fn solution_of(cert: &mut Certificate) -> &mut lacuna::certificate::SolutionStep
 /// The certificate's system as lacuna's `LinearSystem`.
 fn linear_system(s: &lacuna::certificate::System) -> lacuna::constraint::LinearSystem {
     let q = |x: &str| x.parse::<BigRational>().expect("rational");
-    lacuna::constraint::LinearSystem {
-        unknowns: s.unknowns,
-        rows: s
-            .rows
-            .iter()
-            .map(|r| lacuna::constraint::Equation {
-                terms: r.terms.iter().map(|(v, c)| (*v, q(c))).collect(),
-                rhs: q(&r.rhs),
-            })
-            .collect(),
-    }
+    lacuna::constraint::LinearSystem::from_equations(
+        s.unknowns,
+        s.rows.iter().map(|r| lacuna::constraint::Equation {
+            terms: r.terms.iter().map(|(v, c)| (*v, q(c))).collect(),
+            rhs: q(&r.rhs),
+        }),
+    )
 }
 
 #[test]
@@ -423,7 +419,7 @@ fn systems_that_are_not_the_closures_are_rejected() {
     let mut c = base.clone();
     let s = solution_of(&mut c);
     let mut sys = linear_system(&s.system);
-    sys.rows.push(lacuna::constraint::Equation {
+    sys.push(&lacuna::constraint::Equation {
         terms: vec![(s.free[0], one.clone())],
         rhs: BigRational::from_integer(0.into()),
     });
@@ -491,15 +487,15 @@ fn inconsistent_systems_are_certified_and_mutations_rejected() {
         terms: terms.iter().map(|&(v, c)| (v, q(c))).collect(),
         rhs: q(rhs),
     };
-    let sys = lacuna::constraint::LinearSystem {
-        unknowns: 4,
-        rows: vec![
+    let sys = lacuna::constraint::LinearSystem::from_equations(
+        4,
+        [
             row(&[(3, 1)], 5),
             row(&[(0, 1), (1, 1)], 1),
             row(&[(1, 1), (2, 1)], 1),
             row(&[(0, 1), (2, -1)], 1),
         ],
-    };
+    );
     let solution = lacuna::constraint::solve(&sys);
     assert!(matches!(
         solution,

@@ -43,7 +43,7 @@ fn satisfies(a: &Automaton, lin: &Linearized, values: &[(&str, Matrix)]) -> bool
             .unwrap_or_else(|| panic!("no value for {name}"));
         x[k] = mat.get(r, c).clone();
     }
-    lin.system.rows.iter().all(|row| {
+    lin.system.equations().all(|row| {
         row.terms
             .iter()
             .map(|(v, a)| a * &x[*v])

@@ -7,8 +7,8 @@
 //! the exact sparse solver ([`crate::constraint::linsys`]).
 
 use crate::algebra::matrix::Matrix;
-use crate::constraint::linsys::{self, Equation, LinearSystem, Solution};
-use crate::constraint::presolve::Q;
+use crate::constraint::linsys::{self, LinearSystem, Solution};
+use crate::constraint::presolve::{Q, Z};
 use crate::error::{Error, Result, Span};
 use num_rational::BigRational;
 use num_traits::{One, Zero};
@@ -136,7 +136,7 @@ pub struct Linearized {
 }
 
 /// A linear form: terms over unknowns plus a constant.
-type Form = (Vec<(usize, BigRational)>, BigRational);
+type Form = (Vec<(usize, Q)>, BigRational);
 
 impl Automaton {
     /// Adds a state; returns its index.
@@ -351,24 +351,26 @@ impl Automaton {
                 // K1·X·K2 entry (r, c) = Σ K1[r][i]·X[i][j]·K2[j][c] over the nonzero entries
                 // only: K1's rows and K2's columns as sparse lists (an absent product is the
                 // identity, one entry per row), in increasing i and j as a dense loop visits them.
-                let one = BigRational::one();
+                let one = || Q::int(Z::one());
                 let k1 = product(&w[..p]);
                 let k2 = product(&w[p + 1..]);
-                let k1_rows: Vec<Vec<(usize, &BigRational)>> = (0..rows)
+                let k1_rows: Vec<Vec<(usize, Q)>> = (0..rows)
                     .map(|r| match &k1 {
-                        None => vec![(r, &one)],
+                        None => vec![(r, one())],
                         Some(m) => (0..xr)
                             .map(|i| (i, m.get(r, i)))
                             .filter(|(_, a)| !a.is_zero())
+                            .map(|(i, a)| (i, Q::from_big(a)))
                             .collect(),
                     })
                     .collect();
-                let k2_cols: Vec<Vec<(usize, &BigRational)>> = (0..cols)
+                let k2_cols: Vec<Vec<(usize, Q)>> = (0..cols)
                     .map(|c| match &k2 {
-                        None => vec![(c, &one)],
+                        None => vec![(c, one())],
                         Some(m) => (0..xc)
                             .map(|j| (j, m.get(j, c)))
                             .filter(|(_, b)| !b.is_zero())
+                            .map(|(j, b)| (j, Q::from_big(b)))
                             .collect(),
                     })
                     .collect();
@@ -380,14 +382,11 @@ impl Automaton {
                 for row in &k1_rows {
                     for col in &k2_cols {
                         let mut terms = Vec::with_capacity(row.len() * col.len());
-                        for &(i, a) in row {
-                            for &(j, b) in col {
+                        for (i, a) in row {
+                            for (j, b) in col {
                                 // Machine-word product with a checked fallback: the same
                                 // reduced value as `a * b`, without BigInt gcds (issue #34).
-                                terms.push((
-                                    base + i * xc + j,
-                                    Q::from_big(a).mul(&Q::from_big(b)).big(),
-                                ));
+                                terms.push((base + i * xc + j, a.mul(b)));
                             }
                         }
                         forms.push((terms, BigRational::zero()));
@@ -414,7 +413,7 @@ impl Automaton {
                 }
             }
         }
-        let mut rows = Vec::new();
+        let mut system = LinearSystem::new(unknown_entries.len());
         let mut origins = Vec::new();
         for (k, con) in self.constraints.iter().enumerate() {
             let (lr, lc, lf) = self.word_forms(k, &con.lhs, &offsets)?;
@@ -427,12 +426,10 @@ impl Automaton {
                 ));
             }
             for (idx, ((lt, lk), (rt, rk))) in lf.into_iter().zip(rf).enumerate() {
-                let mut terms = lt;
-                terms.extend(rt.into_iter().map(|(v, a)| (v, -a)));
-                rows.push(Equation {
-                    terms,
-                    rhs: rk - lk,
-                });
+                let terms = lt
+                    .into_iter()
+                    .chain(rt.into_iter().map(|(v, a)| (v, a.neg())));
+                system.push_q(terms, Q::from_big(&(rk - lk)));
                 origins.push(RowOrigin::Entry {
                     constraint: k,
                     r: idx / lc,
@@ -451,24 +448,18 @@ impl Automaton {
                     ),
                     (None, Some(base)) => (
                         (0..r)
-                            .map(|i| (base + i * c + j, BigRational::one()))
+                            .map(|i| (base + i * c + j, Q::int(Z::one())))
                             .collect(),
                         BigRational::zero(),
                     ),
                     (None, None) => unreachable!("unknown operators have offsets"),
                 };
-                rows.push(Equation {
-                    terms,
-                    rhs: BigRational::one() - known,
-                });
+                system.push_q(terms, Q::from_big(&(BigRational::one() - known)));
                 origins.push(RowOrigin::Barycentric { op: o, c: j });
             }
         }
         Ok(Linearized {
-            system: LinearSystem {
-                unknowns: unknown_entries.len(),
-                rows,
-            },
+            system,
             origins,
             unknown_entries,
             offsets,
@@ -562,7 +553,7 @@ pub fn solve_automaton(a: &Automaton) -> Result<(SolveReport, Linearized, Soluti
     let (lin, solution) = solve_system(a)?;
     let mut report = SolveReport {
         unknowns: lin.system.unknowns,
-        equations: lin.system.rows.len(),
+        equations: lin.system.len(),
         rank: None,
         consistent: false,
         dof: 0,

@@ -248,17 +248,13 @@ fn least_squares(n: usize, rows: &[(Affine, Q)]) -> crate::constraint::SolutionS
             }
         }
     }
-    let system = LinearSystem {
-        unknowns: n,
-        rows: normal
-            .into_iter()
-            .zip(rhs)
-            .map(|(r, rhs)| Equation {
-                terms: r.into_iter().filter(|(_, c)| !c.is_zero()).collect(),
-                rhs,
-            })
-            .collect(),
-    };
+    let system = LinearSystem::from_equations(
+        n,
+        normal.into_iter().zip(rhs).map(|(r, rhs)| Equation {
+            terms: r.into_iter().filter(|(_, c)| !c.is_zero()).collect(),
+            rhs,
+        }),
+    );
     match solve(&system) {
         Solution::Consistent(space) => space,
         // Normal equations are consistent (their right-hand side lies in the column space of

@@ -286,7 +286,7 @@ impl Instance {
 
     /// Re-checks every equation of the constraint system on the chosen values, exactly over Q.
     pub fn check_exact(&self) -> Result<(), GeometryError> {
-        for (row, eq) in self.linearized.system.rows.iter().enumerate() {
+        for (row, eq) in self.linearized.system.equations().enumerate() {
             let mut s = -eq.rhs.clone();
             for (x, c) in &eq.terms {
                 s += c * &self.values[*x];

@@ -429,10 +429,7 @@ mod tests {
         // x axis: (0,0), (1,0), (2,0), not a point, so its tangent plane is not flat. Margin 1:
         // the result must have area ≥ 1, checked here by the shoelace formula by hand.
         use crate::constraint::{solve, LinearSystem, Solution};
-        let Solution::Consistent(space) = solve(&LinearSystem {
-            unknowns: 9,
-            rows: Vec::new(),
-        }) else {
+        let Solution::Consistent(space) = solve(&LinearSystem::new(9)) else {
             panic!("an empty system is consistent")
         };
         let param = space.parametrize();

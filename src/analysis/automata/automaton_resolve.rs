@@ -146,7 +146,7 @@ pub fn resolve(
                 format!("parameter `{n}`: `{}` is {rows}×{cols}", op.name),
             ));
         }
-        lin.system.rows.push(Equation {
+        lin.system.push(&Equation {
             terms: vec![(base + r * cols + c, BigRational::one())],
             rhs: v.clone(),
         });

@@ -108,23 +108,21 @@ pub fn recertify(
             certificate_for_substitution(label, &s.matrix, &s.contribution_halves, &s.start)
         }
         Claim::System(s) => {
-            let sys = crate::constraint::LinearSystem {
-                unknowns: s.unknowns,
-                rows: s
-                    .rows
-                    .iter()
-                    .map(|r| {
-                        Ok(crate::constraint::Equation {
-                            terms: r
-                                .terms
-                                .iter()
-                                .map(|(v, c)| Ok((*v, rational(c)?)))
-                                .collect::<Result<_, CertifyError>>()?,
-                            rhs: rational(&r.rhs)?,
-                        })
+            let rows = s
+                .rows
+                .iter()
+                .map(|r| {
+                    Ok(crate::constraint::Equation {
+                        terms: r
+                            .terms
+                            .iter()
+                            .map(|(v, c)| Ok((*v, rational(c)?)))
+                            .collect::<Result<_, CertifyError>>()?,
+                        rhs: rational(&r.rhs)?,
                     })
-                    .collect::<Result<_, CertifyError>>()?,
-            };
+                })
+                .collect::<Result<Vec<_>, CertifyError>>()?;
+            let sys = crate::constraint::LinearSystem::from_equations(s.unknowns, rows);
             let solution = crate::constraint::solve(&sys);
             Ok(certificate_for_system(label, &s.source, &sys, &solution))
         }

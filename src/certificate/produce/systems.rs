@@ -51,8 +51,7 @@ pub(super) fn system(
         source: source.to_string(),
         unknowns: sys.unknowns,
         rows: sys
-            .rows
-            .iter()
+            .equations()
             .map(|r| Row {
                 terms: terms(&r.terms),
                 rhs: r.rhs.to_string(),

@@ -36,11 +36,11 @@ impl SolutionSpace {
                 self.dof()
             ));
         }
-        for (i, e) in sys.rows.iter().enumerate() {
+        for (i, e) in sys.equations().enumerate() {
             if e.terms.iter().any(|(v, _)| *v >= n) {
                 return Err(format!("equation {i}: unknown out of range"));
             }
-            if row_value(e, &|v| self.particular.get(v)) != e.rhs {
+            if row_value(&e, &|v| self.particular.get(v)) != e.rhs {
                 return Err(format!("equation {i} fails on the particular solution"));
             }
         }
@@ -55,7 +55,7 @@ impl SolutionSpace {
         }
         // rows of each unknown
         let mut rows_of: Vec<Vec<u32>> = vec![vec![]; n];
-        for (i, e) in sys.rows.iter().enumerate() {
+        for (i, e) in sys.equations().enumerate() {
             e.terms.iter().for_each(|(v, _)| rows_of[*v].push(i as u32));
         }
         for (k, b) in self.basis.iter().enumerate() {
@@ -80,7 +80,7 @@ impl SolutionSpace {
             touched.sort_unstable();
             touched.dedup();
             for i in touched {
-                if !row_value(&sys.rows[i as usize], &at).is_zero() {
+                if !row_value(&sys.equation(i as usize), &at).is_zero() {
                     return Err(format!("basis vector {k} fails homogeneous equation {i}"));
                 }
             }
@@ -93,9 +93,9 @@ impl SolutionSpace {
 fn check_minor(sys: &LinearSystem, pivots: &[(usize, usize)]) -> Result<(), String> {
     const PRIMES: [u64; 4] = [(1 << 61) - 1, 1_000_000_007, 998_244_353, (1 << 31) - 1];
     let mut pos = vec![usize::MAX; sys.unknowns];
-    let mut seen_row = vec![false; sys.rows.len()];
+    let mut seen_row = vec![false; sys.len()];
     for (k, &(i, c)) in pivots.iter().enumerate() {
-        if i >= sys.rows.len() || c >= sys.unknowns || seen_row[i] || pos[c] != usize::MAX {
+        if i >= sys.len() || c >= sys.unknowns || seen_row[i] || pos[c] != usize::MAX {
             return Err(format!("pivot {k} ({i}, {c}) repeated or out of range"));
         }
         seen_row[i] = true;
@@ -124,7 +124,7 @@ fn check_minor(sys: &LinearSystem, pivots: &[(usize, usize)]) -> Result<(), Stri
         let mut u: Vec<Vec<(usize, u64)>> = Vec::with_capacity(pivots.len());
         for (k, &(i, _)) in pivots.iter().enumerate() {
             let mut row: BTreeMap<usize, u64> = BTreeMap::new();
-            for (v, c) in &sys.rows[i].terms {
+            for (v, c) in &sys.equation(i).terms {
                 if pos[*v] == usize::MAX {
                     continue;
                 }
@@ -171,10 +171,7 @@ impl Conflict {
         let mut rhs = BigRational::zero();
         let mut used = std::collections::BTreeSet::new();
         for (i, m) in &self.multipliers {
-            let e = sys
-                .rows
-                .get(*i)
-                .ok_or(format!("equation {i} out of range"))?;
+            let e = sys.get(*i).ok_or(format!("equation {i} out of range"))?;
             if !used.insert(*i) {
                 return Err(format!("equation {i} repeated"));
             }

@@ -31,34 +31,14 @@
 //! Written by hand: crates.io has sparse solvers over `f64` only (rsparse, russell_sparse,
 //! sparsela), none exact, rank-revealing or certifying.
 
-use crate::constraint::presolve::{integer_row, Presolve, RowFate, Q, Z};
+use crate::constraint::presolve::{integer_row, Presolve, RowFate, Rows, Q, Z};
 pub use compact::{Direction, Directions, Rationals};
 use num_rational::BigRational;
 use num_traits::Zero;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
-use std::io::{self, Write};
-
-/// A linear system `Σ coef·x[var] = rhs` over Q in `unknowns` unknowns.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct LinearSystem {
-    /// Number of unknowns; every variable index is below it.
-    pub unknowns: usize,
-    /// The equations.
-    pub rows: Vec<Equation>,
-}
-
-/// One equation `Σ coef·x[var] = rhs`; a variable may repeat (coefficients add up), `terms` may
-/// be empty.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct Equation {
-    /// `(variable, coefficient)` pairs.
-    #[serde(with = "rat_terms")]
-    pub terms: Vec<(usize, BigRational)>,
-    /// Right-hand side.
-    #[serde(with = "rat")]
-    pub rhs: BigRational,
-}
+use system::{rat, rat_terms};
+pub use system::{write_text, Equation, LinearSystem, TextLayout};
 
 /// Outcome of [`solve`]: inconsistency is a result with its certificate, not an error.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -108,17 +88,12 @@ pub fn solve(sys: &LinearSystem) -> Solution {
         sys.unknowns < u32::MAX as usize,
         "at most 2^32 − 2 unknowns"
     );
-    let rows = || {
-        sys.rows.iter().map(|e| {
-            let terms = e.terms.iter().map(|(v, c)| {
-                assert!(*v < sys.unknowns, "unknown {v} out of range");
-                (*v as u32, Q::from_big(c))
-            });
-            (terms, Q::from_big(&e.rhs))
-        })
-    };
-    let terms = sys.rows.iter().map(|e| e.terms.len()).sum();
-    match run(sys.unknowns, rows, terms, true, true) {
+    assert!(
+        sys.variable_bound() <= sys.unknowns,
+        "unknown {} out of range",
+        sys.variable_bound() - 1
+    );
+    match run(sys.unknowns, sys.rows(), true, true) {
         Ok(space) => Solution::Consistent(space),
         Err(failure) => {
             let (ps, seeds) = *failure.expect("certified");
@@ -128,29 +103,25 @@ pub fn solve(sys: &LinearSystem) -> Solution {
 }
 
 /// The presolve state and the substituted rows (with weights) whose sum reads `0 = c ≠ 0`.
-type Failure = Box<(Presolve, Vec<(usize, Q)>)>;
+type Failure<'a> = Box<(Presolve<'a>, Vec<(usize, Q)>)>;
 
-/// Presolve + core over the rows `rows()` makes (called a second time, for the same rows, only
-/// when the system is inconsistent and `certify`). On inconsistency returns, with `certify`, the
-/// presolve state that can replay its facts and the conflicting combination.
-fn run<T, I>(
+/// Presolve + core over `rows` in `n` unknowns (every variable of `rows` below `n`); the
+/// presolve runs a second time only when the system is inconsistent and `certify`. On
+/// inconsistency returns, with `certify`, the presolve state that can replay its facts and the
+/// conflicting combination.
+fn run(
     n: usize,
-    rows: impl Fn() -> I,
-    terms: usize,
+    rows: &Rows,
     want_basis: bool,
     certify: bool,
-) -> Result<SolutionSpace, Option<Failure>>
-where
-    T: IntoIterator<Item = (u32, Q)>,
-    I: ExactSizeIterator<Item = (T, Q)>,
-{
-    let mut ps = Presolve::new(n, rows(), terms, false);
+) -> Result<SolutionSpace, Option<Failure<'_>>> {
+    let mut ps = Presolve::new(n, rows, false);
     if ps.run().is_none() {
         let pending = pending(&ps);
         let Core {
             rows, roots, local, ..
         } = build_core(&mut ps, &pending);
-        ps.release_rows();
+        ps.release_run();
         if let Ok(core) = eliminate(rows, roots.len(), false) {
             return Ok(assemble(
                 &mut ps,
@@ -168,7 +139,7 @@ where
     // the presolve now keeping the rows and factors of its facts, the elimination now tracking
     // the combination of rows that each of its rows is.
     drop(ps);
-    let mut ps = Presolve::new(n, rows(), terms, true);
+    let mut ps = Presolve::new(n, rows, true);
     if let Some(bad) = ps.run() {
         return Err(Some(Box::new((ps, vec![(bad, Q::int(Z::one()))]))));
     }
@@ -188,7 +159,7 @@ where
 
 /// The rows presolve left pending, which make the core.
 fn pending(ps: &Presolve) -> Vec<usize> {
-    (0..ps.rows())
+    (0..ps.row_count())
         .filter(|&i| ps.fate[i] == RowFate::Pending)
         .collect()
 }
@@ -412,9 +383,9 @@ fn certificate(ps: &Presolve, seeds: Vec<(usize, Q)>) -> Conflict {
             .into_iter()
             .map(|(k, z)| (m[k as usize].0, BigRational::from_integer(z.big())))
             .collect();
-        let constant = multipliers
-            .iter()
-            .fold(BigRational::zero(), |s, (i, m)| s + m * ps.rhs[*i].big());
+        let constant = multipliers.iter().fold(BigRational::zero(), |s, (i, m)| {
+            s + m * ps.rows.rhs[*i].big()
+        });
         Conflict {
             multipliers,
             constant,
@@ -433,24 +404,25 @@ fn minimal(ps: &Presolve, rows: &[usize]) -> Option<Vec<(usize, Q)>> {
     // Column j of A_R becomes the equation Σ_k A[r_k][j]·y_k = 0; the last one Σ b·y = 1.
     let mut by_col: BTreeMap<u32, Vec<(u32, Q)>> = BTreeMap::new();
     for (k, &i) in rows.iter().enumerate() {
-        for t in ps.start[i]..ps.start[i + 1] {
-            by_col
-                .entry(ps.cols[t])
-                .or_default()
-                .push((k as u32, ps.coefs[t].clone()));
+        let (vars, coefs) = ps.rows.row(i);
+        for (&v, q) in vars.iter().zip(coefs) {
+            by_col.entry(v).or_default().push((k as u32, q.clone()));
         }
     }
+    let rhs = &ps.rows.rhs;
     let rhs_row: Vec<(u32, Q)> = rows
         .iter()
         .enumerate()
-        .filter(|(_, &i)| !ps.rhs[i].is_zero())
-        .map(|(k, &i)| (k as u32, ps.rhs[i].clone()))
+        .filter(|(_, &i)| !rhs[i].is_zero())
+        .map(|(k, &i)| (k as u32, rhs[i].clone()))
         .collect();
-    let mut eqs: Vec<(Vec<(u32, Q)>, Q)> = by_col.into_values().map(|t| (t, Q::zero())).collect();
-    eqs.push((rhs_row, Q::int(Z::one())));
-    let terms = eqs.iter().map(|(t, _)| t.len()).sum();
-    let rows_of = || eqs.iter().map(|(t, r)| (t.iter().cloned(), r.clone()));
-    let space = run(rows.len(), rows_of, terms, false, false).ok()?;
+    let terms = by_col.values().map(Vec::len).sum::<usize>() + rhs_row.len();
+    let mut transposed = Rows::with_capacity(by_col.len() + 1, terms);
+    by_col
+        .into_values()
+        .for_each(|t| transposed.push(t, Q::zero()));
+    transposed.push(rhs_row, Q::int(Z::one()));
+    let space = run(rows.len(), &transposed, false, false).ok()?;
     let m: Vec<(usize, Q)> = (0..space.particular.len())
         .filter(|&k| !space.particular.is_zero_at(k))
         .map(|k| (rows[k], Q::from_big(&space.particular.get(k))))
@@ -458,31 +430,6 @@ fn minimal(ps: &Presolve, rows: &[usize]) -> Option<Vec<(usize, Q)>> {
     Some(m)
 }
 
-mod rat {
-    use num_rational::BigRational;
-    use serde::{de::Error, Deserialize, Deserializer, Serializer};
-    pub fn serialize<S: Serializer>(r: &BigRational, s: S) -> Result<S::Ok, S::Error> {
-        s.collect_str(r)
-    }
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<BigRational, D::Error> {
-        String::deserialize(d)?.parse().map_err(D::Error::custom)
-    }
-}
-mod rat_terms {
-    use num_rational::BigRational;
-    use serde::{de::Error, Deserialize, Deserializer, Serializer};
-    pub fn serialize<S: Serializer>(v: &[(usize, BigRational)], s: S) -> Result<S::Ok, S::Error> {
-        s.collect_seq(v.iter().map(|(i, r)| (i, r.to_string())))
-    }
-    pub fn deserialize<'de, D: Deserializer<'de>>(
-        d: D,
-    ) -> Result<Vec<(usize, BigRational)>, D::Error> {
-        let raw = Vec::<(usize, String)>::deserialize(d)?;
-        raw.into_iter()
-            .map(|(i, s)| Ok((i, s.parse().map_err(D::Error::custom)?)))
-            .collect()
-    }
-}
 /// Each unknown as `particular + Σ_k coef·t_k` (the transpose of the basis), for answering many
 /// [`Parametrization::forced_equal`] queries.
 #[derive(Clone, Debug)]
@@ -536,71 +483,10 @@ impl Parametrization {
     }
 }
 
-/// Text layouts of [`write_text`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum TextLayout {
-    /// First line `rows cols`; then per equation `c_0 c_1 … c_{cols−1} | rhs`.
-    Dense,
-    /// First line `rows cols`; then per equation `rhs | col:coef col:coef …` (columns increasing,
-    /// repeats summed, zeros omitted).
-    Sparse,
-}
-
-/// Writes the system as text for an external comparison; rationals are `p/q` or `p`.
-///
-/// Reading it with python-flint (`fmpq_mat.rref()` returns `(rref, rank)`; consistency is
-/// `rank(A) = rank([A|b])`):
-/// ```text
-/// from fractions import Fraction
-/// import flint
-/// def q(s):
-///     f = Fraction(s)
-///     return flint.fmpq(f.numerator, f.denominator)
-/// def read(path, sparse):
-///     with open(path) as f:
-///         m, n = map(int, f.readline().split())
-///         a, b = [[flint.fmpq(0)] * n for _ in range(m)], []
-///         for i, line in enumerate(f):
-///             left, right = line.split("|")
-///             if sparse:  # rhs | col:coef ...
-///                 b.append(q(left))
-///                 for t in right.split():
-///                     c, v = t.split(":")
-///                     a[i][int(c)] = q(v)
-///             else:       # c_0 ... c_{n-1} | rhs
-///                 a[i] = [q(v) for v in left.split()]
-///                 b.append(q(right))
-///         return flint.fmpq_mat(m, n, [x for r in a for x in r]), flint.fmpq_mat(m, 1, b)
-/// ```
-pub fn write_text<W: Write>(sys: &LinearSystem, layout: TextLayout, mut out: W) -> io::Result<()> {
-    writeln!(out, "{} {}", sys.rows.len(), sys.unknowns)?;
-    for e in &sys.rows {
-        let d = difference(&e.terms, &[]);
-        match layout {
-            TextLayout::Dense => {
-                for v in 0..sys.unknowns {
-                    match d.get(&v) {
-                        Some(c) => write!(out, "{c} ")?,
-                        None => write!(out, "0 ")?,
-                    }
-                }
-                writeln!(out, "| {}", e.rhs)?;
-            }
-            TextLayout::Sparse => {
-                write!(out, "{} |", e.rhs)?;
-                for (v, c) in d {
-                    write!(out, " {v}:{c}")?;
-                }
-                writeln!(out)?;
-            }
-        }
-    }
-    Ok(())
-}
-
 mod check;
 mod compact;
 mod elimination;
+mod system;
 #[cfg(test)]
 mod tests;
 
