@@ -3,10 +3,11 @@
 //! The BC-IFS systems have millions of unknowns, and nearly all of their values are small
 //! fractions. A `BigRational` is 64 bytes even when it holds `1/2`. A million-unknown solution
 //! stored that way is about 200 MB of fresh memory, and writing it cost as much as the whole
-//! presolve (issue #34). Here a value takes two machine words while its numerator fits an `i64`
-//! and its denominator a `u64`. The few that do not fit are kept in a side vector. Each read
-//! builds a `BigRational`. A value of one limb does not allocate, because num-bigint keeps
-//! one-limb integers inline.
+//! presolve (issue #34). Here a value takes one machine word, a numerator that fits an `i32` and
+//! a denominator that fits a `u32`; the few that do not fit are kept in a side vector. Each read
+//! builds a `BigRational`. One word rather than two halves the fresh memory a large solution
+//! space is written to: a million-unknown space is mostly its particular solution and its
+//! directions, and the kernel maps and clears each new page of them.
 //!
 //! Both types serialise as before: `particular` as a list of strings, `basis` as a list of lists
 //! of `(unknown, string)`.
@@ -18,15 +19,15 @@ use serde::{de::Error, Deserialize, Deserializer, Serialize, Serializer};
 use std::fmt::Write as _;
 use std::ops::Range;
 
-/// A sequence of exact rationals. A value is stored in two words, `n/d` with `n: i64` and
-/// `d: u64`, when it fits. Any other value is stored in full beside them. The storage is
+/// A sequence of exact rationals. A value is stored in one word, `n/d` with `n: i32` and
+/// `d: u32`, when it fits. Any other value is stored in full beside them. The storage is
 /// canonical: equal sequences compare equal.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Rationals {
     /// `(n, d)`. With `d > 0` the value is `n/d`, reduced. With `d == 0`, `n` is an index into
     /// `big`.
-    words: Vec<(i64, u64)>,
-    /// The values that do not fit two words, in order.
+    words: Vec<(i32, u32)>,
+    /// The values that do not fit a word, in order.
     big: Vec<BigRational>,
 }
 
@@ -51,19 +52,26 @@ impl Rationals {
 
     /// Appends a value.
     pub fn push(&mut self, r: &BigRational) {
-        match (r.numer().to_i64(), r.denom().to_u64()) {
+        match (r.numer().to_i32(), r.denom().to_u32()) {
             (Some(n), Some(d)) => self.words.push((n, d)),
-            _ => {
-                self.words.push((self.big.len() as i64, 0));
-                self.big.push(r.clone());
-            }
+            _ => self.push_big(r.clone()),
         }
     }
 
     /// Appends `n/d`. The caller guarantees `d > 0` and `gcd(n, d) = 1`.
     pub(crate) fn push_small(&mut self, n: i64, d: u64) {
         debug_assert!(d > 0);
-        self.words.push((n, d));
+        match (i32::try_from(n), u32::try_from(d)) {
+            (Ok(n), Ok(d)) => self.words.push((n, d)),
+            _ => self.push_big(BigRational::new_raw(BigInt::from(n), BigInt::from(d))),
+        }
+    }
+
+    /// Appends a value that does not fit a word.
+    fn push_big(&mut self, r: BigRational) {
+        let k = i32::try_from(self.big.len()).expect("fewer than 2^31 values stored aside");
+        self.words.push((k, 0));
+        self.big.push(r);
     }
 
     /// The value at `i`.
@@ -350,10 +358,16 @@ mod tests {
         s.parse().expect("rational")
     }
 
-    /// Numerators and denominators around the edges of the two-word form.
+    /// Numerators and denominators around the edges of the one-word form and of the solver's
+    /// two-word numbers.
     fn value() -> impl Strategy<Value = BigRational> {
         let n = prop_oneof![
             -5i128..5,
+            Just(i32::MIN as i128),
+            Just(i32::MAX as i128),
+            Just(i32::MIN as i128 - 1),
+            Just(i32::MAX as i128 + 1),
+            any::<i32>().prop_map(|v| v as i128),
             Just(i64::MIN as i128),
             Just(i64::MAX as i128),
             Just(i64::MIN as i128 - 1),
@@ -363,6 +377,9 @@ mod tests {
         ];
         let d = prop_oneof![
             1u128..5,
+            Just(u32::MAX as u128),
+            Just(u32::MAX as u128 + 1),
+            any::<u32>().prop_map(|v| v as u128 + 1),
             Just(u64::MAX as u128),
             Just(u64::MAX as u128 + 1),
             any::<u64>().prop_map(|v| v as u128 + 1),
@@ -373,7 +390,7 @@ mod tests {
 
     proptest! {
         /// Every value reads back as written, prints as `BigRational` prints it, and survives
-        /// serde; the two-word form is used exactly when the value fits it.
+        /// serde; the one-word form is used exactly when the value fits it.
         #[test]
         fn rationals_read_back_what_was_written(vals in proptest::collection::vec(value(), 0..12)) {
             let r: Rationals = vals.iter().collect();
@@ -382,13 +399,33 @@ mod tests {
             for (i, v) in vals.iter().enumerate() {
                 prop_assert_eq!(r.text(i), v.to_string());
                 prop_assert_eq!(r.is_zero_at(i), v.is_zero());
-                let fits = v.numer().to_i64().is_some() && v.denom().to_u64().is_some();
+                let fits = v.numer().to_i32().is_some() && v.denom().to_u32().is_some();
                 prop_assert_eq!(r.words[i].1 > 0, fits);
             }
             let json = serde_json::to_string(&r).expect("serialise");
             let want: Vec<String> = vals.iter().map(|v| v.to_string()).collect();
             prop_assert_eq!(&json, &serde_json::to_string(&want).expect("serialise"));
             prop_assert_eq!(serde_json::from_str::<Rationals>(&json).expect("parse"), r);
+        }
+
+        /// A reduced `n/d` from the solver's machine words is stored exactly as the same value
+        /// given as a `BigRational`: in a word when it fits one, aside when not, so that
+        /// equality of the stores stays equality of the values.
+        #[test]
+        fn small_pushes_store_as_big_ones_do(
+            n in prop_oneof![any::<i64>(), -70_000i64..70_000, Just(i64::MIN)],
+            d in prop_oneof![1u64..70_000, any::<u64>().prop_map(|d| d | 1)],
+        ) {
+            let v = BigRational::new(BigInt::from(n), BigInt::from(d));
+            let (Some(rn), Some(rd)) = (v.numer().to_i64(), v.denom().to_u64()) else {
+                return Ok(());
+            };
+            let mut small = Rationals::default();
+            small.push_small(rn, rd);
+            let mut big = Rationals::default();
+            big.push(&v);
+            prop_assert_eq!(&small, &big);
+            prop_assert_eq!(small.get(0), v);
         }
 
         /// Directions keep their entries apart and in order, and serialise as a list of lists.
