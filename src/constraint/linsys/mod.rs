@@ -239,7 +239,7 @@ fn assemble(
         .collect();
     let root_val = |ps: &Presolve, r: u32| -> Q {
         if let Some(v) = ps.root_value(r) {
-            return v.clone();
+            return v;
         }
         match core_pivot(r) {
             Some(k) => Q::int(core[k].2.rhs.clone()).div(&pivot_coef[k]),
@@ -305,7 +305,7 @@ fn assemble(
                 let k = &mut start[r as usize];
                 *k -= 1;
                 members[*k as usize] = x;
-                factors[*k as usize] = ps.relation(x).1.clone();
+                factors[*k as usize] = ps.relation(x).1;
             }
         }
         drop(root_of);
