@@ -563,8 +563,11 @@ impl<'a> Presolve<'a> {
             r = self.node[r as usize].parent;
         }
         // Walk back from the node nearest the root, composing relations.
-        let (mut cf, mut cg) = (Q::int(Z::one()), Q::zero());
-        for &y in path.iter().rev() {
+        // The node nearest the root already points at it: its relation is the start, and it
+        // is not rewritten (a rewrite would append a value that does not fit a word again).
+        let last = *path.last().expect("x is not a root") as usize;
+        let (mut cf, mut cg) = (self.get(self.node[last].f), self.get(self.node[last].g));
+        for &y in path.iter().rev().skip(1) {
             let y = y as usize;
             // y = f_y·p + g_y and p = cf·r + cg  ⇒  y = (f_y·cf)·r + (f_y·cg + g_y)
             let (yf, yg) = (self.get(self.node[y].f), self.get(self.node[y].g));
@@ -1138,6 +1141,43 @@ mod tests {
         let (row, r, s) = integer_row(&[(0, q(4, 1)), (1, q(6, 1))], &q(2, 1));
         assert_eq!(row, vec![(0, Z::S(2)), (1, Z::S(3))]);
         assert_eq!((r, s), (Z::S(1), q(1, 2)));
+    }
+
+    #[test]
+    fn compressing_a_path_keeps_aside_only_the_rewritten_nodes_values() {
+        // x_i = c·x_(i+1) along a chain, with c = 2^40 (not a word): every relation is big.
+        // The chain is linked as two halves first and joined last, so that one half's root
+        // goes under the other's and its members end two steps from the root.
+        let (len, c) = (12u32, 1i64 << 40);
+        let mut rows = Rows::default();
+        let link =
+            |rows: &mut Rows, i: u32| rows.push([(i, q(1, 1)), (i + 1, q(-c, 1))], Q::zero());
+        (0..len - 1)
+            .filter(|&i| i != 4)
+            .for_each(|i| link(&mut rows, i));
+        link(&mut rows, 4);
+        let mut p = Presolve::new(len as usize, &rows, false);
+        assert_eq!(p.run(), None);
+        // Only a node at depth two or more is rewritten by `find`.
+        let deep = (0..len as usize)
+            .filter(|&x| {
+                let parent = p.node[x].parent as usize;
+                p.node[parent].parent as usize != parent
+            })
+            .count();
+        assert!(deep > 0, "the chain leaves a path to compress");
+        let aside = p.big.len();
+        let rel: Vec<(u32, Q, Q)> = (0..len).map(|x| p.find(x)).collect();
+        // Each rewritten node gets one new big value, its factor (its offset 0 fits a word).
+        assert_eq!(p.big.len() - aside, deep);
+        // x_i = c^(j−i)·x_j: every relation is the last unknown's times a power of c.
+        let last = &rel[len as usize - 1];
+        for (i, (r, f, g)) in rel.iter().enumerate() {
+            assert_eq!((r, g), (&last.0, &Q::zero()), "x{i}");
+            let mut want = last.1.clone();
+            (i..len as usize - 1).for_each(|_| want = want.mul(&q(c, 1)));
+            assert_eq!(f, &want, "x{i}");
+        }
     }
 
     #[test]

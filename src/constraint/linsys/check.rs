@@ -36,6 +36,9 @@ impl SolutionSpace {
                 self.dof()
             ));
         }
+        // One pass over the equations: each is checked on the particular solution and indexed
+        // by the unknowns it holds (the rows each basis vector must satisfy).
+        let mut rows_of: Vec<Vec<u32>> = vec![vec![]; n];
         for (i, e) in sys.equations().enumerate() {
             if e.terms.iter().any(|(v, _)| *v >= n) {
                 return Err(format!("equation {i}: unknown out of range"));
@@ -43,6 +46,7 @@ impl SolutionSpace {
             if row_value(&e, &|v| self.particular.get(v)) != e.rhs {
                 return Err(format!("equation {i} fails on the particular solution"));
             }
+            e.terms.iter().for_each(|(v, _)| rows_of[*v].push(i as u32));
         }
         let mut free_pos = vec![usize::MAX; n];
         for (k, &f) in self.free.iter().enumerate() {
@@ -52,11 +56,6 @@ impl SolutionSpace {
                 ));
             }
             free_pos[f] = k;
-        }
-        // rows of each unknown
-        let mut rows_of: Vec<Vec<u32>> = vec![vec![]; n];
-        for (i, e) in sys.equations().enumerate() {
-            e.terms.iter().for_each(|(v, _)| rows_of[*v].push(i as u32));
         }
         for (k, b) in self.basis.iter().enumerate() {
             let xs = b.unknowns();
