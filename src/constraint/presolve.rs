@@ -585,12 +585,14 @@ impl<'a> Presolve<'a> {
 
     /// `(root, F, G)` with `x = F·root + G`; only valid once [`Presolve::find`] has compressed
     /// the path of `x` and no fact was made since.
+    #[inline]
     pub(crate) fn relation(&self, x: u32) -> (u32, Q, Q) {
         let nx = &self.node[x as usize];
         (nx.parent, self.get(nx.f), self.get(nx.g))
     }
 
     /// The value of a one-word rational.
+    #[inline]
     fn get(&self, w: W) -> Q {
         if w.1 != 0 {
             Q::S(w.0 as i64, w.1)
@@ -612,10 +614,18 @@ impl<'a> Presolve<'a> {
     }
 
     /// The fixed value of root `r`, if any (a root's only possible fact is a fixed value).
+    #[inline]
     pub(crate) fn root_value(&self, r: u32) -> Option<Q> {
+        self.root_fixed(r)
+            .then(|| self.get(self.node[r as usize].g))
+    }
+
+    /// Whether root `r` is fixed: [`Presolve::root_value`] without building the value.
+    #[inline]
+    pub(crate) fn root_fixed(&self, r: u32) -> bool {
         let nr = &self.node[r as usize];
         debug_assert_eq!(nr.parent, r, "a root");
-        (nr.at != 0).then(|| self.get(nr.g))
+        nr.at != 0
     }
 
     /// Whether `x` was fixed (it is then a root of its own class); needs tracking.

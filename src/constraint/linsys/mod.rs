@@ -258,7 +258,7 @@ fn assemble(
     for x in 0..n as u32 {
         let (r, f, g) = ps.find(x);
         if want_basis {
-            if ps.root_value(r).is_some() {
+            if ps.root_fixed(r) {
                 root_of.push(u32::MAX);
             } else {
                 root_of.push(r);
@@ -267,7 +267,7 @@ fn assemble(
             }
         }
         let v = if r == x {
-            if ps.root_value(x).is_none() && core_pivot(x).is_none() {
+            if !ps.root_fixed(x) && core_pivot(x).is_none() {
                 free.push(x as usize);
             }
             root_val(ps, x)
