@@ -201,7 +201,8 @@ fn hardening_10_solve_memory_estimated_before_solving() {
     assert!(t < BEFORE_THE_WORK, "{t:?}");
     // The system generated from a closure is estimated the same way, before it is built: the
     // closure of item 2's face (with --max-boundary raised) has a type of 285 edges whose 606
-    // sub-faces make 1.76 million unknowns (a 44 s, 2.3 GB solve before).
+    // sub-faces make 1.76 million unknowns (a 44 s, 2.3 GB solve before; 4.8 s, 1.5 GB since the
+    // compact system of issue #34).
     let face = "B3 B2 C2 C4 B2 C4 C4 | B2 B2 C3 | A1 | 3";
     let (code, out, err, t) = timed(&["verify", face, "--max-boundary", "1000"]);
     assert_eq!(code, 2, "{out}{err}");

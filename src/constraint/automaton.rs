@@ -187,12 +187,17 @@ impl Automaton {
     /// The memory a solve of this automaton takes, in bytes, estimated from its shapes alone
     /// (before the system is built): about 1,100 bytes per unknown (its entry, its value in the
     /// particular solution, its basis direction and report line when free — measured on
-    /// `state e N` with one unknown `N×N` operator: 104 MB for N = 300, 403 MB for N = 600),
-    /// 100 per equation row and 64 per term, with a word `A·X·B` counted as `p·q` terms per
-    /// entry for an unknown `X` of shape `p×q` (fewer when `A` or `B` is absent). Fill-in during
-    /// elimination comes on top, while the term count is an upper bound: on the closure of
-    /// `B3 B2 C2 C4 B2 C4 C4 | B2 B2 C3 | A1 | 3` (1.76 M unknowns) it estimates 3.4 GB where the
-    /// solve takes 2.3 GB.
+    /// `state e N` with one unknown `N×N` operator when the system stored `BigRational`s: 104 MB
+    /// for N = 300, 403 MB for N = 600), 100 per equation row and 64 per term, with a word
+    /// `A·X·B` counted as `p·q` terms per entry for an unknown `X` of shape `p×q` (fewer when `A`
+    /// or `B` is absent). Fill-in during elimination comes on top, while the term count is an
+    /// upper bound. Since the compact system of issue #34 the estimate runs above the whole
+    /// `lacuna solve` process's peak: 95 against 73 MiB and 378 against 272 MiB on `state e`
+    /// 300 and 600; 2,140 against 952 MiB on `B4 C4 B3^3 C4 B4 C3 B2^2 | C3 B2 C3 | A3 | 3`
+    /// (1.18 M unknowns); 3,275 against 1,536 MiB on the closure of
+    /// `B3 B2 C2 C4 B2 C4 C4 | B2 B2 C3 | A1 | 3` (1.76 M unknowns). It is left on that side on
+    /// purpose (it refuses some solves that would fit, which `--max-memory` lets through); it is
+    /// an estimate, not a proved bound.
     pub fn solve_memory_estimate(&self) -> u128 {
         let unknowns = self.unknown_count() as u128;
         let (mut rows, mut terms) = (0u128, 0u128);
