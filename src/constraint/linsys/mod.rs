@@ -257,8 +257,9 @@ fn assemble(
     // union-find nodes of a million unknowns are far out of cache, so they are read once here.
     for x in 0..n as u32 {
         let (r, f, g) = ps.find(x);
+        let fixed = ps.root_fixed(r);
         if want_basis {
-            if ps.root_fixed(r) {
+            if fixed {
                 root_of.push(u32::MAX);
             } else {
                 root_of.push(r);
@@ -267,7 +268,7 @@ fn assemble(
             }
         }
         let v = if r == x {
-            if !ps.root_fixed(x) && core_pivot(x).is_none() {
+            if !fixed && core_pivot(x).is_none() {
                 free.push(x as usize);
             }
             root_val(ps, x)
